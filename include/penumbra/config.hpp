@@ -1,0 +1,115 @@
+// penumbra/config.hpp — the one value that decides every line Penumbra emits.
+//
+//   penumbra::Config config{.slices = 8, .resolution = 256, .filter = penumbra::Filter::sat};
+//
+// `Config{}` is the default configuration (16 slices, 512², N-buffers, probabilistic fusion,
+// the paper's atlas packing, rectangular light, leak fix and fade on, OpenGL 4.5 core).
+// Config is a structural literal type, so it can also be a template argument
+// (see penumbra/static_glsl.hpp).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+namespace penumbra {
+
+// How the occlusion textures are prefiltered so that one lookup returns a box mean (paper §3.2).
+enum class Filter : std::uint8_t {
+    mipmap,   // hardware trilinear mip chain: cheapest, dyadic windows (blocky when animated)
+    nbuffer,  // N-buffers (Décoret 2005): L+1 full-resolution levels, continuous window placement
+    sat,      // summed-area table, 32-bit float: exact box mean from four fetches
+    gaussian, // Gaussian pyramid at full resolution (journal §3.5; sun light only)
+};
+
+// How the occlusion of several slices is combined into one visibility (paper §3.3).
+enum class Fusion : std::uint8_t {
+    probabilistic, // Π (1 − q_k): the paper's rule, eq. (5)
+    additive,      // max(0, 1 − Σ q_k)
+    maximum,       // 1 − max q_k
+    average,       // Soler & Sillion: 1 − (min(1, Σ q_k) + max q_k) / 2
+};
+
+// How the filtered occlusion textures are stored (paper §3.6–3.7, design.md §3).
+enum class Packing : std::uint8_t {
+    atlas,  // one texture per filter level, the T occlusion textures side by side (paper §3.6)
+    array,  // one 2D array texture, layer = level·T + t
+    volume, // one 3D texture per group of four slices, depth = filter levels (paper §3.7)
+};
+
+enum class Light : std::uint8_t {
+    rect, // rectangular area light: perspective slicing from behind the light (paper §3.4)
+    sun,  // light at infinity with an angular radius: orthographic slicing (journal §3.5)
+};
+
+// The shading language the emitted text is written in.
+enum class Target : std::uint8_t {
+    glsl330, // OpenGL 3.3 core, `#version 330 core`
+    glsl450, // OpenGL 4.5 core, `#version 450 core`
+    essl300, // OpenGL ES 3.0 / WebGL2, `#version 300 es`
+    vulkan,  // GLSL 450 for SPIR-V: set/binding decorations, parameters in a uniform block
+};
+
+struct Config {
+    int slices = 16;                        // slices along the light normal; 1 to 32 (four per RGBA texture)
+    int resolution = 512;                   // occlusion texture side in texels; a power of two, 32 to 4096
+    Filter filter = Filter::nbuffer;        // prefilter of the occlusion textures
+    Fusion fusion = Fusion::probabilistic;  // rule combining the slices' occlusion
+    Packing packing = Packing::atlas;       // storage of the filtered levels
+    Light light = Light::rect;              // kind of area light
+    bool leak_fix = true;                   // paper §3.4.1: a fragment of slice k also marks slice k+1
+    bool self_shadow_fade = true;           // paper §3.4.2: fade out the slice containing the point
+    Target target = Target::glsl450;        // shading language of the output
+
+    friend constexpr bool operator==(const Config&, const Config&) = default;
+};
+
+// Names as they appear on the command line, in JSON and in diagnostics.
+template <class Enum> struct EnumNames;
+template <> struct EnumNames<Filter> {
+    static constexpr std::array<std::string_view, 4> names{"mipmap", "nbuffer", "sat", "gaussian"};
+};
+template <> struct EnumNames<Fusion> {
+    static constexpr std::array<std::string_view, 4> names{"probabilistic", "additive", "maximum", "average"};
+};
+template <> struct EnumNames<Packing> {
+    static constexpr std::array<std::string_view, 3> names{"atlas", "array", "volume"};
+};
+template <> struct EnumNames<Light> {
+    static constexpr std::array<std::string_view, 2> names{"rect", "sun"};
+};
+template <> struct EnumNames<Target> {
+    static constexpr std::array<std::string_view, 4> names{"glsl330", "glsl450", "essl300", "vulkan"};
+};
+
+template <class Enum> constexpr std::string_view to_string(Enum value) {
+    return EnumNames<Enum>::names[static_cast<std::size_t>(value)];
+}
+
+// The enum value named `name`, or nothing when no value has that name.
+template <class Enum> constexpr std::optional<Enum> parse_enum(std::string_view name) {
+    const auto& names = EnumNames<Enum>::names;
+    for (std::size_t i = 0; i < names.size(); ++i)
+        if (names[i] == name) return static_cast<Enum>(i);
+    return std::nullopt;
+}
+
+// Every value of an enum, for iterating over a configuration matrix.
+template <class Enum> constexpr auto all_values() {
+    std::array<Enum, EnumNames<Enum>::names.size()> values{};
+    for (std::size_t i = 0; i < values.size(); ++i) values[i] = static_cast<Enum>(i);
+    return values;
+}
+
+// Number of RGBA textures that hold the slices: four slices per texture, the last one may be partial.
+constexpr int texture_count(const Config& config) { return (config.slices + 3) / 4; }
+
+// Number of filter levels above the full-resolution one: L = log2(resolution).
+constexpr int max_level(const Config& config) {
+    int levels = 0;
+    for (int r = config.resolution; r > 1; r /= 2) ++levels;
+    return levels;
+}
+
+} // namespace penumbra

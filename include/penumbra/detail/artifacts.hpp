@@ -1,0 +1,112 @@
+// penumbra/detail/artifacts.hpp — which files a configuration emits, and which programs they form.
+#pragma once
+
+#include "../program.hpp"
+#include "emit_prefilter.hpp"
+#include "emit_shading.hpp"
+#include "emit_slicing.hpp"
+
+namespace penumbra {
+
+// Every file Penumbra can emit. Which ones a configuration needs: artifacts_for().
+enum class Artifact : std::uint8_t {
+    slicing_vert,
+    slicing_frag,
+    fullscreen_vert,
+    pack_atlas_frag,
+    nbuffer_level_frag,
+    gaussian_level_frag,
+    sat_shift_frag,
+    sat_pass_frag,
+    shading_vert,
+    shading_frag,
+    deferred_frag,
+    visibility_snippet, // penumbra_visibility.glsl, no #version: for inclusion into the engine's shaders
+};
+
+constexpr std::string_view file_name(Artifact artifact) {
+    switch (artifact) {
+    case Artifact::slicing_vert: return "penumbra_slicing.vert";
+    case Artifact::slicing_frag: return "penumbra_slicing.frag";
+    case Artifact::fullscreen_vert: return "penumbra_fullscreen.vert";
+    case Artifact::pack_atlas_frag: return "penumbra_pack_atlas.frag";
+    case Artifact::nbuffer_level_frag: return "penumbra_nbuffer_level.frag";
+    case Artifact::gaussian_level_frag: return "penumbra_gaussian_level.frag";
+    case Artifact::sat_shift_frag: return "penumbra_sat_shift.frag";
+    case Artifact::sat_pass_frag: return "penumbra_sat_pass.frag";
+    case Artifact::shading_vert: return "penumbra_shading.vert";
+    case Artifact::shading_frag: return "penumbra_shading.frag";
+    case Artifact::deferred_frag: return "penumbra_deferred.frag";
+    case Artifact::visibility_snippet: return "penumbra_visibility.glsl";
+    }
+    return "";
+}
+
+constexpr Stage artifact_stage(Artifact artifact) {
+    switch (artifact) {
+    case Artifact::slicing_vert:
+    case Artifact::fullscreen_vert:
+    case Artifact::shading_vert: return Stage::vertex;
+    default: return Stage::fragment;
+    }
+}
+
+namespace detail {
+
+// The text of one artifact. Pure function of the configuration; `config` must be valid.
+constexpr Text artifact_text(const Config& config, Artifact artifact) {
+    switch (artifact) {
+    case Artifact::slicing_vert: return slicing_vertex(config);
+    case Artifact::slicing_frag: return slicing_fragment(config);
+    case Artifact::fullscreen_vert: return fullscreen_vertex(config);
+    case Artifact::pack_atlas_frag: return pack_atlas_fragment(config);
+    case Artifact::nbuffer_level_frag: return nbuffer_level_fragment(config);
+    case Artifact::gaussian_level_frag: return gaussian_level_fragment(config);
+    case Artifact::sat_shift_frag: return sat_shift_fragment(config);
+    case Artifact::sat_pass_frag: return sat_pass_fragment(config);
+    case Artifact::shading_vert: return example_vertex(config);
+    case Artifact::shading_frag: return example_fragment(config);
+    case Artifact::deferred_frag: return deferred_fragment(config);
+    case Artifact::visibility_snippet: return visibility_snippet(config);
+    }
+    return {};
+}
+
+struct ProgramPlan {
+    std::string_view name;
+    std::vector<Artifact> stages;
+};
+
+// Programs in the order their passes run: slicing, prefilter, shading.
+constexpr std::vector<ProgramPlan> program_plan(const Config& config) {
+    std::vector<ProgramPlan> plan{{"slicing", {Artifact::slicing_vert, Artifact::slicing_frag}}};
+    if (config.packing == Packing::atlas && config.filter != Filter::sat)
+        plan.push_back({"pack_atlas", {Artifact::fullscreen_vert, Artifact::pack_atlas_frag}});
+    if (config.filter == Filter::nbuffer)
+        plan.push_back({"nbuffer_level", {Artifact::fullscreen_vert, Artifact::nbuffer_level_frag}});
+    if (config.filter == Filter::gaussian)
+        plan.push_back({"gaussian_level", {Artifact::fullscreen_vert, Artifact::gaussian_level_frag}});
+    if (config.filter == Filter::sat) {
+        plan.push_back({"sat_shift", {Artifact::fullscreen_vert, Artifact::sat_shift_frag}});
+        plan.push_back({"sat_pass", {Artifact::fullscreen_vert, Artifact::sat_pass_frag}});
+    }
+    plan.push_back({"shading_example", {Artifact::shading_vert, Artifact::shading_frag}});
+    plan.push_back({"shading_deferred", {Artifact::fullscreen_vert, Artifact::deferred_frag}});
+    return plan;
+}
+
+// Every file of the configuration, each once, snippet last.
+constexpr std::vector<Artifact> artifacts(const Config& config) {
+    std::vector<Artifact> files;
+    for (const ProgramPlan& program : program_plan(config))
+        for (Artifact stage : program.stages) {
+            bool seen = false;
+            for (Artifact f : files) seen = seen || f == stage;
+            if (!seen) files.push_back(stage);
+        }
+    files.push_back(Artifact::visibility_snippet);
+    return files;
+}
+
+} // namespace detail
+} // namespace penumbra

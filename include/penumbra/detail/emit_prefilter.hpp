@@ -1,0 +1,222 @@
+// penumbra/detail/emit_prefilter.hpp — full-screen passes that turn the slicing output into the
+// filtered storage the shading pass reads (paper §3.2). Mipmaps need no shader of ours: the
+// layout description asks for glGenerateMipmap.
+#pragma once
+
+#include "parameters.hpp"
+
+namespace penumbra::detail {
+
+// A triangle that covers the viewport, from the vertex index alone (no vertex buffer).
+constexpr Text fullscreen_vertex(const Config& config) {
+    LineWriter out;
+    write_preamble(out, config, "full-screen triangle, vertex stage (draw 3 vertices, no attributes)");
+    out.chunk("fullscreen_vertex_main");
+    out.line("void main()");
+    out.line("{");
+    out.line("int index = ", vertex_index(config), ";");
+    out.line("vec2 corner = vec2(float((index << 1) & 2), float(index & 2));");
+    out.line("gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);");
+    out.line("}");
+    return out.take();
+}
+
+constexpr Param step_param() {
+    return {"penumbra_step", "int", "offset between the windows combined by this pass", "texels"};
+}
+constexpr Param layer_param(std::string_view meaning) { return {"penumbra_sourceLayer", "int", meaning, ""}; }
+
+// Parameters of a level-building pass (N-buffer or Gaussian): the window step and the source.
+constexpr std::vector<Param> level_params(const Config& config) {
+    std::vector<Param> params{step_param()};
+    if (config.packing == Packing::atlas)
+        params.push_back({"penumbra_source", "sampler2D", "previous filter level (atlas)", ""});
+    else if (config.packing == Packing::array) {
+        params.push_back(layer_param("layer of the previous level's tile in the source array"));
+        params.push_back({"penumbra_source", "sampler2DArray", "filter levels array", "", "penumbra_levels"});
+    } else {
+        params.push_back(layer_param("depth index of the previous level in the source volume"));
+        params.push_back({"penumbra_source", "sampler3D", "volume of the four slices being filtered", ""});
+    }
+    return params;
+}
+
+// Declarations of a level-building pass and the texel read that returns 0 outside the occlusion
+// texture's R×R tile (the window sums treat the outside as unoccluded).
+constexpr void write_level_source(LineWriter& out, const Config& config) {
+    const Text R = format_int(config.resolution);
+    const std::vector<Param> params = level_params(config);
+    int binding = 0;
+    write_params(out, config, params, "PenumbraPass", binding);
+    out.line("layout(location = 0) out vec4 penumbra_result;");
+    out.blank();
+    out.chunk("level_source");
+    out.comment("texel of the previous level at base + offset, 0 outside the tile");
+    out.line("vec4 penumbra_source_texel(ivec2 base, ivec2 offset)");
+    out.line("{");
+    if (config.packing == Packing::atlas) {
+        out.line("ivec2 local = ivec2(base.x % ", R, ", base.y) + offset;");
+        out.line("ivec2 texel = base + offset;");
+    } else {
+        out.line("ivec2 local = base + offset;");
+        out.line("ivec2 texel = local;");
+    }
+    out.line("bool inside = all(greaterThanEqual(local, ivec2(0))) && all(lessThan(local, ivec2(", R, ")));");
+    const Text max_x = choose(config.packing == Packing::atlas,
+                              format_int(config.resolution * texture_count(config) - 1),
+                              format_int(config.resolution - 1));
+    out.line("texel = clamp(texel, ivec2(0), ivec2(", max_x, ", ", format_int(config.resolution - 1), "));");
+    if (config.packing == Packing::atlas)
+        out.line("vec4 value = texelFetch(penumbra_source, texel, 0);");
+    else
+        out.line("vec4 value = texelFetch(penumbra_source, ivec3(texel, penumbra_sourceLayer), 0);");
+    out.line("return inside ? value : vec4(0.0);");
+    out.line("}");
+    out.blank();
+}
+
+// Décoret 2005: level l at a texel is the mean of the 2^l window anchored there, i.e. of four
+// level l-1 windows at offsets 0 and 2^(l-1).
+constexpr Text nbuffer_level_fragment(const Config& config) {
+    LineWriter out;
+    write_preamble(out, config, "N-buffer level l from level l-1, fragment stage");
+    write_level_source(out, config);
+    out.chunk("nbuffer_level_main");
+    out.block(R"(
+void main()
+{
+    ivec2 base = ivec2(gl_FragCoord.xy);
+    int s = penumbra_step; // 2^(l-1)
+    penumbra_result = 0.25 * (penumbra_source_texel(base, ivec2(0, 0)) + penumbra_source_texel(base, ivec2(s, 0))
+        + penumbra_source_texel(base, ivec2(0, s)) + penumbra_source_texel(base, ivec2(s, s)));
+}
+)");
+    return out.take();
+}
+
+// Gaussian pyramid at full resolution (journal §3.5): level l is level l-1 blurred by the
+// [1 2 1]/4 kernel in x and y, its taps 2^(l-1) texels apart (à trous). The variance grows to
+// (4^l - 1) / 6 texels², which the shading pass's level bias accounts for.
+constexpr Text gaussian_level_fragment(const Config& config) {
+    LineWriter out;
+    write_preamble(out, config, "Gaussian level l from level l-1, fragment stage");
+    write_level_source(out, config);
+    out.chunk("gaussian_level_main");
+    out.block(R"(
+void main()
+{
+    ivec2 base = ivec2(gl_FragCoord.xy);
+    int s = penumbra_step; // 2^(l-1)
+    vec4 sum = vec4(0.0);
+    // 3 x 3 taps, weights (1 2 1) x (1 2 1) / 16
+    sum += 1.0 * penumbra_source_texel(base, ivec2(-s, -s));
+    sum += 2.0 * penumbra_source_texel(base, ivec2(0, -s));
+    sum += 1.0 * penumbra_source_texel(base, ivec2(s, -s));
+    sum += 2.0 * penumbra_source_texel(base, ivec2(-s, 0));
+    sum += 4.0 * penumbra_source_texel(base, ivec2(0, 0));
+    sum += 2.0 * penumbra_source_texel(base, ivec2(s, 0));
+    sum += 1.0 * penumbra_source_texel(base, ivec2(-s, s));
+    sum += 2.0 * penumbra_source_texel(base, ivec2(0, s));
+    sum += 1.0 * penumbra_source_texel(base, ivec2(s, s));
+    penumbra_result = sum / 16.0;
+}
+)");
+    return out.take();
+}
+
+constexpr Param slices_param() {
+    return {"penumbra_slices", "sampler2DArray", "slicing output, one layer per RGBA texture", "", "penumbra_slices"};
+}
+constexpr std::vector<Param> pack_atlas_params() { return {slices_param()}; }
+
+// The atlas's level 0: the slicing output (a T-layer array) laid out as tiles side by side.
+constexpr Text pack_atlas_fragment(const Config& config) {
+    LineWriter out;
+    write_preamble(out, config, "atlas packing of the slicing output (paper §3.6), fragment stage");
+    int binding = 0;
+    write_params(out, config, pack_atlas_params(), "PenumbraPass", binding);
+    out.line("layout(location = 0) out vec4 penumbra_result;");
+    out.blank();
+    out.chunk("pack_atlas_main");
+    const Text R = format_int(config.resolution);
+    out.line("void main()");
+    out.line("{");
+    out.line("ivec2 texel = ivec2(gl_FragCoord.xy);");
+    out.line("penumbra_result = texelFetch(penumbra_slices, ivec3(texel.x % ", R, ", texel.y, texel.x / ", R,
+             "), 0);");
+    out.line("}");
+    return out.take();
+}
+
+constexpr std::vector<Param> sat_shift_params(const Config& config) {
+    if (config.packing == Packing::atlas) return {slices_param()};
+    return {layer_param("occlusion texture (layer) being shifted"), slices_param()};
+}
+
+constexpr std::vector<Param> sat_pass_params(const Config& config) {
+    std::vector<Param> params{step_param(), {"penumbra_vertical", "int", "0: pass along x, 1: pass along y", ""}};
+    if (config.packing == Packing::atlas) {
+        params.push_back({"penumbra_source", "sampler2D", "partial sums of the previous pass", ""});
+    } else {
+        params.push_back(layer_param("layer being summed"));
+        params.push_back({"penumbra_source", "sampler2DArray", "partial sums of the previous pass", ""});
+    }
+    return params;
+}
+
+// Summed-area tables (Crow 1984), built by recursive doubling (Hensley et al. 2005). Each
+// occlusion texture gets an (R+1)-texel tile whose texel X holds the sum over texels < X
+// (exclusive), so texel 0 is 0 and a box read needs no special case at the border.
+constexpr Text sat_shift_fragment(const Config& config) {
+    LineWriter out;
+    write_preamble(out, config, "summed-area table, exclusive shift of the slicing output, fragment stage");
+    int binding = 0;
+    write_params(out, config, sat_shift_params(config), "PenumbraPass", binding);
+    out.line("layout(location = 0) out vec4 penumbra_result;");
+    out.blank();
+    out.chunk("sat_shift_main");
+    const Text R1 = format_int(config.resolution + 1);
+    out.line("void main()");
+    out.line("{");
+    out.line("ivec2 texel = ivec2(gl_FragCoord.xy);");
+    if (config.packing == Packing::atlas) {
+        out.line("int tile = texel.x / ", R1, ";");
+        out.line("ivec2 source = ivec2(texel.x % ", R1, ", texel.y) - 1;");
+    } else {
+        out.line("int tile = penumbra_sourceLayer;");
+        out.line("ivec2 source = texel - 1;");
+    }
+    out.line("vec4 value = texelFetch(penumbra_slices, ivec3(max(source, ivec2(0)), tile), 0);");
+    out.line("penumbra_result = all(greaterThanEqual(source, ivec2(0))) ? value : vec4(0.0);");
+    out.line("}");
+    return out.take();
+}
+
+constexpr Text sat_pass_fragment(const Config& config) {
+    LineWriter out;
+    write_preamble(out, config, "summed-area table, one recursive-doubling pass, fragment stage");
+    int binding = 0;
+    write_params(out, config, sat_pass_params(config), "PenumbraPass", binding);
+    out.line("layout(location = 0) out vec4 penumbra_result;");
+    out.blank();
+    out.chunk("sat_pass_main");
+    const Text R1 = format_int(config.resolution + 1);
+    out.line("void main()");
+    out.line("{");
+    out.line("ivec2 texel = ivec2(gl_FragCoord.xy);");
+    out.line("ivec2 offset = penumbra_vertical == 0 ? ivec2(penumbra_step, 0) : ivec2(0, penumbra_step);");
+    if (config.packing == Packing::atlas) {
+        out.line("ivec2 local = ivec2(texel.x % ", R1, ", texel.y) - offset; // partner within the tile");
+        out.line("vec4 self = texelFetch(penumbra_source, texel, 0);");
+        out.line("vec4 partner = texelFetch(penumbra_source, max(texel - offset, ivec2(0)), 0);");
+    } else {
+        out.line("ivec2 local = texel - offset;");
+        out.line("vec4 self = texelFetch(penumbra_source, ivec3(texel, penumbra_sourceLayer), 0);");
+        out.line("vec4 partner = texelFetch(penumbra_source, ivec3(max(local, ivec2(0)), penumbra_sourceLayer), 0);");
+    }
+    out.line("penumbra_result = self + (all(greaterThanEqual(local, ivec2(0))) ? partner : vec4(0.0));");
+    out.line("}");
+    return out.take();
+}
+
+} // namespace penumbra::detail

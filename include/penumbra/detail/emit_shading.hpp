@@ -1,0 +1,102 @@
+// penumbra/detail/emit_shading.hpp — complete shading programs around penumbraVisibility():
+// a forward example (Lambert + shadow) and a deferred pass that reads world positions.
+#pragma once
+
+#include "emit_visibility.hpp"
+
+namespace penumbra::detail {
+
+constexpr std::vector<Param> example_fragment_params() {
+    return {{"penumbra_toLight", "vec4",
+             "light for the Lambert term: xyz position and w = 1, or xyz direction towards the light and w = 0",
+             "scene units"}};
+}
+constexpr std::vector<Param> example_vertex_params() {
+    return {{"penumbra_clipFromWorld", "mat4", "world to clip space of the viewer's camera", ""}};
+}
+constexpr std::vector<Param> deferred_params() {
+    return {{"penumbra_worldPositions", "sampler2D",
+             "G-buffer: xyz world position, w = 1 where there is geometry and 0 for the background", "scene units",
+             "penumbra_worldPositions"}};
+}
+
+constexpr Text example_fragment(const Config& config) {
+    LineWriter out;
+    write_preamble(out, config, "example shading pass: Lambert term times penumbraVisibility, fragment stage");
+    out.chunk("example_inputs");
+    out.line(varying(config, "in", 0, "vec3", "penumbra_worldPos"), " // scene units");
+    out.line(varying(config, "in", 1, "vec3", "penumbra_worldNormal"));
+    out.line("layout(location = 0) out vec4 penumbra_color;");
+    out.blank();
+    int binding = 0;
+    write_visibility(out, config, binding);
+    out.blank();
+    write_params(out, config, example_fragment_params(), "PenumbraExample", binding);
+    out.chunk("example_main");
+    out.block(R"(
+void main()
+{
+    vec3 toLight = normalize(penumbra_toLight.xyz - penumbra_worldPos * penumbra_toLight.w);
+    float lambert = max(dot(normalize(penumbra_worldNormal), toLight), 0.0);
+    float visibility = penumbraVisibility(penumbra_worldPos);
+    vec3 albedo = vec3(0.8);
+    vec3 color = albedo * (0.15 + 0.85 * lambert * visibility);
+    penumbra_color = vec4(color, 1.0);
+}
+)");
+    return out.take();
+}
+
+// The vertex stage's bindings follow the fragment stage's (visibility block, its samplers, the
+// example block), so both stages fit one Vulkan pipeline layout.
+constexpr int example_fragment_binding_count(const Config& config) {
+    return 1 + static_cast<int>(storage_samplers(config).size()) + 1;
+}
+
+constexpr Text example_vertex(const Config& config) {
+    LineWriter out;
+    write_preamble(out, config, "example shading pass, vertex stage");
+    out.chunk("example_vertex_inputs");
+    out.line("layout(location = 0) in vec3 penumbra_position; // world space (scene units)");
+    out.line("layout(location = 1) in vec3 penumbra_normal;   // world space");
+    out.line(varying(config, "out", 0, "vec3", "penumbra_worldPos"));
+    out.line(varying(config, "out", 1, "vec3", "penumbra_worldNormal"));
+    out.blank();
+    int binding = example_fragment_binding_count(config);
+    write_params(out, config, example_vertex_params(), "PenumbraCamera", binding);
+    out.chunk("example_vertex_main");
+    out.block(R"(
+void main()
+{
+    penumbra_worldPos = penumbra_position;
+    penumbra_worldNormal = penumbra_normal;
+    gl_Position = penumbra_clipFromWorld * vec4(penumbra_position, 1.0);
+}
+)");
+    return out.take();
+}
+
+// Deferred variant: one full-screen pass over a G-buffer of world positions, drawn at the
+// G-buffer's size; writes the visibility to all channels.
+constexpr Text deferred_fragment(const Config& config) {
+    LineWriter out;
+    write_preamble(out, config, "deferred visibility pass: penumbraVisibility of a G-buffer, fragment stage");
+    out.line("layout(location = 0) out vec4 penumbra_visibility;");
+    out.blank();
+    int binding = 0;
+    write_visibility(out, config, binding);
+    out.blank();
+    write_params(out, config, deferred_params(), "PenumbraDeferred", binding);
+    out.chunk("deferred_main");
+    out.block(R"(
+void main()
+{
+    vec4 world = texelFetch(penumbra_worldPositions, ivec2(gl_FragCoord.xy), 0);
+    float visibility = world.w > 0.5 ? penumbraVisibility(world.xyz) : 1.0;
+    penumbra_visibility = vec4(vec3(visibility), 1.0);
+}
+)");
+    return out.take();
+}
+
+} // namespace penumbra::detail

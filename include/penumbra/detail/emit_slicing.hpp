@@ -1,0 +1,68 @@
+// penumbra/detail/emit_slicing.hpp — the slicing pass (paper §3.4): the scene seen from the
+// slicing camera, each fragment marking the channel of its slice in one of T render targets.
+// Blending is MAX, so a texel is 1 where anything in that slice covers it.
+#pragma once
+
+#include "parameters.hpp"
+
+namespace penumbra::detail {
+
+constexpr Text slicing_vertex(const Config& config) {
+    LineWriter out;
+    write_preamble(out, config, "slicing pass, vertex stage");
+    out.chunk("slicing_inputs");
+    out.line("layout(location = 0) in vec3 penumbra_position; // world space (scene units)");
+    out.line(varying(config, "out", 0, "float", "penumbra_depth"), " // depth along the light normal (scene units)");
+    out.blank();
+    int binding = 0;
+    write_params(out, config, slicing_params(), "PenumbraSlicing", binding);
+    out.chunk("slicing_vertex_main");
+    out.block(R"(
+void main()
+{
+    vec4 world = vec4(penumbra_position, 1.0);
+    penumbra_depth = (penumbra_lightFromWorld * world).z;
+    gl_Position = penumbra_sliceClipFromWorld * world;
+}
+)");
+    return out.take();
+}
+
+constexpr Text slicing_fragment(const Config& config) {
+    LineWriter out;
+    write_preamble(out, config, "slicing pass, fragment stage (blend equation MAX, clear to 0)");
+    out.chunk("slicing_outputs");
+    out.line(varying(config, "in", 0, "float", "penumbra_depth"));
+    for (int t = 0; t < texture_count(config); ++t) {
+        const int last = t * 4 + 3 < config.slices - 1 ? t * 4 + 3 : config.slices - 1;
+        out.line("layout(location = ", format_int(t), ") out vec4 penumbra_occlusion", format_int(t), "; // slices ",
+                 format_int(t * 4), " to ", format_int(last));
+    }
+    out.blank();
+    int binding = 0;
+    write_params(out, config, slicing_params(), "PenumbraSlicing", binding);
+    out.chunk("slicing_fragment_main");
+    out.line("void main()");
+    out.line("{");
+    out.comment("slice k holds the depths in (z0 + k * thickness, z0 + (k + 1) * thickness]");
+    out.line("float k = clamp(ceil((penumbra_depth - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 1.0, 0.0, ",
+             format_float(config.slices - 1), ");");
+    if (config.leak_fix) {
+        out.comment("paper §3.4.1 leak fix: also mark the next slice away from the light");
+        out.line("float next = min(k + 1.0, ", format_float(config.slices - 1), ");");
+    }
+    for (int t = 0; t < texture_count(config); ++t) {
+        const Text first = cat("vec4(", format_float(4 * t), ", ", format_float(4 * t + 1), ", ", format_float(4 * t + 2),
+                               ", ", format_float(4 * t + 3), ")");
+        out.line("// texture ", format_int(t));
+        if (config.leak_fix)
+            out.line("penumbra_occlusion", format_int(t), " = max(vec4(equal(vec4(k), ", first,
+                     ")), vec4(equal(vec4(next), ", first, ")));");
+        else
+            out.line("penumbra_occlusion", format_int(t), " = vec4(equal(vec4(k), ", first, "));");
+    }
+    out.line("}");
+    return out.take();
+}
+
+} // namespace penumbra::detail

@@ -1,0 +1,298 @@
+// penumbra/detail/emit_visibility.hpp — float penumbraVisibility(vec3 worldPos), specialized.
+//
+// Everything the configuration fixes is baked in as literals: slice count, resolution, levels,
+// slice plane indices, tile offsets. The static loop is written out iteration by iteration
+// (design.md §3): over filter levels for N-buffer/Gaussian atlases (paper Algorithm 2), over slices
+// for everything else. A slice's channel is picked by dot(texel, i) with i a one-hot vec4 that
+// rotates by i.yzwx from one slice to the next one up (towards the light), so no code branches
+// on the slice index.
+#pragma once
+
+#include "parameters.hpp"
+
+namespace penumbra::detail {
+
+// Gaussian levels are à-trous blurs whose standard deviation at level l is about 2^l / sqrt(6)
+// texels; a disk of diameter D has a standard deviation of D / 4 per axis, so a kernel of side
+// D texels reads level log2(D) + log2(sqrt(6) / 4) (see emit_prefilter.hpp).
+inline constexpr double gaussian_level_bias = -0.70751874963942190927; // log2(sqrt(6) / 4)
+
+struct VisibilityConstants {
+    Text R, L, T, inv_T, S_minus_1;
+};
+
+constexpr VisibilityConstants constants(const Config& config) {
+    return {format_float(config.resolution), format_float(max_level(config)), format_float(texture_count(config)),
+            format_float(1.0 / texture_count(config)), format_float(config.slices - 1)};
+}
+
+constexpr void write_kernel_function(LineWriter& out, const Config& config) {
+    const VisibilityConstants k = constants(config);
+    out.chunk("kernel");
+    out.comment("Kernel on the slice plane at depth zeta, seen from light-frame point p (design.md §1):");
+    out.comment("xy = centre (uv of the slice's texture), z = side (uv), w = filter level.");
+    out.line("vec4 penumbra_kernel(vec3 p, float zeta)");
+    out.line("{");
+    if (config.light == Light::rect) {
+        out.comment("rays from p to the light rectangle cut the plane in a square; w and h cancel out of its side");
+        out.line("float scale = penumbra_copDistance / (p.z * (penumbra_copDistance + zeta));");
+        out.line("vec2 centre = 0.5 + p.xy * (zeta * scale) / penumbra_lightSize;");
+        out.line("float side = max(p.z - zeta, 0.0) * scale;");
+    } else {
+        out.comment("journal §3.5: orthographic slicing, the cone towards the sun grows linearly with distance");
+        out.line("vec2 centre = 0.5 + p.xy / (2.0 * penumbra_windowHalfSize);");
+        out.line("float side = max(p.z - zeta, 0.0) * penumbra_tanAngularRadius / penumbra_windowHalfSize;");
+    }
+    const Text bias = choose(config.filter == Filter::gaussian, cat(" + (", format_float(gaussian_level_bias), ")"), Text());
+    out.comment("windows narrower than one texel read level 0");
+    out.line("float level = clamp(log2(max(side * ", k.R, ", 1.0))", bias, ", 0.0, ", k.L, ");");
+    out.line("return vec4(centre, side, level);");
+    out.line("}");
+    out.blank();
+}
+
+constexpr void write_weight_function(LineWriter& out, const Config& config) {
+    out.chunk("fade");
+    if (config.self_shadow_fade) {
+        out.comment("paper §3.4.2: 0 for planes at or below the point, a ramp over the nearest plane above, then 1");
+        out.line("float penumbra_weight(float zPoint, float zeta)");
+        out.line("{");
+        out.line("return clamp((zPoint - zeta) / penumbra_sliceDepths.y, 0.0, 1.0);");
+    } else {
+        out.comment("fade off: planes strictly above the point count fully, the others not at all");
+        out.line("float penumbra_weight(float zPoint, float zeta)");
+        out.line("{");
+        out.line("return 1.0 - step(zPoint, zeta);");
+    }
+    out.line("}");
+    out.blank();
+}
+
+// N-buffer level l stores at a texel the mean of the 2^l-texel window anchored there, so a window
+// centred at c is read at c - 2^(l-1) texels, plus half a texel to land on the texel centre.
+constexpr Text nbuffer_shift(const Config& config, int level) {
+    return format_float((0.5 * (1 << level) - 0.5) / config.resolution);
+}
+
+// Reads the filtered occlusion of all four channels for a kernel; one function per storage so the
+// unrolled part stays one line per slice. Explicit LOD everywhere: the walk of the level loop is
+// non-uniform control flow, where implicit derivatives are undefined.
+constexpr void write_lookup_function(LineWriter& out, const Config& config) {
+    const VisibilityConstants k = constants(config);
+    out.chunk("lookup");
+    if (config.filter == Filter::mipmap) {
+        out.comment("paper §3.2: hardware trilinear filtering, level chosen explicitly");
+        out.line("vec4 penumbra_filtered(vec4 kernel, float tile)");
+        out.line("{");
+        if (config.packing == Packing::atlas)
+            out.line("return textureLod(penumbra_occlusionAtlas, vec2((tile + kernel.x) * ", k.inv_T,
+                     ", kernel.y), kernel.w);");
+        else
+            out.line("return textureLod(penumbra_occlusion, vec3(kernel.xy, tile), kernel.w);");
+        out.line("}");
+    } else if (config.filter == Filter::sat) {
+        const Text R1 = format_float(config.resolution + 1);
+        out.comment("Crow 1984: prefix sum at texel corner X (in texels) lives at the centre of texel X of an");
+        out.comment("(R+1)-texel tile; bilinear filtering between corners is exact for box-shaped coverage");
+        out.line("vec4 penumbra_prefix(vec2 corner, float tile)");
+        out.line("{");
+        out.line("vec2 uv = (corner + 0.5) / ", R1, ";");
+        if (config.packing == Packing::atlas)
+            out.line("return textureLod(penumbra_satAtlas, vec2((tile + uv.x) * ", k.inv_T, ", uv.y), 0.0);");
+        else
+            out.line("return textureLod(penumbra_sat, vec3(uv, tile), 0.0);");
+        out.line("}");
+        out.blank();
+        out.comment("exact box mean: the window is clipped to the texture, outside counts as unoccluded");
+        out.line("vec4 penumbra_filtered(vec4 kernel, float tile)");
+        out.line("{");
+        out.line("float side = max(kernel.z * ", k.R, ", 1.0);");
+        out.line("vec2 lo = clamp(kernel.xy * ", k.R, " - 0.5 * side, 0.0, ", k.R, ");");
+        out.line("vec2 hi = clamp(kernel.xy * ", k.R, " + 0.5 * side, 0.0, ", k.R, ");");
+        out.line("vec4 sum = penumbra_prefix(hi, tile) - penumbra_prefix(vec2(lo.x, hi.y), tile)");
+        out.line("    - penumbra_prefix(vec2(hi.x, lo.y), tile) + penumbra_prefix(lo, tile);");
+        out.line("return clamp(sum / (side * side), 0.0, 1.0);");
+        out.line("}");
+    } else if (config.packing == Packing::array) {
+        const bool nbuffer = config.filter == Filter::nbuffer;
+        out.comment(nbuffer ? "N-buffers: two levels around the kernel's, each read at its window anchor, then a lerp"
+                            : "Gaussian levels: two levels around the kernel's, then a lerp");
+        out.line("vec4 penumbra_filtered(vec4 kernel, float tile)");
+        out.line("{");
+        out.line("float lo = floor(kernel.w);");
+        out.line("float hi = min(lo + 1.0, ", k.L, ");");
+        if (nbuffer) {
+            out.line("vec2 shiftLo = vec2((exp2(lo - 1.0) - 0.5) / ", k.R, ");");
+            out.line("vec2 shiftHi = vec2((exp2(hi - 1.0) - 0.5) / ", k.R, ");");
+        } else {
+            out.line("vec2 shiftLo = vec2(0.0);");
+            out.line("vec2 shiftHi = vec2(0.0);");
+        }
+        out.line("vec4 texelLo = textureLod(penumbra_levels, vec3(kernel.xy - shiftLo, lo * ", k.T, " + tile), 0.0);");
+        out.line("vec4 texelHi = textureLod(penumbra_levels, vec3(kernel.xy - shiftHi, hi * ", k.T, " + tile), 0.0);");
+        out.line("return mix(texelLo, texelHi, kernel.w - lo);");
+        out.line("}");
+    } else if (config.packing == Packing::volume) {
+        out.comment("paper §3.7: levels along the depth of a 3D texture, the hardware interpolates between them;");
+        out.comment("both levels are read at one position, so the N-buffer anchor follows the fractional level");
+        for (int t = 0; t < texture_count(config); ++t) {
+            out.line("vec4 penumbra_filtered", format_int(t), "(vec4 kernel)");
+            out.line("{");
+            if (config.filter == Filter::nbuffer)
+                out.line("vec2 shift = vec2((exp2(kernel.w - 1.0) - 0.5) / ", k.R, ");");
+            else
+                out.line("vec2 shift = vec2(0.0);");
+            out.line("return textureLod(", volume_name(t), ", vec3(kernel.xy - shift, (kernel.w + 0.5) / ",
+                     format_float(max_level(config) + 1), "), 0.0);");
+            out.line("}");
+        }
+    }
+    out.blank();
+}
+
+constexpr void write_fusion_start(LineWriter& out, const Config& config) {
+    out.chunk("fusion");
+    switch (config.fusion) {
+    case Fusion::probabilistic: out.line("float penumbra_lit = 1.0; // paper eq. (5): product of (1 - q)"); break;
+    case Fusion::additive: out.line("float penumbra_sum = 0.0;"); break;
+    case Fusion::maximum: out.line("float penumbra_max = 0.0;"); break;
+    case Fusion::average:
+        out.line("float penumbra_sum = 0.0;");
+        out.line("float penumbra_max = 0.0;");
+        break;
+    }
+}
+
+constexpr void write_accumulate(LineWriter& out, const Config& config) {
+    switch (config.fusion) {
+    case Fusion::probabilistic: out.line("penumbra_lit *= 1.0 - q;"); break;
+    case Fusion::additive: out.line("penumbra_sum += q;"); break;
+    case Fusion::maximum: out.line("penumbra_max = max(penumbra_max, q);"); break;
+    case Fusion::average:
+        out.line("penumbra_sum += q;");
+        out.line("penumbra_max = max(penumbra_max, q);");
+        break;
+    }
+}
+
+constexpr void write_fusion_result(LineWriter& out, const Config& config) {
+    out.chunk("fusion_result");
+    switch (config.fusion) {
+    case Fusion::probabilistic: out.line("return penumbra_lit;"); break;
+    case Fusion::additive: out.line("return max(0.0, 1.0 - penumbra_sum);"); break;
+    case Fusion::maximum: out.line("return 1.0 - penumbra_max;"); break;
+    case Fusion::average:
+        out.comment("Soler & Sillion: halfway between the additive and the maximum estimate");
+        out.line("return 1.0 - 0.5 * (min(1.0, penumbra_sum) + penumbra_max);");
+        break;
+    }
+}
+
+// Unrolled over slices, from the bottom one up to the light: array, volume, and every mipmap or
+// summed-area-table layout (their level is chosen by the lookup, not by the texture).
+constexpr void write_slice_loop(LineWriter& out, const Config& config) {
+    out.chunk("slice_loop");
+    out.comment("static loop over the slices, unrolled; i selects the slice's channel");
+    out.line("vec4 penumbra_i = ", one_hot((config.slices - 1) % 4), ";");
+    for (int s = config.slices - 1; s >= 0; --s) {
+        const int tile = s / 4;
+        out.line("// slice ", format_int(s), ": texture ", format_int(tile), ", channel ", channel_name(s % 4),
+                 ", bottom plane at z0 + ", format_int(s + 1), " * thickness");
+        out.line("{");
+        out.line("float zeta = penumbra_sliceDepths.x + ", format_float(s + 1), " * penumbra_sliceDepths.y;");
+        out.line("vec4 kernel = penumbra_kernel(p, zeta);");
+        const Text lookup = choose(config.packing == Packing::volume, cat("penumbra_filtered", format_int(tile), "(kernel)"),
+                                   cat("penumbra_filtered(kernel, ", format_float(tile), ")"));
+        out.line("float q = penumbra_weight(p.z, zeta) * dot(", lookup, ", penumbra_i);");
+        write_accumulate(out, config);
+        out.line("}");
+        if (s > 0) out.line("penumbra_i = penumbra_i.yzwx;");
+    }
+}
+
+// paper Algorithm 2, atlas of N-buffer or Gaussian levels: a static loop over levels, unrolled,
+// textures indexed statically. Within a level a short dynamic walk visits the slices whose
+// kernel falls in that level, so every slice above the point gets exactly one lookup at its own
+// kernel size (Algorithm 2 as printed reads one slice per level and drops the others).
+constexpr void write_level_loop(LineWriter& out, const Config& config) {
+    const VisibilityConstants k = constants(config);
+    const int levels = max_level(config);
+    out.chunk("level_loop");
+    out.comment("start at the nearest slice above the point; slices below it have weight 0");
+    out.line("float penumbra_k = clamp(ceil((p.z - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 2.0, -1.0, ",
+             k.S_minus_1, ");");
+    out.line("vec4 penumbra_i = vec4(equal(vec4(mod(max(penumbra_k, 0.0), 4.0)), vec4(0.0, 1.0, 2.0, 3.0)));");
+    out.line("float penumbra_delta = floor(max(penumbra_k, 0.0) / 4.0) * ", k.inv_T,
+             "; // horizontal offset of the slice's tile");
+    for (int level = 0; level <= levels; ++level) {
+        const bool last = level == levels;
+        const Text lo = atlas_level_name(level);
+        if (last)
+            out.line("// level ", format_int(level), ": the remaining slices, windows of ", format_int(1 << level),
+                     " texels and more");
+        else
+            out.line("// level ", format_int(level), ": windows of ", format_int(1 << level), " to ",
+                     format_int(2 << level), " texels");
+        out.line("while (penumbra_k >= 0.0) {");
+        out.line("float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;");
+        out.line("vec4 kernel = penumbra_kernel(p, zeta);");
+        auto read = [&](int l) {
+            const Text shift = choose(config.filter == Filter::nbuffer, nbuffer_shift(config, l), Text("0.0"));
+            return cat("textureLod(", atlas_level_name(l), ", vec2(penumbra_delta + (kernel.x - ", shift, ") * ", k.inv_T,
+                       ", kernel.y - ", shift, "), 0.0)");
+        };
+        if (last) {
+            out.line("vec4 texel = ", read(level), ";");
+        } else {
+            out.line("if (kernel.w >= ", format_float(level + 1), ") break;");
+            out.line("vec4 texel = mix(", read(level), ",");
+            out.line("    ", read(level + 1), ", kernel.w - ", format_float(level), ");");
+        }
+        out.line("float q = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);");
+        write_accumulate(out, config);
+        out.comment("next slice up: the channel rotates; wrapping from r to a moves one tile left");
+        out.line("penumbra_k -= 1.0;");
+        out.line("penumbra_i = penumbra_i.yzwx;");
+        out.line("penumbra_delta -= penumbra_i.w * ", k.inv_T, ";");
+        out.line("}");
+    }
+}
+
+constexpr bool uses_level_loop(const Config& config) {
+    return config.packing == Packing::atlas && has_level_images(config);
+}
+
+// Declarations and functions of penumbraVisibility, ready to paste into any stage of the target.
+constexpr void write_visibility(LineWriter& out, const Config& config, int& next_binding) {
+    write_params(out, config, visibility_params(config), "PenumbraVisibility", next_binding);
+    write_kernel_function(out, config);
+    write_weight_function(out, config);
+    if (!uses_level_loop(config)) write_lookup_function(out, config);
+    out.chunk("visibility");
+    out.comment("Fraction of the light visible from worldPos: 1 lit, 0 in umbra.");
+    out.line("float penumbraVisibility(vec3 worldPos)");
+    out.line("{");
+    out.line("vec3 p = (penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz;");
+    out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
+    write_fusion_start(out, config);
+    if (uses_level_loop(config))
+        write_level_loop(out, config);
+    else
+        write_slice_loop(out, config);
+    write_fusion_result(out, config);
+    out.line("}");
+}
+
+// The includable snippet penumbra_visibility.glsl: no #version, declarations from binding 0.
+constexpr Text visibility_snippet(const Config& config) {
+    LineWriter out;
+    out.line("// Penumbra ", version_string, " - penumbra_visibility.glsl: float penumbraVisibility(vec3 worldPos)");
+    out.line("// ", describe(config));
+    out.comment("Include after the #version line of a stage for this target. Bindings start at 0.");
+    out.blank();
+    int binding = 0;
+    write_visibility(out, config, binding);
+    return out.take();
+}
+
+} // namespace penumbra::detail

@@ -1,0 +1,30 @@
+// penumbra/detail/target_limits.hpp — what each shading target guarantees.
+//
+// Penumbra only emits what every conforming implementation of the target must accept, so the
+// limits are the specifications' guaranteed minimums, not what a particular GPU offers.
+#pragma once
+
+#include "../config.hpp"
+
+namespace penumbra::detail {
+
+struct TargetLimits {
+    int max_texture_size;       // GL_MAX_TEXTURE_SIZE / maxImageDimension2D
+    int max_3d_texture_size;    // GL_MAX_3D_TEXTURE_SIZE / maxImageDimension3D
+    int max_array_layers;       // GL_MAX_ARRAY_TEXTURE_LAYERS / maxImageArrayLayers
+    int max_draw_buffers;       // GL_MAX_DRAW_BUFFERS / maxColorAttachments
+    bool float32_render_filter; // 32-bit float textures are colour-renderable and filterable
+    bool clamp_to_border;       // CLAMP_TO_BORDER with a transparent black border exists
+};
+
+constexpr TargetLimits limits(Target target) {
+    switch (target) {
+    case Target::glsl330: return {1024, 256, 256, 8, true, true};   // OpenGL 3.3 core, table 6.54
+    case Target::glsl450: return {16384, 2048, 2048, 8, true, true}; // OpenGL 4.5 core, table 23.53
+    case Target::essl300: return {2048, 256, 256, 4, false, false};  // OpenGL ES 3.0, table 6.28
+    case Target::vulkan: return {4096, 256, 256, 4, true, true};     // Vulkan 1.0 required limits
+    }
+    return {};
+}
+
+} // namespace penumbra::detail

@@ -1,0 +1,61 @@
+// penumbra/emit.hpp — the run-time entry point: every file of a configuration, and its layout.
+//
+//   penumbra::Result<penumbra::Emission> result = penumbra::emit(config);
+//   if (!result.errors.empty()) { /* show result.errors[i].message */ }
+//   for (const penumbra::Program& program : result.value->programs) { /* compile program.stages */ }
+#pragma once
+
+#include "layout.hpp"
+
+#include <optional>
+
+namespace penumbra {
+
+// Everything one configuration emits.
+struct Emission {
+    std::vector<Program> programs; // in pass order: slicing, prefilter, shading_example, shading_deferred
+    ShaderFile snippet;            // penumbra_visibility.glsl: include it in the engine's own shaders
+    Layout layout;                 // what to allocate and run; to_json(layout) is layout.json
+
+    // Every distinct file (stage files and snippet), in the order of layout.files.
+    std::vector<ShaderFile> files() const {
+        std::vector<ShaderFile> out;
+        for (const Program& program : programs)
+            for (const ShaderFile& stage : program.stages) {
+                bool seen = false;
+                for (const ShaderFile& f : out) seen = seen || f.file_name == stage.file_name;
+                if (!seen) out.push_back(stage);
+            }
+        out.push_back(snippet);
+        return out;
+    }
+};
+
+template <class T> struct Result {
+    std::optional<T> value;          // set when errors is empty
+    std::vector<ConfigError> errors; // why there is no value
+};
+
+// The text of one file for a configuration; the same function the compile-time API runs.
+// Precondition: is_valid(config).
+inline ShaderFile emit_file(const Config& config, Artifact artifact) {
+    return {std::string(file_name(artifact)), artifact_stage(artifact), detail::artifact_text(config, artifact).str()};
+}
+
+inline Result<Emission> emit(const Config& config) {
+    Result<Emission> result;
+    result.errors = validate(config);
+    if (!result.errors.empty()) return result;
+    Emission emission;
+    for (const detail::ProgramPlan& plan : detail::program_plan(config)) {
+        Program program{std::string(plan.name), {}};
+        for (Artifact stage : plan.stages) program.stages.push_back(emit_file(config, stage));
+        emission.programs.push_back(std::move(program));
+    }
+    emission.snippet = emit_file(config, Artifact::visibility_snippet);
+    emission.layout = describe_layout(config);
+    result.value = std::move(emission);
+    return result;
+}
+
+} // namespace penumbra

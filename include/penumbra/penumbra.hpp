@@ -1,0 +1,22 @@
+// penumbra/penumbra.hpp — Penumbra: specialized GLSL for occlusion-texture soft shadows
+// (Eisemann & Décoret, "Occlusion Textures for Plausible Soft Shadows", CGF 27(1), 2008).
+//
+//   #include <penumbra/penumbra.hpp>
+//
+//   penumbra::Config config{.slices = 16, .resolution = 512, .filter = penumbra::Filter::nbuffer};
+//   auto result = penumbra::emit(config);        // errors as values: result.errors
+//   const penumbra::Emission& e = *result.value;
+//   e.programs;                                  // slicing, prefilter, shading stages, complete
+//   e.snippet.text;                              // float penumbraVisibility(vec3 worldPos)
+//   penumbra::to_json(e.layout);                 // textures, parameters, bindings, passes
+//
+// At compile time: penumbra::static_glsl<config, penumbra::Artifact::…> (penumbra/static_glsl.hpp).
+// Validation with glslang: penumbra/validation.hpp (target penumbra::validation).
+#pragma once
+
+#include "config.hpp"
+#include "emit.hpp"
+#include "layout.hpp"
+#include "program.hpp"
+#include "static_glsl.hpp"
+#include "validate.hpp"

@@ -1,0 +1,127 @@
+// penumbra/validate.hpp — is a configuration something Penumbra can emit for its target?
+//
+//   for (const penumbra::ConfigError& e : penumbra::validate(config)) std::puts(e.message.c_str());
+//
+// Every message names the field, the value given and what is allowed. Nothing is clamped.
+#pragma once
+
+#include "config.hpp"
+#include "detail/target_limits.hpp"
+#include "detail/text.hpp"
+
+#include <string>
+#include <vector>
+
+namespace penumbra {
+
+struct ConfigError {
+    std::string field;   // "slices", "resolution", "filter", …
+    std::string value;   // the value given, as text
+    std::string message; // "<field>: <value> <what is wrong>; allowed: <what is allowed>"
+};
+
+namespace detail {
+
+struct Problem {
+    std::string_view field;
+    Text value;
+    Text message;
+};
+
+template <class Enum> constexpr bool in_range(Enum value) {
+    return static_cast<std::size_t>(value) < EnumNames<Enum>::names.size();
+}
+
+template <class Enum> constexpr Text joined_names() {
+    Text out;
+    for (std::string_view name : EnumNames<Enum>::names) {
+        if (!out.empty()) out += ", ";
+        out += name;
+    }
+    return out;
+}
+
+constexpr bool is_power_of_two(int value) { return value > 0 && (value & (value - 1)) == 0; }
+
+// Texel extent of the widest 2D texture a packing needs (the atlas puts the T tiles side by side;
+// summed-area tables store R+1 exclusive prefix sums per side).
+constexpr long long widest_2d_texture(const Config& config) {
+    const long long tile = config.resolution + (config.filter == Filter::sat ? 1 : 0);
+    return config.packing == Packing::atlas ? tile * texture_count(config) : tile;
+}
+
+constexpr std::vector<Problem> find_problems(const Config& config) {
+    std::vector<Problem> problems;
+    auto add = [&](std::string_view field, Text value, Text message) {
+        problems.push_back({field, value, cat(field, ": ", value, " ", message)});
+    };
+    auto enum_problem = [&]<class Enum>(std::string_view field, Enum value) {
+        if (!in_range(value))
+            add(field, format_int(static_cast<int>(value)), cat("is not a known value; allowed: ", joined_names<Enum>()));
+    };
+    if (config.slices < 1 || config.slices > 32)
+        add("slices", format_int(config.slices), "is out of range; allowed: 1 to 32");
+    if (config.resolution < 32 || config.resolution > 4096 || !is_power_of_two(config.resolution))
+        add("resolution", format_int(config.resolution),
+            "is not allowed; allowed: a power of two from 32 to 4096 (32, 64, 128, 256, 512, 1024, 2048, 4096)");
+    enum_problem("filter", config.filter);
+    enum_problem("fusion", config.fusion);
+    enum_problem("packing", config.packing);
+    enum_problem("light", config.light);
+    enum_problem("target", config.target);
+    if (!problems.empty()) return problems; // the rules below need valid fields
+
+    const std::string_view filter = to_string(config.filter);
+    const std::string_view target = to_string(config.target);
+    const TargetLimits limit = limits(config.target);
+    if (config.filter == Filter::gaussian && config.light != Light::sun)
+        add("filter", Text(filter),
+            cat("needs light 'sun' (the Gaussian stands for the sun's disk, journal §3.5); allowed with light '",
+                to_string(config.light), "': mipmap, nbuffer, sat"));
+    if (config.packing == Packing::volume && (config.filter == Filter::mipmap || config.filter == Filter::sat))
+        add("packing", Text("volume"),
+            cat("cannot hold filter '", filter,
+                "' (a volume stores equal-size filter levels as depth; mipmap levels shrink and a summed-area table "
+                "has one level); allowed with this filter: atlas, array"));
+    if (config.filter == Filter::sat && !limit.float32_render_filter)
+        add("filter", Text("sat"),
+            cat("needs renderable, filterable 32-bit float textures, which target '", target,
+                "' does not guarantee; allowed filters for ", target, ": mipmap, nbuffer, gaussian"));
+    if (texture_count(config) > limit.max_draw_buffers)
+        add("slices", format_int(config.slices),
+            cat("needs ", format_int(texture_count(config)), " render targets (four slices each) but target '", target,
+                "' guarantees ", format_int(limit.max_draw_buffers), "; allowed for ", target, ": 1 to ",
+                format_int(4 * limit.max_draw_buffers)));
+    if (widest_2d_texture(config) > limit.max_texture_size)
+        add("resolution", format_int(config.resolution),
+            cat("needs a ", format_int(widest_2d_texture(config)), "-texel wide ",
+                config.packing == Packing::atlas ? "atlas" : "texture", " but target '", target,
+                "' guarantees only ", format_int(limit.max_texture_size),
+                " texels; use fewer slices, a lower resolution, another packing or another target"));
+    const int level_count = config.filter == Filter::mipmap || config.filter == Filter::sat ? 1 : max_level(config) + 1;
+    if (config.packing == Packing::array && level_count * texture_count(config) > limit.max_array_layers)
+        add("packing", Text("array"),
+            cat("needs ", format_int(level_count * texture_count(config)), " layers but target '", target,
+                "' guarantees ", format_int(limit.max_array_layers), "; allowed: atlas, or fewer slices"));
+    if (config.packing == Packing::volume && config.resolution > limit.max_3d_texture_size)
+        add("resolution", format_int(config.resolution),
+            cat("is too large for packing 'volume': target '", target, "' guarantees 3D textures of ",
+                format_int(limit.max_3d_texture_size), " texels; allowed: up to ",
+                format_int(limit.max_3d_texture_size), ", or packing atlas or array"));
+    return problems;
+}
+
+} // namespace detail
+
+// True when `config` can be emitted. Usable in constant expressions.
+constexpr bool is_valid(const Config& config) { return detail::find_problems(config).empty(); }
+
+// Every problem with `config`, in field order; empty when it is valid.
+inline std::vector<ConfigError> validate(const Config& config) {
+    std::vector<ConfigError> errors;
+    for (const detail::Problem& problem : detail::find_problems(config))
+        errors.push_back({std::string(problem.field), problem.value.str(), problem.message.str()});
+    return errors;
+}
+
+} // namespace penumbra

@@ -1,0 +1,37 @@
+# Driver of the "find_package" test (cmake -P): install the build tree into a fresh prefix,
+# configure and build tests/find_package against it, check that the shaders were generated.
+#   -DBUILD_DIR -DCONFIG -DCONSUMER_SOURCE_DIR -DWORK_DIR -DCMAKE_GENERATOR -DCXX_COMPILER
+foreach(var IN ITEMS BUILD_DIR CONSUMER_SOURCE_DIR WORK_DIR CMAKE_GENERATOR)
+    if(NOT ${var})
+        message(FATAL_ERROR "run.cmake: ${var} not set")
+    endif()
+endforeach()
+if(NOT CONFIG)
+    set(CONFIG Release)
+endif()
+
+function(step)
+    execute_process(COMMAND ${ARGN} RESULT_VARIABLE result)
+    if(NOT result EQUAL 0)
+        string(JOIN " " line ${ARGN})
+        message(FATAL_ERROR "failed (${result}): ${line}")
+    endif()
+endfunction()
+
+set(prefix ${WORK_DIR}/prefix)
+set(consumer ${WORK_DIR}/consumer)
+file(REMOVE_RECURSE ${WORK_DIR})
+
+step(${CMAKE_COMMAND} --install ${BUILD_DIR} --config ${CONFIG} --prefix ${prefix})
+set(compiler "")
+if(CXX_COMPILER)
+    set(compiler -DCMAKE_CXX_COMPILER=${CXX_COMPILER})
+endif()
+step(${CMAKE_COMMAND} -S ${CONSUMER_SOURCE_DIR} -B ${consumer} -G ${CMAKE_GENERATOR}
+     -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_BUILD_TYPE=${CONFIG} ${compiler})
+step(${CMAKE_COMMAND} --build ${consumer} --config ${CONFIG})
+
+if(NOT EXISTS ${consumer}/shaders/layout.json)
+    message(FATAL_ERROR "no ${consumer}/shaders/layout.json after the build")
+endif()
+message(STATUS "find_package consumer built; ${consumer}/shaders/layout.json exists")
