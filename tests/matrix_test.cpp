@@ -1,0 +1,64 @@
+// The whole configuration matrix, compiled and linked by glslang for its target.
+#include <penumbra/penumbra.hpp>
+#include <penumbra/validation.hpp>
+
+#include <doctest/doctest.h>
+
+#include <chrono>
+#include <cstdio>
+
+using namespace penumbra;
+
+namespace {
+
+constexpr int matrix_slices[] = {1, 4, 5, 8, 16, 32};
+constexpr int matrix_resolutions[] = {32, 256, 2048};
+
+template <class Visit> void for_each_configuration(Visit visit) {
+    for (Filter filter : all_values<Filter>())
+        for (Fusion fusion : all_values<Fusion>())
+            for (Packing packing : all_values<Packing>())
+                for (Target target : all_values<Target>())
+                    for (Light light : all_values<Light>())
+                        for (int slices : matrix_slices)
+                            for (int resolution : matrix_resolutions)
+                                visit(Config{.slices = slices, .resolution = resolution, .filter = filter,
+                                             .fusion = fusion, .packing = packing, .light = light,
+                                             .target = target});
+}
+
+std::string name_of(const Config& c) {
+    return std::string(to_string(c.filter)) + "/" + std::string(to_string(c.fusion)) + "/" +
+           std::string(to_string(c.packing)) + "/" + std::string(to_string(c.light)) + "/" +
+           std::string(to_string(c.target)) + "/S" + std::to_string(c.slices) + "/R" + std::to_string(c.resolution);
+}
+
+} // namespace
+
+TEST_CASE("every valid configuration of the matrix compiles and links with glslang") {
+    int valid = 0, rejected = 0, programs = 0;
+    const auto start = std::chrono::steady_clock::now();
+    for_each_configuration([&](const Config& config) {
+        Result<Emission> result = emit(config);
+        if (!result.value) {
+            ++rejected;
+            REQUIRE(!result.errors.empty());
+            return;
+        }
+        ++valid;
+        for (const Program& program : result.value->programs) {
+            ++programs;
+            const std::vector<ShaderDiagnostic> diagnostics = validate_program(program, config.target);
+            if (has_errors(diagnostics)) {
+                for (const ShaderDiagnostic& d : diagnostics) MESSAGE(name_of(config) << ": " << format(d));
+                FAIL(name_of(config) << " program " << program.name << " does not compile");
+            }
+        }
+    });
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf("matrix: %d valid configurations (%d programs) validated, %d rejected, %.1f s\n", valid, programs,
+                rejected, seconds);
+    CHECK(valid > 0);
+    CHECK(rejected > 0);
+}
+
