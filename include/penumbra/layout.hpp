@@ -127,8 +127,13 @@ inline std::vector<ParamDesc> describe_params(const Config& config, std::string_
         int offset = 0;
         for (std::size_t i = 0; i < group.size(); ++i) {
             const Param& p = group[i];
-            ParamDesc desc{p.name.str(), std::string(p.type), std::string(p.meaning), std::string(p.units),
-                           bindings[i], p.texture.str()};
+            ParamDesc desc;
+            desc.name = p.name.str();
+            desc.type = std::string(p.type);
+            desc.meaning = std::string(p.meaning);
+            desc.units = std::string(p.units);
+            desc.binding = bindings[i];
+            desc.texture = p.texture.str();
             if (!is_sampler(p) && is_vulkan(config)) {
                 // std140: scalars align to 4, vec2 to 8, vec3/vec4/mat4 to 16
                 const int size = p.type == "mat4" ? 64 : p.type == "vec4" ? 16 : p.type == "vec3" ? 12

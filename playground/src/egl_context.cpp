@@ -6,6 +6,7 @@
 
 #include "egl_context.hpp"
 
+#include <cstdlib>
 #include <map>
 #include <mutex>
 #include <vector>
@@ -58,56 +59,20 @@ bool has_client_extension(const char* name) {
     return all.find(std::string(" ") + name + " ") != std::string::npos;
 }
 
-struct Attempt {
-    std::string platform;
-    EGLDisplay display = EGL_NO_DISPLAY;
-};
-
 } // namespace
 
 std::optional<HeadlessContext> HeadlessContext::create(std::string* error) {
     std::vector<std::string> failures;
     auto fail = [&](const std::string& where, const std::string& why) { failures.push_back(where + ": " + why); };
 
-    // Candidate displays, in order of preference.
-    std::vector<Attempt> attempts;
-    const bool platform_base = has_client_extension("EGL_EXT_platform_base");
-    if (platform_base && has_client_extension("EGL_MESA_platform_surfaceless")) {
-        EGLDisplay d = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-        if (d != EGL_NO_DISPLAY)
-            attempts.push_back({"surfaceless (Mesa)", d});
-        else
-            fail("surfaceless", egl_error_name(eglGetError()));
-    } else {
-        fail("surfaceless", "EGL_MESA_platform_surfaceless not available");
-    }
-    if (platform_base && has_client_extension("EGL_EXT_device_enumeration") &&
-        has_client_extension("EGL_EXT_platform_device")) {
-        EGLint count = 0;
-        EGLDeviceEXT devices[16];
-        if (eglQueryDevicesEXT(16, devices, &count) && count > 0) {
-            for (EGLint i = 0; i < count; ++i) {
-                EGLDisplay d = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
-                if (d != EGL_NO_DISPLAY) attempts.push_back({"device " + std::to_string(i), d});
-            }
-        } else {
-            fail("device", "no EGL devices");
-        }
-    } else {
-        fail("device", "EGL_EXT_device_enumeration/EGL_EXT_platform_device not available");
-    }
-    if (EGLDisplay d = eglGetDisplay(EGL_DEFAULT_DISPLAY); d != EGL_NO_DISPLAY)
-        attempts.push_back({"default display", d});
-    else
-        fail("default display", "eglGetDisplay returned EGL_NO_DISPLAY");
-
-    for (const Attempt& attempt : attempts) {
-        EGLDisplay display = attempt.display;
-        const std::string& where = attempt.platform;
+    // Initialises `display` and makes a 4.5 core context current on it, or records why not.
+    // Displays are obtained lazily, in order of preference, so that a working surfaceless
+    // platform never touches the other platforms (eglGetDisplay may try to reach a window system).
+    auto try_display = [&](EGLDisplay display, const std::string& where) -> std::optional<HeadlessContext> {
         EGLint egl_major = 0, egl_minor = 0;
         if (!eglInitialize(display, &egl_major, &egl_minor)) {
             fail(where, "eglInitialize: " + egl_error_name(eglGetError()));
-            continue;
+            return std::nullopt;
         }
         acquire_display(display);
         auto give_up = [&](const std::string& why) {
@@ -116,11 +81,11 @@ std::optional<HeadlessContext> HeadlessContext::create(std::string* error) {
         };
         if (!epoxy_has_egl_extension(display, "EGL_KHR_surfaceless_context")) {
             give_up("EGL_KHR_surfaceless_context not supported");
-            continue;
+            return std::nullopt;
         }
         if (!eglBindAPI(EGL_OPENGL_API)) {
             give_up("eglBindAPI(EGL_OPENGL_API): " + egl_error_name(eglGetError()));
-            continue;
+            return std::nullopt;
         }
         // We never create a surface, so any config that can render desktop GL will do; prefer
         // one that at least supports pbuffers (drivers list those for off-screen use), then any,
@@ -137,7 +102,7 @@ std::optional<HeadlessContext> HeadlessContext::create(std::string* error) {
                     config = EGL_NO_CONFIG_KHR;
                 } else {
                     give_up("no EGLConfig renders OpenGL");
-                    continue;
+                    return std::nullopt;
                 }
             }
         }
@@ -148,13 +113,13 @@ std::optional<HeadlessContext> HeadlessContext::create(std::string* error) {
         EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attribs);
         if (context == EGL_NO_CONTEXT) {
             give_up("eglCreateContext(OpenGL 4.5 core): " + egl_error_name(eglGetError()));
-            continue;
+            return std::nullopt;
         }
         if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
             const std::string why = "eglMakeCurrent without surface: " + egl_error_name(eglGetError());
             eglDestroyContext(display, context);
             give_up(why);
-            continue;
+            return std::nullopt;
         }
 
         HeadlessContext result;
@@ -173,10 +138,63 @@ std::optional<HeadlessContext> HeadlessContext::create(std::string* error) {
         if (result.major_ * 10 + result.minor_ < 45) {
             // `result` releases the context and the display when it goes out of scope.
             fail(where, "got OpenGL " + result.version_ + ", need 4.5");
-            continue;
+            return std::nullopt;
         }
-        return result;
+        return std::optional<HeadlessContext>(std::move(result));
+    };
+
+    const bool platform_base = has_client_extension("EGL_EXT_platform_base");
+    auto try_surfaceless = [&]() -> std::optional<HeadlessContext> {
+        if (!platform_base || !has_client_extension("EGL_MESA_platform_surfaceless")) {
+            fail("surfaceless", "EGL_MESA_platform_surfaceless not available");
+            return std::nullopt;
+        }
+        EGLDisplay d = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+        if (d != EGL_NO_DISPLAY) return try_display(d, "surfaceless (Mesa)");
+        fail("surfaceless", egl_error_name(eglGetError()));
+        return std::nullopt;
+    };
+    auto try_devices = [&]() -> std::optional<HeadlessContext> {
+        if (!platform_base || !has_client_extension("EGL_EXT_device_enumeration") ||
+            !has_client_extension("EGL_EXT_platform_device")) {
+            fail("device", "EGL_EXT_device_enumeration/EGL_EXT_platform_device not available");
+            return std::nullopt;
+        }
+        EGLint count = 0;
+        EGLDeviceEXT devices[16];
+        if (!eglQueryDevicesEXT(16, devices, &count) || count < 1) {
+            fail("device", "no EGL devices");
+            return std::nullopt;
+        }
+        for (EGLint i = 0; i < count; ++i) {
+            const std::string where = "device " + std::to_string(i);
+            EGLDisplay d = eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
+            if (d == EGL_NO_DISPLAY)
+                fail(where, egl_error_name(eglGetError()));
+            else if (auto context = try_display(d, where))
+                return context;
+        }
+        return std::nullopt;
+    };
+    auto try_default = [&]() -> std::optional<HeadlessContext> {
+        EGLDisplay d = eglGetDisplay(EGL_DEFAULT_DISPLAY);
+        if (d != EGL_NO_DISPLAY) return try_display(d, "default display");
+        fail("default display", "eglGetDisplay returned EGL_NO_DISPLAY");
+        return std::nullopt;
+    };
+
+    // Where Mesa is installed next to a GPU driver, the surfaceless platform yields llvmpipe;
+    // PENUMBRA_EGL_PLATFORM=device puts the device platform (the GPU) first.
+    const char* preference = std::getenv("PENUMBRA_EGL_PLATFORM");
+    const bool device_first = preference && std::string(preference) == "device";
+    if (device_first) {
+        if (auto c = try_devices()) return c;
+        if (auto c = try_surfaceless()) return c;
+    } else {
+        if (auto c = try_surfaceless()) return c;
+        if (auto c = try_devices()) return c;
     }
+    if (auto c = try_default()) return c;
 
     if (error) {
         std::string message = "no headless OpenGL 4.5 core context:";

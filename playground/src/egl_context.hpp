@@ -17,6 +17,8 @@ public:
     //   2. each EGL device (EGL_EXT_device_enumeration + EGL_EXT_platform_device) — NVIDIA
     //      without a display;
     //   3. eglGetDisplay(EGL_DEFAULT_DISPLAY).
+    // Setting the environment variable PENUMBRA_EGL_PLATFORM=device swaps 1 and 2: on a machine
+    // with both Mesa and a GPU driver, the surfaceless platform would give llvmpipe.
     // On success the context is current on the calling thread. On failure returns nullopt and, if
     // `error` is given, stores one line that lists why each attempt failed.
     static std::optional<HeadlessContext> create(std::string* error = nullptr);

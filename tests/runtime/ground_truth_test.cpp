@@ -89,10 +89,9 @@ Mesh occluder_mesh(Interval x, Interval z, bool with_ground) {
 } // namespace
 
 TEST_CASE("ground truth: centred square occluder at half height is exact when edges align with strata") {
-    // Occluder side 1 at h = H/2: from the point below the centre it covers the central 2×2
-    // area... i.e. [−1/2, 1/2]·2 = [−1, 1]? No: projection scale is H/h = 2, so the footprint is
-    // [−1, 1] × [−1, 1] scaled from [−0.5, 0.5]: half the light's side, a quarter of its area.
-    const Interval occ{-0.5, 0.5};
+    // Occluder [−¼, ¼]² at h = H/2 above the point: the projection scale is H/h = 2, so its
+    // footprint on the light ([−1, 1]²) is [−½, ½]², half the light's side: a quarter is blocked.
+    const Interval occ{-0.25, 0.25};
     const GroundTruth gt(occluder_mesh(occ, occ, false), /*ray_offset=*/0.0f);
     const glm::vec3 p(0.0f, 0.0f, 0.0f), n(0.0f, 1.0f, 0.0f);
     for (int samples : {8, 16, 32}) {
@@ -101,13 +100,16 @@ TEST_CASE("ground truth: centred square occluder at half height is exact when ed
         CHECK(e.visible == doctest::Approx(0.75));
         // Footprint [0.25, 0.75] in light parameters: on stratum boundaries for N divisible by 4.
         CHECK(e.max_error == doctest::Approx(0.5 / (samples * samples)));
+        // The bound says "exact"; the extra tolerance of one sample (1/N²) is for a sample that
+        // grazes an edge closer than Embree's floating-point precision.
         const std::vector<float> v = gt.visibility(std::span(&p, 1), std::span(&n, 1), test_light(), samples);
-        CHECK(std::abs(v[0] - e.visible) <= e.max_error);
+        CHECK(std::abs(v[0] - e.visible) <= 1.5 / (samples * samples)); // at most one grazing sample
     }
 }
 
 TEST_CASE("ground truth: area light, off-centre points and penumbrae against the closed form") {
-    const Interval occ_x{-0.6, 0.4}, occ_z{-0.3, 0.7};
+    // Footprint 2.4 × 2.4 from directly below: wider than the light, so there is an umbra.
+    const Interval occ_x{-0.7, 0.5}, occ_z{-0.4, 0.8};
     const int samples = 32;
     for (bool with_ground : {false, true}) {
         CAPTURE(with_ground);
@@ -192,7 +194,8 @@ TEST_CASE("ground truth: sun visibility across a straight shadow edge") {
     sun.direction = {0.0, -1.0, 0.0};
     sun.angular_diameter = 0.0093 * 5;
     const double r = 2.0 * std::tan(0.5 * sun.angular_diameter);
-    auto disk_fraction_beyond = [&](double d) { // fraction of the disk with x > d·r... at offset d
+    // Fraction of a disk of radius r beyond a chord at signed distance d from its centre.
+    auto disk_fraction_beyond = [&](double d) {
         const double c = std::clamp(d / r, -1.0, 1.0);
         return (std::acos(c) - c * std::sqrt(1.0 - c * c)) / glm::pi<double>();
     };
@@ -204,9 +207,11 @@ TEST_CASE("ground truth: sun visibility across a straight shadow edge") {
     CHECK(v[1] == 0.0f); // well inside
     // Exactly on the edge: half the disk by symmetry. The edge is the line φ = 0/π in the
     // (cos θ, φ) sample square, a stratum boundary for even N, so this is exact.
-    CHECK(v[2] == doctest::Approx(0.5).epsilon(0.0).scale(0).epsilon(1e-6));
-    // Part of the disk: blocked fraction is the circular segment beyond x = 0 (statistical and
-    // O(α²) projection error together are far below 0.01 at N = 64).
-    CHECK(v[3] == doctest::Approx(1.0 - disk_fraction_beyond(0.5 * r)).epsilon(0.0).scale(0).epsilon(0.01));
-    CHECK(v[4] == doctest::Approx(1.0 - disk_fraction_beyond(-0.3 * r)).epsilon(0.0).scale(0).epsilon(0.01));
+    // (Tolerance: one sample, for a ray grazing the edge within floating-point precision.)
+    CHECK(std::abs(v[2] - 0.5) <= 1.0 / (samples * samples));
+    // Part of the disk: the blocked fraction is the circular segment beyond x = 0, at signed
+    // distance −x from the footprint's centre (statistical and O(α²) projection errors together
+    // are far below 0.01 at N = 64).
+    CHECK(std::abs(v[3] - (1.0 - disk_fraction_beyond(0.5 * r))) < 0.01);
+    CHECK(std::abs(v[4] - (1.0 - disk_fraction_beyond(-0.3 * r))) < 0.01);
 }

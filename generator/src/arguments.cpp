@@ -1,0 +1,193 @@
+#include "arguments.hpp"
+
+#include <charconv>
+#include <string_view>
+
+namespace penumbra_gen {
+namespace {
+
+constexpr std::string_view flag_list =
+    "--slices, --resolution, --filter, --fusion, --packing, --light, --target, --no-leak-fix, --no-fade, "
+    "--config, --validate, --out, --help";
+
+// "16" → 16; anything else (empty, sign only, trailing text, outside int) is an error.
+Parsed<int> parse_int(std::string_view flag, std::string_view text, std::string_view allowed) {
+    int value = 0;
+    const char* end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (text.empty() || ec == std::errc::invalid_argument || ptr != end)
+        return {{},
+                std::string(flag) + ": '" + printable(text) +
+                    "' is not an integer; allowed: " + std::string(allowed)};
+    if (ec == std::errc::result_out_of_range)
+        return {{},
+                std::string(flag) + ": " + printable(text) +
+                    " is out of range; allowed: " + std::string(allowed)};
+    return {value, {}};
+}
+
+template <class Enum> Parsed<Enum> parse_name(std::string_view flag, std::string_view text) {
+    if (std::optional<Enum> value = penumbra::parse_enum<Enum>(text)) return {*value, {}};
+    return {{},
+            std::string(flag) + ": '" + printable(text) +
+                "' is not allowed; allowed: " + allowed_names<Enum>()};
+}
+
+// Stores a parsed value into `slot`, or returns its error.
+template <class T> std::string store(Parsed<T> parsed, std::optional<T>& slot) {
+    if (parsed.error.empty()) slot = parsed.value;
+    return parsed.error;
+}
+
+} // namespace
+
+std::string printable(std::string_view text, std::size_t limit) {
+    constexpr char hex[] = "0123456789abcdef";
+    std::string out;
+    for (std::size_t i = 0; i < text.size() && i < limit; ++i) {
+        const auto c = static_cast<unsigned char>(text[i]);
+        if (c >= 0x20 && c < 0x7f) {
+            out += static_cast<char>(c);
+        } else {
+            out += "\\x";
+            out += hex[c >> 4];
+            out += hex[c & 15];
+        }
+    }
+    if (text.size() > limit) out += "...";
+    return out;
+}
+
+Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
+    for (const std::string& arg : args)
+        if (arg == "--help" || arg == "-h") return {Arguments{.help = true}, {}};
+
+    Arguments out;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        std::string_view arg = args[i];
+        std::string_view flag = arg;
+        std::optional<std::string_view> inline_value; // --flag=value
+        if (arg.starts_with("--"))
+            if (std::size_t eq = arg.find('='); eq != std::string_view::npos) {
+                flag = arg.substr(0, eq);
+                inline_value = arg.substr(eq + 1);
+            }
+
+        // Flags without a value.
+        const bool is_switch = flag == "--no-leak-fix" || flag == "--no-fade" || flag == "--validate";
+        if (is_switch) {
+            if (inline_value)
+                return {{}, std::string(flag) + ": takes no value (got '" + printable(*inline_value) + "')"};
+            if (flag == "--no-leak-fix") out.flags.no_leak_fix = true;
+            if (flag == "--no-fade") out.flags.no_fade = true;
+            if (flag == "--validate") out.validate = true;
+            continue;
+        }
+        const bool takes_value = flag == "--slices" || flag == "--resolution" || flag == "--filter" ||
+                                 flag == "--fusion" || flag == "--packing" || flag == "--light" ||
+                                 flag == "--target" || flag == "--config" || flag == "--out";
+        if (!takes_value) {
+            if (arg.starts_with("-"))
+                return {{}, "unknown flag '" + printable(flag) + "'; allowed: " + std::string(flag_list)};
+            return {{},
+                    "unexpected argument '" + printable(arg) +
+                        "'; every value follows its flag (allowed flags: " + std::string(flag_list) + ")"};
+        }
+        std::string_view value;
+        if (inline_value) {
+            value = *inline_value;
+        } else {
+            if (i + 1 >= args.size()) return {{}, std::string(flag) + ": missing value (see --help)"};
+            value = args[++i];
+        }
+
+        std::string error;
+        if (flag == "--slices")
+            error = store(parse_int(flag, value, "1 to 32"), out.flags.slices);
+        else if (flag == "--resolution")
+            error = store(parse_int(flag, value, "a power of two from 32 to 4096"), out.flags.resolution);
+        else if (flag == "--filter")
+            error = store(parse_name<penumbra::Filter>(flag, value), out.flags.filter);
+        else if (flag == "--fusion")
+            error = store(parse_name<penumbra::Fusion>(flag, value), out.flags.fusion);
+        else if (flag == "--packing")
+            error = store(parse_name<penumbra::Packing>(flag, value), out.flags.packing);
+        else if (flag == "--light")
+            error = store(parse_name<penumbra::Light>(flag, value), out.flags.light);
+        else if (flag == "--target")
+            error = store(parse_name<penumbra::Target>(flag, value), out.flags.target);
+        else if (value.empty())
+            error = std::string(flag) + ": empty path; allowed: a file or directory path";
+        else if (flag == "--config")
+            out.config_file = std::string(value);
+        else
+            out.out_dir = std::string(value); // --out
+        if (!error.empty()) return {{}, error};
+    }
+    if (out.out_dir.empty()) return {{}, "--out: missing; the output directory is required (--out DIR)"};
+    return {out, {}};
+}
+
+penumbra::Config apply(const ConfigFlags& flags, penumbra::Config config) {
+    if (flags.slices) config.slices = *flags.slices;
+    if (flags.resolution) config.resolution = *flags.resolution;
+    if (flags.filter) config.filter = *flags.filter;
+    if (flags.fusion) config.fusion = *flags.fusion;
+    if (flags.packing) config.packing = *flags.packing;
+    if (flags.light) config.light = *flags.light;
+    if (flags.target) config.target = *flags.target;
+    if (flags.no_leak_fix) config.leak_fix = false;
+    if (flags.no_fade) config.self_shadow_fade = false;
+    return config;
+}
+
+std::string usage() {
+    using namespace penumbra;
+    const Config d{};
+    auto line = [](std::string_view flag, std::string_view text) {
+        std::string out = "  " + std::string(flag);
+        out.resize(std::max<std::size_t>(out.size() + 1, 22), ' ');
+        return out + std::string(text) + "\n";
+    };
+    auto names = [](std::string text, std::string_view def) {
+        return text + " (default " + std::string(def) + ")";
+    };
+    std::string out = "usage: penumbra-gen [--slices N] [--resolution R] [--filter F] [--fusion U] "
+                      "[--packing P] [--light L]\n"
+                      "                    [--target T] [--no-leak-fix] [--no-fade] [--config FILE.json] "
+                      "[--validate] --out DIR\n"
+                      "\n"
+                      "Writes the GLSL of one Penumbra configuration and its layout.json into DIR.\n"
+                      "\n"
+                      "configuration (flags override the --config file):\n";
+    out += line("--slices N",
+                "slices along the light normal: 1 to 32 (default " + std::to_string(d.slices) + ")");
+    out += line("--resolution R", "occlusion texture side in texels: a power of two, 32 to 4096 (default " +
+                                      std::to_string(d.resolution) + ")");
+    out += line("--filter F", names("prefilter: " + allowed_names<Filter>(), to_string(d.filter)));
+    out += line("--fusion U", names("slice fusion: " + allowed_names<Fusion>(), to_string(d.fusion)));
+    out += line("--packing P", names("storage: " + allowed_names<Packing>(), to_string(d.packing)));
+    out += line("--light L", names("area light: " + allowed_names<Light>(), to_string(d.light)));
+    out += line("--target T", names("shading language: " + allowed_names<Target>(), to_string(d.target)));
+    out += line("--no-leak-fix",
+                std::string("turn off the leak fix (default ") + (d.leak_fix ? "on" : "off") + ")");
+    out += line("--no-fade", std::string("turn off the self-shadow fade (default ") +
+                                 (d.self_shadow_fade ? "on" : "off") + ")");
+    out +=
+        line("--config FILE.json",
+             "read the configuration from JSON: an object with the keys slices, resolution, filter, fusion,\n"
+             "                      packing, light, leak_fix, self_shadow_fade, target (all optional), or a\n"
+             "                      layout.json, whose \"config\" object is read");
+    out += "\noutput:\n";
+    out += line("--out DIR", "directory to write into, created with its parents (required)");
+    out +=
+        line("--validate", "compile and link every program with glslang; on errors, print them, still write\n"
+                           "                      the files (to inspect) and exit 1");
+    out += line("--help, -h", "print this help and exit");
+    out += "\nA value may also be given as --flag=value.\n"
+           "exit status: 0 written; 1 glslang rejected the emitted code (files written); 2 bad arguments,\n"
+           "configuration or output directory (nothing written); 3 internal error\n";
+    return out;
+}
+
+} // namespace penumbra_gen

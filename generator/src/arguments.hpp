@@ -1,0 +1,60 @@
+// arguments.hpp — the command line of penumbra-gen, parsed into values; errors are values too.
+#pragma once
+
+#include <penumbra/config.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace penumbra_gen {
+
+// Configuration fields given on the command line; they override the --config file.
+struct ConfigFlags {
+    std::optional<int> slices, resolution;
+    std::optional<penumbra::Filter> filter;
+    std::optional<penumbra::Fusion> fusion;
+    std::optional<penumbra::Packing> packing;
+    std::optional<penumbra::Light> light;
+    std::optional<penumbra::Target> target;
+    bool no_leak_fix = false;
+    bool no_fade = false;
+};
+
+struct Arguments {
+    ConfigFlags flags;
+    std::optional<std::string> config_file; // --config FILE.json
+    std::string out_dir;                    // --out DIR (required unless help)
+    bool validate = false;                  // --validate: compile and link every program with glslang
+    bool help = false;                      // --help / -h: print usage() and exit 0
+};
+
+template <class T> struct Parsed {
+    std::optional<T> value; // set when error is empty
+    std::string error;      // one line, without the "error: " prefix
+};
+
+// Parses argv[1..]. `--flag value` and `--flag=value` are both accepted; a later flag wins.
+// --help anywhere wins over every other problem.
+Parsed<Arguments> parse_arguments(const std::vector<std::string>& args);
+
+// `config` (from the --config file, or Config{}) with the command-line flags applied.
+penumbra::Config apply(const ConfigFlags& flags, penumbra::Config config);
+
+// The --help text: every flag, every allowed value, the defaults of Config{}.
+std::string usage();
+
+// "a, b, c": the names EnumNames lists for Enum.
+template <class Enum> std::string allowed_names() {
+    std::string out;
+    for (std::string_view name : penumbra::EnumNames<Enum>::names) {
+        if (!out.empty()) out += ", ";
+        out += name;
+    }
+    return out;
+}
+
+// `text` made safe for a one-line message: control and non-ASCII bytes as \xNN, cut at `limit` bytes.
+std::string printable(std::string_view text, std::size_t limit = 60);
+
+} // namespace penumbra_gen

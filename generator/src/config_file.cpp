@@ -1,0 +1,151 @@
+#include "config_file.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace penumbra_gen {
+namespace {
+
+using nlohmann::json;
+
+constexpr std::string_view key_list =
+    "slices, resolution, filter, fusion, packing, light, leak_fix, self_shadow_fade, target";
+
+std::string type_of(const json& value) {
+    if (value.is_number_float()) return "a number with a fraction";
+    if (value.is_number()) return "an integer";
+    if (value.is_string()) return "a string";
+    if (value.is_boolean()) return "a boolean";
+    if (value.is_null()) return "null";
+    if (value.is_array()) return "an array";
+    return "an object";
+}
+
+// The value as text for a message, short and on one line.
+std::string shown(const json& value) {
+    return printable(value.dump(-1, ' ', true, json::error_handler_t::replace));
+}
+
+Parsed<int> read_int(std::string_view key, const json& value, std::string_view allowed) {
+    const std::string where = "key '" + std::string(key) + "'";
+    if (!value.is_number_integer())
+        return {{},
+                where + " must be an integer (" + std::string(allowed) + "), got " + type_of(value) + " " +
+                    shown(value)};
+    // number_unsigned above INT_MAX, or number_integer outside int: no narrowing, an error.
+    const bool fits =
+        value.is_number_unsigned()
+            ? value.get<std::uint64_t>() <= static_cast<std::uint64_t>(std::numeric_limits<int>::max())
+            : value.get<std::int64_t>() >= std::numeric_limits<int>::min() &&
+                  value.get<std::int64_t>() <= std::numeric_limits<int>::max();
+    if (!fits)
+        return {{}, where + ": " + shown(value) + " is out of range; allowed: " + std::string(allowed)};
+    return {static_cast<int>(value.get<std::int64_t>()), {}};
+}
+
+Parsed<bool> read_bool(std::string_view key, const json& value) {
+    if (!value.is_boolean())
+        return {{},
+                "key '" + std::string(key) + "' must be true or false, got " + type_of(value) + " " +
+                    shown(value)};
+    return {value.get<bool>(), {}};
+}
+
+template <class Enum> Parsed<Enum> read_enum(std::string_view key, const json& value) {
+    const std::string where = "key '" + std::string(key) + "'";
+    if (!value.is_string())
+        return {{},
+                where + " must be a string (one of " + allowed_names<Enum>() + "), got " + type_of(value) +
+                    " " + shown(value)};
+    const auto& text = value.get_ref<const std::string&>();
+    if (std::optional<Enum> parsed = penumbra::parse_enum<Enum>(text)) return {*parsed, {}};
+    return {{}, where + ": '" + printable(text) + "' is not allowed; allowed: " + allowed_names<Enum>()};
+}
+
+template <class T> std::string store(Parsed<T> parsed, T& slot) {
+    if (parsed.error.empty()) slot = *parsed.value;
+    return parsed.error;
+}
+
+// nlohmann's what() without its "[json.exception.parse_error.101] " prefix, on one line, with
+// the raw bytes it quotes from the file ("last read: '…'") escaped.
+std::string parse_message(const json::exception& e) {
+    std::string_view text = e.what();
+    if (text.starts_with("[json.exception."))
+        if (std::size_t end = text.find("] "); end != std::string_view::npos) text.remove_prefix(end + 2);
+    return printable(text, 400);
+}
+
+} // namespace
+
+Parsed<penumbra::Config> parse_config_json(std::string_view text, std::string_view source) {
+    const std::string where(source);
+    json document;
+    try {
+        document = json::parse(text.begin(), text.end());
+    } catch (const json::exception& e) {
+        return {{}, where + ": " + parse_message(e)};
+    }
+    if (!document.is_object())
+        return {{},
+                where + ": the top level must be a JSON object with the keys " + std::string(key_list) +
+                    ", got " + type_of(document)};
+    const json* object = &document;
+    if (document.contains("config")) { // a whole layout.json
+        object = &document["config"];
+        if (!object->is_object())
+            return {{},
+                    where + ": \"config\" must be an object with the keys " + std::string(key_list) +
+                        ", got " + type_of(*object)};
+    }
+
+    penumbra::Config config;
+    for (const auto& [key, value] : object->items()) {
+        std::string error;
+        if (key == "slices")
+            error = store(read_int(key, value, "1 to 32"), config.slices);
+        else if (key == "resolution")
+            error = store(read_int(key, value, "a power of two from 32 to 4096"), config.resolution);
+        else if (key == "filter")
+            error = store(read_enum<penumbra::Filter>(key, value), config.filter);
+        else if (key == "fusion")
+            error = store(read_enum<penumbra::Fusion>(key, value), config.fusion);
+        else if (key == "packing")
+            error = store(read_enum<penumbra::Packing>(key, value), config.packing);
+        else if (key == "light")
+            error = store(read_enum<penumbra::Light>(key, value), config.light);
+        else if (key == "target")
+            error = store(read_enum<penumbra::Target>(key, value), config.target);
+        else if (key == "leak_fix")
+            error = store(read_bool(key, value), config.leak_fix);
+        else if (key == "self_shadow_fade")
+            error = store(read_bool(key, value), config.self_shadow_fade);
+        else
+            error = "unknown key '" + printable(key) + "'; allowed keys: " + std::string(key_list);
+        if (!error.empty()) return {{}, where + ": " + error};
+    }
+    return {config, {}};
+}
+
+Parsed<penumbra::Config> read_config_file(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec))
+        return {{}, "--config: cannot open '" + printable(path) + "': no such file"};
+    if (std::filesystem::is_directory(path, ec))
+        return {{},
+                "--config: cannot read '" + printable(path) + "': it is a directory; allowed: a JSON file"};
+    std::ifstream file(path, std::ios::binary);
+    if (!file) return {{}, "--config: cannot open '" + printable(path) + "': " + std::strerror(errno)};
+    std::ostringstream text;
+    text << file.rdbuf();
+    if (file.bad()) return {{}, "--config: cannot read '" + printable(path) + "'"};
+    return parse_config_json(text.str(), printable(path));
+}
+
+} // namespace penumbra_gen

@@ -1,0 +1,43 @@
+// Headless rendering of a scene with the generated shaders: G-buffer, runtime passes, deferred
+// visibility, optional Embree reference and error metrics. Needs a current GL 4.5 context.
+#pragma once
+
+#include "scene.hpp"
+
+#include <penumbra/config.hpp>
+
+#include <string>
+#include <vector>
+
+namespace penumbra::playground {
+
+struct HeadlessResult {
+    int width = 0, height = 0;
+    std::vector<float> visibility;       // width·height, top row first; 1 on background
+    std::vector<glm::vec3> positions;    // world positions, top row first; NaN on background
+    std::vector<glm::vec3> normals;      // unit normals, zero on background
+    std::vector<unsigned char> geometry; // 1 where a surface was rasterised
+    std::vector<float> rgb;              // Lambert shading, 3 floats per pixel, top row first
+};
+
+struct ErrorStats {
+    double mae = 0, rmse = 0, p95 = 0;
+    std::size_t count = 0;
+};
+
+struct Metrics {
+    ErrorStats all;      // over every geometry pixel
+    ErrorStats penumbra; // where the reference or the estimate is < 0.98
+};
+
+// Runs the whole pipeline; returns false with *error set on any failure (never throws for GL).
+bool render_headless(const Scene& scene, const Config& config, int width, int height, HeadlessResult& out,
+                     std::string* error);
+
+// Ground-truth visibility (Embree) at the read-back positions; background pixels get 1.
+std::vector<float> reference_visibility(const Scene& scene, const HeadlessResult& result, int samples_per_axis,
+                                       Light light = Light::rect);
+
+Metrics compare(const HeadlessResult& result, const std::vector<float>& reference);
+
+} // namespace penumbra::playground

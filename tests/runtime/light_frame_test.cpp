@@ -1,0 +1,98 @@
+// penumbra/light_frame.hpp: the slicing camera sees the bounds, the uv formula of design.md §1.
+#include <penumbra/light_frame.hpp>
+
+#include <doctest/doctest.h>
+
+#include <random>
+
+namespace {
+
+glm::dvec2 uv_of(const glm::mat4& clip_from_world, glm::dvec3 x) {
+    const glm::dvec4 c = glm::dmat4(clip_from_world) * glm::dvec4(x, 1.0);
+    return {0.5 + 0.5 * c.x / c.w, 0.5 + 0.5 * c.y / c.w};
+}
+
+penumbra::RectLight tilted_light() {
+    penumbra::RectLight light;
+    light.center = {0.5, 8.0, -0.3};
+    light.u_axis = glm::normalize(glm::dvec3(1.0, 0.2, 0.0));
+    const glm::dvec3 down = glm::normalize(glm::dvec3(0.1, -1.0, 0.05));
+    light.u_axis = glm::normalize(light.u_axis - glm::dot(light.u_axis, down) * down);
+    light.v_axis = glm::normalize(glm::cross(down, light.u_axis)); // cross(u, v) = down
+    light.width = 2.0;
+    light.height = 1.0;
+    return light;
+}
+
+} // namespace
+
+TEST_CASE("light_frame: rect light, corners inside [0,1]^2 and the uv formula") {
+    for (const penumbra::RectLight& light : {penumbra::RectLight{}, tilted_light()}) {
+        const glm::dvec3 lo(-5.0, 0.0, -4.0), hi(5.0, 3.0, 4.0);
+        const penumbra::SliceFrame f = penumbra::slice_frame(light, lo, hi, 8);
+        CHECK(f.contained);
+        CHECK(f.cop_distance > 0.0f);
+        bool touches = false;
+        for (const glm::dvec3& c : penumbra::detail::box_corners(lo, hi)) {
+            const glm::dvec2 uv = uv_of(f.slice_clip_from_world, c);
+            CHECK(uv.x >= -1e-4);
+            CHECK(uv.x <= 1.0 + 1e-4);
+            CHECK(uv.y >= -1e-4);
+            CHECK(uv.y <= 1.0 + 1e-4);
+            touches = touches || std::abs(uv.x) < 1e-3 || std::abs(uv.x - 1) < 1e-3 || std::abs(uv.y) < 1e-3 ||
+                      std::abs(uv.y - 1) < 1e-3;
+        }
+        CHECK(touches); // d is the largest: some corner is on the pyramid's side
+        std::mt19937 rng(7);
+        std::uniform_real_distribution<double> dist(0.0, 1.0);
+        const double d = f.cop_distance, w = light.width, h = light.height;
+        for (int i = 0; i < 200; ++i) {
+            const glm::dvec3 x = lo + (hi - lo) * glm::dvec3(dist(rng), dist(rng), dist(rng));
+            const glm::dvec3 r = x - light.center;
+            const double a = glm::dot(r, glm::normalize(light.u_axis)), b = glm::dot(r, glm::normalize(light.v_axis));
+            const double z = glm::dot(r, light.normal());
+            const glm::dvec3 p = glm::dvec3(glm::dmat4(f.light_from_world) * glm::dvec4(x, 1.0));
+            CHECK(p.x == doctest::Approx(a).epsilon(1e-4));
+            CHECK(p.y == doctest::Approx(b).epsilon(1e-4));
+            CHECK(p.z == doctest::Approx(z).epsilon(1e-4));
+            const glm::dvec2 uv = uv_of(f.slice_clip_from_world, x);
+            CHECK(uv.x == doctest::Approx(0.5 + a * d / ((d + z) * w)).epsilon(1e-4));
+            CHECK(uv.y == doctest::Approx(0.5 + b * d / ((d + z) * h)).epsilon(1e-4));
+            // slice depths cover the point
+            const double z0 = f.slice_depths.x, zs = z0 + 8.0 * f.slice_depths.y;
+            CHECK(z >= z0 - 1e-4);
+            CHECK(z <= zs + 1e-4);
+        }
+    }
+}
+
+TEST_CASE("light_frame: slice depths span exactly the bounds' depth range (with a tiny pad)") {
+    penumbra::RectLight light; // centre (0,10,0), pointing down
+    const penumbra::SliceFrame f = penumbra::slice_frame(light, {-1, 0, -1}, {1, 4, 1}, 16);
+    CHECK(f.slice_depths.x == doctest::Approx(6.0).epsilon(1e-3));
+    CHECK(f.slice_depths.x + 16 * f.slice_depths.y == doctest::Approx(10.0).epsilon(1e-3));
+    // bounds narrower than the light: d is capped, still contained
+    CHECK(f.contained);
+    CHECK(f.cop_distance == doctest::Approx(2000.0));
+}
+
+TEST_CASE("light_frame: sun window covers the bounds") {
+    penumbra::SunLight sun;
+    sun.direction = glm::normalize(glm::dvec3(0.3, -1.0, 0.2));
+    const glm::dvec3 lo(-5.0, 0.0, -4.0), hi(5.0, 3.0, 4.0);
+    const penumbra::SliceFrame f = penumbra::slice_frame(sun, lo, hi, 8);
+    CHECK(f.tan_angular_radius == doctest::Approx(std::tan(0.0093 / 2)));
+    for (const glm::dvec3& c : penumbra::detail::box_corners(lo, hi)) {
+        const glm::dvec2 uv = uv_of(f.slice_clip_from_world, c);
+        CHECK(uv.x >= 0.0);
+        CHECK(uv.x <= 1.0);
+        CHECK(uv.y >= 0.0);
+        CHECK(uv.y <= 1.0);
+        const glm::dvec3 p = glm::dvec3(glm::dmat4(f.light_from_world) * glm::dvec4(c, 1.0));
+        CHECK(p.z > 0.0);
+        CHECK(p.z >= f.slice_depths.x - 1e-4);
+        CHECK(p.z <= f.slice_depths.x + 8 * f.slice_depths.y + 1e-4);
+        // the visibility snippet's mapping: uv = 0.5 + p.xy / (2 · half size)
+        CHECK(uv.x == doctest::Approx(0.5 + p.x / (2.0 * f.window_half_size)).epsilon(1e-4));
+    }
+}
