@@ -21,11 +21,21 @@
 
 namespace {
 
+constexpr const char* usage_text =
+    "usage: penumbra-playground --headless --scene NAME --out image.png [--size WxH] [--slices N]\n"
+    "       [--resolution R] [--filter F] [--packing P] [--fusion U] [--light rect|sun] [--target T]\n"
+    "       [--reference] [--samples N] [--metrics metrics.json]\n"
+    "Renders a scene headless (EGL, no display): G-buffer, Penumbra passes, deferred visibility, Lambert.\n"
+    "  --scene NAME      planes, boxes, tree, butterfly, terrain, crowd\n"
+    "  --size WxH        image size (default 512x512)\n"
+    "  configuration flags as in penumbra-gen --help\n"
+    "  --reference       also ray-trace the visibility with Embree and report MAE, RMSE, p95\n"
+    "  --samples N       rays per light axis for --reference (default 16)\n"
+    "  --metrics FILE    write the error metrics as JSON\n"
+    "The interactive window is not built yet; --headless is required.\n";
+
 int usage_error(const std::string& message) {
-    std::cerr << "error: " << message << "\n"
-              << "usage: penumbra-playground --headless --scene NAME --out image.png [--size WxH] [--slices N]\n"
-                 "       [--resolution R] [--filter F] [--packing P] [--fusion U] [--light rect|sun]\n"
-                 "       [--reference] [--samples N] [--metrics metrics.json]\n";
+    std::cerr << "error: " << message << "\n" << usage_text;
     return 2;
 }
 
@@ -65,6 +75,10 @@ int main(int argc, char** argv) {
             return true;
         };
         std::string_view v;
+        if (arg == "--help" || arg == "-h") {
+            std::cout << usage_text;
+            return 0;
+        }
         if (arg == "--headless") headless = true;
         else if (arg == "--reference") reference = true;
         else if (arg == "--scene") { if (!value(v)) return usage_error("--scene needs a value"); scene_name = v; }
