@@ -67,12 +67,17 @@ constexpr void write_preamble(LineWriter& out, const Config& config, std::string
     out.blank();
 }
 
+// True when `params` holds a plain uniform (which Vulkan must put in a block).
+constexpr bool has_values(const std::vector<Param>& params) {
+    for (const Param& p : params)
+        if (!is_sampler(p)) return true;
+    return false;
+}
+
 // Binding (texture unit on OpenGL) of each parameter, -1 for plain uniforms: on Vulkan the
 // uniform block takes the first binding, then the samplers follow in declaration order.
 constexpr std::vector<int> param_bindings(const Config& config, const std::vector<Param>& params, int& next_binding) {
-    bool any_value = false;
-    for (const Param& p : params) any_value = any_value || !is_sampler(p);
-    if (any_value && is_vulkan(config)) ++next_binding;
+    if (has_values(params) && is_vulkan(config)) ++next_binding;
     std::vector<int> bindings;
     for (const Param& p : params) bindings.push_back(is_sampler(p) ? next_binding++ : -1);
     return bindings;
@@ -89,9 +94,7 @@ constexpr void write_params(LineWriter& out, const Config& config, const std::ve
     auto comment = [](const Param& p) {
         return choose(p.units.empty(), cat(" // ", p.meaning), cat(" // ", p.meaning, " (", p.units, ")"));
     };
-    bool any_value = false;
-    for (const Param& p : params) any_value = any_value || !is_sampler(p);
-    if (any_value && is_vulkan(config)) {
+    if (has_values(params) && is_vulkan(config)) {
         out.line("layout(set = 0, binding = ", format_int(block_binding), ", std140) uniform ", block_name, " {");
         for (const Param& p : params)
             if (!is_sampler(p)) out.line(p.type, " ", p.name, ";", comment(p));
