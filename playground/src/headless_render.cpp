@@ -1,5 +1,6 @@
 #include "headless_render.hpp"
 
+#include "gpu_scene.hpp"
 #include "ground_truth.hpp"
 
 #include <penumbra/gl/runtime.hpp>
@@ -11,97 +12,6 @@
 namespace penumbra::playground {
 
 namespace {
-
-constexpr const char* gbuffer_vertex = R"(#version 450 core
-layout(location = 0) in vec3 position;
-layout(location = 1) in vec3 normal;
-uniform mat4 clipFromWorld;
-out vec3 worldPos;
-out vec3 worldNormal;
-void main() {
-    worldPos = position;
-    worldNormal = normal;
-    gl_Position = clipFromWorld * vec4(position, 1.0);
-}
-)";
-
-constexpr const char* gbuffer_fragment = R"(#version 450 core
-in vec3 worldPos;
-in vec3 worldNormal;
-layout(location = 0) out vec4 outPosition;
-layout(location = 1) out vec4 outNormal;
-void main() {
-    outPosition = vec4(worldPos, 1.0);
-    outNormal = vec4(normalize(worldNormal), 0.0);
-}
-)";
-
-GLuint compile_gbuffer_program(std::string* error) {
-    const GLuint program = glCreateProgram();
-    bool ok = true;
-    for (auto [kind, text] : {std::pair{GL_VERTEX_SHADER, gbuffer_vertex}, std::pair{GL_FRAGMENT_SHADER, gbuffer_fragment}}) {
-        const GLuint s = glCreateShader(kind);
-        glShaderSource(s, 1, &text, nullptr);
-        glCompileShader(s);
-        GLint status = 0;
-        glGetShaderiv(s, GL_COMPILE_STATUS, &status);
-        if (!status) {
-            char log[2048] = {};
-            glGetShaderInfoLog(s, sizeof log, nullptr, log);
-            if (error) *error = std::string("G-buffer shader: ") + log;
-            ok = false;
-        }
-        glAttachShader(program, s);
-        glDeleteShader(s);
-    }
-    if (ok) {
-        glLinkProgram(program);
-        GLint status = 0;
-        glGetProgramiv(program, GL_LINK_STATUS, &status);
-        if (!status) {
-            if (error) *error = "G-buffer program failed to link";
-            ok = false;
-        }
-    }
-    if (!ok) {
-        glDeleteProgram(program);
-        return 0;
-    }
-    return program;
-}
-
-struct MeshBuffers {
-    GLuint vao = 0, positions = 0, normals = 0, indices = 0;
-    GLsizei count = 0;
-    explicit MeshBuffers(const Mesh& mesh) {
-        glCreateVertexArrays(1, &vao);
-        glCreateBuffers(1, &positions);
-        glCreateBuffers(1, &normals);
-        glCreateBuffers(1, &indices);
-        glNamedBufferStorage(positions, static_cast<GLsizeiptr>(mesh.positions.size() * sizeof(glm::vec3)), mesh.positions.data(), 0);
-        glNamedBufferStorage(normals, static_cast<GLsizeiptr>(mesh.normals.size() * sizeof(glm::vec3)), mesh.normals.data(), 0);
-        glNamedBufferStorage(indices, static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)), mesh.indices.data(), 0);
-        glVertexArrayVertexBuffer(vao, 0, positions, 0, sizeof(glm::vec3));
-        glVertexArrayVertexBuffer(vao, 1, normals, 0, sizeof(glm::vec3));
-        for (GLuint a : {0u, 1u}) {
-            glEnableVertexArrayAttrib(vao, a);
-            glVertexArrayAttribFormat(vao, a, 3, GL_FLOAT, GL_FALSE, 0);
-            glVertexArrayAttribBinding(vao, a, a);
-        }
-        glVertexArrayElementBuffer(vao, indices);
-        count = static_cast<GLsizei>(mesh.indices.size());
-    }
-    ~MeshBuffers() {
-        glDeleteVertexArrays(1, &vao);
-        GLuint b[3] = {positions, normals, indices};
-        glDeleteBuffers(3, b);
-    }
-    void draw() const {
-        glBindVertexArray(vao);
-        glDrawElements(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr);
-        glBindVertexArray(0);
-    }
-};
 
 ErrorStats stats(std::vector<double> errors) {
     ErrorStats s;
@@ -123,76 +33,37 @@ ErrorStats stats(std::vector<double> errors) {
 } // namespace
 
 bool render_headless(const Scene& scene, const Config& config, int width, int height, HeadlessResult& out,
-                     std::string* error) {
+                     std::string* error, const RenderOptions& options) {
     auto runtime = penumbra::gl::Runtime::create(config, error);
     if (!runtime) return false;
-    const GLuint gbuffer_program = compile_gbuffer_program(error);
-    if (!gbuffer_program) return false;
+    std::unique_ptr<GBuffer> gbuffer = GBuffer::create(width, height, error);
+    if (!gbuffer) return false;
     MeshBuffers mesh(scene.mesh);
-
-    // G-buffer: world positions (w = 1 on geometry, 0 elsewhere), normals, depth.
-    GLuint textures[2], depth = 0, fbo = 0;
-    glCreateTextures(GL_TEXTURE_2D, 2, textures);
-    for (GLuint t : textures) {
-        glTextureStorage2D(t, 1, GL_RGBA32F, width, height);
-        glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    }
-    glCreateRenderbuffers(1, &depth);
-    glNamedRenderbufferStorage(depth, GL_DEPTH_COMPONENT32F, width, height);
-    glCreateFramebuffers(1, &fbo);
-    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, textures[0], 0);
-    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT1, textures[1], 0);
-    glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
-    const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glNamedFramebufferDrawBuffers(fbo, 2, buffers);
-    auto cleanup = [&] {
-        glDeleteFramebuffers(1, &fbo);
-        glDeleteRenderbuffers(1, &depth);
-        glDeleteTextures(2, textures);
-        glDeleteProgram(gbuffer_program);
-    };
-    if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-        if (error) *error = "G-buffer framebuffer incomplete";
-        cleanup();
-        return false;
-    }
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glViewport(0, 0, width, height);
-    const float zero[4] = {0, 0, 0, 0};
-    const float one = 1.0f;
-    glClearBufferfv(GL_COLOR, 0, zero);
-    glClearBufferfv(GL_COLOR, 1, zero);
-    glClearBufferfv(GL_DEPTH, 0, &one);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_BLEND);
-    const glm::mat4 clip = scene.camera.projection_matrix(static_cast<float>(width) / height) * scene.camera.view_matrix();
-    glUseProgram(gbuffer_program);
-    glUniformMatrix4fv(glGetUniformLocation(gbuffer_program, "clipFromWorld"), 1, GL_FALSE, &clip[0][0]);
-    mesh.draw();
-    glUseProgram(0);
-    glDisable(GL_DEPTH_TEST);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    gbuffer->render(mesh, scene.camera.projection_matrix(static_cast<float>(width) / height) * scene.camera.view_matrix());
 
     // Penumbra passes.
-    runtime->set_light(scene.light, glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
     if (config.light == Light::sun) runtime->set_light(scene.sun, glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
-    if (std::string d = runtime->build([&](GLuint) { mesh.draw(); }); !d.empty()) {
+    else runtime->set_light(scene.light, glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
+    out.timings.clear();
+    if (std::string d = runtime->build([&](GLuint) { mesh.draw(); }, &out.timings); !d.empty()) {
         if (error) *error = d;
-        cleanup();
         return false;
     }
-    if (!runtime->shade_deferred(textures[0], width, height, error)) {
-        cleanup();
-        return false;
-    }
+    GLuint shading_query = 0;
+    glGenQueries(1, &shading_query);
+    glBeginQuery(GL_TIME_ELAPSED, shading_query);
+    const GLuint visibility_texture = runtime->shade_deferred(gbuffer->positions(), width, height, error);
+    glEndQuery(GL_TIME_ELAPSED);
+    GLuint64 shading_ns = 0;
+    glGetQueryObjectui64v(shading_query, GL_QUERY_RESULT, &shading_ns);
+    glDeleteQueries(1, &shading_query);
+    if (!visibility_texture) return false;
+    out.timings.push_back({"shading", shading_ns * 1e-6});
+    if (options.inspect) options.inspect(*runtime);
     const std::vector<float> vis = runtime->read_visibility();
     std::vector<glm::vec4> pos(static_cast<std::size_t>(width) * height), nrm(pos.size());
-    glGetTextureImage(textures[0], 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pos.size() * sizeof(glm::vec4)), pos.data());
-    glGetTextureImage(textures[1], 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(nrm.size() * sizeof(glm::vec4)), nrm.data());
-    cleanup();
+    glGetTextureImage(gbuffer->positions(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pos.size() * sizeof(glm::vec4)), pos.data());
+    glGetTextureImage(gbuffer->normals(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(nrm.size() * sizeof(glm::vec4)), nrm.data());
     if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
         if (error) *error = "GL error " + std::to_string(e) + " in the headless pipeline";
         return false;

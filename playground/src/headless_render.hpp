@@ -5,6 +5,9 @@
 #include "scene.hpp"
 
 #include <penumbra/config.hpp>
+#include <penumbra/gl/runtime.hpp>
+
+#include <functional>
 
 #include <string>
 #include <vector>
@@ -18,6 +21,13 @@ struct HeadlessResult {
     std::vector<glm::vec3> normals;      // unit normals, zero on background
     std::vector<unsigned char> geometry; // 1 where a surface was rasterised
     std::vector<float> rgb;              // Lambert shading, 3 floats per pixel, top row first
+    std::vector<penumbra::gl::PassTiming> timings; // GPU time of each pass (timer queries), shading last
+};
+
+struct RenderOptions {
+    // Called after the deferred shading pass, while the runtime and its textures still exist:
+    // lets tests and the oracle read back intermediate textures (runtime.texture(name)).
+    std::function<void(const penumbra::gl::Runtime&)> inspect;
 };
 
 struct ErrorStats {
@@ -32,7 +42,7 @@ struct Metrics {
 
 // Runs the whole pipeline; returns false with *error set on any failure (never throws for GL).
 bool render_headless(const Scene& scene, const Config& config, int width, int height, HeadlessResult& out,
-                     std::string* error);
+                     std::string* error, const RenderOptions& options = {});
 
 // Ground-truth visibility (Embree) at the read-back positions; background pixels get 1.
 std::vector<float> reference_visibility(const Scene& scene, const HeadlessResult& result, int samples_per_axis,
