@@ -1,0 +1,2 @@
+// Placeholder: argument parsing moves here from main.cpp.
+#include "options.hpp"
