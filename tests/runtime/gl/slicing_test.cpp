@@ -1,0 +1,166 @@
+// The slicing pass on the "planes" scene (design.md §1, paper §3.4), where the expected occlusion
+// textures are known exactly: each triangle, projected from the slicing camera, covers the texel
+// centres inside it, in the slice of its depth (and the next one with the leak fix). The oracle
+// test builds on this output, so it is checked on its own here. Label "gl".
+#include "egl_context.hpp"
+#include "headless_render.hpp"
+#include "oracle.hpp"
+#include "scenes.hpp"
+
+#include <penumbra/gl/runtime.hpp>
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+using namespace penumbra;
+using namespace penumbra::playground;
+
+namespace {
+
+// What a texel of one slice must hold. Texels whose centre lies within a texel of a triangle's
+// edge, or whose depth is within rounding of a slice boundary, may go either way.
+enum class Expect : unsigned char { empty, either, covered };
+
+Expect merge(Expect a, Expect b) { return std::max(a, b); }
+
+struct ExpectedSlices {
+    int resolution = 0, slices = 0;
+    std::vector<Expect> texels; // slice-major, rows from v = 0 up
+
+    Expect& at(int slice, int x, int y) {
+        return texels[(static_cast<std::size_t>(slice) * resolution + y) * resolution + x];
+    }
+};
+
+// Texture coordinates (in texels) and depth of a world point, from design.md §1 (rect: perspective
+// from E = C − d·N; sun: orthographic along the light), not from the slicing camera's matrix.
+glm::dvec3 project(const Config& config, const SliceFrame& frame, glm::dvec3 world) {
+    const glm::dvec3 p = glm::dvec3(glm::dmat4(frame.light_from_world) * glm::dvec4(world, 1.0));
+    glm::dvec2 uv;
+    if (config.light == Light::rect) {
+        const double d = frame.cop_distance;
+        uv = 0.5 + glm::dvec2(p) * d / ((d + p.z) * glm::dvec2(frame.light_size));
+    } else {
+        uv = 0.5 + glm::dvec2(p) / (2.0 * static_cast<double>(frame.window_half_size));
+    }
+    return {uv * static_cast<double>(config.resolution), p.z};
+}
+
+ExpectedSlices expected_slices(const Mesh& mesh, const Config& config, const SliceFrame& frame, bool leak_fix) {
+    const int R = config.resolution, S = config.slices;
+    ExpectedSlices out{R, S, std::vector<Expect>(static_cast<std::size_t>(S) * R * R, Expect::empty)};
+    const double z0 = frame.slice_depths.x, thickness = frame.slice_depths.y;
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+        glm::dvec3 v[3];
+        for (int k = 0; k < 3; ++k) v[k] = project(config, frame, glm::dvec3(mesh.positions[mesh.indices[3 * t + k]]));
+        // Signed edge functions in texels; the triangle's orientation does not matter.
+        const double area = (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y);
+        if (std::abs(area) < 1e-12) continue;
+        const int x0 = std::max(0, static_cast<int>(std::floor(std::min({v[0].x, v[1].x, v[2].x}))) - 1);
+        const int x1 = std::min(R - 1, static_cast<int>(std::ceil(std::max({v[0].x, v[1].x, v[2].x}))) + 1);
+        const int y0 = std::max(0, static_cast<int>(std::floor(std::min({v[0].y, v[1].y, v[2].y}))) - 1);
+        const int y1 = std::min(R - 1, static_cast<int>(std::ceil(std::max({v[0].y, v[1].y, v[2].y}))) + 1);
+        for (int y = y0; y <= y1; ++y)
+            for (int x = x0; x <= x1; ++x) {
+                const glm::dvec2 c(x + 0.5, y + 0.5);
+                double barycentric[3], nearest_edge = 1e30;
+                for (int k = 0; k < 3; ++k) {
+                    const glm::dvec3 a = v[(k + 1) % 3], b = v[(k + 2) % 3];
+                    const double edge = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+                    barycentric[k] = edge / area;
+                    nearest_edge = std::min(nearest_edge, std::abs(edge) / glm::length(glm::dvec2(b - a)));
+                }
+                const bool inside = barycentric[0] >= 0 && barycentric[1] >= 0 && barycentric[2] >= 0;
+                if (!inside && nearest_edge >= 1.0) continue;
+                const Expect mark = inside && nearest_edge >= 1.0 ? Expect::covered : Expect::either;
+                // Depth is affine over the projected triangle: constant for planes parallel to a
+                // rect light, affine under the sun's orthographic projection.
+                const double z = barycentric[0] * v[0].z + barycentric[1] * v[1].z + barycentric[2] * v[2].z;
+                const double position = (z - z0) / thickness;
+                const int slice = std::clamp(static_cast<int>(std::ceil(position)) - 1, 0, S - 1);
+                const bool on_boundary = std::abs(position - std::round(position)) < 1e-4;
+                for (int s = slice; s <= std::min(slice + (on_boundary ? 1 : 0), S - 1); ++s) {
+                    const Expect m = on_boundary ? Expect::either : mark;
+                    out.at(s, x, y) = merge(out.at(s, x, y), m);
+                    // paper §3.4.1 leak fix: a fragment of slice k also marks slice k+1
+                    if (leak_fix && s + 1 < S) out.at(s + 1, x, y) = merge(out.at(s + 1, x, y), m);
+                }
+            }
+    }
+    return out;
+}
+
+} // namespace
+
+TEST_CASE("slicing: planes, the occlusion textures are the analytic coverage of each slice") {
+    std::string error;
+    auto context = HeadlessContext::create(&error);
+    REQUIRE_MESSAGE(context, error);
+    const std::optional<Scene> scene = make_scene("planes");
+    REQUIRE(scene);
+    // Storage differs per layout (slice array, level array, volumes, mip chain): read back from each.
+    const std::vector<Config> configs{
+        {.slices = 4, .resolution = 128, .packing = Packing::atlas, .leak_fix = true},
+        {.slices = 4, .resolution = 128, .packing = Packing::atlas, .leak_fix = false},
+        {.slices = 16, .resolution = 256, .packing = Packing::volume, .leak_fix = true},
+        {.slices = 16, .resolution = 64, .filter = Filter::mipmap, .packing = Packing::array, .leak_fix = false},
+        {.slices = 4, .resolution = 128, .packing = Packing::array, .light = Light::sun, .leak_fix = true},
+        {.slices = 16, .resolution = 128, .filter = Filter::sat, .packing = Packing::array, .light = Light::sun,
+         .leak_fix = false},
+        {.slices = 16, .resolution = 256, .filter = Filter::gaussian, .packing = Packing::volume, .light = Light::sun,
+         .leak_fix = true},
+    };
+    for (const Config& config : configs) {
+        const std::string name = std::string(to_string(config.light)) + " S=" + std::to_string(config.slices) +
+                                 " R=" + std::to_string(config.resolution) + " " + std::string(to_string(config.filter)) +
+                                 " " + std::string(to_string(config.packing)) + (config.leak_fix ? " leak fix" : " no leak fix");
+        SliceTextures gpu;
+        SliceFrame frame;
+        bool read = false;
+        RenderOptions options{.inspect = [&](const gl::Runtime& runtime) {
+            read = read_slice_textures(runtime, gpu, &error);
+            frame = runtime.frame();
+        }};
+        HeadlessResult result;
+        REQUIRE_MESSAGE(render_headless(*scene, config, 16, 16, result, &error, options), name, ": ", error);
+        REQUIRE_MESSAGE(read, name, ": ", error);
+        ExpectedSlices expected = expected_slices(scene->mesh, config, frame, config.leak_fix);
+        // The texels where the leak fix makes a difference: they must follow the configuration.
+        ExpectedSlices other = expected_slices(scene->mesh, config, frame, !config.leak_fix);
+
+        const int R = config.resolution;
+        std::size_t non_binary = 0, wrong = 0, covered = 0, leak_texels = 0, leak_marked = 0;
+        std::vector<std::size_t> covered_per_slice(config.slices, 0);
+        for (int s = 0; s < config.slices; ++s)
+            for (int y = 0; y < R; ++y)
+                for (int x = 0; x < R; ++x) {
+                    const float g = gpu.at(s, x, y);
+                    non_binary += g != 0.0f && g != 1.0f;
+                    const Expect e = expected.at(s, x, y), o = other.at(s, x, y);
+                    if (e == Expect::covered) ++covered_per_slice[s];
+                    covered += e == Expect::covered;
+                    wrong += (e == Expect::covered && g != 1.0f) || (e == Expect::empty && g != 0.0f);
+                    if ((e == Expect::covered && o == Expect::empty) || (e == Expect::empty && o == Expect::covered)) {
+                        ++leak_texels;
+                        leak_marked += g == 1.0f;
+                    }
+                }
+        std::printf("slicing %-44s covered texels %zu, wrong %zu, leak-fix texels %zu (marked %zu)\n", name.c_str(),
+                    covered, wrong, leak_texels, leak_marked);
+        CHECK_MESSAGE(non_binary == 0, name, ": slicing output must be binary");
+        CHECK_MESSAGE(wrong == 0, name, ": ", wrong, " texels disagree with the analytic coverage away from edges");
+        // Four planes at four heights (ground included): under the rect light each has its own slice;
+        // under the tilted sun the ground spans several slices and two occluders may share one.
+        const auto occupied = std::count_if(covered_per_slice.begin(), covered_per_slice.end(), [](std::size_t n) { return n > 0; });
+        CHECK_MESSAGE(occupied >= (config.light == Light::rect ? 4 : 3), name, ": only ", occupied, " slices hold geometry");
+        // The occluders above the ground: the leak fix marks their footprint in the next slice too.
+        CHECK_MESSAGE(leak_texels > 100, name, ": the leak fix should matter on planes");
+        CHECK_MESSAGE(leak_marked == (config.leak_fix ? leak_texels : 0), name, ": leak fix ",
+                      config.leak_fix ? "on, but the next slice is not marked" : "off, but the next slice is marked");
+    }
+}
