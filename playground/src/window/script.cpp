@@ -1,0 +1,116 @@
+#include "script.hpp"
+
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace penumbra::playground {
+
+namespace {
+
+// How many numbers each numeric verb takes: {minimum, maximum}.
+const std::map<std::string, std::pair<int, int>>& numeric_verbs() {
+    static const std::map<std::string, std::pair<int, int>> verbs{{"light", {3, 3}}, {"light_size", {1, 2}},
+                                                                  {"sun", {2, 2}},   {"camera", {2, 3}},
+                                                                  {"wait", {1, 1}},  {"wait_reload", {0, 1}}};
+    return verbs;
+}
+
+constexpr const char* allowed_verbs =
+    "set, light, light_size, sun, camera, edit, restore, reset, answer, wait, wait_reload, screenshot";
+
+std::string trim(const std::string& s) {
+    const auto first = s.find_first_not_of(" \t\r");
+    if (first == std::string::npos) return {};
+    return s.substr(first, s.find_last_not_of(" \t\r") - first + 1);
+}
+
+} // namespace
+
+ScriptParse parse_script(const std::string& text, const std::string& name) {
+    ScriptParse out;
+    std::istringstream lines(text);
+    std::string row;
+    for (int number = 1; std::getline(lines, row); ++number) {
+        if (const auto hash = row.find('#'); hash != std::string::npos && row.rfind("edit", 0) != 0)
+            row.resize(hash);
+        row = trim(row);
+        if (row.empty() || row[0] == '#') continue;
+        auto fail = [&](const std::string& message) {
+            out.error = name + ":" + std::to_string(number) + ": " + message;
+            out.actions.clear();
+            return out;
+        };
+        std::istringstream words(row);
+        ScriptAction action;
+        action.line = number;
+        words >> action.verb;
+        if (auto it = numeric_verbs().find(action.verb); it != numeric_verbs().end()) {
+            std::string word;
+            while (words >> word) {
+                try {
+                    std::size_t used = 0;
+                    action.numbers.push_back(std::stod(word, &used));
+                    if (used != word.size()) throw std::invalid_argument(word);
+                } catch (const std::exception&) {
+                    return fail(action.verb + ": '" + word + "' is not a number");
+                }
+            }
+            const auto [least, most] = it->second;
+            const int count = static_cast<int>(action.numbers.size());
+            if (count < least || count > most)
+                return fail(action.verb + " takes " + std::to_string(least) +
+                            (least == most ? "" : " to " + std::to_string(most)) + " numbers, got " +
+                            std::to_string(count));
+            if ((action.verb == "wait" || action.verb == "wait_reload") && count == 1 &&
+                action.numbers[0] < 0)
+                return fail(action.verb + ": needs a value >= 0");
+        } else if (action.verb == "set") {
+            std::string key, value;
+            if (!(words >> key >> value)) return fail("set takes KEY VALUE, e.g. 'set slices 8'");
+            action.args = {key, value};
+        } else if (action.verb == "edit") {
+            std::string file, mode;
+            if (!(words >> file >> mode))
+                return fail("edit takes FILE append TEXT or FILE replace OLD => NEW");
+            std::string rest;
+            std::getline(words, rest);
+            rest = trim(rest);
+            if (mode == "append") {
+                action.args = {file, mode, rest};
+            } else if (mode == "replace") {
+                // "OLD => NEW"; a line ending in " =>" deletes OLD.
+                std::size_t arrow = rest.find(" => ");
+                if (arrow == std::string::npos && rest.size() >= 3 &&
+                    rest.compare(rest.size() - 3, 3, " =>") == 0)
+                    arrow = rest.size() - 3;
+                if (arrow == std::string::npos || arrow == 0)
+                    return fail("edit FILE replace needs 'OLD => NEW' (spaces around =>)");
+                action.args = {file, mode, rest.substr(0, arrow),
+                               arrow + 4 <= rest.size() ? rest.substr(arrow + 4) : ""};
+            } else {
+                return fail("edit: unknown mode '" + mode + "'; allowed: append, replace");
+            }
+        } else if (action.verb == "restore" || action.verb == "screenshot" || action.verb == "answer") {
+            std::string word;
+            if (!(words >> word)) return fail(action.verb + " needs an argument");
+            if (action.verb == "answer" && word != "overwrite" && word != "cancel")
+                return fail("answer: '" + word + "' is not allowed; allowed: overwrite, cancel");
+            action.args = {word};
+        } else if (action.verb != "reset") {
+            return fail("unknown action '" + action.verb + "'; allowed: " + allowed_verbs);
+        }
+        out.actions.push_back(std::move(action));
+    }
+    return out;
+}
+
+ScriptParse load_script(const std::string& path) {
+    std::ifstream file(path);
+    if (!file) return {{}, "cannot read script " + path};
+    std::ostringstream text;
+    text << file.rdbuf();
+    return parse_script(text.str(), path);
+}
+
+} // namespace penumbra::playground

@@ -1,0 +1,46 @@
+// playground/src/window/script.hpp — the automation script of `--script FILE`: one action per
+// line, `#` starts a comment.
+//
+//   set slices 8                 configuration value (slices, resolution, filter, fusion, packing,
+//                                light, leak_fix, fade); `set right.filter sat` for the split
+//                                screen's right half; also view (shaded, visibility, truth, error,
+//                                slice_texture, slice_map, level_map), view_slice, view_level, split,
+//                                animate_light, animate_object, scene
+//   light X Y Z                  move the rectangle light's centre (scene units)
+//   light_size W [H]             rectangle size (scene units) or, for the sun, angular diameter (degrees)
+//   sun AZIMUTH ELEVATION        sun direction in degrees (elevation 90 = straight down)
+//   camera YAW PITCH [DISTANCE]  orbit camera, degrees
+//   edit FILE append TEXT        append a line to a watched shader file
+//   edit FILE replace OLD => NEW replace the first OLD by NEW in a watched shader file (NEW may be empty)
+//   restore FILE                 write the generated text back to FILE (like an editor's revert)
+//   reset                        "reset to generated": every file and program
+//   answer overwrite|cancel      answer the "overwrite hand-edited files?" question
+//   wait N                       let N frames pass
+//   wait_reload [SECONDS]        wait until the last edit was reloaded (compiled or failed); default 5 s
+//   screenshot FILE              save this frame as PNG (the image, without the panel); the
+//                                actions after it run from the next frame on
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace penumbra::playground {
+
+struct ScriptAction {
+    int line = 0;     // 1-based line in the script, for messages
+    std::string verb; // set, light, light_size, sun, camera, edit, restore, reset, answer, wait, wait_reload,
+                      // screenshot
+    std::vector<std::string> args; // words after the verb; `edit` keeps FILE, the mode and the raw rest
+    std::vector<double> numbers;   // numeric arguments of light, light_size, sun, camera, wait, wait_reload
+};
+
+struct ScriptParse {
+    std::vector<ScriptAction> actions;
+    std::string error; // "script.txt:3: unknown action 'jump'; allowed: …" on the first bad line
+};
+
+ScriptParse parse_script(const std::string& text, const std::string& name = "script");
+ScriptParse load_script(const std::string& path);
+
+} // namespace penumbra::playground

@@ -1,0 +1,190 @@
+#include "script_runner.hpp"
+
+#include <penumbra/config.hpp>
+
+#include <charconv>
+
+namespace penumbra::playground {
+
+namespace {
+
+template <class Enum> std::string set_enum(Enum& field, const std::string& key, const std::string& value) {
+    if (auto parsed = parse_enum<Enum>(value)) {
+        field = *parsed;
+        return {};
+    }
+    std::string allowed;
+    for (std::string_view name : EnumNames<Enum>::names) {
+        if (!allowed.empty()) allowed += ", ";
+        allowed += std::string(name);
+    }
+    return key + ": '" + value + "' is not allowed; allowed: " + allowed;
+}
+
+std::string set_bool(bool& field, const std::string& key, const std::string& value) {
+    if (value == "on" || value == "true" || value == "1")
+        field = true;
+    else if (value == "off" || value == "false" || value == "0")
+        field = false;
+    else
+        return key + ": '" + value + "' is not allowed; allowed: on, off";
+    return {};
+}
+
+std::string set_int(int& field, const std::string& key, const std::string& value) {
+    const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), field);
+    if (ec != std::errc() || end != value.data() + value.size())
+        return key + ": '" + value + "' is not an integer";
+    return {};
+}
+
+// `set KEY VALUE`: a configuration field (validated by request_config) or a window control.
+std::string set_value(WindowApp& app, std::string key, const std::string& value) {
+    int side = 0;
+    if (key.rfind("right.", 0) == 0) {
+        side = 1;
+        key = key.substr(6);
+    }
+    Config config = app.config(side);
+    std::string error;
+    if (key == "slices")
+        error = set_int(config.slices, key, value);
+    else if (key == "resolution")
+        error = set_int(config.resolution, key, value);
+    else if (key == "filter")
+        error = set_enum(config.filter, key, value);
+    else if (key == "fusion")
+        error = set_enum(config.fusion, key, value);
+    else if (key == "packing")
+        error = set_enum(config.packing, key, value);
+    else if (key == "light")
+        error = set_enum(config.light, key, value);
+    else if (key == "target")
+        error = set_enum(config.target, key, value);
+    else if (key == "leak_fix")
+        error = set_bool(config.leak_fix, key, value);
+    else if (key == "fade")
+        error = set_bool(config.self_shadow_fade, key, value);
+    else if (side == 0) {
+        Controls& c = app.controls();
+        if (key == "animate_light") return set_bool(c.animate_light, key, value);
+        if (key == "animate_object") return set_bool(c.animate_object, key, value);
+        if (key == "split") return set_bool(c.split, key, value);
+        if (key == "scene") {
+            app.load_scene(value);
+            return app.scene_name() == value ? "" : "scene: cannot load '" + value + "'";
+        }
+        if (key == "view") {
+            std::string allowed;
+            for (int v = 0; v < view_count; ++v) {
+                if (value == to_string(View(v))) {
+                    c.view = View(v);
+                    return {};
+                }
+                allowed += (v ? ", " : "") + std::string(to_string(View(v)));
+            }
+            return "view: '" + value + "' is not allowed; allowed: " + allowed;
+        }
+        if (key == "view_slice") return set_int(c.view_slice, key, value);
+        if (key == "view_level") return set_int(c.view_level, key, value);
+        return "set: unknown key '" + key +
+               "'; allowed: slices, resolution, filter, fusion, packing, light, target, leak_fix, fade (also "
+               "as "
+               "right.KEY), view, view_slice, view_level, split, animate_light, animate_object, scene";
+    } else {
+        return "set: unknown key 'right." + key + "'";
+    }
+    if (!error.empty()) return error;
+    // An invalid combination is not a script error: the window refuses it and says why, which
+    // is what a script may want to check.
+    app.request_config(config, side);
+    return {};
+}
+
+} // namespace
+
+std::string ScriptRunner::step(WindowApp& app) {
+    if (waiting_for_reload_) {
+        if (app.reloads_done() > reloads_before_edit_)
+            waiting_for_reload_ = false;
+        else if (std::chrono::steady_clock::now() > reload_deadline_)
+            return "script line " + std::to_string(actions_[next_ - 1].line) +
+                   ": wait_reload: no reload happened in time";
+        else
+            return {};
+    }
+    if (frames_to_wait_ > 0) {
+        --frames_to_wait_;
+        if (frames_to_wait_ > 0) return {};
+    }
+    while (next_ < actions_.size()) {
+        const ScriptAction& action = actions_[next_++];
+        if (std::string e = run(action, app); !e.empty()) {
+            next_ = actions_.size();
+            return "script line " + std::to_string(action.line) + ": " + e;
+        }
+        // A screenshot shows the state up to here: later actions wait for the next frame.
+        if (frames_to_wait_ > 0 || waiting_for_reload_ || action.verb == "screenshot") return {};
+    }
+    return {};
+}
+
+std::string ScriptRunner::run(const ScriptAction& a, WindowApp& app) {
+    Controls& c = app.controls();
+    if (a.verb == "set") return set_value(app, a.args[0], a.args[1]);
+    if (a.verb == "light") {
+        c.rect.center = glm::dvec3(a.numbers[0], a.numbers[1], a.numbers[2]);
+        return {};
+    }
+    if (a.verb == "light_size") {
+        if (a.numbers[0] <= 0 || (a.numbers.size() > 1 && a.numbers[1] <= 0))
+            return "light_size: sizes must be > 0";
+        app.set_light_size(a.numbers[0]);
+        if (a.numbers.size() > 1) c.rect.height = a.numbers[1];
+        return {};
+    }
+    if (a.verb == "sun") {
+        c.sun_azimuth_degrees = static_cast<float>(a.numbers[0]);
+        c.sun_elevation_degrees = static_cast<float>(a.numbers[1]);
+        return {};
+    }
+    if (a.verb == "camera") {
+        c.camera.yaw_radians = glm::radians(static_cast<float>(a.numbers[0]));
+        c.camera.pitch_radians = glm::radians(static_cast<float>(a.numbers[1]));
+        if (a.numbers.size() > 2) c.camera.distance = static_cast<float>(a.numbers[2]);
+        return {};
+    }
+    if (a.verb == "edit" || a.verb == "restore") {
+        reloads_before_edit_ = app.reloads_done();
+        if (a.verb == "restore") return app.restore_file(a.args[0]);
+        return app.edit_file(a.args[0], a.args[1], a.args[2], a.args.size() > 3 ? a.args[3] : "");
+    }
+    if (a.verb == "reset") {
+        app.reset_to_generated();
+        return {};
+    }
+    if (a.verb == "answer") {
+        if (!app.overwrite_question()) return "answer: no question is open";
+        app.answer_overwrite(a.args[0] == "overwrite");
+        return {};
+    }
+    if (a.verb == "wait") {
+        frames_to_wait_ = static_cast<int>(a.numbers[0]);
+        return {};
+    }
+    if (a.verb == "wait_reload") {
+        waiting_for_reload_ = app.reloads_done() <= reloads_before_edit_;
+        const double seconds = a.numbers.empty() ? 5.0 : a.numbers[0];
+        reload_deadline_ = std::chrono::steady_clock::now() +
+                           std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                               std::chrono::duration<double>(seconds));
+        return {};
+    }
+    if (a.verb == "screenshot") {
+        app.request_screenshot(a.args[0]);
+        return {};
+    }
+    return "unknown action " + a.verb; // parse_script lets none through
+}
+
+} // namespace penumbra::playground

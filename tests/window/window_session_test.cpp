@@ -1,0 +1,227 @@
+// A scripted session of the real window under a virtual display (xvfb-run): configuration
+// changes change the image, a hand edit is hot-reloaded, a syntax error is reported as
+// `file:line: message` while frames keep coming with the last good program, and after the fix
+// the image matches the one before the error.
+#include <doctest/doctest.h>
+
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb/stb_image.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Image {
+    int width = 0, height = 0;
+    std::vector<unsigned char> rgb;
+};
+
+Image load(const fs::path& path) {
+    Image image;
+    int channels = 0;
+    unsigned char* data = stbi_load(path.c_str(), &image.width, &image.height, &channels, 3);
+    REQUIRE_MESSAGE(data != nullptr, "cannot read " << path);
+    image.rgb.assign(data, data + static_cast<std::size_t>(image.width) * image.height * 3);
+    stbi_image_free(data);
+    return image;
+}
+
+// Mean absolute difference per channel, 0 to 255.
+double mean_difference(const Image& a, const Image& b) {
+    REQUIRE(a.rgb.size() == b.rgb.size());
+    double sum = 0;
+    for (std::size_t i = 0; i < a.rgb.size(); ++i) sum += std::abs(int(a.rgb[i]) - int(b.rgb[i]));
+    return sum / a.rgb.size();
+}
+
+// Mean absolute difference over the columns [x0, x1).
+double mean_difference(const Image& a, const Image& b, int x0, int x1) {
+    REQUIRE(a.rgb.size() == b.rgb.size());
+    double sum = 0;
+    std::size_t count = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = x0; x < x1; ++x)
+            for (int c = 0; c < 3; ++c, ++count) {
+                const std::size_t i = (static_cast<std::size_t>(y) * a.width + x) * 3 + c;
+                sum += std::abs(int(a.rgb[i]) - int(b.rgb[i]));
+            }
+    return sum / count;
+}
+
+double mean_value(const Image& a) {
+    double sum = 0;
+    for (unsigned char v : a.rgb) sum += v;
+    return sum / a.rgb.size();
+}
+
+std::string read(const fs::path& path) {
+    std::ifstream file(path);
+    std::ostringstream text;
+    text << file.rdbuf();
+    return text.str();
+}
+
+bool has_program(const char* name) {
+    return std::system((std::string("command -v ") + name + " >/dev/null 2>&1").c_str()) == 0;
+}
+
+// The frame number a screenshot line reports.
+int screenshot_frame(const std::string& log, const std::string& file) {
+    std::smatch m;
+    const std::regex line("screenshot: wrote [^\\n]*" + file + " \\(frame (\\d+)");
+    if (!std::regex_search(log, m, line)) return -1;
+    return std::stoi(m[1]);
+}
+
+constexpr const char* session_script = R"(# penumbra-tests-window: a scripted session
+wait 2
+screenshot base.png
+set slices 2
+wait 2
+screenshot slices2.png
+set filter mipmap
+wait 2
+screenshot mipmap.png
+set filter gaussian
+wait 1
+set filter nbuffer
+set slices 8
+wait 2
+screenshot config_back.png
+edit penumbra_deferred.frag replace vec4(vec3(visibility), 1.0) => vec4(vec3(visibility * 0.5), 1.0)
+wait_reload 10
+wait 2
+screenshot edited.png
+edit penumbra_deferred.frag append this is not glsl
+wait_reload 10
+wait 3
+screenshot broken.png
+edit penumbra_deferred.frag replace this is not glsl =>
+wait_reload 10
+wait 2
+screenshot fixed.png
+set slices 4
+wait 1
+answer cancel
+wait 1
+set slices 4
+wait 1
+answer overwrite
+wait 2
+screenshot overwritten.png
+set slices 8
+wait 2
+screenshot final.png
+set view slice_map
+wait 1
+screenshot slice_map.png
+set view shaded
+set right.slices 2
+set split on
+wait 2
+screenshot split.png
+set split off
+wait 1
+)";
+
+} // namespace
+
+TEST_SUITE("session") {
+    TEST_CASE("window: scripted session under xvfb-run") {
+        if (!has_program("xvfb-run")) {
+            std::cout << "skipped: xvfb-run not found (Debian: apt-get install xvfb xauth); the window test "
+                         "needs a "
+                         "virtual display\n";
+            std::exit(77); // ctest: SKIP_RETURN_CODE
+        }
+        const fs::path dir = PENUMBRA_WINDOW_TEST_DIR;
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+        std::ofstream(dir / "session.txt") << session_script;
+        // Small image and configuration: the whole session runs on llvmpipe in CI.
+        const std::string command = "cd '" + dir.string() + "' && xvfb-run -a '" + PENUMBRA_PLAYGROUND_PATH +
+                                    "' --scene boxes --size 192x144 --slices 8 --resolution 128 --frames 30"
+                                    " --script session.txt --screenshot last.png --watch shaders"
+                                    " > stdout.txt 2> stderr.txt";
+        const int status = std::system(command.c_str());
+        const std::string out = read(dir / "stdout.txt"), err = read(dir / "stderr.txt");
+        INFO("stdout:\n" << out << "\nstderr:\n" << err);
+        REQUIRE(status == 0);
+
+        // The configuration changes were applied; the invalid one was refused with the validator's words.
+        CHECK(out.find("config: slices=2 ") != std::string::npos);
+        CHECK(out.find("filter=mipmap") != std::string::npos);
+        CHECK(err.find("config rejected: filter: ") != std::string::npos);
+        // Visibility changes when the configuration changes, and comes back with it.
+        const Image base = load(dir / "base.png");
+        CHECK(base.width == 192);
+        CHECK(base.height == 144);
+        CHECK(mean_difference(base, load(dir / "slices2.png")) > 0.2);
+        CHECK(mean_difference(load(dir / "slices2.png"), load(dir / "mipmap.png")) > 0.2);
+        CHECK(mean_difference(base, load(dir / "config_back.png")) < 0.01);
+
+        // The hand edit reached the screen: visibility halved, so the image is darker.
+        const Image edited = load(dir / "edited.png");
+        CHECK(mean_value(edited) < mean_value(base) - 2.0);
+        CHECK(out.find("reload: penumbra_deferred.frag ok (shading_deferred); save to first frame") !=
+              std::string::npos);
+
+        // The syntax error: file:line: message with context on stderr, the last good program keeps
+        // rendering, frames keep coming.
+        CHECK(std::regex_search(err, std::regex(R"(penumbra_deferred\.frag:\d+: .*error)")));
+        CHECK(err.find("> ") != std::string::npos);
+        CHECK(err.find("this is not glsl") != std::string::npos);
+        CHECK(err.find("the last good program keeps rendering") != std::string::npos);
+        const Image broken = load(dir / "broken.png");
+        CHECK(mean_difference(edited, broken) < 0.01);
+        CHECK(screenshot_frame(out, "broken.png") > screenshot_frame(out, "edited.png"));
+
+        // After the fix the image matches the image before the error.
+        CHECK(mean_difference(edited, load(dir / "fixed.png")) < 0.01);
+
+        // A configuration change asks before overwriting the hand-edited file: cancel keeps both,
+        // overwrite applies the configuration with the generated shaders.
+        CHECK(out.find("hand-edited file(s) would be overwritten (penumbra_deferred.frag)") !=
+              std::string::npos);
+        CHECK(out.find("config: kept the hand-edited files") != std::string::npos);
+        CHECK(out.find("config: slices=4 ") != std::string::npos);
+        CHECK(mean_value(load(dir / "overwritten.png")) > mean_value(edited) + 2.0);
+        CHECK(read(dir / "shaders" / "penumbra_deferred.frag").find("visibility * 0.5") == std::string::npos);
+        // Back to the first configuration with the generated shaders: the first image again.
+        CHECK(mean_difference(base, load(dir / "final.png")) < 0.01);
+        CHECK(mean_difference(base, load(dir / "last.png")) < 0.01);
+
+        // Debug view: a false-colour slice map is nothing like the shaded image.
+        CHECK(mean_difference(base, load(dir / "slice_map.png")) > 20.0);
+        // Split screen: the left half is the main configuration, the right half (2 slices, mipmaps)
+        // is another image; the divider is at column 96.
+        const Image split = load(dir / "split.png");
+        CHECK(mean_difference(base, split, 0, 95) < 0.01);
+        CHECK(mean_difference(base, split, 97, 192) > 0.2);
+        CHECK(out.find("config right: slices=2 ") != std::string::npos);
+
+        CHECK(std::regex_search(out, std::regex(R"(frames: \d+ at 192x144, frame time median [0-9.]+ ms)")));
+        CHECK(out.find("reload: save to first frame median") != std::string::npos);
+    }
+
+    TEST_CASE("window: without a display it says so and points to --headless") {
+        const std::string command =
+            std::string("env -u DISPLAY -u WAYLAND_DISPLAY '") + PENUMBRA_PLAYGROUND_PATH +
+            "' --scene boxes --frames 1 > /dev/null 2> '" PENUMBRA_WINDOW_TEST_DIR "-nodisplay.txt'";
+        const int status = std::system(command.c_str());
+        const std::string err = read(PENUMBRA_WINDOW_TEST_DIR "-nodisplay.txt");
+        CHECK(WEXITSTATUS(status) == 1);
+        CHECK(err.find("error: no display") != std::string::npos);
+        CHECK(err.find("--headless") != std::string::npos);
+    }
+}
