@@ -1,0 +1,244 @@
+// penumbra-bench-quality — how good the model is, scene × filter × (slices, resolution): MAE, RMSE
+// and p95 |error| against Embree ground truth over all geometry pixels and over penumbra pixels
+// (truth or estimate < 0.98), and the GPU time of each pass (timer queries; on llvmpipe the CPU
+// time of the software rasteriser, so compare ratios, not absolute values).
+//
+//   penumbra-bench-quality [--scenes planes,boxes] [--filters sat,nbuffer] [--configs 16x512,4x128]
+//                          [--size 256x256] [--samples 16] [--repeat 1]
+#include "egl_context.hpp"
+#include "headless_render.hpp"
+#include "scenes.hpp"
+
+#include <penumbra/config.hpp>
+#include <penumbra/validate.hpp>
+
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+using namespace penumbra::playground;
+
+namespace {
+
+struct SliceSetting {
+    int slices = 16, resolution = 512;
+};
+
+struct Options {
+    std::vector<std::string> scenes;
+    std::vector<penumbra::Filter> filters{penumbra::Filter::mipmap, penumbra::Filter::nbuffer, penumbra::Filter::sat};
+    std::vector<SliceSetting> settings{{16, 512}, {4, 128}};
+    int width = 256, height = 256, samples = 16, repeat = 3;
+};
+
+constexpr const char* usage_text =
+    "usage: penumbra-bench-quality [--scenes a,b,...] [--filters f,g,...] [--configs SxR,...] [--size WxH]\n"
+    "                              [--samples N] [--repeat N]\n"
+    "  --scenes    built-in scenes (default all: planes, boxes, tree, butterfly, terrain, crowd)\n"
+    "  --filters   mipmap, nbuffer, sat (default all three; the light is each scene's rectangle)\n"
+    "  --configs   slices x occlusion-texture resolution (default 16x512,4x128)\n"
+    "  --size      image size (default 256x256)\n"
+    "  --samples   ground-truth rays per light axis (default 16: 256 rays per pixel)\n"
+    "  --repeat    render each configuration N times and keep each pass's fastest time (default 3)\n";
+
+std::vector<std::string_view> split(std::string_view text) {
+    std::vector<std::string_view> parts;
+    while (!text.empty()) {
+        const std::size_t comma = text.find(',');
+        parts.push_back(text.substr(0, comma));
+        if (comma == std::string_view::npos) break;
+        text.remove_prefix(comma + 1);
+    }
+    return parts;
+}
+
+bool parse_int(std::string_view text, int& value) {
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    return ec == std::errc() && end == text.data() + text.size();
+}
+
+bool parse_pair(std::string_view text, int& a, int& b) {
+    const std::size_t x = text.find('x');
+    return x != std::string_view::npos && parse_int(text.substr(0, x), a) && parse_int(text.substr(x + 1), b);
+}
+
+// Options from argv, or an error message.
+std::optional<Options> parse(int argc, char** argv, std::string& error) {
+    Options o;
+    for (std::string_view name : scene_names()) o.scenes.emplace_back(name);
+    for (int i = 1; i < argc; ++i) {
+        const std::string_view flag = argv[i];
+        if (i + 1 >= argc) {
+            error = std::string(flag) + ": missing value";
+            return std::nullopt;
+        }
+        const std::string_view value = argv[++i];
+        if (flag == "--scenes") {
+            o.scenes.clear();
+            for (std::string_view name : split(value)) {
+                if (!make_scene(name)) {
+                    error = "--scenes: unknown scene '" + std::string(name) + "'";
+                    return std::nullopt;
+                }
+                o.scenes.emplace_back(name);
+            }
+        } else if (flag == "--filters") {
+            o.filters.clear();
+            for (std::string_view name : split(value)) {
+                const std::optional<penumbra::Filter> filter = penumbra::parse_enum<penumbra::Filter>(name);
+                if (!filter || *filter == penumbra::Filter::gaussian) {
+                    error = "--filters: '" + std::string(name) + "' is not allowed; allowed: mipmap, nbuffer, sat";
+                    return std::nullopt;
+                }
+                o.filters.push_back(*filter);
+            }
+        } else if (flag == "--configs") {
+            o.settings.clear();
+            for (std::string_view pair : split(value)) {
+                SliceSetting s;
+                if (!parse_pair(pair, s.slices, s.resolution)) {
+                    error = "--configs: '" + std::string(pair) + "' is not SLICESxRESOLUTION, e.g. 16x512";
+                    return std::nullopt;
+                }
+                o.settings.push_back(s);
+            }
+        } else if (flag == "--size") {
+            if (!parse_pair(value, o.width, o.height) || o.width < 1 || o.height < 1 || o.width > 4096 || o.height > 4096) {
+                error = "--size: expected WxH, 1 to 4096 each";
+                return std::nullopt;
+            }
+        } else if (flag == "--samples") {
+            if (!parse_int(value, o.samples) || o.samples < 1 || o.samples > 256) {
+                error = "--samples: expected 1 to 256";
+                return std::nullopt;
+            }
+        } else if (flag == "--repeat") {
+            if (!parse_int(value, o.repeat) || o.repeat < 1 || o.repeat > 100) {
+                error = "--repeat: expected 1 to 100";
+                return std::nullopt;
+            }
+        } else {
+            error = "unknown flag '" + std::string(flag) + "'";
+            return std::nullopt;
+        }
+    }
+    return o;
+}
+
+// Same pixels, same world positions (NaN on background): the reference can be reused.
+bool same_gbuffer(const HeadlessResult& a, const HeadlessResult& b) {
+    if (a.geometry != b.geometry) return false;
+    for (std::size_t i = 0; i < a.positions.size(); ++i)
+        if (a.geometry[i] && a.positions[i] != b.positions[i]) return false;
+    return true;
+}
+
+// Each pass name once, in order, with the summed time of its instances (N-buffer levels, SAT
+// doubling steps) and how many there were.
+struct PassTotal {
+    std::string name;
+    int count = 0;
+    double milliseconds = 0;
+};
+
+std::vector<PassTotal> pass_totals(const std::vector<penumbra::gl::PassTiming>& timings) {
+    std::vector<PassTotal> totals;
+    for (const penumbra::gl::PassTiming& t : timings) {
+        if (totals.empty() || totals.back().name != t.name) totals.push_back({t.name, 0, 0.0});
+        ++totals.back().count;
+        totals.back().milliseconds += t.milliseconds;
+    }
+    return totals;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    for (int i = 1; i < argc; ++i)
+        if (std::string_view(argv[i]) == "--help" || std::string_view(argv[i]) == "-h") {
+            std::cout << usage_text;
+            return 0;
+        }
+    std::string error;
+    const std::optional<Options> options = parse(argc, argv, error);
+    if (!options) {
+        std::cerr << "error: " << error << "\n" << usage_text;
+        return 2;
+    }
+    std::optional<HeadlessContext> context = HeadlessContext::create(&error);
+    if (!context) {
+        std::cerr << "error: no OpenGL 4.5 context: " << error << "\n";
+        return 1;
+    }
+    std::printf("penumbra-bench-quality: %s; image %dx%d; ground truth %dx%d rays per pixel; fastest of %d\n"
+                "light: each scene's default (2x2 rectangle for the built-in scenes); fusion probabilistic, atlas,\n"
+                "leak fix and fade on; penumbra pixels: truth or estimate < 0.98; times: GPU ms per pass\n\n",
+                context->renderer().c_str(), options->width, options->height, options->samples, options->samples,
+                options->repeat);
+    std::printf("| scene | filter | S/R | MAE | RMSE | p95 | penumbra MAE | penumbra RMSE | penumbra p95 | penumbra px "
+                "| slicing ms | prefilter ms | shading ms |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    std::vector<std::string> pass_lines;
+    for (const std::string& scene_name : options->scenes) {
+        const Scene scene = *make_scene(scene_name);
+        std::optional<HeadlessResult> reference_gbuffer;
+        std::vector<float> truth;
+        double truth_ms = 0;
+        for (const SliceSetting& setting : options->settings)
+            for (penumbra::Filter filter : options->filters) {
+                const penumbra::Config config{.slices = setting.slices, .resolution = setting.resolution, .filter = filter};
+                const std::string label = scene_name + " | " + std::string(penumbra::to_string(filter)) + " | " +
+                                          std::to_string(setting.slices) + "/" + std::to_string(setting.resolution);
+                if (const auto problems = penumbra::validate(config); !problems.empty()) {
+                    std::printf("| %s | invalid: %s |\n", label.c_str(), problems.front().message.c_str());
+                    continue;
+                }
+                HeadlessResult result;
+                std::vector<penumbra::gl::PassTiming> fastest;
+                for (int r = 0; r < options->repeat; ++r) {
+                    if (!render_headless(scene, config, options->width, options->height, result, &error)) {
+                        std::cerr << "error: " << label << ": " << error << "\n";
+                        return 1;
+                    }
+                    if (fastest.empty()) fastest = result.timings;
+                    for (std::size_t p = 0; p < fastest.size() && p < result.timings.size(); ++p)
+                        fastest[p].milliseconds = std::min(fastest[p].milliseconds, result.timings[p].milliseconds);
+                }
+                if (!reference_gbuffer || !same_gbuffer(*reference_gbuffer, result)) {
+                    const auto start = std::chrono::steady_clock::now();
+                    truth = reference_visibility(scene, result, options->samples);
+                    truth_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+                    reference_gbuffer = result;
+                }
+                const Metrics m = compare(result, truth);
+                const std::vector<PassTotal> totals = pass_totals(fastest);
+                double slicing = 0, prefilter = 0, shading = 0;
+                std::string line = label + ":";
+                for (const PassTotal& t : totals) {
+                    if (t.name == "slicing") slicing += t.milliseconds;
+                    else if (t.name == "shading") shading += t.milliseconds;
+                    else prefilter += t.milliseconds;
+                    char part[96];
+                    std::snprintf(part, sizeof part, " %s%s %.2f", t.name.c_str(),
+                                  t.count > 1 ? ("x" + std::to_string(t.count)).c_str() : "", t.milliseconds);
+                    line += part;
+                }
+                pass_lines.push_back(line);
+                std::printf("| %s | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %zu | %.1f | %.1f | %.1f |\n",
+                            label.c_str(), m.all.mae, m.all.rmse, m.all.p95, m.penumbra.mae, m.penumbra.rmse,
+                            m.penumbra.p95, m.penumbra.count, slicing, prefilter, shading);
+                std::fflush(stdout);
+            }
+        std::printf("|   (%s ground truth: %.0f ms CPU, Embree) |\n", scene_name.c_str(), truth_ms);
+    }
+    std::printf("\nper-pass GPU ms (xN: N instances of the pass, summed):\n");
+    for (const std::string& line : pass_lines) std::printf("  %s\n", line.c_str());
+    return 0;
+}

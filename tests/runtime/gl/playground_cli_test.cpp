@@ -1,0 +1,224 @@
+// penumbra-playground --headless as a user runs it: a child process per case, its exit status,
+// its stderr and the files it wrote (label "gl": it renders with EGL). PENUMBRA_PLAYGROUND_PATH is
+// the built executable.
+#ifdef PENUMBRA_PLAYGROUND_PATH
+
+#include "../temp_dir.hpp"
+#include "image_io.hpp"
+
+#include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using penumbra::playground::testing::TempDir;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+    int exit_code = -1; // when the child exited
+    int signal = 0;     // when a signal ended it (SIGALRM: past the timeout; SIGSEGV: a crash)
+    std::string out, err;
+};
+
+std::string read_text(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+// Runs the playground with `args` in `dir`; SIGALRM ends it after `timeout_s`.
+Run run_playground(const TempDir& dir, const std::vector<std::string>& args, unsigned timeout_s = 120) {
+    const std::string out_file = dir.file("stdout.txt"), err_file = dir.file("stderr.txt");
+    std::vector<char*> argv{const_cast<char*>(PENUMBRA_PLAYGROUND_PATH)};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    const std::string cwd = dir.file("");
+    const pid_t pid = ::fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {
+        const int out = ::open(out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        const int err = ::open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (out < 0 || err < 0 || ::dup2(out, 1) < 0 || ::dup2(err, 2) < 0 || ::chdir(cwd.c_str()) != 0) ::_exit(125);
+        ::alarm(timeout_s); // kept across exec
+        ::execv(argv[0], argv.data());
+        ::_exit(126);
+    }
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0) {}
+    Run run;
+    if (WIFEXITED(status)) run.exit_code = WEXITSTATUS(status);
+    if (WIFSIGNALED(status)) run.signal = WTERMSIG(status);
+    run.out = read_text(out_file);
+    run.err = read_text(err_file);
+    return run;
+}
+
+nlohmann::json read_json(const std::string& path) { return nlohmann::json::parse(read_text(path)); }
+
+// Ground 6×6 at y = 0 and a 2×2 quad at y = 1.5 above it, both facing up.
+const std::string small_obj = "# written by playground_cli_test\n"
+                              "v -3 0 -3\nv 3 0 -3\nv 3 0 3\nv -3 0 3\n"
+                              "v -1 1.5 -1\nv 1 1.5 -1\nv 1 1.5 1\nv -1 1.5 1\n"
+                              "f 4 3 2 1\n"
+                              "f 8 7 6 5\n";
+
+} // namespace
+
+TEST_CASE("playground cli: --help documents both modes and every configuration flag") {
+    TempDir dir;
+    const Run run = run_playground(dir, {"--help"});
+    CHECK(run.exit_code == 0);
+    for (const char* text : {"--headless", "window", "--slices", "--resolution", "--filter", "--fusion", "--packing",
+                             "--light", "--target", "--no-leak-fix", "--no-fade", "--config", "--light-size",
+                             "--reference", "--samples", "--metrics", "--visibility", "--watch", "--frames",
+                             "--screenshot", "--script"}) {
+        CAPTURE(text);
+        CHECK(run.out.find(text) != std::string::npos);
+    }
+}
+
+TEST_CASE("playground cli: bad arguments exit 2 with a message naming what is allowed, and write nothing") {
+    struct Case {
+        std::vector<std::string> args;
+        std::string expected; // in stderr
+    };
+    const std::vector<Case> cases{
+        {{"--bogus"}, "error: unknown flag '--bogus'; allowed: --headless,"},
+        {{"--headless", "--out", "a.png", "--filter", "box"},
+         "error: --filter: 'box' is not allowed; allowed: mipmap, nbuffer, sat, gaussian"},
+        {{"--headless", "--out", "a.png", "--scene", "nope"},
+         "error: --scene: unknown scene 'nope'; allowed: planes, boxes, tree, butterfly, terrain, crowd, or a"},
+        {{"--headless", "--scene", "planes"}, "error: --out: missing"},
+        {{"--headless", "--out", "a.png", "--slices", "40"}, "error: slices: 40 is out of range; allowed: 1 to 32"},
+        {{"--headless", "--out", "a.png", "--slices", "many"}, "error: --slices: 'many' is not an integer"},
+        {{"--headless", "--out", "a.png", "--size", "64"}, "error: --size: '64' is not WxH"},
+        {{"--headless", "--out", "a.png", "--samples", "0"}, "error: --samples: 0 is out of range; allowed: 1 to 1024"},
+        {{"--headless", "--out", "a.png", "--target", "vulkan"}, "error: --target: 'vulkan' cannot run here"},
+        {{"--headless", "--out", "a.png", "--light-size", "-1"}, "error: --light-size: '-1' is not a positive number"},
+        {{"--headless", "--out", "a.png", "--light", "sun", "--light-size", "120"}, "below 90"},
+        {{"--headless", "--out", "a.png", "--error-out", "e.png"}, "error: --error-out: needs --reference"},
+        {{"--headless", "--out", "a.png", "--config", "missing.json"}, "error: --config: cannot open 'missing.json'"},
+        {{"--headless", "--out", "a.png", "--filter", "gaussian"}, "error: filter: gaussian"},
+        {{"--headless", "--out"}, "error: --out: missing value"},
+    };
+    for (const Case& c : cases) {
+        TempDir dir;
+        CAPTURE(c.expected);
+        const Run run = run_playground(dir, c.args);
+        CHECK(run.signal == 0);
+        CHECK(run.exit_code == 2);
+        CHECK_MESSAGE(run.err.find(c.expected) != std::string::npos, run.err);
+        CHECK(!fs::exists(dir.file("a.png")));
+    }
+}
+
+TEST_CASE("playground cli: --reference writes the image, the visibility, the truth, the error image and the metrics") {
+    TempDir dir;
+    const Run run = run_playground(dir, {"--headless", "--scene", "planes", "--size", "64x48", "--slices", "8",
+                                         "--resolution", "128", "--filter", "sat", "--out", "planes.png",
+                                         "--visibility", "vis.pfm", "--reference", "--samples", "4", "--metrics",
+                                         "metrics.json"});
+    REQUIRE_MESSAGE(run.exit_code == 0, run.err);
+    CHECK(run.out.find("penumbra: MAE") != std::string::npos);
+    for (const char* file : {"planes.png", "vis.pfm", "planes.reference.pfm", "planes.error.png", "metrics.json"}) {
+        CAPTURE(file);
+        CHECK(fs::exists(dir.file(file)));
+    }
+    std::string error;
+    const auto visibility = penumbra::playground::read_pfm(dir.file("vis.pfm"), &error);
+    const auto truth = penumbra::playground::read_pfm(dir.file("planes.reference.pfm"), &error);
+    REQUIRE_MESSAGE(visibility, error);
+    REQUIRE_MESSAGE(truth, error);
+    CHECK(visibility->width == 64);
+    CHECK(visibility->height == 48);
+    CHECK(truth->pixels.size() == visibility->pixels.size());
+
+    const nlohmann::json m = read_json(dir.file("metrics.json"));
+    CHECK(m["scene"] == "planes");
+    CHECK(!m["renderer"].get<std::string>().empty());
+    CHECK(m["width"] == 64);
+    CHECK(m["height"] == 48);
+    CHECK(m["config"]["filter"] == "sat");
+    CHECK(m["config"]["slices"] == 8);
+    CHECK(m["reference"]["samples_per_axis"] == 4);
+    for (const char* set : {"all", "penumbra"}) {
+        CAPTURE(set);
+        const nlohmann::json& s = m["reference"][set];
+        CHECK(s["pixels"].get<int>() > 0);
+        CHECK(s["mae"].get<double>() >= 0.0);
+        CHECK(s["mae"].get<double>() <= s["rmse"].get<double>());
+        CHECK(s["rmse"].get<double>() <= 1.0);
+        CHECK(s["p95"].get<double>() <= 1.0);
+    }
+    std::vector<std::string> pass_names;
+    for (const nlohmann::json& pass : m["passes"]) {
+        pass_names.push_back(pass["name"]);
+        CHECK(pass["ms"].get<double>() >= 0.0);
+    }
+    REQUIRE(pass_names.size() >= 3);
+    CHECK(pass_names.front() == "slicing");
+    CHECK(pass_names.back() == "shading");
+}
+
+TEST_CASE("playground cli: --config is read first, flags override it; --light-size resizes the light") {
+    TempDir dir;
+    dir.write("shadows.json", R"({"slices": 4, "filter": "mipmap", "fusion": "additive"})");
+    const Run rect = run_playground(dir, {"--headless", "--scene", "boxes", "--size", "32x32", "--config", "shadows.json",
+                                          "--fusion", "maximum", "--light-size", "4", "--out", "a.png", "--metrics",
+                                          "rect.json"});
+    REQUIRE_MESSAGE(rect.exit_code == 0, rect.err);
+    const nlohmann::json m = read_json(dir.file("rect.json"));
+    CHECK(m["config"]["slices"] == 4);
+    CHECK(m["config"]["filter"] == "mipmap");
+    CHECK(m["config"]["fusion"] == "maximum");
+    CHECK(m["light"]["width"] == doctest::Approx(4.0));
+    CHECK(m["light"]["height"] == doctest::Approx(4.0));
+
+    // metrics.json carries a "config" object, so it reproduces the run's configuration.
+    const Run sun = run_playground(dir, {"--headless", "--scene", "boxes", "--size", "32x32", "--config", "rect.json",
+                                         "--light", "sun", "--filter", "gaussian", "--light-size", "3", "--out",
+                                         "b.png", "--metrics", "sun.json"});
+    REQUIRE_MESSAGE(sun.exit_code == 0, sun.err);
+    const nlohmann::json s = read_json(dir.file("sun.json"));
+    CHECK(s["config"]["slices"] == 4);
+    CHECK(s["config"]["light"] == "sun");
+    CHECK(s["light"]["angular_diameter_degrees"] == doctest::Approx(3.0));
+}
+
+TEST_CASE("playground cli: an OBJ file written by the test loads and casts a shadow; a truncated one is an error") {
+    TempDir dir;
+    dir.write("quads.obj", small_obj);
+    const Run run = run_playground(dir, {"--headless", "--scene", "quads.obj", "--size", "64x64", "--slices", "8",
+                                         "--resolution", "128", "--out", "quads.png", "--metrics", "quads.json"});
+    REQUIRE_MESSAGE(run.exit_code == 0, run.err);
+    const nlohmann::json m = read_json(dir.file("quads.json"));
+    CHECK(m["scene"] == "quads");
+    CHECK(m["shadowed_fraction"].get<double>() > 0.02);
+    CHECK(m["shadowed_fraction"].get<double>() < 0.8);
+
+    // Cut in the middle of the last face: "f 8 7" has two corners.
+    dir.write("cut.obj", small_obj.substr(0, small_obj.rfind(' ', small_obj.size() - 4)));
+    const Run cut = run_playground(dir, {"--headless", "--scene", "cut.obj", "--out", "cut.png"});
+    CHECK(cut.signal == 0);
+    CHECK(cut.exit_code == 2);
+    CHECK_MESSAGE(cut.err.find("cut.obj") != std::string::npos, cut.err);
+    CHECK(!fs::exists(dir.file("cut.png")));
+
+    const Run missing = run_playground(dir, {"--headless", "--scene", "absent.obj", "--out", "absent.png"});
+    CHECK(missing.exit_code == 2);
+    CHECK_MESSAGE(missing.err.find("absent.obj") != std::string::npos, missing.err);
+}
+
+#endif // PENUMBRA_PLAYGROUND_PATH
