@@ -1,0 +1,364 @@
+// penumbra/detail/emit_generic.hpp — the generic deferred visibility pass: the same model as
+// emit_visibility.hpp with nothing specialized (issue 3, §7).
+//
+// Slice count, resolution, level count, tile count, fusion rule and fade are uniforms; the slice
+// and level loops are real `for` loops over those uniforms; a slice's channel is picked by
+// indexing the texel with the channel number. Only what the resources fix stays static: the
+// sampler types of the storage (atlas sampler2D, array sampler2DArray, volume sampler3D). Where a
+// storage has one texture per filter level or per four slices, the generic program declares a
+// sampler array of the largest size any valid configuration needs and indexes it with a loop
+// counter, which is dynamically uniform. So one program serves every slice count, resolution,
+// fusion rule and fade setting of a filter × packing × light × target.
+//
+// The arithmetic follows emit_visibility.hpp operation by operation, so the two programs differ
+// only where a literal becomes a uniform (what the compiler may fold).
+#pragma once
+
+#include "emit_shading.hpp"
+
+namespace penumbra::detail {
+
+// Largest sampler arrays a valid configuration needs: resolution 4096 has levels 0 to 12, and
+// 32 slices fill eight RGBA textures (validate.hpp bounds both).
+inline constexpr int generic_level_textures = 13;
+inline constexpr int generic_volume_textures = 8;
+
+// GLSL 3.30 and ESSL 3.00 index sampler arrays with constant expressions only; 4.x and Vulkan
+// GLSL accept a dynamically uniform index.
+constexpr bool indexes_sampler_arrays(const Config& config) {
+    return config.target == Target::glsl450 || config.target == Target::vulkan;
+}
+
+constexpr bool uses_generic_level_loop(const Config& config) {
+    return config.packing == Packing::atlas && has_level_images(config);
+}
+
+// The configuration-derived values the generic program reads as uniforms.
+constexpr std::vector<Param> generic_value_params() {
+    return {
+        {"penumbra_sliceCount", "int", "number of slices S", ""},
+        {"penumbra_resolution", "float", "occlusion texture side R", "texels"},
+        {"penumbra_maxLevel", "int", "highest filter level L = log2(R)", ""},
+        {"penumbra_tileCount", "int", "RGBA occlusion textures T = ceil(S / 4)", ""},
+        {"penumbra_invTileCount", "float", "1 / T: width of one tile in an atlas", "uv"},
+        {"penumbra_fusion", "int", "fusion rule: 0 probabilistic, 1 additive, 2 maximum, 3 average", ""},
+        {"penumbra_fade", "int", "paper §3.4.2 self-shadow fade: 1 on, 0 off", ""},
+    };
+}
+
+// A sampler of the generic program; `count` > 1 declares an array.
+struct GenericSamplerDecl {
+    Text name;
+    std::string_view type;
+    int count;
+    std::string_view meaning;
+};
+
+// The storage samplers; the names of single samplers match the specialized program's.
+constexpr std::vector<GenericSamplerDecl> generic_storage_samplers(const Config& config) {
+    if (config.filter == Filter::mipmap)
+        return {config.packing == Packing::atlas
+                    ? GenericSamplerDecl{"penumbra_occlusionAtlas", "sampler2D", 1, "occlusion tiles side by side, mip chain"}
+                    : GenericSamplerDecl{"penumbra_occlusion", "sampler2DArray", 1, "one layer per RGBA texture, mip chain"}};
+    if (config.filter == Filter::sat)
+        return {config.packing == Packing::atlas
+                    ? GenericSamplerDecl{"penumbra_satAtlas", "sampler2D", 1, "exclusive summed-area tables side by side"}
+                    : GenericSamplerDecl{"penumbra_sat", "sampler2DArray", 1, "exclusive summed-area tables, one layer each"}};
+    if (config.packing == Packing::atlas)
+        return {{"penumbra_levelAtlases", "sampler2D", generic_level_textures,
+                 "element l: filter level l, tiles side by side; elements above L unused"}};
+    if (config.packing == Packing::array)
+        return {{"penumbra_levels", "sampler2DArray", 1, "filter levels, layer = level * T + texture"}};
+    return {{"penumbra_volumes", "sampler3D", generic_volume_textures,
+             "element t: slices 4t to 4t+3, levels along depth; elements from T on unused"}};
+}
+
+// Every sampler, in declaration (and binding) order: storage, then the G-buffer.
+constexpr std::vector<GenericSamplerDecl> generic_samplers_decl(const Config& config) {
+    std::vector<GenericSamplerDecl> samplers = generic_storage_samplers(config);
+    const Param world = deferred_params().front();
+    samplers.push_back({world.name, world.type, 1, world.meaning});
+    return samplers;
+}
+
+// What this text is specialized for: only the fields that pick resources and dialect.
+constexpr Text describe_generic(const Config& config) {
+    return cat("filter ", to_string(config.filter), " | packing ", to_string(config.packing), " | light ",
+               to_string(config.light), " | target ", to_string(config.target));
+}
+
+constexpr void write_generic_preamble(LineWriter& out, const Config& config, std::string_view title) {
+    switch (config.target) {
+    case Target::glsl330: out.line("#version 330 core"); break;
+    case Target::glsl450: out.line("#version 450 core"); break;
+    case Target::essl300: out.line("#version 300 es"); break;
+    case Target::vulkan: out.line("#version 450"); break;
+    }
+    out.line("// Penumbra ", version_string, " - generic reference: ", title);
+    out.line("// ", describe_generic(config));
+    out.comment("Slices, resolution, levels, tiles, fusion and fade are uniforms: one program for all of them.");
+    if (config.target == Target::essl300) {
+        out.chunk("precision");
+        out.line("precision highp float;");
+        out.line("precision highp int;");
+        out.line("precision highp sampler2D;");
+        out.line("precision highp sampler2DArray;");
+        out.line("precision highp sampler3D;");
+    }
+    out.blank();
+}
+
+// Declarations: the light's and the configuration's values (one block on Vulkan), then the
+// samplers. An array of n samplers takes n texture units on OpenGL, one binding of n
+// descriptors on Vulkan.
+constexpr void write_generic_params(LineWriter& out, const Config& config) {
+    std::vector<Param> values;
+    for (Param& p : visibility_params(config))
+        if (!is_sampler(p)) values.push_back(std::move(p));
+    for (Param& p : generic_value_params()) values.push_back(std::move(p));
+    int binding = 0;
+    write_params(out, config, values, "PenumbraGeneric", binding);
+    out.chunk("generic_samplers");
+    for (const GenericSamplerDecl& s : generic_samplers_decl(config)) {
+        const Text array = choose(s.count > 1, cat("[", format_int(s.count), "]"), Text());
+        const Text declaration = cat("uniform ", s.type, " ", s.name, array, "; // ", s.meaning);
+        if (is_vulkan(config)) out.line("layout(set = 0, binding = ", format_int(binding), ") ", declaration);
+        else if (has_explicit_bindings(config)) out.line("layout(binding = ", format_int(binding), ") ", declaration);
+        else out.line(declaration, ", first texture unit ", format_int(binding));
+        binding += is_vulkan(config) ? 1 : s.count;
+    }
+    out.line("layout(location = 0) out vec4 penumbra_visibility;");
+    out.blank();
+}
+
+constexpr void write_generic_kernel(LineWriter& out, const Config& config) {
+    out.chunk("kernel");
+    out.comment("Kernel on the slice plane at depth zeta, seen from light-frame point p (design.md §1):");
+    out.comment("xy = centre (uv of the slice's texture), z = side (uv), w = filter level.");
+    out.line("vec4 penumbra_kernel(vec3 p, float zeta)");
+    out.line("{");
+    if (config.light == Light::rect) {
+        out.line("float scale = penumbra_copDistance / (p.z * (penumbra_copDistance + zeta));");
+        out.line("vec2 centre = 0.5 + p.xy * (zeta * scale) / penumbra_lightSize;");
+        out.line("float side = max(p.z - zeta, 0.0) * scale;");
+    } else {
+        out.line("vec2 centre = 0.5 + p.xy / (2.0 * penumbra_windowHalfSize);");
+        out.line("float side = max(p.z - zeta, 0.0) * penumbra_tanAngularRadius / penumbra_windowHalfSize;");
+    }
+    const Text bias = choose(config.filter == Filter::gaussian, cat(" + (", format_float(gaussian_level_bias), ")"), Text());
+    out.line("float level = clamp(log2(max(side * penumbra_resolution, 1.0))", bias,
+             ", 0.0, float(penumbra_maxLevel));");
+    out.line("return vec4(centre, side, level);");
+    out.line("}");
+    out.blank();
+    out.chunk("fade");
+    out.comment("paper §3.4.2 when penumbra_fade is 1; otherwise planes strictly above the point count fully");
+    out.line("float penumbra_weight(float zPoint, float zeta)");
+    out.line("{");
+    out.line("if (penumbra_fade != 0) return clamp((zPoint - zeta) / penumbra_sliceDepths.y, 0.0, 1.0);");
+    out.line("return 1.0 - step(zPoint, zeta);");
+    out.line("}");
+    out.blank();
+}
+
+// texture(array[index], coordinates) for an array of `count` samplers: direct where the dialect
+// allows a dynamically uniform index, else a chain of constant indices (fixed, not per config).
+constexpr void write_array_read(LineWriter& out, const Config& config, std::string_view function,
+                                std::string_view coordinates_type, std::string_view array, int count) {
+    out.line("vec4 ", function, "(int index, ", coordinates_type, " coordinates)");
+    out.line("{");
+    if (indexes_sampler_arrays(config)) {
+        out.line("return textureLod(", array, "[index], coordinates, 0.0);");
+    } else {
+        out.comment("this dialect indexes sampler arrays with constants only");
+        for (int i = 0; i + 1 < count; ++i)
+            out.line("if (index == ", format_int(i), ") return textureLod(", array, "[", format_int(i),
+                     "], coordinates, 0.0);");
+        out.line("return textureLod(", array, "[", format_int(count - 1), "], coordinates, 0.0);");
+    }
+    out.line("}");
+    out.blank();
+}
+
+// vec4 penumbra_filtered(vec4 kernel, int tile): all four channels of RGBA texture `tile`,
+// filtered over the kernel (every storage but the atlas of level images).
+constexpr void write_generic_lookup(LineWriter& out, const Config& config) {
+    out.chunk("lookup");
+    if (config.filter == Filter::mipmap) {
+        out.line("vec4 penumbra_filtered(vec4 kernel, int tile)");
+        out.line("{");
+        if (config.packing == Packing::atlas)
+            out.line("return textureLod(penumbra_occlusionAtlas, vec2((float(tile) + kernel.x) * penumbra_invTileCount, "
+                     "kernel.y), kernel.w);");
+        else
+            out.line("return textureLod(penumbra_occlusion, vec3(kernel.xy, float(tile)), kernel.w);");
+        out.line("}");
+    } else if (config.filter == Filter::sat) {
+        out.comment("Crow 1984: prefix sum at texel corner X lives at the centre of texel X of an (R+1)-texel tile");
+        out.line("vec4 penumbra_prefix(vec2 corner, int tile)");
+        out.line("{");
+        out.line("vec2 uv = (corner + 0.5) / (penumbra_resolution + 1.0);");
+        if (config.packing == Packing::atlas)
+            out.line("return textureLod(penumbra_satAtlas, vec2((float(tile) + uv.x) * penumbra_invTileCount, uv.y), 0.0);");
+        else
+            out.line("return textureLod(penumbra_sat, vec3(uv, float(tile)), 0.0);");
+        out.line("}");
+        out.blank();
+        out.line("vec4 penumbra_filtered(vec4 kernel, int tile)");
+        out.line("{");
+        out.block(R"(
+            float side = max(kernel.z * penumbra_resolution, 1.0);
+            vec2 lo = clamp(kernel.xy * penumbra_resolution - 0.5 * side, 0.0, penumbra_resolution);
+            vec2 hi = clamp(kernel.xy * penumbra_resolution + 0.5 * side, 0.0, penumbra_resolution);
+            vec4 sum = penumbra_prefix(hi, tile) - penumbra_prefix(vec2(lo.x, hi.y), tile)
+                - penumbra_prefix(vec2(hi.x, lo.y), tile) + penumbra_prefix(lo, tile);
+            return clamp(sum / (side * side), 0.0, 1.0);
+        )");
+        out.line("}");
+    } else if (config.packing == Packing::array) {
+        const bool nbuffer = config.filter == Filter::nbuffer;
+        out.line("vec4 penumbra_filtered(vec4 kernel, int tile)");
+        out.line("{");
+        out.line("float lo = floor(kernel.w);");
+        out.line("float hi = min(lo + 1.0, float(penumbra_maxLevel));");
+        out.line("vec2 shiftLo = ", nbuffer ? "vec2((exp2(lo - 1.0) - 0.5) / penumbra_resolution)" : "vec2(0.0)", ";");
+        out.line("vec2 shiftHi = ", nbuffer ? "vec2((exp2(hi - 1.0) - 0.5) / penumbra_resolution)" : "vec2(0.0)", ";");
+        out.line("float layers = float(penumbra_tileCount);");
+        out.line("vec4 texelLo = textureLod(penumbra_levels, vec3(kernel.xy - shiftLo, lo * layers + float(tile)), 0.0);");
+        out.line("vec4 texelHi = textureLod(penumbra_levels, vec3(kernel.xy - shiftHi, hi * layers + float(tile)), 0.0);");
+        out.line("return mix(texelLo, texelHi, kernel.w - lo);");
+        out.line("}");
+    } else {
+        write_array_read(out, config, "penumbra_volumeTexel", "vec3", "penumbra_volumes", generic_volume_textures);
+        out.line("vec4 penumbra_filtered(vec4 kernel, int tile)");
+        out.line("{");
+        if (config.filter == Filter::nbuffer)
+            out.line("vec2 shift = vec2((exp2(kernel.w - 1.0) - 0.5) / penumbra_resolution);");
+        else
+            out.line("vec2 shift = vec2(0.0);");
+        out.line("return penumbra_volumeTexel(tile, vec3(kernel.xy - shift, (kernel.w + 0.5) / float(penumbra_maxLevel + 1)));");
+        out.line("}");
+    }
+    out.blank();
+}
+
+// Level texel of an atlas of level images: level `level`, tile `tile`, window anchor for N-buffers.
+constexpr void write_generic_level_read(LineWriter& out, const Config& config) {
+    out.chunk("level_read");
+    write_array_read(out, config, "penumbra_levelTexel", "vec2", "penumbra_levelAtlases", generic_level_textures);
+    out.line("vec4 penumbra_atlasLevel(int level, vec4 kernel, int tile)");
+    out.line("{");
+    if (config.filter == Filter::nbuffer) {
+        out.comment("the 2^level-texel window centred at the kernel is anchored 2^(level-1) texels lower");
+        out.line("float shift = (0.5 * float(1 << level) - 0.5) / penumbra_resolution;");
+    } else {
+        out.line("float shift = 0.0;");
+    }
+    out.line("vec2 uv = vec2(float(tile) * penumbra_invTileCount + (kernel.x - shift) * penumbra_invTileCount, "
+             "kernel.y - shift);");
+    out.line("return penumbra_levelTexel(level, uv);");
+    out.line("}");
+    out.blank();
+}
+
+constexpr void write_generic_fusion(LineWriter& out) {
+    out.chunk("fusion_result");
+    out.comment("every rule's accumulator is kept; the uniform picks the result (paper §3.3)");
+    out.line("float penumbra_fused(float lit, float sum, float maximum)");
+    out.line("{");
+    out.line("if (penumbra_fusion == ", format_int(static_cast<int>(Fusion::probabilistic)), ") return lit;");
+    out.line("if (penumbra_fusion == ", format_int(static_cast<int>(Fusion::additive)), ") return max(0.0, 1.0 - sum);");
+    out.line("if (penumbra_fusion == ", format_int(static_cast<int>(Fusion::maximum)), ") return 1.0 - maximum;");
+    out.line("return 1.0 - 0.5 * (min(1.0, sum) + maximum);");
+    out.line("}");
+    out.blank();
+}
+
+constexpr void write_generic_accumulate(LineWriter& out) {
+    out.line("penumbra_lit *= 1.0 - q;");
+    out.line("penumbra_sum += q;");
+    out.line("penumbra_max = max(penumbra_max, q);");
+}
+
+// A `for` loop over the slices, from the bottom one up to the light, one lookup each.
+constexpr void write_generic_slice_loop(LineWriter& out) {
+    out.chunk("slice_loop");
+    out.line("for (int s = penumbra_sliceCount - 1; s >= 0; --s) {");
+    out.line("float zeta = penumbra_sliceDepths.x + float(s + 1) * penumbra_sliceDepths.y;");
+    out.line("vec4 kernel = penumbra_kernel(p, zeta);");
+    out.comment("texture s / 4 holds the slice, channel s % 4");
+    out.line("float q = penumbra_weight(p.z, zeta) * penumbra_filtered(kernel, s / 4)[s % 4];");
+    write_generic_accumulate(out);
+    out.line("}");
+}
+
+// paper Algorithm 2 with `for` over the levels: the slices whose kernel falls in a level are read
+// there, each once, from the nearest slice above the point upwards.
+constexpr void write_generic_level_loop(LineWriter& out) {
+    out.chunk("level_loop");
+    out.line("float penumbra_k = clamp(ceil((p.z - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 2.0, -1.0, "
+             "float(penumbra_sliceCount - 1));");
+    out.line("for (int level = 0; level <= penumbra_maxLevel; ++level) {");
+    out.line("bool last = level == penumbra_maxLevel;");
+    out.line("while (penumbra_k >= 0.0) {");
+    out.line("float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;");
+    out.line("vec4 kernel = penumbra_kernel(p, zeta);");
+    out.line("if (!last && kernel.w >= float(level + 1)) break;");
+    out.line("int s = int(penumbra_k);");
+    out.line("vec4 texel = penumbra_atlasLevel(level, kernel, s / 4);");
+    out.line("if (!last) texel = mix(texel, penumbra_atlasLevel(level + 1, kernel, s / 4), kernel.w - float(level));");
+    out.line("float q = penumbra_weight(p.z, zeta) * texel[s % 4];");
+    write_generic_accumulate(out);
+    out.line("penumbra_k -= 1.0;");
+    out.line("}");
+    out.line("}");
+}
+
+constexpr Text generic_fragment(const Config& config) {
+    LineWriter out;
+    write_generic_preamble(out, config, "deferred visibility pass, fragment stage");
+    write_generic_params(out, config);
+    write_generic_kernel(out, config);
+    if (uses_generic_level_loop(config)) write_generic_level_read(out, config);
+    else write_generic_lookup(out, config);
+    write_generic_fusion(out);
+    out.chunk("visibility");
+    out.comment("Fraction of the light visible from worldPos: 1 lit, 0 in umbra.");
+    out.line("float penumbraVisibility(vec3 worldPos)");
+    out.line("{");
+    out.line("vec3 p = (penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz;");
+    out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
+    out.line("float penumbra_lit = 1.0;");
+    out.line("float penumbra_sum = 0.0;");
+    out.line("float penumbra_max = 0.0;");
+    if (uses_generic_level_loop(config)) write_generic_level_loop(out);
+    else write_generic_slice_loop(out);
+    out.line("return penumbra_fused(penumbra_lit, penumbra_sum, penumbra_max);");
+    out.line("}");
+    out.blank();
+    out.chunk("deferred_main");
+    out.block(R"(
+void main()
+{
+    vec4 world = texelFetch(penumbra_worldPositions, ivec2(gl_FragCoord.xy), 0);
+    float visibility = world.w > 0.5 ? penumbraVisibility(world.xyz) : 1.0;
+    penumbra_visibility = vec4(vec3(visibility), 1.0);
+}
+)");
+    return out.take();
+}
+
+constexpr Text generic_vertex(const Config& config) {
+    LineWriter out;
+    write_generic_preamble(out, config, "full-screen triangle, vertex stage (draw 3 vertices, no attributes)");
+    out.chunk("fullscreen_vertex_main");
+    out.line("void main()");
+    out.line("{");
+    out.line("int index = ", vertex_index(config), ";");
+    out.line("vec2 corner = vec2(float((index << 1) & 2), float(index & 2));");
+    out.line("gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);");
+    out.line("}");
+    return out.take();
+}
+
+} // namespace penumbra::detail
