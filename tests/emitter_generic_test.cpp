@@ -2,12 +2,6 @@
 // baked constants, one text for every slice count, resolution, fusion rule and fade setting.
 // No glslang, no GL.
 
-// GCC 12 at -O3 warns "argument null where non-null expected" inside std::vector<char>::insert when
-// both emitters are inlined into one function: a false positive on the empty-range path of
-// detail::Text::operator+= (a zero-length memmove from a null pointer is never reached).
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wnonnull"
-#endif
 #include <penumbra/generic.hpp>
 #include <penumbra/penumbra.hpp>
 

@@ -60,7 +60,11 @@ std::string printable(std::string_view text, std::size_t limit) {
 
 Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
     for (const std::string& arg : args)
-        if (arg == "--help" || arg == "-h") return {Arguments{.help = true}, {}};
+        if (arg == "--help" || arg == "-h") {
+            Arguments help;
+            help.help = true;
+            return {help, {}};
+        }
 
     Arguments out;
     for (std::size_t i = 0; i < args.size(); ++i) {

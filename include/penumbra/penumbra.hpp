@@ -10,12 +10,14 @@
 //   e.snippet.text;                              // float penumbraVisibility(vec3 worldPos)
 //   penumbra::to_json(e.layout);                 // textures, parameters, bindings, passes
 //
+// The same model with uniforms instead of baked constants: penumbra::emit_generic (penumbra/generic.hpp).
 // At compile time: penumbra::static_glsl<config, penumbra::Artifact::…> (penumbra/static_glsl.hpp).
 // Validation with glslang: penumbra/validation.hpp (target penumbra::validation).
 #pragma once
 
 #include "config.hpp"
 #include "emit.hpp"
+#include "generic.hpp"
 #include "layout.hpp"
 #include "program.hpp"
 #include "static_glsl.hpp"

@@ -49,16 +49,9 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
         if (error) *error = d;
         return false;
     }
-    GLuint shading_query = 0;
-    glGenQueries(1, &shading_query);
-    glBeginQuery(GL_TIME_ELAPSED, shading_query);
-    const GLuint visibility_texture = runtime->shade_deferred(gbuffer->positions(), width, height, error);
-    glEndQuery(GL_TIME_ELAPSED);
-    GLuint64 shading_ns = 0;
-    glGetQueryObjectui64v(shading_query, GL_QUERY_RESULT, &shading_ns);
-    glDeleteQueries(1, &shading_query);
-    if (!visibility_texture) return false;
-    out.timings.push_back({"shading", shading_ns * 1e-6});
+    penumbra::gl::PassTiming shading_timing;
+    if (!runtime->shade_deferred(gbuffer->positions(), width, height, error, &shading_timing)) return false;
+    out.timings.push_back(shading_timing);
     if (options.inspect) options.inspect(*runtime);
     const std::vector<float> vis = runtime->read_visibility();
     std::vector<glm::vec4> pos(static_cast<std::size_t>(width) * height), nrm(pos.size());

@@ -92,8 +92,13 @@ constexpr Text deferred_fragment(const Config& config) {
 void main()
 {
     vec4 world = texelFetch(penumbra_worldPositions, ivec2(gl_FragCoord.xy), 0);
-    float visibility = world.w > 0.5 ? penumbraVisibility(world.xyz) : 1.0;
-    penumbra_visibility = vec4(vec3(visibility), 1.0);
+    // A real branch, not a select: the background must not pay for the whole slice loop.
+    if (world.w < 0.5)
+    {
+        penumbra_visibility = vec4(1.0);
+        return;
+    }
+    penumbra_visibility = vec4(vec3(penumbraVisibility(world.xyz)), 1.0);
 }
 )");
     return out.take();

@@ -20,6 +20,7 @@ public:
     constexpr Text(const char* text) : Text(std::string_view(text)) {}
 
     constexpr Text& operator+=(std::string_view text) {
+        if (text.empty()) return *this; // GCC 12 -O3 warns (-Wnonnull) on inserting an empty range
         chars_.insert(chars_.end(), text.begin(), text.end());
         return *this;
     }

@@ -1,5 +1,5 @@
 // penumbra/gl/runtime.hpp end to end on llvmpipe (or a GPU): the planes scene, default config,
-// compared with Embree ground truth. Label "gl".
+// compared with Embree ground truth; GL errors through KHR_debug and glGetError. Label "gl".
 #include "egl_context.hpp"
 #include "headless_render.hpp"
 #include "scenes.hpp"
@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
 
 using namespace penumbra::playground;
 
@@ -48,10 +49,103 @@ TEST_CASE("gl runtime: planes, default config, 128x128, against Embree 16x16") {
     const std::vector<float> truth = reference_visibility(*scene, result, 16);
     const Metrics m = compare(result, truth);
     std::printf("planes 128x128 default config (%s): geometry %d, shadowed %d, lit %d\n"
-                "  all:      MAE %.4f RMSE %.4f p95 %.4f (%zu px)\n  penumbra: MAE %.4f RMSE %.4f p95 %.4f (%zu px)\n",
-                context->renderer().c_str(), geometry, shadowed, lit, m.all.mae, m.all.rmse, m.all.p95, m.all.count,
-                m.penumbra.mae, m.penumbra.rmse, m.penumbra.p95, m.penumbra.count);
+                "  all:      MAE %.4f RMSE %.4f p95 %.4f (%zu px)\n  penumbra: MAE %.4f RMSE %.4f p95 %.4f "
+                "(%zu px)\n",
+                context->renderer().c_str(), geometry, shadowed, lit, m.all.mae, m.all.rmse, m.all.p95,
+                m.all.count, m.penumbra.mae, m.penumbra.rmse, m.penumbra.p95, m.penumbra.count);
     CHECK(shadowed > 0);
     CHECK(lit > 0);
     CHECK(m.all.mae < 0.05);
+}
+
+// --- GL errors: KHR_debug messages in debug builds or on request, glGetError otherwise ----------
+
+namespace {
+
+const penumbra::Config kTiny{.slices = 4, .resolution = 64};
+
+// Stands in for an engine's own debug callback.
+struct MessageCount {
+    int messages = 0;
+};
+void GLAPIENTRY count_message(GLenum, GLenum, GLuint, GLenum, GLsizei, const GLchar*, const void* user) {
+    ++static_cast<MessageCount*>(const_cast<void*>(user))->messages;
+}
+
+} // namespace
+
+TEST_CASE("gl runtime: a GL error provoked during build is caught by the KHR_debug path") {
+    std::string error;
+    auto context = HeadlessContext::create(&error);
+    REQUIRE_MESSAGE(context, error);
+    auto runtime = penumbra::gl::Runtime::create(kTiny, &error, {.debug_output = true});
+    REQUIRE_MESSAGE(runtime, error);
+    REQUIRE(runtime->debug_output()); // Mesa and NVIDIA both have KHR_debug (core in 4.3)
+    GLint flags = 0;
+    glGetIntegerv(GL_CONTEXT_FLAGS, &flags);
+    // HeadlessContext asks for no debug context; Mesa reports API errors once GL_DEBUG_OUTPUT is on anyway.
+    MESSAGE("debug context: " << std::string((flags & GL_CONTEXT_FLAG_DEBUG_BIT) ? "yes" : "no") << " ("
+                              << context->renderer() << ")");
+
+    const std::string diagnostic =
+        runtime->build([](GLuint) { glBindTexture(0x1234, 1); }); // not a texture target
+    MESSAGE(diagnostic);
+    CHECK(diagnostic.find("GL_INVALID_ENUM") != std::string::npos);
+    CHECK(diagnostic.find("glBindTexture") != std::string::npos); // only the debug message names the function
+    CHECK(runtime->build([](GLuint) {}) == "");                   // the error was consumed, not carried over
+
+    // Between calls no callback is installed: nothing can point at the runtime once it is gone.
+    void* callback = &error;
+    glGetPointerv(GL_DEBUG_CALLBACK_FUNCTION, &callback);
+    CHECK(callback == nullptr);
+    CHECK(!glIsEnabled(GL_DEBUG_OUTPUT));
+
+    // shade_deferred reports the same way: a texture name that does not exist.
+    std::string shade_error;
+    CHECK(runtime->shade_deferred(987654, 16, 16, &shade_error) == 0);
+    MESSAGE(shade_error);
+    CHECK(shade_error.find("GL error in shade_deferred") != std::string::npos);
+    CHECK(shade_error.find("GL_INVALID_OPERATION") != std::string::npos);
+}
+
+TEST_CASE("gl runtime: without debug output a GL error is still caught, through glGetError") {
+    std::string error;
+    auto context = HeadlessContext::create(&error);
+    REQUIRE_MESSAGE(context, error);
+    auto runtime = penumbra::gl::Runtime::create(kTiny, &error, {.debug_output = false});
+    REQUIRE_MESSAGE(runtime, error);
+    CHECK(!runtime->debug_output());
+    const std::string diagnostic = runtime->build([](GLuint) { glBindTexture(0x1234, 1); });
+    CHECK(diagnostic == "GL error in build: GL_INVALID_ENUM");
+    CHECK(runtime->build([](GLuint) {}) == "");
+}
+
+TEST_CASE(
+    "gl runtime: an engine's debug callback is forwarded to and restored, also after the runtime dies") {
+    std::string error;
+    auto context = HeadlessContext::create(&error);
+    REQUIRE_MESSAGE(context, error);
+    MessageCount engine;
+    glDebugMessageCallback(count_message, &engine);
+    glEnable(GL_DEBUG_OUTPUT);
+    glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+    {
+        auto runtime = penumbra::gl::Runtime::create(kTiny, &error, {.debug_output = true});
+        REQUIRE_MESSAGE(runtime, error);
+        CHECK(!runtime->build([](GLuint) { glBindTexture(0x1234, 1); }).empty());
+        CHECK(engine.messages >= 1); // forwarded while the runtime's callback was installed
+    }
+    void* callback = nullptr;
+    void* user = nullptr;
+    glGetPointerv(GL_DEBUG_CALLBACK_FUNCTION, &callback);
+    glGetPointerv(GL_DEBUG_CALLBACK_USER_PARAM, &user);
+    CHECK(callback == reinterpret_cast<void*>(&count_message));
+    CHECK(user == &engine);
+    CHECK(glIsEnabled(GL_DEBUG_OUTPUT));
+    const int before = engine.messages;
+    glBindTexture(0x1234, 1);
+    CHECK(engine.messages == before + 1);
+    CHECK(glGetError() == GL_INVALID_ENUM);
+    glDebugMessageCallback(nullptr, nullptr);
+    glDisable(GL_DEBUG_OUTPUT);
 }
