@@ -42,5 +42,9 @@ target_link_libraries(penumbra_playground_window
     PRIVATE penumbra_imgui_backends)
 if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
     target_compile_options(penumbra_playground_window PRIVATE -Wall -Wextra)
+    # GCC 12 reports a bogus -Wrestrict inside std::string concatenation (GCC bug 105329).
+    if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
+        target_compile_options(penumbra_playground_window PRIVATE -Wno-restrict)
+    endif()
     target_compile_options(penumbra_playground_window_core PRIVATE -Wall -Wextra)
 endif()
