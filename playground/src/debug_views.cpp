@@ -1,6 +1,7 @@
 // playground/src/debug_views.cpp
 #include "debug_views.hpp"
 
+#include "gpu_scene.hpp"
 #include "image_io.hpp"
 
 #include <glm/gtc/type_ptr.hpp>
@@ -15,14 +16,6 @@
 namespace penumbra::playground {
 
 namespace {
-
-// One triangle that covers the viewport: vertices (−1,−1), (3,−1), (−1,3); no vertex buffer.
-constexpr const char* fullscreen_vertex = R"(#version 450 core
-void main() {
-    vec2 corner = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
-    gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
-}
-)";
 
 // Shared by every fragment shader: the pixel's position in the viewport, 0 to 1.
 constexpr const char* fragment_prelude = R"(#version 450 core
@@ -163,51 +156,10 @@ void main() {
 
 constexpr int ramp_entries = 256;
 
-// Compiles and links vertex + prelude + body; 0 and *log on failure.
-GLuint build_program(const char* name, const char* fragment_body, std::string* log) {
-    const GLuint program = glCreateProgram();
-    const char* vertex_sources[] = {fullscreen_vertex};
-    const char* fragment_sources[] = {fragment_prelude, fragment_body};
-    const std::pair<GLenum, std::vector<const char*>> stages[] = {
-        {GL_VERTEX_SHADER, {std::begin(vertex_sources), std::end(vertex_sources)}},
-        {GL_FRAGMENT_SHADER, {std::begin(fragment_sources), std::end(fragment_sources)}}};
-    bool ok = true;
-    for (const auto& [kind, sources] : stages) {
-        const GLuint shader = glCreateShader(kind);
-        glShaderSource(shader, static_cast<GLsizei>(sources.size()), sources.data(), nullptr);
-        glCompileShader(shader);
-        GLint status = 0;
-        glGetShaderiv(shader, GL_COMPILE_STATUS, &status);
-        if (!status && ok) {
-            GLint length = 0;
-            glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-            std::string text(static_cast<std::size_t>(std::max(length, 1)), '\0');
-            glGetShaderInfoLog(shader, length, nullptr, text.data());
-            *log = std::string("debug view '") + name + "' " +
-                   (kind == GL_VERTEX_SHADER ? "vertex" : "fragment") + " shader: " + text.c_str();
-            ok = false;
-        }
-        glAttachShader(program, shader);
-        glDeleteShader(shader); // freed with the program
-    }
-    if (ok) {
-        glLinkProgram(program);
-        GLint status = 0;
-        glGetProgramiv(program, GL_LINK_STATUS, &status);
-        if (!status) {
-            GLint length = 0;
-            glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
-            std::string text(static_cast<std::size_t>(std::max(length, 1)), '\0');
-            glGetProgramInfoLog(program, length, nullptr, text.data());
-            *log = std::string("debug view '") + name + "' link: " + text.c_str();
-            ok = false;
-        }
-    }
-    if (!ok) {
-        glDeleteProgram(program);
-        return 0;
-    }
-    return program;
+// Compiles and links the full-screen vertex with prelude + body; 0 and *log on failure.
+GLuint build_view_program(const char* name, const char* fragment_body, std::string* log) {
+    return build_program(std::string("debug_view_") + name, fullscreen_triangle_vertex,
+                         std::string(fragment_prelude) + fragment_body, log);
 }
 
 GLint location(GLuint program, const char* name) { return glGetUniformLocation(program, name); }
@@ -381,7 +333,7 @@ std::unique_ptr<DebugViews> DebugViews::create(std::string* error) {
         {&p.slice_level, {"slice_level", slice_level_fragment}},
         {&p.error, {"error", error_fragment}}};
     for (const auto& [slot, source] : programs) {
-        *slot = build_program(source.first, source.second, &log);
+        *slot = build_view_program(source.first, source.second, &log);
         if (!*slot) {
             if (error) *error = log;
             return nullptr;

@@ -1,5 +1,7 @@
 #include "gpu_scene.hpp"
 
+#include <penumbra/gl/link_program.hpp>
+
 #include <memory>
 #include <utility>
 
@@ -31,41 +33,16 @@ void main() {
 }
 )";
 
-GLuint compile_gbuffer_program(std::string* error) {
-    const GLuint program = glCreateProgram();
-    bool ok = true;
-    for (auto [kind, text] : {std::pair{GL_VERTEX_SHADER, gbuffer_vertex}, std::pair{GL_FRAGMENT_SHADER, gbuffer_fragment}}) {
-        const GLuint s = glCreateShader(kind);
-        glShaderSource(s, 1, &text, nullptr);
-        glCompileShader(s);
-        GLint status = 0;
-        glGetShaderiv(s, GL_COMPILE_STATUS, &status);
-        if (!status) {
-            char log[2048] = {};
-            glGetShaderInfoLog(s, sizeof log, nullptr, log);
-            if (error) *error = std::string("G-buffer shader: ") + log;
-            ok = false;
-        }
-        glAttachShader(program, s);
-        glDeleteShader(s);
-    }
-    if (ok) {
-        glLinkProgram(program);
-        GLint status = 0;
-        glGetProgramiv(program, GL_LINK_STATUS, &status);
-        if (!status) {
-            if (error) *error = "G-buffer program failed to link";
-            ok = false;
-        }
-    }
-    if (!ok) {
-        glDeleteProgram(program);
-        return 0;
-    }
-    return program;
-}
-
 } // namespace
+
+GLuint build_program(const std::string& name, std::string vertex, std::string fragment, std::string* error) {
+    const Program program{name, {{name + ".vert", Stage::vertex, std::move(vertex)},
+                                 {name + ".frag", Stage::fragment, std::move(fragment)}}};
+    std::string log;
+    const GLuint id = penumbra::gl::link_program(program, &log);
+    if (!id && error) *error = log;
+    return id;
+}
 
 MeshBuffers::MeshBuffers(const Mesh& mesh) {
     glCreateVertexArrays(1, &vao_);
@@ -102,7 +79,7 @@ std::unique_ptr<GBuffer> GBuffer::create(int width, int height, std::string* err
     std::unique_ptr<GBuffer> g(new GBuffer());
     g->width_ = width;
     g->height_ = height;
-    g->program_ = compile_gbuffer_program(error);
+    g->program_ = build_program("gbuffer", gbuffer_vertex, gbuffer_fragment, error);
     if (!g->program_) return nullptr;
     glCreateTextures(GL_TEXTURE_2D, 2, g->textures_);
     for (GLuint t : g->textures_) {

@@ -5,12 +5,27 @@
 
 #include "scene.hpp"
 
+#include <penumbra/program.hpp>
+
 #include <epoxy/gl.h>
 
 #include <memory>
 #include <string>
 
 namespace penumbra::playground {
+
+// One triangle that covers the viewport: vertices (−1,−1), (3,−1), (−1,3); draw 3 vertices with
+// any (empty) vertex array bound.
+inline constexpr const char* fullscreen_triangle_vertex = R"(#version 450 core
+void main() {
+    vec2 corner = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
+    gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+
+// Compiles and links a vertex + fragment program of the playground's own (views, compose,
+// G-buffer); 0 with "name.vert:line: message" diagnostics in *error.
+GLuint build_program(const std::string& name, std::string vertex, std::string fragment, std::string* error);
 
 // Vertex buffers of a Mesh: attribute 0 = position, 1 = normal (what the slicing pass expects).
 class MeshBuffers {

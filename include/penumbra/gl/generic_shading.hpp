@@ -42,7 +42,7 @@ public:
         pass->config_ = config;
         pass->program_text_ = result.value->program;
         std::string log;
-        pass->program_ = link(pass->program_text_, &log);
+        pass->program_ = link_program(pass->program_text_, &log);
         if (!pass->program_) return fail("program " + pass->program_text_.name + ": " + log);
         glCreateVertexArrays(1, &pass->empty_vao_);
         glCreateFramebuffers(1, &pass->fbo_);
@@ -115,47 +115,6 @@ public:
 
 private:
     GenericVisibilityPass() = default;
-
-    static GLuint compile(const ShaderFile& file, std::string* log) {
-        const GLuint shader = glCreateShader(file.stage == Stage::vertex ? GL_VERTEX_SHADER : GL_FRAGMENT_SHADER);
-        const char* text = file.text.c_str();
-        glShaderSource(shader, 1, &text, nullptr);
-        glCompileShader(shader);
-        GLint status = 0, length = 0;
-        glGetShaderiv(shader, GL_COMPILE_STATUS, &status);
-        if (status) return shader;
-        glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-        std::string text_log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-        glGetShaderInfoLog(shader, length, nullptr, text_log.data());
-        *log += file.file_name + ": " + text_log.c_str();
-        glDeleteShader(shader);
-        return 0;
-    }
-
-    static GLuint link(const Program& program, std::string* log) {
-        const GLuint id = glCreateProgram();
-        std::vector<GLuint> shaders;
-        for (const ShaderFile& file : program.stages)
-            if (const GLuint s = compile(file, log)) shaders.push_back(s);
-        bool ok = shaders.size() == program.stages.size();
-        if (ok) {
-            for (GLuint s : shaders) glAttachShader(id, s);
-            glLinkProgram(id);
-            GLint status = 0, length = 0;
-            glGetProgramiv(id, GL_LINK_STATUS, &status);
-            if (!status) {
-                glGetProgramiv(id, GL_INFO_LOG_LENGTH, &length);
-                std::string text_log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-                glGetProgramInfoLog(id, length, nullptr, text_log.data());
-                *log += std::string("link: ") + text_log.c_str();
-                ok = false;
-            }
-        }
-        for (GLuint s : shaders) glDeleteShader(s);
-        if (ok) return id;
-        glDeleteProgram(id);
-        return 0;
-    }
 
     void resize(int width, int height) {
         if (visibility_ && width_ == width && height_ == height) return;

@@ -18,6 +18,7 @@
 
 #include "../emit.hpp"
 #include "../light_frame.hpp"
+#include "link_program.hpp"
 
 #include <epoxy/gl.h>
 #include <glm/gtc/type_ptr.hpp>
@@ -149,56 +150,6 @@ private:
     std::size_t dropped_ = 0;
 };
 
-// One line of a driver's compile log as "file_name:line: message". Understands Mesa
-// ("0:12(5): error: …"), NVIDIA ("0(12) : error C1035: …") and AMD/Intel ("ERROR: 0:12: …");
-// other lines get "file_name: line".
-inline std::string located_log_line(const std::string& file_name, std::string_view line) {
-    auto number = [&](std::size_t& at, int& value) {
-        const auto [end, ec] = std::from_chars(line.data() + at, line.data() + line.size(), value);
-        if (ec != std::errc()) return false;
-        at = static_cast<std::size_t>(end - line.data());
-        return true;
-    };
-    auto skip = [&](std::size_t& at, std::string_view text) {
-        if (line.substr(at, text.size()) != text) return false;
-        at += text.size();
-        return true;
-    };
-    auto located = [&](int line_number, std::string_view message) {
-        return file_name + ":" + std::to_string(line_number) + ": " + std::string(message);
-    };
-    int source = 0, line_number = 0, column = 0;
-    std::size_t at = 0;
-    if (number(at, source) && skip(at, ":") && number(at, line_number) && skip(at, "(") &&
-        number(at, column) && skip(at, "): "))
-        return located(line_number, line.substr(at)); // Mesa
-    at = 0;
-    if (number(at, source) && skip(at, "(") && number(at, line_number) && skip(at, ")") &&
-        (skip(at, " : ") || skip(at, ": ")))
-        return located(line_number, line.substr(at)); // NVIDIA
-    for (std::string_view severity : {"ERROR", "WARNING"}) {
-        at = 0;
-        if (skip(at, severity) && skip(at, ": ") && number(at, source) && skip(at, ":") &&
-            number(at, line_number) && skip(at, ": "))
-            return located(line_number, std::string(severity == "ERROR" ? "error: " : "warning: ") +
-                                            std::string(line.substr(at))); // AMD, Intel
-    }
-    return file_name + ": " + std::string(line);
-}
-
-// A whole compile log, one located line per message.
-inline std::string located_log(const std::string& file_name, std::string_view log) {
-    std::string out;
-    while (!log.empty()) {
-        const std::size_t end = std::min(log.find('\n'), log.size());
-        std::string_view line = log.substr(0, end);
-        while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.remove_suffix(1);
-        if (!line.empty()) out += (out.empty() ? "" : "\n") + located_log_line(file_name, line);
-        log.remove_prefix(std::min(end + 1, log.size()));
-    }
-    return out;
-}
-
 // Shader text without comments and blank lines. Every emitted file opens with a comment that
 // names the whole configuration, so comparing raw text would rebuild every program on any change;
 // comparing code rebuilds only the programs whose code depends on what changed.
@@ -326,7 +277,7 @@ public:
                 continue;
             }
             std::string log;
-            const GLuint id = link(p, &log);
+            const GLuint id = link_program(p, &log);
             if (!id) return discard("program " + p.name + ": " + log);
             next_programs[p.name] = id;
             new_programs.push_back(id);
@@ -391,7 +342,7 @@ public:
         detail::DebugCapture capture(options_.debug_output);
         const Program candidate{name, stages};
         std::string log;
-        const GLuint id = link(candidate, &log);
+        const GLuint id = link_program(candidate, &log);
         if (!id) {
             capture.take_diagnostic("replace_program");
             return log;
@@ -554,60 +505,6 @@ private:
         for (const TextureDesc& t : emission_.layout.textures)
             if (t.name == name) return &t;
         return nullptr;
-    }
-
-    static GLenum stage_enum(Stage stage) {
-        switch (stage) {
-        case Stage::vertex: return GL_VERTEX_SHADER;
-        case Stage::compute: return GL_COMPUTE_SHADER;
-        default: return GL_FRAGMENT_SHADER;
-        }
-    }
-
-    // The program id, or 0 with the compile logs ("file:line: message") or the link log in *log.
-    static GLuint link(const Program& program, std::string* log) {
-        const GLuint id = glCreateProgram();
-        std::vector<GLuint> shaders;
-        bool ok = true;
-        for (const ShaderFile& file : program.stages) {
-            const GLuint s = glCreateShader(stage_enum(file.stage));
-            const char* text = file.text.c_str();
-            glShaderSource(s, 1, &text, nullptr);
-            glCompileShader(s);
-            GLint status = 0;
-            glGetShaderiv(s, GL_COMPILE_STATUS, &status);
-            if (!status) {
-                GLint length = 0;
-                glGetShaderiv(s, GL_INFO_LOG_LENGTH, &length);
-                std::string text_log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-                glGetShaderInfoLog(s, length, nullptr, text_log.data());
-                std::string located = detail::located_log(file.file_name, text_log.c_str());
-                if (located.empty()) located = file.file_name + ": does not compile (the driver gave no log)";
-                *log += (log->empty() ? "" : "\n") + located;
-                ok = false;
-            }
-            glAttachShader(id, s);
-            shaders.push_back(s);
-        }
-        if (ok) {
-            glLinkProgram(id);
-            GLint status = 0;
-            glGetProgramiv(id, GL_LINK_STATUS, &status);
-            if (!status) {
-                GLint length = 0;
-                glGetProgramiv(id, GL_INFO_LOG_LENGTH, &length);
-                std::string text_log(static_cast<std::size_t>(std::max(length, 1)), '\0');
-                glGetProgramInfoLog(id, length, nullptr, text_log.data());
-                *log += program.name + " (link): " + text_log.c_str();
-                ok = false;
-            }
-        }
-        for (GLuint s : shaders) glDeleteShader(s);
-        if (!ok) {
-            glDeleteProgram(id);
-            return 0;
-        }
-        return id;
     }
 
     static GLenum gl_enum(const std::string& name) {

@@ -12,13 +12,6 @@ namespace penumbra::playground {
 
 namespace {
 
-constexpr const char* compose_vertex = R"(#version 450 core
-void main() {
-    vec2 corner = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);
-    gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);
-}
-)";
-
 // The same Lambert shading as the headless renderer (headless_render.cpp), on the GPU.
 constexpr const char* compose_fragment = R"(#version 450 core
 layout(binding = 0) uniform sampler2D worldPositions;
@@ -47,41 +40,6 @@ void main() {
 }
 )";
 
-GLuint compile_program(std::string* error) {
-    const GLuint program = glCreateProgram();
-    bool ok = true;
-    for (auto [kind, text] :
-         {std::pair{GL_VERTEX_SHADER, compose_vertex}, std::pair{GL_FRAGMENT_SHADER, compose_fragment}}) {
-        const GLuint shader = glCreateShader(kind);
-        glShaderSource(shader, 1, &text, nullptr);
-        glCompileShader(shader);
-        GLint status = 0;
-        glGetShaderiv(shader, GL_COMPILE_STATUS, &status);
-        if (!status) {
-            char log[2048] = {};
-            glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-            if (error) *error = std::string("compose shader: ") + log;
-            ok = false;
-        }
-        glAttachShader(program, shader);
-        glDeleteShader(shader);
-    }
-    if (ok) {
-        glLinkProgram(program);
-        GLint status = 0;
-        glGetProgramiv(program, GL_LINK_STATUS, &status);
-        if (!status) {
-            if (error) *error = "compose program failed to link";
-            ok = false;
-        }
-    }
-    if (!ok) {
-        glDeleteProgram(program);
-        return 0;
-    }
-    return program;
-}
-
 double query_milliseconds(GLuint query) {
     GLuint64 ns = 0;
     glGetQueryObjectui64v(query, GL_QUERY_RESULT, &ns);
@@ -106,7 +64,7 @@ const char* to_string(View view) {
 std::unique_ptr<FrameRenderer> FrameRenderer::create(const Scene& scene, std::string* error) {
     std::unique_ptr<FrameRenderer> r(new FrameRenderer());
     r->scene_ = &scene;
-    r->compose_program_ = compile_program(error);
+    r->compose_program_ = build_program("compose", fullscreen_triangle_vertex, compose_fragment, error);
     if (!r->compose_program_) return nullptr;
     glCreateVertexArrays(1, &r->empty_vao_);
     glGenQueries(3, r->queries_);
