@@ -14,6 +14,7 @@
 // only where a literal becomes a uniform (what the compiler may fold).
 #pragma once
 
+#include "emit_prefilter.hpp"
 #include "emit_shading.hpp"
 
 namespace penumbra::detail {
@@ -88,23 +89,11 @@ constexpr Text describe_generic(const Config& config) {
 }
 
 constexpr void write_generic_preamble(LineWriter& out, const Config& config, std::string_view title) {
-    switch (config.target) {
-    case Target::glsl330: out.line("#version 330 core"); break;
-    case Target::glsl450: out.line("#version 450 core"); break;
-    case Target::essl300: out.line("#version 300 es"); break;
-    case Target::vulkan: out.line("#version 450"); break;
-    }
+    write_version(out, config);
     out.line("// Penumbra ", version_string, " - generic reference: ", title);
     out.line("// ", describe_generic(config));
     out.comment("Slices, resolution, levels, tiles, fusion and fade are uniforms: one program for all of them.");
-    if (config.target == Target::essl300) {
-        out.chunk("precision");
-        out.line("precision highp float;");
-        out.line("precision highp int;");
-        out.line("precision highp sampler2D;");
-        out.line("precision highp sampler2DArray;");
-        out.line("precision highp sampler3D;");
-    }
+    write_precision(out, config);
     out.blank();
 }
 
@@ -336,28 +325,14 @@ constexpr Text generic_fragment(const Config& config) {
     out.line("return penumbra_fused(penumbra_lit, penumbra_sum, penumbra_max);");
     out.line("}");
     out.blank();
-    out.chunk("deferred_main");
-    out.block(R"(
-void main()
-{
-    vec4 world = texelFetch(penumbra_worldPositions, ivec2(gl_FragCoord.xy), 0);
-    float visibility = world.w > 0.5 ? penumbraVisibility(world.xyz) : 1.0;
-    penumbra_visibility = vec4(vec3(visibility), 1.0);
-}
-)");
+    write_deferred_main(out);
     return out.take();
 }
 
 constexpr Text generic_vertex(const Config& config) {
     LineWriter out;
     write_generic_preamble(out, config, "full-screen triangle, vertex stage (draw 3 vertices, no attributes)");
-    out.chunk("fullscreen_vertex_main");
-    out.line("void main()");
-    out.line("{");
-    out.line("int index = ", vertex_index(config), ";");
-    out.line("vec2 corner = vec2(float((index << 1) & 2), float(index & 2));");
-    out.line("gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);");
-    out.line("}");
+    write_fullscreen_vertex_main(out, config);
     return out.take();
 }
 

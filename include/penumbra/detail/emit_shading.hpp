@@ -87,20 +87,7 @@ constexpr Text deferred_fragment(const Config& config) {
     write_visibility(out, config, binding);
     out.blank();
     write_params(out, config, deferred_params(), "PenumbraDeferred", binding);
-    out.chunk("deferred_main");
-    out.block(R"(
-void main()
-{
-    vec4 world = texelFetch(penumbra_worldPositions, ivec2(gl_FragCoord.xy), 0);
-    // A real branch, not a select: the background must not pay for the whole slice loop.
-    if (world.w < 0.5)
-    {
-        penumbra_visibility = vec4(1.0);
-        return;
-    }
-    penumbra_visibility = vec4(vec3(penumbraVisibility(world.xyz)), 1.0);
-}
-)");
+    write_deferred_main(out);
     return out.take();
 }
 

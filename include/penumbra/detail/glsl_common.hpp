@@ -43,28 +43,55 @@ constexpr Text describe(const Config& config) {
                on_off(config.self_shadow_fade), " | target ", to_string(config.target));
 }
 
-// First lines of every stage: the version directive must come first, then what this file is
-// and the configuration it was specialized for.
-constexpr void write_preamble(LineWriter& out, const Config& config, std::string_view title) {
+// The version directive of the target: the first line of every stage.
+constexpr void write_version(LineWriter& out, const Config& config) {
     switch (config.target) {
     case Target::glsl330: out.line("#version 330 core"); break;
     case Target::glsl450: out.line("#version 450 core"); break;
     case Target::essl300: out.line("#version 300 es"); break;
     case Target::vulkan: out.line("#version 450"); break;
     }
+}
+
+// ES has no default float precision in fragment shaders; everything Penumbra computes needs highp.
+constexpr void write_precision(LineWriter& out, const Config& config) {
+    if (config.target != Target::essl300) return;
+    out.chunk("precision");
+    out.line("precision highp float;");
+    out.line("precision highp int;");
+    out.line("precision highp sampler2D;");
+    out.line("precision highp sampler2DArray;");
+    out.line("precision highp sampler3D;");
+}
+
+// First lines of every stage: the version directive must come first, then what this file is
+// and the configuration it was specialized for.
+constexpr void write_preamble(LineWriter& out, const Config& config, std::string_view title) {
+    write_version(out, config);
     out.line("// Penumbra ", version_string, " - ", title);
     out.line("// ", describe(config));
     out.line("// ", format_int(texture_count(config)), " RGBA occlusion texture(s), filter levels 0 to ",
              format_int(max_level(config)), ". Generated: edit the configuration, not this file.");
-    if (config.target == Target::essl300) {
-        out.chunk("precision");
-        out.line("precision highp float;");
-        out.line("precision highp int;");
-        out.line("precision highp sampler2D;");
-        out.line("precision highp sampler2DArray;");
-        out.line("precision highp sampler3D;");
-    }
+    write_precision(out, config);
     out.blank();
+}
+
+// The deferred pass's main(): visibility of the G-buffer texel under the pixel.
+constexpr void write_deferred_main(LineWriter& out) {
+    out.chunk("deferred_main");
+    out.block(R"(
+void main()
+{
+    vec4 world = texelFetch(penumbra_worldPositions, ivec2(gl_FragCoord.xy), 0);
+    // A real branch, not a select: the background must not pay for the whole slice loop.
+    if (world.w < 0.5)
+    {
+        penumbra_visibility = vec4(1.0);
+        return;
+    }
+    penumbra_visibility = vec4(vec3(penumbraVisibility(world.xyz)), 1.0);
+}
+)");
 }
 
 // True when `params` holds a plain uniform (which Vulkan must put in a block).
