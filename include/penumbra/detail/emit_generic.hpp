@@ -121,25 +121,7 @@ constexpr void write_generic_params(LineWriter& out, const Config& config) {
 }
 
 constexpr void write_generic_kernel(LineWriter& out, const Config& config) {
-    out.chunk("kernel");
-    out.comment("Kernel on the slice plane at depth zeta, seen from light-frame point p (design.md §1):");
-    out.comment("xy = centre (uv of the slice's texture), z = side (uv), w = filter level.");
-    out.line("vec4 penumbra_kernel(vec3 p, float zeta)");
-    out.line("{");
-    if (config.light == Light::rect) {
-        out.line("float scale = penumbra_copDistance / (p.z * (penumbra_copDistance + zeta));");
-        out.line("vec2 centre = 0.5 + p.xy * (zeta * scale) / penumbra_lightSize;");
-        out.line("float side = max(p.z - zeta, 0.0) * scale;");
-    } else {
-        out.line("vec2 centre = 0.5 + p.xy / (2.0 * penumbra_windowHalfSize);");
-        out.line("float side = max(p.z - zeta, 0.0) * penumbra_tanAngularRadius / penumbra_windowHalfSize;");
-    }
-    const Text bias = choose(config.filter == Filter::gaussian, cat(" + (", format_float(gaussian_level_bias), ")"), Text());
-    out.line("float level = clamp(log2(max(side * penumbra_resolution, 1.0))", bias,
-             ", 0.0, float(penumbra_maxLevel));");
-    out.line("return vec4(centre, side, level);");
-    out.line("}");
-    out.blank();
+    write_kernel_function(out, config, "penumbra_resolution", "float(penumbra_maxLevel)");
     out.chunk("fade");
     out.comment("paper §3.4.2 when penumbra_fade is 1; otherwise planes strictly above the point count fully");
     out.line("float penumbra_weight(float zPoint, float zeta)");

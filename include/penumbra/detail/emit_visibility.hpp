@@ -26,8 +26,10 @@ constexpr VisibilityConstants constants(const Config& config) {
             format_float(1.0 / texture_count(config)), format_float(config.slices - 1)};
 }
 
-constexpr void write_kernel_function(LineWriter& out, const Config& config) {
-    const VisibilityConstants k = constants(config);
+// `resolution` and `max_level` are GLSL float expressions: baked literals in the specialized code,
+// uniforms in the generic reference (emit_generic.hpp).
+constexpr void write_kernel_function(LineWriter& out, const Config& config, std::string_view resolution,
+                                     std::string_view max_level) {
     out.chunk("kernel");
     out.comment("Kernel on the slice plane at depth zeta, seen from light-frame point p (design.md §1):");
     out.comment("xy = centre (uv of the slice's texture), z = side (uv), w = filter level.");
@@ -45,10 +47,15 @@ constexpr void write_kernel_function(LineWriter& out, const Config& config) {
     }
     const Text bias = choose(config.filter == Filter::gaussian, cat(" + (", format_float(gaussian_level_bias), ")"), Text());
     out.comment("windows narrower than one texel read level 0");
-    out.line("float level = clamp(log2(max(side * ", k.R, ", 1.0))", bias, ", 0.0, ", k.L, ");");
+    out.line("float level = clamp(log2(max(side * ", resolution, ", 1.0))", bias, ", 0.0, ", max_level, ");");
     out.line("return vec4(centre, side, level);");
     out.line("}");
     out.blank();
+}
+
+constexpr void write_kernel_function(LineWriter& out, const Config& config) {
+    const VisibilityConstants k = constants(config);
+    write_kernel_function(out, config, k.R, k.L);
 }
 
 constexpr void write_weight_function(LineWriter& out, const Config& config) {
