@@ -5,9 +5,9 @@
 //
 //   penumbra-bench-quality [--scenes planes,boxes] [--filters sat,nbuffer] [--configs 16x512,4x128]
 //                          [--size 256x256] [--samples 16] [--repeat 1]
-#include "egl_context.hpp"
-#include "headless_render.hpp"
-#include "scenes.hpp"
+#include "rendering/egl_context.hpp"
+#include "rendering/headless_render.hpp"
+#include "scenes/scenes.hpp"
 
 #include <penumbra/config.hpp>
 #include <penumbra/validate.hpp>

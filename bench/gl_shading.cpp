@@ -9,9 +9,9 @@
 // runs of each pass after one warm-up run. Medians of GL_TIME_ELAPSED and of wall-clock time to
 // glFinish. On llvmpipe the absolute times mean little; the ratios are what to read. The last
 // column checks that both passes gave the same image.
-#include "egl_context.hpp"
-#include "gpu_scene.hpp"
-#include "scenes.hpp"
+#include "rendering/egl_context.hpp"
+#include "rendering/gpu_scene.hpp"
+#include "scenes/scenes.hpp"
 
 #include <penumbra/gl/generic_shading.hpp>
 #include <penumbra/gl/runtime.hpp>

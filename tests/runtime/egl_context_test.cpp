@@ -3,7 +3,7 @@
 
 #include <epoxy/gl.h>
 
-#include "egl_context.hpp"
+#include "rendering/egl_context.hpp"
 
 #include <array>
 #include <cstdint>

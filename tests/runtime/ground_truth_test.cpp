@@ -15,8 +15,8 @@
 // i.e. not a single sample may be wrong).
 #include <doctest/doctest.h>
 
-#include "ground_truth.hpp"
-#include "mesh_builder.hpp"
+#include "reference/ground_truth.hpp"
+#include "scenes/mesh_builder.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 #define STB_IMAGE_IMPLEMENTATION // the reader is only needed here, to check what we wrote
 #include <stb/stb_image.h>
 
-#include "image_io.hpp"
+#include "app/image_io.hpp"
 #include "temp_dir.hpp"
 
 #include <cmath>

@@ -1,8 +1,8 @@
 // tests/runtime/obj_loader_test.cpp — OBJ files load, and bad ones give one clear line.
 #include <doctest/doctest.h>
 
-#include "mesh_builder.hpp"
-#include "obj_loader.hpp"
+#include "scenes/mesh_builder.hpp"
+#include "scenes/obj_loader.hpp"
 #include "temp_dir.hpp"
 
 #include <cmath>

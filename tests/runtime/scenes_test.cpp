@@ -1,8 +1,8 @@
 // tests/runtime/scenes_test.cpp — every procedural scene is well formed and deterministic.
 #include <doctest/doctest.h>
 
-#include "mesh_builder.hpp"
-#include "scenes.hpp"
+#include "scenes/mesh_builder.hpp"
+#include "scenes/scenes.hpp"
 
 #include <cmath>
 #include <cstring>

@@ -5,9 +5,9 @@
 // normal +y), with a border of background (NaN) pixels, so no GL context is needed.
 #include <doctest/doctest.h>
 
-#include "ground_truth.hpp"
-#include "scenes.hpp"
-#include "truth_worker.hpp"
+#include "reference/ground_truth.hpp"
+#include "scenes/scenes.hpp"
+#include "reference/truth_worker.hpp"
 
 #include <chrono>
 #include <cmath>

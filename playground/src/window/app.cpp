@@ -1,7 +1,7 @@
 // playground/src/window/app.cpp — `penumbra-playground` without --headless: the GLFW window, the
 // Dear ImGui panel, the frame loop, mouse orbit, --frames / --script / --screenshot, and the
 // summary printed at exit (frame times, GPU pass times, hot-reload latency).
-#include "options.hpp"
+#include "app/options.hpp"
 #include "panel.hpp"
 #include "script.hpp"
 #include "script_runner.hpp"

@@ -1,6 +1,6 @@
 #include "frame_renderer.hpp"
 
-#include "mesh_builder.hpp"
+#include "scenes/mesh_builder.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>

@@ -4,10 +4,10 @@
 // left half shaded by one and the right half by the other.
 #pragma once
 
-#include "debug_views.hpp"
+#include "rendering/debug_views.hpp"
 #include "frame_stats.hpp"
-#include "gpu_scene.hpp"
-#include "scene.hpp"
+#include "rendering/gpu_scene.hpp"
+#include "scenes/scene.hpp"
 
 #include <penumbra/gl/runtime.hpp>
 

@@ -1,7 +1,7 @@
 #include "panel.hpp"
 
-#include "debug_views.hpp"
-#include "scenes.hpp"
+#include "rendering/debug_views.hpp"
+#include "scenes/scenes.hpp"
 
 #include <imgui.h>
 

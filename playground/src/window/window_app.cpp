@@ -1,9 +1,9 @@
 #include "window_app.hpp"
 
-#include "debug_views.hpp"
-#include "headless_job.hpp"
-#include "image_io.hpp"
-#include "mesh_builder.hpp"
+#include "rendering/debug_views.hpp"
+#include "app/headless_job.hpp"
+#include "app/image_io.hpp"
+#include "scenes/mesh_builder.hpp"
 
 #include <penumbra/validate.hpp>
 

@@ -6,10 +6,10 @@
 
 #include "frame_renderer.hpp"
 #include "frame_stats.hpp"
-#include "options.hpp"
-#include "scene.hpp"
+#include "app/options.hpp"
+#include "scenes/scene.hpp"
 #include "shader_session.hpp"
-#include "truth_worker.hpp"
+#include "reference/truth_worker.hpp"
 
 #include <penumbra/config.hpp>
 

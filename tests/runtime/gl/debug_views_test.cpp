@@ -1,11 +1,11 @@
 // tests/runtime/gl/debug_views_test.cpp — the playground's debug views rendered into an FBO under
 // EGL and read back: slice textures of every packing and filter, the slice/level view against a
 // CPU computation from the same G-buffer, the error heatmap, the scalar view, bad input.
-#include "debug_views.hpp"
-#include "egl_context.hpp"
-#include "gpu_scene.hpp"
-#include "image_io.hpp"
-#include "scenes.hpp"
+#include "rendering/debug_views.hpp"
+#include "rendering/egl_context.hpp"
+#include "rendering/gpu_scene.hpp"
+#include "app/image_io.hpp"
+#include "scenes/scenes.hpp"
 
 #include <penumbra/gl/runtime.hpp>
 

@@ -1,9 +1,9 @@
 // Specialized vs generic (penumbra/gl/generic_shading.hpp): on the same textures, built once by
 // the runtime, the unrolled program with baked constants and the generic program with uniform
 // loops must give the same image. Label "gl" (EGL, llvmpipe on CI).
-#include "egl_context.hpp"
-#include "gpu_scene.hpp"
-#include "scenes.hpp"
+#include "rendering/egl_context.hpp"
+#include "rendering/gpu_scene.hpp"
+#include "scenes/scenes.hpp"
 
 #include <penumbra/gl/generic_shading.hpp>
 #include <penumbra/gl/runtime.hpp>

@@ -8,10 +8,10 @@
 // sub-texel weights, 2^-8 × the spread of the texels a fetch blends, or × the coverage along a
 // summed-area window's edges; plus fp32 coordinates), since every fusion rule is 1-Lipschitz in
 // each slice's occlusion. On llvmpipe the measured differences stay below a third of it.
-#include "egl_context.hpp"
-#include "headless_render.hpp"
-#include "oracle.hpp"
-#include "scenes.hpp"
+#include "rendering/egl_context.hpp"
+#include "rendering/headless_render.hpp"
+#include "reference/oracle.hpp"
+#include "scenes/scenes.hpp"
 
 #include <penumbra/gl/runtime.hpp>
 #include <penumbra/validate.hpp>

@@ -4,7 +4,7 @@
 #ifdef PENUMBRA_PLAYGROUND_PATH
 
 #include "../temp_dir.hpp"
-#include "image_io.hpp"
+#include "app/image_io.hpp"
 
 #include <doctest/doctest.h>
 #include <nlohmann/json.hpp>

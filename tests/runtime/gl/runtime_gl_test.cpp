@@ -1,8 +1,8 @@
 // penumbra/gl/runtime.hpp end to end on llvmpipe (or a GPU): the planes scene, default config,
 // compared with Embree ground truth; GL errors through KHR_debug and glGetError. Label "gl".
-#include "egl_context.hpp"
-#include "headless_render.hpp"
-#include "scenes.hpp"
+#include "rendering/egl_context.hpp"
+#include "rendering/headless_render.hpp"
+#include "scenes/scenes.hpp"
 
 #include <penumbra/gl/runtime.hpp>
 

@@ -1,9 +1,9 @@
 // penumbra/gl/runtime.hpp while it runs: reconfigure (recreate only what changed), replace_program
 // (hot reload that keeps the last good program) and the shading pass timing, on the planes scene
 // rendered at 96x96 (llvmpipe or a GPU). Label "gl".
-#include "egl_context.hpp"
-#include "gpu_scene.hpp"
-#include "scenes.hpp"
+#include "rendering/egl_context.hpp"
+#include "rendering/gpu_scene.hpp"
+#include "scenes/scenes.hpp"
 
 #include <penumbra/gl/runtime.hpp>
 

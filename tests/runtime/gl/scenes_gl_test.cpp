@@ -2,12 +2,12 @@
 //   - a single planar occluder on a slice's bottom plane, where slicing adds no error (design.md §4);
 //   - the paper's fusion claim on `boxes` (§3.3): probabilistic beats maximum and additive;
 //   - every scene with every filter and packing renders without a GL error and casts a shadow.
-#include "egl_context.hpp"
-#include "headless_job.hpp"
-#include "headless_render.hpp"
-#include "mesh_builder.hpp"
-#include "scene_defaults.hpp"
-#include "scenes.hpp"
+#include "rendering/egl_context.hpp"
+#include "app/headless_job.hpp"
+#include "rendering/headless_render.hpp"
+#include "scenes/mesh_builder.hpp"
+#include "scenes/scene_defaults.hpp"
+#include "scenes/scenes.hpp"
 
 #include <penumbra/light_frame.hpp>
 #include <penumbra/validate.hpp>

@@ -2,10 +2,10 @@
 // textures are known exactly: each triangle, projected from the slicing camera, covers the texel
 // centres inside it, in the slice of its depth (and the next one with the leak fix). The oracle
 // test builds on this output, so it is checked on its own here. Label "gl".
-#include "egl_context.hpp"
-#include "headless_render.hpp"
-#include "oracle.hpp"
-#include "scenes.hpp"
+#include "rendering/egl_context.hpp"
+#include "rendering/headless_render.hpp"
+#include "reference/oracle.hpp"
+#include "scenes/scenes.hpp"
 
 #include <penumbra/gl/runtime.hpp>
 

@@ -1,0 +1,195 @@
+// playground/src/app/headless_job.cpp
+#include "app/headless_job.hpp"
+
+#include "rendering/egl_context.hpp"
+#include "app/image_io.hpp"
+#include "scenes/obj_loader.hpp"
+#include "scenes/scenes.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+namespace penumbra::playground {
+namespace {
+
+// Differences beyond this saturate the false-colour error image.
+constexpr float error_image_range = 0.25f;
+
+bool ends_with_obj(const std::string& text) {
+    if (text.size() < 4) return false;
+    std::string tail = text.substr(text.size() - 4);
+    std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return std::tolower(c); });
+    return tail == ".obj";
+}
+
+// `out` with its extension replaced by `suffix`: image.png → image.reference.pfm.
+std::string sibling_path(const std::string& out, const std::string& suffix) {
+    std::filesystem::path path(out);
+    path.replace_extension();
+    return path.string() + suffix;
+}
+
+double milliseconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+nlohmann::ordered_json stats_json(const ErrorStats& s) {
+    return {{"mae", s.mae}, {"rmse", s.rmse}, {"p95", s.p95}, {"pixels", s.count}};
+}
+
+// The keys of layout.json's "config" object, so that --config metrics.json reproduces the run.
+nlohmann::ordered_json config_json(const Config& c) {
+    return {{"slices", c.slices},
+            {"resolution", c.resolution},
+            {"filter", to_string(c.filter)},
+            {"fusion", to_string(c.fusion)},
+            {"packing", to_string(c.packing)},
+            {"light", to_string(c.light)},
+            {"leak_fix", c.leak_fix},
+            {"self_shadow_fade", c.self_shadow_fade},
+            {"target", to_string(c.target)}};
+}
+
+nlohmann::ordered_json light_json(const Scene& scene, Light light) {
+    if (light == Light::sun)
+        return {{"kind", "sun"},
+                {"angular_diameter_degrees", scene.sun.angular_diameter * 180.0 / 3.14159265358979323846},
+                {"direction", {scene.sun.direction.x, scene.sun.direction.y, scene.sun.direction.z}}};
+    return {{"kind", "rect"},
+            {"width", scene.light.width},
+            {"height", scene.light.height},
+            {"center", {scene.light.center.x, scene.light.center.y, scene.light.center.z}}};
+}
+
+bool write_text(const std::string& path, const std::string& text, std::string* error) {
+    std::ofstream file(path, std::ios::binary);
+    file << text;
+    if (!file) {
+        *error = "cannot write " + path;
+        return false;
+    }
+    return true;
+}
+
+int fail(const std::string& message, int code = 1) {
+    std::cerr << "error: " << message << "\n";
+    return code;
+}
+
+} // namespace
+
+SceneLoad load_scene(const std::string& name_or_path) {
+    if (ends_with_obj(name_or_path)) {
+        LoadResult loaded = load_obj_scene(name_or_path);
+        return {std::move(loaded.scene), std::move(loaded.error)};
+    }
+    if (std::optional<Scene> scene = make_scene(name_or_path)) return {std::move(scene), {}};
+    std::string allowed;
+    for (std::string_view name : scene_names()) allowed += std::string(name) + ", ";
+    return {std::nullopt, "--scene: unknown scene '" + name_or_path + "'; allowed: " + allowed +
+                              "or a Wavefront file ending in .obj"};
+}
+
+void apply_light_size(Scene& scene, Light light, double size) {
+    if (light == Light::sun) {
+        scene.sun.angular_diameter = size * 3.14159265358979323846 / 180.0;
+        return;
+    }
+    const double scale = size / std::max(scene.light.width, scene.light.height);
+    scene.light.width *= scale;
+    scene.light.height *= scale;
+}
+
+double shadowed_fraction(const HeadlessResult& result) {
+    std::size_t geometry = 0, shadowed = 0;
+    for (std::size_t i = 0; i < result.visibility.size(); ++i) {
+        if (!result.geometry[i]) continue;
+        ++geometry;
+        shadowed += result.visibility[i] < 0.5f;
+    }
+    return geometry ? static_cast<double>(shadowed) / static_cast<double>(geometry) : 0.0;
+}
+
+int run_headless(const PlaygroundOptions& options) {
+    SceneLoad loaded = load_scene(options.scene);
+    if (!loaded.scene) return fail(loaded.error, 2);
+    Scene& scene = *loaded.scene;
+    if (options.light_size) apply_light_size(scene, options.config.light, *options.light_size);
+    const int width = options.width > 0 ? options.width : 512;
+    const int height = options.height > 0 ? options.height : 512;
+
+    std::string error;
+    std::optional<HeadlessContext> context = HeadlessContext::create(&error);
+    if (!context) return fail("no OpenGL 4.5 context: " + error);
+    HeadlessResult result;
+    const auto render_start = std::chrono::steady_clock::now();
+    if (!render_headless(scene, options.config, width, height, result, &error)) return fail(error);
+    const double render_ms = milliseconds_since(render_start);
+    if (!write_png_rgb(options.out_path, width, height, result.rgb, RowOrder::top_down, &error)) return fail(error);
+    std::cout << "wrote " << options.out_path << " (" << scene.name << ", " << width << "x" << height << ", "
+              << context->renderer() << ")\n";
+    if (!options.visibility_path.empty()) {
+        if (!write_pfm(options.visibility_path, {width, height, 1, result.visibility}, &error)) return fail(error);
+        std::cout << "wrote " << options.visibility_path << "\n";
+    }
+
+    nlohmann::ordered_json metrics = {
+        {"scene", scene.name},
+        {"renderer", context->renderer()},
+        {"width", width},
+        {"height", height},
+        {"config", config_json(options.config)},
+        {"light", light_json(scene, options.config.light)},
+        {"shadowed_fraction", shadowed_fraction(result)},
+        {"render_ms", render_ms},
+    };
+    nlohmann::ordered_json passes = nlohmann::ordered_json::array();
+    for (const penumbra::gl::PassTiming& t : result.timings) passes.push_back({{"name", t.name}, {"ms", t.milliseconds}});
+    metrics["passes"] = passes;
+
+    if (options.reference) {
+        const auto reference_start = std::chrono::steady_clock::now();
+        const std::vector<float> truth = reference_visibility(scene, result, options.samples, options.config.light);
+        const double reference_ms = milliseconds_since(reference_start);
+        const Metrics m = compare(result, truth);
+        const std::string truth_path =
+            options.reference_path.empty() ? sibling_path(options.out_path, ".reference.pfm") : options.reference_path;
+        const std::string error_path =
+            options.error_image_path.empty() ? sibling_path(options.out_path, ".error.png") : options.error_image_path;
+        std::vector<float> signed_error(truth.size());
+        for (std::size_t i = 0; i < truth.size(); ++i) signed_error[i] = result.visibility[i] - truth[i];
+        if (!write_pfm(truth_path, {width, height, 1, truth}, &error)) return fail(error);
+        if (!write_png_rgb(error_path, width, height, signed_error_colors(signed_error, error_image_range),
+                           RowOrder::top_down, &error))
+            return fail(error);
+        std::cout << "wrote " << truth_path << " and " << error_path << " (red: estimate too bright, blue: too dark, "
+                  << "saturating at ±" << error_image_range << ")\n";
+        std::printf("ground truth %dx%d rays/pixel, %.0f ms\n"
+                    "  all:      MAE %.4f  RMSE %.4f  p95 %.4f  (%zu px)\n"
+                    "  penumbra: MAE %.4f  RMSE %.4f  p95 %.4f  (%zu px)\n",
+                    options.samples, options.samples, reference_ms, m.all.mae, m.all.rmse, m.all.p95, m.all.count,
+                    m.penumbra.mae, m.penumbra.rmse, m.penumbra.p95, m.penumbra.count);
+        metrics["reference"] = {{"samples_per_axis", options.samples},
+                                {"ms", reference_ms},
+                                {"all", stats_json(m.all)},
+                                {"penumbra", stats_json(m.penumbra)}};
+    }
+    std::printf("passes (GPU ms):");
+    for (const penumbra::gl::PassTiming& t : result.timings) std::printf(" %s %.2f", t.name.c_str(), t.milliseconds);
+    std::printf("\n");
+    std::fflush(stdout);
+    if (!options.metrics_path.empty()) {
+        if (!write_text(options.metrics_path, metrics.dump(2) + "\n", &error)) return fail(error);
+        std::cout << "wrote " << options.metrics_path << "\n";
+    }
+    return 0;
+}
+
+} // namespace penumbra::playground

@@ -1,0 +1,34 @@
+// playground/src/app/headless_job.hpp — `penumbra-playground --headless`: load the scene, render it,
+// write the image and, with --reference, the ground truth, the error image and the metrics.
+#pragma once
+
+#include "rendering/headless_render.hpp"
+#include "app/options.hpp"
+#include "scenes/scene.hpp"
+
+#include <optional>
+#include <string>
+
+namespace penumbra::playground {
+
+struct SceneLoad {
+    std::optional<Scene> scene; // set on success
+    std::string error;          // otherwise one line: the unknown name and the allowed ones, or the OBJ problem
+};
+
+// A built-in scene by name, or a Wavefront OBJ file when the argument ends in ".obj" (any case).
+SceneLoad load_scene(const std::string& name_or_path);
+
+// --light-size: for the rectangle, its longer side becomes `size` scene units and the aspect is
+// kept (the procedural scenes' 2×2 light becomes size×size); for the sun, `size` is the angular
+// diameter in degrees.
+void apply_light_size(Scene& scene, Light light, double size);
+
+// Fraction of geometry pixels whose visibility is below 0.5 (0 when there is no geometry).
+double shadowed_fraction(const HeadlessResult& result);
+
+// The whole headless run; returns the process exit code (0 done, 1 rendering or writing failed,
+// 2 bad scene or OBJ file), messages on stderr, a summary on stdout.
+int run_headless(const PlaygroundOptions& options);
+
+} // namespace penumbra::playground

@@ -1,0 +1,23 @@
+// penumbra-playground — the scenes rendered with the shaders Penumbra emits: headless to files
+// (--headless, headless_job.hpp), or in the interactive window (window/). `--help` lists both.
+#include "app/headless_job.hpp"
+#include "app/options.hpp"
+
+#include <iostream>
+#include <string>
+#include <vector>
+
+int main(int argc, char** argv) {
+    using namespace penumbra::playground;
+    const ParsedOptions parsed = parse_options(std::vector<std::string>(argv + 1, argv + argc));
+    if (parsed.help) {
+        std::cout << usage();
+        return 0;
+    }
+    if (!parsed.options) {
+        std::cerr << "error: " << parsed.error << "\n(see penumbra-playground --help)\n";
+        return 2;
+    }
+    if (parsed.options->headless) return run_headless(*parsed.options);
+    return run_window(*parsed.options);
+}

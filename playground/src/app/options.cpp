@@ -1,0 +1,259 @@
+// playground/src/app/options.cpp — penumbra-playground's command line, parsed into PlaygroundOptions.
+//
+// The configuration flags are exactly penumbra-gen's and go through its own parsing helpers
+// (generator/src/arguments.hpp, config_file.hpp), so both tools accept and reject the same text
+// with the same messages.
+#include "app/options.hpp"
+
+#include "../../../generator/src/arguments.hpp"
+#include "../../../generator/src/config_file.hpp"
+
+#include <penumbra/validate.hpp>
+
+#include <charconv>
+#include <cmath>
+#include <string_view>
+
+namespace penumbra::playground {
+namespace {
+
+using penumbra_gen::allowed_names;
+using penumbra_gen::printable;
+
+constexpr std::string_view flag_list =
+    "--headless, --scene, --size, --light-size, --out, --visibility, --reference, --samples, --metrics, "
+    "--reference-out, --error-out, --slices, --resolution, --filter, --fusion, --packing, --light, --target, "
+    "--no-leak-fix, --no-fade, --config, --watch, --frames, --screenshot, --script, --help";
+
+bool is_switch(std::string_view flag) {
+    return flag == "--headless" || flag == "--reference" || flag == "--no-leak-fix" || flag == "--no-fade";
+}
+
+bool takes_value(std::string_view flag) {
+    for (std::string_view f : {"--scene", "--size", "--light-size", "--out", "--visibility", "--samples", "--metrics",
+                               "--reference-out", "--error-out", "--slices", "--resolution", "--filter", "--fusion",
+                               "--packing", "--light", "--target", "--config", "--watch", "--frames", "--screenshot",
+                               "--script"})
+        if (flag == f) return true;
+    return false;
+}
+
+// An integer, or an error naming the flag, the text and what is allowed.
+std::string parse_int(std::string_view flag, std::string_view text, int& value, std::string_view allowed) {
+    const char* end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (text.empty() || ec == std::errc::invalid_argument || ptr != end)
+        return std::string(flag) + ": '" + printable(text) + "' is not an integer; allowed: " + std::string(allowed);
+    if (ec == std::errc::result_out_of_range)
+        return std::string(flag) + ": " + printable(text) + " is out of range; allowed: " + std::string(allowed);
+    return {};
+}
+
+// An integer in [lo, hi].
+std::string parse_int_in(std::string_view flag, std::string_view text, int lo, int hi, int& value) {
+    const std::string allowed = std::to_string(lo) + " to " + std::to_string(hi);
+    if (std::string error = parse_int(flag, text, value, allowed); !error.empty()) return error;
+    if (value < lo || value > hi) return std::string(flag) + ": " + printable(text) + " is out of range; allowed: " + allowed;
+    return {};
+}
+
+// "WxH", each side 1 to 8192.
+std::string parse_size(std::string_view text, int& width, int& height) {
+    const std::size_t x = text.find('x');
+    const std::string bad = "--size: '" + printable(text) + "' is not WxH; allowed: two integers 1 to 8192, e.g. 512x512";
+    if (x == std::string_view::npos) return bad;
+    if (!parse_int_in("--size", text.substr(0, x), 1, 8192, width).empty()) return bad;
+    if (!parse_int_in("--size", text.substr(x + 1), 1, 8192, height).empty()) return bad;
+    return {};
+}
+
+// A finite positive number (the light's size); its upper limit depends on the light and is
+// checked once the light is known.
+std::string parse_light_size(std::string_view text, double& value) {
+    const char* end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (text.empty() || ec != std::errc() || ptr != end || !std::isfinite(value) || value <= 0.0)
+        return "--light-size: '" + printable(text) +
+               "' is not a positive number; allowed: the rectangle's longer side in scene units (rect) or the "
+               "sun's angular diameter in degrees, below 90 (sun)";
+    return {};
+}
+
+template <class Enum> std::string parse_name(std::string_view flag, std::string_view text, std::optional<Enum>& slot) {
+    if (std::optional<Enum> value = penumbra::parse_enum<Enum>(text)) {
+        slot = *value;
+        return {};
+    }
+    return std::string(flag) + ": '" + printable(text) + "' is not allowed; allowed: " + allowed_names<Enum>();
+}
+
+// Checks that need every flag: the configuration as a whole, the light size for the chosen
+// light, what the headless mode requires.
+std::string check(const PlaygroundOptions& o) {
+    if (const std::vector<penumbra::ConfigError> errors = penumbra::validate(o.config); !errors.empty())
+        return errors.front().message;
+    if (o.config.target == penumbra::Target::vulkan)
+        return "--target: 'vulkan' cannot run here, the playground renders with OpenGL; allowed: glsl330, glsl450, "
+               "essl300";
+    if (o.light_size && o.config.light == penumbra::Light::sun && *o.light_size >= 90.0)
+        return "--light-size: " + std::to_string(*o.light_size) +
+               " degrees is too wide for the sun; allowed: an angular diameter above 0 and below 90";
+    if (!o.headless) return {};
+    if (o.out_path.empty()) return "--out: missing; --headless needs the image to write (--out image.png)";
+    if (!o.reference && !o.reference_path.empty()) return "--reference-out: needs --reference";
+    if (!o.reference && !o.error_image_path.empty()) return "--error-out: needs --reference";
+    return {};
+}
+
+} // namespace
+
+ParsedOptions parse_options(const std::vector<std::string>& args) {
+    for (const std::string& arg : args)
+        if (arg == "--help" || arg == "-h") return {{}, true, {}};
+
+    auto fail = [](std::string message) { return ParsedOptions{{}, false, std::move(message)}; };
+    PlaygroundOptions options;
+    penumbra_gen::ConfigFlags flags;
+    std::optional<std::string> config_file;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string_view arg = args[i];
+        std::string_view flag = arg;
+        std::optional<std::string_view> inline_value; // --flag=value
+        if (arg.starts_with("--"))
+            if (const std::size_t eq = arg.find('='); eq != std::string_view::npos) {
+                flag = arg.substr(0, eq);
+                inline_value = arg.substr(eq + 1);
+            }
+        if (is_switch(flag)) {
+            if (inline_value) return fail(std::string(flag) + ": takes no value (got '" + printable(*inline_value) + "')");
+            if (flag == "--headless") options.headless = true;
+            if (flag == "--reference") options.reference = true;
+            if (flag == "--no-leak-fix") flags.no_leak_fix = true;
+            if (flag == "--no-fade") flags.no_fade = true;
+            continue;
+        }
+        if (!takes_value(flag)) {
+            if (arg.starts_with("-")) return fail("unknown flag '" + printable(flag) + "'; allowed: " + std::string(flag_list));
+            return fail("unexpected argument '" + printable(arg) +
+                        "'; every value follows its flag (allowed flags: " + std::string(flag_list) + ")");
+        }
+        std::string_view value;
+        if (inline_value) value = *inline_value;
+        else if (i + 1 < args.size()) value = args[++i];
+        else return fail(std::string(flag) + ": missing value (see --help)");
+
+        std::string error;
+        int number = 0;
+        if (flag == "--slices") {
+            // The range is checked by penumbra::validate, with the same message penumbra-gen gives.
+            error = parse_int(flag, value, number, "1 to 32");
+            if (error.empty()) flags.slices = number;
+        } else if (flag == "--resolution") {
+            error = parse_int(flag, value, number, "a power of two from 32 to 4096");
+            if (error.empty()) flags.resolution = number;
+        } else if (flag == "--filter") error = parse_name(flag, value, flags.filter);
+        else if (flag == "--fusion") error = parse_name(flag, value, flags.fusion);
+        else if (flag == "--packing") error = parse_name(flag, value, flags.packing);
+        else if (flag == "--light") error = parse_name(flag, value, flags.light);
+        else if (flag == "--target") error = parse_name(flag, value, flags.target);
+        else if (flag == "--size") error = parse_size(value, options.width, options.height);
+        else if (flag == "--samples") error = parse_int_in(flag, value, 1, 1024, options.samples);
+        else if (flag == "--frames") error = parse_int_in(flag, value, 0, 1000000000, options.frames);
+        else if (flag == "--light-size") {
+            double size = 0.0;
+            error = parse_light_size(value, size);
+            if (error.empty()) options.light_size = size;
+        } else if (value.empty())
+            error = std::string(flag) + ": empty; allowed: a " + (flag == "--scene" ? "scene name or .obj path" : "path");
+        else if (flag == "--scene") options.scene = std::string(value);
+        else if (flag == "--config") config_file = std::string(value);
+        else if (flag == "--out") options.out_path = std::string(value);
+        else if (flag == "--visibility") options.visibility_path = std::string(value);
+        else if (flag == "--metrics") options.metrics_path = std::string(value);
+        else if (flag == "--reference-out") options.reference_path = std::string(value);
+        else if (flag == "--error-out") options.error_image_path = std::string(value);
+        else if (flag == "--watch") options.watch_dir = std::string(value);
+        else if (flag == "--screenshot") options.screenshot_path = std::string(value);
+        else options.script_path = std::string(value); // --script
+        if (!error.empty()) return fail(error);
+    }
+
+    penumbra::Config base;
+    if (config_file) {
+        penumbra_gen::Parsed<penumbra::Config> read = penumbra_gen::read_config_file(*config_file);
+        if (!read.error.empty()) return fail(read.error);
+        base = *read.value;
+    }
+    options.config = penumbra_gen::apply(flags, base);
+    if (std::string error = check(options); !error.empty()) return fail(error);
+    return {options, false, {}};
+}
+
+std::string usage() {
+    const penumbra::Config d{};
+    auto line = [](std::string_view flag, std::string_view text) {
+        std::string out = "  " + std::string(flag);
+        out.resize(std::max<std::size_t>(out.size() + 1, 24), ' ');
+        return out + std::string(text) + "\n";
+    };
+    std::string out =
+        "usage: penumbra-playground --headless --scene NAME|FILE.obj [configuration flags] [--size WxH]\n"
+        "           [--light-size X] --out image.png [--visibility vis.pfm] [--reference] [--samples N]\n"
+        "           [--metrics metrics.json] [--reference-out truth.pfm] [--error-out error.png]\n"
+        "       penumbra-playground [--scene NAME|FILE.obj] [configuration flags] [--size WxH] [--light-size X]\n"
+        "           [--watch DIR] [--frames N] [--screenshot FILE] [--script FILE]\n"
+        "\n"
+        "With --headless: renders the scene without a display (EGL; Mesa llvmpipe or a GPU) with the shaders\n"
+        "Penumbra emits for the configuration, writes the shaded image and, with --reference, compares the\n"
+        "visibility with an Embree ray-traced ground truth. Without --headless: the interactive window.\n"
+        "\n"
+        "scene and light:\n";
+    out += line("--scene NAME|FILE.obj", "planes, boxes, tree, butterfly, terrain, crowd, or a Wavefront OBJ file "
+                                         "(default boxes)");
+    out += line("--size WxH", "image size, 1 to 8192 per side (default 512x512 headless, 1280x720 window)");
+    out += line("--light-size X", "rect: the rectangle's longer side in scene units, aspect kept (default: the\n"
+                                  "                        scene's, 2 for the procedural scenes); sun: angular "
+                                  "diameter in degrees, below 90\n"
+                                  "                        (default 2.66, five times the real sun)");
+    out += "\nconfiguration (as penumbra-gen; flags override the --config file):\n";
+    out += line("--slices N", "slices along the light normal: 1 to 32 (default " + std::to_string(d.slices) + ")");
+    out += line("--resolution R",
+                "occlusion texture side: a power of two, 32 to 4096 (default " + std::to_string(d.resolution) + ")");
+    auto names = [&](std::string text, std::string_view def) { return text + " (default " + std::string(def) + ")"; };
+    out += line("--filter F", names("prefilter: " + allowed_names<penumbra::Filter>(), to_string(d.filter)));
+    out += line("--fusion U", names("slice fusion: " + allowed_names<penumbra::Fusion>(), to_string(d.fusion)));
+    out += line("--packing P", names("storage: " + allowed_names<penumbra::Packing>(), to_string(d.packing)));
+    out += line("--light L", names("area light: " + allowed_names<penumbra::Light>(), to_string(d.light)));
+    out += line("--target T", names("shading language: glsl330, glsl450, essl300 (vulkan cannot run on GL)",
+                                    to_string(d.target)));
+    out += line("--no-leak-fix", "turn off the leak fix (paper §3.4.1; default on)");
+    out += line("--no-fade", "turn off the self-shadow fade (paper §3.4.2; default on)");
+    out += line("--config FILE.json", "configuration from JSON (the keys of Config, or a layout.json)");
+    out += "\nheadless output:\n";
+    out += line("--out FILE.png", "the shaded image (required with --headless)");
+    out += line("--visibility FILE.pfm", "the estimated visibility, one float per pixel (1 on background)");
+    out += line("--reference", "also ray-trace the ground truth (Embree) and report MAE, RMSE and p95 |error|\n"
+                               "                        over all geometry pixels and over penumbra pixels "
+                               "(truth or estimate < 0.98);\n"
+                               "                        writes the truth as PFM and a false-colour error PNG "
+                               "(red: too bright, blue: too dark)");
+    out += line("--samples N", "ground-truth rays per light axis, N×N per pixel: 1 to 1024 (default 32)");
+    out += line("--reference-out FILE", "where the truth goes (default <out stem>.reference.pfm next to --out)");
+    out += line("--error-out FILE", "where the error image goes (default <out stem>.error.png next to --out)");
+    out += line("--metrics FILE.json", "scene, renderer, configuration, sizes, the GPU time of each pass in ms and,\n"
+                                       "                        with --reference, the error statistics");
+    out += "\nwindow:\n";
+    out += line("--watch DIR", "write the emitted shaders to DIR and reload them when edited (default "
+                               "playground-shaders)");
+    out += line("--frames N", "quit after N frames (default 0: run until closed)");
+    out += line("--screenshot FILE", "write the last frame as PNG");
+    out += line("--script FILE", "run the actions in FILE, one a line (set, light, light_size, camera, wait,\n"
+                                 "                        screenshot, ...: playground/src/window/script.hpp)");
+    out += line("--help, -h", "print this help and exit");
+    out += "\nA value may also be given as --flag=value.\n"
+           "exit status: 0 done; 1 rendering or writing failed (no OpenGL 4.5, GL error, unwritable file);\n"
+           "2 bad arguments, configuration, scene name or OBJ file\n";
+    return out;
+}
+
+} // namespace penumbra::playground

@@ -1,0 +1,67 @@
+// playground/src/reference/ground_truth.hpp — reference visibility by ray casting (Embree 3).
+//
+// This answers design.md §4 question 2 ("how good is the model?"): the fraction of an area light
+// (or of the sun's disk) that a surface point actually sees, estimated with N×N stratified,
+// deterministically jittered samples against the scene's exact triangles.
+#pragma once
+
+#include "scenes/scene.hpp"
+
+#include <penumbra/light.hpp>
+
+#include <glm/glm.hpp>
+
+#include <memory>
+#include <span>
+#include <stdexcept>
+#include <vector>
+
+namespace penumbra::playground {
+
+// Thrown for any Embree failure (device creation, scene build, ...) and for malformed meshes.
+class GroundTruthError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+class GroundTruth {
+public:
+    // Builds the acceleration structure over `mesh` (copied into Embree's buffers).
+    // `ray_offset`: distance by which ray origins are pushed off the surface along the normal to
+    // avoid self-intersection; a negative value selects 1e-4 × the mesh's bounding-box diagonal.
+    // `thread_count` 0 uses std::thread::hardware_concurrency().
+    explicit GroundTruth(const Mesh& mesh, float ray_offset = -1.0f, unsigned thread_count = 0);
+    ~GroundTruth();
+    GroundTruth(GroundTruth&&) noexcept;
+    GroundTruth& operator=(GroundTruth&&) noexcept;
+    GroundTruth(const GroundTruth&) = delete;
+    GroundTruth& operator=(const GroundTruth&) = delete;
+
+    float ray_offset() const;
+
+    // Per point: the unblocked fraction of samples_per_axis² stratified rays from the point to
+    // the light rectangle. The origin is position + ray_offset·n, where n is the normal flipped,
+    // if needed, to face the light's centre (so both sides of a thin sheet are handled). The
+    // light rectangle itself is not an occluder. A point not strictly in front of the light
+    // (depth along the light's normal ≤ 0) receives nothing: 0. A point whose position has a NaN
+    // component (a background pixel of a G-buffer) gets 1. `normals` must be as long as
+    // `positions`; a zero or non-finite normal means "no offset".
+    std::vector<float> visibility(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+                                  const penumbra::RectLight& light, int samples_per_axis = 32) const;
+
+    // Same for the sun: samples_per_axis² directions stratified over the cone of half-angle
+    // angular_diameter/2 around −direction (uniform in solid angle), rays to infinity.
+    std::vector<float> visibility(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+                                  const penumbra::SunLight& sun, int samples_per_axis = 32) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+// The stratified sample position in [0,1)² for sample `sample` (row-major in an n×n grid) of
+// point `point`: the stratum's corner plus a jitter from a fixed integer hash, strictly inside
+// the stratum. Exposed so tests can reason about the estimator.
+glm::vec2 stratified_sample(std::uint32_t point, std::uint32_t sample, int samples_per_axis);
+
+} // namespace penumbra::playground

@@ -1,0 +1,42 @@
+#include "reference/metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace penumbra::playground {
+
+namespace {
+
+ErrorStats stats(std::vector<double> errors) {
+    ErrorStats s;
+    s.count = errors.size();
+    if (errors.empty()) return s;
+    double sum = 0, sq = 0;
+    for (double e : errors) {
+        sum += e;
+        sq += e * e;
+    }
+    s.mae = sum / errors.size();
+    s.rmse = std::sqrt(sq / errors.size());
+    const std::size_t k = std::min(errors.size() - 1, static_cast<std::size_t>(std::ceil(0.95 * errors.size())) - 1);
+    std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(k), errors.end());
+    s.p95 = errors[k];
+    return s;
+}
+
+} // namespace
+
+Metrics compare(std::span<const float> estimate, std::span<const unsigned char> geometry,
+                std::span<const float> reference) {
+    std::vector<double> all, pen;
+    for (std::size_t i = 0; i < estimate.size(); ++i) {
+        if (!geometry[i]) continue;
+        const double e = std::abs(static_cast<double>(estimate[i]) - reference[i]);
+        all.push_back(e);
+        if (reference[i] < 0.98f || estimate[i] < 0.98f) pen.push_back(e);
+    }
+    return {stats(std::move(all)), stats(std::move(pen))};
+}
+
+} // namespace penumbra::playground

@@ -1,0 +1,306 @@
+// playground/src/reference/oracle.cpp — the CPU oracle (see oracle.hpp), and its error bound.
+//
+// Why the GPU may differ from the oracle, per filtered lookup (all of it texture precision):
+//   1. storage: filtered levels are stored rounded (level_format: RGBA16F levels, RGBA8 mip
+//      chains, RGBA32F summed-area tables) and each level is built from the rounded previous
+//      one, so a texel of level l is off by at most l units of the format's last place (1/255
+//      for RGBA8, 2^-11 relative for half floats, i.e. ≤ 2^-11 for values ≤ 1). Texels whose
+//      exact value is 0 or 1 are exact (a mean of zeros or of ones rounds to itself).
+//   2. bilinear weights: GPUs quantize the sub-texel fraction to 8 bits, so each weight is off by
+//      up to δ = 2^-8; a bilinear fetch is then off by ≤ (2δ + δ²)·(max − min of its 4 texels).
+//      The same δ applies to the hardware's fraction between two levels (mipmap trilinear, the
+//      volume's depth): ≤ δ·|level lo − level hi|.
+//   3. fp32 coordinates: kernel centres and N-buffer anchors are computed in fp32, off by about
+//      2^-20 in uv, i.e. η = R·2^-19 texels (with margin), worth η·(texel spread) per axis; the
+//      level λ (log2, fp32) is off by ~2^-16, worth 2^-16·|level lo − level hi|.
+//   4. summed-area tables: prefix sums are integers below 2^24, exact in fp32, but the 4 fetches
+//      cancel: fraction errors cost δ·(coverage along the window's edge) per edge, fp32 rounding of
+//      the interpolated sums ~16·2^-24·(largest sum); both divided by the window area.
+// Each slice's bound is weighted by its fade weight and summed over the slices: every fusion
+// rule is 1-Lipschitz in each q_k (|∂V/∂q_k| ≤ 1), so |ΔV| ≤ Σ_k |Δq_k|. A further 2^-16 per
+// slice covers fp32 arithmetic in the fade weight and the fusion.
+#include "reference/oracle.hpp"
+
+#include <penumbra/gl/runtime.hpp>
+#include <penumbra/layout.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace penumbra::playground {
+
+namespace {
+
+constexpr double weight_step = 1.0 / 256.0;       // δ: 8-bit sub-texel fraction
+constexpr double level_error = 1.0 / 65536.0;     // fp32 log2 and level arithmetic
+constexpr double arithmetic_error = 1.0 / 65536.0; // fp32 fade weight and fusion, per slice
+constexpr double fp32_epsilon = 1.0 / 16777216.0;  // 2^-24
+// Gaussian levels are read at log2(side) + log2(√6/4) (emit_visibility.hpp): level l has a
+// standard deviation of about 2^l/√6 texels, a disk of diameter D one of D/4.
+const double gaussian_bias = std::log2(std::sqrt(6.0) / 4.0);
+
+int floor_div(int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+} // namespace
+
+bool read_slice_textures(const penumbra::gl::Runtime& runtime, SliceTextures& out, std::string* error) {
+    const Config& config = runtime.config();
+    const int R = config.resolution;
+    out.resolution = R;
+    out.slices = config.slices;
+    out.coverage.assign(static_cast<std::size_t>(config.slices) * R * R, 0.0f);
+    for (const PassDesc& pass : runtime.emission().layout.passes) {
+        if (pass.action != "draw_scene" || pass.program != "slicing") continue;
+        std::vector<float> rgba(static_cast<std::size_t>(4) * R * R);
+        // Colour attachment t holds slices 4t .. 4t+3 in its channels.
+        for (std::size_t t = 0; t < pass.outputs.size(); ++t) {
+            const AttachmentDesc& target = pass.outputs[t];
+            glGetTextureSubImage(runtime.texture(target.texture), target.level, 0, 0, std::max(target.layer, 0), R, R, 1,
+                                 GL_RGBA, GL_FLOAT, static_cast<GLsizei>(rgba.size() * sizeof(float)), rgba.data());
+            for (int c = 0; c < 4; ++c) {
+                const int slice = static_cast<int>(4 * t) + c;
+                if (slice >= config.slices) break;
+                for (int texel = 0; texel < R * R; ++texel)
+                    out.coverage[static_cast<std::size_t>(slice) * R * R + texel] = rgba[4 * texel + c];
+            }
+        }
+        if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
+            if (error) *error = "GL error " + std::to_string(e) + " reading the slicing output";
+            return false;
+        }
+        return true;
+    }
+    if (error) *error = "the layout has no slicing pass (draw_scene with program 'slicing')";
+    return false;
+}
+
+Oracle::Oracle(const Config& config, const SliceFrame& frame, SliceTextures slices) : config_(config) {
+    const std::size_t R = static_cast<std::size_t>(config.resolution);
+    if (slices.resolution != config.resolution || slices.slices != config.slices ||
+        slices.coverage.size() != R * R * static_cast<std::size_t>(config.slices))
+        throw std::invalid_argument("oracle: slice textures of " + std::to_string(slices.slices) + " slices at " +
+                                    std::to_string(slices.resolution) + "², the configuration has " +
+                                    std::to_string(config.slices) + " at " + std::to_string(config.resolution) + "²");
+    light_from_world_ = glm::dmat4(frame.light_from_world);
+    cop_distance_ = frame.cop_distance;
+    light_size_ = glm::dvec2(frame.light_size);
+    slice_depths_ = glm::dvec2(frame.slice_depths);
+    window_half_size_ = frame.window_half_size;
+    tan_angular_radius_ = frame.tan_angular_radius;
+    levels_top_ = max_level(config);
+    build_levels(slices);
+}
+
+void Oracle::build_levels(const SliceTextures& slices) {
+    const int R = config_.resolution, L = levels_top_;
+    levels_.assign(config_.slices, {});
+    prefix_.assign(config_.slices, {});
+    for (int s = 0; s < config_.slices; ++s) {
+        Plane base{R, R, std::vector<double>(static_cast<std::size_t>(R) * R)};
+        for (int y = 0; y < R; ++y)
+            for (int x = 0; x < R; ++x) base.texels[static_cast<std::size_t>(y) * R + x] = slices.at(s, x, y);
+        if (config_.filter == Filter::sat) {
+            // Crow 1984, exclusive: texel (X, Y) = sum of the texels x < X, y < Y.
+            Plane table{R + 1, R + 1, std::vector<double>(static_cast<std::size_t>(R + 1) * (R + 1), 0.0)};
+            for (int y = 1; y <= R; ++y)
+                for (int x = 1; x <= R; ++x)
+                    table.texels[static_cast<std::size_t>(y) * (R + 1) + x] =
+                        base.at(x - 1, y - 1) + table.at(x - 1, y) + table.at(x, y - 1) - table.at(x - 1, y - 1);
+            prefix_[s] = std::move(table);
+            continue;
+        }
+        std::vector<Plane>& chain = levels_[s];
+        chain.push_back(std::move(base));
+        for (int l = 1; l <= L; ++l) {
+            const Plane& prev = chain.back();
+            Plane next;
+            if (config_.filter == Filter::mipmap) {
+                // a mip level: 2×2 box of the level below, half the size
+                next = {prev.width / 2, prev.height / 2, {}};
+                next.texels.resize(static_cast<std::size_t>(next.width) * next.height);
+                for (int y = 0; y < next.height; ++y)
+                    for (int x = 0; x < next.width; ++x)
+                        next.texels[static_cast<std::size_t>(y) * next.width + x] =
+                            0.25 * (prev.at(2 * x, 2 * y) + prev.at(2 * x + 1, 2 * y) + prev.at(2 * x, 2 * y + 1) +
+                                    prev.at(2 * x + 1, 2 * y + 1));
+            } else {
+                // Both filters are separable (and zero padding commutes with separation): a pass
+                // along x, then one along y, over taps `step` = 2^(l-1) texels apart.
+                const int step = 1 << (l - 1);
+                const bool nbuffer = config_.filter == Filter::nbuffer;
+                auto filter_1d = [&](const Plane& in, bool along_x) {
+                    Plane result{R, R, std::vector<double>(static_cast<std::size_t>(R) * R)};
+                    auto tap = [&](int x, int y, int offset) { // zero outside the R×R texture
+                        (along_x ? x : y) += offset;
+                        return x < 0 || y < 0 || x >= R || y >= R ? 0.0 : in.at(x, y);
+                    };
+                    for (int y = 0; y < R; ++y)
+                        for (int x = 0; x < R; ++x)
+                            result.texels[static_cast<std::size_t>(y) * R + x] =
+                                nbuffer ? 0.5 * (tap(x, y, 0) + tap(x, y, step)) // Décoret 2005: window anchored at x
+                                        : 0.25 * (tap(x, y, -step) + 2.0 * tap(x, y, 0) + tap(x, y, step)); // à trous [1 2 1]
+                    return result;
+                };
+                next = filter_1d(filter_1d(prev, true), false);
+            }
+            chain.push_back(std::move(next));
+        }
+    }
+}
+
+// Texel (x, y) of a slice's level as the GPU's storage returns it: border 0 outside the texture,
+// except in the atlas, where the T textures of a level sit side by side (channel = slice % 4) and
+// a read past a tile's left or right edge returns the neighbouring tile's texel.
+double Oracle::stored(int slice, int level, int x, int y) const {
+    const Plane& plane = levels_[slice][level];
+    if (y < 0 || y >= plane.height) return 0.0;
+    if (x >= 0 && x < plane.width) return plane.at(x, y);
+    if (config_.packing != Packing::atlas) return 0.0;
+    const int tile = slice / 4 + floor_div(x, plane.width);
+    const int neighbour = 4 * tile + slice % 4;
+    if (tile < 0 || tile >= texture_count(config_) || neighbour >= config_.slices) return 0.0;
+    return levels_[neighbour][level].at(x - floor_div(x, plane.width) * plane.width, y);
+}
+
+// How far a stored texel of `level` can be from its exact value (point 1 of the bound).
+double Oracle::storage_error(int level) const {
+    const std::string_view format =
+        config_.filter == Filter::mipmap ? std::string_view("RGBA8") : detail::level_format(config_);
+    const double unit = format == "RGBA8" ? 1.0 / 255.0 : format == "RGBA16F" ? 1.0 / 2048.0 : 2.0 * fp32_epsilon;
+    return level * unit;
+}
+
+// GL bilinear filtering at continuous texel coordinates (texel i spans [i, i + 1)).
+Oracle::Sample Oracle::bilinear(int slice, int level, glm::dvec2 coords) const {
+    const double x = coords.x - 0.5, y = coords.y - 0.5;
+    const int i = static_cast<int>(std::floor(x)), j = static_cast<int>(std::floor(y));
+    const double fx = x - i, fy = y - j;
+    const double t[4] = {stored(slice, level, i, j), stored(slice, level, i + 1, j), stored(slice, level, i, j + 1),
+                         stored(slice, level, i + 1, j + 1)};
+    const double w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+    Sample s;
+    double storage = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        s.value += w[k] * t[k];
+        if (t[k] > 0.0 && t[k] < 1.0) storage += w[k] * storage_error(level);
+    }
+    const double spread = *std::max_element(t, t + 4) - *std::min_element(t, t + 4);
+    const double eta = config_.resolution * std::ldexp(1.0, -19);
+    s.bound = storage + (2 * weight_step + weight_step * weight_step + 2 * eta) * spread;
+    return s;
+}
+
+Oracle::Sample Oracle::mix_levels(const Sample& lo, const Sample& hi, double t, bool hardware) const {
+    const double difference = std::abs(hi.value - lo.value);
+    return {(1 - t) * lo.value + t * hi.value,
+            (1 - t) * lo.bound + t * hi.bound + (level_error + (hardware ? weight_step : 0.0)) * difference};
+}
+
+// Bilinear interpolation of the prefix table at a corner (in texels, 0..R): exact for box-shaped
+// coverage, the integral of the coverage over [0, x] × [0, y].
+double Oracle::prefix(int slice, glm::dvec2 corner) const {
+    const Plane& table = prefix_[slice];
+    const int R = config_.resolution;
+    const int i = std::min(static_cast<int>(std::floor(corner.x)), R - 1);
+    const int j = std::min(static_cast<int>(std::floor(corner.y)), R - 1);
+    const double fx = corner.x - i, fy = corner.y - j;
+    return (1 - fx) * (1 - fy) * table.at(i, j) + fx * (1 - fy) * table.at(i + 1, j) + (1 - fx) * fy * table.at(i, j + 1) +
+           fx * fy * table.at(i + 1, j + 1);
+}
+
+// Summed-area table: exact mean of the coverage over the window, clipped to the texture (the
+// outside counts as unoccluded), windows narrower than a texel widened to one texel.
+Oracle::Sample Oracle::box_filtered(int slice, glm::dvec2 centre, double side) const {
+    const double R = config_.resolution;
+    const double width = std::max(side * R, 1.0);
+    const glm::dvec2 lo = glm::clamp(centre * R - 0.5 * width, 0.0, R);
+    const glm::dvec2 hi = glm::clamp(centre * R + 0.5 * width, 0.0, R);
+    const double sum = prefix(slice, hi) - prefix(slice, {lo.x, hi.y}) - prefix(slice, {hi.x, lo.y}) + prefix(slice, lo);
+    // Coverage along each edge of the window: what an error in that edge's sub-texel fraction costs.
+    auto column = [&](double x) {
+        const double i = std::min(std::floor(x), R - 1);
+        return (prefix(slice, {i + 1, hi.y}) - prefix(slice, {i, hi.y})) - (prefix(slice, {i + 1, lo.y}) - prefix(slice, {i, lo.y}));
+    };
+    auto row = [&](double y) {
+        const double j = std::min(std::floor(y), R - 1);
+        return (prefix(slice, {hi.x, j + 1}) - prefix(slice, {hi.x, j})) - (prefix(slice, {lo.x, j + 1}) - prefix(slice, {lo.x, j}));
+    };
+    const double eta = R * std::ldexp(1.0, -19);
+    const double edges = column(lo.x) + column(hi.x) + row(lo.y) + row(hi.y);
+    const double largest = prefix(slice, glm::min(glm::floor(hi) + 1.0, glm::dvec2(R)));
+    const double sum_bound = (weight_step + eta) * edges + 4 * weight_step * weight_step + 16 * fp32_epsilon * largest;
+    return {std::clamp(sum / (width * width), 0.0, 1.0), sum_bound / (width * width)};
+}
+
+Oracle::Sample Oracle::filtered(int slice, glm::dvec2 centre, double side) const {
+    if (config_.filter == Filter::sat) return box_filtered(slice, centre, side);
+    const int R = config_.resolution, L = levels_top_;
+    const double bias = config_.filter == Filter::gaussian ? gaussian_bias : 0.0;
+    // windows narrower than one texel read level 0
+    const double level = std::clamp(std::log2(std::max(side * R, 1.0)) + bias, 0.0, static_cast<double>(L));
+    const int lo = static_cast<int>(std::floor(level));
+    const double t = level - lo;
+    if (config_.filter == Filter::mipmap) {
+        // hardware trilinear: each level read at the same uv in its own texel grid
+        auto at_level = [&](int l) { return bilinear(slice, l, centre * static_cast<double>(R >> l)); };
+        return mix_levels(at_level(lo), lo < L ? at_level(lo + 1) : at_level(lo), t, true);
+    }
+    const bool nbuffer = config_.filter == Filter::nbuffer;
+    // N-buffer anchor: a window of 2^l texels centred at c starts 2^(l-1) texels left of it
+    auto anchor_shift = [&](double l) { return nbuffer ? std::exp2(l - 1.0) - 0.5 : 0.0; };
+    if (config_.packing == Packing::volume) {
+        // one 3D fetch: both levels at the fractional level's anchor, the next depth slice past
+        // the last level is the border (0, weight t = 0 there)
+        const glm::dvec2 coords = centre * static_cast<double>(R) - anchor_shift(level);
+        const Sample hi = lo < L ? bilinear(slice, lo + 1, coords) : Sample{};
+        return mix_levels(bilinear(slice, lo, coords), hi, t, true);
+    }
+    // atlas and array: each level at its own anchor, then a lerp in the shader
+    auto at_level = [&](int l) { return bilinear(slice, l, centre * static_cast<double>(R) - anchor_shift(l)); };
+    return mix_levels(at_level(lo), at_level(std::min(lo + 1, L)), t, false);
+}
+
+OracleValue Oracle::visibility(glm::vec3 world, Fusion fusion) const {
+    glm::dvec3 p = glm::dvec3(light_from_world_ * glm::dvec4(glm::dvec3(world), 1.0));
+    p.z = std::max(p.z, 1e-6); // points on or behind the light plane
+    const double z0 = slice_depths_.x, thickness = slice_depths_.y;
+    double lit = 1.0, sum = 0.0, maximum = 0.0, bound = 0.0;
+    for (int s = config_.slices - 1; s >= 0; --s) {
+        const double zeta = z0 + (s + 1) * thickness; // the slice's bottom plane
+        // paper §3.4.2 fade: 0 at or below the point, a ramp over the nearest plane above, then 1
+        const double weight = config_.self_shadow_fade ? std::clamp((p.z - zeta) / thickness, 0.0, 1.0)
+                                                       : (zeta < p.z ? 1.0 : 0.0);
+        // without the fade, a point within fp32 rounding of a plane may fall on either side
+        const bool ambiguous = !config_.self_shadow_fade && std::abs(p.z - zeta) <= 1e-5 * std::max(1.0, p.z);
+        if (weight == 0.0 && !ambiguous) continue;
+        glm::dvec2 centre;
+        double side;
+        if (config_.light == Light::rect) {
+            // design.md §1: the rays from p to the light rectangle cut the plane in a square
+            const double scale = cop_distance_ / (p.z * (cop_distance_ + zeta));
+            centre = 0.5 + glm::dvec2(p) * (zeta * scale) / light_size_;
+            side = std::max(p.z - zeta, 0.0) * scale;
+        } else {
+            // journal §3.5: orthographic slicing, the cone towards the sun grows linearly
+            centre = 0.5 + glm::dvec2(p) / (2.0 * window_half_size_);
+            side = std::max(p.z - zeta, 0.0) * tan_angular_radius_ / window_half_size_;
+        }
+        const Sample o = filtered(s, centre, side);
+        bound += ambiguous ? o.value + o.bound : weight * o.bound + arithmetic_error;
+        const double q = weight * o.value;
+        lit *= 1.0 - q;
+        sum += q;
+        maximum = std::max(maximum, q);
+    }
+    double v = lit;
+    switch (fusion) {
+    case Fusion::probabilistic: v = lit; break;
+    case Fusion::additive: v = std::max(0.0, 1.0 - sum); break;
+    case Fusion::maximum: v = 1.0 - maximum; break;
+    case Fusion::average: v = 1.0 - 0.5 * (std::min(1.0, sum) + maximum); break; // Soler & Sillion
+    }
+    return {v, bound};
+}
+
+} // namespace penumbra::playground

@@ -1,0 +1,100 @@
+// playground/src/reference/oracle.hpp — the CPU oracle: the model of design.md §1–2 in double precision.
+//
+// Answers "does the emitted GLSL compute the model?" (design.md §4.1). Its only GPU input is the
+// slicing pass's level-0 output (binary coverage, read back); from it the oracle builds its own
+// filter (mip chain, N-buffers, summed-area table or Gaussian levels), then evaluates, for a world
+// point, every slice's kernel, filtered occlusion, self-shadow fade and the fusion rule. Texture
+// sampling is emulated in double (bilinear / trilinear, border 0 outside a texture, atlas tiles
+// side by side), following the conventions the emitter documents:
+//   - N-buffer level l at a texel = mean of the 2^l window anchored there, zero outside the tile;
+//     a window centred at c is read at c − (2^(l−1) − 0.5)/R; linear between levels;
+//   - the volume packing reads both levels at one position (the anchor follows the fractional
+//     level) and the hardware interpolates between them;
+//   - summed-area table: exact box mean of the window clipped to the texture, window ≥ 1 texel;
+//   - Gaussian level l = level l−1 blurred by [1 2 1]⊗[1 2 1]/16 with taps 2^(l−1) apart,
+//     read at level log2(side) + log2(√6/4);
+//   - atlas packing: the T textures of one level side by side, so a read past a tile's left or
+//     right edge lands in the neighbouring tile (that is what the GPU does, see oracle.cpp).
+//
+// Each value comes with a bound on |GPU − oracle| that texture precision explains (oracle.cpp
+// derives it): storage rounding of filtered levels, 8-bit sub-texel weights, fp32 coordinates.
+#pragma once
+
+#include <penumbra/config.hpp>
+#include <penumbra/light_frame.hpp>
+
+#include <glm/glm.hpp>
+
+#include <string>
+#include <vector>
+
+namespace penumbra::gl {
+class Runtime;
+}
+
+namespace penumbra::playground {
+
+// The slicing pass's output: one R×R binary coverage plane per slice.
+struct SliceTextures {
+    int resolution = 0;
+    int slices = 0;
+    std::vector<float> coverage; // slice-major; rows from v = 0 (GL's first row) up; texel (x, y)
+
+    float at(int slice, int x, int y) const {
+        return coverage[(static_cast<std::size_t>(slice) * resolution + y) * resolution + x];
+    }
+};
+
+// Reads the level-0 render targets of the slicing pass of a runtime that has run build() (call
+// it from RenderOptions::inspect). Returns false with *error set when the layout has no slicing
+// pass or a read fails.
+bool read_slice_textures(const penumbra::gl::Runtime& runtime, SliceTextures& out, std::string* error);
+
+struct OracleValue {
+    double visibility = 1.0;
+    double bound = 0.0; // |GPU − oracle| that texture precision explains at this point
+};
+
+class Oracle {
+public:
+    // Builds the filter of `config` from `slices`. Precondition: the slices match the config's
+    // slice count and resolution (the constructor checks and throws std::invalid_argument).
+    Oracle(const Config& config, const SliceFrame& frame, SliceTextures slices);
+
+    OracleValue visibility(glm::vec3 world) const { return visibility(world, config_.fusion); }
+    // The same with another fusion rule (the filter does not depend on it).
+    OracleValue visibility(glm::vec3 world, Fusion fusion) const;
+
+    // Filtered occlusion of one slice for a kernel (centre in uv, side in uv), with its bound;
+    // exposed for diagnostics and for the exact-answer tests.
+    struct Sample {
+        double value = 0.0;
+        double bound = 0.0;
+    };
+    Sample filtered(int slice, glm::dvec2 centre, double side) const;
+
+private:
+    struct Plane {
+        int width = 0, height = 0;
+        std::vector<double> texels;
+        double at(int x, int y) const { return texels[static_cast<std::size_t>(y) * width + x]; }
+    };
+
+    void build_levels(const SliceTextures& slices);
+    double stored(int slice, int level, int x, int y) const;
+    double storage_error(int level) const;
+    Sample bilinear(int slice, int level, glm::dvec2 texel_coords) const;
+    Sample mix_levels(const Sample& lo, const Sample& hi, double t, bool hardware) const;
+    Sample box_filtered(int slice, glm::dvec2 centre, double side) const;
+    double prefix(int slice, glm::dvec2 corner) const;
+
+    Config config_;
+    glm::dmat4 light_from_world_{1.0};
+    double cop_distance_ = 0, window_half_size_ = 0, tan_angular_radius_ = 0;
+    glm::dvec2 light_size_{0.0}, slice_depths_{0.0};
+    int levels_top_ = 0;                      // L = log2(R)
+    std::vector<std::vector<Plane>> levels_;  // [slice][level]: mip chain, N-buffer or Gaussian levels
+    std::vector<Plane> prefix_;               // [slice]: (R+1)² table, texel (X, Y) = sum over x < X, y < Y
+};
+
+} // namespace penumbra::playground

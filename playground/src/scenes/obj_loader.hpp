@@ -1,0 +1,24 @@
+// playground/src/scenes/obj_loader.hpp — any Wavefront OBJ file as a Scene.
+#pragma once
+
+#include "scenes/scene.hpp"
+
+#include <optional>
+#include <string>
+
+namespace penumbra::playground {
+
+struct LoadResult {
+    std::optional<Scene> scene; // set on success
+    std::string error;          // on failure: one line naming the file and the problem
+};
+
+// Loads every polygon of every object/group into one mesh (polygons are fan-triangulated; lines,
+// points and materials are ignored). Normals from the file are used when every corner of every
+// face has one; otherwise smooth normals are computed. The scene gets the default light above its
+// bounds and a camera framing it (scene_defaults.hpp), and is named after the file's stem.
+// Never throws on bad input: missing files, unparsable lines, face indices out of range, faces
+// with fewer than three corners and files without triangles are reported in `error`.
+LoadResult load_obj_scene(const std::string& path);
+
+} // namespace penumbra::playground

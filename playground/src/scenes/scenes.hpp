@@ -1,0 +1,27 @@
+// playground/src/scenes/scenes.hpp — the procedural test scenes of design.md §5.
+//
+// All scenes share one frame: a ground about 10×10 units around the origin at y = 0, objects up
+// to about 3 units tall, a 2×2 area light facing down at y ≈ 7 and a slightly tilted sun. Every
+// scene is generated from a fixed seed and is bit-identical from run to run and machine to
+// machine (see deterministic_random.hpp).
+#pragma once
+
+#include "scenes/scene.hpp"
+
+#include <optional>
+#include <string_view>
+#include <vector>
+
+namespace penumbra::playground {
+
+// "planes", "boxes", "tree", "butterfly", "terrain", "crowd".
+std::vector<std::string_view> scene_names();
+
+// The named scene, or nullopt for an unknown name.
+std::optional<Scene> make_scene(std::string_view name);
+
+// Heights of the planar occluders in the "planes" scene (each parallel to the light, facing +y),
+// exposed so tests and analyses can place slices or probes relative to them.
+inline constexpr float planes_occluder_heights[] = {1.0f, 2.0f, 3.0f};
+
+} // namespace penumbra::playground
