@@ -66,6 +66,10 @@ constexpr std::string_view usage_text =
     "  configuration flags    as penumbra-gen: --slices, --resolution, --filter, --fusion, --packing, --light,\n"
     "                         --target, --no-leak-fix, --no-fade, --config FILE.json (see penumbra-gen --help)\n";
 
+constexpr std::string_view flag_list =
+    "--scene, --size, --light-size, --out, --slices, --resolution, --filter, --fusion, --packing, --light, --target, "
+    "--no-leak-fix, --no-fade, --config, --help";
+
 std::string parse_positive_int(std::string_view text, int& value) {
     const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
     return text.empty() || ec != std::errc() || ptr != text.data() + text.size() || value < 1 || value > 4096
@@ -92,7 +96,11 @@ penumbra_gen::Parsed<BundleArguments> parse(const std::vector<std::string>& args
             has_value = true;
         }
         const bool ours = flag == "--scene" || flag == "--size" || flag == "--light-size" || flag == "--out";
-        if (flag == "--validate") return fail("unknown flag '--validate'; the bundle's programs are compiled by its runner");
+        const bool configuration = flag == "--slices" || flag == "--resolution" || flag == "--filter" ||
+                                   flag == "--fusion" || flag == "--packing" || flag == "--light" || flag == "--target" ||
+                                   flag == "--config" || flag == "--no-leak-fix" || flag == "--no-fade";
+        if (!ours && !configuration && flag.starts_with("-"))
+            return fail("unknown flag '" + printable(flag) + "'; allowed: " + std::string(flag_list));
         if (!ours) {
             config_args.push_back(arg);
             continue;
