@@ -18,6 +18,7 @@
 #include "rendering/headless_render.hpp"
 
 #include <penumbra/emit.hpp>
+#include <penumbra/uniform_values.hpp>
 #include <penumbra/validate.hpp>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -33,6 +34,8 @@
 #include <iostream>
 #include <string>
 #include <string_view>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 namespace {
@@ -162,15 +165,24 @@ nlohmann::ordered_json floats(const float* values, int count) {
     return out;
 }
 
-// Every light-frame parameter by its GLSL name (matrices column-major), as the GL runtime set them.
-nlohmann::ordered_json uniforms_json(const SliceFrame& f) {
-    return {{"penumbra_lightFromWorld", floats(glm::value_ptr(f.light_from_world), 16)},
-            {"penumbra_sliceClipFromWorld", floats(glm::value_ptr(f.slice_clip_from_world), 16)},
-            {"penumbra_lightSize", floats(glm::value_ptr(f.light_size), 2)},
-            {"penumbra_copDistance", f.cop_distance},
-            {"penumbra_sliceDepths", floats(glm::value_ptr(f.slice_depths), 2)},
-            {"penumbra_windowHalfSize", f.window_half_size},
-            {"penumbra_tanAngularRadius", f.tan_angular_radius}};
+// Every "light" uniform by its GLSL name (penumbra/uniform_values.hpp's table; matrices
+// column-major), from the frame the GL run used. Uniforms the table cannot compute without a camera
+// are left out.
+nlohmann::ordered_json uniforms_json(const SliceFrame& frame, Light light) {
+    const UniformInputs inputs{.frame = frame, .light = light, .clip_from_world = std::nullopt};
+    nlohmann::ordered_json out = nlohmann::ordered_json::object();
+    for (const UniformRule& rule : uniform_rules()) {
+        const std::optional<UniformValue> value = rule.value(inputs);
+        if (!value) continue;
+        std::visit(
+            [&](const auto& v) {
+                using T = std::decay_t<decltype(v)>;
+                if constexpr (std::is_same_v<T, int> || std::is_same_v<T, float>) out[std::string(rule.name)] = v;
+                else out[std::string(rule.name)] = floats(glm::value_ptr(v), static_cast<int>(sizeof(T) / sizeof(float)));
+            },
+            *value);
+    }
+    return out;
 }
 
 int fail(const std::string& message, int code = failed) {
@@ -248,7 +260,7 @@ int run(const std::vector<std::string>& args) {
         {"light", light_json(scene, a.config.light)},
         {"triangles", triangles.size() / 3},
         {"renderer", context->renderer()},
-        {"uniforms", uniforms_json(frame)},
+        {"uniforms", uniforms_json(frame, gl_config.light)},
     };
     std::ofstream json(dir / "uniforms.json", std::ios::binary);
     json << uniforms.dump(2) << '\n';
