@@ -51,7 +51,13 @@ bool read_bundle(const std::filesystem::path& dir, Bundle& out, std::string* err
     }
     const std::size_t pixels = static_cast<std::size_t>(out.width) * out.height;
     out.emission_dir = dir / "emission";
-    return read_floats(dir / "mesh.f32", 0, out.triangles, error) &&
+    if (!read_floats(dir / "mesh.f32", 0, out.triangles, error)) return false;
+    if (out.triangles.size() % 9 != 0) {
+        *error = (dir / "mesh.f32").string() + ": " + std::to_string(out.triangles.size()) +
+                 " floats, not whole triangles (9 floats each)";
+        return false;
+    }
+    return
            read_floats(dir / "positions.f32", 4 * pixels, out.positions, error) &&
            read_floats(dir / "visibility_gl.f32", pixels, out.visibility_gl, error) &&
            read_floats(dir / "bound.f32", pixels, out.bound, error);

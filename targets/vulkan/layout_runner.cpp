@@ -133,6 +133,57 @@ std::string read_text(const std::filesystem::path& path) {
     return text.str();
 }
 
+// Vulkan 1.0's required limits (specification, "Required Limits"): a layout for the vulkan target
+// must stay within them to run on every conforming device, whatever this device offers. Kept
+// apart from penumbra's own table (detail/target_limits.hpp) on purpose: this is the check of it.
+struct RequiredLimits {
+    static constexpr int image_dimension_2d = 4096, image_dimension_3d = 256, image_array_layers = 256;
+    static constexpr int color_attachments = 4, framebuffer_size = 4096;
+    static constexpr int per_stage_samplers = 16, per_stage_uniform_buffers = 12, uniform_buffer_range = 16384;
+};
+
+void check_required_limits(const json& layout) {
+    using L = RequiredLimits;
+    for (const json& t : layout.at("textures")) {
+        const std::string name = t.at("name"), target = t.at("target");
+        const int w = t.at("width"), h = t.at("height"), d = t.at("depth");
+        const int max_side = target == "3D" ? L::image_dimension_3d : L::image_dimension_2d;
+        if (w > max_side || h > max_side || (target == "3D" && d > L::image_dimension_3d) ||
+            (target == "2D_ARRAY" && d > L::image_array_layers))
+            fail("texture " + name + ": " + std::to_string(w) + "x" + std::to_string(h) + "x" + std::to_string(d) +
+                 " exceeds what Vulkan guarantees for a " + target + " image (2D " + std::to_string(L::image_dimension_2d) +
+                 ", 3D " + std::to_string(L::image_dimension_3d) + ", layers " + std::to_string(L::image_array_layers) + ")");
+    }
+    for (const json& p : layout.at("passes")) {
+        const std::string name = p.at("name");
+        if (p.at("outputs").size() > static_cast<std::size_t>(L::color_attachments))
+            fail("pass " + name + ": " + std::to_string(p.at("outputs").size()) +
+                 " colour attachments; Vulkan guarantees " + std::to_string(L::color_attachments));
+        if (p.at("viewport").at(0).get<int>() > L::framebuffer_size || p.at("viewport").at(1).get<int>() > L::framebuffer_size)
+            fail("pass " + name + ": viewport beyond Vulkan's guaranteed framebuffer size " + std::to_string(L::framebuffer_size));
+    }
+    for (const json& p : layout.at("programs")) {
+        int samplers = 0;
+        std::map<int, int> blocks; // binding → bytes used
+        for (const json& param : p.at("parameters")) {
+            if (param.contains("block_binding"))
+                blocks[param.at("block_binding").get<int>()] =
+                    std::max(blocks[param.at("block_binding").get<int>()], param.at("offset").get<int>() + std140_size(param.at("type")));
+            else if (param.contains("binding"))
+                ++samplers;
+        }
+        const std::string name = p.at("name");
+        if (samplers > L::per_stage_samplers)
+            fail("program " + name + ": " + std::to_string(samplers) + " samplers; Vulkan guarantees " +
+                 std::to_string(L::per_stage_samplers) + " per stage");
+        if (blocks.size() > static_cast<std::size_t>(L::per_stage_uniform_buffers))
+            fail("program " + name + ": more uniform blocks than Vulkan guarantees");
+        for (const auto& [binding, bytes] : blocks)
+            if (bytes > L::uniform_buffer_range)
+                fail("program " + name + ": uniform block " + std::to_string(binding) + " beyond Vulkan's guaranteed range");
+    }
+}
+
 struct Texture {
     std::string name;
     std::string target; // 2D, 2D_ARRAY, 3D
@@ -180,6 +231,7 @@ public:
         if (layout.at("config").at("target") != "vulkan")
             fail("layout.json is for target '" + layout.at("config").at("target").get<std::string>() +
                  "'; this runner needs the vulkan target's");
+        check_required_limits(layout);
         std::vector<const json*> passes;
         for (const char* phase : {"shadow", "screen"})
             for (const json& pass : layout.at("passes"))
@@ -596,6 +648,9 @@ private:
         const bool clears = !state.at("clear_color").is_null();
         if (clears)
             for (int i = 0; i < 4; ++i) clear.color.float32[i] = state.at("clear_color").at(i).get<float>();
+        if (pass.at("outputs").size() > c_.properties().limits.maxColorAttachments)
+            fail("pass " + name + ": " + std::to_string(pass.at("outputs").size()) + " colour attachments; the device has " +
+                 std::to_string(c_.properties().limits.maxColorAttachments));
         for (const json& o : pass.at("outputs")) {
             if (o.value("kind", "color") != "color") fail("pass " + name + ": depth attachments are not supported by this runner");
             const Texture& t = texture(o.at("texture"));
@@ -708,14 +763,16 @@ private:
         };
     }
 
-    // inputs[0] level 0 into outputs[0] (level, layer or depth slice), viewport-sized.
+    // inputs[0] (its level, level 0 when it names all) into outputs[0] (level, layer or depth
+    // slice), viewport-sized.
     std::function<void(VkCommandBuffer)> prepare_copy(const json& pass) {
         const Texture& src = texture(pass.at("inputs").at(0).at("texture"));
         const json& o = pass.at("outputs").at(0);
         const Texture& dst = texture(o.at("texture"));
         const int layer = std::max(o.at("layer").get<int>(), 0);
         VkImageCopy region{};
-        region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        const auto src_level = static_cast<std::uint32_t>(std::max(pass.at("inputs").at(0).value("level", -1), 0));
+        region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, src_level, 0, 1};
         region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, o.at("level").get<std::uint32_t>(),
                                  dst.target == "2D_ARRAY" ? static_cast<std::uint32_t>(layer) : 0u, 1};
         if (dst.target == "3D") region.dstOffset.z = layer;
@@ -723,7 +780,7 @@ private:
         if (src.format.format != dst.format.format)
             fail("pass " + pass.at("name").get<std::string>() + ": copy between different formats");
         const VkImage from = src.image, to = dst.image;
-        const VkImageSubresourceRange from_range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        const VkImageSubresourceRange from_range{VK_IMAGE_ASPECT_COLOR_BIT, src_level, 1, 0, 1};
         const VkImageSubresourceRange to_range{VK_IMAGE_ASPECT_COLOR_BIT, region.dstSubresource.mipLevel, 1,
                                                region.dstSubresource.baseArrayLayer, 1};
         return [=](VkCommandBuffer cmd) {
