@@ -98,7 +98,10 @@ int run(const std::vector<std::string>& args) {
     LayoutOutput output;
     error = run_layout(*context, inputs, output);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    const int messages = context->messages();
+    const std::string device = context->properties().deviceName;
+    const std::shared_ptr<const int> counter = context->message_counter();
+    context.reset(); // counts what destroying the device reports too
+    const int messages = *counter;
     if (!error.empty()) return fail(error);
 
     // |Vulkan − GL| against the oracle's bound, pixel by pixel.
@@ -113,7 +116,7 @@ int run(const std::vector<std::string>& args) {
     }
     std::printf("vulkan %s: %zu passes, %d validation messages, %.0f ms; max |vulkan - gl| %.3g, max bound %.3g, "
                 "%zu of %zu pixels beyond bound + %.0e, %zu penumbra pixels\n",
-                context->properties().deviceName, output.passes.size(), messages, ms, max_difference, max_bound, beyond,
+                device.c_str(), output.passes.size(), messages, ms, max_difference, max_bound, beyond,
                 output.result.size(), epsilon, penumbra);
     if (!out_path.empty()) {
         std::ofstream file(out_path, std::ios::binary);

@@ -38,6 +38,9 @@ public:
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
     // Warning and error messages reported so far (validation layer, loader, driver).
     int messages() const { return *messages_; }
+    // The same count, readable after the context is destroyed: destroying the device reports
+    // every object left alive.
+    std::shared_ptr<const int> message_counter() const { return messages_; }
 
     // A memory type with `required` properties among `type_bits`, or -1.
     int memory_type(std::uint32_t type_bits, VkMemoryPropertyFlags required) const;
@@ -59,7 +62,7 @@ private:
     std::uint32_t queue_family_ = 0;
     VkCommandPool pool_ = VK_NULL_HANDLE;
     // Heap-allocated so that the messenger's user pointer survives a move of the Context.
-    std::unique_ptr<int> messages_ = std::make_unique<int>(0);
+    std::shared_ptr<int> messages_ = std::make_shared<int>(0);
 };
 
 // "VK_ERROR_OUT_OF_DEVICE_MEMORY" for the common results, else the number.
