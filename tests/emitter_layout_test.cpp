@@ -155,6 +155,7 @@ TEST_CASE("layout v2: every plain uniform says where its value comes from, and t
                     continue;
                 }
                 CHECK((p.source == "light" || p.source == "pass" || p.source == "camera"));
+                CHECK(p.compute.size() > 10); // layout.json says how to compute every plain uniform
                 if (p.source != "pass") CHECK(has_uniform_rule(p.name));
                 if (p.source != "pass") continue;
                 // every pass running this program sets it
@@ -167,6 +168,13 @@ TEST_CASE("layout v2: every plain uniform says where its value comes from, and t
             }
         }
     }
+    // the compute texts and the value table name the same uniforms
+    for (const UniformRule& rule : uniform_rules()) {
+        CAPTURE(rule.name);
+        CHECK(!detail::uniform_compute(rule.name, Light::rect).empty());
+        CHECK(!detail::uniform_compute(rule.name, Light::sun).empty());
+    }
+    CHECK(detail::uniform_compute("penumbra_windowHalfSize", Light::sun).find("1.001") != std::string_view::npos);
     // the table computes from the frame: rect origin at the light centre, sun direction towards the sun
     RectLight light;
     light.center = {1.0, 5.0, 2.0};

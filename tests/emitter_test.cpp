@@ -40,7 +40,7 @@ std::vector<Config> structure_configs() {
     return configs;
 }
 
-// Texture fetches one slice costs with this filter and packing (design.md §3).
+// Texture fetches one slice costs with this filter and packing (docs/model.md §3).
 int fetches_per_slice(const Config& c) {
     if (c.filter == Filter::sat) return 4;
     if (c.filter == Filter::mipmap || c.packing == Packing::volume) return 1;

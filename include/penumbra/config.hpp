@@ -31,7 +31,7 @@ enum class Fusion : std::uint8_t {
     average,       // Soler & Sillion: 1 − (min(1, Σ q_k) + max q_k) / 2
 };
 
-// How the filtered occlusion textures are stored (paper §3.6–3.7, design.md §3).
+// How the filtered occlusion textures are stored (paper §3.6–3.7, docs/model.md §3).
 enum class Packing : std::uint8_t {
     atlas,  // one texture per filter level, the T occlusion textures side by side (paper §3.6)
     array,  // one 2D array texture, layer = level·T + t

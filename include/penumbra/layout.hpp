@@ -4,10 +4,12 @@
 //   penumbra::Layout layout = penumbra::describe_layout(config);
 //   std::string json = penumbra::to_json(layout); // the same, as layout.json
 //
-// Run time only (it is data for an engine, not text for a compiler).
+// layout_version 2; the JSON schema is docs/layout.schema.json and README.md ("Using it from an
+// engine") walks through it. Run time only (it is data for an engine, not text for a compiler).
 #pragma once
 
 #include "detail/artifacts.hpp"
+#include "detail/uniform_compute.hpp"
 #include "validate.hpp"
 
 #include <array>
@@ -44,6 +46,7 @@ struct TextureDesc {
 struct ParamDesc {
     std::string name, type, meaning, units;
     std::string source;          // plain uniforms: "light" (uniform_values.hpp), "pass" (int_uniforms), "camera"
+    std::string compute;         // plain uniforms: how to compute the value (formula, light_frame.hpp field)
     int binding = -1;            // sampler: texture unit / Vulkan binding; -1 for plain uniforms
     std::string texture;         // sampler: the texture bound to it when the program runs its usual pass
     std::string block;           // Vulkan: uniform block holding this value
@@ -180,7 +183,11 @@ inline std::vector<ParamDesc> describe_params(const Config& config, std::string_
             desc.units = std::string(p.units);
             desc.binding = bindings[i];
             desc.texture = p.texture.str();
-            if (!is_sampler(p)) desc.source = std::string(p.source);
+            if (!is_sampler(p)) {
+                desc.source = std::string(p.source);
+                desc.compute = p.source == "pass" ? "the value in int_uniforms of the pass that runs this program"
+                                                  : std::string(uniform_compute(p.name.view(), config.light));
+            }
             if (!is_sampler(p) && is_vulkan(config)) {
                 // std140: scalars align to 4, vec2 to 8, vec3/vec4/mat4 to 16
                 const int size = p.type == "mat4" ? 64 : p.type == "vec4" ? 16 : p.type == "vec3" ? 12
@@ -494,7 +501,7 @@ inline std::string to_json(const Layout& layout) {
             const ParamDesc& d = p.parameters[u];
             o += "      {\"name\": " + json_string(d.name) + ", \"type\": " + json_string(d.type) +
                  ", \"meaning\": " + json_string(d.meaning) + ", \"units\": " + json_string(d.units);
-            if (!d.source.empty()) o += ", \"source\": " + json_string(d.source);
+            if (!d.source.empty()) o += ", \"source\": " + json_string(d.source) + ", \"compute\": " + json_string(d.compute);
             if (d.binding >= 0) o += ", \"binding\": " + std::to_string(d.binding) + ", \"texture\": " + json_string(d.texture);
             if (d.offset >= 0)
                 o += ", \"block\": " + json_string(d.block) + ", \"block_binding\": " + std::to_string(d.block_binding) +

@@ -1,5 +1,5 @@
 // penumbra/light_frame.hpp — the uniforms that place the slices: light frame, slicing camera,
-// slice depths, from a light and the scene's bounds (design.md §1). GLM only, no GL.
+// slice depths, from a light and the scene's bounds (docs/model.md §1.1–1.3, §1.9). GLM only, no GL.
 //
 //   penumbra::SliceFrame f = penumbra::slice_frame(light, bounds_min, bounds_max, config.slices);
 //   // penumbra_lightFromWorld = f.light_from_world, penumbra_sliceClipFromWorld = f.slice_clip_from_world, ...

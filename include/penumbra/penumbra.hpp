@@ -10,6 +10,10 @@
 //   e.snippet.text;                              // float penumbraVisibility(vec3 worldPos)
 //   penumbra::to_json(e.layout);                 // textures, parameters, bindings, passes
 //
+// Uniform values from a light and the scene bounds (which must contain every receiver):
+//   penumbra::SliceFrame f = penumbra::slice_frame(light, bounds_min, bounds_max, config.slices); // light_frame.hpp
+//   penumbra::uniform_value("penumbra_sliceDepths", {f, config.light});  // by name: uniform_values.hpp
+// The derivation: docs/model.md; layout.json's schema: docs/layout.schema.json.
 // The same model with uniforms instead of baked constants: penumbra::emit_generic (penumbra/generic.hpp).
 // At compile time: penumbra::static_glsl<config, penumbra::Artifact::…> (penumbra/static_glsl.hpp).
 // Validation with glslang: penumbra/validation.hpp (target penumbra::validation).
@@ -19,6 +23,8 @@
 #include "emit.hpp"
 #include "generic.hpp"
 #include "layout.hpp"
+#include "light_frame.hpp"
 #include "program.hpp"
 #include "static_glsl.hpp"
+#include "uniform_values.hpp"
 #include "validate.hpp"

@@ -1,4 +1,4 @@
-// penumbra/light_frame.hpp: the slicing camera sees the bounds, the uv formula of design.md §1.
+// penumbra/light_frame.hpp: the slicing camera sees the bounds, the uv formula of docs/model.md §1.
 #include <penumbra/light_frame.hpp>
 
 #include <doctest/doctest.h>

@@ -20,7 +20,7 @@ bool bitwise_equal(const std::vector<T>& a, const std::vector<T>& b) {
 
 } // namespace
 
-TEST_CASE("scene_names lists the six procedural scenes of design.md §5") {
+TEST_CASE("scene_names lists the six procedural scenes of docs/model.md §5") {
     const auto names = scene_names();
     const std::set<std::string_view> got(names.begin(), names.end());
     CHECK(got == std::set<std::string_view>{"planes", "boxes", "tree", "butterfly", "terrain", "crowd"});

@@ -2,7 +2,7 @@
 //
 // Everything the configuration fixes is baked in as literals: slice count, resolution, levels,
 // slice plane indices, tile offsets. The static loop is written out iteration by iteration
-// (design.md §3): over filter levels for N-buffer/Gaussian atlases (paper Algorithm 2), over slices
+// (docs/model.md §3): over filter levels for N-buffer/Gaussian atlases (paper Algorithm 2), over slices
 // for everything else. A slice's channel is picked by dot(texel, i) with i a one-hot vec4 that
 // rotates by i.yzwx from one slice to the next one up (towards the light), so no code branches
 // on the slice index.
@@ -31,7 +31,7 @@ constexpr VisibilityConstants constants(const Config& config) {
 constexpr void write_kernel_function(LineWriter& out, const Config& config, std::string_view resolution,
                                      std::string_view max_level) {
     out.chunk("kernel");
-    out.comment("Kernel on the slice plane at depth zeta, seen from light-frame point p (design.md §1):");
+    out.comment("Kernel on the slice plane at depth zeta, seen from light-frame point p (docs/model.md §1.4, §1.9):");
     out.comment("xy = centre (uv of the slice's texture), z = side (uv), w = filter level.");
     out.line("vec4 penumbra_kernel(vec3 p, float zeta)");
     out.line("{");
@@ -297,6 +297,7 @@ constexpr Text visibility_snippet(const Config& config) {
     out.line("// ", describe(config));
     out.comment("Include after the #version line of a stage for this target. Bindings start at 0.");
     out.blank();
+    write_precision(out, config); // ES 3.00: highp defaults, so `#version 300 es` + this text compiles
     int binding = 0;
     write_visibility(out, config, binding);
     return out.take();

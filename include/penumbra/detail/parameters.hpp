@@ -14,7 +14,7 @@ constexpr bool has_level_images(const Config& config) {
 constexpr Text atlas_level_name(int level) { return cat("penumbra_level", format_int(level)); }
 constexpr Text volume_name(int texture) { return cat("penumbra_volume", format_int(texture)); }
 
-// Samplers through which the shading pass reads the filtered occlusion (design.md §3).
+// Samplers through which the shading pass reads the filtered occlusion (docs/model.md §3).
 constexpr std::vector<Param> storage_samplers(const Config& config) {
     std::vector<Param> samplers;
     const int levels = max_level(config);
@@ -52,7 +52,10 @@ constexpr std::vector<Param> storage_samplers(const Config& config) {
 constexpr std::vector<Param> visibility_params(const Config& config) {
     std::vector<Param> params;
     params.push_back({"penumbra_lightFromWorld", "mat4",
-                      "world to light frame: x, y lateral, z depth along the light normal, origin at the light centre",
+                      config.light == Light::rect
+                          ? "world to light frame: x, y lateral, z depth along the light normal, origin at the light centre"
+                          : "world to light frame: x, y lateral, z depth along the sun's direction, origin above the "
+                            "scene on the axis through the bounds' centre",
                       "scene units"});
     if (config.light == Light::rect) {
         params.push_back({"penumbra_lightSize", "vec2", "light rectangle width, height", "scene units"});

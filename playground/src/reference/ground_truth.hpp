@@ -1,6 +1,6 @@
 // playground/src/reference/ground_truth.hpp — reference visibility by ray casting (Embree 3).
 //
-// This answers design.md §4 question 2 ("how good is the model?"): the fraction of an area light
+// This answers docs/model.md §4 question 2 ("how good is the model?"): the fraction of an area light
 // (or of the sun's disk) that a surface point actually sees, estimated with N×N stratified,
 // deterministically jittered samples against the scene's exact triangles.
 #pragma once

@@ -277,7 +277,7 @@ OracleValue Oracle::visibility(glm::vec3 world, Fusion fusion) const {
         glm::dvec2 centre;
         double side;
         if (config_.light == Light::rect) {
-            // design.md §1: the rays from p to the light rectangle cut the plane in a square
+            // docs/model.md §1.4: the rays from p to the light rectangle cut the plane in a square
             const double scale = cop_distance_ / (p.z * (cop_distance_ + zeta));
             centre = 0.5 + glm::dvec2(p) * (zeta * scale) / light_size_;
             side = std::max(p.z - zeta, 0.0) * scale;

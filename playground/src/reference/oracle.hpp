@@ -1,6 +1,6 @@
-// playground/src/reference/oracle.hpp — the CPU oracle: the model of design.md §1–2 in double precision.
+// playground/src/reference/oracle.hpp — the CPU oracle: the model of docs/model.md §1–2 in double precision.
 //
-// Answers "does the emitted GLSL compute the model?" (design.md §4.1). Its only GPU input is the
+// Answers "does the emitted GLSL compute the model?" (docs/model.md §4, question 1). Its only GPU input is the
 // slicing pass's level-0 output (binary coverage, read back); from it the oracle builds its own
 // filter (mip chain, N-buffers, summed-area table or Gaussian levels), then evaluates, for a world
 // point, every slice's kernel, filtered occlusion, self-shadow fade and the fusion rule. Texture

@@ -161,7 +161,7 @@ Mesh build_butterfly() {
 }
 
 // Smooth rolling heightfield plus seeded bumps; no separate "receiver" plane, so every surface
-// both casts and receives (design.md §5).
+// both casts and receives (docs/model.md §5).
 Mesh build_terrain() {
     DeterministicRandom rng(0x7e55a1u);
     struct Bump { glm::vec2 centre; float amplitude, width; };

@@ -1,4 +1,4 @@
-// playground/src/scenes/scenes.hpp — the procedural test scenes of design.md §5.
+// playground/src/scenes/scenes.hpp — the procedural test scenes of docs/model.md §5.
 //
 // All scenes share one frame: a ground about 10×10 units around the origin at y = 0, objects up
 // to about 3 units tall, a 2×2 area light facing down at y ≈ 7 and a slightly tilted sun. Every

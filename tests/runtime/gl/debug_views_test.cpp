@@ -100,7 +100,7 @@ std::unique_ptr<Built> build(const penumbra::Config& config, std::string* error)
     return b;
 }
 
-// The slice holding light-frame depth z (design.md §1: slice k holds (z_k, z_k+1]).
+// The slice holding light-frame depth z (docs/model.md §1.3: slice k holds (z_k, z_k+1]).
 int slice_of(const penumbra::SliceFrame& frame, float z, int slices) {
     return std::clamp(static_cast<int>(std::ceil((z - frame.slice_depths.x) / frame.slice_depths.y)) - 1, 0,
                       slices - 1);
@@ -281,7 +281,7 @@ TEST_CASE("debug views: slice and level of each pixel match a CPU computation fr
             const glm::vec3 p(frame.light_from_world * glm::vec4(glm::vec3(positions[i]), 1.0f));
             const int s = slice_of(frame, p.z, S);
             slice_match += near_color(slice_pixels[i], slice_color(s), 1);
-            // The level the shading reads for the nearest slice above (design.md §1).
+            // The level the shading reads for the nearest slice above (docs/model.md §1).
             glm::vec3 expected = no_slice_color;
             if (s > 0) {
                 const float zeta = frame.slice_depths.x + float(s) * frame.slice_depths.y;

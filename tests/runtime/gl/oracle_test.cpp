@@ -1,4 +1,4 @@
-// GPU vs the CPU oracle (design.md §4.1), pixel by pixel: the oracle gets only the slicing pass's
+// GPU vs the CPU oracle (docs/model.md §4, question 1), pixel by pixel: the oracle gets only the slicing pass's
 // read-back level 0 and builds its own filter, so any disagreement beyond what texture precision
 // explains is a bug in the emitted GLSL or in the oracle. Label "gl".
 //

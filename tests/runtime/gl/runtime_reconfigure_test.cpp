@@ -179,7 +179,7 @@ TEST_CASE("reconfigure: packing array -> atlas renders the same scene") {
     REQUIRE_MESSAGE(fresh, planes.error);
     CHECK(identical(with_atlas, planes.render(*fresh)));
 
-    // Both packings compute the same model with the same filtered values (design.md §3): they agree
+    // Both packings compute the same model with the same filtered values (docs/model.md §3): they agree
     // to float rounding (measured on llvmpipe: mean 2e-9, max 5e-6).
     double sum = 0.0, worst = 0.0;
     for (std::size_t i = 0; i < with_array.size(); ++i) {

@@ -1,5 +1,5 @@
 // The model against Embree ground truth on real OpenGL (llvmpipe on CI), label "gl":
-//   - a single planar occluder on a slice's bottom plane, where slicing adds no error (design.md §4);
+//   - a single planar occluder on a slice's bottom plane, where slicing adds no error (docs/model.md §4);
 //   - the paper's fusion claim on `boxes` (§3.3): probabilistic beats maximum and additive;
 //   - every scene with every filter and packing renders without a GL error and casts a shadow.
 #include "rendering/egl_context.hpp"

@@ -1,4 +1,4 @@
-// The slicing pass on the "planes" scene (design.md §1, paper §3.4), where the expected occlusion
+// The slicing pass on the "planes" scene (docs/model.md §1, paper §3.4), where the expected occlusion
 // textures are known exactly: each triangle, projected from the slicing camera, covers the texel
 // centres inside it, in the slice of its depth (and the next one with the leak fix). The oracle
 // test builds on this output, so it is checked on its own here. Label "gl".
@@ -37,7 +37,7 @@ struct ExpectedSlices {
     }
 };
 
-// Texture coordinates (in texels) and depth of a world point, from design.md §1 (rect: perspective
+// Texture coordinates (in texels) and depth of a world point, from docs/model.md §1 (rect: perspective
 // from E = C − d·N; sun: orthographic along the light), not from the slicing camera's matrix.
 glm::dvec3 project(const Config& config, const SliceFrame& frame, glm::dvec3 world) {
     const glm::dvec3 p = glm::dvec3(glm::dmat4(frame.light_from_world) * glm::dvec4(world, 1.0));

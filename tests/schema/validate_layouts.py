@@ -1,0 +1,131 @@
+#!/usr/bin/env python3
+"""Validates every layout.json penumbra-gen writes for a configuration matrix against
+docs/layout.schema.json (python3-jsonschema), plus what a schema cannot say: every texture and
+program a pass names exists, and the result texture is written by a screen pass. Also checks that
+broken layouts are rejected, so the test can fail.
+
+usage: validate_layouts.py PENUMBRA_GEN SCHEMA WORK_DIR
+"""
+import concurrent.futures
+import copy
+import itertools
+import json
+import pathlib
+import shutil
+import subprocess
+import sys
+
+import jsonschema
+
+
+def references_errors(layout):
+    """What the schema cannot check: names that must exist elsewhere in the document."""
+    errors = []
+    textures = {t["name"] for t in layout["textures"]}
+    programs = {p["name"] for p in layout["programs"]}
+    if layout["result"] not in textures:
+        errors.append(f"result {layout['result']} is not a texture")
+    writes_result = False
+    for i, p in enumerate(layout["passes"]):
+        if p["program"] and p["program"] not in programs:
+            errors.append(f"pass {i} ({p['name']}): no program {p['program']}")
+        for b in p["inputs"]:
+            if b["texture"] not in textures:
+                errors.append(f"pass {i} ({p['name']}): input texture {b['texture']} does not exist")
+        for a in p["outputs"]:
+            if a["texture"] not in textures:
+                errors.append(f"pass {i} ({p['name']}): output texture {a['texture']} does not exist")
+            writes_result |= p["phase"] == "screen" and a["texture"] == layout["result"]
+    if not writes_result:
+        errors.append("no screen pass writes the result texture")
+    for program in layout["programs"]:
+        for f in program["files"]:
+            if f not in layout["files"]:
+                errors.append(f"program {program['name']}: file {f} not in files")
+    return errors
+
+
+def all_errors(validator, layout):
+    errors = [f"{'/'.join(map(str, e.absolute_path))}: {e.message}" for e in validator.iter_errors(layout)]
+    return errors + (references_errors(layout) if not errors else [])
+
+
+def main():
+    gen, schema_path, work = sys.argv[1], pathlib.Path(sys.argv[2]), pathlib.Path(sys.argv[3])
+    schema = json.loads(schema_path.read_text())
+    jsonschema.Draft202012Validator.check_schema(schema)
+    validator = jsonschema.Draft202012Validator(schema)
+    shutil.rmtree(work, ignore_errors=True)
+    work.mkdir(parents=True)
+
+    matrix = list(itertools.product(["mipmap", "nbuffer", "sat", "gaussian"], ["atlas", "array", "volume"],
+                                    ["rect", "sun"], ["glsl330", "glsl450", "essl300", "vulkan"],
+                                    [(5, 32), (16, 128)]))
+
+    def generate(entry):
+        """(name, layout or None when penumbra-gen refuses the combination, failure text)"""
+        filt, packing, light, target, (slices, resolution) = entry
+        name = f"{filt}-{packing}-{light}-{target}-S{slices}-R{resolution}"
+        out = work / name
+        run = subprocess.run([gen, "--filter", filt, "--packing", packing, "--light", light, "--target", target,
+                              "--slices", str(slices), "--resolution", str(resolution), "--out", str(out)],
+                             capture_output=True, text=True)
+        if run.returncode == 2:  # a combination the validator refuses (e.g. gaussian with a rect light)
+            return name, None, ""
+        if run.returncode != 0:
+            return name, None, f"penumbra-gen exited {run.returncode}: {run.stderr.strip()}"
+        layout = json.loads((out / "layout.json").read_text())
+        shutil.rmtree(out)
+        return name, layout, ""
+
+    checked, skipped, failures, sample = 0, 0, [], None
+    with concurrent.futures.ThreadPoolExecutor(max_workers=4) as pool:
+        for name, layout, failure in pool.map(generate, matrix):
+            if failure:
+                failures.append(f"{name}: {failure}")
+            elif layout is None:
+                skipped += 1
+            else:
+                failures += [f"{name}: {e}" for e in all_errors(validator, layout)]
+                checked += 1
+                sample = sample or layout
+
+    # The check can fail: each of these breaks one rule and must be rejected.
+    def broken(edit):
+        doc = copy.deepcopy(sample)
+        edit(doc)
+        return doc
+
+    def first_border_texture(doc):
+        return next(t for t in doc["textures"] if t["wrap"] == "CLAMP_TO_BORDER")
+
+    breakages = {
+        "wrong version": lambda d: d.update(layout_version=1),
+        "prose state": lambda d: d["passes"][0].update(state="blend MAX"),
+        "unknown phase": lambda d: d["passes"][0].update(phase="sometimes"),
+        "border colour missing": lambda d: first_border_texture(d).pop("border_color"),
+        "output-sized with a width": lambda d: next(t for t in d["textures"] if t["size"] == "output").update(width=64),
+        "uniform without compute": lambda d: next(u for p in d["programs"] for u in p["parameters"]
+                                                  if "source" in u).pop("compute"),
+        "unknown format": lambda d: d["textures"][0].update(internal_format="RGB5"),
+        "missing texture": lambda d: d["passes"][-1]["inputs"].append(
+            {"sampler": "x", "texture": "penumbra_nothing", "binding": 9, "level": -1}),
+        "result not written": lambda d: d.update(result=d["textures"][0]["name"]),
+        "extra field": lambda d: d["passes"][0].update(colour="blue"),
+    }
+    if sample is None:
+        failures.append("no layout was generated")
+    else:
+        for label, edit in breakages.items():
+            if not all_errors(validator, broken(edit)):
+                failures.append(f"a broken layout ({label}) was accepted")
+
+    print(f"layout.schema.json: {checked} layouts valid, {skipped} combinations refused by penumbra-gen, "
+          f"{len(breakages)} broken layouts rejected")
+    for f in failures[:20]:
+        print("FAIL:", f)
+    return 1 if failures or checked < 100 else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
