@@ -146,7 +146,10 @@ inline void parse_info_log(std::string_view log, const std::string& program, con
 //   vulkan: Vulkan 1.0 rules (KHR_vulkan_glsl), and SPIR-V 1.0 is generated to catch what only
 //     code generation rejects.
 // Link is skipped when a stage fails to compile: its errors would only repeat.
-inline std::vector<ShaderDiagnostic> validate_program(const Program& program, Target target) {
+// With `spirv` (vulkan only), the SPIR-V of each stage, in the order of program.stages, is stored
+// there: the binaries a Vulkan runner creates its shader modules from.
+inline std::vector<ShaderDiagnostic> validate_program(const Program& program, Target target,
+                                                      std::vector<std::vector<unsigned int>>* spirv = nullptr) {
     detail::ensure_glslang_initialized();
 
     const bool vulkan = target == Target::vulkan;
@@ -209,10 +212,14 @@ inline std::vector<ShaderDiagnostic> validate_program(const Program& program, Ta
         for (const ShaderFile& file : program.stages) {
             const glslang::TIntermediate* intermediate =
                 linker.getIntermediate(detail::glslang_stage(file.stage));
-            if (!intermediate) continue;
-            std::vector<unsigned int> spirv;
+            if (!intermediate) {
+                if (spirv) spirv->emplace_back();
+                continue;
+            }
+            std::vector<unsigned int> binary;
             spv::SpvBuildLogger logger;
-            glslang::GlslangToSpv(*intermediate, spirv, &logger);
+            glslang::GlslangToSpv(*intermediate, binary, &logger);
+            if (spirv) spirv->push_back(std::move(binary));
             // The logger's lines read "error: …", "warning: …", "Missing functionality: …".
             const std::string log = logger.getAllMessages();
             std::string_view rest = log;

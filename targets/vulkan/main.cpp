@@ -1,0 +1,144 @@
+// penumbra-vulkan-run — runs a target bundle's vulkan emission (targets/bundle/README.md) by its
+// layout.json alone, under the Khronos validation layer, and compares the visibility with the
+// desktop GL runtime's within the CPU oracle's bound.
+//
+//   penumbra-vulkan-run --bundle DIR [--epsilon E] [--min-penumbra N] [--out visibility.f32]
+//
+// Passes when every pixel satisfies |Vulkan − GL| ≤ bound + E (default E = 1e-4: the rounding of
+// one 16-bit float level), the GL image has at least N penumbra pixels (0.02 < visibility < 0.98;
+// default 0), so that the comparison means something, and the validation layer reported nothing. Exit status: 0 pass;
+// 1 a difference beyond the bound, a validation message, or a failure; 2 bad arguments;
+// 77 no Vulkan device (the test is skipped).
+#include "bundle.hpp"
+#include "layout_runner.hpp"
+#include "vulkan_context.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace penumbra::vulkan;
+
+enum Exit { pass = 0, failed = 1, bad_input = 2, skipped = 77 };
+
+constexpr const char* usage =
+    "usage: penumbra-vulkan-run --bundle DIR [--epsilon E] [--min-penumbra N] [--out visibility.f32]\n";
+
+int fail(const std::string& message, int code = failed) {
+    std::cerr << "error: " << message << '\n';
+    return code;
+}
+
+int run(const std::vector<std::string>& args) {
+    std::string bundle_dir, out_path;
+    double epsilon = 1e-4;
+    std::size_t min_penumbra = 0;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& flag = args[i];
+        if (flag == "--help" || flag == "-h") {
+            std::cout << usage;
+            return pass;
+        }
+        if (flag != "--bundle" && flag != "--epsilon" && flag != "--min-penumbra" && flag != "--out")
+            return fail("unknown argument '" + flag + "'; allowed: --bundle, --epsilon, --min-penumbra, --out", bad_input);
+        if (i + 1 >= args.size()) return fail(flag + ": missing value", bad_input);
+        const std::string& value = args[++i];
+        if (flag == "--bundle") bundle_dir = value;
+        else if (flag == "--out") out_path = value;
+        else if (flag == "--min-penumbra") {
+            const auto [ptr, ec] = std::from_chars(value.data(), value.data() + value.size(), min_penumbra);
+            if (ec != std::errc() || ptr != value.data() + value.size())
+                return fail("--min-penumbra: '" + value + "' is not a pixel count >= 0", bad_input);
+        } else {
+            const auto [ptr, ec] = std::from_chars(value.data(), value.data() + value.size(), epsilon);
+            if (ec != std::errc() || ptr != value.data() + value.size() || !(epsilon >= 0))
+                return fail("--epsilon: '" + value + "' is not a number >= 0", bad_input);
+        }
+    }
+    if (bundle_dir.empty()) return fail(std::string("--bundle: missing\n") + usage, bad_input);
+
+    Bundle bundle;
+    std::string error;
+    if (!read_bundle(bundle_dir, bundle, &error)) return fail(error);
+    LayoutInputs inputs;
+    {
+        std::ifstream file(bundle.emission_dir / "layout.json");
+        if (!file) return fail("cannot read " + (bundle.emission_dir / "layout.json").string());
+        try {
+            inputs.layout = nlohmann::json::parse(file);
+        } catch (const nlohmann::json::exception& e) {
+            return fail("layout.json: " + std::string(e.what()));
+        }
+    }
+    inputs.emission_dir = bundle.emission_dir;
+    inputs.width = bundle.width;
+    inputs.height = bundle.height;
+    inputs.triangles = bundle.triangles;
+    inputs.uniforms = bundle.uniforms;
+    inputs.caller_textures["penumbra_worldPositions"] = bundle.positions; // the bundle's G-buffer
+
+    Context::Failure failure = Context::Failure::none;
+    std::optional<Context> context = Context::create(&failure, &error);
+    if (!context) {
+        if (failure == Context::Failure::no_device) {
+            std::cout << "skipped: " << error << '\n';
+            return skipped;
+        }
+        return fail(error);
+    }
+    const auto start = std::chrono::steady_clock::now();
+    LayoutOutput output;
+    error = run_layout(*context, inputs, output);
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const std::string device = context->properties().deviceName;
+    const std::shared_ptr<const int> counter = context->message_counter();
+    context.reset(); // counts what destroying the device reports too
+    const int messages = *counter;
+    if (!error.empty()) return fail(error);
+
+    // |Vulkan − GL| against the oracle's bound, pixel by pixel.
+    double max_difference = 0, max_bound = 0;
+    std::size_t beyond = 0, penumbra = 0;
+    for (std::size_t i = 0; i < output.result.size(); ++i) {
+        const double difference = std::abs(static_cast<double>(output.result[i]) - bundle.visibility_gl[i]);
+        max_difference = std::max(max_difference, difference);
+        max_bound = std::max(max_bound, static_cast<double>(bundle.bound[i]));
+        beyond += !(difference <= bundle.bound[i] + epsilon); // NaN counts as beyond
+        penumbra += bundle.visibility_gl[i] > 0.02f && bundle.visibility_gl[i] < 0.98f;
+    }
+    std::printf("vulkan %s: %zu passes, %d validation messages, %.0f ms; max |vulkan - gl| %.3g, max bound %.3g, "
+                "%zu of %zu pixels beyond bound + %.0e, %zu penumbra pixels\n",
+                device.c_str(), output.passes.size(), messages, ms, max_difference, max_bound, beyond,
+                output.result.size(), epsilon, penumbra);
+    if (!out_path.empty()) {
+        std::ofstream file(out_path, std::ios::binary);
+        file.write(reinterpret_cast<const char*>(output.result.data()),
+                   static_cast<std::streamsize>(output.result.size() * sizeof(float)));
+        if (!file) return fail("cannot write " + out_path);
+    }
+    if (messages > 0) return fail(std::to_string(messages) + " validation messages (printed above)");
+    if (penumbra < min_penumbra)
+        return fail("only " + std::to_string(penumbra) + " penumbra pixels in the GL image; the check needs " +
+                    std::to_string(min_penumbra));
+    if (beyond > 0) return fail(std::to_string(beyond) + " pixels differ from the GL runtime beyond the oracle's bound");
+    return pass;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(std::vector<std::string>(argv + 1, argv + argc));
+    } catch (const std::exception& e) {
+        std::cerr << "error: internal: " << e.what() << '\n';
+    }
+    return failed;
+}
