@@ -44,6 +44,23 @@ nlohmann::ordered_json stats_json(const ErrorStats& s) {
     return {{"mae", s.mae}, {"rmse", s.rmse}, {"p95", s.p95}, {"pixels", s.count}};
 }
 
+bool write_text(const std::string& path, const std::string& text, std::string* error) {
+    std::ofstream file(path, std::ios::binary);
+    file << text;
+    if (!file) {
+        *error = "cannot write " + path;
+        return false;
+    }
+    return true;
+}
+
+int fail(const std::string& message, int code = 1) {
+    std::cerr << "error: " << message << "\n";
+    return code;
+}
+
+} // namespace
+
 // The keys of layout.json's "config" object, so that --config metrics.json reproduces the run.
 nlohmann::ordered_json config_json(const Config& c) {
     return {{"slices", c.slices},
@@ -67,23 +84,6 @@ nlohmann::ordered_json light_json(const Scene& scene, Light light) {
             {"height", scene.light.height},
             {"center", {scene.light.center.x, scene.light.center.y, scene.light.center.z}}};
 }
-
-bool write_text(const std::string& path, const std::string& text, std::string* error) {
-    std::ofstream file(path, std::ios::binary);
-    file << text;
-    if (!file) {
-        *error = "cannot write " + path;
-        return false;
-    }
-    return true;
-}
-
-int fail(const std::string& message, int code = 1) {
-    std::cerr << "error: " << message << "\n";
-    return code;
-}
-
-} // namespace
 
 SceneLoad load_scene(const std::string& name_or_path) {
     if (ends_with_obj(name_or_path)) {

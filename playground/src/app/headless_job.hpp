@@ -6,6 +6,8 @@
 #include "app/options.hpp"
 #include "scenes/scene.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <optional>
 #include <string>
 
@@ -15,6 +17,14 @@ struct SceneLoad {
     std::optional<Scene> scene; // set on success
     std::string error;          // otherwise one line: the unknown name and the allowed ones, or the OBJ problem
 };
+
+// The configuration with the keys of layout.json's "config" object, so that --config FILE.json
+// reproduces the run (metrics.json, a target bundle's uniforms.json).
+nlohmann::ordered_json config_json(const Config& c);
+
+// The scene's light of that kind: the rectangle's size and centre, or the sun's direction and
+// angular diameter in degrees.
+nlohmann::ordered_json light_json(const Scene& scene, Light light);
 
 // A built-in scene by name, or a Wavefront OBJ file when the argument ends in ".obj" (any case).
 SceneLoad load_scene(const std::string& name_or_path);

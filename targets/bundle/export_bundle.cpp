@@ -1,0 +1,267 @@
+// penumbra-export-bundle — the inputs and the expected output of one run, for a runner that is
+// not the desktop GL runtime (a browser, Vulkan): the scene's triangles, the light-frame uniforms,
+// the world-position G-buffer, the GL runtime's deferred visibility, the CPU oracle's per-pixel
+// bound, and the emission of the requested target. README.md in this folder documents the files.
+//
+//   penumbra-export-bundle --scene NAME|FILE.obj [configuration flags] [--size WxH] [--light-size X] --out DIR
+//
+// The configuration flags are penumbra-gen's (the same parser); the GL run always uses the same
+// configuration with target glsl450. Exit status: 0 written, 1 rendering or writing failed, 2 bad
+// arguments.
+#include "../../generator/src/arguments.hpp"
+#include "../../generator/src/config_file.hpp"
+#include "../../generator/src/write_files.hpp"
+
+#include "app/headless_job.hpp"
+#include "reference/oracle.hpp"
+#include "rendering/egl_context.hpp"
+#include "rendering/headless_render.hpp"
+
+#include <penumbra/emit.hpp>
+#include <penumbra/validate.hpp>
+
+#include <glm/gtc/type_ptr.hpp>
+#include <nlohmann/json.hpp>
+
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace {
+
+using namespace penumbra;
+using namespace penumbra::playground;
+using penumbra_gen::printable;
+
+enum Exit { ok = 0, failed = 1, bad_input = 2 };
+
+struct BundleArguments {
+    std::string scene;
+    int width = 128, height = 128;
+    std::optional<double> light_size;
+    std::string out_dir;
+    Config config; // the target's; the GL run uses it with Target::glsl450
+    bool help = false;
+};
+
+constexpr std::string_view usage_text =
+    "usage: penumbra-export-bundle --scene NAME|FILE.obj [configuration flags] [--size WxH] [--light-size X] --out DIR\n"
+    "\n"
+    "Renders the scene with the desktop GL runtime (glsl450 of the configuration) and writes, for a\n"
+    "foreign runner to reproduce: mesh.f32, uniforms.json, positions.f32, visibility_gl.f32, bound.f32\n"
+    "and emission/ (penumbra-gen's files for --target). See targets/bundle/README.md.\n"
+    "\n"
+    "  --scene NAME|FILE.obj  planes, boxes, tree, butterfly, terrain, crowd, or a Wavefront OBJ file\n"
+    "  --size WxH             image size, each side 1 to 4096 (default 128x128)\n"
+    "  --light-size X         the rectangle's longer side (scene units) or the sun's angular diameter (degrees)\n"
+    "  --out DIR              the bundle directory (created; its emission/ is replaced)\n"
+    "  configuration flags    as penumbra-gen: --slices, --resolution, --filter, --fusion, --packing, --light,\n"
+    "                         --target, --no-leak-fix, --no-fade, --config FILE.json (see penumbra-gen --help)\n";
+
+std::string parse_positive_int(std::string_view text, int& value) {
+    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    return text.empty() || ec != std::errc() || ptr != text.data() + text.size() || value < 1 || value > 4096
+               ? "not"
+               : "";
+}
+
+// Our own flags out of `args`; the rest goes to penumbra-gen's parser.
+penumbra_gen::Parsed<BundleArguments> parse(const std::vector<std::string>& args) {
+    auto fail = [](std::string message) { return penumbra_gen::Parsed<BundleArguments>{{}, std::move(message)}; };
+    BundleArguments out;
+    std::vector<std::string> config_args;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        const std::string& arg = args[i];
+        if (arg == "--help" || arg == "-h") {
+            out.help = true;
+            return {out, {}};
+        }
+        std::string flag = arg, value;
+        bool has_value = false;
+        if (const std::size_t eq = arg.find('='); arg.starts_with("--") && eq != std::string::npos) {
+            flag = arg.substr(0, eq);
+            value = arg.substr(eq + 1);
+            has_value = true;
+        }
+        const bool ours = flag == "--scene" || flag == "--size" || flag == "--light-size" || flag == "--out";
+        if (flag == "--validate") return fail("unknown flag '--validate'; the bundle's programs are compiled by its runner");
+        if (!ours) {
+            config_args.push_back(arg);
+            continue;
+        }
+        if (!has_value) {
+            if (i + 1 >= args.size()) return fail(flag + ": missing value (see --help)");
+            value = args[++i];
+        }
+        if (flag == "--scene") {
+            out.scene = value;
+        } else if (flag == "--out") {
+            out.out_dir = value;
+        } else if (flag == "--size") {
+            const std::size_t x = value.find('x');
+            if (x == std::string::npos || !parse_positive_int(std::string_view(value).substr(0, x), out.width).empty() ||
+                !parse_positive_int(std::string_view(value).substr(x + 1), out.height).empty())
+                return fail("--size: '" + printable(value) + "' is not WxH; allowed: two integers 1 to 4096, e.g. 128x128");
+        } else {
+            double size = 0;
+            const auto [ptr, ec] = std::from_chars(value.data(), value.data() + value.size(), size);
+            if (ec != std::errc() || ptr != value.data() + value.size() || !std::isfinite(size) || size <= 0)
+                return fail("--light-size: '" + printable(value) + "' is not a positive number");
+            out.light_size = size;
+        }
+    }
+    if (out.scene.empty()) return fail("--scene: missing; allowed: a scene name or a .obj path");
+    if (out.out_dir.empty()) return fail("--out: missing; the bundle directory is required (--out DIR)");
+    config_args.push_back("--out");
+    config_args.push_back(out.out_dir);
+    const penumbra_gen::Parsed<penumbra_gen::Arguments> gen = penumbra_gen::parse_arguments(config_args);
+    if (!gen.error.empty()) return fail(gen.error);
+    Config base{};
+    if (gen.value->config_file) {
+        const penumbra_gen::Parsed<Config> file = penumbra_gen::read_config_file(*gen.value->config_file);
+        if (!file.error.empty()) return fail(file.error);
+        base = *file.value;
+    }
+    out.config = penumbra_gen::apply(gen.value->flags, base);
+    if (const std::vector<ConfigError> errors = validate(out.config); !errors.empty()) return fail(errors.front().message);
+    if (out.light_size && out.config.light == Light::sun && *out.light_size >= 90.0)
+        return fail("--light-size: the sun's angular diameter must be below 90 degrees");
+    return {out, {}};
+}
+
+bool write_binary(const std::filesystem::path& path, const void* data, std::size_t bytes, std::string* error) {
+    std::ofstream file(path, std::ios::binary);
+    file.write(static_cast<const char*>(data), static_cast<std::streamsize>(bytes));
+    if (!file) *error = "cannot write " + path.string();
+    return static_cast<bool>(file);
+}
+
+template <class T> bool write_floats(const std::filesystem::path& path, const std::vector<T>& values, std::string* error) {
+    return write_binary(path, values.data(), values.size() * sizeof(T), error);
+}
+
+nlohmann::ordered_json floats(const float* values, int count) {
+    nlohmann::ordered_json out = nlohmann::ordered_json::array();
+    for (int i = 0; i < count; ++i) out.push_back(values[i]);
+    return out;
+}
+
+// Every light-frame parameter by its GLSL name (matrices column-major), as the GL runtime set them.
+nlohmann::ordered_json uniforms_json(const SliceFrame& f) {
+    return {{"penumbra_lightFromWorld", floats(glm::value_ptr(f.light_from_world), 16)},
+            {"penumbra_sliceClipFromWorld", floats(glm::value_ptr(f.slice_clip_from_world), 16)},
+            {"penumbra_lightSize", floats(glm::value_ptr(f.light_size), 2)},
+            {"penumbra_copDistance", f.cop_distance},
+            {"penumbra_sliceDepths", floats(glm::value_ptr(f.slice_depths), 2)},
+            {"penumbra_windowHalfSize", f.window_half_size},
+            {"penumbra_tanAngularRadius", f.tan_angular_radius}};
+}
+
+int fail(const std::string& message, int code = failed) {
+    std::cerr << "error: " << message << '\n';
+    return code;
+}
+
+int run(const std::vector<std::string>& args) {
+    const penumbra_gen::Parsed<BundleArguments> parsed = parse(args);
+    if (!parsed.error.empty()) return fail(parsed.error, bad_input);
+    const BundleArguments& a = *parsed.value;
+    if (a.help) {
+        std::cout << usage_text;
+        return ok;
+    }
+    SceneLoad loaded = load_scene(a.scene);
+    if (!loaded.scene) return fail(loaded.error, bad_input);
+    Scene& scene = *loaded.scene;
+    if (a.light_size) apply_light_size(scene, a.config.light, *a.light_size);
+    Config gl_config = a.config;
+    gl_config.target = Target::glsl450;
+
+    // The GL run, and what the oracle needs from it.
+    std::string error;
+    std::optional<HeadlessContext> context = HeadlessContext::create(&error);
+    if (!context) return fail("no OpenGL 4.5 context: " + error);
+    HeadlessResult result;
+    SliceTextures slices;
+    SliceFrame frame;
+    std::vector<float> visibility_gl; // bottom row first, as the runtime wrote it
+    bool read = false;
+    std::string read_error;
+    RenderOptions options{.inspect = [&](const gl::Runtime& runtime) {
+        read = read_slice_textures(runtime, slices, &read_error);
+        frame = runtime.frame();
+        visibility_gl = runtime.read_visibility();
+    }};
+    if (!render_headless(scene, gl_config, a.width, a.height, result, &error, options)) return fail(error);
+    if (!read) return fail(read_error);
+    const Oracle oracle(gl_config, frame, std::move(slices));
+
+    // Bottom row first: the G-buffer the GL run shaded (background (0, 0, 0, 0)) and the bound.
+    const std::size_t pixels = static_cast<std::size_t>(a.width) * a.height;
+    std::vector<glm::vec4> positions(pixels, glm::vec4(0.0f));
+    std::vector<float> bound(pixels, 0.0f);
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            const std::size_t top_first = static_cast<std::size_t>(a.height - 1 - y) * a.width + x;
+            const std::size_t bottom_first = static_cast<std::size_t>(y) * a.width + x;
+            if (!result.geometry[top_first]) continue;
+            positions[bottom_first] = glm::vec4(result.positions[top_first], 1.0f);
+            bound[bottom_first] = static_cast<float>(oracle.visibility(result.positions[top_first]).bound);
+        }
+    std::vector<glm::vec3> triangles;
+    triangles.reserve(scene.mesh.indices.size());
+    for (std::uint32_t index : scene.mesh.indices) triangles.push_back(scene.mesh.positions[index]);
+
+    // The emission of the requested target, exactly as penumbra-gen writes it, into a fresh folder.
+    Result<Emission> emitted = emit(a.config);
+    if (!emitted.value) return fail(emitted.errors.front().message, bad_input);
+    std::vector<penumbra_gen::OutputFile> files;
+    for (const ShaderFile& f : emitted.value->files()) files.push_back({f.file_name, f.text});
+    files.push_back({"layout.json", to_json(emitted.value->layout)});
+    const std::filesystem::path dir(a.out_dir), emission_dir = dir / "emission";
+    std::error_code ec;
+    std::filesystem::remove_all(emission_dir, ec);
+    if (std::string e = penumbra_gen::write_files(emission_dir.string(), files); !e.empty()) return fail(e);
+
+    const nlohmann::ordered_json uniforms = {
+        {"width", a.width},
+        {"height", a.height},
+        {"scene", scene.name},
+        {"config", config_json(a.config)},
+        {"gl_config", config_json(gl_config)},
+        {"light", light_json(scene, a.config.light)},
+        {"triangles", triangles.size() / 3},
+        {"renderer", context->renderer()},
+        {"uniforms", uniforms_json(frame)},
+    };
+    std::ofstream json(dir / "uniforms.json", std::ios::binary);
+    json << uniforms.dump(2) << '\n';
+    if (!json) return fail("cannot write " + (dir / "uniforms.json").string());
+    if (!write_floats(dir / "mesh.f32", triangles, &error) || !write_floats(dir / "positions.f32", positions, &error) ||
+        !write_floats(dir / "visibility_gl.f32", visibility_gl, &error) || !write_floats(dir / "bound.f32", bound, &error))
+        return fail(error);
+    std::cout << "penumbra-export-bundle: wrote " << a.out_dir << " (" << scene.name << ", " << a.width << "x"
+              << a.height << ", " << triangles.size() / 3 << " triangles, emission for " << to_string(a.config.target)
+              << ", GL on " << context->renderer() << ")\n";
+    return ok;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    static_assert(sizeof(glm::vec3) == 12 && sizeof(glm::vec4) == 16, "tightly packed float vectors");
+    try {
+        return run(std::vector<std::string>(argv + 1, argv + argc));
+    } catch (const std::exception& e) {
+        std::cerr << "error: internal: " << e.what() << '\n';
+    }
+    return 3;
+}
