@@ -103,7 +103,17 @@ async function main() {
         ? {kind: "sun", direction: [...bundle.light.direction], angularDiameter: bundle.light.angular_diameter_degrees * Math.PI / 180}
         : {kind: "rect", center: [...bundle.light.center], u: [m[0], m[4], m[8]], v: [m[1], m[5], m[9]],
            width: bundle.light.width, height: bundle.light.height};
-    const state = {useBundleUniforms: false, view: "shaded", yaw: 0.6, pitch: 0.6, frame: null};
+    const state = {useBundleUniforms: false, bundleSlices: null, view: "shaded", yaw: 0.6, pitch: 0.6, frame: null};
+
+    // With the bundle's slices.f32 (the desktop run's slicing output) in place of our own slicing
+    // pass: colour attachment t of the slicing pass holds slices 4t .. 4t + 3 in its channels.
+    const R = config.resolution;
+    const replaceSlicing = (pass) => pass.outputs.forEach((out, t) => {
+        const rgba = new Float32Array(4 * R * R);
+        for (let c = 0; c < 4 && 4 * t + c < config.slices; ++c)
+            for (let i = 0; i < R * R; ++i) rgba[4 * i + c] = state.bundleSlices[(4 * t + c) * R * R + i];
+        runner.uploadTexture(out.texture, out.level, out.layer, rgba);
+    });
 
     const frameOf = () => (light.kind === "sun" ? sunFrame(light, box.lo, box.hi, config.slices)
                                                 : rectFrame(light, box.lo, box.hi, config.slices));
@@ -112,7 +122,7 @@ async function main() {
         state.frame = frameOf();
         runner.setUniforms(state.useBundleUniforms ? exported : state.frame.uniforms);
         const t0 = performance.now();
-        runner.runPhase("shadow", drawScene);
+        runner.runPhase("shadow", drawScene, null, state.bundleSlices ? {slicing: replaceSlicing} : {});
         runner.fillTexture("penumbra_worldPositions", bundle.width, bundle.height, positions);
         runner.runPhase("screen", null, {width: bundle.width, height: bundle.height});
         gl.finish();
@@ -156,6 +166,27 @@ async function main() {
         readTexture: (name, level, layer) => runner.readTexture(name, level, layer),
         setLight: (changes) => { Object.assign(light, changes); update(); },
         useBundleUniforms: (on) => { state.useBundleUniforms = on; update(); },
+        // Texels where our own slicing output differs from the desktop run's (slices.f32).
+        compareSlices: async () => {
+            const desktop = new Float32Array(await (await fetchOk(base + "slices.f32")).arrayBuffer());
+            const pass = runner.layout.passes.find((p) => p.name === "slicing");
+            let differing = 0, covered = 0;
+            pass.outputs.forEach((out, t) => {
+                const ours = runner.readTexture(out.texture, out.level, out.layer);
+                for (let c = 0; c < 4 && 4 * t + c < config.slices; ++c)
+                    for (let i = 0; i < R * R; ++i) {
+                        const d = desktop[(4 * t + c) * R * R + i];
+                        covered += d > 0.5 ? 1 : 0;
+                        differing += Math.abs(ours[4 * i + c] - d) > 0.5 ? 1 : 0;
+                    }
+            });
+            return {differing, covered, texels: config.slices * R * R};
+        },
+        // The desktop run's slicing output instead of the browser's own rasterization (slices.f32).
+        useBundleSlices: async (on) => {
+            state.bundleSlices = on ? new Float32Array(await (await fetchOk(base + "slices.f32")).arrayBuffer()) : null;
+            update();
+        },
         uniforms: () => ({computed: state.frame.uniforms, bundle: exported}),
         render: () => { update(); return state.shadowMs; },
         info: () => {

@@ -59,6 +59,7 @@ export class LayoutRunner {
     }
 
     constructor(gl, layout, sources) {
+        if (layout.layout_version === undefined) fail(`layout.json: no layout_version (an older layout); this runner reads version ${LAYOUT_VERSION}`);
         if (layout.layout_version !== LAYOUT_VERSION)
             fail(`layout.json: layout_version ${layout.layout_version}; this runner reads version ${LAYOUT_VERSION}`);
         if (layout.config && layout.config.target !== "essl300")
@@ -375,17 +376,34 @@ export class LayoutRunner {
 
     // Runs every pass of `phase` in layout order ("shadow": when the scene or light changes;
     // "screen": every frame at the output size; "example": the caller's own framebuffer).
-    runPhase(phase, drawScene, size) {
+    // `replace[passName](pass)`, where given, fills that pass's outputs instead of running it.
+    runPhase(phase, drawScene, size, replace = {}) {
         if (phase === "screen") this.allocateOutputSized(size.width, size.height);
         let count = 0;
         for (const pass of this.layout.passes) {
             if (pass.phase !== phase) continue;
-            this.runPass(pass, drawScene, size);
+            if (replace[pass.name]) replace[pass.name](pass);
+            else this.runPass(pass, drawScene, size);
             ++count;
         }
         const error = this.gl.getError();
         if (error !== this.gl.NO_ERROR) fail(`phase ${phase}: WebGL error 0x${error.toString(16)}`);
         return count;
+    }
+
+    // Writes RGBA floats (bottom row first) into one level and layer of a colour texture.
+    uploadTexture(name, level, layer, rgba) {
+        const gl = this.gl;
+        const t = this.texture(name);
+        const f = FORMATS[t.desc.internal_format];
+        const width = Math.max(t.width >> level, 1), height = Math.max(t.height >> level, 1);
+        if (f.format !== "RGBA" || rgba.length !== 4 * width * height) fail(`uploadTexture ${name}: expected ${4 * width * height} RGBA values`);
+        const data = f.float ? Float32Array.from(rgba) : Uint8Array.from(rgba, (v) => Math.round(Math.min(Math.max(v, 0), 1) * 255));
+        gl.bindTexture(t.target, t.id);
+        gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+        if (t.target === gl.TEXTURE_2D) gl.texSubImage2D(t.target, level, 0, 0, width, height, gl.RGBA, f.float ? gl.FLOAT : gl.UNSIGNED_BYTE, data);
+        else gl.texSubImage3D(t.target, level, 0, 0, Math.max(layer, 0), width, height, 1, gl.RGBA, f.float ? gl.FLOAT : gl.UNSIGNED_BYTE, data);
+        gl.bindTexture(t.target, null);
     }
 
     // The layout's result texture (visibility, 0 shadowed to 1 lit) as floats, bottom row first.

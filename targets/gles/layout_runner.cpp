@@ -74,9 +74,9 @@ std::unique_ptr<LayoutRunner> LayoutRunner::create(const json& layout, const std
         if (error) *error = std::move(message);
         return nullptr;
     };
-    if (layout.value("layout_version", 0) != 2)
-        return fail("layout.json: layout_version " + std::to_string(layout.value("layout_version", 0)) +
-                    "; this runner reads version 2");
+    if (!layout.contains("layout_version")) return fail("layout.json: no layout_version (an older layout); this runner reads version 2");
+    if (layout["layout_version"] != 2)
+        return fail("layout.json: layout_version " + layout["layout_version"].dump() + "; this runner reads version 2");
     std::unique_ptr<LayoutRunner> runner(new LayoutRunner());
     runner->layout_ = layout;
     const bool es = !epoxy_is_desktop_gl();
