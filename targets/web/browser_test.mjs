@@ -195,7 +195,13 @@ async function main() {
         console.log(`skip: no chromium at ${args.chromium} (scripts/setup.sh installs Debian's chromium)`);
         process.exit(77);
     }
-    const {default: puppeteer} = await import("puppeteer-core");
+    let puppeteer;
+    try {
+        ({default: puppeteer} = await import("puppeteer-core"));
+    } catch (e) {
+        console.log(`error: puppeteer-core is not installed next to this script (scripts/setup.sh runs npm ci in targets/web): ${e.message}`);
+        process.exit(1);
+    }
     const server = await serve(args.web, args.bundles);
     const userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), "penumbra-chromium-"));
     const browser = await puppeteer.launch({
@@ -203,7 +209,8 @@ async function main() {
         headless: true,
         userDataDir,
         args: ["--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--disable-background-networking",
-               "--disable-component-update", "--disable-sync", "--no-first-run", "--disable-quic", "--disable-extensions"],
+               "--disable-component-update", "--disable-sync", "--no-first-run", "--disable-quic", "--disable-extensions",
+               "--disable-dev-shm-usage"], // containers often have a tiny /dev/shm
     });
     let failures = 0;
     try {
