@@ -92,7 +92,7 @@ Outcome check_bundle(const fs::path& dir, std::map<std::string, HeadlessContext>
         }
     const auto start = std::chrono::steady_clock::now();
     std::string error;
-    std::unique_ptr<LayoutRunner> runner = LayoutRunner::create(layout, sources, &error);
+    std::unique_ptr<LayoutRunner> runner = LayoutRunner::create(layout, sources, &error, {"shadow", "screen"});
     if (!runner) return fail(error);
     for (const auto& [name, value] : bundle["uniforms"].items())
         runner->set_uniform(name, value.is_array() ? value.get<std::vector<float>>() : std::vector<float>{value.get<float>()});

@@ -69,7 +69,7 @@ bool has_binding(const json& param) { return param.contains("binding") && param[
 } // namespace
 
 std::unique_ptr<LayoutRunner> LayoutRunner::create(const json& layout, const std::map<std::string, std::string>& sources,
-                                                   std::string* error) {
+                                                   std::string* error, const std::vector<std::string>& phases) {
     auto fail = [&](std::string message) -> std::unique_ptr<LayoutRunner> {
         if (error) *error = std::move(message);
         return nullptr;
@@ -108,8 +108,13 @@ std::unique_ptr<LayoutRunner> LayoutRunner::create(const json& layout, const std
         if (t.value("size", "fixed") != "output")
             if (std::string e = runner->allocate(t, t["width"], t["height"]); !e.empty()) return fail(e);
     }
+    std::vector<std::string> used;
+    for (const json& pass : l["passes"])
+        if (std::find(phases.begin(), phases.end(), pass.value("phase", "shadow")) != phases.end())
+            used.push_back(pass.value("program", ""));
     for (const json& p : l["programs"])
-        if (std::string e = runner->link(p, sources); !e.empty()) return fail(e);
+        if (std::find(used.begin(), used.end(), p["name"]) != used.end())
+            if (std::string e = runner->link(p, sources); !e.empty()) return fail(e);
     glGenFramebuffers(1, &runner->framebuffer_);
     glGenFramebuffers(1, &runner->read_framebuffer_);
     glGenVertexArrays(1, &runner->empty_vao_);

@@ -28,10 +28,12 @@ class LayoutRunner {
 public:
     using DrawScene = std::function<void(GLuint program)>; // attribute 0: world position
 
-    // Allocates the fixed-size textures and compiles every program. `sources`: file name → text.
-    // On failure: nullptr and one line in *error naming the texture, program or file.
+    // Allocates the fixed-size textures and compiles the programs of the passes of `phases`.
+    // `sources`: file name → text. On failure: nullptr and one line in *error naming the texture,
+    // program or file.
     static std::unique_ptr<LayoutRunner> create(const nlohmann::json& layout,
-                                                const std::map<std::string, std::string>& sources, std::string* error);
+                                                const std::map<std::string, std::string>& sources, std::string* error,
+                                                const std::vector<std::string>& phases = {"shadow", "screen", "example"});
     ~LayoutRunner();
     LayoutRunner(const LayoutRunner&) = delete;
     LayoutRunner& operator=(const LayoutRunner&) = delete;
