@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs Penumbra's build and test dependencies from Debian (the platform notes say what each
-# is for). Idempotent: does nothing when every package is already installed.
+# is for) and puppeteer-core for the browser test (npm, into targets/web/node_modules). Idempotent:
+# does nothing when every package is installed and node_modules matches package-lock.json.
 set -euo pipefail
 
 packages=(
@@ -10,7 +11,10 @@ packages=(
     libimgui-dev libstb-dev libtinyobjloader-dev libembree-dev
     libvulkan-dev libvulkan-volk-dev mesa-vulkan-drivers vulkan-validationlayers
     python3 python3-jsonschema
+    chromium
 )
+# The browser test drives chromium from Node (puppeteer-core); Debian's node where none is installed.
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then packages+=(nodejs npm); fi
 
 missing=()
 for package in "${packages[@]}"; do
@@ -18,11 +22,17 @@ for package in "${packages[@]}"; do
 done
 if [ ${#missing[@]} -eq 0 ]; then
     echo "setup: all ${#packages[@]} packages installed"
-    exit 0
+else
+    sudo=""
+    if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+    echo "setup: installing ${missing[*]}"
+    $sudo apt-get update -q
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-sudo=""
-if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
-echo "setup: installing ${missing[*]}"
-$sudo apt-get update -q
-DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
+# puppeteer-core (never `puppeteer`, which downloads a browser), pinned by package-lock.json.
+web="$(cd "$(dirname "$0")/.." && pwd)/targets/web"
+if [ ! -f "$web/node_modules/.package-lock.json" ] || [ "$web/package-lock.json" -nt "$web/node_modules/.package-lock.json" ]; then
+    echo "setup: npm ci in targets/web"
+    npm ci --prefix "$web" --no-audit --no-fund --loglevel=error
+fi

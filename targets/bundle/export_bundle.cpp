@@ -1,13 +1,14 @@
 // penumbra-export-bundle — the inputs and the expected output of one run, for a runner that is
 // not the desktop GL runtime (a browser, Vulkan): the scene's triangles, the light-frame uniforms,
-// the world-position G-buffer, the GL runtime's deferred visibility, the CPU oracle's per-pixel
-// bound, and the emission of the requested target. README.md in this folder documents the files.
+// the world-position G-buffer, the GL runtime's deferred visibility and slicing output, the CPU
+// oracle's per-pixel value and bound, and the emission of the requested target. README.md in this
+// folder documents the files.
 //
 //   penumbra-export-bundle --scene NAME|FILE.obj [configuration flags] [--size WxH] [--light-size X] --out DIR
 //
-// The configuration flags are penumbra-gen's (the same parser); the GL run always uses the same
-// configuration with target glsl450. Exit status: 0 written, 1 rendering or writing failed, 2 bad
-// arguments.
+// The configuration flags are penumbra-gen's (the same parser); the GL run uses the same
+// configuration (with target glsl450 when the target is vulkan). Exit status: 0 written,
+// 1 rendering or writing failed, 2 bad arguments.
 #include "../../generator/src/arguments.hpp"
 #include "../../generator/src/config_file.hpp"
 #include "../../generator/src/write_files.hpp"
@@ -51,16 +52,17 @@ struct BundleArguments {
     int width = 128, height = 128;
     std::optional<double> light_size;
     std::string out_dir;
-    Config config; // the target's; the GL run uses it with Target::glsl450
+    Config config; // the target's; the GL run uses it (with Target::glsl450 for vulkan)
     bool help = false;
 };
 
 constexpr std::string_view usage_text =
     "usage: penumbra-export-bundle --scene NAME|FILE.obj [configuration flags] [--size WxH] [--light-size X] --out DIR\n"
     "\n"
-    "Renders the scene with the desktop GL runtime (glsl450 of the configuration) and writes, for a\n"
-    "foreign runner to reproduce: mesh.f32, uniforms.json, positions.f32, visibility_gl.f32, bound.f32\n"
-    "and emission/ (penumbra-gen's files for --target). See targets/bundle/README.md.\n"
+    "Renders the scene with the desktop GL runtime (the configuration's emission; glsl450 for the vulkan\n"
+    "target) and writes, for a foreign runner to reproduce: mesh.f32, uniforms.json, positions.f32,\n"
+    "visibility_gl.f32, slices.f32, oracle.f32, bound.f32 and emission/ (penumbra-gen's files for\n"
+    "--target). See targets/bundle/README.md.\n"
     "\n"
     "  --scene NAME|FILE.obj  planes, boxes, tree, butterfly, terrain, crowd, or a Wavefront OBJ file\n"
     "  --size WxH             image size, each side 1 to 4096 (default 128x128)\n"
@@ -202,8 +204,10 @@ int run(const std::vector<std::string>& args) {
     if (!loaded.scene) return fail(loaded.error, bad_input);
     Scene& scene = *loaded.scene;
     if (a.light_size) apply_light_size(scene, a.config.light, *a.light_size);
+    // The GL run emits the same configuration: the desktop runtime runs every GL dialect (glsl330
+    // and essl300 text inside its 4.5 context); the vulkan text it cannot, so that one runs glsl450.
     Config gl_config = a.config;
-    gl_config.target = Target::glsl450;
+    if (gl_config.target == Target::vulkan) gl_config.target = Target::glsl450;
 
     // The GL run, and what the oracle needs from it.
     std::string error;
@@ -222,19 +226,22 @@ int run(const std::vector<std::string>& args) {
     }};
     if (!render_headless(scene, gl_config, a.width, a.height, result, &error, options)) return fail(error);
     if (!read) return fail(read_error);
+    const std::vector<float> coverage = slices.coverage; // slices.f32: what a runner can rasterize differently
     const Oracle oracle(gl_config, frame, std::move(slices));
 
     // Bottom row first: the G-buffer the GL run shaded (background (0, 0, 0, 0)) and the bound.
     const std::size_t pixels = static_cast<std::size_t>(a.width) * a.height;
     std::vector<glm::vec4> positions(pixels, glm::vec4(0.0f));
-    std::vector<float> bound(pixels, 0.0f);
+    std::vector<float> bound(pixels, 0.0f), model(pixels, 1.0f);
     for (int y = 0; y < a.height; ++y)
         for (int x = 0; x < a.width; ++x) {
             const std::size_t top_first = static_cast<std::size_t>(a.height - 1 - y) * a.width + x;
             const std::size_t bottom_first = static_cast<std::size_t>(y) * a.width + x;
             if (!result.geometry[top_first]) continue;
             positions[bottom_first] = glm::vec4(result.positions[top_first], 1.0f);
-            bound[bottom_first] = static_cast<float>(oracle.visibility(result.positions[top_first]).bound);
+            const OracleValue value = oracle.visibility(result.positions[top_first]);
+            bound[bottom_first] = static_cast<float>(value.bound);
+            model[bottom_first] = static_cast<float>(value.visibility);
         }
     std::vector<glm::vec3> triangles;
     triangles.reserve(scene.mesh.indices.size());
@@ -266,7 +273,8 @@ int run(const std::vector<std::string>& args) {
     json << uniforms.dump(2) << '\n';
     if (!json) return fail("cannot write " + (dir / "uniforms.json").string());
     if (!write_floats(dir / "mesh.f32", triangles, &error) || !write_floats(dir / "positions.f32", positions, &error) ||
-        !write_floats(dir / "visibility_gl.f32", visibility_gl, &error) || !write_floats(dir / "bound.f32", bound, &error))
+        !write_floats(dir / "visibility_gl.f32", visibility_gl, &error) || !write_floats(dir / "bound.f32", bound, &error) ||
+        !write_floats(dir / "oracle.f32", model, &error) || !write_floats(dir / "slices.f32", coverage, &error))
         return fail(error);
     std::cout << "penumbra-export-bundle: wrote " << a.out_dir << " (" << scene.name << ", " << a.width << "x"
               << a.height << ", " << triangles.size() / 3 << " triangles, emission for " << to_string(a.config.target)

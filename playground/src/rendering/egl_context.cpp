@@ -61,11 +61,13 @@ bool has_client_extension(const char* name) {
 
 } // namespace
 
-std::optional<HeadlessContext> HeadlessContext::create(std::string* error) {
+std::optional<HeadlessContext> HeadlessContext::create(std::string* error, ContextRequest request) {
+    const std::string wanted = std::string(request.es ? "OpenGL ES " : "OpenGL ") + std::to_string(request.major) + "." +
+                               std::to_string(request.minor) + (request.es ? "" : " core");
     std::vector<std::string> failures;
     auto fail = [&](const std::string& where, const std::string& why) { failures.push_back(where + ": " + why); };
 
-    // Initialises `display` and makes a 4.5 core context current on it, or records why not.
+    // Initialises `display` and makes a context of `request` current on it, or records why not.
     // Displays are obtained lazily, in order of preference, so that a working surfaceless
     // platform never touches the other platforms (eglGetDisplay may try to reach a window system).
     auto try_display = [&](EGLDisplay display, const std::string& where) -> std::optional<HeadlessContext> {
@@ -83,36 +85,39 @@ std::optional<HeadlessContext> HeadlessContext::create(std::string* error) {
             give_up("EGL_KHR_surfaceless_context not supported");
             return std::nullopt;
         }
-        if (!eglBindAPI(EGL_OPENGL_API)) {
-            give_up("eglBindAPI(EGL_OPENGL_API): " + egl_error_name(eglGetError()));
+        if (!eglBindAPI(request.es ? EGL_OPENGL_ES_API : EGL_OPENGL_API)) {
+            give_up(std::string("eglBindAPI(") + (request.es ? "EGL_OPENGL_ES_API" : "EGL_OPENGL_API") +
+                    "): " + egl_error_name(eglGetError()));
             return std::nullopt;
         }
+        const EGLint renderable = request.es ? EGL_OPENGL_ES3_BIT : EGL_OPENGL_BIT;
         // We never create a surface, so any config that can render desktop GL will do; prefer
         // one that at least supports pbuffers (drivers list those for off-screen use), then any,
         // then no config at all where EGL_KHR_no_config_context allows it.
         EGLConfig config = nullptr;
         EGLint config_count = 0;
-        const EGLint pbuffer_attribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
-                                          EGL_NONE};
-        const EGLint any_attribs[] = {EGL_SURFACE_TYPE, 0, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+        const EGLint pbuffer_attribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, renderable, EGL_NONE};
+        const EGLint any_attribs[] = {EGL_SURFACE_TYPE, 0, EGL_RENDERABLE_TYPE, renderable, EGL_NONE};
         if (!eglChooseConfig(display, pbuffer_attribs, &config, 1, &config_count) || config_count < 1) {
             config_count = 0;
             if (!eglChooseConfig(display, any_attribs, &config, 1, &config_count) || config_count < 1) {
                 if (epoxy_has_egl_extension(display, "EGL_KHR_no_config_context")) {
                     config = EGL_NO_CONFIG_KHR;
                 } else {
-                    give_up("no EGLConfig renders OpenGL");
+                    give_up("no EGLConfig renders " + wanted);
                     return std::nullopt;
                 }
             }
         }
-        const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4,
-                                          EGL_CONTEXT_MINOR_VERSION, 5,
+        const EGLint desktop_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, request.major,
+                                          EGL_CONTEXT_MINOR_VERSION, request.minor,
                                           EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                           EGL_NONE};
-        EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attribs);
+        const EGLint es_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, request.major, EGL_CONTEXT_MINOR_VERSION, request.minor,
+                                     EGL_NONE};
+        EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, request.es ? es_attribs : desktop_attribs);
         if (context == EGL_NO_CONTEXT) {
-            give_up("eglCreateContext(OpenGL 4.5 core): " + egl_error_name(eglGetError()));
+            give_up("eglCreateContext(" + wanted + "): " + egl_error_name(eglGetError()));
             return std::nullopt;
         }
         if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
@@ -126,6 +131,7 @@ std::optional<HeadlessContext> HeadlessContext::create(std::string* error) {
         result.display_ = display;
         result.context_ = context;
         result.platform_ = where;
+        result.es_ = request.es;
         auto gl_string = [](GLenum name) {
             const auto* s = reinterpret_cast<const char*>(glGetString(name));
             return std::string(s ? s : "");
@@ -135,9 +141,9 @@ std::optional<HeadlessContext> HeadlessContext::create(std::string* error) {
         result.vendor_ = gl_string(GL_VENDOR);
         glGetIntegerv(GL_MAJOR_VERSION, &result.major_);
         glGetIntegerv(GL_MINOR_VERSION, &result.minor_);
-        if (result.major_ * 10 + result.minor_ < 45) {
+        if (result.major_ * 10 + result.minor_ < request.major * 10 + request.minor) {
             // `result` releases the context and the display when it goes out of scope.
-            fail(where, "got OpenGL " + result.version_ + ", need 4.5");
+            fail(where, "got " + result.version_ + ", need " + wanted);
             return std::nullopt;
         }
         return std::optional<HeadlessContext>(std::move(result));
@@ -197,7 +203,7 @@ std::optional<HeadlessContext> HeadlessContext::create(std::string* error) {
     if (auto c = try_default()) return c;
 
     if (error) {
-        std::string message = "no headless OpenGL 4.5 core context:";
+        std::string message = "no headless " + wanted + " context:";
         for (std::size_t i = 0; i < failures.size(); ++i) message += (i ? "; " : " ") + failures[i];
         *error = message;
     }
@@ -220,7 +226,7 @@ HeadlessContext::~HeadlessContext() { release(); }
 HeadlessContext::HeadlessContext(HeadlessContext&& other) noexcept
     : display_(other.display_), context_(other.context_), renderer_(std::move(other.renderer_)),
       version_(std::move(other.version_)), vendor_(std::move(other.vendor_)), platform_(std::move(other.platform_)),
-      major_(other.major_), minor_(other.minor_) {
+      major_(other.major_), minor_(other.minor_), es_(other.es_) {
     other.display_ = nullptr;
     other.context_ = nullptr;
 }
@@ -236,6 +242,7 @@ HeadlessContext& HeadlessContext::operator=(HeadlessContext&& other) noexcept {
         platform_ = std::move(other.platform_);
         major_ = other.major_;
         minor_ = other.minor_;
+        es_ = other.es_;
         other.display_ = nullptr;
         other.context_ = nullptr;
     }

@@ -1,0 +1,186 @@
+// penumbra-dialect-test — the older dialects on their own contexts: runs each target bundle's
+// emission with LayoutRunner on the context its target names (glsl330: OpenGL 3.3 core,
+// essl300: OpenGL ES 3.0; EGL surfaceless) and compares the visibility with the desktop GL
+// runtime's (visibility_gl.f32) for the same scene, light and configuration.
+//
+//   penumbra-dialect-test BUNDLE_DIR...   (each written by penumbra-export-bundle --target glsl330|essl300)
+//
+// Per pixel |runner − oracle| ≤ bound + q (oracle.f32, bound.f32: the CPU model and its texture
+// precision bound, from the desktop run's slicing output, which the same llvmpipe rasterizer
+// reproduces) and |runner − desktop| ≤ 2·bound + q (both runs are within the bound); q is one step
+// of the layout's result format when it has 8 bits (essl300: R8), else 0. On Mesa the contexts are capped at exactly 3.3 / ES 3.0
+// (MESA_GL_VERSION_OVERRIDE / MESA_GLES_VERSION_OVERRIDE, unless already set).
+// Exit status: 0 all agree, 1 a difference or a failure, 2 bad arguments.
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+
+#include "layout_runner.hpp"
+#include "rendering/egl_context.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+using nlohmann::json;
+using penumbra::playground::ContextRequest;
+using penumbra::playground::HeadlessContext;
+using penumbra::targets::LayoutRunner;
+namespace fs = std::filesystem;
+
+std::optional<std::string> read_text(const fs::path& path) {
+    std::ifstream file(path, std::ios::binary);
+    if (!file) return std::nullopt;
+    std::ostringstream text;
+    text << file.rdbuf();
+    return text.str();
+}
+
+std::vector<float> read_floats(const fs::path& path) {
+    const std::optional<std::string> bytes = read_text(path);
+    std::vector<float> out(bytes ? bytes->size() / sizeof(float) : 0);
+    if (bytes) std::memcpy(out.data(), bytes->data(), out.size() * sizeof(float));
+    return out;
+}
+
+struct Outcome {
+    bool ok = false;
+    std::string line;
+};
+
+Outcome check_bundle(const fs::path& dir, std::map<std::string, HeadlessContext>& contexts) {
+    auto fail = [&](const std::string& why) { return Outcome{false, "FAIL " + dir.string() + ": " + why}; };
+    const std::optional<std::string> uniforms_text = read_text(dir / "uniforms.json");
+    const std::optional<std::string> layout_text = read_text(dir / "emission" / "layout.json");
+    if (!uniforms_text || !layout_text) return fail("no uniforms.json or emission/layout.json (not a target bundle)");
+    const json bundle = json::parse(*uniforms_text), layout = json::parse(*layout_text);
+    const std::string target = layout["config"]["target"];
+    if (target != "glsl330" && target != "essl300")
+        return fail("emission for '" + target + "'; this test runs glsl330 and essl300");
+
+    // The context the dialect is written for.
+    if (!contexts.count(target)) {
+        std::string error;
+        const ContextRequest request = target == "essl300" ? ContextRequest{.es = true, .major = 3, .minor = 0}
+                                                           : ContextRequest{.es = false, .major = 3, .minor = 3};
+        std::optional<HeadlessContext> context = HeadlessContext::create(&error, request);
+        if (!context) return fail(error);
+        contexts.emplace(target, std::move(*context));
+    }
+    const HeadlessContext& context = contexts.at(target);
+    if (!context.make_current()) return fail("eglMakeCurrent failed");
+
+    std::map<std::string, std::string> sources;
+    for (const json& program : layout["programs"])
+        for (const std::string file : program["files"]) {
+            std::optional<std::string> text = read_text(dir / "emission" / file);
+            if (!text) return fail("emission/" + file + " missing");
+            sources[file] = std::move(*text);
+        }
+    const auto start = std::chrono::steady_clock::now();
+    std::string error;
+    std::unique_ptr<LayoutRunner> runner = LayoutRunner::create(layout, sources, &error, {"shadow", "screen"});
+    if (!runner) return fail(error);
+    for (const auto& [name, value] : bundle["uniforms"].items())
+        runner->set_uniform(name, value.is_array() ? value.get<std::vector<float>>() : std::vector<float>{value.get<float>()});
+
+    const std::vector<float> triangles = read_floats(dir / "mesh.f32");
+    GLuint vao = 0, vbo = 0;
+    glGenVertexArrays(1, &vao);
+    glGenBuffers(1, &vbo);
+    glBindVertexArray(vao);
+    glBindBuffer(GL_ARRAY_BUFFER, vbo);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(triangles.size() * sizeof(float)), triangles.data(), GL_STATIC_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glBindVertexArray(0);
+    const auto draw = [&](GLuint) {
+        glBindVertexArray(vao);
+        glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(triangles.size() / 3));
+        glBindVertexArray(0);
+    };
+    const int width = bundle["width"], height = bundle["height"];
+    const std::vector<float> positions = read_floats(dir / "positions.f32");
+    if (positions.size() != 4u * width * height) return fail("positions.f32 does not hold width × height RGBA floats");
+    error = runner->run_phase("shadow", draw, width, height);
+    if (error.empty()) error = runner->fill_texture("penumbra_worldPositions", width, height, positions.data());
+    if (error.empty()) error = runner->run_phase("screen", nullptr, width, height);
+    const std::vector<float> visibility = runner->read_result();
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    runner.reset();
+    glDeleteBuffers(1, &vbo);
+    glDeleteVertexArrays(1, &vao);
+    if (!error.empty()) return fail(error);
+
+    const std::vector<float> desktop = read_floats(dir / "visibility_gl.f32"), bound = read_floats(dir / "bound.f32"),
+                             model = read_floats(dir / "oracle.f32");
+    if (visibility.size() != desktop.size() || bound.size() != desktop.size() || model.size() != desktop.size())
+        return fail("image sizes differ (runner " + std::to_string(visibility.size()) + ", desktop " +
+                    std::to_string(desktop.size()) + ", bound " + std::to_string(bound.size()) + " pixels)");
+    std::string result_format;
+    for (const json& t : layout["textures"])
+        if (t["name"] == layout["result"]) result_format = t["internal_format"];
+    const double step = result_format == "R8" || result_format == "RGBA8" ? 1.0 / 255.0 : 0.0;
+    double worst = 0.0, worst_model = 0.0, worst_bound = 0.0;
+    int outside = 0, shadowed = 0;
+    for (std::size_t i = 0; i < desktop.size(); ++i) {
+        const double difference = std::abs(static_cast<double>(visibility[i]) - desktop[i]);
+        const double to_model = std::abs(static_cast<double>(visibility[i]) - model[i]);
+        worst = std::max(worst, difference);
+        worst_model = std::max(worst_model, to_model);
+        worst_bound = std::max(worst_bound, static_cast<double>(bound[i]));
+        if (difference > 2.0 * bound[i] + step + 1e-6 || to_model > bound[i] + step + 1e-6) ++outside;
+        if (desktop[i] < 0.98f) ++shadowed;
+    }
+    const json& c = layout["config"];
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "%s %s on %s: %s/%s/%s %d slices %d², %dx%d: max |runner − desktop| = %.3e, max |runner − oracle| = "
+                  "%.3e (max bound %.3e, %s result), %d shadowed pixels, %d outside the bound (q = %.4f); %.0f ms",
+                  outside || shadowed == 0 ? "FAIL" : "ok  ", target.c_str(), context.version().c_str(),
+                  std::string(c["filter"]).c_str(), std::string(c["packing"]).c_str(), std::string(c["light"]).c_str(),
+                  c["slices"].get<int>(), c["resolution"].get<int>(), width, height, worst, worst_model, worst_bound,
+                  result_format.c_str(), shadowed, outside, step, ms);
+    Outcome outcome{outside == 0 && shadowed > 0, line};
+    if (shadowed == 0) outcome.line += "\n     the desktop image has no shadowed pixel: the comparison would prove nothing";
+    return outcome;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2 || std::string(argv[1]) == "--help") {
+        std::cerr << "usage: penumbra-dialect-test BUNDLE_DIR...  (bundles of penumbra-export-bundle --target glsl330|essl300)\n";
+        return argc < 2 ? 2 : 0;
+    }
+    // Mesa hands out its newest compatible version otherwise (4.5 core, ES 3.2).
+    setenv("MESA_GL_VERSION_OVERRIDE", "3.3", 0);
+    setenv("MESA_GLSL_VERSION_OVERRIDE", "330", 0);
+    setenv("MESA_GLES_VERSION_OVERRIDE", "3.0", 0);
+    std::map<std::string, HeadlessContext> contexts;
+    bool ok = true;
+    for (int i = 1; i < argc; ++i) {
+        Outcome outcome;
+        try {
+            outcome = check_bundle(argv[i], contexts);
+        } catch (const std::exception& e) {
+            outcome = {false, std::string("FAIL ") + argv[i] + ": " + e.what()};
+        }
+        std::cout << outcome.line << std::endl;
+        ok = ok && outcome.ok;
+    }
+    return ok ? 0 : 1;
+}

@@ -1,0 +1,89 @@
+// targets/gles/layout_runner.hpp — runs an emission on OpenGL 3.3 core or OpenGL ES 3.0 by
+// following its layout.json alone: the textures of `textures`, the programs of `programs`, the
+// passes of `passes` in order with their render state, bindings, attachments and integer
+// uniforms. Only calls that both APIs have (no direct state access, no texture storage, no
+// layout(binding)); libepoxy resolves them on whichever context is current. The desktop runtime
+// (include/penumbra/gl/runtime.hpp) needs OpenGL 4.5; this is the portable one.
+//
+//   auto runner = LayoutRunner::create(layout_json, sources, &error);  // a context is current
+//   runner->set_uniform("penumbra_lightFromWorld", {16 floats, column-major});
+//   runner->run_phase("shadow", draw_triangles, 0, 0);                  // slicing + prefilter
+//   runner->fill_texture("penumbra_worldPositions", w, h, rgba32f);     // a "caller" texture
+//   runner->run_phase("screen", nullptr, w, h);                         // deferred visibility
+//   std::vector<float> visibility = runner->read_result();              // bottom row first
+#pragma once
+
+#include <epoxy/gl.h>
+#include <nlohmann/json.hpp>
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace penumbra::targets {
+
+class LayoutRunner {
+public:
+    using DrawScene = std::function<void(GLuint program)>; // attribute 0: world position
+
+    // Allocates the fixed-size textures and compiles the programs of the passes of `phases`.
+    // `sources`: file name → text. On failure: nullptr and one line in *error naming the texture,
+    // program or file.
+    static std::unique_ptr<LayoutRunner> create(const nlohmann::json& layout,
+                                                const std::map<std::string, std::string>& sources, std::string* error,
+                                                const std::vector<std::string>& phases = {"shadow", "screen", "example"});
+    ~LayoutRunner();
+    LayoutRunner(const LayoutRunner&) = delete;
+    LayoutRunner& operator=(const LayoutRunner&) = delete;
+
+    // A plain uniform's value by GLSL name (matrices column-major); set on every program that has it.
+    void set_uniform(const std::string& name, std::vector<float> value) { values_[name] = std::move(value); }
+
+    // Fills a texture whose source is "caller" (RGBA floats); output-sized ones are allocated here.
+    std::string fill_texture(const std::string& name, int width, int height, const float* rgba);
+
+    // Runs the passes of `phase` ("shadow", "screen", "example") in layout order; width × height
+    // is the output size (passes with a 0 × 0 viewport). Empty on success, else a diagnostic.
+    std::string run_phase(const std::string& phase, const DrawScene& draw, int width, int height);
+
+    // The layout's result texture (visibility) as floats, bottom row first.
+    std::vector<float> read_result();
+
+    // Extensions the layout made us require ("GL_EXT_color_buffer_float" on ES for float targets).
+    const std::vector<std::string>& required_extensions() const { return extensions_; }
+
+private:
+    struct Texture {
+        GLuint id = 0;
+        GLenum target = 0;
+        int width = 0, height = 0;
+        const nlohmann::json* desc = nullptr;
+    };
+    struct Program {
+        GLuint id = 0;
+        const nlohmann::json* desc = nullptr;
+    };
+
+    LayoutRunner() = default;
+    std::string allocate(const nlohmann::json& desc, int width, int height);
+    std::string link(const nlohmann::json& desc, const std::map<std::string, std::string>& sources);
+    std::string allocate_output_sized(int width, int height);
+    std::string run_pass(const nlohmann::json& pass, const DrawScene& draw, int width, int height);
+    std::string bind_outputs(const nlohmann::json& pass);
+    void attach(GLenum framebuffer, GLenum attachment, const std::string& texture, int level, int layer);
+    void apply_uniforms(const Program& program);
+    std::string apply_state(const nlohmann::json& state);
+    std::vector<float> read_texture(const Texture& t);
+
+    nlohmann::json layout_;
+    std::map<std::string, Texture> textures_;
+    std::map<std::string, Program> programs_;
+    std::map<std::string, std::vector<float>> values_;
+    std::vector<std::string> extensions_;
+    GLuint framebuffer_ = 0, read_framebuffer_ = 0, empty_vao_ = 0;
+    int output_width_ = 0, output_height_ = 0;
+};
+
+} // namespace penumbra::targets

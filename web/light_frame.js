@@ -1,0 +1,125 @@
+// light_frame.js — the light-frame uniforms from a light and the scene's bounds, a port of
+// include/penumbra/light_frame.hpp (same formulas, double precision, matrices column-major).
+// The bounds must contain every receiver, not only the occluders.
+//
+//   const u = rectFrame({center, u: [1,0,0], v: [0,0,1], width, height}, boundsMin, boundsMax, slices);
+//   runner.setUniforms(u); // penumbra_lightFromWorld, penumbra_sliceClipFromWorld, ...
+
+const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+const scale = (a, s) => [a[0] * s, a[1] * s, a[2] * s];
+const normalize = (a) => scale(a, 1 / Math.sqrt(dot(a, a)));
+
+// World → frame with rows u, v, n and origin o; column-major 4×4 (m[c * 4 + r]).
+function frameMatrix(u, v, n, o) {
+    const m = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1];
+    [u, v, n].forEach((row, r) => {
+        m[0 * 4 + r] = row[0];
+        m[1 * 4 + r] = row[1];
+        m[2 * 4 + r] = row[2];
+        m[3 * 4 + r] = -dot(row, o);
+    });
+    return m;
+}
+
+function multiply(a, b) { // column-major a · b
+    const m = new Array(16).fill(0);
+    for (let c = 0; c < 4; ++c)
+        for (let r = 0; r < 4; ++r)
+            for (let k = 0; k < 4; ++k) m[c * 4 + r] += a[k * 4 + r] * b[c * 4 + k];
+    return m;
+}
+
+function transformPoint(m, p) {
+    return [0, 1, 2].map((r) => m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r]);
+}
+
+function boxCorners(lo, hi) {
+    const c = [];
+    for (let i = 0; i < 8; ++i) c.push([(i & 1) ? hi[0] : lo[0], (i & 2) ? hi[1] : lo[1], (i & 4) ? hi[2] : lo[2]]);
+    return c;
+}
+
+function depthRangeSlices(zmin, zmax, slices) {
+    const pad = 1e-4 * Math.max(zmax - zmin, 1e-6);
+    const z0 = zmin - pad, zs = zmax + pad;
+    return [z0, (zs - z0) / Math.max(slices, 1)];
+}
+
+// Rectangular light: perspective slicing from E = C − d·N, near plane = the light rectangle.
+// Returns the uniforms by GLSL name, and `contained` (false: the bounds reach the light plane).
+export function rectFrame(light, boundsMin, boundsMax, slices) {
+    const u = normalize(light.u), v = normalize(light.v), n = normalize(cross(u, v));
+    const lfw = frameMatrix(u, v, n, light.center);
+    const w = light.width, h = light.height;
+    const cap = 1000 * Math.max(w, h);
+    let d = cap, contained = true;
+    let zmin = Infinity, zmax = -Infinity;
+    for (const corner of boxCorners(boundsMin, boundsMax)) {
+        const p = transformPoint(lfw, corner);
+        zmin = Math.min(zmin, p[2]);
+        zmax = Math.max(zmax, p[2]);
+        if (p[2] <= 0) {
+            contained = false;
+            continue;
+        }
+        if (Math.abs(p[0]) > w / 2) d = Math.min(d, (w / 2) * p[2] / (Math.abs(p[0]) - w / 2));
+        if (Math.abs(p[1]) > h / 2) d = Math.min(d, (h / 2) * p[2] / (Math.abs(p[1]) - h / 2));
+    }
+    if (d >= cap) contained = d > 0 && contained;
+    // clip = (2·a·d/w, 2·b·d/h, 0, d + z) in light-frame coordinates (a, b, z)
+    const clipFromLight = new Array(16).fill(0);
+    clipFromLight[0] = 2 * d / w;
+    clipFromLight[5] = 2 * d / h;
+    clipFromLight[11] = 1;
+    clipFromLight[15] = d;
+    return {
+        uniforms: {
+            penumbra_lightFromWorld: lfw,
+            penumbra_sliceClipFromWorld: multiply(clipFromLight, lfw),
+            penumbra_lightSize: [w, h],
+            penumbra_copDistance: d,
+            penumbra_sliceDepths: depthRangeSlices(Math.max(zmin, 0), zmax, slices),
+            penumbra_windowHalfSize: 0,
+            penumbra_tanAngularRadius: 0,
+        },
+        contained,
+    };
+}
+
+// Sun: orthographic slicing along the light direction over a square window covering the bounds.
+export function sunFrame(sun, boundsMin, boundsMax, slices) {
+    const n = normalize(sun.direction);
+    const helper = Math.abs(n[1]) < 0.9 ? [0, 1, 0] : [1, 0, 0];
+    const u = normalize(cross(helper, n));
+    const v = cross(n, u);
+    const centre = [0, 1, 2].map((i) => 0.5 * (boundsMin[i] + boundsMax[i]));
+    const diagonal = [0, 1, 2].map((i) => boundsMax[i] - boundsMin[i]);
+    const radius = Math.max(0.5 * Math.sqrt(dot(diagonal, diagonal)), 1e-3);
+    const origin = [0, 1, 2].map((i) => centre[i] - n[i] * radius * 1.1);
+    const lfw = frameMatrix(u, v, n, origin);
+    let half = 0, zmin = Infinity, zmax = -Infinity;
+    for (const corner of boxCorners(boundsMin, boundsMax)) {
+        const p = transformPoint(lfw, corner);
+        half = Math.max(half, Math.abs(p[0]), Math.abs(p[1]));
+        zmin = Math.min(zmin, p[2]);
+        zmax = Math.max(zmax, p[2]);
+    }
+    half = Math.max(half * 1.001, 1e-6);
+    const clipFromLight = new Array(16).fill(0);
+    clipFromLight[0] = 1 / half;
+    clipFromLight[5] = 1 / half;
+    clipFromLight[15] = 1;
+    return {
+        uniforms: {
+            penumbra_lightFromWorld: lfw,
+            penumbra_sliceClipFromWorld: multiply(clipFromLight, lfw),
+            penumbra_lightSize: [0, 0],
+            penumbra_copDistance: 0,
+            penumbra_sliceDepths: depthRangeSlices(zmin, zmax, slices),
+            penumbra_windowHalfSize: half,
+            penumbra_tanAngularRadius: Math.tan(0.5 * sun.angularDiameter),
+        },
+        contained: true,
+    };
+}
