@@ -33,7 +33,18 @@ struct SliceSetting {
     int slices = 16, resolution = 512;
 };
 
+// A model variant: fusion rule and tangent clip ("chained+clip").
+struct Variant {
+    penumbra::Fusion fusion = penumbra::Config{}.fusion;
+    bool tangent_clip = penumbra::Config{}.tangent_clip;
+};
+
+std::string variant_name(const Variant& v) {
+    return std::string(penumbra::to_string(v.fusion)) + (v.tangent_clip ? "+clip" : "");
+}
+
 struct Options {
+    std::vector<Variant> variants{Variant{}};
     std::vector<std::string> scenes;
     std::vector<penumbra::Filter> filters{penumbra::Filter::mipmap, penumbra::Filter::nbuffer, penumbra::Filter::sat};
     std::vector<SliceSetting> settings{{16, 512}, {4, 128}};
@@ -42,13 +53,15 @@ struct Options {
 
 constexpr const char* usage_text =
     "usage: penumbra-bench-quality [--scenes a,b,...] [--filters f,g,...] [--configs SxR,...] [--size WxH]\n"
-    "                              [--samples N] [--repeat N]\n"
+    "                              [--samples N] [--repeat N] [--variants v,w,...]\n"
     "  --scenes    built-in scenes (default all: planes, boxes, tree, butterfly, terrain, crowd, box)\n"
     "  --filters   mipmap, nbuffer, sat (default all three; the light is each scene's rectangle)\n"
     "  --configs   slices x occlusion-texture resolution (default 16x512,4x128)\n"
     "  --size      image size (default 256x256)\n"
     "  --samples   ground-truth rays per light axis (default 16: 256 rays per pixel)\n"
-    "  --repeat    render each configuration N times and keep each pass's fastest time (default 3)\n";
+    "  --repeat    render each configuration N times and keep each pass's fastest time (default 3)\n"
+    "  --variants  model variants: a fusion rule, optionally +clip for the tangent clip, e.g.\n"
+    "              probabilistic,chained+clip (default: Config{}'s)\n";
 
 std::vector<std::string_view> split(std::string_view text) {
     std::vector<std::string_view> parts;
@@ -110,6 +123,21 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                     return std::nullopt;
                 }
                 o.settings.push_back(s);
+            }
+        } else if (flag == "--variants") {
+            o.variants.clear();
+            for (std::string_view name : split(value)) {
+                Variant v;
+                v.tangent_clip = name.ends_with("+clip");
+                if (v.tangent_clip) name.remove_suffix(5);
+                const std::optional<penumbra::Fusion> fusion = penumbra::parse_enum<penumbra::Fusion>(name);
+                if (!fusion) {
+                    error = "--variants: '" + std::string(name) + "' is not a fusion rule; allowed: probabilistic, "
+                            "additive, maximum, average, chained, each optionally followed by +clip";
+                    return std::nullopt;
+                }
+                v.fusion = *fusion;
+                o.variants.push_back(v);
             }
         } else if (flag == "--size") {
             if (!parse_pair(value, o.width, o.height) || o.width < 1 || o.height < 1 || o.width > 4096 || o.height > 4096) {
@@ -180,8 +208,8 @@ int main(int argc, char** argv) {
         return 1;
     }
     std::printf("penumbra-bench-quality: %s; image %dx%d; ground truth %dx%d rays per pixel; fastest of %d\n"
-                "light: each scene's default (2x2 rectangle for the built-in scenes); fusion probabilistic, atlas,\n"
-                "leak fix and fade on; penumbra pixels: truth or estimate < 0.98; times: GPU ms per pass\n\n",
+                "light: each scene's default (2x2 rectangle for the built-in scenes); filter column: filter and\n"
+                "variant (fusion, +clip: tangent clip); atlas, leak fix and fade on; penumbra pixels: truth or estimate < 0.98; times: GPU ms per pass\n\n",
                 context->renderer().c_str(), options->width, options->height, options->samples, options->samples,
                 options->repeat);
     std::printf("| scene | filter | S/R | MAE | RMSE | p95 | penumbra MAE | penumbra RMSE | penumbra p95 | penumbra px "
@@ -195,10 +223,13 @@ int main(int argc, char** argv) {
         References truth;
         double truth_ms = 0;
         for (const SliceSetting& setting : options->settings)
-            for (penumbra::Filter filter : options->filters) {
-                const penumbra::Config config{.slices = setting.slices, .resolution = setting.resolution, .filter = filter};
-                const std::string label = scene_name + " | " + std::string(penumbra::to_string(filter)) + " | " +
-                                          std::to_string(setting.slices) + "/" + std::to_string(setting.resolution);
+            for (penumbra::Filter filter : options->filters)
+            for (const Variant& variant : options->variants) {
+                const penumbra::Config config{.slices = setting.slices, .resolution = setting.resolution, .filter = filter,
+                                              .fusion = variant.fusion, .tangent_clip = variant.tangent_clip};
+                const std::string label = scene_name + " | " + std::string(penumbra::to_string(filter)) + " " +
+                                          variant_name(variant) + " | " + std::to_string(setting.slices) + "/" +
+                                          std::to_string(setting.resolution);
                 if (const auto problems = penumbra::validate(config); !problems.empty()) {
                     std::printf("| %s | invalid: %s |\n", label.c_str(), problems.front().message.c_str());
                     continue;

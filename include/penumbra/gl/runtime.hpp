@@ -409,13 +409,19 @@ public:
     // Deferred visibility over a G-buffer of world positions (RGBA32F, w = 1 on geometry):
     // returns an R32F texture width × height (owned by the runtime) or 0 with *error set.
     // With `timing`, the GPU time of the pass ("shading", GL_TIME_ELAPSED; waits for the result).
+    // `world_normals`: the G-buffer's normals (RGBA32F, xyz = the normal of the side the viewer
+    // sees), needed when the configuration has tangent_clip on, unused otherwise.
     GLuint shade_deferred(GLuint world_positions, int width, int height, std::string* error = nullptr,
-                          PassTiming* timing = nullptr) {
+                          PassTiming* timing = nullptr, GLuint world_normals = 0) {
         detail::DebugCapture capture(options_.debug_output);
         if (width < 1 || height < 1) {
             if (error)
                 *error = "shade_deferred: size " + std::to_string(width) + "x" + std::to_string(height) +
                          " is empty; allowed: at least 1x1";
+            return 0;
+        }
+        if (config_.tangent_clip && !world_normals) {
+            if (error) *error = "shade_deferred: tangent_clip is on, so the G-buffer's normals are needed; pass world_normals";
             return 0;
         }
         if (!visibility_ || visibility_width_ != width || visibility_height_ != height) {
@@ -456,6 +462,8 @@ public:
                     for (const ParamDesc& param : p.parameters)
                         if (param.name == "penumbra_worldPositions")
                             bind_sampler(program, param.name, param.binding, world_positions);
+                        else if (param.name == "penumbra_worldNormals")
+                            bind_sampler(program, param.name, param.binding, world_normals);
             glBindVertexArray(empty_vao_);
             glDrawArrays(GL_TRIANGLES, 0, 3);
             glBindVertexArray(0);

@@ -54,6 +54,7 @@ nlohmann::ordered_json config_json(const Config& c) {
             {"light", to_string(c.light)},
             {"leak_fix", c.leak_fix},
             {"self_shadow_fade", c.self_shadow_fade},
+            {"tangent_clip", c.tangent_clip},
             {"target", to_string(c.target)}};
 }
 

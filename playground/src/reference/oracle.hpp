@@ -63,7 +63,9 @@ public:
 
     OracleValue visibility(glm::vec3 world) const { return visibility(world, config_.fusion); }
     // The same with another fusion rule (the filter does not depend on it).
-    OracleValue visibility(glm::vec3 world, Fusion fusion) const;
+    OracleValue visibility(glm::vec3 world, Fusion fusion) const { return visibility(world, glm::vec3(0.0f), fusion); }
+    // With tangent_clip on: `normal` is the normal of the side being lit (ignored when it is off).
+    OracleValue visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion) const;
 
     // Every slice's faded occlusion q_k = w_k · o_k at a world point, slice 0 (nearest the light)
     // first: what the fusion rules combine. For diagnostics and studies of new rules.

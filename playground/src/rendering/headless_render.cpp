@@ -29,7 +29,8 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
         return false;
     }
     penumbra::gl::PassTiming shading_timing;
-    if (!runtime->shade_deferred(gbuffer->positions(), width, height, error, &shading_timing)) return false;
+    if (!runtime->shade_deferred(gbuffer->positions(), width, height, error, &shading_timing, gbuffer->normals()))
+        return false;
     out.timings.push_back(shading_timing);
     if (options.inspect) options.inspect(*runtime);
     const std::vector<float> vis = runtime->read_visibility();
