@@ -1,6 +1,8 @@
 // penumbra-bench-quality — how good the model is, scene × filter × (slices, resolution): MAE, RMSE
 // and p95 |error| against Embree ground truth over all geometry pixels and over penumbra pixels
-// (truth or estimate < 0.98), and the GPU time of each pass (timer queries; on llvmpipe the CPU
+// (truth or estimate < 0.98) — today's truth (the whole light) and the fair ones (the part of the
+// light above the receiver's tangent plane: `oriented` visibility and `irradiance`) — and the GPU
+// time of each pass (timer queries; on llvmpipe the CPU
 // time of the software rasteriser, so compare ratios, not absolute values).
 //
 //   penumbra-bench-quality [--scenes planes,boxes] [--filters sat,nbuffer] [--configs 16x512,4x128]
@@ -31,7 +33,18 @@ struct SliceSetting {
     int slices = 16, resolution = 512;
 };
 
+// A model variant: fusion rule and tangent clip ("chained+clip").
+struct Variant {
+    penumbra::Fusion fusion = penumbra::Config{}.fusion;
+    bool tangent_clip = penumbra::Config{}.tangent_clip;
+};
+
+std::string variant_name(const Variant& v) {
+    return std::string(penumbra::to_string(v.fusion)) + (v.tangent_clip ? "+clip" : "");
+}
+
 struct Options {
+    std::vector<Variant> variants{Variant{}};
     std::vector<std::string> scenes;
     std::vector<penumbra::Filter> filters{penumbra::Filter::mipmap, penumbra::Filter::nbuffer, penumbra::Filter::sat};
     std::vector<SliceSetting> settings{{16, 512}, {4, 128}};
@@ -40,13 +53,15 @@ struct Options {
 
 constexpr const char* usage_text =
     "usage: penumbra-bench-quality [--scenes a,b,...] [--filters f,g,...] [--configs SxR,...] [--size WxH]\n"
-    "                              [--samples N] [--repeat N]\n"
-    "  --scenes    built-in scenes (default all: planes, boxes, tree, butterfly, terrain, crowd)\n"
+    "                              [--samples N] [--repeat N] [--variants v,w,...]\n"
+    "  --scenes    built-in scenes (default all: planes, boxes, tree, butterfly, terrain, crowd, box)\n"
     "  --filters   mipmap, nbuffer, sat (default all three; the light is each scene's rectangle)\n"
     "  --configs   slices x occlusion-texture resolution (default 16x512,4x128)\n"
     "  --size      image size (default 256x256)\n"
     "  --samples   ground-truth rays per light axis (default 16: 256 rays per pixel)\n"
-    "  --repeat    render each configuration N times and keep each pass's fastest time (default 3)\n";
+    "  --repeat    render each configuration N times and keep each pass's fastest time (default 3)\n"
+    "  --variants  model variants: a fusion rule, optionally +clip for the tangent clip, e.g.\n"
+    "              probabilistic,chained+clip (default: Config{}'s)\n";
 
 std::vector<std::string_view> split(std::string_view text) {
     std::vector<std::string_view> parts;
@@ -108,6 +123,21 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                     return std::nullopt;
                 }
                 o.settings.push_back(s);
+            }
+        } else if (flag == "--variants") {
+            o.variants.clear();
+            for (std::string_view name : split(value)) {
+                Variant v;
+                v.tangent_clip = name.ends_with("+clip");
+                if (v.tangent_clip) name.remove_suffix(5);
+                const std::optional<penumbra::Fusion> fusion = penumbra::parse_enum<penumbra::Fusion>(name);
+                if (!fusion) {
+                    error = "--variants: '" + std::string(name) + "' is not a fusion rule; allowed: probabilistic, "
+                            "additive, maximum, average, chained, each optionally followed by +clip";
+                    return std::nullopt;
+                }
+                v.fusion = *fusion;
+                o.variants.push_back(v);
             }
         } else if (flag == "--size") {
             if (!parse_pair(value, o.width, o.height) || o.width < 1 || o.height < 1 || o.width > 4096 || o.height > 4096) {
@@ -178,24 +208,28 @@ int main(int argc, char** argv) {
         return 1;
     }
     std::printf("penumbra-bench-quality: %s; image %dx%d; ground truth %dx%d rays per pixel; fastest of %d\n"
-                "light: each scene's default (2x2 rectangle for the built-in scenes); fusion probabilistic, atlas,\n"
-                "leak fix and fade on; penumbra pixels: truth or estimate < 0.98; times: GPU ms per pass\n\n",
+                "light: each scene's default (2x2 rectangle for the built-in scenes); filter column: filter and\n"
+                "variant (fusion, +clip: tangent clip); atlas, leak fix and fade on; penumbra pixels: truth or estimate < 0.98; times: GPU ms per pass\n\n",
                 context->renderer().c_str(), options->width, options->height, options->samples, options->samples,
                 options->repeat);
     std::printf("| scene | filter | S/R | MAE | RMSE | p95 | penumbra MAE | penumbra RMSE | penumbra p95 | penumbra px "
+                "| oriented penumbra MAE | oriented p95 | irradiance penumbra MAE | irradiance p95 "
                 "| slicing ms | prefilter ms | shading ms |\n");
-    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     std::vector<std::string> pass_lines;
     for (const std::string& scene_name : options->scenes) {
         const Scene scene = *make_scene(scene_name);
         std::optional<HeadlessResult> reference_gbuffer;
-        std::vector<float> truth;
+        References truth;
         double truth_ms = 0;
         for (const SliceSetting& setting : options->settings)
-            for (penumbra::Filter filter : options->filters) {
-                const penumbra::Config config{.slices = setting.slices, .resolution = setting.resolution, .filter = filter};
-                const std::string label = scene_name + " | " + std::string(penumbra::to_string(filter)) + " | " +
-                                          std::to_string(setting.slices) + "/" + std::to_string(setting.resolution);
+            for (penumbra::Filter filter : options->filters)
+            for (const Variant& variant : options->variants) {
+                const penumbra::Config config{.slices = setting.slices, .resolution = setting.resolution, .filter = filter,
+                                              .fusion = variant.fusion, .tangent_clip = variant.tangent_clip};
+                const std::string label = scene_name + " | " + std::string(penumbra::to_string(filter)) + " " +
+                                          variant_name(variant) + " | " + std::to_string(setting.slices) + "/" +
+                                          std::to_string(setting.resolution);
                 if (const auto problems = penumbra::validate(config); !problems.empty()) {
                     std::printf("| %s | invalid: %s |\n", label.c_str(), problems.front().message.c_str());
                     continue;
@@ -213,11 +247,12 @@ int main(int argc, char** argv) {
                 }
                 if (!reference_gbuffer || !same_gbuffer(*reference_gbuffer, result)) {
                     const auto start = std::chrono::steady_clock::now();
-                    truth = reference_visibility(scene, result, options->samples);
+                    truth = reference_all(scene, result, options->samples);
                     truth_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
                     reference_gbuffer = result;
                 }
-                const Metrics m = compare(result, truth);
+                const QualityMetrics q = compare_quality(result, truth);
+                const Metrics& m = q.visibility;
                 const std::vector<PassTotal> totals = pass_totals(fastest);
                 double slicing = 0, prefilter = 0, shading = 0;
                 std::string line = label + ":";
@@ -231,9 +266,11 @@ int main(int argc, char** argv) {
                     line += part;
                 }
                 pass_lines.push_back(line);
-                std::printf("| %s | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %zu | %.1f | %.1f | %.1f |\n",
+                std::printf("| %s | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %zu | %.4f | %.4f | %.4f | %.4f | %.1f | %.1f "
+                            "| %.1f |\n",
                             label.c_str(), m.all.mae, m.all.rmse, m.all.p95, m.penumbra.mae, m.penumbra.rmse,
-                            m.penumbra.p95, m.penumbra.count, slicing, prefilter, shading);
+                            m.penumbra.p95, m.penumbra.count, q.oriented.penumbra.mae, q.oriented.penumbra.p95,
+                            q.irradiance.penumbra.mae, q.irradiance.penumbra.p95, slicing, prefilter, shading);
                 std::fflush(stdout);
             }
         std::printf("|   (%s ground truth: %.0f ms CPU, Embree) |\n", scene_name.c_str(), truth_ms);

@@ -118,7 +118,7 @@ std::string joined(const std::vector<std::string>& args) {
 
 const std::string valid_config_json =
     R"({"slices": 8, "resolution": 128, "filter": "sat", "fusion": "average", "packing": "array", )"
-    R"("light": "sun", "leak_fix": false, "self_shadow_fade": true, "target": "glsl450"})";
+    R"("light": "sun", "leak_fix": false, "self_shadow_fade": true, "tangent_clip": true, "target": "glsl450"})";
 
 } // namespace
 
@@ -212,13 +212,17 @@ TEST_CASE("--config reads a config object or a whole layout.json; flags override
     // Flags win over the file; keys left out keep Config{}'s defaults.
     const fs::path overridden = scratch().fresh("overridden");
     const fs::path partial = write_text("partial.json", R"({"slices": 12, "packing": "volume"})");
-    REQUIRE(run_gen(with_out({"--config", partial.string(), "--packing", "array", "--no-fade"}, overridden))
+    REQUIRE(run_gen(with_out({"--config", partial.string(), "--packing", "array", "--no-fade", "--tangent-clip"},
+                              overridden))
                 .exit_code == 0);
     const nlohmann::json config = nlohmann::json::parse(read_text(overridden / "layout.json")).at("config");
     CHECK(config.at("slices") == 12);
     CHECK(config.at("packing") == "array");
     CHECK(config.at("self_shadow_fade") == false);
     CHECK(config.at("leak_fix") == true);
+    CHECK(config.at("tangent_clip") == true);
+    CHECK(read_text(overridden / "penumbra_visibility.glsl").find("penumbraVisibility(vec3 worldPos, vec3 worldNormal)") !=
+          std::string::npos);
     CHECK(config.at("resolution") == penumbra::Config{}.resolution);
 }
 
@@ -357,7 +361,8 @@ TEST_CASE("--help documents every flag and every allowed value") {
         CHECK(run.exit_code == 0);
         for (const char* name :
              {"--slices", "--resolution", "--filter", "--fusion", "--packing", "--light", "--target",
-              "--no-leak-fix", "--no-fade", "--config", "--validate", "--out", "--help"})
+              "--no-leak-fix", "--no-fade", "--tangent-clip", "--no-tangent-clip", "--config", "--validate", "--out",
+              "--help"})
             CHECK_MESSAGE(run.out.find(name) != std::string::npos, name);
         auto check_names = [&]<class Enum>(Enum) {
             for (std::string_view name : penumbra::EnumNames<Enum>::names)

@@ -199,6 +199,14 @@ TEST_CASE("generic: samplers read the layout's textures, the same ones the speci
                 }
 }
 
+TEST_CASE("generic: the tangent clip is refused with a message") {
+    const Result<GenericShading> result = emit_generic(Config{.fusion = Fusion::chained, .tangent_clip = true});
+    CHECK_FALSE(result.value);
+    REQUIRE(result.errors.size() == 1);
+    CHECK(result.errors[0].field == "tangent_clip");
+    CHECK(result.errors[0].message.find("allowed: false") != std::string::npos);
+}
+
 TEST_CASE("generic: an invalid configuration gives the validator's messages and no program") {
     const Config config{.slices = 40, .resolution = 100};
     const Result<GenericShading> result = emit_generic(config);

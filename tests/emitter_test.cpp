@@ -105,9 +105,34 @@ TEST_CASE("fusion rules") {
         {Fusion::additive, "return max(0.0, 1.0 - penumbra_sum);"},
         {Fusion::maximum, "return 1.0 - penumbra_max;"},
         {Fusion::average, "return 1.0 - 0.5 * (min(1.0, penumbra_sum) + penumbra_max);"},
+        {Fusion::chained, "penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);"},
     };
     for (const auto& [fusion, line] : expected)
         CHECK(emit_file(Config{.fusion = fusion}, Artifact::visibility_snippet).text.find(line) != std::string::npos);
+}
+
+TEST_CASE("tangent clip: the normal is an input, each kernel is restricted, the deferred pass reads normals") {
+    const Config config{.fusion = Fusion::chained, .tangent_clip = true};
+    const Emission emission = *emit(config).value;
+    const std::string& snippet = emission.snippet.text;
+    CHECK(snippet.find("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)") != std::string::npos);
+    CHECK(snippet.find("vec3 penumbra_tangentClip(vec3 p, vec3 n)") != std::string::npos);
+    CHECK(snippet.find("vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);") != std::string::npos);
+    CHECK(snippet.find("side *= clip.z;") != std::string::npos);
+    CHECK(snippet.find("// move the point 3.0 slicing texels sideways along its normal") != std::string::npos);
+    CHECK(snippet.find(detail::describe(config).str()) != std::string::npos);
+    for (const ShaderFile& file : emission.files())
+        if (file.file_name.find("shading_deferred") != std::string::npos && file.file_name.ends_with(".frag"))
+            CHECK(file.text.find("penumbraVisibility(world.xyz, normal)") != std::string::npos);
+    const Layout& layout = emission.layout;
+    bool normals = false;
+    for (const ProgramDesc& p : layout.programs)
+        for (const ParamDesc& param : p.parameters) normals |= p.name == "shading_deferred" && param.name == "penumbra_worldNormals";
+    CHECK(normals);
+    // off: the paper's signature and no clip
+    const std::string plain = emit_file(Config{}, Artifact::visibility_snippet).text;
+    CHECK(plain.find("float penumbraVisibility(vec3 worldPos)") != std::string::npos);
+    CHECK(plain.find("penumbra_tangentClip") == std::string::npos);
 }
 
 TEST_CASE("every emitted file states its configuration and carries chunk markers") {

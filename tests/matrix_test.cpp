@@ -62,3 +62,31 @@ TEST_CASE("every valid configuration of the matrix compiles and links with glsla
     CHECK(rejected > 0);
 }
 
+
+// The tangent clip changes the visibility function, the kernel and the deferred pass's inputs:
+// every filter × packing × light × target with it on (chained fusion, two slice counts).
+TEST_CASE("the tangent clip compiles and links with glslang for every filter, packing, light and target") {
+    int valid = 0;
+    for (Filter filter : all_values<Filter>())
+        for (Packing packing : all_values<Packing>())
+            for (Target target : all_values<Target>())
+                for (Light light : all_values<Light>())
+                    for (int slices : {5, 16}) {
+                        const Config config{.slices = slices, .resolution = 256, .filter = filter,
+                                            .fusion = Fusion::chained, .packing = packing, .light = light,
+                                            .tangent_clip = true, .target = target};
+                        Result<Emission> result = emit(config);
+                        if (!result.value) continue;
+                        ++valid;
+                        CHECK(result.value->snippet.text.find("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)") !=
+                              std::string::npos);
+                        for (const Program& program : result.value->programs) {
+                            const std::vector<ShaderDiagnostic> diagnostics = validate_program(program, config.target);
+                            if (has_errors(diagnostics)) {
+                                for (const ShaderDiagnostic& d : diagnostics) MESSAGE(name_of(config) << ": " << format(d));
+                                FAIL(name_of(config) << " tangent clip: program " << program.name << " does not compile");
+                            }
+                        }
+                    }
+    CHECK(valid > 40);
+}

@@ -8,7 +8,7 @@ namespace {
 
 constexpr std::string_view flag_list =
     "--slices, --resolution, --filter, --fusion, --packing, --light, --target, --no-leak-fix, --no-fade, "
-    "--config, --validate, --out, --help";
+    "--tangent-clip, --no-tangent-clip, --config, --validate, --out, --help";
 
 // "16" → 16; anything else (empty, sign only, trailing text, outside int) is an error.
 Parsed<int> parse_int(std::string_view flag, std::string_view text, std::string_view allowed) {
@@ -78,12 +78,15 @@ Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
             }
 
         // Flags without a value.
-        const bool is_switch = flag == "--no-leak-fix" || flag == "--no-fade" || flag == "--validate";
+        const bool is_switch = flag == "--no-leak-fix" || flag == "--no-fade" || flag == "--validate" ||
+                               flag == "--tangent-clip" || flag == "--no-tangent-clip";
         if (is_switch) {
             if (inline_value)
                 return {{}, std::string(flag) + ": takes no value (got '" + printable(*inline_value) + "')"};
             if (flag == "--no-leak-fix") out.flags.no_leak_fix = true;
             if (flag == "--no-fade") out.flags.no_fade = true;
+            if (flag == "--tangent-clip") out.flags.tangent_clip = true;
+            if (flag == "--no-tangent-clip") out.flags.tangent_clip = false;
             if (flag == "--validate") out.validate = true;
             continue;
         }
@@ -142,6 +145,7 @@ penumbra::Config apply(const ConfigFlags& flags, penumbra::Config config) {
     if (flags.target) config.target = *flags.target;
     if (flags.no_leak_fix) config.leak_fix = false;
     if (flags.no_fade) config.self_shadow_fade = false;
+    if (flags.tangent_clip) config.tangent_clip = *flags.tangent_clip;
     return config;
 }
 
@@ -158,8 +162,8 @@ std::string usage() {
     };
     std::string out = "usage: penumbra-gen [--slices N] [--resolution R] [--filter F] [--fusion U] "
                       "[--packing P] [--light L]\n"
-                      "                    [--target T] [--no-leak-fix] [--no-fade] [--config FILE.json] "
-                      "[--validate] --out DIR\n"
+                      "                    [--target T] [--no-leak-fix] [--no-fade] [--[no-]tangent-clip]\n"
+                      "                    [--config FILE.json] [--validate] --out DIR\n"
                       "\n"
                       "Writes the GLSL of one Penumbra configuration and its layout.json into DIR.\n"
                       "\n"
@@ -177,10 +181,14 @@ std::string usage() {
                 std::string("turn off the leak fix (default ") + (d.leak_fix ? "on" : "off") + ")");
     out += line("--no-fade", std::string("turn off the self-shadow fade (default ") +
                                  (d.self_shadow_fade ? "on" : "off") + ")");
+    out += line("--tangent-clip", std::string("kernels cover only the light above the receiver's tangent plane;\n"
+                                              "                      penumbraVisibility takes the normal (default ") +
+                                      (d.tangent_clip ? "on" : "off") + "; --no-tangent-clip turns it off)");
     out +=
         line("--config FILE.json",
              "read the configuration from JSON: an object with the keys slices, resolution, filter, fusion,\n"
-             "                      packing, light, leak_fix, self_shadow_fade, target (all optional), or a\n"
+             "                      packing, light, leak_fix, self_shadow_fade, tangent_clip, target (all\n"
+             "                      optional), or a\n"
              "                      layout.json, whose \"config\" object is read");
     out += "\noutput:\n";
     out += line("--out DIR", "directory to write into, created with its parents (required)");

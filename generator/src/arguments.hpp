@@ -19,6 +19,7 @@ struct ConfigFlags {
     std::optional<penumbra::Target> target;
     bool no_leak_fix = false;
     bool no_fade = false;
+    std::optional<bool> tangent_clip; // --tangent-clip / --no-tangent-clip
 };
 
 struct Arguments {

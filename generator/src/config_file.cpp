@@ -15,7 +15,7 @@ namespace {
 using nlohmann::json;
 
 constexpr std::string_view key_list =
-    "slices, resolution, filter, fusion, packing, light, leak_fix, self_shadow_fade, target";
+    "slices, resolution, filter, fusion, packing, light, leak_fix, self_shadow_fade, tangent_clip, target";
 
 std::string type_of(const json& value) {
     if (value.is_number_float()) return "a number with a fraction";
@@ -126,6 +126,8 @@ Parsed<penumbra::Config> parse_config_json(std::string_view text, std::string_vi
             error = store(read_bool(key, value), config.leak_fix);
         else if (key == "self_shadow_fade")
             error = store(read_bool(key, value), config.self_shadow_fade);
+        else if (key == "tangent_clip")
+            error = store(read_bool(key, value), config.tangent_clip);
         else
             error = "unknown key '" + printable(key) + "'; allowed keys: " + std::string(key_list);
         if (!error.empty()) return {{}, where + ": " + error};

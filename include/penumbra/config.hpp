@@ -29,6 +29,8 @@ enum class Fusion : std::uint8_t {
     additive,      // max(0, 1 − Σ q_k)
     maximum,       // 1 − max q_k
     average,       // Soler & Sillion: 1 − (min(1, Σ q_k) + max q_k) / 2
+    chained,       // Π (1 − max(q_k, q_k+1)) / Π (1 − q_k) over inner slices: neighbours fused by maximum,
+                   // slices further apart by product (the leak fix and solids make neighbours correlated)
 };
 
 // How the filtered occlusion textures are stored (paper §3.6–3.7, docs/model.md §3).
@@ -60,6 +62,8 @@ struct Config {
     Light light = Light::rect;              // kind of area light
     bool leak_fix = true;                   // paper §3.4.1: a fragment of slice k also marks slice k+1
     bool self_shadow_fade = true;           // paper §3.4.2: fade out the slice containing the point
+    bool tangent_clip = false;              // kernels cover only the part of the light above the receiver's
+                                            // tangent plane (penumbraVisibility then takes the normal)
     Target target = Target::glsl450;        // shading language of the output
 
     friend constexpr bool operator==(const Config&, const Config&) = default;
@@ -71,7 +75,8 @@ template <> struct EnumNames<Filter> {
     static constexpr std::array<std::string_view, 4> names{"mipmap", "nbuffer", "sat", "gaussian"};
 };
 template <> struct EnumNames<Fusion> {
-    static constexpr std::array<std::string_view, 4> names{"probabilistic", "additive", "maximum", "average"};
+    static constexpr std::array<std::string_view, 5> names{"probabilistic", "additive", "maximum", "average",
+                                                           "chained"};
 };
 template <> struct EnumNames<Packing> {
     static constexpr std::array<std::string_view, 3> names{"atlas", "array", "volume"};

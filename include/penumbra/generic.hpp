@@ -89,6 +89,10 @@ inline std::vector<GenericSampler> generic_samplers(const Config& config) {
 inline Result<GenericShading> emit_generic(const Config& config) {
     Result<GenericShading> result;
     result.errors = validate(config);
+    if (config.tangent_clip)
+        result.errors.push_back({"tangent_clip", "true",
+                                 "tangent_clip: true is not implemented by the generic reference (it keeps the paper's "
+                                 "whole-light kernels); allowed: false"});
     if (!result.errors.empty()) return result;
     Program program{"shading_generic",
                     {{"penumbra_generic.vert", Stage::vertex, detail::generic_vertex(config).str()},

@@ -145,7 +145,7 @@ inline std::vector<Param> program_params(const Config& config, std::string_view 
     if (program == "sat_shift") return sat_shift_params(config);
     if (program == "sat_pass") return sat_pass_params(config);
     std::vector<Param> params = visibility_params(config);
-    const std::vector<Param> extra = program == "shading_deferred" ? deferred_params() : example_fragment_params();
+    const std::vector<Param> extra = program == "shading_deferred" ? deferred_params(config) : example_fragment_params();
     params.insert(params.end(), extra.begin(), extra.end());
     if (program == "shading_example")
         for (Param& p : example_vertex_params()) params.push_back(std::move(p));
@@ -163,7 +163,7 @@ inline std::vector<ParamDesc> describe_params(const Config& config, std::string_
             groups.push_back({"PenumbraExample", example_fragment_params()});
             groups.push_back({"PenumbraCamera", example_vertex_params()});
         } else {
-            groups.push_back({"PenumbraDeferred", deferred_params()});
+            groups.push_back({"PenumbraDeferred", deferred_params(config)});
         }
     } else {
         groups.push_back({program == "slicing" ? "PenumbraSlicing" : "PenumbraPass", params});
@@ -384,6 +384,14 @@ inline Layout describe_layout(const Config& config) {
     world.wrap = "CLAMP_TO_EDGE";
     world.size = "output";
     world.source = "caller";
+    if (config.tangent_clip) {
+        TextureDesc& normals = texture("penumbra_worldNormals", "2D", "RGBA32F", 0, 0, 1, 1, "NEAREST", "NEAREST",
+                                       "G-buffer filled by the engine every frame: xyz the unit normal of the side "
+                                       "the viewer sees (tangent clip); read with texelFetch (no filtering)");
+        normals.wrap = "CLAMP_TO_EDGE";
+        normals.size = "output";
+        normals.source = "caller";
+    }
     TextureDesc& visibility = texture("penumbra_visibility", "2D", std::string(visibility_format(config)), 0, 0, 1, 1,
                                       "NEAREST", "NEAREST", "visibility of each output pixel, 0 shadowed to 1 lit");
     visibility.wrap = "CLAMP_TO_EDGE";
@@ -474,6 +482,7 @@ inline std::string to_json(const Layout& layout) {
     field("    ", "light", json_string(to_string(c.light)));
     field("    ", "leak_fix", c.leak_fix ? "true" : "false");
     field("    ", "self_shadow_fade", c.self_shadow_fade ? "true" : "false");
+    field("    ", "tangent_clip", c.tangent_clip ? "true" : "false");
     field("    ", "target", json_string(to_string(c.target)), false);
     o += "  },\n";
     field("  ", "textures_per_layer", std::to_string(layout.textures_per_layer));

@@ -42,7 +42,7 @@ constexpr std::vector<Param> generic_value_params() {
         {"penumbra_maxLevel", "int", "highest filter level L = log2(R)", ""},
         {"penumbra_tileCount", "int", "RGBA occlusion textures T = ceil(S / 4)", ""},
         {"penumbra_invTileCount", "float", "1 / T: width of one tile in an atlas", "uv"},
-        {"penumbra_fusion", "int", "fusion rule: 0 probabilistic, 1 additive, 2 maximum, 3 average", ""},
+        {"penumbra_fusion", "int", "fusion rule: 0 probabilistic, 1 additive, 2 maximum, 3 average, 4 chained", ""},
         {"penumbra_fade", "int", "paper §3.4.2 self-shadow fade: 1 on, 0 off", ""},
     };
 }
@@ -77,7 +77,7 @@ constexpr std::vector<GenericSamplerDecl> generic_storage_samplers(const Config&
 // Every sampler, in declaration (and binding) order: storage, then the G-buffer.
 constexpr std::vector<GenericSamplerDecl> generic_samplers_decl(const Config& config) {
     std::vector<GenericSamplerDecl> samplers = generic_storage_samplers(config);
-    const Param world = deferred_params().front();
+    const Param world = deferred_params(config).front();
     samplers.push_back({world.name, world.type, 1, world.meaning});
     return samplers;
 }
@@ -235,8 +235,9 @@ constexpr void write_generic_level_read(LineWriter& out, const Config& config) {
 constexpr void write_generic_fusion(LineWriter& out) {
     out.chunk("fusion_result");
     out.comment("every rule's accumulator is kept; the uniform picks the result (paper §3.3)");
-    out.line("float penumbra_fused(float lit, float sum, float maximum)");
+    out.line("float penumbra_fused(float lit, float sum, float maximum, float chain)");
     out.line("{");
+    out.line("if (penumbra_fusion == ", format_int(static_cast<int>(Fusion::chained)), ") return clamp(chain, 0.0, 1.0);");
     out.line("if (penumbra_fusion == ", format_int(static_cast<int>(Fusion::probabilistic)), ") return lit;");
     out.line("if (penumbra_fusion == ", format_int(static_cast<int>(Fusion::additive)), ") return max(0.0, 1.0 - sum);");
     out.line("if (penumbra_fusion == ", format_int(static_cast<int>(Fusion::maximum)), ") return 1.0 - maximum;");
@@ -249,6 +250,9 @@ constexpr void write_generic_accumulate(LineWriter& out) {
     out.line("penumbra_lit *= 1.0 - q;");
     out.line("penumbra_sum += q;");
     out.line("penumbra_max = max(penumbra_max, q);");
+    out.comment("chained: neighbours fused by maximum, slices further apart by product");
+    out.line("penumbra_chain *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);");
+    out.line("penumbra_prev = q;");
 }
 
 // A `for` loop over the slices, from the bottom one up to the light, one lookup each.
@@ -302,9 +306,11 @@ constexpr Text generic_fragment(const Config& config) {
     out.line("float penumbra_lit = 1.0;");
     out.line("float penumbra_sum = 0.0;");
     out.line("float penumbra_max = 0.0;");
+    out.line("float penumbra_chain = 1.0;");
+    out.line("float penumbra_prev = 0.0;");
     if (uses_generic_level_loop(config)) write_generic_level_loop(out);
     else write_generic_slice_loop(out);
-    out.line("return penumbra_fused(penumbra_lit, penumbra_sum, penumbra_max);");
+    out.line("return penumbra_fused(penumbra_lit, penumbra_sum, penumbra_max, penumbra_chain);");
     out.line("}");
     out.blank();
     write_deferred_main(out);

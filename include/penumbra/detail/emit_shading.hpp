@@ -14,10 +14,15 @@ constexpr std::vector<Param> example_fragment_params() {
 constexpr std::vector<Param> example_vertex_params() {
     return {{"penumbra_clipFromWorld", "mat4", "world to clip space of the viewer's camera", "", {}, "camera"}};
 }
-constexpr std::vector<Param> deferred_params() {
-    return {{"penumbra_worldPositions", "sampler2D",
-             "G-buffer: xyz world position, w = 1 where there is geometry and 0 for the background", "scene units",
-             "penumbra_worldPositions"}};
+constexpr std::vector<Param> deferred_params(const Config& config) {
+    std::vector<Param> params{{"penumbra_worldPositions", "sampler2D",
+                               "G-buffer: xyz world position, w = 1 where there is geometry and 0 for the background",
+                               "scene units", "penumbra_worldPositions"}};
+    if (config.tangent_clip)
+        params.push_back({"penumbra_worldNormals", "sampler2D",
+                          "G-buffer: xyz world normal of the side the viewer sees (for the tangent clip)", "",
+                          "penumbra_worldNormals"});
+    return params;
 }
 
 constexpr Text example_fragment(const Config& config) {
@@ -38,7 +43,15 @@ void main()
 {
     vec3 toLight = normalize(penumbra_toLight.xyz - penumbra_worldPos * penumbra_toLight.w);
     float lambert = max(dot(normalize(penumbra_worldNormal), toLight), 0.0);
-    float visibility = penumbraVisibility(penumbra_worldPos);
+)");
+    if (config.tangent_clip) {
+        out.comment("the tangent clip needs the normal of the side the viewer sees");
+        out.line("float visibility = penumbraVisibility(penumbra_worldPos, "
+                 "gl_FrontFacing ? penumbra_worldNormal : -penumbra_worldNormal);");
+    } else {
+        out.line("float visibility = penumbraVisibility(penumbra_worldPos);");
+    }
+    out.block(R"(
     vec3 albedo = vec3(0.8);
     vec3 color = albedo * (0.15 + 0.85 * lambert * visibility);
     penumbra_color = vec4(color, 1.0);
@@ -86,8 +99,8 @@ constexpr Text deferred_fragment(const Config& config) {
     int binding = 0;
     write_visibility(out, config, binding);
     out.blank();
-    write_params(out, config, deferred_params(), "PenumbraDeferred", binding);
-    write_deferred_main(out);
+    write_params(out, config, deferred_params(config), "PenumbraDeferred", binding);
+    write_deferred_main(out, config.tangent_clip);
     return out.take();
 }
 

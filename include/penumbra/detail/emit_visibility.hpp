@@ -33,7 +33,12 @@ constexpr void write_kernel_function(LineWriter& out, const Config& config, std:
     out.chunk("kernel");
     out.comment("Kernel on the slice plane at depth zeta, seen from light-frame point p (docs/model.md §1.4, §1.9):");
     out.comment("xy = centre (uv of the slice's texture), z = side (uv), w = filter level.");
-    out.line("vec4 penumbra_kernel(vec3 p, float zeta)");
+    if (config.tangent_clip) {
+        out.comment("clip: the part of the light above the receiver's tangent plane (penumbra_tangentClip)");
+        out.line("vec4 penumbra_kernel(vec3 p, float zeta, vec3 clip)");
+    } else {
+        out.line("vec4 penumbra_kernel(vec3 p, float zeta)");
+    }
     out.line("{");
     if (config.light == Light::rect) {
         out.comment("rays from p to the light rectangle cut the plane in a square; w and h cancel out of its side");
@@ -44,6 +49,12 @@ constexpr void write_kernel_function(LineWriter& out, const Config& config, std:
         out.comment("journal §3.5: orthographic slicing, the cone towards the sun grows linearly with distance");
         out.line("vec2 centre = 0.5 + p.xy / (2.0 * penumbra_windowHalfSize);");
         out.line("float side = max(p.z - zeta, 0.0) * penumbra_tanAngularRadius / penumbra_windowHalfSize;");
+    }
+    if (config.tangent_clip) {
+        out.comment("the light's unit square maps affinely onto the kernel: the clipped part is the square of");
+        out.comment("its shorter side at its centre, so the kernel never reaches behind the tangent plane");
+        out.line("centre += clip.xy * side;");
+        out.line("side *= clip.z;");
     }
     const Text bias = choose(config.filter == Filter::gaussian, cat(" + (", format_float(gaussian_level_bias), ")"), Text());
     out.comment("windows narrower than one texel read level 0");
@@ -56,6 +67,66 @@ constexpr void write_kernel_function(LineWriter& out, const Config& config, std:
 constexpr void write_kernel_function(LineWriter& out, const Config& config) {
     const VisibilityConstants k = constants(config);
     write_kernel_function(out, config, k.R, k.L);
+}
+
+// How the loops call the kernel function.
+constexpr Text kernel_call(const Config& config) {
+    return choose(config.tangent_clip, "penumbra_kernel(p, zeta, penumbra_clip)", "penumbra_kernel(p, zeta)");
+}
+
+// Slicing-grid texels by which the tangent clip moves a point sideways along its normal.
+// Three: a wall's own footprint in a slice is up to two texels wide (one of perspective spread over
+// the slice and its leak-fix copy, one of rasterisation), and a level-0 lookup blends the texels
+// within one texel of the kernel's centre; measured on the box scene (1 and 2 texels leave walls
+// self-shadowed, 3 and more do not).
+inline constexpr double tangent_clip_offset_texels = 3.0;
+
+// Orientation-aware lookup: a surface receives only the part of the light above its tangent
+// plane (the cosine term removes the rest), so each kernel is restricted to that part.
+constexpr void write_tangent_clip_function(LineWriter& out, const Config& config) {
+    out.chunk("tangent_clip");
+    out.comment("The part of the light above the tangent plane at p (unit normal n, light frame), in the light's");
+    out.comment("unit square [-0.5, 0.5]^2: xy = centre of the clipped rectangle, z = its shorter side. The plane");
+    out.comment("is cut along the axis it crosses most steeply, at the other axis' centre line (exact for planes");
+    out.comment("parallel to a light axis, the same area otherwise).");
+    out.line("vec3 penumbra_tangentClip(vec3 p, vec3 n)");
+    out.line("{");
+    if (config.light == Light::rect) {
+        out.comment("light point (X w, Y h, 0) is above the plane where n.x X w + n.y Y h > dot(n, p)");
+        out.line("vec2 slopes = n.xy * penumbra_lightSize;");
+        out.line("float level = dot(n, p);");
+    } else {
+        out.comment("direction (X, Y) 2 tan(alpha) sideways, 1 up towards the sun is above where its dot with n > 0");
+        out.line("vec2 slopes = n.xy * (2.0 * penumbra_tanAngularRadius);");
+        out.line("float level = n.z;");
+    }
+    out.line("bool alongX = abs(slopes.x) >= abs(slopes.y);");
+    out.line("float slope = alongX ? slopes.x : slopes.y;");
+    out.line("float safe = slope >= 0.0 ? max(slope, 1e-12) : min(slope, -1e-12);");
+    out.line("float cut = clamp(level / safe, -0.5, 0.5);");
+    out.line("float lo = safe > 0.0 ? cut : -0.5;");
+    out.line("float hi = safe > 0.0 ? 0.5 : cut;");
+    out.line("float mid = 0.5 * (lo + hi);");
+    out.line("return vec3(alongX ? vec2(mid, 0.0) : vec2(0.0, mid), hi - lo);");
+    out.line("}");
+    out.blank();
+}
+
+// The tangent clip's set-up in penumbraVisibility: the normal in the light frame, the clip, and
+// the sideways offset (every surface is rasterised into the slices it crosses, so without it a
+// wall's kernels would sit on the wall's own texels).
+constexpr void write_tangent_clip_setup(LineWriter& out, const Config& config) {
+    out.line("vec3 n = mat3(penumbra_lightFromWorld) * worldNormal;");
+    out.line("n *= inversesqrt(max(dot(n, n), 1e-20));");
+    out.line("vec3 penumbra_clip = penumbra_tangentClip(p, n);");
+    const Text texels = format_float(tangent_clip_offset_texels / config.resolution);
+    out.comment(cat("move the point ", format_float(tangent_clip_offset_texels),
+                    " slicing texels sideways along its normal, off its own texels"));
+    if (config.light == Light::rect)
+        out.line("p.xy += n.xy * penumbra_lightSize * ((penumbra_copDistance + p.z) / penumbra_copDistance * ", texels,
+                 ");");
+    else
+        out.line("p.xy += n.xy * (2.0 * penumbra_windowHalfSize * ", texels, ");");
 }
 
 constexpr void write_weight_function(LineWriter& out, const Config& config) {
@@ -167,6 +238,14 @@ constexpr void write_fusion_start(LineWriter& out, const Config& config) {
         out.line("float penumbra_sum = 0.0;");
         out.line("float penumbra_max = 0.0;");
         break;
+    case Fusion::chained:
+        out.comment("chained fusion: eq. (5) assumes independent slices, but the leak fix (paper §3.4.1) copies every");
+        out.comment("surface into the next slice and a solid covers consecutive slices alike. Neighbours are taken");
+        out.comment("as nested (fused by maximum), slices further apart as independent (product): a chain whose");
+        out.comment("step from the previous slice's q to this one's lets through (1 - max(q, prev)) / (1 - prev).");
+        out.line("float penumbra_lit = 1.0;");
+        out.line("float penumbra_prev = 0.0; // q of the slice visited before (its neighbour)");
+        break;
     }
 }
 
@@ -178,6 +257,10 @@ constexpr void write_accumulate(LineWriter& out, const Config& config) {
     case Fusion::average:
         out.line("penumbra_sum += q;");
         out.line("penumbra_max = max(penumbra_max, q);");
+        break;
+    case Fusion::chained:
+        out.line("penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);");
+        out.line("penumbra_prev = q;");
         break;
     }
 }
@@ -192,6 +275,7 @@ constexpr void write_fusion_result(LineWriter& out, const Config& config) {
         out.comment("Soler & Sillion: halfway between the additive and the maximum estimate");
         out.line("return 1.0 - 0.5 * (min(1.0, penumbra_sum) + penumbra_max);");
         break;
+    case Fusion::chained: out.line("return clamp(penumbra_lit, 0.0, 1.0);"); break;
     }
 }
 
@@ -207,7 +291,7 @@ constexpr void write_slice_loop(LineWriter& out, const Config& config) {
                  ", bottom plane at z0 + ", format_int(s + 1), " * thickness");
         out.line("{");
         out.line("float zeta = penumbra_sliceDepths.x + ", format_float(s + 1), " * penumbra_sliceDepths.y;");
-        out.line("vec4 kernel = penumbra_kernel(p, zeta);");
+        out.line("vec4 kernel = ", kernel_call(config), ";");
         const Text lookup = choose(config.packing == Packing::volume, cat("penumbra_filtered", format_int(tile), "(kernel)"),
                                    cat("penumbra_filtered(kernel, ", format_float(tile), ")"));
         out.line("float q = penumbra_weight(p.z, zeta) * dot(", lookup, ", penumbra_i);");
@@ -242,7 +326,7 @@ constexpr void write_level_loop(LineWriter& out, const Config& config) {
                      format_int(2 << level), " texels");
         out.line("while (penumbra_k >= 0.0) {");
         out.line("float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;");
-        out.line("vec4 kernel = penumbra_kernel(p, zeta);");
+        out.line("vec4 kernel = ", kernel_call(config), ";");
         auto read = [&](int l) {
             const Text shift = choose(config.filter == Filter::nbuffer, nbuffer_shift(config, l), Text("0.0"));
             return cat("textureLod(", atlas_level_name(l), ", vec2(penumbra_delta + (kernel.x - ", shift, ") * ", k.inv_T,
@@ -275,12 +359,20 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
     write_kernel_function(out, config);
     write_weight_function(out, config);
     if (!uses_level_loop(config)) write_lookup_function(out, config);
+    if (config.tangent_clip) write_tangent_clip_function(out, config);
     out.chunk("visibility");
-    out.comment("Fraction of the light visible from worldPos: 1 lit, 0 in umbra.");
-    out.line("float penumbraVisibility(vec3 worldPos)");
+    if (config.tangent_clip) {
+        out.comment("Fraction of the part of the light above the tangent plane at worldPos (worldNormal: the normal of");
+        out.comment("the side being lit, any length but not zero) that is visible: 1 lit, 0 in umbra.");
+        out.line("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)");
+    } else {
+        out.comment("Fraction of the light visible from worldPos: 1 lit, 0 in umbra.");
+        out.line("float penumbraVisibility(vec3 worldPos)");
+    }
     out.line("{");
     out.line("vec3 p = (penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz;");
     out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
+    if (config.tangent_clip) write_tangent_clip_setup(out, config);
     write_fusion_start(out, config);
     if (uses_level_loop(config))
         write_level_loop(out, config);
@@ -293,7 +385,8 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
 // The includable snippet penumbra_visibility.glsl: no #version, declarations from binding 0.
 constexpr Text visibility_snippet(const Config& config) {
     LineWriter out;
-    out.line("// Penumbra ", version_string, " - penumbra_visibility.glsl: float penumbraVisibility(vec3 worldPos)");
+    out.line("// Penumbra ", version_string, " - penumbra_visibility.glsl: float penumbraVisibility(vec3 worldPos",
+             choose(config.tangent_clip, ", vec3 worldNormal", ""), ")");
     out.line("// ", describe(config));
     out.comment("Include after the #version line of a stage for this target. Bindings start at 0.");
     out.blank();

@@ -44,7 +44,8 @@ constexpr Text describe(const Config& config) {
                format_int(config.resolution), " | filter ", to_string(config.filter), " | fusion ",
                to_string(config.fusion), " | packing ", to_string(config.packing), " | light ",
                to_string(config.light), " | leak fix ", on_off(config.leak_fix), " | fade ",
-               on_off(config.self_shadow_fade), " | target ", to_string(config.target));
+               on_off(config.self_shadow_fade), choose(config.tangent_clip, " | tangent clip on", ""), " | target ",
+               to_string(config.target));
 }
 
 // The version directive of the target: the first line of every stage.
@@ -80,8 +81,9 @@ constexpr void write_preamble(LineWriter& out, const Config& config, std::string
     out.blank();
 }
 
-// The deferred pass's main(): visibility of the G-buffer texel under the pixel.
-constexpr void write_deferred_main(LineWriter& out) {
+// The deferred pass's main(): visibility of the G-buffer texel under the pixel (with
+// `normals`, the G-buffer's normal too, for the tangent clip).
+constexpr void write_deferred_main(LineWriter& out, bool normals = false) {
     out.chunk("deferred_main");
     out.block(R"(
 void main()
@@ -93,9 +95,14 @@ void main()
         penumbra_visibility = vec4(1.0);
         return;
     }
-    penumbra_visibility = vec4(vec3(penumbraVisibility(world.xyz)), 1.0);
-}
 )");
+    if (normals) {
+        out.line("vec3 normal = texelFetch(penumbra_worldNormals, ivec2(gl_FragCoord.xy), 0).xyz;");
+        out.line("penumbra_visibility = vec4(vec3(penumbraVisibility(world.xyz, normal)), 1.0);");
+    } else {
+        out.line("penumbra_visibility = vec4(vec3(penumbraVisibility(world.xyz)), 1.0);");
+    }
+    out.line("}");
 }
 
 // True when `params` holds a plain uniform (which Vulkan must put in a block).

@@ -461,12 +461,15 @@ public:
     // with {"penumbra_worldPositions": world_positions}. Returns the result texture, width × height
     // (owned by the runtime), or 0 with *error set. With `timing`, the GPU time of the screen passes
     // (named after the pass when there is one; GL_TIME_ELAPSED, waits for the result).
+    // `world_normals`: the G-buffer's normals (RGBA32F, xyz = the normal of the side the viewer
+    // sees), the caller texture penumbra_worldNormals of configurations with tangent_clip on.
     GLuint shade_deferred(GLuint world_positions, int width, int height, std::string* error = nullptr,
-                          PassTiming* timing = nullptr) {
+                          PassTiming* timing = nullptr, GLuint world_normals = 0) {
         detail::DebugCapture capture(options_.debug_output);
         std::vector<PassTiming> timings;
-        std::string diagnostic = screen("shade_deferred", {{"penumbra_worldPositions", world_positions}}, width,
-                                        height, timing ? &timings : nullptr);
+        TextureMap caller{{"penumbra_worldPositions", world_positions}};
+        if (world_normals) caller["penumbra_worldNormals"] = world_normals;
+        std::string diagnostic = screen("shade_deferred", caller, width, height, timing ? &timings : nullptr);
         if (std::string d = capture.take_diagnostic("shade_deferred"); diagnostic.empty()) diagnostic = d;
         if (!diagnostic.empty()) {
             if (error) *error = diagnostic;

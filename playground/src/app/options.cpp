@@ -23,10 +23,11 @@ using penumbra_gen::printable;
 constexpr std::string_view flag_list =
     "--headless, --scene, --size, --light-size, --out, --visibility, --reference, --samples, --metrics, "
     "--reference-out, --error-out, --slices, --resolution, --filter, --fusion, --packing, --light, --target, "
-    "--no-leak-fix, --no-fade, --config, --watch, --frames, --screenshot, --script, --help";
+    "--no-leak-fix, --no-fade, --tangent-clip, --no-tangent-clip, --config, --watch, --frames, --screenshot, --script, --help";
 
 bool is_switch(std::string_view flag) {
-    return flag == "--headless" || flag == "--reference" || flag == "--no-leak-fix" || flag == "--no-fade";
+    return flag == "--headless" || flag == "--reference" || flag == "--no-leak-fix" || flag == "--no-fade" ||
+           flag == "--tangent-clip" || flag == "--no-tangent-clip";
 }
 
 bool takes_value(std::string_view flag) {
@@ -130,6 +131,8 @@ ParsedOptions parse_options(const std::vector<std::string>& args) {
             if (flag == "--reference") options.reference = true;
             if (flag == "--no-leak-fix") flags.no_leak_fix = true;
             if (flag == "--no-fade") flags.no_fade = true;
+            if (flag == "--tangent-clip") flags.tangent_clip = true;
+            if (flag == "--no-tangent-clip") flags.tangent_clip = false;
             continue;
         }
         if (!takes_value(flag)) {
@@ -208,7 +211,7 @@ std::string usage() {
         "visibility with an Embree ray-traced ground truth. Without --headless: the interactive window.\n"
         "\n"
         "scene and light:\n";
-    out += line("--scene NAME|FILE.obj", "planes, boxes, tree, butterfly, terrain, crowd, or a Wavefront OBJ file "
+    out += line("--scene NAME|FILE.obj", "planes, boxes, tree, butterfly, terrain, crowd, box, or a Wavefront OBJ file "
                                          "(default boxes)");
     out += line("--size WxH", "image size, 1 to 8192 per side (default 512x512 headless, 1280x720 window)");
     out += line("--light-size X", "rect: the rectangle's longer side in scene units, aspect kept (default: the\n"
@@ -228,6 +231,8 @@ std::string usage() {
                                     to_string(d.target)));
     out += line("--no-leak-fix", "turn off the leak fix (paper §3.4.1; default on)");
     out += line("--no-fade", "turn off the self-shadow fade (paper §3.4.2; default on)");
+    out += line("--[no-]tangent-clip", std::string("kernels cover only the light above the receiver's tangent plane (default ") +
+                                           (d.tangent_clip ? "on" : "off") + ")");
     out += line("--config FILE.json", "configuration from JSON (the keys of Config, or a layout.json)");
     out += "\nheadless output:\n";
     out += line("--out FILE.png", "the shaded image (required with --headless)");

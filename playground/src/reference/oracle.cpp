@@ -261,11 +261,63 @@ Oracle::Sample Oracle::filtered(int slice, glm::dvec2 centre, double side) const
     return mix_levels(at_level(lo), at_level(std::min(lo + 1, L)), t, false);
 }
 
-OracleValue Oracle::visibility(glm::vec3 world, Fusion fusion) const {
+std::vector<double> Oracle::occlusions(glm::vec3 world) const {
+    glm::dvec3 p = glm::dvec3(light_from_world_ * glm::dvec4(glm::dvec3(world), 1.0));
+    p.z = std::max(p.z, 1e-6);
+    std::vector<double> q(config_.slices, 0.0);
+    for (int s = 0; s < config_.slices; ++s) {
+        const double zeta = slice_depths_.x + (s + 1) * slice_depths_.y;
+        const double weight = config_.self_shadow_fade ? std::clamp((p.z - zeta) / slice_depths_.y, 0.0, 1.0)
+                                                       : (zeta < p.z ? 1.0 : 0.0);
+        if (weight == 0.0) continue;
+        glm::dvec2 centre;
+        double side;
+        if (config_.light == Light::rect) {
+            const double scale = cop_distance_ / (p.z * (cop_distance_ + zeta));
+            centre = 0.5 + glm::dvec2(p) * (zeta * scale) / light_size_;
+            side = std::max(p.z - zeta, 0.0) * scale;
+        } else {
+            centre = 0.5 + glm::dvec2(p) / (2.0 * window_half_size_);
+            side = std::max(p.z - zeta, 0.0) * tan_angular_radius_ / window_half_size_;
+        }
+        q[s] = weight * filtered(s, centre, side).value;
+    }
+    return q;
+}
+
+OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion) const {
     glm::dvec3 p = glm::dvec3(light_from_world_ * glm::dvec4(glm::dvec3(world), 1.0));
     p.z = std::max(p.z, 1e-6); // points on or behind the light plane
     const double z0 = slice_depths_.x, thickness = slice_depths_.y;
-    double lit = 1.0, sum = 0.0, maximum = 0.0, bound = 0.0;
+    double lit = 1.0, sum = 0.0, maximum = 0.0, bound = 0.0, chain = 1.0, previous = 0.0;
+    // Tangent clip (emit_visibility.hpp): the part of the light above the tangent plane, in the
+    // light's unit square, cut along the axis the plane crosses most steeply; then the point
+    // moves tangent_clip_offset_texels slicing texels sideways along its normal.
+    glm::dvec3 clip(0.0, 0.0, 1.0);
+    bool clip_ambiguous = false;
+    if (config_.tangent_clip) {
+        glm::dvec3 n = glm::dmat3(light_from_world_) * glm::dvec3(normal);
+        n *= 1.0 / std::sqrt(std::max(glm::dot(n, n), 1e-20));
+        const bool rect = config_.light == Light::rect;
+        const glm::dvec2 slopes = glm::dvec2(n) * (rect ? light_size_ : glm::dvec2(2.0 * tan_angular_radius_));
+        const double level = rect ? glm::dot(n, p) : n.z;
+        auto clip_along = [&](bool x) {
+            const double slope = x ? slopes.x : slopes.y;
+            const double safe = slope >= 0.0 ? std::max(slope, 1e-12) : std::min(slope, -1e-12);
+            const double cut = std::clamp(level / safe, -0.5, 0.5);
+            const double lo = safe > 0.0 ? cut : -0.5, hi = safe > 0.0 ? 0.5 : cut;
+            const double mid = 0.5 * (lo + hi);
+            return x ? glm::dvec3(mid, 0.0, hi - lo) : glm::dvec3(0.0, mid, hi - lo);
+        };
+        clip = clip_along(std::abs(slopes.x) >= std::abs(slopes.y));
+        // fp32 may pick the other axis where both slopes are (nearly) equal; it matters only
+        // where the two cuts differ
+        clip_ambiguous = std::abs(std::abs(slopes.x) - std::abs(slopes.y)) <= 1e-5 * std::abs(slopes.x) &&
+                         glm::length(clip_along(true) - clip_along(false)) > 1e-9;
+        const double texels = detail::tangent_clip_offset_texels / config_.resolution;
+        if (rect) p += glm::dvec3(glm::dvec2(n) * light_size_ * ((cop_distance_ + p.z) / cop_distance_ * texels), 0.0);
+        else p += glm::dvec3(glm::dvec2(n) * (2.0 * window_half_size_ * texels), 0.0);
+    }
     for (int s = config_.slices - 1; s >= 0; --s) {
         const double zeta = z0 + (s + 1) * thickness; // the slice's bottom plane
         // paper §3.4.2 fade: 0 at or below the point, a ramp over the nearest plane above, then 1
@@ -286,12 +338,17 @@ OracleValue Oracle::visibility(glm::vec3 world, Fusion fusion) const {
             centre = 0.5 + glm::dvec2(p) / (2.0 * window_half_size_);
             side = std::max(p.z - zeta, 0.0) * tan_angular_radius_ / window_half_size_;
         }
+        centre += glm::dvec2(clip) * side; // tangent clip (identity when off)
+        side *= clip.z;
         const Sample o = filtered(s, centre, side);
-        bound += ambiguous ? o.value + o.bound : weight * o.bound + arithmetic_error;
+        bound += ambiguous ? o.value + o.bound : clip_ambiguous ? 1.0 : weight * o.bound + arithmetic_error;
         const double q = weight * o.value;
         lit *= 1.0 - q;
         sum += q;
         maximum = std::max(maximum, q);
+        // chained: the neighbour visited before is nested with this slice, the others independent
+        chain *= (1.0 - std::max(q, previous)) / std::max(1.0 - previous, 1e-6);
+        previous = q;
     }
     double v = lit;
     switch (fusion) {
@@ -299,6 +356,7 @@ OracleValue Oracle::visibility(glm::vec3 world, Fusion fusion) const {
     case Fusion::additive: v = std::max(0.0, 1.0 - sum); break;
     case Fusion::maximum: v = 1.0 - maximum; break;
     case Fusion::average: v = 1.0 - 0.5 * (std::min(1.0, sum) + maximum); break; // Soler & Sillion
+    case Fusion::chained: v = std::clamp(chain, 0.0, 1.0); break;
     }
     return {v, bound};
 }

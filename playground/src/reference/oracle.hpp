@@ -63,7 +63,13 @@ public:
 
     OracleValue visibility(glm::vec3 world) const { return visibility(world, config_.fusion); }
     // The same with another fusion rule (the filter does not depend on it).
-    OracleValue visibility(glm::vec3 world, Fusion fusion) const;
+    OracleValue visibility(glm::vec3 world, Fusion fusion) const { return visibility(world, glm::vec3(0.0f), fusion); }
+    // With tangent_clip on: `normal` is the normal of the side being lit (ignored when it is off).
+    OracleValue visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion) const;
+
+    // Every slice's faded occlusion q_k = w_k · o_k at a world point, slice 0 (nearest the light)
+    // first: what the fusion rules combine. For diagnostics and studies of new rules.
+    std::vector<double> occlusions(glm::vec3 world) const;
 
     // Filtered occlusion of one slice for a kernel (centre in uv, side in uv), with its bound;
     // exposed for diagnostics and for the exact-answer tests.

@@ -29,7 +29,8 @@ layout(location = 0) out vec4 outPosition;
 layout(location = 1) out vec4 outNormal;
 void main() {
     outPosition = vec4(worldPos, 1.0);
-    outNormal = vec4(normalize(worldNormal), 0.0);
+    // the normal of the side the camera sees (two-sided surfaces, back faces of sheets)
+    outNormal = vec4(normalize(gl_FrontFacing ? worldNormal : -worldNormal), 0.0);
 }
 )";
 

@@ -167,7 +167,7 @@ std::string FrameRenderer::render(penumbra::gl::Runtime& left, penumbra::gl::Run
         }
         std::string error;
         glBeginQuery(GL_TIME_ELAPSED, queries_[1]);
-        visibility[side] = runtime->shade_deferred(gbuffer_->positions(), width, height, &error);
+        visibility[side] = runtime->shade_deferred(gbuffer_->positions(), width, height, &error, nullptr, gbuffer_->normals());
         glEndQuery(GL_TIME_ELAPSED);
         glDisable(GL_SCISSOR_TEST);
         if (!visibility[side]) return prefix + error;

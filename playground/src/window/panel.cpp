@@ -51,6 +51,7 @@ bool config_editor(const char* id, Config& config) {
     changed |= ImGui::Checkbox("leak fix (§3.4.1)", &config.leak_fix);
     ImGui::SameLine();
     changed |= ImGui::Checkbox("fade (§3.4.2)", &config.self_shadow_fade);
+    changed |= ImGui::Checkbox("tangent clip", &config.tangent_clip);
     ImGui::PopID();
     return changed;
 }

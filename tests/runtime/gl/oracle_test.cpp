@@ -40,7 +40,7 @@ std::string describe_config(const Config& c) {
     return std::string(to_string(c.light)) + " " + std::string(to_string(c.filter)) + " " +
            std::string(to_string(c.fusion)) + " " + std::string(to_string(c.packing)) + " S=" + std::to_string(c.slices) +
            " R=" + std::to_string(c.resolution) + (c.leak_fix ? "" : " leak-fix-off") +
-           (c.self_shadow_fade ? "" : " fade-off");
+           (c.self_shadow_fade ? "" : " fade-off") + (c.tangent_clip ? " tangent-clip" : "");
 }
 
 // The GPU run of one configuration: visibility at the shaded world positions, and what the
@@ -69,7 +69,7 @@ Agreement compare(const Oracle& oracle, const Config& config, const HeadlessResu
     double sum = 0;
     for (std::size_t i = 0; i < result.visibility.size(); ++i) {
         if (!result.geometry[i]) continue;
-        const OracleValue expected = oracle.visibility(result.positions[i], config.fusion);
+        const OracleValue expected = oracle.visibility(result.positions[i], result.normals[i], config.fusion);
         const double difference = std::abs(result.visibility[i] - expected.visibility);
         ++out.pixels;
         sum += difference;
@@ -101,6 +101,12 @@ std::vector<Config> oracle_matrix() {
     configs.push_back({.slices = 16, .resolution = 64, .self_shadow_fade = false});
     configs.push_back({.slices = 16, .resolution = 256, .filter = Filter::sat, .packing = Packing::array,
                        .self_shadow_fade = false});
+    // the tangent clip (kernels restricted to the light above the tangent plane, normal offset)
+    configs.push_back({.slices = 16, .resolution = 256, .tangent_clip = true});
+    configs.push_back({.slices = 4, .resolution = 64, .filter = Filter::sat, .packing = Packing::array, .tangent_clip = true});
+    configs.push_back({.slices = 16, .resolution = 256, .filter = Filter::mipmap, .tangent_clip = true});
+    configs.push_back({.slices = 16, .resolution = 256, .filter = Filter::gaussian, .packing = Packing::volume,
+                       .light = Light::sun, .tangent_clip = true});
     return configs;
 }
 
