@@ -6,6 +6,8 @@
 #include "scenes/obj_loader.hpp"
 #include "scenes/scenes.hpp"
 
+#include "../../../generator/src/file_transaction.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -69,13 +71,8 @@ nlohmann::ordered_json light_json(const Scene& scene, Light light) {
 }
 
 bool write_text(const std::string& path, const std::string& text, std::string* error) {
-    std::ofstream file(path, std::ios::binary);
-    file << text;
-    if (!file) {
-        *error = "cannot write " + path;
-        return false;
-    }
-    return true;
+    *error = penumbra_gen::write_file_atomically(path, text); // all or nothing
+    return error->empty();
 }
 
 int fail(const std::string& message, int code = 1) {
