@@ -65,7 +65,8 @@ bool write_new_file(const fs::path& temp, const std::string& bytes) {
 }
 
 struct Placed {
-    fs::path path, temp, backup;
+    fs::path shown;            // the destination as the caller named it, for messages
+    fs::path path, temp, backup; // path: the file replaced (a symbolic link resolved)
     bool temp_written = false;
     bool had_old = false;   // `backup` holds the previous file
     bool moved_old = false; // the previous file was renamed away (no hard link): `path` is missing
@@ -115,12 +116,26 @@ std::string commit(const FileChanges& changes) {
     // 2. Every destination can take a file, then every file to its temporary name.
     for (std::size_t i = 0; i < changes.writes.size(); ++i) {
         const fs::path& path = changes.writes[i].path;
+        fs::path target = path;
         struct stat info {};
-        if (exists_no_follow(path, &info) && S_ISDIR(info.st_mode))
-            return roll_back("cannot write " + quoted(path) +
-                             ": it is a directory; allowed: a regular file or nothing at that path");
-        steps[i].path = path;
-        steps[i].temp = side_name(path, "tmp");
+        if (exists_no_follow(path, &info)) {
+            // Only a regular file is replaced (a link to one: the file it leads to). Renaming over
+            // a device, a FIFO or a socket (/dev/stdout, /dev/full) would remove the node itself.
+            if (S_ISLNK(info.st_mode)) {
+                std::error_code ec;
+                if (::stat(path.c_str(), &info) != 0 || (target = fs::canonical(path, ec), ec))
+                    return roll_back("cannot write " + quoted(path) +
+                                     ": it is a symbolic link that leads nowhere; allowed: a regular file or "
+                                     "nothing at that path");
+            }
+            if (!S_ISREG(info.st_mode))
+                return roll_back("cannot write " + quoted(path) + ": it is " +
+                                 (S_ISDIR(info.st_mode) ? "a directory" : "not a regular file (a device, FIFO or socket)") +
+                                 "; allowed: a regular file or nothing at that path");
+        }
+        steps[i].shown = path;
+        steps[i].path = target;
+        steps[i].temp = side_name(target, "tmp");
         if (!write_new_file(steps[i].temp, changes.writes[i].bytes)) {
             const std::string why = reason();
             ::unlink(steps[i].temp.c_str());
@@ -139,11 +154,11 @@ std::string commit(const FileChanges& changes) {
             } else if (::rename(step.path.c_str(), step.backup.c_str()) == 0) {
                 step.had_old = step.moved_old = true;
             } else {
-                return roll_back("cannot replace " + quoted(step.path) + ": " + reason());
+                return roll_back("cannot replace " + quoted(step.shown) + ": " + reason());
             }
         }
         if (::rename(step.temp.c_str(), step.path.c_str()) != 0)
-            return roll_back("cannot write " + quoted(step.path) + ": " + reason());
+            return roll_back("cannot write " + quoted(step.shown) + ": " + reason());
         step.placed = true;
     }
 

@@ -7,6 +7,7 @@
 #include "scenes/scenes.hpp"
 
 #include "../../../generator/src/file_transaction.hpp"
+#include "../../../generator/src/printable.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -90,7 +91,7 @@ SceneLoad load_scene(const std::string& name_or_path) {
     if (std::optional<Scene> scene = make_scene(name_or_path)) return {std::move(scene), {}};
     std::string allowed;
     for (std::string_view name : scene_names()) allowed += std::string(name) + ", ";
-    return {std::nullopt, "--scene: unknown scene '" + name_or_path + "'; allowed: " + allowed +
+    return {std::nullopt, "--scene: unknown scene '" + penumbra_gen::printable(name_or_path) + "'; allowed: " + allowed +
                               "or a Wavefront file ending in .obj"};
 }
 
