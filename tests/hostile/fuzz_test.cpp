@@ -293,6 +293,7 @@ TEST_CASE("fuzz: penumbra-playground arguments") {
 
 TEST_CASE("fuzz: OBJ files") {
     Tally tally{"obj"};
+    Tally through{"obj-through-tool"};
     Random r(5);
     const std::string base = "# a quad\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nvn 0 1 0\nvt 0 0\nf 1/1/1 2/1/1 3/1/1 4/1/1\n"
                              "v 0 1 0\nv 1 1 0\nv 0 1 1\nf -3 -2 -1\ng top\nf 5 6 7\n";
@@ -333,7 +334,6 @@ TEST_CASE("fuzz: OBJ files") {
                 ++children;
                 const fs::path png = scratch().fresh("obj.png");
                 const std::vector<std::string> args{"--headless", "--scene", obj.string(), "--out", png.string()};
-                Tally through{"obj-through-tool"};
                 const ChildRun run = run_child(playground, args);
                 check_promise(through, run, args, {png});
                 CHECK(run.exit_code == 2);
@@ -346,6 +346,7 @@ TEST_CASE("fuzz: OBJ files") {
 
 TEST_CASE("fuzz: window scripts") {
     Tally tally{"script"};
+    Tally through{"script-through-tool"};
     Random r(6);
     const std::string base = "set slices 8\nlight 1 2 3\nlight_size 2 1\nsun 30 60\ncamera 10 20 5\nwait 3\n"
                              "edit penumbra_shading.frag replace a => b\nwait_reload 2\nscreenshot x.png\nanswer cancel\n";
@@ -383,7 +384,6 @@ TEST_CASE("fuzz: window scripts") {
                 ++children;
                 const fs::path file = scratch().write("fuzz.script", text);
                 const std::vector<std::string> args{"--script", file.string()};
-                Tally through{"script-through-tool"};
                 const ChildRun run = run_child(playground, args);
                 check_promise(through, run, args, {});
                 CHECK(run.exit_code == 2);
