@@ -6,7 +6,7 @@
 // options) are also driven directly, many more times, and their rejections checked through the
 // tool on a sample.
 //
-//   PENUMBRA_FUZZ_SCALE=10   ten times the cases (the default, 1, is what CI runs)
+//   PENUMBRA_FUZZ_SCALE=10   ten times the cases (the default, 1, is what CI runs; 0.1: a tenth)
 //   PENUMBRA_FUZZ_SEED=N     another seed (default 13)
 #include "child_process.hpp"
 
@@ -34,8 +34,9 @@ const std::string gen = PENUMBRA_GEN_PATH;
 const std::string playground = PENUMBRA_PLAYGROUND_PATH;
 
 int scaled(int cases) {
-    const char* scale = std::getenv("PENUMBRA_FUZZ_SCALE");
-    return cases * (scale ? std::max(1, std::atoi(scale)) : 1);
+    const char* text = std::getenv("PENUMBRA_FUZZ_SCALE");
+    const double scale = text ? std::strtod(text, nullptr) : 1.0;
+    return std::max(1, static_cast<int>(std::lround(cases * (scale > 0 ? scale : 1.0))));
 }
 unsigned seed() {
     const char* text = std::getenv("PENUMBRA_FUZZ_SEED");

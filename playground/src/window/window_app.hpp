@@ -40,7 +40,8 @@ struct Controls {
 
 class WindowApp {
 public:
-    // nullptr with *error when the scene or the first configuration cannot be set up.
+    // nullptr with *error when the scene or the first configuration cannot be set up (*error empty:
+    // the problem was printed already, as an "error: …" line).
     static std::unique_ptr<WindowApp> create(const PlaygroundOptions& options, std::string* error);
 
     // --- configuration (side 0: main, 1: split screen's right half)
