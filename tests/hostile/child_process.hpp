@@ -21,6 +21,13 @@
 
 namespace hostile {
 
+// The tool under test: the built one, or another build of it named by `variable` (scripts/sanitize.sh
+// --quick runs these tests against a sanitized penumbra-gen that way).
+inline std::string tool_path(const char* variable, const char* built) {
+    const char* other = std::getenv(variable);
+    return other && *other ? other : built;
+}
+
 struct ChildLimits {
     unsigned timeout_s = 20;             // SIGALRM after this
     std::optional<rlim_t> file_size;     // RLIMIT_FSIZE: writes past it fail with EFBIG (SIGXFSZ ignored)

@@ -23,8 +23,8 @@ using hostile::ChildLimits;
 using hostile::ChildRun;
 using hostile::run_child;
 
-const std::string gen = PENUMBRA_GEN_PATH;
-const std::string playground = PENUMBRA_PLAYGROUND_PATH;
+const std::string gen = hostile::tool_path("PENUMBRA_TEST_GEN", PENUMBRA_GEN_PATH);
+const std::string playground = hostile::tool_path("PENUMBRA_TEST_PLAYGROUND", PENUMBRA_PLAYGROUND_PATH);
 
 hostile::Scratch& scratch() {
     static hostile::Scratch s("hostile-cases");
