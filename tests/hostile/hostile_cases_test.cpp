@@ -330,6 +330,26 @@ TEST_CASE("hostile: playground files are whole or absent, and 'wrote' only for w
     }
 }
 
+TEST_CASE("hostile: a window screenshot that cannot be written is not 'wrote', and fails the run") {
+    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) {
+        MESSAGE("skipped: no xvfb-run");
+        return;
+    }
+    const fs::path dir = scratch().fresh("window");
+    fs::create_directories(dir / "shot.png"); // a directory where the screenshot goes
+    const std::string command = "cd '" + dir.string() + "' && xvfb-run -a '" + playground +
+                                "' --scene planes --size 64x48 --slices 2 --resolution 32 --frames 2"
+                                " --screenshot shot.png --watch shaders > out.txt 2> err.txt";
+    const int status = std::system(command.c_str());
+    const std::string out = hostile::read_capped(dir / "out.txt"), err = hostile::read_capped(dir / "err.txt");
+    CAPTURE(err);
+    CHECK(WEXITSTATUS(status) == 1);
+    CHECK(err.find("error: screenshot: cannot write 'shot.png': it is a directory") != std::string::npos);
+    CHECK(out.find("screenshot: wrote") == std::string::npos);
+    CHECK(fs::is_directory(dir / "shot.png"));
+    CHECK(fs::is_empty(dir / "shot.png"));
+}
+
 TEST_CASE("hostile: shader diagnostics are bounded and escaped") {
     using penumbra::playground::ShaderFolder;
     const fs::path dir = scratch().fresh("watch");

@@ -193,6 +193,7 @@ int run_window(const PlaygroundOptions& options) {
             app->render_frame(fb_width, fb_height, 0.0);
         }
         print_summary(*app, fb_width, fb_height);
+        if (app->screenshot_failed() && exit_code == 0) exit_code = 1; // writing failed
     }
     app.reset(); // GL objects go while the context is current
     ImGui_ImplOpenGL3_Shutdown();

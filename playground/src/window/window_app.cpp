@@ -394,7 +394,10 @@ bool WindowApp::render_frame(int width, int height, double dt) {
     frame_error_ = error;
     update_truth(width, height, settings);
     for (const std::string& path : screenshots_)
-        if (std::string e = capture(path, width, height); !e.empty()) problem("screenshot: " + e);
+        if (std::string e = capture(path, width, height); !e.empty()) {
+            problem("error: screenshot: " + e);
+            screenshot_failed_ = true;
+        }
     screenshots_.clear();
     ++frame_index_;
     return true;
