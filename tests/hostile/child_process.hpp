@@ -73,23 +73,29 @@ inline std::string read_capped(const std::filesystem::path& path, std::size_t ca
     return text;
 }
 
-// Runs `program` with `args`; stdin is /dev/null, DISPLAY and WAYLAND_DISPLAY are unset.
-inline ChildRun run_child(const std::string& program, const std::vector<std::string>& args,
-                          const ChildLimits& limits = {}) {
+// A started child: its pid and where its stdout and stderr go.
+struct Started {
+    pid_t pid = -1;
+    std::string out_file, err_file;
+};
+
+// Starts `program` with `args`; stdin is /dev/null, DISPLAY and WAYLAND_DISPLAY are unset.
+inline Started start_child(const std::string& program, const std::vector<std::string>& args,
+                           const ChildLimits& limits = {}) {
     static int counter = 0;
     const std::filesystem::path base = std::filesystem::temp_directory_path() /
                                        ("penumbra-hostile-io-" + std::to_string(::getpid()) + "-" +
                                         std::to_string(++counter));
-    const std::string out_file = base.string() + ".out", err_file = base.string() + ".err";
+    Started started{-1, base.string() + ".out", base.string() + ".err"};
     std::vector<char*> argv{const_cast<char*>(program.c_str())};
     for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
-    const pid_t pid = ::fork();
-    if (pid < 0) throw std::runtime_error("fork failed");
-    if (pid == 0) {
+    started.pid = ::fork();
+    if (started.pid < 0) throw std::runtime_error("fork failed");
+    if (started.pid == 0) {
         const int in = ::open("/dev/null", O_RDONLY);
-        const int out = ::open(out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);
-        const int err = ::open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);
+        const int out = ::open(started.out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);
+        const int err = ::open(started.err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);
         if (in < 0 || out < 0 || err < 0 || ::dup2(in, 0) < 0 || ::dup2(out, 1) < 0 || ::dup2(err, 2) < 0) ::_exit(125);
         if (!limits.cwd.empty() && ::chdir(limits.cwd.c_str()) != 0) ::_exit(125);
         ::unsetenv("DISPLAY");
@@ -105,17 +111,48 @@ inline ChildRun run_child(const std::string& program, const std::vector<std::str
         ::execv(argv[0], argv.data());
         ::_exit(126);
     }
+    return started;
+}
+
+// Waits for a started child and collects what it printed.
+inline ChildRun finish_child(const Started& started) {
     int status = 0;
-    while (::waitpid(pid, &status, 0) < 0) {
+    while (::waitpid(started.pid, &status, 0) < 0) {
     }
     ChildRun run;
     if (WIFEXITED(status)) run.exit_code = WEXITSTATUS(status);
     if (WIFSIGNALED(status)) run.signal = WTERMSIG(status);
-    run.out = read_capped(out_file);
-    run.err = read_capped(err_file);
-    std::filesystem::remove(out_file);
-    std::filesystem::remove(err_file);
+    run.out = read_capped(started.out_file);
+    run.err = read_capped(started.err_file);
+    std::filesystem::remove(started.out_file);
+    std::filesystem::remove(started.err_file);
     return run;
+}
+
+inline ChildRun run_child(const std::string& program, const std::vector<std::string>& args,
+                          const ChildLimits& limits = {}) {
+    return finish_child(start_child(program, args, limits));
+}
+
+// Several runs, as many at a time as there are processors (the fuzz driver's batches).
+struct ChildJob {
+    std::string program;
+    std::vector<std::string> args;
+    ChildLimits limits;
+};
+inline std::vector<ChildRun> run_children(const std::vector<ChildJob>& jobs) {
+    const std::size_t parallel = std::max<long>(1, ::sysconf(_SC_NPROCESSORS_ONLN));
+    std::vector<ChildRun> runs(jobs.size());
+    std::vector<std::pair<std::size_t, Started>> running;
+    for (std::size_t next = 0; next < jobs.size() || !running.empty();) {
+        while (next < jobs.size() && running.size() < parallel) {
+            running.emplace_back(next, start_child(jobs[next].program, jobs[next].args, jobs[next].limits));
+            ++next;
+        }
+        runs[running.front().first] = finish_child(running.front().second);
+        running.erase(running.begin());
+    }
+    return runs;
 }
 
 // A scratch directory removed at the end (its files made writable again first).

@@ -116,6 +116,37 @@ void check_promise(Tally& tally, const ChildRun& run, const std::vector<std::str
     }
 }
 
+// Runs of one tool, started in batches (as many at a time as there are processors), each checked
+// against the promise; their outputs are removed afterwards.
+struct Batch {
+    struct Case {
+        std::vector<std::string> args;
+        std::vector<fs::path> outputs;
+        std::string expected_error; // when set: the tool's error line must be exactly this
+    };
+    Tally& tally;
+    std::string program;
+    hostile::ChildLimits limits{};
+    std::vector<Case> cases;
+    void add(Case c) {
+        cases.push_back(std::move(c));
+        if (cases.size() >= 32) run();
+    }
+    void run() {
+        std::vector<hostile::ChildJob> jobs;
+        for (const Case& c : cases) jobs.push_back({program, c.args, limits});
+        const std::vector<ChildRun> runs = hostile::run_children(jobs);
+        for (std::size_t i = 0; i < cases.size(); ++i) {
+            check_promise(tally, runs[i], cases[i].args, cases[i].outputs);
+            if (!cases[i].expected_error.empty()) CHECK(runs[i].first_error_line() == cases[i].expected_error);
+            std::error_code ec;
+            for (const fs::path& p : cases[i].outputs) fs::remove_all(p, ec);
+        }
+        cases.clear();
+    }
+    ~Batch() { run(); }
+};
+
 // Values and tokens a hostile user types, shared by the argument fuzzers.
 const std::vector<std::string>& hostile_values() {
     static const std::vector<std::string> values{
@@ -183,7 +214,8 @@ TEST_CASE("fuzz: penumbra-gen arguments") {
                                          "--light", "--target", "--config", "--out"};
     const std::vector<std::string> junk{"--bogus", "-x", "--", "-", "--slices=", "--no-fade=1", "positional",
                                         "--no-leak-fix", "--no-fade", "--help=no", "-H", "\xff"};
-    for (int i = 0; i < scaled(500); ++i) {
+    Batch batch{tally, gen, {.timeout_s = 20, .cwd = scratch().root()}};
+    for (int i = 0; i < scaled(800); ++i) {
         const fs::path dir = scratch().fresh("gen-out");
         std::vector<std::string> args;
         for (int t = r.below(7); t > 0; --t) {
@@ -205,24 +237,19 @@ TEST_CASE("fuzz: penumbra-gen arguments") {
         for (std::size_t a = 0; a + 1 < args.size(); ++a)
             if (args[a] == "--out") args[a + 1] = dir.string();
         if (!args.empty() && args.back() == "--out") args.pop_back();
-        const ChildRun run = run_child(gen, args, {.timeout_s = 20, .cwd = scratch().root()});
-        check_promise(tally, run, args, {dir});
-        std::error_code ec;
-        fs::remove_all(dir, ec);
+        batch.add({args, {dir}});
     }
 }
 
 TEST_CASE("fuzz: penumbra-gen config files") {
     Tally tally{"gen-config"};
     Random r(2);
-    for (int i = 0; i < scaled(400); ++i) {
+    Batch batch{tally, gen};
+    for (int i = 0; i < scaled(500); ++i) {
         const fs::path dir = scratch().fresh("gen-out");
         const fs::path file = scratch().write("fuzz.json", random_json(r));
-        const std::vector<std::string> args{"--config", file.string(), "--out", dir.string()};
-        check_promise(tally, run_child(gen, args), args, {dir});
-        std::error_code ec;
-        fs::remove_all(dir, ec);
-        fs::remove(file, ec);
+        batch.add({{"--config", file.string(), "--out", dir.string()}, {dir}});
+        // (the config file is left in the scratch folder, removed at the end)
     }
 }
 
@@ -253,7 +280,8 @@ TEST_CASE("fuzz: penumbra-playground arguments") {
                                            "x16", "16x16x16", "1e3x1e3", "planes", "boxes", "nope", "a.obj",
                                            "/dev/zero.obj", "1e30", "89.9", "90", "0.0001", "-3"};
     int children = 0;
-    for (int i = 0; i < scaled(600); ++i) {
+    Batch batch{tally, playground};
+    for (int i = 0; i < scaled(800); ++i) {
         const fs::path out = scratch().fresh("pg-out.png");
         std::vector<std::string> args{"--headless"};
         for (int t = r.below(6); t > 0; --t) {
@@ -285,10 +313,9 @@ TEST_CASE("fuzz: penumbra-playground arguments") {
         }
         CHECK(parsed.error.find('\n') == std::string::npos);
         ++children;
-        const ChildRun run = run_child(playground, args);
-        check_promise(tally, run, args, written);
-        CHECK(run.first_error_line() == "error: " + parsed.error); // the tool says what the parser says
+        batch.add({args, written, "error: " + parsed.error}); // the tool says what the parser says
     }
+    batch.run();
     MESSAGE("playground-args: " << children << " runs of the tool");
 }
 
@@ -331,7 +358,7 @@ TEST_CASE("fuzz: OBJ files") {
             tally.add("rejected");
             CHECK(loaded.error.find('\n') == std::string::npos);
             CHECK(loaded.error.find(obj.string()) != std::string::npos);
-            if (i % 10 == 0) { // and through the tool
+            if (i % 5 == 0) { // and through the tool
                 ++children;
                 const fs::path png = scratch().fresh("obj.png");
                 const std::vector<std::string> args{"--headless", "--scene", obj.string(), "--out", png.string()};
@@ -381,7 +408,7 @@ TEST_CASE("fuzz: window scripts") {
             tally.add("rejected");
             CHECK(parsed.error.find('\n') == std::string::npos);
             for (char c : parsed.error) CHECK((static_cast<unsigned char>(c) >= 0x20 && static_cast<unsigned char>(c) < 0x7f));
-            if (i % 20 == 0) { // and through the tool: exit 2 before any window opens
+            if (i % 10 == 0) { // and through the tool: exit 2 before any window opens
                 ++children;
                 const fs::path file = scratch().write("fuzz.script", text);
                 const std::vector<std::string> args{"--script", file.string()};
