@@ -275,7 +275,7 @@ std::string usage() {
            "write leaves no partial file and prints no \"wrote\"); shader files the window watches are read up\n"
            "to 1 MiB.\n"
            "exit status: 0 done; 1 rendering or writing failed (no OpenGL 4.5, GL error, unwritable file);\n"
-           "2 bad arguments, configuration, scene name or OBJ file\n";
+           "2 bad arguments, configuration, scene name, OBJ file or script\n";
     return out;
 }
 
