@@ -8,6 +8,8 @@
 # <dir>/layout.json, makes <target> depend on them and defines PENUMBRA_SHADER_DIR="<dir>" in
 # <target>. Values are those of the command line (`penumbra-gen --help`); options left out keep
 # the generator's defaults. A relative OUT_DIR is taken from the current binary directory.
+# When the options change, <dir> holds exactly the files the new layout.json lists: penumbra-gen
+# removes the files of the previous configuration (no stale *.frag), all or nothing.
 include_guard(GLOBAL)
 
 function(penumbra_generate_shaders target)

@@ -41,23 +41,6 @@ template <class T> std::string store(Parsed<T> parsed, std::optional<T>& slot) {
 
 } // namespace
 
-std::string printable(std::string_view text, std::size_t limit) {
-    constexpr char hex[] = "0123456789abcdef";
-    std::string out;
-    for (std::size_t i = 0; i < text.size() && i < limit; ++i) {
-        const auto c = static_cast<unsigned char>(text[i]);
-        if (c >= 0x20 && c < 0x7f) {
-            out += static_cast<char>(c);
-        } else {
-            out += "\\x";
-            out += hex[c >> 4];
-            out += hex[c & 15];
-        }
-    }
-    if (text.size() > limit) out += "...";
-    return out;
-}
-
 Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
     for (const std::string& arg : args)
         if (arg == "--help" || arg == "-h") {
@@ -188,10 +171,13 @@ std::string usage() {
         line("--config FILE.json",
              "read the configuration from JSON: an object with the keys slices, resolution, filter, fusion,\n"
              "                      packing, light, leak_fix, self_shadow_fade, tangent_clip, target (all\n"
-             "                      optional), or a\n"
-             "                      layout.json, whose \"config\" object is read");
+             "                      optional), or a layout.json, whose \"config\" object is read; a regular\n"
+             "                      file of at most 1 MiB");
     out += "\noutput:\n";
-    out += line("--out DIR", "directory to write into, created with its parents (required)");
+    out += line("--out DIR", "directory to write into, created with its parents (required); all files or\n"
+                             "                      none: on a failure the directory is left as it was. Files an\n"
+                             "                      earlier run listed in DIR/layout.json that this one does not\n"
+                             "                      write are removed");
     out +=
         line("--validate", "compile and link every program with glslang; on errors, print them, still write\n"
                            "                      the files (to inspect) and exit 1");

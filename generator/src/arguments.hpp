@@ -1,6 +1,8 @@
 // arguments.hpp — the command line of penumbra-gen, parsed into values; errors are values too.
 #pragma once
 
+#include "printable.hpp"
+
 #include <penumbra/config.hpp>
 
 #include <optional>
@@ -54,8 +56,5 @@ template <class Enum> std::string allowed_names() {
     }
     return out;
 }
-
-// `text` made safe for a one-line message: control and non-ASCII bytes as \xNN, cut at `limit` bytes.
-std::string printable(std::string_view text, std::size_t limit = 60);
 
 } // namespace penumbra_gen

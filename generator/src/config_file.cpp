@@ -1,13 +1,11 @@
 #include "config_file.hpp"
 
+#include "bounded_read.hpp"
+
 #include <nlohmann/json.hpp>
 
-#include <cerrno>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <limits>
-#include <sstream>
+#include <vector>
 
 namespace penumbra_gen {
 namespace {
@@ -82,6 +80,63 @@ std::string parse_message(const json::exception& e) {
     return printable(text, 400);
 }
 
+// What a key allows, for the messages that cannot come from the value's own check.
+std::string allowed_for(const std::string& key) {
+    if (key == "slices") return "1 to 32";
+    if (key == "resolution") return "a power of two from 32 to 4096";
+    if (key == "filter") return "one of " + allowed_names<penumbra::Filter>();
+    if (key == "fusion") return "one of " + allowed_names<penumbra::Fusion>();
+    if (key == "packing") return "one of " + allowed_names<penumbra::Packing>();
+    if (key == "light") return "one of " + allowed_names<penumbra::Light>();
+    if (key == "target") return "one of " + allowed_names<penumbra::Target>();
+    if (key == "leak_fix" || key == "self_shadow_fade") return "true or false";
+    return {};
+}
+
+// A second pass over a document whose number did not fit a double (nlohmann's error 406 names
+// neither key nor position): which key the number belongs to, and its text.
+struct KeyAtError : nlohmann::json_sax<json> {
+    std::vector<std::string> keys; // per open object, its current key
+    std::string found_key, token;
+    bool null() override { return true; }
+    bool boolean(bool) override { return true; }
+    bool number_integer(number_integer_t) override { return true; }
+    bool number_unsigned(number_unsigned_t) override { return true; }
+    bool number_float(number_float_t, const string_t&) override { return true; }
+    bool string(string_t&) override { return true; }
+    bool binary(binary_t&) override { return true; }
+    bool start_object(std::size_t) override {
+        keys.emplace_back();
+        return true;
+    }
+    bool key(string_t& k) override {
+        keys.back() = k;
+        return true;
+    }
+    bool end_object() override {
+        keys.pop_back();
+        return true;
+    }
+    bool start_array(std::size_t) override { return true; }
+    bool end_array() override { return true; }
+    bool parse_error(std::size_t, const std::string& last_token, const nlohmann::detail::exception&) override {
+        token = last_token;
+        if (!keys.empty()) found_key = keys.back();
+        return false;
+    }
+};
+
+std::string overflow_message(std::string_view text) {
+    KeyAtError at;
+    json::sax_parse(text.begin(), text.end(), &at, nlohmann::detail::input_format_t::json, false);
+    const std::string number = printable(at.token);
+    if (at.found_key.empty()) return number + " is out of range; allowed: a number of at most 1.8e308 in magnitude";
+    const std::string allowed = allowed_for(at.found_key);
+    if (allowed.empty())
+        return "unknown key '" + printable(at.found_key) + "'; allowed keys: " + std::string(key_list);
+    return "key '" + printable(at.found_key) + "': " + number + " is out of range; allowed: " + allowed;
+}
+
 } // namespace
 
 Parsed<penumbra::Config> parse_config_json(std::string_view text, std::string_view source) {
@@ -89,6 +144,8 @@ Parsed<penumbra::Config> parse_config_json(std::string_view text, std::string_vi
     json document;
     try {
         document = json::parse(text.begin(), text.end());
+    } catch (const json::out_of_range& e) { // 406: a number beyond a double, e.g. 1e309
+        return {{}, where + ": " + overflow_message(text)};
     } catch (const json::exception& e) {
         return {{}, where + ": " + parse_message(e)};
     }
@@ -109,9 +166,9 @@ Parsed<penumbra::Config> parse_config_json(std::string_view text, std::string_vi
     for (const auto& [key, value] : object->items()) {
         std::string error;
         if (key == "slices")
-            error = store(read_int(key, value, "1 to 32"), config.slices);
+            error = store(read_int(key, value, allowed_for(key)), config.slices);
         else if (key == "resolution")
-            error = store(read_int(key, value, "a power of two from 32 to 4096"), config.resolution);
+            error = store(read_int(key, value, allowed_for(key)), config.resolution);
         else if (key == "filter")
             error = store(read_enum<penumbra::Filter>(key, value), config.filter);
         else if (key == "fusion")
@@ -136,18 +193,14 @@ Parsed<penumbra::Config> parse_config_json(std::string_view text, std::string_vi
 }
 
 Parsed<penumbra::Config> read_config_file(const std::string& path) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec))
-        return {{}, "--config: cannot open '" + printable(path) + "': no such file"};
-    if (std::filesystem::is_directory(path, ec))
-        return {{},
-                "--config: cannot read '" + printable(path) + "': it is a directory; allowed: a JSON file"};
-    std::ifstream file(path, std::ios::binary);
-    if (!file) return {{}, "--config: cannot open '" + printable(path) + "': " + std::strerror(errno)};
-    std::ostringstream text;
-    text << file.rdbuf();
-    if (file.bad()) return {{}, "--config: cannot read '" + printable(path) + "'"};
-    return parse_config_json(text.str(), printable(path));
+    const BoundedRead file = read_bounded_file(path, config_file_limit);
+    if (!file.text) {
+        if (file.problem == "no such file")
+            return {{}, "--config: cannot open '" + printable(path) + "': no such file"};
+        return {{}, "--config: cannot read '" + printable(path) + "': " + file.problem +
+                        (file.problem.find("allowed") == std::string::npos ? "" : " (a JSON file)")};
+    }
+    return parse_config_json(*file.text, printable(path));
 }
 
 } // namespace penumbra_gen

@@ -59,11 +59,12 @@ int run(const std::vector<std::string>& args) {
     }
     config = apply(arguments.flags, config);
 
-    // 3. Validate and emit (emit runs penumbra::validate; every problem on its own line).
+    // 3. Validate and emit (emit runs penumbra::validate; every problem on the one error line).
     penumbra::Result<penumbra::Emission> emitted = penumbra::emit(config);
     if (!emitted.errors.empty()) {
-        for (const penumbra::ConfigError& e : emitted.errors) std::cerr << "error: " << e.message << '\n';
-        return bad_input;
+        std::string message;
+        for (const penumbra::ConfigError& e : emitted.errors) message += (message.empty() ? "" : "; ") + e.message;
+        return fail(message);
     }
     const penumbra::Emission& emission = *emitted.value;
 

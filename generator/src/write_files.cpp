@@ -1,51 +1,53 @@
 #include "write_files.hpp"
 
-#include "arguments.hpp"
+#include "bounded_read.hpp"
+#include "file_transaction.hpp"
+#include "printable.hpp"
 
-#include <unistd.h>
+#include <nlohmann/json.hpp>
 
-#include <cerrno>
-#include <cstring>
+#include <algorithm>
 #include <filesystem>
-#include <fstream>
 
 namespace penumbra_gen {
 namespace fs = std::filesystem;
+namespace {
+
+// The files an earlier emission wrote into `dir` that this one does not: the "files" of the
+// layout.json there (Penumbra's manifest), plain names only. Anything else in the folder is not
+// Penumbra's and stays; so does everything when there is no readable manifest.
+std::vector<fs::path> stale_files(const fs::path& dir, const std::vector<OutputFile>& files) {
+    std::vector<fs::path> stale;
+    const BoundedRead previous = read_bounded_file((dir / "layout.json").string(), 16u << 20);
+    if (!previous.text) return stale;
+    const nlohmann::json manifest = nlohmann::json::parse(*previous.text, nullptr, /*allow_exceptions=*/false);
+    if (!manifest.is_object() || !manifest.contains("config") || !manifest.contains("files") ||
+        !manifest["files"].is_array())
+        return stale;
+    for (const nlohmann::json& entry : manifest["files"]) {
+        if (!entry.is_string()) continue;
+        const std::string& name = entry.get_ref<const std::string&>();
+        const bool plain = !name.empty() && name != "." && name != ".." &&
+                           name.find_first_of("/\\") == std::string::npos && name.find('\0') == std::string::npos;
+        const bool still_written =
+            std::any_of(files.begin(), files.end(), [&](const OutputFile& f) { return f.name == name; });
+        if (plain && !still_written && fs::is_regular_file(fs::symlink_status(dir / name))) stale.push_back(dir / name);
+    }
+    return stale;
+}
+
+} // namespace
 
 std::string write_files(const std::string& dir, const std::vector<OutputFile>& files) {
-    const std::string shown = printable(dir);
     std::error_code ec;
-    if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
-        return "--out: '" + shown + "' exists and is not a directory; allowed: a directory or a new path";
-    fs::create_directories(dir, ec);
-    if (ec) return "--out: cannot create directory '" + shown + "': " + ec.message();
-
-    // Every file to a temporary name first; on any failure remove the temporaries and stop.
-    const std::string suffix = ".tmp-" + std::to_string(::getpid());
-    std::vector<fs::path> written;
-    auto abandon = [&](const std::string& message) {
-        for (const fs::path& temp : written) fs::remove(temp, ec);
-        return message;
-    };
-    for (const OutputFile& file : files) {
-        const fs::path temp = fs::path(dir) / ("." + file.name + suffix);
-        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-        if (!out)
-            return abandon("--out: cannot write '" + printable(temp.string()) + "': " + std::strerror(errno));
-        written.push_back(temp);
-        out.write(file.text.data(), static_cast<std::streamsize>(file.text.size()));
-        out.close();
-        if (!out) return abandon("--out: cannot write '" + printable(temp.string()) + "'");
-    }
-    // Then rename them into place; layout.json last when it is last in `files` (the manifest).
-    for (std::size_t i = 0; i < files.size(); ++i) {
-        fs::rename(written[i], fs::path(dir) / files[i].name, ec);
-        if (ec) {
-            written.erase(written.begin(), written.begin() + static_cast<std::ptrdiff_t>(i));
-            return abandon("--out: cannot rename into '" +
-                           printable((fs::path(dir) / files[i].name).string()) + "': " + ec.message());
-        }
-    }
+    const fs::file_status status = fs::status(dir, ec);
+    if (fs::exists(status) && !fs::is_directory(status))
+        return "--out: '" + printable(dir) + "' exists and is not a directory; allowed: a directory or a new path";
+    FileChanges changes;
+    for (const OutputFile& file : files) changes.writes.push_back({fs::path(dir) / file.name, file.text});
+    changes.removals = stale_files(dir, files);
+    changes.create_directories = true;
+    if (std::string error = commit(changes); !error.empty()) return "--out: " + error + "; nothing was written";
     return {};
 }
 

@@ -47,7 +47,7 @@ TEST_CASE("script: bad lines name the line, the problem and what is allowed") {
         {"edit f.frag insert x", "s.txt:1: edit: unknown mode 'insert'; allowed: append, replace"},
         {"edit f.frag replace a b", "s.txt:1: edit FILE replace needs 'OLD => NEW'"},
         {"answer maybe", "s.txt:1: answer: 'maybe' is not allowed; allowed: overwrite, cancel"},
-        {"wait -1", "s.txt:1: wait: needs a value >= 0"},
+        {"wait -1", "s.txt:1: wait: -1 is out of range; allowed: a whole number of frames from 0 to 1000000"},
     };
     for (const Case& c : cases) {
         CAPTURE(c.text);

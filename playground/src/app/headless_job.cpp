@@ -6,6 +6,9 @@
 #include "scenes/obj_loader.hpp"
 #include "scenes/scenes.hpp"
 
+#include "../../../generator/src/file_transaction.hpp"
+#include "../../../generator/src/printable.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -45,13 +48,8 @@ nlohmann::ordered_json stats_json(const ErrorStats& s) {
 }
 
 bool write_text(const std::string& path, const std::string& text, std::string* error) {
-    std::ofstream file(path, std::ios::binary);
-    file << text;
-    if (!file) {
-        *error = "cannot write " + path;
-        return false;
-    }
-    return true;
+    *error = penumbra_gen::write_file_atomically(path, text); // all or nothing
+    return error->empty();
 }
 
 int fail(const std::string& message, int code = 1) {
@@ -94,7 +92,7 @@ SceneLoad load_scene(const std::string& name_or_path) {
     if (std::optional<Scene> scene = make_scene(name_or_path)) return {std::move(scene), {}};
     std::string allowed;
     for (std::string_view name : scene_names()) allowed += std::string(name) + ", ";
-    return {std::nullopt, "--scene: unknown scene '" + name_or_path + "'; allowed: " + allowed +
+    return {std::nullopt, "--scene: unknown scene '" + penumbra_gen::printable(name_or_path) + "'; allowed: " + allowed +
                               "or a Wavefront file ending in .obj"};
 }
 

@@ -4,6 +4,8 @@
 
 #include "app/image_io.hpp"
 
+#include "../../../generator/src/file_transaction.hpp"
+
 #include <glm/glm.hpp>
 
 #include <algorithm>
@@ -44,8 +46,15 @@ bool write_png(const std::string& path, int width, int height, int channels, std
         const int src_y = order == RowOrder::top_down ? y : height - 1 - y;
         for (std::size_t x = 0; x < row; ++x) bytes[y * row + x] = to_byte(data[src_y * row + x]);
     }
-    if (!stbi_write_png(path.c_str(), width, height, channels, bytes.data(), static_cast<int>(row)))
-        return set_error(error, "write_png '" + path + "': cannot write the file");
+    // Encoded in memory, then written all or nothing: a full disk leaves no cut PNG behind.
+    std::string encoded;
+    auto append = [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
+    };
+    if (!stbi_write_png_to_func(append, &encoded, width, height, channels, bytes.data(), static_cast<int>(row)))
+        return set_error(error, "write_png '" + path + "': cannot encode the image");
+    if (std::string e = penumbra_gen::write_file_atomically(path, std::move(encoded)); !e.empty())
+        return set_error(error, e);
     return true;
 }
 
@@ -79,8 +88,7 @@ bool write_pfm(const std::string& path, const FloatImage& image, std::string* er
     const std::size_t row = static_cast<std::size_t>(image.width) * image.channels;
     if (image.pixels.size() != row * static_cast<std::size_t>(image.height))
         return set_error(error, "write_pfm '" + path + "': pixel count does not match the size");
-    std::ofstream out(path, std::ios::binary);
-    if (!out) return set_error(error, "write_pfm '" + path + "': cannot open for writing");
+    std::ostringstream out;
     // Negative scale = little-endian samples; we write the host's floats, so say what they are.
     const bool little = std::endian::native == std::endian::little;
     out << (image.channels == 3 ? "PF" : "Pf") << '\n'
@@ -89,7 +97,8 @@ bool write_pfm(const std::string& path, const FloatImage& image, std::string* er
     for (int y = image.height - 1; y >= 0; --y) // PFM stores the bottom row first
         out.write(reinterpret_cast<const char*>(image.pixels.data() + static_cast<std::size_t>(y) * row),
                   static_cast<std::streamsize>(row * sizeof(float)));
-    if (!out) return set_error(error, "write_pfm '" + path + "': write failed");
+    if (std::string e = penumbra_gen::write_file_atomically(path, std::move(out).str()); !e.empty())
+        return set_error(error, e);
     return true;
 }
 

@@ -12,6 +12,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <string_view>
 
 namespace penumbra::playground {
@@ -61,10 +62,20 @@ std::string parse_int_in(std::string_view flag, std::string_view text, int lo, i
 // "WxH", each side 1 to 8192.
 std::string parse_size(std::string_view text, int& width, int& height) {
     const std::size_t x = text.find('x');
-    const std::string bad = "--size: '" + printable(text) + "' is not WxH; allowed: two integers 1 to 8192, e.g. 512x512";
+    const std::string allowed = "; allowed: two integers 1 to 8192, e.g. 512x512";
+    const std::string bad = "--size: '" + printable(text) + "' is not WxH" + allowed;
     if (x == std::string_view::npos) return bad;
-    if (!parse_int_in("--size", text.substr(0, x), 1, 8192, width).empty()) return bad;
-    if (!parse_int_in("--size", text.substr(x + 1), 1, 8192, height).empty()) return bad;
+    const std::string_view sides[2] = {text.substr(0, x), text.substr(x + 1)};
+    int* values[2] = {&width, &height};
+    bool out_of_range = false;
+    for (int i = 0; i < 2; ++i) {
+        // Digits only: a sign, spaces or a second 'x' make it not WxH; too many digits or a value
+        // outside 1..8192 is out of range.
+        if (sides[i].empty() || sides[i].find_first_not_of("0123456789") != std::string_view::npos) return bad;
+        const auto [ptr, ec] = std::from_chars(sides[i].data(), sides[i].data() + sides[i].size(), *values[i]);
+        if (ec != std::errc() || *values[i] < 1 || *values[i] > 8192) out_of_range = true;
+    }
+    if (out_of_range) return "--size: " + printable(text) + " is out of range" + allowed;
     return {};
 }
 
@@ -97,8 +108,12 @@ std::string check(const PlaygroundOptions& o) {
         return "--target: 'vulkan' cannot run here, the playground renders with OpenGL; allowed: glsl330, glsl450, "
                "essl300";
     if (o.light_size && o.config.light == penumbra::Light::sun && *o.light_size >= 90.0)
-        return "--light-size: " + std::to_string(*o.light_size) +
+    {
+        char shown[32];
+        std::snprintf(shown, sizeof shown, "%g", *o.light_size);
+        return "--light-size: " + std::string(shown) +
                " degrees is too wide for the sun; allowed: an angular diameter above 0 and below 90";
+    }
     if (!o.headless) return {};
     if (o.out_path.empty()) return "--out: missing; --headless needs the image to write (--out image.png)";
     if (!o.reference && !o.reference_path.empty()) return "--reference-out: needs --reference";
@@ -212,7 +227,9 @@ std::string usage() {
         "\n"
         "scene and light:\n";
     out += line("--scene NAME|FILE.obj", "planes, boxes, tree, butterfly, terrain, crowd, box, or a Wavefront OBJ file "
-                                         "(default boxes)");
+                                         "(default boxes):\n"
+                                         "                        a regular file of at most 256 MiB, coordinates "
+                                         "finite and within ±1e9");
     out += line("--size WxH", "image size, 1 to 8192 per side (default 512x512 headless, 1280x720 window)");
     out += line("--light-size X", "rect: the rectangle's longer side in scene units, aspect kept (default: the\n"
                                   "                        scene's, 2 for the procedural scenes); sun: angular "
@@ -233,7 +250,8 @@ std::string usage() {
     out += line("--no-fade", "turn off the self-shadow fade (paper §3.4.2; default on)");
     out += line("--[no-]tangent-clip", std::string("kernels cover only the light above the receiver's tangent plane (default ") +
                                            (d.tangent_clip ? "on" : "off") + ")");
-    out += line("--config FILE.json", "configuration from JSON (the keys of Config, or a layout.json)");
+    out += line("--config FILE.json", "configuration from JSON (the keys of Config, or a layout.json); a regular\n"
+                                      "                        file of at most 1 MiB");
     out += "\nheadless output:\n";
     out += line("--out FILE.png", "the shaded image (required with --headless)");
     out += line("--visibility FILE.pfm", "the estimated visibility, one float per pixel (1 on background)");
@@ -253,11 +271,16 @@ std::string usage() {
     out += line("--frames N", "quit after N frames (default 0: run until closed)");
     out += line("--screenshot FILE", "write the last frame as PNG");
     out += line("--script FILE", "run the actions in FILE, one a line (set, light, light_size, camera, wait,\n"
-                                 "                        screenshot, ...: playground/src/window/script.hpp)");
+                                 "                        screenshot, ...: playground/src/window/script.hpp); a "
+                                 "regular file of at most 1 MiB;\n"
+                                 "                        wait N: 0 to 1000000 frames, wait_reload S: 0 to 600 "
+                                 "seconds");
     out += line("--help, -h", "print this help and exit");
-    out += "\nA value may also be given as --flag=value.\n"
+    out += "\nA value may also be given as --flag=value. Every file is written whole or not at all (a failed\n"
+           "write leaves no partial file and prints no \"wrote\"); shader files the window watches are read up\n"
+           "to 1 MiB.\n"
            "exit status: 0 done; 1 rendering or writing failed (no OpenGL 4.5, GL error, unwritable file);\n"
-           "2 bad arguments, configuration, scene name or OBJ file\n";
+           "2 bad arguments, configuration, scene name, OBJ file or script\n";
     return out;
 }
 

@@ -7,9 +7,13 @@
 #include "scenes/mesh_builder.hpp"
 #include "scenes/scene_defaults.hpp"
 
+#include "../../../generator/src/bounded_read.hpp"
+#include "../../../generator/src/printable.hpp"
+
+#include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 namespace penumbra::playground {
@@ -17,7 +21,7 @@ namespace penumbra::playground {
 namespace {
 
 LoadResult failure(const std::string& path, const std::string& problem) {
-    return {std::nullopt, "cannot load OBJ file '" + path + "': " + problem};
+    return {std::nullopt, "cannot load OBJ file '" + penumbra_gen::printable(path, 200) + "': " + problem};
 }
 
 // tinyobjloader's messages end in newlines and may hold several lines; keep the first line.
@@ -28,14 +32,108 @@ std::string first_line(const std::string& text) {
     return line;
 }
 
+// Coordinates beyond this make the scene's bounds, light and camera overflow single precision.
+constexpr double coordinate_limit = 1e9;
+
+std::string_view next_word(std::string_view& rest) {
+    const std::size_t start = rest.find_first_not_of(" \t\r\f\v");
+    if (start == std::string_view::npos) {
+        rest = {};
+        return {};
+    }
+    rest.remove_prefix(start);
+    const std::size_t end = std::min(rest.find_first_of(" \t\r\f\v"), rest.size());
+    const std::string_view word = rest.substr(0, end);
+    rest.remove_prefix(end);
+    return word;
+}
+
+// 'text', escaped (built with append: GCC 12 warns wrongly on "'" + std::string, bug 105329).
+std::string quoted(std::string_view text) {
+    std::string out(1, '\'');
+    out += penumbra_gen::printable(text);
+    out += '\'';
+    return out;
+}
+
+// The 'v', 'vn' and 'f' lines checked before tinyobjloader reads them, which turns text that is
+// not a number into 0 and lets overflowing indices wrap: every coordinate a finite number within
+// ±coordinate_limit, every index an integer that names an existing vertex or normal. Empty, or
+// "line N: …".
+std::string check_obj_text(std::string_view text) {
+    // Totals first: a positive index may name a vertex defined further down.
+    long long vertices_total = 0, normals_total = 0;
+    for (std::size_t at = 0; at < text.size();) {
+        const std::size_t end = std::min(text.find('\n', at), text.size());
+        std::string_view rest = text.substr(at, end - at);
+        const std::string_view word = next_word(rest);
+        vertices_total += word == "v";
+        normals_total += word == "vn";
+        at = end + 1;
+    }
+    long long vertices = 0, normals = 0;
+    std::size_t number = 0;
+    for (std::size_t at = 0; at < text.size(); at = std::min(text.find('\n', at), text.size()) + 1) {
+        ++number;
+        std::string_view rest = text.substr(at, std::min(text.find('\n', at), text.size()) - at);
+        const std::string where = "line " + std::to_string(number) + ": ";
+        const std::string_view verb = next_word(rest);
+        if (verb == "v" || verb == "vn") {
+            for (int axis = 0; axis < 3; ++axis) {
+                std::string_view word = next_word(rest);
+                const std::string name = std::string(1, "xyz"[axis]) + (verb == "v" ? " coordinate" : " of the normal");
+                if (word.empty()) return where + "'" + std::string(verb) + "' needs 3 numbers, the " + name + " is missing";
+                if (word.front() == '+') word.remove_prefix(1);
+                double value = 0.0;
+                const auto [ptr, ec] = std::from_chars(word.data(), word.data() + word.size(), value);
+                const std::string shown = quoted(word);
+                if (ec == std::errc::invalid_argument || ptr != word.data() + word.size() || word.empty())
+                    return where + name + " " + shown + " is not a number; allowed: finite numbers within ±1e9";
+                if (ec == std::errc::result_out_of_range || !std::isfinite(value) || std::abs(value) > coordinate_limit)
+                    return where + name + " " + shown + " is out of range; allowed: finite numbers within ±1e9";
+            }
+            (verb == "v" ? vertices : normals) += 1;
+        } else if (verb == "f") {
+            for (std::string_view corner = next_word(rest); !corner.empty(); corner = next_word(rest)) {
+                // v, v/vt, v//vn or v/vt/vn: the texture index is not used and only has to be an integer.
+                for (int part = 0; part < 3 && !corner.empty(); ++part) {
+                    const std::size_t slash = std::min(corner.find('/'), corner.size());
+                    const std::string_view index = corner.substr(0, slash);
+                    corner.remove_prefix(std::min(slash + 1, corner.size()));
+                    if (index.empty() && part > 0) continue; // "v//vn"
+                    const char* what = part == 0 ? "vertex" : part == 1 ? "texture" : "normal";
+                    const long long defined = part == 0 ? vertices : normals;
+                    const long long total = part == 0 ? vertices_total : normals_total;
+                    long long value = 0;
+                    const auto [ptr, ec] = std::from_chars(index.data(), index.data() + index.size(), value);
+                    const std::string shown = quoted(index);
+                    if (index.empty() || ec == std::errc::invalid_argument || ptr != index.data() + index.size())
+                        return where + std::string(what) + " index " + shown + " is not an integer";
+                    if (part == 1) continue;
+                    const std::string allowed = "; allowed: 1 to " + std::to_string(total) + ", or -1 to -" +
+                                                std::to_string(defined) + " counting back from this line";
+                    if (ec != std::errc() || value == 0)
+                        return where + std::string(what) + " index " + shown + " is out of range" + allowed;
+                    if (value > total)
+                        return where + "the face refers to " + what + " " + std::to_string(value) + " but the file has " +
+                               std::to_string(total) + " " + (part == 0 ? "vertices" : "normals") + allowed;
+                    if (-value > defined)
+                        return where + "the face has a relative " + what + " index " + std::to_string(value) +
+                               " that points before the first " + what + allowed;
+                }
+            }
+        }
+    }
+    return {};
+}
+
 } // namespace
 
 LoadResult load_obj_scene(const std::string& path) {
-    std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) return failure(path, "file does not exist");
-    if (!std::filesystem::is_regular_file(path, ec)) return failure(path, "not a regular file");
-    std::ifstream stream(path);
-    if (!stream) return failure(path, "file cannot be opened for reading");
+    const penumbra_gen::BoundedRead file = penumbra_gen::read_bounded_file(path, penumbra_gen::obj_file_limit);
+    if (!file.text) return failure(path, file.problem == "no such file" ? "file does not exist" : file.problem);
+    if (std::string problem = check_obj_text(*file.text); !problem.empty()) return failure(path, problem);
+    std::istringstream stream(*file.text);
 
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
@@ -51,7 +149,7 @@ LoadResult load_obj_scene(const std::string& path) {
     } catch (const std::exception& e) {
         return failure(path, std::string("parser failed: ") + e.what());
     }
-    if (!ok) return failure(path, err.empty() ? "parse error" : first_line(err));
+    if (!ok) return failure(path, err.empty() ? "parse error" : penumbra_gen::printable(first_line(err), 200));
     if (warn.find("Degenerated face") != std::string::npos)
         return failure(path, "a face has fewer than 3 vertices (truncated 'f' line?)");
     if (attrib.vertices.size() % 3 != 0) return failure(path, "vertex data is incomplete");

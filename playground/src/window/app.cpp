@@ -1,6 +1,7 @@
 // playground/src/window/app.cpp — `penumbra-playground` without --headless: the GLFW window, the
 // Dear ImGui panel, the frame loop, mouse orbit, --frames / --script / --screenshot, and the
 // summary printed at exit (frame times, GPU pass times, hot-reload latency).
+#include "app/headless_job.hpp"
 #include "app/options.hpp"
 #include "panel.hpp"
 #include "script.hpp"
@@ -96,6 +97,11 @@ int run_window(const PlaygroundOptions& options) {
         }
         script.emplace(std::move(parsed.actions));
     }
+    // A bad scene is bad input (exit 2) with or without a display: checked before the window opens.
+    if (SceneLoad loaded = load_scene(options.scene); !loaded.scene) {
+        std::cerr << "error: " << loaded.error << "\n";
+        return 2;
+    }
     const bool automated = options.frames > 0 || script.has_value();
 
     glfwSetErrorCallback(record_glfw_error);
@@ -131,7 +137,7 @@ int run_window(const PlaygroundOptions& options) {
     std::unique_ptr<WindowApp> app = WindowApp::create(options, &error);
     int fb_width = width, fb_height = height;
     if (!app) {
-        std::cerr << "error: " << error << "\n";
+        if (!error.empty()) std::cerr << "error: " << error << "\n"; // empty: already printed
         exit_code = 1;
     } else {
         app->info(std::string("window: ") + std::to_string(width) + "x" + std::to_string(height) + ", " +
@@ -187,6 +193,7 @@ int run_window(const PlaygroundOptions& options) {
             app->render_frame(fb_width, fb_height, 0.0);
         }
         print_summary(*app, fb_width, fb_height);
+        if (app->screenshot_failed() && exit_code == 0) exit_code = 1; // writing failed
     }
     app.reset(); // GL objects go while the context is current
     ImGui_ImplOpenGL3_Shutdown();

@@ -1,12 +1,18 @@
 #include "script.hpp"
 
-#include <fstream>
+#include "../../../generator/src/bounded_read.hpp"
+#include "../../../generator/src/printable.hpp"
+
+#include <charconv>
+#include <cmath>
 #include <map>
 #include <sstream>
 
 namespace penumbra::playground {
 
 namespace {
+
+using penumbra_gen::printable;
 
 // How many numbers each numeric verb takes: {minimum, maximum}.
 const std::map<std::string, std::pair<int, int>>& numeric_verbs() {
@@ -18,6 +24,14 @@ const std::map<std::string, std::pair<int, int>>& numeric_verbs() {
 
 constexpr const char* allowed_verbs =
     "set, light, light_size, sun, camera, edit, restore, reset, answer, wait, wait_reload, screenshot";
+
+// The `index`th whitespace-separated word of `row`.
+std::string word_of(const std::string& row, int index) {
+    std::istringstream words(row);
+    std::string word;
+    for (int i = 0; i <= index; ++i) words >> word;
+    return word;
+}
 
 std::string trim(const std::string& s) {
     const auto first = s.find_first_not_of(" \t\r");
@@ -37,7 +51,7 @@ ScriptParse parse_script(const std::string& text, const std::string& name) {
         row = trim(row);
         if (row.empty() || row[0] == '#') continue;
         auto fail = [&](const std::string& message) {
-            out.error = name + ":" + std::to_string(number) + ": " + message;
+            out.error = printable(name, 200) + ":" + std::to_string(number) + ": " + message;
             out.actions.clear();
             return out;
         };
@@ -48,13 +62,14 @@ ScriptParse parse_script(const std::string& text, const std::string& name) {
         if (auto it = numeric_verbs().find(action.verb); it != numeric_verbs().end()) {
             std::string word;
             while (words >> word) {
-                try {
-                    std::size_t used = 0;
-                    action.numbers.push_back(std::stod(word, &used));
-                    if (used != word.size()) throw std::invalid_argument(word);
-                } catch (const std::exception&) {
-                    return fail(action.verb + ": '" + word + "' is not a number");
-                }
+                double value = 0.0;
+                const char* begin = word.data() + (word[0] == '+' ? 1 : 0);
+                const auto [ptr, ec] = std::from_chars(begin, word.data() + word.size(), value);
+                if (ec == std::errc::invalid_argument || ptr != word.data() + word.size())
+                    return fail(action.verb + ": '" + printable(word) + "' is not a number");
+                if (ec == std::errc::result_out_of_range || !std::isfinite(value))
+                    return fail(action.verb + ": '" + printable(word) + "' is out of range; allowed: finite numbers");
+                action.numbers.push_back(value);
             }
             const auto [least, most] = it->second;
             const int count = static_cast<int>(action.numbers.size());
@@ -62,9 +77,16 @@ ScriptParse parse_script(const std::string& text, const std::string& name) {
                 return fail(action.verb + " takes " + std::to_string(least) +
                             (least == most ? "" : " to " + std::to_string(most)) + " numbers, got " +
                             std::to_string(count));
-            if ((action.verb == "wait" || action.verb == "wait_reload") && count == 1 &&
-                action.numbers[0] < 0)
-                return fail(action.verb + ": needs a value >= 0");
+            // Waits end: a frame count and a timeout in stated ranges, checked here, not while running.
+            if (action.verb == "wait" &&
+                (action.numbers[0] < 0 || action.numbers[0] > max_wait_frames ||
+                 action.numbers[0] != std::floor(action.numbers[0])))
+                return fail("wait: " + printable(word_of(row, 1)) + " is out of range; allowed: a whole number of frames from 0 to " +
+                            std::to_string(max_wait_frames));
+            if (action.verb == "wait_reload" && count == 1 &&
+                (action.numbers[0] < 0 || action.numbers[0] > max_wait_reload_seconds))
+                return fail("wait_reload: " + printable(word_of(row, 1)) + " is out of range; allowed: 0 to " +
+                            std::to_string(max_wait_reload_seconds) + " seconds");
         } else if (action.verb == "set") {
             std::string key, value;
             if (!(words >> key >> value)) return fail("set takes KEY VALUE, e.g. 'set slices 8'");
@@ -89,16 +111,16 @@ ScriptParse parse_script(const std::string& text, const std::string& name) {
                 action.args = {file, mode, rest.substr(0, arrow),
                                arrow + 4 <= rest.size() ? rest.substr(arrow + 4) : ""};
             } else {
-                return fail("edit: unknown mode '" + mode + "'; allowed: append, replace");
+                return fail("edit: unknown mode '" + printable(mode) + "'; allowed: append, replace");
             }
         } else if (action.verb == "restore" || action.verb == "screenshot" || action.verb == "answer") {
             std::string word;
             if (!(words >> word)) return fail(action.verb + " needs an argument");
             if (action.verb == "answer" && word != "overwrite" && word != "cancel")
-                return fail("answer: '" + word + "' is not allowed; allowed: overwrite, cancel");
+                return fail("answer: '" + printable(word) + "' is not allowed; allowed: overwrite, cancel");
             action.args = {word};
         } else if (action.verb != "reset") {
-            return fail("unknown action '" + action.verb + "'; allowed: " + allowed_verbs);
+            return fail("unknown action '" + printable(action.verb) + "'; allowed: " + allowed_verbs);
         }
         out.actions.push_back(std::move(action));
     }
@@ -106,11 +128,9 @@ ScriptParse parse_script(const std::string& text, const std::string& name) {
 }
 
 ScriptParse load_script(const std::string& path) {
-    std::ifstream file(path);
-    if (!file) return {{}, "cannot read script " + path};
-    std::ostringstream text;
-    text << file.rdbuf();
-    return parse_script(text.str(), path);
+    const penumbra_gen::BoundedRead file = penumbra_gen::read_bounded_file(path, penumbra_gen::script_file_limit);
+    if (!file.text) return {{}, "--script: cannot read '" + printable(path, 200) + "': " + file.problem};
+    return parse_script(*file.text, path);
 }
 
 } // namespace penumbra::playground

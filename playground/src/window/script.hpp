@@ -15,8 +15,9 @@
 //   restore FILE                 write the generated text back to FILE (like an editor's revert)
 //   reset                        "reset to generated": every file and program
 //   answer overwrite|cancel      answer the "overwrite hand-edited files?" question
-//   wait N                       let N frames pass
-//   wait_reload [SECONDS]        wait until the last edit was reloaded (compiled or failed); default 5 s
+//   wait N                       let N frames pass: a whole number from 0 to max_wait_frames
+//   wait_reload [SECONDS]        wait until the last edit was reloaded (compiled or failed); default 5 s,
+//                                0 to max_wait_reload_seconds
 //   screenshot FILE              save this frame as PNG (the image, without the panel); the
 //                                actions after it run from the next frame on
 #pragma once
@@ -26,6 +27,11 @@
 #include <vector>
 
 namespace penumbra::playground {
+
+// The ranges of the waits, checked when the script is parsed (a script always ends). Every
+// number of every action must be finite; a script file is a regular file of at most 1 MiB.
+inline constexpr int max_wait_frames = 1000000;
+inline constexpr int max_wait_reload_seconds = 600;
 
 struct ScriptAction {
     int line = 0;     // 1-based line in the script, for messages

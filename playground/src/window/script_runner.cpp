@@ -2,11 +2,15 @@
 
 #include <penumbra/config.hpp>
 
+#include "../../../generator/src/printable.hpp"
+
 #include <charconv>
 
 namespace penumbra::playground {
 
 namespace {
+
+using penumbra_gen::printable;
 
 template <class Enum> std::string set_enum(Enum& field, const std::string& key, const std::string& value) {
     if (auto parsed = parse_enum<Enum>(value)) {
@@ -18,7 +22,7 @@ template <class Enum> std::string set_enum(Enum& field, const std::string& key, 
         if (!allowed.empty()) allowed += ", ";
         allowed += std::string(name);
     }
-    return key + ": '" + value + "' is not allowed; allowed: " + allowed;
+    return key + ": '" + printable(value) + "' is not allowed; allowed: " + allowed;
 }
 
 std::string set_bool(bool& field, const std::string& key, const std::string& value) {
@@ -27,14 +31,14 @@ std::string set_bool(bool& field, const std::string& key, const std::string& val
     else if (value == "off" || value == "false" || value == "0")
         field = false;
     else
-        return key + ": '" + value + "' is not allowed; allowed: on, off";
+        return key + ": '" + printable(value) + "' is not allowed; allowed: on, off";
     return {};
 }
 
 std::string set_int(int& field, const std::string& key, const std::string& value) {
     const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), field);
     if (ec != std::errc() || end != value.data() + value.size())
-        return key + ": '" + value + "' is not an integer";
+        return key + ": '" + printable(value) + "' is not an integer";
     return {};
 }
 
@@ -72,7 +76,7 @@ std::string set_value(WindowApp& app, std::string key, const std::string& value)
         if (key == "split") return set_bool(c.split, key, value);
         if (key == "scene") {
             app.load_scene(value);
-            return app.scene_name() == value ? "" : "scene: cannot load '" + value + "'";
+            return app.scene_name() == value ? "" : "scene: cannot load '" + printable(value) + "'";
         }
         if (key == "view") {
             std::string allowed;
@@ -83,16 +87,16 @@ std::string set_value(WindowApp& app, std::string key, const std::string& value)
                 }
                 allowed += (v ? ", " : "") + std::string(to_string(View(v)));
             }
-            return "view: '" + value + "' is not allowed; allowed: " + allowed;
+            return "view: '" + printable(value) + "' is not allowed; allowed: " + allowed;
         }
         if (key == "view_slice") return set_int(c.view_slice, key, value);
         if (key == "view_level") return set_int(c.view_level, key, value);
-        return "set: unknown key '" + key +
+        return "set: unknown key '" + printable(key) +
                "'; allowed: slices, resolution, filter, fusion, packing, light, target, leak_fix, fade (also "
                "as "
                "right.KEY), view, view_slice, view_level, split, animate_light, animate_object, scene";
     } else {
-        return "set: unknown key 'right." + key + "'";
+        return "set: unknown key 'right." + printable(key) + "'";
     }
     if (!error.empty()) return error;
     // An invalid combination is not a script error: the window refuses it and says why, which

@@ -1,11 +1,15 @@
 #include "shader_diagnostics.hpp"
 
+#include "../../../generator/src/printable.hpp"
+
 #include <algorithm>
 #include <cstdio>
 #include <regex>
 #include <sstream>
 
 namespace penumbra::playground {
+
+using penumbra_gen::printable_lines;
 
 std::vector<ShaderDiagnostic> parse_shader_log(const std::string& log, const std::string& default_file) {
     // Mesa: "0:12(5): error: …", possibly after "name.frag: ".
@@ -33,7 +37,10 @@ std::vector<ShaderDiagnostic> parse_shader_log(const std::string& log, const std
 
 std::string format_diagnostic(const ShaderDiagnostic& d, const std::map<std::string, std::string>& sources,
                               int context) {
-    std::string out = d.file.empty() ? d.message : d.file + ":" + std::to_string(d.line) + ": " + d.message;
+    // Source lines and messages may hold anything a file held: cut and escaped, the same way
+    // as every message of both tools.
+    std::string out = printable_lines(
+        d.file.empty() ? d.message : d.file + ":" + std::to_string(d.line) + ": " + d.message, 300, 300);
     auto source = sources.find(d.file);
     if (d.line <= 0 || source == sources.end()) return out;
     std::istringstream lines(source->second);
@@ -43,7 +50,7 @@ std::string format_diagnostic(const ShaderDiagnostic& d, const std::map<std::str
         if (number > d.line + context) break;
         char prefix[32];
         std::snprintf(prefix, sizeof prefix, "\n%c %4d | ", number == d.line ? '>' : ' ', number);
-        out += prefix + row;
+        out += prefix + printable_lines(row, 300, 300);
     }
     return out;
 }

@@ -1,9 +1,10 @@
 #include "shader_folder.hpp"
 
+#include "../../../generator/src/bounded_read.hpp"
+#include "../../../generator/src/file_transaction.hpp"
+
 #include <algorithm>
-#include <fstream>
 #include <functional>
-#include <sstream>
 #include <system_error>
 
 namespace penumbra::playground {
@@ -12,13 +13,10 @@ namespace {
 
 std::size_t text_hash(const std::string& text) { return std::hash<std::string>{}(text); }
 
-bool read_text(const std::filesystem::path& path, std::string& text) {
-    std::ifstream file(path, std::ios::binary);
-    if (!file) return false;
-    std::ostringstream buffer;
-    buffer << file.rdbuf();
-    text = buffer.str();
-    return true;
+// A watched file's text, read only when it is a regular file within the limit (an editor or a
+// stray `cp /dev/zero` must not make the playground read gigabytes).
+penumbra_gen::BoundedRead read_text(const std::filesystem::path& path) {
+    return penumbra_gen::read_bounded_file(path.string(), penumbra_gen::shader_file_limit);
 }
 
 } // namespace
@@ -28,11 +26,7 @@ ShaderFolder::ShaderFolder(std::filesystem::path directory, Clock::duration debo
 
 std::string ShaderFolder::write_file(const std::string& file_name, const std::string& text) {
     const std::filesystem::path target = path(file_name);
-    {
-        std::ofstream file(target, std::ios::binary | std::ios::trunc);
-        file << text;
-        if (!file) return "cannot write " + target.string();
-    }
+    if (std::string e = penumbra_gen::write_file_atomically(target, text); !e.empty()) return e;
     Entry& entry = files_[file_name];
     std::error_code ec;
     entry.seen_time = std::filesystem::last_write_time(target, ec);
@@ -62,18 +56,16 @@ std::string ShaderFolder::write_generated(const std::vector<ShaderFile>& files) 
 std::string ShaderFolder::restore(const std::string& file_name) {
     auto it = files_.find(file_name);
     if (it == files_.end()) return "no generated file " + file_name;
-    const std::filesystem::path target = path(file_name);
-    std::ofstream file(target, std::ios::binary | std::ios::trunc);
-    file << it->second.generated;
-    if (!file) return "cannot write " + target.string();
-    return {}; // poll() sees the save like any other
+    // poll() sees the save like any other.
+    return penumbra_gen::write_file_atomically(path(file_name), it->second.generated);
 }
 
 std::vector<std::string> ShaderFolder::hand_edited() const {
     std::vector<std::string> out;
     for (const auto& [name, entry] : files_) {
-        std::string text;
-        if (read_text(path(name), text) && text != entry.generated) out.push_back(name);
+        const penumbra_gen::BoundedRead read = read_text(path(name));
+        const bool missing = !read.text && read.problem == "no such file";
+        if (!missing && (!read.text || *read.text != entry.generated)) out.push_back(name);
     }
     return out;
 }
@@ -90,8 +82,13 @@ std::vector<ShaderFolder::Change> ShaderFolder::poll(Clock::time_point now) {
         if (time != entry.seen_time || size != entry.seen_size) {
             entry.seen_time = time;
             entry.seen_size = size;
-            std::string text;
-            if (!read_text(file, text)) continue;
+            penumbra_gen::BoundedRead read = read_text(file);
+            if (!read.text && read.problem == "no such file") continue; // replaced right now
+            // A file that cannot be read (too large, not a regular file) is reported with its
+            // problem instead of its text, once per problem.
+            std::string text = read.text ? std::move(*read.text) : std::string();
+            entry.pending_problem = read.text ? std::string() : std::move(read.problem);
+            if (!entry.pending_problem.empty()) text = "\n(unreadable) " + entry.pending_problem;
             // Each save restarts the debounce, so a burst of saves is reported once. The quiet
             // time counts from the save itself (its mtime), not from when this poll noticed it:
             // with slow frames a save that is already old enough is reported at once.
@@ -104,9 +101,11 @@ std::vector<ShaderFolder::Change> ShaderFolder::poll(Clock::time_point now) {
         if (entry.pending && now - entry.pending_since >= debounce_) {
             entry.pending = false;
             entry.reported_hash = text_hash(entry.pending_text);
-            changes.push_back({name, std::move(entry.pending_text),
+            const std::string problem = std::move(entry.pending_problem);
+            changes.push_back({name, problem.empty() ? std::move(entry.pending_text) : std::string(),
                                std::chrono::time_point_cast<std::chrono::system_clock::duration>(
-                                   std::chrono::file_clock::to_sys(entry.seen_time))});
+                                   std::chrono::file_clock::to_sys(entry.seen_time)),
+                               problem});
         }
     }
     return changes;

@@ -3,7 +3,9 @@
 // The playground writes every emitted file here; the user edits them in any editor. poll()
 // notices a save by modification time and size, confirms it by a content hash (a touch or a
 // save of identical text is not a change) and debounces bursts: a file is reported once it has
-// been quiet for `debounce`. No GL here: the caller compiles on the render thread.
+// been quiet for `debounce`. A file is read only when it is a regular file of at most 1 MiB;
+// otherwise the change carries the problem instead of the text. Files are written all or nothing
+// (file_transaction.hpp). No GL here: the caller compiles on the render thread.
 #pragma once
 
 #include <penumbra/program.hpp>
@@ -25,6 +27,7 @@ public:
         std::string file_name;
         std::string text;
         std::chrono::system_clock::time_point saved_at; // the file's modification time
+        std::string problem; // set when the file cannot be read (over 1 MiB, not a regular file); text is empty
     };
 
     explicit ShaderFolder(std::filesystem::path directory,
@@ -67,6 +70,7 @@ private:
         bool pending = false; // changed, waiting for the debounce
         Clock::time_point pending_since{};
         std::string pending_text;
+        std::string pending_problem; // why the pending file cannot be read, when it cannot
     };
 
     std::string write_file(const std::string& file_name, const std::string& text);

@@ -2,11 +2,15 @@
 
 #include "shader_diagnostics.hpp"
 
+#include "../../../generator/src/printable.hpp"
+
 #include <penumbra/validate.hpp>
 
 #include <thread>
 
 namespace penumbra::playground {
+
+using penumbra_gen::printable_lines;
 
 ShaderSession::ShaderSession(std::filesystem::path watch_directory) : folder_(std::move(watch_directory)) {}
 
@@ -67,6 +71,12 @@ std::vector<ReloadEvent> ShaderSession::poll(double frame_milliseconds) {
     }
     for (ShaderFolder::Change& change : changes) {
         ReloadEvent event{change.file_name, {}, false, {}, change.saved_at};
+        if (!change.problem.empty()) { // not read, so not compiled: the last good program stays
+            event.diagnostics = printable_lines(change.file_name + ": cannot read it: " + change.problem);
+            errors_[change.file_name] = event.diagnostics;
+            events.push_back(std::move(event));
+            continue;
+        }
         sources_[change.file_name] = std::move(change.text);
         if (change.file_name == runtime_->emission().snippet.file_name) {
             event.diagnostics =
@@ -85,9 +95,12 @@ std::vector<ReloadEvent> ShaderSession::poll(double frame_milliseconds) {
         if (event.ok) {
             errors_.erase(change.file_name);
         } else {
+            // The driver's log may quote any part of the file: cut and escaped before it is
+            // parsed, and the whole report bounded.
             std::string formatted;
-            for (const ShaderDiagnostic& d : parse_shader_log(log, change.file_name))
+            for (const ShaderDiagnostic& d : parse_shader_log(printable_lines(log), change.file_name))
                 formatted += format_diagnostic(d, sources_) + "\n";
+            formatted = printable_lines(formatted);
             errors_[change.file_name] = formatted;
             event.diagnostics = std::move(formatted);
         }

@@ -73,7 +73,8 @@ std::unique_ptr<WindowApp> WindowApp::create(const PlaygroundOptions& options, s
     std::unique_ptr<WindowApp> app(new WindowApp(options));
     app->load_scene(options.scene);
     if (!app->renderer_) {
-        if (error) *error = app->log_.empty() ? "cannot load the scene" : app->log_.back();
+        // load_scene has printed its "error: …" line already; an empty error says so.
+        if (error) *error = app->log_.empty() ? "cannot load the scene" : "";
         return nullptr;
     }
     if (std::string e = app->session_.apply_config(options.config); !e.empty()) {
@@ -393,7 +394,10 @@ bool WindowApp::render_frame(int width, int height, double dt) {
     frame_error_ = error;
     update_truth(width, height, settings);
     for (const std::string& path : screenshots_)
-        if (std::string e = capture(path, width, height); !e.empty()) problem("screenshot: " + e);
+        if (std::string e = capture(path, width, height); !e.empty()) {
+            problem("error: screenshot: " + e);
+            screenshot_failed_ = true;
+        }
     screenshots_.clear();
     ++frame_index_;
     return true;

@@ -40,7 +40,8 @@ struct Controls {
 
 class WindowApp {
 public:
-    // nullptr with *error when the scene or the first configuration cannot be set up.
+    // nullptr with *error when the scene or the first configuration cannot be set up (*error empty:
+    // the problem was printed already, as an "error: …" line).
     static std::unique_ptr<WindowApp> create(const PlaygroundOptions& options, std::string* error);
 
     // --- configuration (side 0: main, 1: split screen's right half)
@@ -77,6 +78,8 @@ public:
     // Call after the frame has been presented: logs the reloads that reached the screen.
     void frame_presented();
     void request_screenshot(const std::string& path) { screenshots_.push_back(path); }
+    // A screenshot could not be written (nothing was left at its path): the run fails (exit 1).
+    bool screenshot_failed() const { return screenshot_failed_; }
     std::string capture(const std::string& path, int width, int height); // reads framebuffer 0
     std::size_t frame_index() const { return frame_index_; }
     FrameStats& stats() { return stats_; }
@@ -125,6 +128,7 @@ private:
     std::size_t frame_index_ = 0;
     std::string frame_error_;
     std::vector<std::string> screenshots_;
+    bool screenshot_failed_ = false;
     std::size_t reloads_done_ = 0;
     std::vector<ReloadEvent> shown_reloads_; // applied this frame, logged once presented
     std::vector<double> reload_latencies_;
