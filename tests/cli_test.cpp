@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <random>
 #include <set>
 #include <sstream>
@@ -159,6 +160,37 @@ TEST_CASE("--validate passes the emitted programs through glslang") {
         CHECK(run.out.find("validated") != std::string::npos);
         if (run.exit_code == 0) CHECK(listing(dir) == layout_files(dir));
     }
+}
+
+TEST_CASE("layout.json (version 2): phases, structured state, the deferred pass and its textures") {
+    const fs::path dir = scratch().fresh("layout_v2");
+    REQUIRE(run_gen(with_out({"--packing", "array"}, dir)).exit_code == 0);
+    const nlohmann::json layout = nlohmann::json::parse(read_text(dir / "layout.json"));
+    CHECK(layout.at("layout_version") == 2);
+    CHECK(layout.at("technique") == "occlusion");
+    const std::string result = layout.at("result");
+    std::map<std::string, nlohmann::json> textures;
+    for (const nlohmann::json& t : layout.at("textures")) textures[t.at("name")] = t;
+    REQUIRE(textures.count(result) == 1);
+    CHECK(textures.at(result).at("size") == "output");
+    const nlohmann::json& world = textures.at("penumbra_worldPositions");
+    CHECK(world.at("source") == "caller");
+    CHECK(world.at("internal_format") == "RGBA32F");
+    CHECK(textures.at("penumbra_levels").at("border_color") == nlohmann::json::array({0, 0, 0, 0}));
+    int screen_passes = 0;
+    for (const nlohmann::json& pass : layout.at("passes")) {
+        CHECK(pass.at("state").is_object());
+        CHECK(pass.at("state").at("blend").is_boolean());
+        if (pass.at("phase") != "screen") continue;
+        ++screen_passes;
+        CHECK(pass.at("program") == "shading_deferred");
+        CHECK(pass.at("outputs").at(0).at("texture") == result);
+        bool reads_world = false;
+        for (const nlohmann::json& in : pass.at("inputs")) reads_world = reads_world || in.at("texture") == "penumbra_worldPositions";
+        CHECK(reads_world);
+    }
+    CHECK(screen_passes == 1);
+    CHECK(layout.at("passes").at(0).at("state").at("blend_equation") == "MAX");
 }
 
 TEST_CASE("--config reads a config object or a whole layout.json; flags override it") {
