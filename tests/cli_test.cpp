@@ -198,7 +198,8 @@ TEST_CASE("--config reads a config object or a whole layout.json; flags override
     REQUIRE(run_gen(with_out({"--config", write_text("config.json", valid_config_json).string()}, first))
                 .exit_code == 0);
     const nlohmann::json layout = nlohmann::json::parse(read_text(first / "layout.json"));
-    CHECK(layout.at("config") == nlohmann::json::parse(valid_config_json));
+    const nlohmann::json given = nlohmann::json::parse(valid_config_json);
+    for (const auto& [key, value] : given.items()) CHECK(layout.at("config").at(key) == value);
 
     // layout.json itself, and its "config" object alone, give back the same layout.json.
     const fs::path whole = scratch().fresh("from-layout");
@@ -540,4 +541,61 @@ TEST_CASE("fuzz: truncated, random and mutated config files exit 0 or 2, never c
         fs::remove(file, ec);
     }
     CHECK(written >= 1); // some mutations leave a valid configuration
+}
+
+TEST_CASE("--technique and each technique's flags: files, layout.json, --help, messages, exit codes") {
+    const std::vector<std::vector<std::string>> cases{
+        {"--technique", "shadowmap"},
+        {"--technique", "pcf", "--pcf-grid", "3", "--pcf-radius", "0.25", "--no-rotation", "--target", "essl300"},
+        {"--technique", "pcf", "--pcf-taps", "32", "--light", "sun", "--target", "vulkan"},
+        {"--technique", "pcss", "--pcss-blockers", "17", "--pcss-filter", "34", "--shadow-resolution", "512",
+         "--shadow-bias", "0.01", "--shadow-slope-bias", "2", "--target", "glsl330"},
+    };
+    for (const std::vector<std::string>& args : cases) {
+        CAPTURE(joined(args));
+        const fs::path dir = scratch().fresh("technique");
+        std::vector<std::string> full = with_out(args, dir);
+        full.push_back("--validate");
+        const Run run = run_gen(full);
+        INFO(run.err);
+        REQUIRE(run.exit_code == 0);
+        CHECK(listing(dir) == layout_files(dir));
+        CHECK(listing(dir).count("penumbra_shadow_depth.frag") == 1);
+        CHECK(listing(dir).count("penumbra_visibility.glsl") == 1);
+        const nlohmann::json layout = nlohmann::json::parse(read_text(dir / "layout.json"));
+        CHECK(layout.at("config").at("technique") == args[1]);
+        // layout.json gives back the same files
+        const fs::path again = scratch().fresh("technique-again");
+        REQUIRE(run_gen(with_out({"--config", (dir / "layout.json").string()}, again)).exit_code == 0);
+        for (const std::string& name : listing(dir)) CHECK(read_text(again / name) == read_text(dir / name));
+    }
+    const fs::path pcss = scratch().fresh("pcss-flags");
+    REQUIRE(run_gen(with_out({"--technique", "pcss", "--pcss-blockers", "17", "--pcss-filter", "34"}, pcss))
+                .exit_code == 0);
+    const nlohmann::json config = nlohmann::json::parse(read_text(pcss / "layout.json")).at("config");
+    CHECK(config.at("pcss").at("blocker_samples") == 17);
+    CHECK(config.at("pcss").at("filter_samples") == 34);
+
+    const std::vector<std::pair<std::vector<std::string>, std::string>> bad{
+        {{"--technique", "vsm"}, "--technique: 'vsm' is not allowed; allowed: occlusion, shadowmap, pcf, pcss"},
+        {{"--technique", "pcss", "--pcss-filter", "0"}, "pcss.filter_samples: 0 is out of range; allowed: 1 to 128"},
+        {{"--technique", "pcf", "--pcf-radius", "wide"}, "--pcf-radius: 'wide' is not a number"},
+        {{"--technique", "pcss", "--shadow-resolution", "100"}, "shadow_map.resolution: 100 is not allowed"},
+        {{"--no-rotation=1"}, "--no-rotation: takes no value"},
+    };
+    for (const auto& [args, expected] : bad) {
+        CAPTURE(joined(args));
+        const fs::path dir = scratch().fresh("technique-bad");
+        const Run run = run_gen(with_out(args, dir));
+        CHECK(run.exit_code == 2);
+        CHECK(run.first_error_line().find(expected) != std::string::npos);
+        CHECK(!fs::exists(dir));
+    }
+    const Run help = run_gen({"--help"});
+    for (const char* flag : {"--technique", "--shadow-resolution", "--shadow-bias", "--shadow-slope-bias",
+                             "--pcf-pattern", "--pcf-grid", "--pcf-taps", "--pcf-radius", "--pcss-blockers",
+                             "--pcss-filter", "--pcss-max-texels", "--no-rotation"})
+        CHECK_MESSAGE(help.out.find(flag) != std::string::npos, flag);
+    for (std::string_view name : penumbra::EnumNames<penumbra::Technique>::names)
+        CHECK(help.out.find(name) != std::string::npos);
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "printable.hpp"
+#include "technique_flags.hpp"
 
 #include <penumbra/config.hpp>
 
@@ -22,6 +23,7 @@ struct ConfigFlags {
     bool no_leak_fix = false;
     bool no_fade = false;
     std::optional<bool> tangent_clip; // --tangent-clip / --no-tangent-clip
+    TechniqueFlags technique; // --technique and each technique's flags (technique_flags.hpp)
 };
 
 struct Arguments {

@@ -14,6 +14,9 @@
 //   penumbra::SliceFrame f = penumbra::slice_frame(light, bounds_min, bounds_max, config.slices); // light_frame.hpp
 //   penumbra::uniform_value("penumbra_sliceDepths", {f, config.light});  // by name: uniform_values.hpp
 // The derivation: docs/model.md; layout.json's schema: docs/layout.schema.json.
+// Techniques (config.technique): occlusion textures (the default; detail/emit_*.hpp) and the
+// shadow map family, shadowmap / pcf / pcss (detail/shadow_map/); every one emits the same
+// float penumbraVisibility(vec3 worldPos). Texture memory of a layout: penumbra/texture_memory.hpp.
 // The same model with uniforms instead of baked constants: penumbra::emit_generic (penumbra/generic.hpp).
 // At compile time: penumbra::static_glsl<config, penumbra::Artifact::…> (penumbra/static_glsl.hpp).
 // Validation with glslang: penumbra/validation.hpp (target penumbra::validation).
@@ -27,4 +30,5 @@
 #include "program.hpp"
 #include "static_glsl.hpp"
 #include "uniform_values.hpp"
+#include "texture_memory.hpp"
 #include "validate.hpp"

@@ -2,7 +2,7 @@
 // a forward example (Lambert + shadow) and a deferred pass that reads world positions.
 #pragma once
 
-#include "emit_visibility.hpp"
+#include "technique_visibility.hpp"
 
 namespace penumbra::detail {
 
@@ -18,7 +18,7 @@ constexpr std::vector<Param> deferred_params(const Config& config) {
     std::vector<Param> params{{"penumbra_worldPositions", "sampler2D",
                                "G-buffer: xyz world position, w = 1 where there is geometry and 0 for the background",
                                "scene units", "penumbra_worldPositions"}};
-    if (config.tangent_clip)
+    if (clips_to_tangent_plane(config))
         params.push_back({"penumbra_worldNormals", "sampler2D",
                           "G-buffer: xyz world normal of the side the viewer sees (for the tangent clip)", "",
                           "penumbra_worldNormals"});
@@ -34,7 +34,7 @@ constexpr Text example_fragment(const Config& config) {
     out.line("layout(location = 0) out vec4 penumbra_color;");
     out.blank();
     int binding = 0;
-    write_visibility(out, config, binding);
+    write_technique_visibility(out, config, binding);
     out.blank();
     write_params(out, config, example_fragment_params(), "PenumbraExample", binding);
     out.chunk("example_main");
@@ -44,7 +44,7 @@ void main()
     vec3 toLight = normalize(penumbra_toLight.xyz - penumbra_worldPos * penumbra_toLight.w);
     float lambert = max(dot(normalize(penumbra_worldNormal), toLight), 0.0);
 )");
-    if (config.tangent_clip) {
+    if (clips_to_tangent_plane(config)) {
         out.comment("the tangent clip needs the normal of the side the viewer sees");
         out.line("float visibility = penumbraVisibility(penumbra_worldPos, "
                  "gl_FrontFacing ? penumbra_worldNormal : -penumbra_worldNormal);");
@@ -63,7 +63,9 @@ void main()
 // The vertex stage's bindings follow the fragment stage's (visibility block, its samplers, the
 // example block), so both stages fit one Vulkan pipeline layout.
 constexpr int example_fragment_binding_count(const Config& config) {
-    return 1 + static_cast<int>(storage_samplers(config).size()) + 1;
+    int samplers = 0;
+    for (const Param& p : technique_visibility_params(config)) samplers += is_sampler(p) ? 1 : 0;
+    return 1 + samplers + 1;
 }
 
 constexpr Text example_vertex(const Config& config) {
@@ -97,10 +99,10 @@ constexpr Text deferred_fragment(const Config& config) {
     out.line("layout(location = 0) out vec4 penumbra_visibility;");
     out.blank();
     int binding = 0;
-    write_visibility(out, config, binding);
+    write_technique_visibility(out, config, binding);
     out.blank();
     write_params(out, config, deferred_params(config), "PenumbraDeferred", binding);
-    write_deferred_main(out, config.tangent_clip);
+    write_deferred_main(out, clips_to_tangent_plane(config));
     return out.take();
 }
 

@@ -24,14 +24,17 @@ using penumbra_gen::printable;
 constexpr std::string_view flag_list =
     "--headless, --scene, --size, --light-size, --out, --visibility, --reference, --samples, --metrics, "
     "--reference-out, --error-out, --slices, --resolution, --filter, --fusion, --packing, --light, --target, "
-    "--no-leak-fix, --no-fade, --tangent-clip, --no-tangent-clip, --config, --watch, --frames, --screenshot, --script, --help";
+    "--no-leak-fix, --no-fade, --tangent-clip, --no-tangent-clip, --config, --watch, --frames, --screenshot, "
+    "--script, --help, --technique, --shadow-resolution, --shadow-bias, --shadow-slope-bias, --pcf-pattern, "
+    "--pcf-grid, --pcf-taps, --pcf-radius, --pcss-blockers, --pcss-filter, --pcss-max-texels, --no-rotation";
 
 bool is_switch(std::string_view flag) {
     return flag == "--headless" || flag == "--reference" || flag == "--no-leak-fix" || flag == "--no-fade" ||
-           flag == "--tangent-clip" || flag == "--no-tangent-clip";
+           flag == "--tangent-clip" || flag == "--no-tangent-clip" || penumbra_gen::is_technique_switch(flag);
 }
 
 bool takes_value(std::string_view flag) {
+    if (penumbra_gen::is_technique_flag(flag)) return true;
     for (std::string_view f : {"--scene", "--size", "--light-size", "--out", "--visibility", "--samples", "--metrics",
                                "--reference-out", "--error-out", "--slices", "--resolution", "--filter", "--fusion",
                                "--packing", "--light", "--target", "--config", "--watch", "--frames", "--screenshot",
@@ -148,6 +151,7 @@ ParsedOptions parse_options(const std::vector<std::string>& args) {
             if (flag == "--no-fade") flags.no_fade = true;
             if (flag == "--tangent-clip") flags.tangent_clip = true;
             if (flag == "--no-tangent-clip") flags.tangent_clip = false;
+            penumbra_gen::set_technique_switch(flag, flags.technique);
             continue;
         }
         if (!takes_value(flag)) {
@@ -169,7 +173,8 @@ ParsedOptions parse_options(const std::vector<std::string>& args) {
         } else if (flag == "--resolution") {
             error = parse_int(flag, value, number, "a power of two from 32 to 4096");
             if (error.empty()) flags.resolution = number;
-        } else if (flag == "--filter") error = parse_name(flag, value, flags.filter);
+        } else if (penumbra_gen::is_technique_flag(flag)) error = penumbra_gen::parse_technique_flag(flag, value, flags.technique);
+        else if (flag == "--filter") error = parse_name(flag, value, flags.filter);
         else if (flag == "--fusion") error = parse_name(flag, value, flags.fusion);
         else if (flag == "--packing") error = parse_name(flag, value, flags.packing);
         else if (flag == "--light") error = parse_name(flag, value, flags.light);
@@ -250,6 +255,8 @@ std::string usage() {
     out += line("--no-fade", "turn off the self-shadow fade (paper §3.4.2; default on)");
     out += line("--[no-]tangent-clip", std::string("kernels cover only the light above the receiver's tangent plane (default ") +
                                            (d.tangent_clip ? "on" : "off") + ")");
+    out += "\ntechnique (occlusion: the flags above; shadowmap, pcf, pcss: these, plus --light and --target):\n";
+    out += penumbra_gen::technique_usage(25);
     out += line("--config FILE.json", "configuration from JSON (the keys of Config, or a layout.json); a regular\n"
                                       "                        file of at most 1 MiB");
     out += "\nheadless output:\n";
