@@ -8,6 +8,7 @@ packages=(
     libglm-dev glslang-dev glslang-tools spirv-tools doctest-dev nlohmann-json3-dev
     libglfw3-dev libepoxy-dev libgl1-mesa-dri libegl1-mesa-dev mesa-utils xvfb xauth
     libimgui-dev libstb-dev libtinyobjloader-dev libembree-dev
+    python3-matplotlib
 )
 
 missing=()
