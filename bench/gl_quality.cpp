@@ -1,6 +1,8 @@
 // penumbra-bench-quality — how good the model is, scene × filter × (slices, resolution): MAE, RMSE
 // and p95 |error| against Embree ground truth over all geometry pixels and over penumbra pixels
-// (truth or estimate < 0.98), and the GPU time of each pass (timer queries; on llvmpipe the CPU
+// (truth or estimate < 0.98) — today's truth (the whole light) and the fair ones (the part of the
+// light above the receiver's tangent plane: `oriented` visibility and `irradiance`) — and the GPU
+// time of each pass (timer queries; on llvmpipe the CPU
 // time of the software rasteriser, so compare ratios, not absolute values).
 //
 //   penumbra-bench-quality [--scenes planes,boxes] [--filters sat,nbuffer] [--configs 16x512,4x128]
@@ -41,7 +43,7 @@ struct Options {
 constexpr const char* usage_text =
     "usage: penumbra-bench-quality [--scenes a,b,...] [--filters f,g,...] [--configs SxR,...] [--size WxH]\n"
     "                              [--samples N] [--repeat N]\n"
-    "  --scenes    built-in scenes (default all: planes, boxes, tree, butterfly, terrain, crowd)\n"
+    "  --scenes    built-in scenes (default all: planes, boxes, tree, butterfly, terrain, crowd, box)\n"
     "  --filters   mipmap, nbuffer, sat (default all three; the light is each scene's rectangle)\n"
     "  --configs   slices x occlusion-texture resolution (default 16x512,4x128)\n"
     "  --size      image size (default 256x256)\n"
@@ -183,13 +185,14 @@ int main(int argc, char** argv) {
                 context->renderer().c_str(), options->width, options->height, options->samples, options->samples,
                 options->repeat);
     std::printf("| scene | filter | S/R | MAE | RMSE | p95 | penumbra MAE | penumbra RMSE | penumbra p95 | penumbra px "
+                "| oriented penumbra MAE | oriented p95 | irradiance penumbra MAE | irradiance p95 "
                 "| slicing ms | prefilter ms | shading ms |\n");
-    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     std::vector<std::string> pass_lines;
     for (const std::string& scene_name : options->scenes) {
         const Scene scene = *make_scene(scene_name);
         std::optional<HeadlessResult> reference_gbuffer;
-        std::vector<float> truth;
+        References truth;
         double truth_ms = 0;
         for (const SliceSetting& setting : options->settings)
             for (penumbra::Filter filter : options->filters) {
@@ -213,11 +216,12 @@ int main(int argc, char** argv) {
                 }
                 if (!reference_gbuffer || !same_gbuffer(*reference_gbuffer, result)) {
                     const auto start = std::chrono::steady_clock::now();
-                    truth = reference_visibility(scene, result, options->samples);
+                    truth = reference_all(scene, result, options->samples);
                     truth_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
                     reference_gbuffer = result;
                 }
-                const Metrics m = compare(result, truth);
+                const QualityMetrics q = compare_quality(result, truth);
+                const Metrics& m = q.visibility;
                 const std::vector<PassTotal> totals = pass_totals(fastest);
                 double slicing = 0, prefilter = 0, shading = 0;
                 std::string line = label + ":";
@@ -231,9 +235,11 @@ int main(int argc, char** argv) {
                     line += part;
                 }
                 pass_lines.push_back(line);
-                std::printf("| %s | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %zu | %.1f | %.1f | %.1f |\n",
+                std::printf("| %s | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %zu | %.4f | %.4f | %.4f | %.4f | %.1f | %.1f "
+                            "| %.1f |\n",
                             label.c_str(), m.all.mae, m.all.rmse, m.all.p95, m.penumbra.mae, m.penumbra.rmse,
-                            m.penumbra.p95, m.penumbra.count, slicing, prefilter, shading);
+                            m.penumbra.p95, m.penumbra.count, q.oriented.penumbra.mae, q.oriented.penumbra.p95,
+                            q.irradiance.penumbra.mae, q.irradiance.penumbra.p95, slicing, prefilter, shading);
                 std::fflush(stdout);
             }
         std::printf("|   (%s ground truth: %.0f ms CPU, Embree) |\n", scene_name.c_str(), truth_ms);

@@ -23,7 +23,7 @@ bool bitwise_equal(const std::vector<T>& a, const std::vector<T>& b) {
 TEST_CASE("scene_names lists the six procedural scenes of design.md §5") {
     const auto names = scene_names();
     const std::set<std::string_view> got(names.begin(), names.end());
-    CHECK(got == std::set<std::string_view>{"planes", "boxes", "tree", "butterfly", "terrain", "crowd"});
+    CHECK(got == std::set<std::string_view>{"planes", "boxes", "tree", "butterfly", "terrain", "crowd", "box"});
     CHECK(names.size() == got.size());
     CHECK_FALSE(make_scene("no-such-scene").has_value());
     CHECK_FALSE(make_scene("").has_value());

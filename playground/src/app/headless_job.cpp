@@ -156,9 +156,11 @@ int run_headless(const PlaygroundOptions& options) {
 
     if (options.reference) {
         const auto reference_start = std::chrono::steady_clock::now();
-        const std::vector<float> truth = reference_visibility(scene, result, options.samples, options.config.light);
+        const References references = reference_all(scene, result, options.samples, options.config.light);
+        const std::vector<float>& truth = references.visibility;
         const double reference_ms = milliseconds_since(reference_start);
-        const Metrics m = compare(result, truth);
+        const QualityMetrics q = compare_quality(result, references);
+        const Metrics& m = q.visibility;
         const std::string truth_path =
             options.reference_path.empty() ? sibling_path(options.out_path, ".reference.pfm") : options.reference_path;
         const std::string error_path =
@@ -166,20 +168,36 @@ int run_headless(const PlaygroundOptions& options) {
         std::vector<float> signed_error(truth.size());
         for (std::size_t i = 0; i < truth.size(); ++i) signed_error[i] = result.visibility[i] - truth[i];
         if (!write_pfm(truth_path, {width, height, 1, truth}, &error)) return fail(error);
+        // The fair truth beside it; NaN where a pixel sees none of the light.
+        const std::string oriented_path = sibling_path(truth_path, ".oriented.pfm");
+        if (!write_pfm(oriented_path, {width, height, 1, references.oriented}, &error)) return fail(error);
         if (!write_png_rgb(error_path, width, height, signed_error_colors(signed_error, error_image_range),
                            RowOrder::top_down, &error))
             return fail(error);
-        std::cout << "wrote " << truth_path << " and " << error_path << " (red: estimate too bright, blue: too dark, "
+        std::cout << "wrote " << truth_path << ", " << oriented_path << " and " << error_path << " (red: estimate too bright, blue: too dark, "
                   << "saturating at ±" << error_image_range << ")\n";
         std::printf("ground truth %dx%d rays/pixel, %.0f ms\n"
                     "  all:      MAE %.4f  RMSE %.4f  p95 %.4f  (%zu px)\n"
                     "  penumbra: MAE %.4f  RMSE %.4f  p95 %.4f  (%zu px)\n",
                     options.samples, options.samples, reference_ms, m.all.mae, m.all.rmse, m.all.p95, m.all.count,
                     m.penumbra.mae, m.penumbra.rmse, m.penumbra.p95, m.penumbra.count);
+        // The fair references: the part of the light above each surface's tangent plane.
+        auto print_fair = [](const char* name, const Metrics& f) {
+            std::printf("  %-10s all MAE %.4f  p95 %.4f  (%zu px); penumbra MAE %.4f  RMSE %.4f  p95 %.4f  (%zu px)\n",
+                        name, f.all.mae, f.all.p95, f.all.count, f.penumbra.mae, f.penumbra.rmse, f.penumbra.p95,
+                        f.penumbra.count);
+        };
+        print_fair("oriented:", q.oriented);
+        print_fair("irradiance:", q.irradiance);
+        auto metrics_json = [](const Metrics& f) {
+            return nlohmann::ordered_json{{"all", stats_json(f.all)}, {"penumbra", stats_json(f.penumbra)}};
+        };
         metrics["reference"] = {{"samples_per_axis", options.samples},
                                 {"ms", reference_ms},
                                 {"all", stats_json(m.all)},
-                                {"penumbra", stats_json(m.penumbra)}};
+                                {"penumbra", stats_json(m.penumbra)},
+                                {"oriented", metrics_json(q.oriented)},
+                                {"irradiance", metrics_json(q.irradiance)}};
     }
     std::printf("passes (GPU ms):");
     for (const penumbra::gl::PassTiming& t : result.timings) std::printf(" %s %.2f", t.name.c_str(), t.milliseconds);

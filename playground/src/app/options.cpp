@@ -208,7 +208,7 @@ std::string usage() {
         "visibility with an Embree ray-traced ground truth. Without --headless: the interactive window.\n"
         "\n"
         "scene and light:\n";
-    out += line("--scene NAME|FILE.obj", "planes, boxes, tree, butterfly, terrain, crowd, or a Wavefront OBJ file "
+    out += line("--scene NAME|FILE.obj", "planes, boxes, tree, butterfly, terrain, crowd, box, or a Wavefront OBJ file "
                                          "(default boxes)");
     out += line("--size WxH", "image size, 1 to 8192 per side (default 512x512 headless, 1280x720 window)");
     out += line("--light-size X", "rect: the rectangle's longer side in scene units, aspect kept (default: the\n"

@@ -233,15 +233,132 @@ std::vector<float> GroundTruth::visibility(std::span<const glm::vec3> positions,
     return result;
 }
 
+namespace {
+
+// Orthonormal frame (t, b, w) around the direction w towards the sun, and the cone's 1 − cos α.
+struct SunFrame {
+    glm::dvec3 t, b, w;
+    double one_minus_cos;
+
+    explicit SunFrame(const penumbra::SunLight& sun) {
+        w = -glm::normalize(sun.direction);
+        const glm::dvec3 helper = std::abs(w.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+        t = glm::normalize(glm::cross(helper, w));
+        b = glm::cross(w, t);
+        one_minus_cos = 1.0 - std::cos(0.5 * sun.angular_diameter);
+    }
+    // Uniform in solid angle over the cone: cos θ uniform in [cos α, 1], φ uniform.
+    glm::dvec3 direction(glm::vec2 xi) const {
+        const double cos_theta = 1.0 - static_cast<double>(xi.x) * one_minus_cos;
+        const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+        const double phi = 2.0 * glm::pi<double>() * static_cast<double>(xi.y);
+        return cos_theta * w + sin_theta * (std::cos(phi) * t + std::sin(phi) * b);
+    }
+};
+
+// Accumulates one point's fair references over its light samples.
+struct OrientedSums {
+    std::uint32_t above = 0, visible = 0;
+    double weight = 0.0, visible_weight = 0.0;
+
+    void add(bool unoccluded, double w) {
+        ++above;
+        weight += w;
+        if (!unoccluded) return;
+        ++visible;
+        visible_weight += w;
+    }
+    // NaN where no sample was above the tangent plane (or all weights vanish).
+    void store(GroundTruth::Oriented& out, std::size_t index) const {
+        const float nan = std::numeric_limits<float>::quiet_NaN();
+        out.oriented[index] = above ? static_cast<float>(visible) / static_cast<float>(above) : nan;
+        out.irradiance[index] = weight > 0.0 ? static_cast<float>(visible_weight / weight) : nan;
+    }
+};
+
+GroundTruth::Oriented background_ones(std::size_t count) {
+    return {std::vector<float>(count, 1.0f), std::vector<float>(count, 1.0f)};
+}
+
+// Unit normal or zero (unusable), without turning it.
+glm::vec3 unit_or_zero(glm::vec3 n) {
+    const float len = glm::length(n);
+    return len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0.0f);
+}
+
+} // namespace
+
+GroundTruth::Oriented GroundTruth::oriented(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+                                            const penumbra::RectLight& light, int samples_per_axis) const {
+    check_inputs(positions, normals, samples_per_axis);
+    const glm::dvec3 centre = light.center;
+    const glm::dvec3 light_normal = light.normal();
+    const glm::dvec3 u = glm::normalize(light.u_axis) * light.width;
+    const glm::dvec3 v = glm::normalize(light.v_axis) * light.height;
+    const auto sample_count = static_cast<std::uint32_t>(samples_per_axis * samples_per_axis);
+    Oriented result = background_ones(positions.size());
+    impl_->parallel_for(positions.size(), [&](std::size_t index) {
+        const glm::vec3 p = positions[index];
+        if (has_nan(p)) return;
+        OrientedSums sums;
+        const glm::vec3 n = unit_or_zero(normals[index]);
+        const glm::dvec3 pd(p);
+        // Behind the light's plane or without a normal: sees none of the light (sums stay empty).
+        if (glm::dot(pd - centre, light_normal) > 0.0 && n != glm::vec3(0.0f)) {
+            const glm::vec3 origin = p + impl_->offset * n;
+            for (std::uint32_t s = 0; s < sample_count; ++s) {
+                const glm::vec2 xi = stratified_sample(static_cast<std::uint32_t>(index), s, samples_per_axis);
+                const glm::dvec3 target = centre + (static_cast<double>(xi.x) - 0.5) * u + (static_cast<double>(xi.y) - 0.5) * v;
+                const glm::dvec3 to_light = target - pd;
+                const double distance = glm::length(to_light);
+                if (!(distance > 0.0)) continue;
+                const glm::dvec3 dir = to_light / distance;
+                const double cos_receiver = glm::dot(dir, glm::dvec3(n));
+                if (cos_receiver <= 0.0) continue; // below the tangent plane: the surface cannot receive it
+                const double cos_light = std::max(0.0, -glm::dot(dir, light_normal));
+                const glm::dvec3 from_origin = target - glm::dvec3(origin);
+                const double length = glm::length(from_origin);
+                sums.add(impl_->unoccluded(origin, glm::vec3(from_origin / length), static_cast<float>(length * (1.0 - 1e-5))),
+                         cos_receiver * cos_light / (distance * distance));
+            }
+        }
+        sums.store(result, index);
+    });
+    impl_->throw_if_error("tracing rays to the area light");
+    return result;
+}
+
+GroundTruth::Oriented GroundTruth::oriented(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+                                            const penumbra::SunLight& sun, int samples_per_axis) const {
+    check_inputs(positions, normals, samples_per_axis);
+    const SunFrame frame(sun);
+    const auto sample_count = static_cast<std::uint32_t>(samples_per_axis * samples_per_axis);
+    Oriented result = background_ones(positions.size());
+    impl_->parallel_for(positions.size(), [&](std::size_t index) {
+        const glm::vec3 p = positions[index];
+        if (has_nan(p)) return;
+        OrientedSums sums;
+        const glm::vec3 n = unit_or_zero(normals[index]);
+        if (n != glm::vec3(0.0f)) {
+            const glm::vec3 origin = p + impl_->offset * n;
+            for (std::uint32_t s = 0; s < sample_count; ++s) {
+                const glm::dvec3 dir = frame.direction(stratified_sample(static_cast<std::uint32_t>(index), s, samples_per_axis));
+                const double cos_receiver = glm::dot(dir, glm::dvec3(n));
+                if (cos_receiver <= 0.0) continue;
+                sums.add(impl_->unoccluded(origin, glm::vec3(dir), std::numeric_limits<float>::infinity()), cos_receiver);
+            }
+        }
+        sums.store(result, index);
+    });
+    impl_->throw_if_error("tracing rays to the sun");
+    return result;
+}
+
 std::vector<float> GroundTruth::visibility(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
                                            const penumbra::SunLight& sun, int samples_per_axis) const {
     check_inputs(positions, normals, samples_per_axis);
-    // Orthonormal frame (t, b, w) around the direction towards the sun.
-    const glm::dvec3 w = -glm::normalize(sun.direction);
-    const glm::dvec3 helper = std::abs(w.y) < 0.9 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
-    const glm::dvec3 t = glm::normalize(glm::cross(helper, w));
-    const glm::dvec3 b = glm::cross(w, t);
-    const double one_minus_cos = 1.0 - std::cos(0.5 * sun.angular_diameter);
+    const SunFrame frame(sun);
+    const glm::dvec3 w = frame.w;
     const auto sample_count = static_cast<std::uint32_t>(samples_per_axis * samples_per_axis);
 
     std::vector<float> result(positions.size(), 1.0f);
@@ -253,12 +370,7 @@ std::vector<float> GroundTruth::visibility(std::span<const glm::vec3> positions,
         const auto point = static_cast<std::uint32_t>(index);
         std::uint32_t visible = 0;
         for (std::uint32_t s = 0; s < sample_count; ++s) {
-            const glm::vec2 xi = stratified_sample(point, s, samples_per_axis);
-            // Uniform in solid angle over the cone: cos θ uniform in [cos α, 1], φ uniform.
-            const double cos_theta = 1.0 - static_cast<double>(xi.x) * one_minus_cos;
-            const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
-            const double phi = 2.0 * glm::pi<double>() * static_cast<double>(xi.y);
-            const glm::dvec3 dir = cos_theta * w + sin_theta * (std::cos(phi) * t + std::sin(phi) * b);
+            const glm::dvec3 dir = frame.direction(stratified_sample(point, s, samples_per_axis));
             if (impl_->unoccluded(origin, glm::vec3(dir), std::numeric_limits<float>::infinity())) ++visible;
         }
         result[index] = static_cast<float>(visible) / static_cast<float>(sample_count);

@@ -54,6 +54,25 @@ public:
     std::vector<float> visibility(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
                                   const penumbra::SunLight& sun, int samples_per_axis = 32) const;
 
+    // The fair references (what a viewer sees), per point, for the side of the surface that
+    // `normals` points to (the caller orients them, e.g. towards the camera):
+    //   oriented:   of the light's samples above the point's tangent plane, the fraction that is
+    //               unoccluded — the visibility of the part of the light the surface can receive;
+    //   irradiance: the ray-traced irradiance over the unoccluded irradiance from that (clipped)
+    //               light, both cosine-weighted at the receiver and, for the rectangle, at the
+    //               light (cos θ_P · cos θ_L / r²); an estimated visibility V times the unoccluded
+    //               irradiance is then off by |V − irradiance| relative to the unoccluded value.
+    // Both are NaN where the point sees none of the light (every sample below its tangent plane,
+    // behind the light's plane, or a zero normal), and 1 on background points (NaN position).
+    struct Oriented {
+        std::vector<float> oriented;
+        std::vector<float> irradiance;
+    };
+    Oriented oriented(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+                      const penumbra::RectLight& light, int samples_per_axis = 32) const;
+    Oriented oriented(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+                      const penumbra::SunLight& sun, int samples_per_axis = 32) const;
+
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;

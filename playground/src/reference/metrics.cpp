@@ -31,12 +31,19 @@ Metrics compare(std::span<const float> estimate, std::span<const unsigned char> 
                 std::span<const float> reference) {
     std::vector<double> all, pen;
     for (std::size_t i = 0; i < estimate.size(); ++i) {
-        if (!geometry[i]) continue;
+        if (!geometry[i] || std::isnan(reference[i])) continue;
         const double e = std::abs(static_cast<double>(estimate[i]) - reference[i]);
         all.push_back(e);
         if (reference[i] < 0.98f || estimate[i] < 0.98f) pen.push_back(e);
     }
     return {stats(std::move(all)), stats(std::move(pen))};
+}
+
+QualityMetrics compare_quality(std::span<const float> estimate, std::span<const unsigned char> geometry,
+                               std::span<const float> visibility, std::span<const float> oriented,
+                               std::span<const float> irradiance) {
+    return {compare(estimate, geometry, visibility), compare(estimate, geometry, oriented),
+            compare(estimate, geometry, irradiance)};
 }
 
 } // namespace penumbra::playground

@@ -16,9 +16,24 @@ struct Metrics {
     ErrorStats penumbra; // where the reference or the estimate is < 0.98
 };
 
-// |estimate − reference| over the pixels where `geometry` is non-zero; all three spans have one
+// |estimate − reference| over the pixels where `geometry` is non-zero and the reference is not
+// NaN (a fair reference marks pixels that see none of the light so); all three spans have one
 // entry per pixel.
 Metrics compare(std::span<const float> estimate, std::span<const unsigned char> geometry,
                 std::span<const float> reference);
+
+// One estimate against the three references of the ground truth (reference/ground_truth.hpp),
+// whatever technique produced it:
+//   visibility: the unblocked fraction of the whole light (rays behind the receiver's tangent
+//               plane count as blocked), today's metric;
+//   oriented:   the visibility of the part of the light above the tangent plane;
+//   irradiance: the ray-traced irradiance relative to the unoccluded irradiance from that part.
+struct QualityMetrics {
+    Metrics visibility, oriented, irradiance;
+};
+
+QualityMetrics compare_quality(std::span<const float> estimate, std::span<const unsigned char> geometry,
+                               std::span<const float> visibility, std::span<const float> oriented,
+                               std::span<const float> irradiance);
 
 } // namespace penumbra::playground

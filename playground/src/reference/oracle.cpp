@@ -261,6 +261,30 @@ Oracle::Sample Oracle::filtered(int slice, glm::dvec2 centre, double side) const
     return mix_levels(at_level(lo), at_level(std::min(lo + 1, L)), t, false);
 }
 
+std::vector<double> Oracle::occlusions(glm::vec3 world) const {
+    glm::dvec3 p = glm::dvec3(light_from_world_ * glm::dvec4(glm::dvec3(world), 1.0));
+    p.z = std::max(p.z, 1e-6);
+    std::vector<double> q(config_.slices, 0.0);
+    for (int s = 0; s < config_.slices; ++s) {
+        const double zeta = slice_depths_.x + (s + 1) * slice_depths_.y;
+        const double weight = config_.self_shadow_fade ? std::clamp((p.z - zeta) / slice_depths_.y, 0.0, 1.0)
+                                                       : (zeta < p.z ? 1.0 : 0.0);
+        if (weight == 0.0) continue;
+        glm::dvec2 centre;
+        double side;
+        if (config_.light == Light::rect) {
+            const double scale = cop_distance_ / (p.z * (cop_distance_ + zeta));
+            centre = 0.5 + glm::dvec2(p) * (zeta * scale) / light_size_;
+            side = std::max(p.z - zeta, 0.0) * scale;
+        } else {
+            centre = 0.5 + glm::dvec2(p) / (2.0 * window_half_size_);
+            side = std::max(p.z - zeta, 0.0) * tan_angular_radius_ / window_half_size_;
+        }
+        q[s] = weight * filtered(s, centre, side).value;
+    }
+    return q;
+}
+
 OracleValue Oracle::visibility(glm::vec3 world, Fusion fusion) const {
     glm::dvec3 p = glm::dvec3(light_from_world_ * glm::dvec4(glm::dvec3(world), 1.0));
     p.z = std::max(p.z, 1e-6); // points on or behind the light plane

@@ -65,6 +65,10 @@ public:
     // The same with another fusion rule (the filter does not depend on it).
     OracleValue visibility(glm::vec3 world, Fusion fusion) const;
 
+    // Every slice's faded occlusion q_k = w_k · o_k at a world point, slice 0 (nearest the light)
+    // first: what the fusion rules combine. For diagnostics and studies of new rules.
+    std::vector<double> occlusions(glm::vec3 world) const;
+
     // Filtered occlusion of one slice for a kernel (centre in uv, side in uv), with its bound;
     // exposed for diagnostics and for the exact-answer tests.
     struct Sample {

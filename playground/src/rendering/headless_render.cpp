@@ -84,4 +84,30 @@ Metrics compare(const HeadlessResult& result, const std::vector<float>& referenc
     return compare(result.visibility, result.geometry, reference);
 }
 
+References reference_all(const Scene& scene, const HeadlessResult& result, int samples_per_axis, Light light) {
+    GroundTruth truth(scene.mesh);
+    const glm::vec3 eye = scene.camera.eye_position();
+    std::vector<glm::vec3> facing(result.normals.size(), glm::vec3(0.0f));
+    for (std::size_t i = 0; i < facing.size(); ++i)
+        if (result.geometry[i])
+            facing[i] = glm::dot(result.normals[i], eye - result.positions[i]) < 0.0f ? -result.normals[i] : result.normals[i];
+    References out;
+    GroundTruth::Oriented fair;
+    if (light == Light::sun) {
+        out.visibility = truth.visibility(result.positions, result.normals, scene.sun, samples_per_axis);
+        fair = truth.oriented(result.positions, facing, scene.sun, samples_per_axis);
+    } else {
+        out.visibility = truth.visibility(result.positions, result.normals, scene.light, samples_per_axis);
+        fair = truth.oriented(result.positions, facing, scene.light, samples_per_axis);
+    }
+    out.oriented = std::move(fair.oriented);
+    out.irradiance = std::move(fair.irradiance);
+    return out;
+}
+
+QualityMetrics compare_quality(const HeadlessResult& result, const References& references) {
+    return compare_quality(result.visibility, result.geometry, references.visibility, references.oriented,
+                           references.irradiance);
+}
+
 } // namespace penumbra::playground

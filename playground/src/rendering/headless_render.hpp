@@ -42,4 +42,15 @@ std::vector<float> reference_visibility(const Scene& scene, const HeadlessResult
 
 Metrics compare(const HeadlessResult& result, const std::vector<float>& reference);
 
+// The three ground truths of reference/metrics.hpp at the read-back positions: today's
+// visibility, and the fair ones (oriented, irradiance) for the side of each surface that faces
+// the scene's camera (the side a viewer sees); background pixels get 1.
+struct References {
+    std::vector<float> visibility, oriented, irradiance;
+};
+References reference_all(const Scene& scene, const HeadlessResult& result, int samples_per_axis,
+                         Light light = Light::rect);
+
+QualityMetrics compare_quality(const HeadlessResult& result, const References& references);
+
 } // namespace penumbra::playground

@@ -254,18 +254,29 @@ Mesh build_crowd() {
     return mesh;
 }
 
+// One axis-aligned box (1.2 × 1.5 × 1.2) on the ground, off the light's axis: the simplest solid. Its top is
+// parallel to the light; each vertical face sees only the part of the light on its own side, so
+// the fair references (tangent-plane clipped light) and today's (whole light) differ there.
+Mesh build_box() {
+    Mesh mesh;
+    add_ground(mesh);
+    add_box(mesh, box_transform({0.3f, 0.75f, -0.2f}, {1.2f, 1.5f, 1.2f}));
+    return mesh;
+}
+
 struct SceneEntry {
     std::string_view name;
     Mesh (*build)();
 };
 
-constexpr std::array<SceneEntry, 6> scene_table{{
+constexpr std::array<SceneEntry, 7> scene_table{{
     {"planes", build_planes},
     {"boxes", build_boxes},
     {"tree", build_tree},
     {"butterfly", build_butterfly},
     {"terrain", build_terrain},
     {"crowd", build_crowd},
+    {"box", build_box},
 }};
 
 } // namespace

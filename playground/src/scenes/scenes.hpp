@@ -14,7 +14,7 @@
 
 namespace penumbra::playground {
 
-// "planes", "boxes", "tree", "butterfly", "terrain", "crowd".
+// "planes", "boxes", "tree", "butterfly", "terrain", "crowd", "box".
 std::vector<std::string_view> scene_names();
 
 // The named scene, or nullopt for an unknown name.
