@@ -24,10 +24,10 @@
 
 #include "app/headless_job.hpp"
 #include "app/image_io.hpp"
-#include "reference/ground_truth.hpp"
 #include "reference/metrics.hpp"
 #include "rendering/egl_context.hpp"
 #include "rendering/gpu_scene.hpp"
+#include "rendering/headless_render.hpp"
 #include "scenes/scenes.hpp"
 
 #include <penumbra/gl/runtime.hpp>
@@ -226,8 +226,7 @@ std::string scale_text(double scale) {
 // The scene's pixels, shared by every technique: the G-buffer on the GPU and its read-back.
 struct Pixels {
     std::unique_ptr<GBuffer> gbuffer;
-    std::vector<glm::vec3> positions, normals; // top row first; NaN / zero on background
-    std::vector<unsigned char> geometry;
+    HeadlessResult frame; // size, positions, normals and geometry mask, top row first (no visibility)
 };
 
 std::optional<Pixels> render_pixels(const Scene& scene, const MeshBuffers& mesh, int width, int height,
@@ -240,17 +239,19 @@ std::optional<Pixels> render_pixels(const Scene& scene, const MeshBuffers& mesh,
     std::vector<glm::vec4> pos(n), nrm(n);
     glGetTextureImage(p.gbuffer->positions(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(n * sizeof(glm::vec4)), pos.data());
     glGetTextureImage(p.gbuffer->normals(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(n * sizeof(glm::vec4)), nrm.data());
-    p.positions.assign(n, glm::vec3(std::numeric_limits<float>::quiet_NaN()));
-    p.normals.assign(n, glm::vec3(0.0f));
-    p.geometry.assign(n, 0);
+    p.frame.width = width;
+    p.frame.height = height;
+    p.frame.positions.assign(n, glm::vec3(std::numeric_limits<float>::quiet_NaN()));
+    p.frame.normals.assign(n, glm::vec3(0.0f));
+    p.frame.geometry.assign(n, 0);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
             const std::size_t src = static_cast<std::size_t>(y) * width + x;
             const std::size_t dst = static_cast<std::size_t>(height - 1 - y) * width + x;
             if (pos[src].w < 0.5f) continue;
-            p.geometry[dst] = 1;
-            p.positions[dst] = glm::vec3(pos[src]);
-            p.normals[dst] = glm::vec3(nrm[src]);
+            p.frame.geometry[dst] = 1;
+            p.frame.positions[dst] = glm::vec3(pos[src]);
+            p.frame.normals[dst] = glm::vec3(nrm[src]);
         }
     if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
         if (error) *error = "GL error " + std::to_string(e) + " while reading the G-buffer";
@@ -294,7 +295,7 @@ std::vector<float> read_visibility(const gl::Runtime& runtime, const Pixels& pix
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             const std::size_t dst = static_cast<std::size_t>(y) * w + x;
-            if (pixels.geometry[dst]) out[dst] = bottom_up[static_cast<std::size_t>(h - 1 - y) * w + x];
+            if (pixels.frame.geometry[dst]) out[dst] = bottom_up[static_cast<std::size_t>(h - 1 - y) * w + x];
         }
     return out;
 }
@@ -385,7 +386,7 @@ bool write_visibility_images(const std::string& directory, const std::string& na
     const glm::vec3 sky(0.55f, 0.65f, 0.8f), error_background(0.6f);
     std::vector<float> grey(3 * estimate.size()), signed_error(estimate.size());
     for (std::size_t i = 0; i < estimate.size(); ++i) {
-        const glm::vec3 c = pixels.geometry[i] ? glm::vec3(estimate[i]) : sky;
+        const glm::vec3 c = pixels.frame.geometry[i] ? glm::vec3(estimate[i]) : sky;
         for (int k = 0; k < 3; ++k) grey[3 * i + k] = c[k];
         if (truth) signed_error[i] = estimate[i] - (*truth)[i];
     }
@@ -393,7 +394,7 @@ bool write_visibility_images(const std::string& directory, const std::string& na
     if (!truth) return true;
     std::vector<float> colours = signed_error_colors(signed_error, 0.25f);
     for (std::size_t i = 0; i < estimate.size(); ++i)
-        if (!pixels.geometry[i])
+        if (!pixels.frame.geometry[i])
             for (int k = 0; k < 3; ++k) colours[3 * i + k] = error_background[k];
     return write_png_rgb(directory + "/" + name + ".error.png", w, h, colours, RowOrder::top_down, error);
 }
@@ -481,28 +482,28 @@ int main(int argc, char** argv) {
         const MeshBuffers mesh(scene.mesh);
         std::optional<Pixels> pixels = render_pixels(scene, mesh, options->width, options->height, &error);
         if (!pixels) return fail(scene.name + ": " + error);
-        const GroundTruth ground_truth(scene.mesh);
         std::size_t geometry_pixels = 0;
-        for (unsigned char g : pixels->geometry) geometry_pixels += g;
+        for (unsigned char g : pixels->frame.geometry) geometry_pixels += g;
 
         // The truth for every light size and every flicker frame, from the cache where it can be.
         json truth_files = json::array();
+        Scene lit = scene; // the scene under the light being traced
         auto truth_for = [&](const RectLight& light, const std::string& what) -> std::optional<bench::CachedTruth> {
             progress.step("truth", scene.name + ": ground truth " + what);
-            std::optional<bench::CachedTruth> t =
-                bench::cached_truth(cache_dir, scene.name, ground_truth, options->width, options->height,
-                                    pixels->positions, pixels->normals, light, options->samples, &error);
+            lit.light = light;
+            std::optional<bench::CachedTruth> t = bench::cached_truth(cache_dir, lit, pixels->frame, options->samples, &error);
             if (t) truth_files.push_back({{"for", what}, {"file", std::filesystem::relative(t->file, out_dir).string()},
                                           {"cached", t->from_cache}, {"ms", t->milliseconds}});
             return t;
         };
-        std::vector<std::vector<float>> truths;
+        std::vector<References> truths;
         for (double scale : options->light_scales) {
             std::optional<bench::CachedTruth> t = truth_for(scaled_light(scene.light, scale), "light x" + scale_text(scale));
             if (!t) return fail(scene.name + ": " + error);
-            write_visibility_images(image_dir + "/" + scene.name + "/x" + scale_text(scale), "truth", *pixels,
-                                    t->visibility, nullptr, &error);
-            truths.push_back(std::move(t->visibility));
+            if (!write_visibility_images(image_dir + "/" + scene.name + "/x" + scale_text(scale), "truth", *pixels,
+                                         t->references.visibility, nullptr, &error))
+                return fail(error);
+            truths.push_back(std::move(t->references));
         }
         const double step = options->flicker_step * ground_span(scene);
         std::vector<std::vector<float>> truth_frames;
@@ -510,10 +511,10 @@ int main(int argc, char** argv) {
             std::optional<bench::CachedTruth> t =
                 truth_for(moved_light(scene.light, step, f), "flicker frame " + std::to_string(f + 1));
             if (!t) return fail(scene.name + ": " + error);
-            truth_frames.push_back(std::move(t->visibility));
+            truth_frames.push_back(std::move(t->references.visibility));
         }
         progress.finish();
-        const double truth_delta = mean_frame_delta(truth_frames, pixels->geometry);
+        const double truth_delta = mean_frame_delta(truth_frames, pixels->frame.geometry);
 
         results["scenes"].push_back({{"name", scene.name},
                                      {"triangles", scene.mesh.triangle_count()},
@@ -541,7 +542,7 @@ int main(int argc, char** argv) {
         for (std::size_t s = 0; s < options->light_scales.size(); ++s) {
             const double scale = options->light_scales[s];
             const std::string where = scene.name + ", light x" + scale_text(scale);
-            std::vector<Metrics> quality(ladder.size());
+            std::vector<QualityMetrics> quality(ladder.size());
             std::vector<std::vector<FrameTimes>> timed(ladder.size());
             for (std::size_t e = 0; e < ladder.size(); ++e) {
                 const bench::LadderEntry& entry = ladder[e];
@@ -550,10 +551,11 @@ int main(int argc, char** argv) {
                 FrameTimes warmup;
                 if (!run_frame(*runtimes[e], mesh, *pixels, warmup, &error)) return fail(entry.label + ": " + error);
                 const std::vector<float> visibility = read_visibility(*runtimes[e], *pixels);
-                quality[e] = compare(visibility, pixels->geometry, truths[s]);
+                quality[e] = compare_quality(visibility, pixels->frame.geometry, truths[s].visibility,
+                                             truths[s].oriented, truths[s].irradiance);
                 if (entry.representative &&
                     !write_visibility_images(image_dir + "/" + scene.name + "/x" + scale_text(scale), slug(entry.label),
-                                             *pixels, visibility, &truths[s], &error))
+                                             *pixels, visibility, &truths[s].visibility, &error))
                     return fail(error);
             }
             // Round-robin: run r of every setting, then run r + 1. A burst of load from other
@@ -578,7 +580,13 @@ int main(int argc, char** argv) {
                                {"config", configs[e]},
                                {"texture_bytes", texture_bytes[e]}};
                 record.update(cost_json(timed[e]));
-                record["quality"] = {{"all", stats_json(quality[e].all)}, {"penumbra", stats_json(quality[e].penumbra)}};
+                // "all"/"penumbra": against the visibility of the whole light (rays behind the
+                // receiver's tangent plane blocked); the fair references beside it.
+                const QualityMetrics& q = quality[e];
+                record["quality"] = {{"all", stats_json(q.visibility.all)},
+                                     {"penumbra", stats_json(q.visibility.penumbra)},
+                                     {"oriented", {{"all", stats_json(q.oriented.all)}, {"penumbra", stats_json(q.oriented.penumbra)}}},
+                                     {"irradiance", {{"all", stats_json(q.irradiance.all)}, {"penumbra", stats_json(q.irradiance.penumbra)}}}};
                 if (entry.representative) {
                     const std::string dir = "images/" + scene.name + "/x" + scale_text(scale);
                     record["images"] = {{"visibility", dir + "/" + slug(entry.label) + ".png"},
@@ -604,8 +612,8 @@ int main(int argc, char** argv) {
             }
             double error_sum = 0;
             for (int f = 0; f < options->flicker_frames; ++f)
-                error_sum += compare(frames[f], pixels->geometry, truth_frames[f]).all.mae;
-            const double delta = mean_frame_delta(frames, pixels->geometry);
+                error_sum += compare(frames[f], pixels->frame.geometry, truth_frames[f]).all.mae;
+            const double delta = mean_frame_delta(frames, pixels->frame.geometry);
             results["flicker"].push_back({{"scene", scene.name},
                                           {"family", entry.family},
                                           {"label", entry.label},

@@ -34,8 +34,32 @@ def fmt_scale(scale):
     return f"x{scale:g}"
 
 
-def pen(m):
-    return m["quality"]["penumbra"]["mae"]
+# The reference the conclusions use (--metric); the others are shown beside it.
+METRICS = {
+    "visibility": "visibility of the whole light (rays behind the receiver's tangent plane count as blocked)",
+    "oriented": "visibility of the part of the light above the receiver's tangent plane (fair)",
+    "irradiance": "irradiance relative to the unoccluded irradiance from that part (fair)",
+}
+METRIC = "visibility"
+
+
+def quality(m, metric=None):
+    metric = metric or METRIC
+    return m["quality"] if metric == "visibility" else m["quality"][metric]
+
+
+def pen(m, metric=None):
+    """Penumbra MAE against the chosen reference."""
+    return quality(m, metric)["penumbra"]["mae"]
+
+
+def fair_text(m):
+    """The penumbra MAE against the two references the conclusions do not use."""
+    return " / ".join(f"{pen(m, k):.3f}" for k in METRICS if k != METRIC)
+
+
+def other_metrics():
+    return " / ".join(k for k in METRICS if k != METRIC)
 
 
 def load(directory):
@@ -67,9 +91,9 @@ def reference_label(measurements):
     labels = {m["label"] for m in measurements}
     if REFERENCE in labels:
         return REFERENCE, None
-    return FALLBACK_REFERENCE if FALLBACK_REFERENCE in labels else None, (
-        f"this run has no {REFERENCE} measurement (the shadow-map techniques were not in its ladder), so the "
-        f"ratios are against {FALLBACK_REFERENCE} instead")
+    fallback = FALLBACK_REFERENCE if FALLBACK_REFERENCE in labels else sorted(labels)[0]
+    return fallback, (f"this run has no {REFERENCE} measurement (the shadow-map techniques were not in its "
+                      f"ladder), so the ratios are against {fallback} instead")
 
 
 def ratio_text(m, cell, reference):
@@ -148,13 +172,13 @@ def make_figures(results, directory):
             ax.set_xscale("log")
             ax.set_title(f"{scene}, light {fmt_scale(scale)}", fontsize=9)
             ax.set_xlabel("frame shadow cost, ms (log)", fontsize=8)
-            ax.set_ylabel("penumbra MAE", fontsize=8)
+            ax.set_ylabel(f"penumbra MAE ({METRIC})", fontsize=8)
             ax.tick_params(labelsize=7)
             ax.grid(True, which="both", alpha=0.3)
         for j in range(len(scales), rows * cols):
             axes[j // cols][j % cols].axis("off")
         axes[0][0].legend(fontsize=7)
-        fig.suptitle(f"Pareto front (dashed), {scene}: time against penumbra MAE", fontsize=10)
+        fig.suptitle(f"Pareto front (dashed), {scene}: time against penumbra MAE ({METRIC} reference)", fontsize=10)
         fig.tight_layout()
         path = os.path.join(fig_dir, f"pareto_{scene}.png")
         fig.savefig(path, dpi=110)
@@ -174,7 +198,7 @@ def make_figures(results, directory):
         ax_cost.plot(xs, [v[0] for _, v in pts], style, marker="o", ms=3, color=colors[family[label]], label=label)
         ax_mae.plot(xs, [v[1] for _, v in pts], style, marker="o", ms=3, color=colors[family[label]], label=label)
     for ax, title, ylabel in ((ax_cost, "cost against light size", "frame shadow cost, ms (mean over scenes)"),
-                              (ax_mae, "penumbra MAE against light size", "penumbra MAE (mean over scenes)")):
+                              (ax_mae, "penumbra MAE against light size", f"penumbra MAE ({METRIC}, mean over scenes)")):
         ax.set_xscale("log", base=2)
         ax.set_xlabel("light size, multiple of the scene's default", fontsize=8)
         ax.set_ylabel(ylabel, fontsize=8)
@@ -263,6 +287,10 @@ def write_report(results, directory, threshold, figures):
       "full table. *Penumbra pixels*: geometry pixels where the truth or the estimate is below "
       f"{meta['penumbra_threshold']}. *MAE/RMSE/p95*: of |estimate − truth|. Light sizes: multiples of each "
       "scene's default rectangle (2×2 for the built-in scenes).\n")
+    w(f"Reference of the conclusions (*MAE* below): **{METRIC}**, the {METRICS[METRIC]}. Beside it, the "
+      f"penumbra MAE against the other references ({other_metrics()}); pixels that see none of the light are "
+      "left out of the fair ones. `compare_report.py DIR --metric oriented` rebuilds the report on another "
+      "reference.\n")
     w("Techniques in this run: " + ", ".join(
         f"{family_name(f)} ({sum(1 for l in {m['label'] for m in measurements if m['family'] == f})} settings)"
         for f in sorted({m["family"] for m in measurements})) + ".\n")
@@ -278,21 +306,23 @@ def write_report(results, directory, threshold, figures):
             w(f"Empty: results.json has no {budget_label} measurement, so there is no budget to compare at "
               "(the shadow-map techniques were not in this run's ladder).\n")
             continue
-        w(f"| scene | light | {budget_label} ms | its MAE | best OT within that cost | OT ms (ratio) | OT MAE | OT wins |")
+        w(f"| scene | light | {budget_label} ms | its MAE ({other_metrics()}) | best OT within that cost | "
+          f"OT ms (ratio) | OT MAE ({other_metrics()}) | OT wins |")
         w("|---|---|---|---|---|---|---|---|")
         wins = losses = none = 0
         for scene, scale, budget, best, cheapest in rows:
             if best is None:
                 none += 1
-                w(f"| {scene} | {fmt_scale(scale)} | {fmt_ms(budget[COST])} | {pen(budget):.4f} | none: the cheapest, "
-                  f"{cheapest['label']}, costs {fmt_ms(cheapest[COST])} (x{cheapest[COST] / budget[COST]:.2f}) | – | "
-                  f"{pen(cheapest):.4f} | – |")
+                w(f"| {scene} | {fmt_scale(scale)} | {fmt_ms(budget[COST])} | {pen(budget):.4f} ({fair_text(budget)}) | "
+                  f"none: the cheapest, {cheapest['label']}, costs {fmt_ms(cheapest[COST])} "
+                  f"(x{cheapest[COST] / budget[COST]:.2f}) | – | {pen(cheapest):.4f} ({fair_text(cheapest)}) | – |")
                 continue
             win = pen(best) < pen(budget)
             wins += win
             losses += not win
-            w(f"| {scene} | {fmt_scale(scale)} | {fmt_ms(budget[COST])} | {pen(budget):.4f} | {best['label']} | "
-              f"{fmt_ms(best[COST])} (x{best[COST] / budget[COST]:.2f}) | {pen(best):.4f} | {'yes' if win else 'no'} |")
+            w(f"| {scene} | {fmt_scale(scale)} | {fmt_ms(budget[COST])} | {pen(budget):.4f} ({fair_text(budget)}) | "
+              f"{best['label']} | {fmt_ms(best[COST])} (x{best[COST] / budget[COST]:.2f}) | {pen(best):.4f} "
+              f"({fair_text(best)}) | {'yes' if win else 'no'} |")
         w(f"\nOf {len(rows)} scene × light cells, an occlusion-texture setting within the cost of {budget_label} "
           f"has the lower penumbra MAE in **{wins}**, the higher in **{losses}**, and none fits the budget in "
           f"**{none}**.\n")
@@ -390,18 +420,18 @@ def write_report(results, directory, threshold, figures):
     w(f"GPU: summed timer queries; wall: to glFinish (shadow passes, shading, total); ratio: GPU cost against "
       f"{reference or 'the reference'} at the same scene and light; texture memory from the layout's textures.\n")
     w("| scene | light | setting | GPU ms | ratio | wall ms (shadow + shading = total) | textures MiB | "
-      "penumbra MAE / RMSE / p95 (px) | all MAE / RMSE / p95 (px) | passes, GPU ms |")
-    w("|---|---|---|---|---|---|---|---|---|---|")
+      f"penumbra MAE / RMSE / p95 (px) | all MAE / RMSE / p95 (px) | penumbra MAE {other_metrics()} | passes, GPU ms |")
+    w("|---|---|---|---|---|---|---|---|---|---|---|")
     for (scene, scale), cell in sorted(cells.items()):
         for m in sorted(cell.values(), key=lambda m: (m["family"], m[COST])):
-            q, wall = m["quality"], m["wall_ms"]
+            q, wall = quality(m), m["wall_ms"]
             passes = ", ".join(f"{p['name']}{'×' + str(p['instances']) if p['instances'] > 1 else ''} "
                                f"{fmt_ms(p['gpu_ms'])}" for p in m["passes"])
             w(f"| {scene} | {fmt_scale(scale)} | {m['label']} | {fmt_ms(m[COST])} | {ratio_text(m, cell, reference)} | "
               f"{fmt_ms(wall['shadow_passes'])} + {fmt_ms(wall['shading'])} = {fmt_ms(wall['total'])} | "
               f"{m['texture_bytes'] / 2**20:.1f} | {q['penumbra']['mae']:.4f} / {q['penumbra']['rmse']:.4f} / "
               f"{q['penumbra']['p95']:.3f} ({q['penumbra']['pixels']}) | {q['all']['mae']:.4f} / "
-              f"{q['all']['rmse']:.4f} / {q['all']['p95']:.3f} ({q['all']['pixels']}) | {passes} |")
+              f"{q['all']['rmse']:.4f} / {q['all']['p95']:.3f} ({q['all']['pixels']}) | {fair_text(m)} | {passes} |")
     w("")
     w("Ground truth per scene (computed or read from the cache): " + "; ".join(
         f"{s['name']}: {sum(t['ms'] for t in s['truth']) / 1000:.1f} s for {len(s['truth'])} images "
@@ -471,8 +501,12 @@ def main():
     parser.add_argument("directory", help="the folder holding results.json (penumbra-bench-compare --out)")
     parser.add_argument("--mae-threshold", type=float, default=0.10,
                         help="penumbra MAE the light-size table keeps each technique under (default 0.10)")
+    parser.add_argument("--metric", choices=list(METRICS), default="visibility",
+                        help="the reference the conclusions use (default visibility; the others are shown beside it)")
     parser.add_argument("--check", action="store_true", help="check an existing report instead of writing one")
     args = parser.parse_args()
+    global METRIC
+    METRIC = args.metric
     if not os.path.exists(os.path.join(args.directory, "results.json")):
         print(f"error: {args.directory}/results.json not found; run penumbra-bench-compare --out "
               f"{args.directory} first", file=sys.stderr)
