@@ -5,6 +5,7 @@
 #include "emit_prefilter.hpp"
 #include "emit_shading.hpp"
 #include "emit_slicing.hpp"
+#include "shadow_map/emit_depth.hpp"
 
 namespace penumbra {
 
@@ -22,6 +23,8 @@ enum class Artifact : std::uint8_t {
     shading_frag,
     deferred_frag,
     visibility_snippet, // penumbra_visibility.glsl, no #version: for inclusion into the engine's shaders
+    shadow_depth_vert,  // shadow map techniques: the depth pass from the light
+    shadow_depth_frag,
 };
 
 constexpr std::string_view file_name(Artifact artifact) {
@@ -38,6 +41,8 @@ constexpr std::string_view file_name(Artifact artifact) {
     case Artifact::shading_frag: return "penumbra_shading.frag";
     case Artifact::deferred_frag: return "penumbra_deferred.frag";
     case Artifact::visibility_snippet: return "penumbra_visibility.glsl";
+    case Artifact::shadow_depth_vert: return "penumbra_shadow_depth.vert";
+    case Artifact::shadow_depth_frag: return "penumbra_shadow_depth.frag";
     }
     return "";
 }
@@ -45,6 +50,7 @@ constexpr std::string_view file_name(Artifact artifact) {
 constexpr Stage artifact_stage(Artifact artifact) {
     switch (artifact) {
     case Artifact::slicing_vert:
+    case Artifact::shadow_depth_vert:
     case Artifact::fullscreen_vert:
     case Artifact::shading_vert: return Stage::vertex;
     default: return Stage::fragment;
@@ -67,7 +73,9 @@ constexpr Text artifact_text(const Config& config, Artifact artifact) {
     case Artifact::shading_vert: return example_vertex(config);
     case Artifact::shading_frag: return example_fragment(config);
     case Artifact::deferred_frag: return deferred_fragment(config);
-    case Artifact::visibility_snippet: return visibility_snippet(config);
+    case Artifact::visibility_snippet: return technique_visibility_snippet(config);
+    case Artifact::shadow_depth_vert: return shadow_depth_vertex(config);
+    case Artifact::shadow_depth_frag: return shadow_depth_fragment(config);
     }
     return {};
 }
@@ -77,8 +85,13 @@ struct ProgramPlan {
     std::vector<Artifact> stages;
 };
 
-// Programs in the order their passes run: slicing, prefilter, shading.
+// Programs in the order their passes run: slicing, prefilter, shading (occlusion); depth, shading
+// (shadow map techniques).
 constexpr std::vector<ProgramPlan> program_plan(const Config& config) {
+    if (uses_shadow_map(config))
+        return {{"shadow_depth", {Artifact::shadow_depth_vert, Artifact::shadow_depth_frag}},
+                {"shading_example", {Artifact::shading_vert, Artifact::shading_frag}},
+                {"shading_deferred", {Artifact::fullscreen_vert, Artifact::deferred_frag}}};
     std::vector<ProgramPlan> plan{{"slicing", {Artifact::slicing_vert, Artifact::slicing_frag}}};
     if (config.packing == Packing::atlas && config.filter != Filter::sat)
         plan.push_back({"pack_atlas", {Artifact::fullscreen_vert, Artifact::pack_atlas_frag}});
