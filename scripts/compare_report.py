@@ -19,7 +19,7 @@ COST = "gpu_ms"  # the cost of a frame: median over the timed runs of the summed
 REFERENCE = "PCSS 16/16"  # ratios are given against this setting at the same scene and light size
 FALLBACK_REFERENCE = "OT nbuffer 16/512"  # when the run has no PCSS 16/16 (and says so)
 EQUAL_TIME_BUDGETS = ["PCSS 16/16", "PCSS 32/64"]
-FAMILY_NAMES = {"occlusion": "occlusion textures"}
+FAMILY_NAMES = {"occlusion": "occlusion textures", "shadowmap": "hard shadow map", "pcf": "PCF", "pcss": "PCSS"}
 
 
 def family_name(family):
@@ -188,18 +188,19 @@ def make_figures(results, directory):
     # Cost and quality against light size, per setting (mean over scenes).
     summary, family = per_label_over_scenes(measurements)
     fig, (ax_cost, ax_mae) = plt.subplots(1, 2, figsize=(11, 4.2))
-    styles = ["-", "--", ":", "-."]
-    seen = defaultdict(int)
-    for label in sorted(summary, key=lambda l: (family[l], l)):
+    markers = ["o", "s", "^", "D", "v", "P", "X"]
+    label_colors = plt.get_cmap("tab20")
+    for i, label in enumerate(sorted(summary, key=lambda l: (family[l], l))):
         pts = sorted(summary[label].items())
-        style = styles[seen[family[label]] % len(styles)]
-        seen[family[label]] += 1
+        style = dict(marker=markers[families.index(family[label]) % len(markers)], ms=4, color=label_colors(i % 20),
+                     ls="-" if family[label] == "occlusion" else "--", label=label)
         xs = [s for s, _ in pts]
-        ax_cost.plot(xs, [v[0] for _, v in pts], style, marker="o", ms=3, color=colors[family[label]], label=label)
-        ax_mae.plot(xs, [v[1] for _, v in pts], style, marker="o", ms=3, color=colors[family[label]], label=label)
+        ax_cost.plot(xs, [v[0] for _, v in pts], **style)
+        ax_mae.plot(xs, [v[1] for _, v in pts], **style)
     for ax, title, ylabel in ((ax_cost, "cost against light size", "frame shadow cost, ms (mean over scenes)"),
                               (ax_mae, "penumbra MAE against light size", f"penumbra MAE ({METRIC}, mean over scenes)")):
         ax.set_xscale("log", base=2)
+        ax.set_xticks(scales, [fmt_scale(x) for x in scales])
         ax.set_xlabel("light size, multiple of the scene's default", fontsize=8)
         ax.set_ylabel(ylabel, fontsize=8)
         ax.set_title(title, fontsize=10)
@@ -207,6 +208,8 @@ def make_figures(results, directory):
         ax.tick_params(labelsize=7)
     ax_cost.set_yscale("log")
     ax_mae.legend(fontsize=6, ncol=2)
+    ax_cost.text(0.01, 0.01, "solid: occlusion textures, dashed: shadow-map techniques", fontsize=6,
+                 transform=ax_cost.transAxes)
     fig.tight_layout()
     path = os.path.join(fig_dir, "cost_vs_light_size.png")
     fig.savefig(path, dpi=110)
