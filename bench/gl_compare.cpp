@@ -345,6 +345,21 @@ json cost_json(const std::vector<FrameTimes>& runs) {
             {"wall_ms", {{"shadow_passes", median(build)}, {"shading", median(shading)}, {"total", median(total)}}}};
 }
 
+// Mean of estimate − reference over penumbra pixels (either below 0.98, as metrics.cpp counts
+// them): positive where a technique is too bright overall (light leaks, missing occluders),
+// negative where it is too dark (occlusion counted twice, penumbrae too wide).
+double penumbra_bias(const std::vector<float>& estimate, const std::vector<unsigned char>& geometry,
+                     const std::vector<float>& reference) {
+    double sum = 0;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < estimate.size(); ++i)
+        if (geometry[i] && !std::isnan(reference[i]) && (reference[i] < 0.98f || estimate[i] < 0.98f)) {
+            sum += static_cast<double>(estimate[i]) - reference[i];
+            ++count;
+        }
+    return count ? sum / count : 0.0;
+}
+
 // |Δ visibility| between consecutive frames, averaged over geometry pixels and frame pairs.
 double mean_frame_delta(const std::vector<std::vector<float>>& frames, const std::vector<unsigned char>& geometry) {
     double sum = 0;
@@ -543,6 +558,7 @@ int main(int argc, char** argv) {
             const double scale = options->light_scales[s];
             const std::string where = scene.name + ", light x" + scale_text(scale);
             std::vector<QualityMetrics> quality(ladder.size());
+            std::vector<double> bias(ladder.size());
             std::vector<std::vector<FrameTimes>> timed(ladder.size());
             for (std::size_t e = 0; e < ladder.size(); ++e) {
                 const bench::LadderEntry& entry = ladder[e];
@@ -553,6 +569,7 @@ int main(int argc, char** argv) {
                 const std::vector<float> visibility = read_visibility(*runtimes[e], *pixels);
                 quality[e] = compare_quality(visibility, pixels->frame.geometry, truths[s].visibility,
                                              truths[s].oriented, truths[s].irradiance);
+                bias[e] = penumbra_bias(visibility, pixels->frame.geometry, truths[s].visibility);
                 if (entry.representative &&
                     !write_visibility_images(image_dir + "/" + scene.name + "/x" + scale_text(scale), slug(entry.label),
                                              *pixels, visibility, &truths[s].visibility, &error))
@@ -585,6 +602,7 @@ int main(int argc, char** argv) {
                 const QualityMetrics& q = quality[e];
                 record["quality"] = {{"all", stats_json(q.visibility.all)},
                                      {"penumbra", stats_json(q.visibility.penumbra)},
+                                     {"penumbra_bias", bias[e]},
                                      {"oriented", {{"all", stats_json(q.oriented.all)}, {"penumbra", stats_json(q.oriented.penumbra)}}},
                                      {"irradiance", {{"all", stats_json(q.irradiance.all)}, {"penumbra", stats_json(q.irradiance.penumbra)}}}};
                 if (entry.representative) {

@@ -400,6 +400,20 @@ def write_report(results, directory, threshold, figures):
     else:
         w("No flicker measurement in this run.\n")
 
+    # Signed error.
+    w("## Too bright or too dark\n")
+    w("Mean signed error over penumbra pixels (estimate − truth, against the visibility reference), mean over "
+      "scenes: positive where a setting is too bright (light leaking through or around occluders), negative "
+      "where it is too dark (occlusion counted twice, penumbrae too wide). The montages show where.\n")
+    w("| setting | " + " | ".join(fmt_scale(s) for s in scales) + " |")
+    w("|---|" + "---|" * len(scales))
+    bias = defaultdict(lambda: defaultdict(list))
+    for m in measurements:
+        bias[m["label"]][m["light_scale"]].append(m["quality"]["penumbra_bias"])
+    for label in sorted(bias, key=lambda l: (family[l], l)):
+        w(f"| {label} | " + " | ".join(f"{mean(bias[label][s]):+.3f}" if bias[label][s] else "–" for s in scales) + " |")
+    w("")
+
     # Pareto fronts.
     w("## Pareto fronts\n")
     w("Per scene and light size, the settings no other setting beats on both cost and penumbra MAE, cheapest "
@@ -422,19 +436,22 @@ def write_report(results, directory, threshold, figures):
     w("## Every measurement\n")
     w(f"GPU: summed timer queries; wall: to glFinish (shadow passes, shading, total); ratio: GPU cost against "
       f"{reference or 'the reference'} at the same scene and light; texture memory from the layout's textures.\n")
-    w("| scene | light | setting | GPU ms | ratio | wall ms (shadow + shading = total) | textures MiB | "
-      f"penumbra MAE / RMSE / p95 (px) | all MAE / RMSE / p95 (px) | penumbra MAE {other_metrics()} | passes, GPU ms |")
-    w("|---|---|---|---|---|---|---|---|---|---|---|")
+    w("| scene | light | setting | GPU ms (fastest) | ratio | wall ms (shadow + shading = total) | textures MiB | "
+      f"penumbra MAE / RMSE / p95 (px) | all MAE / RMSE / p95 (px) | penumbra MAE {other_metrics()} | penumbra bias | "
+      "passes, GPU ms |")
+    w("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for (scene, scale), cell in sorted(cells.items()):
         for m in sorted(cell.values(), key=lambda m: (m["family"], m[COST])):
             q, wall = quality(m), m["wall_ms"]
             passes = ", ".join(f"{p['name']}{'×' + str(p['instances']) if p['instances'] > 1 else ''} "
                                f"{fmt_ms(p['gpu_ms'])}" for p in m["passes"])
-            w(f"| {scene} | {fmt_scale(scale)} | {m['label']} | {fmt_ms(m[COST])} | {ratio_text(m, cell, reference)} | "
+            w(f"| {scene} | {fmt_scale(scale)} | {m['label']} | {fmt_ms(m[COST])} ({fmt_ms(m['gpu_ms_fastest'])}) | "
+              f"{ratio_text(m, cell, reference)} | "
               f"{fmt_ms(wall['shadow_passes'])} + {fmt_ms(wall['shading'])} = {fmt_ms(wall['total'])} | "
               f"{m['texture_bytes'] / 2**20:.1f} | {q['penumbra']['mae']:.4f} / {q['penumbra']['rmse']:.4f} / "
               f"{q['penumbra']['p95']:.3f} ({q['penumbra']['pixels']}) | {q['all']['mae']:.4f} / "
-              f"{q['all']['rmse']:.4f} / {q['all']['p95']:.3f} ({q['all']['pixels']}) | {fair_text(m)} | {passes} |")
+              f"{q['all']['rmse']:.4f} / {q['all']['p95']:.3f} ({q['all']['pixels']}) | {fair_text(m)} | "
+              f"{m['quality']['penumbra_bias']:+.3f} | {passes} |")
     w("")
     w("Ground truth per scene (computed or read from the cache): " + "; ".join(
         f"{s['name']}: {sum(t['ms'] for t in s['truth']) / 1000:.1f} s for {len(s['truth'])} images "
@@ -476,7 +493,8 @@ def check(directory):
         problems.append("report.md is missing or empty")
     else:
         text = open(report).read()
-        for heading in ("## Equal time", "## Light size", "## Temporal stability", "## Pareto fronts"):
+        for heading in ("## Equal time", "## Light size", "## Temporal stability", "## Too bright or too dark",
+                        "## Pareto fronts"):
             if heading not in text:
                 problems.append(f"report.md has no '{heading}' section")
     expected = [f"pareto_{s['name']}.png" for s in results["scenes"]] + ["cost_vs_light_size.png"] + [
