@@ -611,6 +611,12 @@ int main(int argc, char** argv) {
                                         {"error", dir + "/" + slug(entry.label) + ".error.png"},
                                         {"truth", dir + "/truth.png"}};
                 }
+                std::printf("%-10s x%-4s %-20s GPU %8.2f ms  wall %8.2f ms  textures %7.1f MiB  penumbra MAE %.4f  "
+                            "oriented %.4f\n",
+                            scene.name.c_str(), scale_text(scale).c_str(), entry.label.c_str(),
+                            record["gpu_ms"].get<double>(), record["wall_ms"]["total"].get<double>(),
+                            texture_bytes[e] / 1048576.0, q.visibility.penumbra.mae, q.oriented.penumbra.mae);
+                std::fflush(stdout);
                 results["measurements"].push_back(std::move(record));
             }
         }
