@@ -77,7 +77,7 @@ constexpr const char* usage_text =
     "  --quick           boxes only, two settings, light x1 and x4, 64x64, 8x8 rays, 4 flicker frames\n"
     "                    (a smoke test: the report states the ray count)\n"
     "  --full            the full ladder (adds 1024-texel settings), 256x256, 16 flicker frames\n"
-    "  --scenes          built-in scenes: planes, boxes, tree, butterfly, terrain, crowd\n"
+    "  --scenes          built-in scenes, comma-separated (default all: see penumbra-playground --help)\n"
     "  FILE.obj          Wavefront files, added to the scenes (lights and camera from their bounds)\n"
     "  --size            image size (square N or WxH, 16 to 1024)\n"
     "  --samples         ground-truth rays per light axis, 1 to 128 (the truth uses N x N stratified rays)\n"
@@ -141,6 +141,12 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
             obj_files.emplace_back(flag);
             continue;
         }
+        constexpr std::string_view valued[] = {"--scenes", "--size", "--samples", "--runs", "--flicker-frames",
+                                               "--light-scales", "--out"};
+        if (std::find(std::begin(valued), std::end(valued), flag) == std::end(valued))
+            return fail("unknown flag '" + std::string(flag) +
+                        "'; allowed: --quick, --full, --scenes, --size, --samples, --runs, --light-scales, "
+                        "--flicker-frames, --out, --help, FILE.obj");
         if (i + 1 >= argc) return fail(std::string(flag) + ": missing value (see --help)");
         const std::string_view value = argv[++i];
         if (flag == "--scenes") {
@@ -179,13 +185,9 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                 o.light_scales.push_back(scale);
             }
             if (o.light_scales.empty()) return fail("--light-scales: empty; allowed: numbers above 0, at most 64");
-        } else if (flag == "--out") {
+        } else { // --out
             if (value.empty()) return fail("--out: empty; allowed: a folder");
             o.out_dir = std::string(value);
-        } else {
-            return fail("unknown flag '" + std::string(flag) +
-                        "'; allowed: --quick, --full, --scenes, --size, --samples, --runs, --light-scales, "
-                        "--flicker-frames, --out, --help, FILE.obj");
         }
     }
     if (built_in.empty() && !scenes_given && o.set != bench::LadderSet::quick)
