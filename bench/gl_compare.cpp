@@ -19,7 +19,6 @@
 //                          [--runs N] [--light-scales 1,2,4] [--flicker-frames N] [--out DIR]
 #include "compare/ladder.hpp"
 #include "compare/progress.hpp"
-#include "compare/texture_memory.hpp"
 #include "compare/truth_cache.hpp"
 
 #include "app/headless_job.hpp"
@@ -32,6 +31,7 @@
 
 #include <penumbra/gl/runtime.hpp>
 #include <penumbra/layout.hpp>
+#include <penumbra/texture_memory.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -548,11 +548,11 @@ int main(int argc, char** argv) {
         for (const bench::LadderEntry& entry : ladder) {
             runtimes.push_back(gl::Runtime::create(entry.config, &error));
             if (!runtimes.back()) return fail(scene.name + ", " + entry.label + ": " + error);
-            const Layout& layout = runtimes.back()->emission().layout;
-            std::string unknown;
-            const std::optional<std::uint64_t> bytes = bench::layout_texture_bytes(layout, &unknown);
-            if (!bytes) return fail(entry.label + ": texture " + unknown + " has a format whose size is unknown");
-            texture_bytes.push_back(*bytes);
+            const Layout& layout = runtimes.back()->layout();
+            for (const TextureDesc& t : layout.textures)
+                if (bytes_per_texel(t.internal_format) == 0)
+                    return fail(entry.label + ": texture " + t.name + " has a format of unknown size, " + t.internal_format);
+            texture_bytes.push_back(static_cast<std::uint64_t>(penumbra::texture_bytes(layout, options->width, options->height)));
             configs.push_back(json::parse(to_json(layout))["config"]);
         }
 
