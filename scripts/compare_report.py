@@ -400,6 +400,25 @@ def write_report(results, directory, threshold, figures):
     else:
         w("No flicker measurement in this run.\n")
 
+    # Where the time goes.
+    w("## Where the time goes\n")
+    w(f"Mean over scenes and light sizes of the GPU time of the passes from the light (shadow map or slicing and "
+      f"prefilter: independent of the image size) and of the screen pass over the {meta['image'][0]}×"
+      f"{meta['image'][1]} G-buffer (proportional to the pixels shaded). At a larger image the screen share grows "
+      "by the ratio of pixel counts; the light passes stay.\n")
+    w("| setting | technique | light passes ms | screen pass ms | screen share | textures MiB |")
+    w("|---|---|---|---|---|---|")
+    split = defaultdict(list)
+    for m in measurements:
+        screen = m["passes"][-1]["gpu_ms"]
+        split[m["label"]].append((sum(p["gpu_ms"] for p in m["passes"][:-1]), screen, m["texture_bytes"]))
+    for label in sorted(split, key=lambda l: (family[l], mean(x[0] + x[1] for x in split[l]))):
+        light_ms, screen_ms = mean(x[0] for x in split[label]), mean(x[1] for x in split[label])
+        share = screen_ms / (light_ms + screen_ms) if light_ms + screen_ms > 0 else 0
+        w(f"| {label} | {family_name(family[label])} | {fmt_ms(light_ms)} | {fmt_ms(screen_ms)} | {share * 100:.0f} % | "
+          f"{split[label][0][2] / 2**20:.1f} |")
+    w("")
+
     # Signed error.
     w("## Too bright or too dark\n")
     w("Mean signed error over penumbra pixels (estimate − truth, against the visibility reference), mean over "
