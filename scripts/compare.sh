@@ -4,6 +4,7 @@
 # (report.md, figures/) with Debian's matplotlib.
 #   scripts/compare.sh [--quick | --full] [penumbra-bench-compare flags] [--out DIR]   (default out/compare)
 #   scripts/compare.sh --report-only [--out DIR]     rebuild report.md and figures from DIR/results.json
+#   (either form) [--metric visibility|oriented|irradiance] [--mae-thresholds 0.05,0.1,0.15]: report options
 #   scripts/compare.sh ... --check                   then check report, figures and finite numbers (CI)
 # The default set takes about 30 minutes on 2 llvmpipe cores; --quick a few seconds.
 # PENUMBRA_BENCH_COMPARE=path/to/penumbra-bench-compare skips setup and build (the ctest test sets it).
@@ -14,6 +15,7 @@ out=out/compare
 report_only=0
 check=0
 bench_args=()
+report_args=()
 while [ $# -gt 0 ]; do
     case "$1" in
         --report-only) report_only=1 ;;
@@ -22,6 +24,9 @@ while [ $# -gt 0 ]; do
             [ $# -ge 2 ] || { echo "error: --out: missing value (a folder)" >&2; exit 2; }
             out="$2"; bench_args+=(--out "$2"); shift ;;
         --out=*) out="${1#--out=}"; bench_args+=("$1") ;;
+        --metric|--mae-thresholds)
+            [ $# -ge 2 ] || { echo "error: $1: missing value (see scripts/compare_report.py --help)" >&2; exit 2; }
+            report_args+=("$1" "$2"); shift ;;
         *) bench_args+=("$1") ;;
     esac
     shift
@@ -40,6 +45,6 @@ if [ "$report_only" -eq 0 ]; then
     "$bench" "${bench_args[@]}"
     echo "compare: penumbra-bench-compare took $(( $(date +%s) - start )) s"
 fi
-"$python" scripts/compare_report.py "$out"
+"$python" scripts/compare_report.py "$out" "${report_args[@]}"
 if [ "$check" -eq 1 ]; then "$python" scripts/compare_report.py --check "$out"; fi
 echo "report: $out/report.md"
