@@ -4,7 +4,7 @@
 # (report.md, figures/) with Debian's matplotlib.
 #   scripts/compare.sh [--quick | --full] [penumbra-bench-compare flags] [--out DIR]   (default out/compare)
 #   scripts/compare.sh --report-only [--out DIR]     rebuild report.md and figures from DIR/results.json
-#   (either form) [--metric visibility|oriented|irradiance] [--mae-thresholds 0.05,0.1,0.15]: report options
+#   (either form) [--metric visibility|oriented|irradiance] [--mae-thresholds 0.1,0.15,0.2]: report options
 #   scripts/compare.sh ... --check                   then check report, figures and finite numbers (CI)
 # The default set takes about 30 minutes on 2 llvmpipe cores; --quick a few seconds.
 # PENUMBRA_BENCH_COMPARE=path/to/penumbra-bench-compare skips setup and build (the ctest test sets it).
