@@ -10,7 +10,7 @@ packages=(
     libglfw3-dev libepoxy-dev libgl1-mesa-dri libegl1-mesa-dev mesa-utils xvfb xauth
     libimgui-dev libstb-dev libtinyobjloader-dev libembree-dev
     libvulkan-dev libvulkan-volk-dev mesa-vulkan-drivers vulkan-validationlayers
-    python3 python3-jsonschema
+    python3 python3-jsonschema python3-matplotlib
     chromium
 )
 # The browser test drives chromium from Node (puppeteer-core); Debian's node where none is installed.

@@ -1,0 +1,78 @@
+// bench/compare/ladder.hpp — what penumbra-bench-compare renders: every technique as a plain
+// penumbra::Config at a ladder of quality settings, from the fastest to the best.
+//
+// A technique is just a Config: the benchmark runs each one through the same generic path (the
+// GL runtime executes any layout), and the only technique-specific code here is naming.
+#pragma once
+
+#include <penumbra/config.hpp>
+
+#include <string>
+#include <vector>
+
+namespace penumbra::bench {
+
+struct LadderEntry {
+    std::string family;  // the technique's name: "occlusion", "shadowmap", "pcf", "pcss" (tables group by it)
+    std::string label;   // short, unique name: "OT nbuffer 16/512"
+    Config config;
+    bool representative; // also in the flicker measurement and the image montage
+};
+
+enum class LadderSet { quick, standard, full };
+
+// Occlusion textures, paper §3: slices × resolution × prefilter.
+inline LadderEntry occlusion_entry(Filter filter, int slices, int resolution, bool representative = false) {
+    const Config config{.slices = slices, .resolution = resolution, .filter = filter};
+    return {"occlusion",
+            "OT " + std::string(to_string(filter)) + " " + std::to_string(slices) + "/" + std::to_string(resolution),
+            config, representative};
+}
+
+// The shadow-map family (penumbra/config.hpp: shadowmap, pcf, pcss), one depth map of 1024².
+inline LadderEntry shadow_map_entry(Technique technique, std::string label, bool representative,
+                                    PcfParams pcf = {}, PcssParams pcss = {}) {
+    const Config config{.technique = technique, .shadow_map = {.resolution = 1024}, .pcf = pcf, .pcss = pcss};
+    return {std::string(to_string(technique)), std::move(label), config, representative};
+}
+
+// PCSS at the sample counts shipping engines use: blocker search / filter taps.
+inline LadderEntry pcss_entry(int blocker_samples, int filter_samples, bool representative = false) {
+    return shadow_map_entry(Technique::pcss,
+                            "PCSS " + std::to_string(blocker_samples) + "/" + std::to_string(filter_samples),
+                            representative, {}, {.blocker_samples = blocker_samples, .filter_samples = filter_samples});
+}
+
+// The entries of one set, cheapest settings first within each filter.
+inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
+    if (set == LadderSet::quick) return {occlusion_entry(Filter::nbuffer, 8, 256, true), pcss_entry(16, 16, true)};
+    std::vector<LadderEntry> ladder{
+        occlusion_entry(Filter::mipmap, 4, 128, true),
+        occlusion_entry(Filter::mipmap, 8, 256),
+        occlusion_entry(Filter::mipmap, 16, 512),
+        occlusion_entry(Filter::nbuffer, 4, 128),
+        occlusion_entry(Filter::nbuffer, 8, 256),
+        occlusion_entry(Filter::nbuffer, 16, 256),
+        occlusion_entry(Filter::nbuffer, 16, 512, true), // the default configuration
+        occlusion_entry(Filter::nbuffer, 32, 512),
+        occlusion_entry(Filter::sat, 8, 256),
+        occlusion_entry(Filter::sat, 16, 512, true),
+        shadow_map_entry(Technique::shadowmap, "hard shadow map", true),
+        // PCF's kernel is fixed in scene units at the receiver: it does not follow the light.
+        shadow_map_entry(Technique::pcf, "PCF 16 r0.1", true, {.poisson_taps = 16, .radius = 0.1}),
+        shadow_map_entry(Technique::pcf, "PCF 32 r0.3", false, {.poisson_taps = 32, .radius = 0.3}),
+        pcss_entry(8, 8),          // Bevy
+        pcss_entry(16, 16, true), // Filament; the reference of the report's ratios
+        pcss_entry(32, 32),        // Godot ultra
+        pcss_entry(32, 64, true), // PlayCanvas high
+    };
+    if (set == LadderSet::full) {
+        ladder.push_back(occlusion_entry(Filter::sat, 32, 512)); // about 4x the time of sat 16/512 on llvmpipe
+        ladder.push_back(occlusion_entry(Filter::mipmap, 32, 1024));
+        ladder.push_back(occlusion_entry(Filter::nbuffer, 32, 1024));
+        ladder.push_back(occlusion_entry(Filter::sat, 32, 1024));
+    }
+    return ladder;
+}
+
+} // namespace penumbra::bench

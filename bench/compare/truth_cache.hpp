@@ -1,0 +1,103 @@
+// bench/compare/truth_cache.hpp — Embree ground truth cached on disk. The truth depends on the
+// pixels (world positions and normals of the G-buffer), the light and the ray count, never on the
+// technique, so it is computed once per scene, light and image and read back on later runs.
+// The file name is a hash of exactly those inputs (pixels, light, camera position, rays): a
+// changed scene, camera or light misses the cache.
+#pragma once
+
+#include "app/image_io.hpp"
+#include "rendering/headless_render.hpp"
+
+#include <penumbra/light.hpp>
+
+#include <glm/glm.hpp>
+
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace penumbra::bench {
+
+// FNV-1a, 64 bits, over raw bytes.
+class Hash {
+public:
+    void add(const void* data, std::size_t size) {
+        const auto* bytes = static_cast<const unsigned char*>(data);
+        for (std::size_t i = 0; i < size; ++i) value_ = (value_ ^ bytes[i]) * 1099511628211ull;
+    }
+    template <class T> void add_values(std::span<const T> values) { add(values.data(), values.size_bytes()); }
+    std::string hex() const {
+        char text[17];
+        std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(value_));
+        return text;
+    }
+
+private:
+    std::uint64_t value_ = 1469598103934665603ull;
+};
+
+struct CachedTruth {
+    playground::References references; // visibility, oriented, irradiance; one per pixel, top row first
+    std::string file;                  // the cache file it was read from or written to
+    bool from_cache = false;
+    double milliseconds = 0;           // time to compute (0 when read from the cache)
+};
+
+// The three references (playground::reference_all) for `scene` with its light as it is, at the
+// pixels of `frame`: from `directory` when a file with the inputs' hash is there, else ray-traced
+// and written there (a 3-channel float map). nullopt and *error when the file cannot be written.
+inline std::optional<CachedTruth> cached_truth(const std::string& directory, const playground::Scene& scene,
+                                               const playground::HeadlessResult& frame, int samples_per_axis,
+                                               std::string* error) {
+    Hash hash;
+    const char version[] = "rect-references-v2";
+    hash.add(version, sizeof version);
+    hash.add_values(std::span<const glm::vec3>(frame.positions));
+    hash.add_values(std::span<const glm::vec3>(frame.normals));
+    const RectLight& light = scene.light;
+    const double light_values[] = {light.center.x, light.center.y, light.center.z, light.u_axis.x, light.u_axis.y,
+                                   light.u_axis.z, light.v_axis.x, light.v_axis.y, light.v_axis.z, light.width,
+                                   light.height};
+    hash.add(light_values, sizeof light_values);
+    const glm::vec3 eye = scene.camera.eye_position(); // the fair references face the camera
+    hash.add(&eye, sizeof eye);
+    const int sizes[] = {frame.width, frame.height, samples_per_axis};
+    hash.add(sizes, sizeof sizes);
+
+    CachedTruth out;
+    out.file = (std::filesystem::path(directory) / (scene.name + "-" + hash.hex() + ".pfm")).string();
+    const std::size_t n = frame.positions.size();
+    std::string read_error;
+    if (std::optional<playground::FloatImage> image = playground::read_pfm(out.file, &read_error);
+        image && image->width == frame.width && image->height == frame.height && image->channels == 3) {
+        for (std::vector<float>* channel : {&out.references.visibility, &out.references.oriented, &out.references.irradiance})
+            channel->resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            out.references.visibility[i] = image->pixels[3 * i];
+            out.references.oriented[i] = image->pixels[3 * i + 1];
+            out.references.irradiance[i] = image->pixels[3 * i + 2];
+        }
+        out.from_cache = true;
+        return out;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    out.references = playground::reference_all(scene, frame, samples_per_axis, Light::rect);
+    out.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    playground::FloatImage image{frame.width, frame.height, 3, std::vector<float>(3 * n)};
+    for (std::size_t i = 0; i < n; ++i) {
+        image.pixels[3 * i] = out.references.visibility[i];
+        image.pixels[3 * i + 1] = out.references.oriented[i];
+        image.pixels[3 * i + 2] = out.references.irradiance[i];
+    }
+    std::error_code ec;
+    std::filesystem::create_directories(directory, ec);
+    if (!playground::write_pfm(out.file, image, error)) return std::nullopt;
+    return out;
+}
+
+} // namespace penumbra::bench

@@ -1,0 +1,664 @@
+// penumbra-bench-compare — every technique against ray-traced truth, at equal time, as the light
+// grows. For every scene × technique setting (compare/ladder.hpp) × light size (×1 … ×32 of the
+// scene's default) it measures
+//   cost:      GPU time of every pass (GL_TIME_ELAPSED) and the wall clock to glFinish of the
+//              shadow passes and of the shading pass, medians of --runs runs after one warm-up run
+//              (llvmpipe compiles a shader variant at its first draw), and the texture memory. The
+//              runs of one scene and light size are interleaved (run 1 of every setting, then run
+//              2, ...) so that load from other processes affects the settings alike;
+//   quality:   MAE, RMSE and p95 |error| against the Embree ground truth at the same pixels, over
+//              penumbra pixels (truth or estimate < 0.98) and over all geometry pixels;
+//   stability: for the representative settings, the light moves slowly over --flicker-frames
+//              frames; excess flicker = mean |Δ visibility| between consecutive frames minus
+//              that of the truth, so the shadow's real motion is not counted.
+// It writes DIR/results.json (every number; scripts/compare_report.py builds the report from it
+// alone) and DIR/images/ (visibility and signed error of the representative settings).
+// The ground truth is cached in DIR/cache/ (it does not depend on the technique).
+//
+//   penumbra-bench-compare [--quick | --full] [--scenes a,b] [FILE.obj ...] [--size N] [--samples N]
+//                          [--runs N] [--light-scales 1,2,4] [--flicker-frames N] [--out DIR]
+#include "compare/ladder.hpp"
+#include "compare/progress.hpp"
+#include "compare/truth_cache.hpp"
+
+#include "app/headless_job.hpp"
+#include "app/image_io.hpp"
+#include "reference/metrics.hpp"
+#include "rendering/egl_context.hpp"
+#include "rendering/gpu_scene.hpp"
+#include "rendering/headless_render.hpp"
+#include "scenes/scenes.hpp"
+
+#include <penumbra/gl/runtime.hpp>
+#include <penumbra/layout.hpp>
+#include <penumbra/texture_memory.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+using namespace penumbra;
+using namespace penumbra::playground;
+using json = nlohmann::ordered_json;
+
+namespace {
+
+struct Options {
+    bench::LadderSet set = bench::LadderSet::standard;
+    std::vector<std::string> scenes; // built-in names and OBJ paths, in order
+    int width = 128, height = 128;
+    int samples = 32;                // ground-truth rays per light axis
+    int runs = 7;                    // timed runs per measurement, after one warm-up run
+    std::vector<double> light_scales{1, 2, 4, 8, 16, 32};
+    int flicker_frames = 8;
+    double flicker_step = 0.005;     // light motion per frame, as a fraction of the scene's ground span
+    std::string out_dir = "out/compare";
+};
+
+constexpr const char* usage_text =
+    "usage: penumbra-bench-compare [--quick | --full] [--scenes a,b,...] [FILE.obj ...] [--size N|WxH]\n"
+    "                              [--samples N] [--runs N] [--light-scales 1,2,...] [--flicker-frames N]\n"
+    "                              [--out DIR]\n"
+    "  (default)         every built-in scene, the standard ladder, light x1 x2 x4 x8 x16 x32, 128x128,\n"
+    "                    32x32 rays, 7 runs, 8 flicker frames (about 30 minutes on 2 llvmpipe cores)\n"
+    "  --quick           boxes only, two settings, light x1 and x4, 64x64, 8x8 rays, 4 flicker frames\n"
+    "                    (a smoke test: the report states the ray count)\n"
+    "  --full            the full ladder (adds 1024-texel settings), 256x256, 16 flicker frames\n"
+    "  --scenes          built-in scenes, comma-separated (default all: see penumbra-playground --help)\n"
+    "  FILE.obj          Wavefront files, added to the scenes (lights and camera from their bounds)\n"
+    "  --size            image size (square N or WxH, 16 to 1024)\n"
+    "  --samples         ground-truth rays per light axis, 1 to 128 (the truth uses N x N stratified rays)\n"
+    "  --runs            timed runs per measurement after one warm-up run, 1 to 100 (medians reported)\n"
+    "  --light-scales    multiples of each scene's default light size, each > 0 and <= 64\n"
+    "  --flicker-frames  frames of the slowly moving light for the flicker measurement, 2 to 64\n"
+    "  --out             output folder (default out/compare): results.json, images/, cache/\n"
+    "flags after --quick or --full override what they set.\n";
+
+std::vector<std::string_view> split(std::string_view text) {
+    std::vector<std::string_view> parts;
+    while (!text.empty()) {
+        const std::size_t comma = text.find(',');
+        parts.push_back(text.substr(0, comma));
+        if (comma == std::string_view::npos) break;
+        text.remove_prefix(comma + 1);
+    }
+    return parts;
+}
+
+template <class T> bool parse_number(std::string_view text, T& value) {
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    return ec == std::errc() && end == text.data() + text.size();
+}
+
+bool is_obj_path(std::string_view text) {
+    if (text.size() < 4) return false;
+    std::string tail(text.substr(text.size() - 4));
+    std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return std::tolower(c); });
+    return tail == ".obj";
+}
+
+// Options from argv, or an error message (one line).
+std::optional<Options> parse(int argc, char** argv, std::string& error) {
+    Options o;
+    std::vector<std::string> built_in, obj_files;
+    bool scenes_given = false;
+    auto fail = [&](std::string message) {
+        error = std::move(message);
+        return std::nullopt;
+    };
+    for (int i = 1; i < argc; ++i) {
+        const std::string_view flag = argv[i];
+        if (flag == "--quick") {
+            o.set = bench::LadderSet::quick;
+            built_in = {"boxes"};
+            o.width = o.height = 64;
+            o.samples = 8;
+            o.light_scales = {1, 4};
+            o.flicker_frames = 4;
+            continue;
+        }
+        if (flag == "--full") {
+            o.set = bench::LadderSet::full;
+            o.width = o.height = 256;
+            o.flicker_frames = 16;
+            continue;
+        }
+        if (!flag.starts_with("--")) {
+            if (!is_obj_path(flag)) return fail("unexpected argument '" + std::string(flag) + "'; scenes other than the built-in ones are Wavefront files ending in .obj");
+            obj_files.emplace_back(flag);
+            continue;
+        }
+        constexpr std::string_view valued[] = {"--scenes", "--size", "--samples", "--runs", "--flicker-frames",
+                                               "--light-scales", "--out"};
+        if (std::find(std::begin(valued), std::end(valued), flag) == std::end(valued))
+            return fail("unknown flag '" + std::string(flag) +
+                        "'; allowed: --quick, --full, --scenes, --size, --samples, --runs, --light-scales, "
+                        "--flicker-frames, --out, --help, FILE.obj");
+        if (i + 1 >= argc) return fail(std::string(flag) + ": missing value (see --help)");
+        const std::string_view value = argv[++i];
+        if (flag == "--scenes") {
+            built_in.clear();
+            scenes_given = true;
+            for (std::string_view name : split(value)) {
+                if (!make_scene(name)) {
+                    std::string allowed;
+                    for (std::string_view n : scene_names()) allowed += (allowed.empty() ? "" : ", ") + std::string(n);
+                    return fail("--scenes: unknown scene '" + std::string(name) + "'; allowed: " + allowed);
+                }
+                built_in.emplace_back(name);
+            }
+        } else if (flag == "--size") {
+            const std::size_t x = value.find('x');
+            const bool ok = x == std::string_view::npos
+                                ? parse_number(value, o.width) && (o.height = o.width, true)
+                                : parse_number(value.substr(0, x), o.width) && parse_number(value.substr(x + 1), o.height);
+            if (!ok || o.width < 16 || o.height < 16 || o.width > 1024 || o.height > 1024)
+                return fail("--size: '" + std::string(value) + "' is not allowed; allowed: N or WxH, 16 to 1024 each");
+        } else if (flag == "--samples") {
+            if (!parse_number(value, o.samples) || o.samples < 1 || o.samples > 128)
+                return fail("--samples: '" + std::string(value) + "' is not allowed; allowed: 1 to 128");
+        } else if (flag == "--runs") {
+            if (!parse_number(value, o.runs) || o.runs < 1 || o.runs > 100)
+                return fail("--runs: '" + std::string(value) + "' is not allowed; allowed: 1 to 100");
+        } else if (flag == "--flicker-frames") {
+            if (!parse_number(value, o.flicker_frames) || o.flicker_frames < 2 || o.flicker_frames > 64)
+                return fail("--flicker-frames: '" + std::string(value) + "' is not allowed; allowed: 2 to 64");
+        } else if (flag == "--light-scales") {
+            o.light_scales.clear();
+            for (std::string_view part : split(value)) {
+                double scale = 0;
+                if (!parse_number(part, scale) || !(scale > 0) || scale > 64)
+                    return fail("--light-scales: '" + std::string(part) + "' is not allowed; allowed: numbers above 0, at most 64");
+                o.light_scales.push_back(scale);
+            }
+            if (o.light_scales.empty()) return fail("--light-scales: empty; allowed: numbers above 0, at most 64");
+        } else { // --out
+            if (value.empty()) return fail("--out: empty; allowed: a folder");
+            o.out_dir = std::string(value);
+        }
+    }
+    if (built_in.empty() && !scenes_given && o.set != bench::LadderSet::quick)
+        for (std::string_view n : scene_names()) built_in.emplace_back(n);
+    o.scenes = built_in;
+    o.scenes.insert(o.scenes.end(), obj_files.begin(), obj_files.end());
+    if (o.scenes.empty()) return fail("no scene: give --scenes or an OBJ file");
+    return o;
+}
+
+double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+double milliseconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// A file-name-safe form of a label: "OT nbuffer 16/512" → "ot-nbuffer-16-512".
+std::string slug(std::string_view text) {
+    std::string out;
+    for (char c : text) {
+        if (std::isalnum(static_cast<unsigned char>(c))) out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        else if (!out.empty() && out.back() != '-') out += '-';
+    }
+    while (!out.empty() && out.back() == '-') out.pop_back();
+    return out;
+}
+
+std::string scale_text(double scale) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", scale);
+    return text;
+}
+
+// The scene's pixels, shared by every technique: the G-buffer on the GPU and its read-back.
+struct Pixels {
+    std::unique_ptr<GBuffer> gbuffer;
+    HeadlessResult frame; // size, positions, normals and geometry mask, top row first (no visibility)
+};
+
+std::optional<Pixels> render_pixels(const Scene& scene, const MeshBuffers& mesh, int width, int height,
+                                    std::string* error) {
+    Pixels p;
+    p.gbuffer = GBuffer::create(width, height, error);
+    if (!p.gbuffer) return std::nullopt;
+    p.gbuffer->render(mesh, scene.camera.projection_matrix(static_cast<float>(width) / height) * scene.camera.view_matrix());
+    const std::size_t n = static_cast<std::size_t>(width) * height;
+    std::vector<glm::vec4> pos(n), nrm(n);
+    glGetTextureImage(p.gbuffer->positions(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(n * sizeof(glm::vec4)), pos.data());
+    glGetTextureImage(p.gbuffer->normals(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(n * sizeof(glm::vec4)), nrm.data());
+    p.frame.width = width;
+    p.frame.height = height;
+    p.frame.positions.assign(n, glm::vec3(std::numeric_limits<float>::quiet_NaN()));
+    p.frame.normals.assign(n, glm::vec3(0.0f));
+    p.frame.geometry.assign(n, 0);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            const std::size_t src = static_cast<std::size_t>(y) * width + x;
+            const std::size_t dst = static_cast<std::size_t>(height - 1 - y) * width + x;
+            if (pos[src].w < 0.5f) continue;
+            p.frame.geometry[dst] = 1;
+            p.frame.positions[dst] = glm::vec3(pos[src]);
+            p.frame.normals[dst] = glm::vec3(nrm[src]);
+        }
+    if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
+        if (error) *error = "GL error " + std::to_string(e) + " while reading the G-buffer";
+        return std::nullopt;
+    }
+    return p;
+}
+
+// One frame of a technique: every pass of its layout, then the deferred shading pass.
+struct FrameTimes {
+    std::vector<gl::PassTiming> passes; // GL_TIME_ELAPSED of each pass, shading last
+    double wall_build_ms = 0, wall_shading_ms = 0;
+};
+
+bool run_frame(gl::Runtime& runtime, const MeshBuffers& mesh, const Pixels& pixels, FrameTimes& out,
+               std::string* error) {
+    out.passes.clear();
+    const auto start = std::chrono::steady_clock::now();
+    if (std::string d = runtime.build([&](GLuint) { mesh.draw(); }, &out.passes); !d.empty()) {
+        if (error) *error = d;
+        return false;
+    }
+    glFinish();
+    out.wall_build_ms = milliseconds_since(start);
+    const auto shading_start = std::chrono::steady_clock::now();
+    gl::PassTiming shading;
+    if (!runtime.shade_deferred(pixels.gbuffer->positions(), pixels.gbuffer->width(), pixels.gbuffer->height(), error,
+                                &shading))
+        return false;
+    glFinish();
+    out.wall_shading_ms = milliseconds_since(shading_start);
+    out.passes.push_back(shading);
+    return true;
+}
+
+// The visibility of the last frame, top row first, 1 on background.
+std::vector<float> read_visibility(const gl::Runtime& runtime, const Pixels& pixels) {
+    const std::vector<float> bottom_up = runtime.read_visibility();
+    const int w = pixels.gbuffer->width(), h = pixels.gbuffer->height();
+    std::vector<float> out(bottom_up.size(), 1.0f);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::size_t dst = static_cast<std::size_t>(y) * w + x;
+            if (pixels.frame.geometry[dst]) out[dst] = bottom_up[static_cast<std::size_t>(h - 1 - y) * w + x];
+        }
+    return out;
+}
+
+// Pass names in order, instances of one pass (N-buffer levels, SAT steps) summed.
+std::vector<std::pair<std::string, double>> pass_totals(const std::vector<gl::PassTiming>& timings,
+                                                        std::vector<int>* instances = nullptr) {
+    std::vector<std::pair<std::string, double>> totals;
+    if (instances) instances->clear();
+    for (const gl::PassTiming& t : timings) {
+        if (totals.empty() || totals.back().first != t.name) {
+            totals.push_back({t.name, 0.0});
+            if (instances) instances->push_back(0);
+        }
+        totals.back().second += t.milliseconds;
+        if (instances) ++instances->back();
+    }
+    return totals;
+}
+
+json stats_json(const ErrorStats& s) {
+    return {{"mae", s.mae}, {"rmse", s.rmse}, {"p95", s.p95}, {"pixels", s.count}};
+}
+
+// Medians over the timed runs: per pass, the GPU total, and the wall clocks.
+json cost_json(const std::vector<FrameTimes>& runs) {
+    std::vector<int> instances;
+    const auto names = pass_totals(runs.front().passes, &instances);
+    json passes = json::array();
+    for (std::size_t p = 0; p < names.size(); ++p) {
+        std::vector<double> ms;
+        for (const FrameTimes& r : runs) ms.push_back(pass_totals(r.passes)[p].second);
+        passes.push_back({{"name", names[p].first}, {"instances", instances[p]}, {"gpu_ms", median(ms)}});
+    }
+    std::vector<double> gpu, build, shading, total;
+    for (const FrameTimes& r : runs) {
+        double sum = 0;
+        for (const gl::PassTiming& t : r.passes) sum += t.milliseconds;
+        gpu.push_back(sum);
+        build.push_back(r.wall_build_ms);
+        shading.push_back(r.wall_shading_ms);
+        total.push_back(r.wall_build_ms + r.wall_shading_ms);
+    }
+    return {{"passes", passes},
+            {"gpu_ms", median(gpu)},
+            {"gpu_ms_fastest", *std::min_element(gpu.begin(), gpu.end())},
+            {"wall_ms", {{"shadow_passes", median(build)}, {"shading", median(shading)}, {"total", median(total)}}}};
+}
+
+// Mean of estimate − reference over penumbra pixels (either below 0.98, as metrics.cpp counts
+// them): positive where a technique is too bright overall (light leaks, missing occluders),
+// negative where it is too dark (occlusion counted twice, penumbrae too wide).
+double penumbra_bias(const std::vector<float>& estimate, const std::vector<unsigned char>& geometry,
+                     const std::vector<float>& reference) {
+    double sum = 0;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < estimate.size(); ++i)
+        if (geometry[i] && !std::isnan(reference[i]) && (reference[i] < 0.98f || estimate[i] < 0.98f)) {
+            sum += static_cast<double>(estimate[i]) - reference[i];
+            ++count;
+        }
+    return count ? sum / count : 0.0;
+}
+
+// |Δ visibility| between consecutive frames, averaged over geometry pixels and frame pairs.
+double mean_frame_delta(const std::vector<std::vector<float>>& frames, const std::vector<unsigned char>& geometry) {
+    double sum = 0;
+    std::size_t count = 0;
+    for (std::size_t f = 1; f < frames.size(); ++f)
+        for (std::size_t i = 0; i < geometry.size(); ++i)
+            if (geometry[i]) {
+                sum += std::abs(static_cast<double>(frames[f][i]) - frames[f - 1][i]);
+                ++count;
+            }
+    return count ? sum / count : 0.0;
+}
+
+RectLight scaled_light(const RectLight& light, double scale) {
+    RectLight out = light;
+    out.width *= scale;
+    out.height *= scale;
+    return out;
+}
+
+// Frame f of the flicker sequence: the light's centre moved along its u axis.
+RectLight moved_light(const RectLight& light, double step, int frame) {
+    RectLight out = light;
+    out.center += light.u_axis * (step * frame);
+    return out;
+}
+
+double ground_span(const Scene& scene) {
+    return std::max(scene.bounds_max.x - scene.bounds_min.x, scene.bounds_max.z - scene.bounds_min.z);
+}
+
+// Visibility in grey and, with a truth, the signed error (estimate − truth) in false colour; the
+// background (no geometry) in a sky colour so that lit ground and sky differ.
+bool write_visibility_images(const std::string& directory, const std::string& name, const Pixels& pixels,
+                             const std::vector<float>& estimate, const std::vector<float>* truth, std::string* error) {
+    std::error_code ec;
+    std::filesystem::create_directories(directory, ec);
+    const int w = pixels.gbuffer->width(), h = pixels.gbuffer->height();
+    const glm::vec3 sky(0.55f, 0.65f, 0.8f), error_background(0.6f);
+    std::vector<float> grey(3 * estimate.size()), signed_error(estimate.size());
+    for (std::size_t i = 0; i < estimate.size(); ++i) {
+        const glm::vec3 c = pixels.frame.geometry[i] ? glm::vec3(estimate[i]) : sky;
+        for (int k = 0; k < 3; ++k) grey[3 * i + k] = c[k];
+        if (truth) signed_error[i] = estimate[i] - (*truth)[i];
+    }
+    if (!write_png_rgb(directory + "/" + name + ".png", w, h, grey, RowOrder::top_down, error)) return false;
+    if (!truth) return true;
+    std::vector<float> colours = signed_error_colors(signed_error, 0.25f);
+    for (std::size_t i = 0; i < estimate.size(); ++i)
+        if (!pixels.frame.geometry[i])
+            for (int k = 0; k < 3; ++k) colours[3 * i + k] = error_background[k];
+    return write_png_rgb(directory + "/" + name + ".error.png", w, h, colours, RowOrder::top_down, error);
+}
+
+std::string utc_now() {
+    const std::time_t now = std::time(nullptr);
+    char text[32];
+    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+    return text;
+}
+
+int fail(const std::string& message, int code = 1) {
+    std::cerr << "error: " << message << "\n";
+    return code;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    for (int i = 1; i < argc; ++i)
+        if (std::string_view(argv[i]) == "--help" || std::string_view(argv[i]) == "-h") {
+            std::cout << usage_text;
+            return 0;
+        }
+    std::string error;
+    const std::optional<Options> options = parse(argc, argv, error);
+    if (!options) {
+        std::cerr << "error: " << error << "\n" << usage_text;
+        return 2;
+    }
+    std::vector<Scene> scenes;
+    for (const std::string& name : options->scenes) {
+        SceneLoad loaded = load_scene(name);
+        if (!loaded.scene) return fail(loaded.error, 2);
+        if (is_obj_path(name)) loaded.scene->name = std::filesystem::path(name).stem().string();
+        scenes.push_back(std::move(*loaded.scene));
+    }
+    std::optional<HeadlessContext> context = HeadlessContext::create(&error);
+    if (!context) return fail("no OpenGL 4.5 context: " + error);
+
+    const std::vector<bench::LadderEntry> ladder = bench::technique_ladder(options->set);
+    const std::string out_dir = options->out_dir, cache_dir = out_dir + "/cache", image_dir = out_dir + "/images";
+    std::error_code ec;
+    std::filesystem::create_directories(out_dir, ec);
+    if (ec) return fail("cannot create " + out_dir + ": " + ec.message());
+    const auto run_start = std::chrono::steady_clock::now();
+
+    int representatives = 0;
+    for (const bench::LadderEntry& e : ladder) representatives += e.representative;
+    const int scale_count = static_cast<int>(options->light_scales.size());
+    bench::Progress progress;
+    progress.plan("truth", static_cast<int>(scenes.size()) * (scale_count + options->flicker_frames));
+    progress.plan("warm-up", static_cast<int>(scenes.size() * ladder.size()) * scale_count);
+    progress.plan("timed round", static_cast<int>(scenes.size()) * scale_count * options->runs);
+    progress.plan("flicker", static_cast<int>(scenes.size()) * representatives);
+
+    std::string command;
+    for (int i = 0; i < argc; ++i) command += (i ? " " : "") + std::string(argv[i]);
+    json light_scales = json::array();
+    for (double s : options->light_scales) light_scales.push_back(s);
+    json results = {
+        {"meta",
+         {{"tool", "penumbra-bench-compare"},
+          {"command", command},
+          {"set", options->set == bench::LadderSet::quick ? "quick" : options->set == bench::LadderSet::full ? "full" : "standard"},
+          {"started", utc_now()},
+          {"renderer", context->renderer()},
+          {"gl_version", context->version()},
+          {"egl_platform", context->platform()},
+          {"image", {options->width, options->height}},
+          {"truth_rays_per_axis", options->samples},
+          {"timed_runs", options->runs},
+          {"warmup_runs", 1},
+          {"light_scales", light_scales},
+          {"penumbra_threshold", 0.98},
+          {"flicker_frames", options->flicker_frames},
+          {"flicker_step_of_ground_span", options->flicker_step},
+          {"flicker_light_scale", 1.0}}},
+        {"scenes", json::array()},
+        {"measurements", json::array()},
+        {"flicker", json::array()},
+    };
+
+    for (const Scene& scene : scenes) {
+        const MeshBuffers mesh(scene.mesh);
+        std::optional<Pixels> pixels = render_pixels(scene, mesh, options->width, options->height, &error);
+        if (!pixels) return fail(scene.name + ": " + error);
+        std::size_t geometry_pixels = 0;
+        for (unsigned char g : pixels->frame.geometry) geometry_pixels += g;
+
+        // The truth for every light size and every flicker frame, from the cache where it can be.
+        json truth_files = json::array();
+        Scene lit = scene; // the scene under the light being traced
+        auto truth_for = [&](const RectLight& light, const std::string& what) -> std::optional<bench::CachedTruth> {
+            progress.step("truth", scene.name + ": ground truth " + what);
+            lit.light = light;
+            std::optional<bench::CachedTruth> t = bench::cached_truth(cache_dir, lit, pixels->frame, options->samples, &error);
+            if (t) truth_files.push_back({{"for", what}, {"file", std::filesystem::relative(t->file, out_dir).string()},
+                                          {"cached", t->from_cache}, {"ms", t->milliseconds}});
+            return t;
+        };
+        std::vector<References> truths;
+        for (double scale : options->light_scales) {
+            std::optional<bench::CachedTruth> t = truth_for(scaled_light(scene.light, scale), "light x" + scale_text(scale));
+            if (!t) return fail(scene.name + ": " + error);
+            if (!write_visibility_images(image_dir + "/" + scene.name + "/x" + scale_text(scale), "truth", *pixels,
+                                         t->references.visibility, nullptr, &error))
+                return fail(error);
+            truths.push_back(std::move(t->references));
+        }
+        const double step = options->flicker_step * ground_span(scene);
+        std::vector<std::vector<float>> truth_frames;
+        for (int f = 0; f < options->flicker_frames; ++f) {
+            std::optional<bench::CachedTruth> t =
+                truth_for(moved_light(scene.light, step, f), "flicker frame " + std::to_string(f + 1));
+            if (!t) return fail(scene.name + ": " + error);
+            truth_frames.push_back(std::move(t->references.visibility));
+        }
+        progress.finish();
+        const double truth_delta = mean_frame_delta(truth_frames, pixels->frame.geometry);
+
+        results["scenes"].push_back({{"name", scene.name},
+                                     {"triangles", scene.mesh.triangle_count()},
+                                     {"default_light", {{"width", scene.light.width}, {"height", scene.light.height}}},
+                                     {"geometry_pixels", geometry_pixels},
+                                     {"flicker_step", step},
+                                     {"truth_flicker", truth_delta},
+                                     {"truth", truth_files}});
+
+        // One runtime per setting, alive together, so that the timed runs can be interleaved.
+        std::vector<std::unique_ptr<gl::Runtime>> runtimes;
+        std::vector<json> configs;
+        std::vector<std::uint64_t> texture_bytes;
+        for (const bench::LadderEntry& entry : ladder) {
+            runtimes.push_back(gl::Runtime::create(entry.config, &error));
+            if (!runtimes.back()) return fail(scene.name + ", " + entry.label + ": " + error);
+            const Layout& layout = runtimes.back()->layout();
+            for (const TextureDesc& t : layout.textures)
+                if (bytes_per_texel(t.internal_format) == 0)
+                    return fail(entry.label + ": texture " + t.name + " has a format of unknown size, " + t.internal_format);
+            texture_bytes.push_back(static_cast<std::uint64_t>(penumbra::texture_bytes(layout, options->width, options->height)));
+            configs.push_back(json::parse(to_json(layout))["config"]);
+        }
+
+        for (std::size_t s = 0; s < options->light_scales.size(); ++s) {
+            const double scale = options->light_scales[s];
+            const std::string where = scene.name + ", light x" + scale_text(scale);
+            std::vector<QualityMetrics> quality(ladder.size());
+            std::vector<double> bias(ladder.size());
+            std::vector<std::vector<FrameTimes>> timed(ladder.size());
+            for (std::size_t e = 0; e < ladder.size(); ++e) {
+                const bench::LadderEntry& entry = ladder[e];
+                progress.step("warm-up", where + ": warm-up and quality, " + entry.label);
+                runtimes[e]->set_light(scaled_light(scene.light, scale), glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
+                FrameTimes warmup;
+                if (!run_frame(*runtimes[e], mesh, *pixels, warmup, &error)) return fail(entry.label + ": " + error);
+                const std::vector<float> visibility = read_visibility(*runtimes[e], *pixels);
+                quality[e] = compare_quality(visibility, pixels->frame.geometry, truths[s].visibility,
+                                             truths[s].oriented, truths[s].irradiance);
+                bias[e] = penumbra_bias(visibility, pixels->frame.geometry, truths[s].visibility);
+                if (entry.representative &&
+                    !write_visibility_images(image_dir + "/" + scene.name + "/x" + scale_text(scale), slug(entry.label),
+                                             *pixels, visibility, &truths[s].visibility, &error))
+                    return fail(error);
+            }
+            // Round-robin: run r of every setting, then run r + 1. A burst of load from other
+            // processes then slows every setting of the cell alike, and the ratios survive it.
+            for (int r = 0; r < options->runs; ++r) {
+                progress.step("timed round", where + ": timed run " + std::to_string(r + 1) + "/" +
+                                                 std::to_string(options->runs) + " of every setting");
+                for (std::size_t e = 0; e < ladder.size(); ++e) {
+                    FrameTimes t;
+                    if (!run_frame(*runtimes[e], mesh, *pixels, t, &error)) return fail(ladder[e].label + ": " + error);
+                    timed[e].push_back(std::move(t));
+                }
+            }
+            for (std::size_t e = 0; e < ladder.size(); ++e) {
+                const bench::LadderEntry& entry = ladder[e];
+                json record = {{"scene", scene.name},
+                               {"family", entry.family},
+                               {"label", entry.label},
+                               {"representative", entry.representative},
+                               {"light_scale", scale},
+                               {"light_size", {scene.light.width * scale, scene.light.height * scale}},
+                               {"config", configs[e]},
+                               {"texture_bytes", texture_bytes[e]}};
+                record.update(cost_json(timed[e]));
+                // "all"/"penumbra": against the visibility of the whole light (rays behind the
+                // receiver's tangent plane blocked); the fair references beside it.
+                const QualityMetrics& q = quality[e];
+                record["quality"] = {{"all", stats_json(q.visibility.all)},
+                                     {"penumbra", stats_json(q.visibility.penumbra)},
+                                     {"penumbra_bias", bias[e]},
+                                     {"oriented", {{"all", stats_json(q.oriented.all)}, {"penumbra", stats_json(q.oriented.penumbra)}}},
+                                     {"irradiance", {{"all", stats_json(q.irradiance.all)}, {"penumbra", stats_json(q.irradiance.penumbra)}}}};
+                if (entry.representative) {
+                    const std::string dir = "images/" + scene.name + "/x" + scale_text(scale);
+                    record["images"] = {{"visibility", dir + "/" + slug(entry.label) + ".png"},
+                                        {"error", dir + "/" + slug(entry.label) + ".error.png"},
+                                        {"truth", dir + "/truth.png"}};
+                }
+                std::printf("%-10s x%-4s %-20s GPU %8.2f ms  wall %8.2f ms  textures %7.1f MiB  penumbra MAE %.4f  "
+                            "oriented %.4f\n",
+                            scene.name.c_str(), scale_text(scale).c_str(), entry.label.c_str(),
+                            record["gpu_ms"].get<double>(), record["wall_ms"]["total"].get<double>(),
+                            texture_bytes[e] / 1048576.0, q.visibility.penumbra.mae, q.oriented.penumbra.mae);
+                std::fflush(stdout);
+                results["measurements"].push_back(std::move(record));
+            }
+        }
+
+        for (std::size_t e = 0; e < ladder.size(); ++e) {
+            const bench::LadderEntry& entry = ladder[e];
+            if (!entry.representative) continue;
+            progress.step("flicker", scene.name + ": flicker, " + std::to_string(options->flicker_frames) +
+                                         " frames of a moving light: " + entry.label);
+            std::vector<std::vector<float>> frames;
+            for (int f = 0; f < options->flicker_frames; ++f) {
+                runtimes[e]->set_light(moved_light(scene.light, step, f), glm::dvec3(scene.bounds_min),
+                                       glm::dvec3(scene.bounds_max));
+                FrameTimes times;
+                if (!run_frame(*runtimes[e], mesh, *pixels, times, &error)) return fail(entry.label + ": " + error);
+                frames.push_back(read_visibility(*runtimes[e], *pixels));
+            }
+            double error_sum = 0;
+            for (int f = 0; f < options->flicker_frames; ++f)
+                error_sum += compare(frames[f], pixels->frame.geometry, truth_frames[f]).all.mae;
+            const double delta = mean_frame_delta(frames, pixels->frame.geometry);
+            results["flicker"].push_back({{"scene", scene.name},
+                                          {"family", entry.family},
+                                          {"label", entry.label},
+                                          {"light_scale", 1.0},
+                                          {"frames", options->flicker_frames},
+                                          {"estimate_delta", delta},
+                                          {"truth_delta", truth_delta},
+                                          {"excess", delta - truth_delta},
+                                          {"mean_mae", error_sum / options->flicker_frames}});
+        }
+        progress.finish();
+    }
+    results["meta"]["wall_s"] = milliseconds_since(run_start) / 1000.0;
+
+    const std::string path = out_dir + "/results.json";
+    std::ofstream file(path);
+    file << results.dump(1) << "\n";
+    if (!file) return fail("cannot write " + path);
+    std::printf("wrote %s (%zu measurements, %zu flicker runs) in %.0f s\n", path.c_str(), results["measurements"].size(),
+                results["flicker"].size(), milliseconds_since(run_start) / 1000.0);
+    return 0;
+}

@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# The comparison benchmark: every technique against the ray-traced truth, at equal time, as the
+# light grows. Builds penumbra-bench-compare, runs it (results.json, images) and builds the report
+# (report.md, figures/) with Debian's matplotlib.
+#   scripts/compare.sh [--quick | --full] [penumbra-bench-compare flags] [--out DIR]   (default out/compare)
+#   scripts/compare.sh --report-only [--out DIR]     rebuild report.md and figures from DIR/results.json
+#   (either form) [--metric visibility|oriented|irradiance] [--mae-thresholds 0.1,0.15,0.2]: report options
+#   scripts/compare.sh ... --check                   then check report, figures and finite numbers (CI)
+# The default set takes about 30 minutes on 2 llvmpipe cores; --quick a few seconds.
+# PENUMBRA_BENCH_COMPARE=path/to/penumbra-bench-compare skips setup and build (the ctest test sets it).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+out=out/compare
+report_only=0
+check=0
+bench_args=()
+report_args=()
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --report-only) report_only=1 ;;
+        --check) check=1 ;;
+        --out)
+            [ $# -ge 2 ] || { echo "error: --out: missing value (a folder)" >&2; exit 2; }
+            out="$2"; bench_args+=(--out "$2"); shift ;;
+        --out=*) out="${1#--out=}"; bench_args+=("$1") ;;
+        --metric|--mae-thresholds)
+            [ $# -ge 2 ] || { echo "error: $1: missing value (see scripts/compare_report.py --help)" >&2; exit 2; }
+            report_args+=("$1" "$2"); shift ;;
+        *) bench_args+=("$1") ;;
+    esac
+    shift
+done
+python=/usr/bin/python3 # Debian's, with python3-matplotlib (a pyenv or venv python may lack it)
+
+if [ "$report_only" -eq 0 ]; then
+    bench="${PENUMBRA_BENCH_COMPARE:-}"
+    if [ -z "$bench" ]; then
+        scripts/setup.sh
+        cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+        cmake --build build --parallel "$(nproc)" --target penumbra-bench-compare
+        bench=build/penumbra-bench-compare
+    fi
+    start=$(date +%s)
+    "$bench" "${bench_args[@]}"
+    echo "compare: penumbra-bench-compare took $(( $(date +%s) - start )) s"
+fi
+"$python" scripts/compare_report.py "$out" "${report_args[@]}"
+if [ "$check" -eq 1 ]; then "$python" scripts/compare_report.py --check "$out"; fi
+echo "report: $out/report.md"

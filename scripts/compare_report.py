@@ -1,0 +1,576 @@
+#!/usr/bin/python3
+"""Builds the comparison report from penumbra-bench-compare's results.json alone.
+
+    compare_report.py DIR [--mae-thresholds 0.1,0.15,0.2] [--metric M]   writes DIR/report.md, DIR/figures/*.png
+    compare_report.py DIR --check                  exits 1 unless report, figures and finite numbers are there
+
+Every conclusion in the report is computed here from the raw numbers: the Pareto fronts, the
+equal-time table, the light-size tables and the excess flicker. Figures use Debian's matplotlib
+(python3-matplotlib), without a display (Agg backend).
+"""
+import argparse
+import json
+import math
+import os
+import sys
+from collections import defaultdict
+
+COST = "gpu_ms"  # the cost of a frame: median over the timed runs of the summed timer queries of every pass
+REFERENCE = "PCSS 16/16"  # ratios are given against this setting at the same scene and light size
+FALLBACK_REFERENCE = "OT nbuffer 16/512"  # when the run has no PCSS 16/16 (and says so)
+EQUAL_TIME_BUDGETS = ["PCSS 16/16", "PCSS 32/64"]
+FAMILY_NAMES = {"occlusion": "occlusion textures", "shadowmap": "hard shadow map", "pcf": "PCF", "pcss": "PCSS"}
+
+
+def family_name(family):
+    return FAMILY_NAMES.get(family, family)
+
+
+def fmt_ms(ms):
+    return f"{ms:.1f}" if ms >= 10 else f"{ms:.2f}"
+
+
+def fmt_scale(scale):
+    return f"x{scale:g}"
+
+
+# The reference the conclusions use (--metric); the others are shown beside it.
+METRICS = {
+    "visibility": "visibility of the whole light (rays behind the receiver's tangent plane count as blocked)",
+    "oriented": "visibility of the part of the light above the receiver's tangent plane (fair)",
+    "irradiance": "irradiance relative to the unoccluded irradiance from that part (fair)",
+}
+METRIC = "visibility"
+
+
+def quality(m, metric=None):
+    metric = metric or METRIC
+    return m["quality"] if metric == "visibility" else m["quality"][metric]
+
+
+def pen(m, metric=None):
+    """Penumbra MAE against the chosen reference."""
+    return quality(m, metric)["penumbra"]["mae"]
+
+
+def fair_text(m):
+    """The penumbra MAE against the two references the conclusions do not use."""
+    return " / ".join(f"{pen(m, k):.3f}" for k in METRICS if k != METRIC)
+
+
+def other_metrics():
+    return " / ".join(k for k in METRICS if k != METRIC)
+
+
+def load(directory):
+    with open(os.path.join(directory, "results.json")) as f:
+        return json.load(f)
+
+
+# ---- the computed conclusions ------------------------------------------------------------------
+
+def by_cell(measurements):
+    """(scene, light_scale) -> {label: measurement}"""
+    cells = defaultdict(dict)
+    for m in measurements:
+        cells[(m["scene"], m["light_scale"])][m["label"]] = m
+    return cells
+
+
+def pareto_front(points):
+    """Measurements not beaten on both cost and penumbra MAE, cheapest first."""
+    front, best = [], math.inf
+    for m in sorted(points, key=lambda m: (m[COST], pen(m))):
+        if pen(m) < best:
+            front.append(m)
+            best = pen(m)
+    return front
+
+
+def reference_label(measurements):
+    labels = {m["label"] for m in measurements}
+    if REFERENCE in labels:
+        return REFERENCE, None
+    fallback = FALLBACK_REFERENCE if FALLBACK_REFERENCE in labels else sorted(labels)[0]
+    return fallback, (f"this run has no {REFERENCE} measurement (the shadow-map techniques were not in its "
+                      f"ladder), so the ratios are against {fallback} instead")
+
+
+def ratio_text(m, cell, reference):
+    ref = cell.get(reference) if reference else None
+    if not ref or ref[COST] <= 0:
+        return "–"
+    return f"x{m[COST] / ref[COST]:.2f}"
+
+
+def equal_time_rows(cells, budget_label):
+    """Per scene and light size: the budget's cost and MAE, and the lowest MAE of any occlusion-texture
+    setting whose cost is within that budget."""
+    rows = []
+    for (scene, scale), cell in sorted(cells.items()):
+        budget = cell.get(budget_label)
+        if budget is None:
+            continue
+        within = [m for m in cell.values() if m["family"] == "occlusion" and m[COST] <= budget[COST]]
+        best = min(within, key=pen) if within else None
+        cheapest = min((m for m in cell.values() if m["family"] == "occlusion"), key=lambda m: m[COST], default=None)
+        rows.append((scene, scale, budget, best, cheapest))
+    return rows
+
+
+def mean(values):
+    values = list(values)
+    return sum(values) / len(values) if values else math.nan
+
+
+def per_label_over_scenes(measurements):
+    """label -> scale -> (mean cost, mean penumbra MAE, scenes)"""
+    acc = defaultdict(lambda: defaultdict(list))
+    family = {}
+    for m in measurements:
+        acc[m["label"]][m["light_scale"]].append(m)
+        family[m["label"]] = m["family"]
+    out = {}
+    for label, scales in acc.items():
+        out[label] = {s: (mean(x[COST] for x in ms), mean(pen(x) for x in ms), len(ms)) for s, ms in scales.items()}
+    return out, family
+
+
+# ---- figures ------------------------------------------------------------------------------------
+
+def make_figures(results, directory):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import matplotlib.image as mpimg
+
+    fig_dir = os.path.join(directory, "figures")
+    os.makedirs(fig_dir, exist_ok=True)
+    measurements = results["measurements"]
+    cells = by_cell(measurements)
+    scenes = [s["name"] for s in results["scenes"]]
+    scales = results["meta"]["light_scales"]
+    families = sorted({m["family"] for m in measurements})
+    colors = {f: plt.get_cmap("tab10")(i) for i, f in enumerate(families)}
+    written = []
+
+    # Pareto fronts: one figure per scene, one panel per light size.
+    for scene in scenes:
+        cols = min(3, len(scales))
+        rows = math.ceil(len(scales) / cols)
+        fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 3.4 * rows), squeeze=False)
+        for i, scale in enumerate(scales):
+            ax = axes[i // cols][i % cols]
+            cell = list(cells.get((scene, scale), {}).values())
+            for f in families:
+                pts = [m for m in cell if m["family"] == f]
+                ax.scatter([m[COST] for m in pts], [pen(m) for m in pts], s=18, color=colors[f], label=family_name(f))
+            front = pareto_front(cell)
+            ax.plot([m[COST] for m in front], [pen(m) for m in front], color="black", lw=1, ls="--")
+            for m in front:
+                ax.annotate(m["label"], (m[COST], pen(m)), fontsize=6, xytext=(3, 3), textcoords="offset points")
+            ax.set_xscale("log")
+            ax.set_title(f"{scene}, light {fmt_scale(scale)}", fontsize=9)
+            ax.set_xlabel("frame shadow cost, ms (log)", fontsize=8)
+            ax.set_ylabel(f"penumbra MAE ({METRIC})", fontsize=8)
+            ax.tick_params(labelsize=7)
+            ax.grid(True, which="both", alpha=0.3)
+        for j in range(len(scales), rows * cols):
+            axes[j // cols][j % cols].axis("off")
+        axes[0][0].legend(fontsize=7)
+        fig.suptitle(f"Pareto front (dashed), {scene}: time against penumbra MAE ({METRIC} reference)", fontsize=10)
+        fig.tight_layout(rect=(0, 0, 1, 0.96))
+        path = os.path.join(fig_dir, f"pareto_{scene}.png")
+        fig.savefig(path, dpi=110)
+        plt.close(fig)
+        written.append(path)
+
+    # Cost and quality against light size, per setting (mean over scenes).
+    summary, family = per_label_over_scenes(measurements)
+    fig, (ax_cost, ax_mae) = plt.subplots(1, 2, figsize=(11, 4.2))
+    markers = ["o", "s", "^", "D", "v", "P", "X"]
+    label_colors = plt.get_cmap("tab20")
+    for i, label in enumerate(sorted(summary, key=lambda l: (family[l], l))):
+        pts = sorted(summary[label].items())
+        style = dict(marker=markers[families.index(family[label]) % len(markers)], ms=4, color=label_colors(i % 20),
+                     ls="-" if family[label] == "occlusion" else "--", label=label)
+        xs = [s for s, _ in pts]
+        ax_cost.plot(xs, [v[0] for _, v in pts], **style)
+        ax_mae.plot(xs, [v[1] for _, v in pts], **style)
+    for ax, title, ylabel in ((ax_cost, "cost against light size", "frame shadow cost, ms (mean over scenes)"),
+                              (ax_mae, "penumbra MAE against light size", f"penumbra MAE ({METRIC}, mean over scenes)")):
+        ax.set_xscale("log", base=2)
+        ax.set_xticks(scales, [fmt_scale(x) for x in scales])
+        ax.set_xlabel("light size, multiple of the scene's default", fontsize=8)
+        ax.set_ylabel(ylabel, fontsize=8)
+        ax.set_title(title, fontsize=10)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.tick_params(labelsize=7)
+    ax_cost.set_yscale("log")
+    ax_mae.legend(fontsize=6, ncol=2)
+    ax_cost.text(0.01, 0.01, "solid: occlusion textures, dashed: shadow-map techniques", fontsize=6,
+                 transform=ax_cost.transAxes)
+    fig.tight_layout()
+    path = os.path.join(fig_dir, "cost_vs_light_size.png")
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    written.append(path)
+
+    # Montage per light size: rows = scene × (visibility, error), columns = truth + representative settings.
+    reps = []
+    for m in measurements:
+        if m.get("images") and m["label"] not in reps:
+            reps.append(m["label"])
+    for scale in scales:
+        rows = [(scene, kind) for scene in scenes for kind in ("visibility", "error")]
+        fig, axes = plt.subplots(len(rows), len(reps) + 1, figsize=(1.7 * (len(reps) + 1), 1.7 * len(rows)),
+                                 squeeze=False)
+        for r, (scene, kind) in enumerate(rows):
+            cell = cells.get((scene, scale), {})
+            for c, label in enumerate(["truth"] + reps):
+                ax = axes[r][c]
+                ax.set_xticks([])
+                ax.set_yticks([])
+                m = next((x for x in cell.values() if x.get("images")), None) if label == "truth" else cell.get(label)
+                image = None
+                if m and m.get("images"):
+                    key = "truth" if label == "truth" else kind
+                    if not (label == "truth" and kind == "error"):
+                        image = os.path.join(directory, m["images"][key])
+                if image and os.path.exists(image):
+                    ax.imshow(mpimg.imread(image), cmap="gray", vmin=0, vmax=1, interpolation="nearest")
+                else:
+                    ax.axis("off")
+                if r == 0:
+                    ax.set_title(label, fontsize=6)
+                if c == 0:
+                    ax.set_ylabel(f"{scene}\n{kind}", fontsize=6)
+                if kind == "error" and label != "truth" and m:
+                    ax.set_xlabel(f"MAE {pen(m):.3f}", fontsize=6)
+        fig.suptitle(f"light {fmt_scale(scale)}: visibility and signed error (red too bright, blue too dark, "
+                     f"±0.25 saturates)", fontsize=8)
+        fig.tight_layout(rect=(0, 0, 1, 0.985))
+        path = os.path.join(fig_dir, f"montage_{fmt_scale(scale)}.png")
+        fig.savefig(path, dpi=110)
+        plt.close(fig)
+        written.append(path)
+    return written
+
+
+# ---- the report ---------------------------------------------------------------------------------
+
+def write_report(results, directory, thresholds, figures):
+    meta = results["meta"]
+    measurements = results["measurements"]
+    cells = by_cell(measurements)
+    scales = meta["light_scales"]
+    reference, reference_note = reference_label(measurements)
+    out = []
+    w = out.append
+
+    w("# Penumbra: every technique against ray-traced truth\n")
+    w(f"Command: `{meta['command']}` ({meta['set']} set), started {meta['started']}, "
+      f"{meta['wall_s'] / 60:.1f} minutes.\n")
+    w(f"Renderer: **{meta['renderer']}** ({meta['gl_version']}, EGL {meta['egl_platform']}). "
+      f"Image {meta['image'][0]}×{meta['image'][1]}; ground truth: Embree, {meta['truth_rays_per_axis']}×"
+      f"{meta['truth_rays_per_axis']} stratified rays per pixel at the same pixels; costs: median of "
+      f"{meta['timed_runs']} timed runs after {meta['warmup_runs']} warm-up run.\n")
+    if "llvmpipe" in meta["renderer"] or "softpipe" in meta["renderer"]:
+        w("> **On llvmpipe only ratios mean something.** The milliseconds are the CPU time of Mesa's software "
+          "rasteriser on a shared machine, not GPU time; they rank techniques roughly but do not predict a GPU. "
+          f"Every cost is shown beside its ratio to {reference or 'the reference setting'} at the same scene and "
+          "light size.\n")
+    if meta["truth_rays_per_axis"] < 32:
+        w(f"> This run's ground truth uses only {meta['truth_rays_per_axis']}×{meta['truth_rays_per_axis']} rays "
+          "per pixel (a quick smoke run); the real comparison uses at least 32×32. Its numbers are noisy.\n")
+    if reference_note:
+        w(f"> Note: {reference_note}.\n")
+    w("Definitions. *Cost* of a frame: the summed GL_TIME_ELAPSED of every pass of the technique's layout "
+      "(shadow map or slicing, prefilter, shading over the G-buffer); the wall clock to `glFinish` is in the "
+      "full table. *Penumbra pixels*: geometry pixels where the truth or the estimate is below "
+      f"{meta['penumbra_threshold']}. *MAE/RMSE/p95*: of |estimate − truth|. Light sizes: multiples of each "
+      "scene's default rectangle (2×2 for the built-in scenes).\n")
+    w(f"Reference of the conclusions (*MAE* below): **{METRIC}**, the {METRICS[METRIC]}. Beside it, the "
+      f"penumbra MAE against the other references ({other_metrics()}); pixels that see none of the light are "
+      "left out of the fair ones. `compare_report.py DIR --metric oriented` rebuilds the report on another "
+      "reference.\n")
+    w("Techniques in this run: " + ", ".join(
+        f"{family_name(f)} ({sum(1 for l in {m['label'] for m in measurements if m['family'] == f})} settings)"
+        for f in sorted({m["family"] for m in measurements})) + ".\n")
+
+    # Equal time.
+    w("## Equal time\n")
+    w("At the cost of a PCSS setting (same scene, same light size): the lowest penumbra MAE that any "
+      "occlusion-texture setting reaches within that cost, beside the PCSS setting's own MAE.\n")
+    for budget_label in EQUAL_TIME_BUDGETS:
+        rows = equal_time_rows(cells, budget_label)
+        w(f"### At the cost of {budget_label}\n")
+        if not rows:
+            w(f"Empty: results.json has no {budget_label} measurement, so there is no budget to compare at "
+              "(the shadow-map techniques were not in this run's ladder).\n")
+            continue
+        w(f"| scene | light | {budget_label} ms | its MAE ({other_metrics()}) | best OT within that cost | "
+          f"OT ms (ratio) | OT MAE ({other_metrics()}) | OT wins |")
+        w("|---|---|---|---|---|---|---|---|")
+        wins = losses = none = 0
+        for scene, scale, budget, best, cheapest in rows:
+            if best is None:
+                none += 1
+                w(f"| {scene} | {fmt_scale(scale)} | {fmt_ms(budget[COST])} | {pen(budget):.4f} ({fair_text(budget)}) | "
+                  f"none: the cheapest, {cheapest['label']}, costs {fmt_ms(cheapest[COST])} "
+                  f"(x{cheapest[COST] / budget[COST]:.2f}) | – | {pen(cheapest):.4f} ({fair_text(cheapest)}) | – |")
+                continue
+            win = pen(best) < pen(budget)
+            wins += win
+            losses += not win
+            w(f"| {scene} | {fmt_scale(scale)} | {fmt_ms(budget[COST])} | {pen(budget):.4f} ({fair_text(budget)}) | "
+              f"{best['label']} | {fmt_ms(best[COST])} (x{best[COST] / budget[COST]:.2f}) | {pen(best):.4f} "
+              f"({fair_text(best)}) | {'yes' if win else 'no'} |")
+        w(f"\nOf {len(rows)} scene × light cells, an occlusion-texture setting within the cost of {budget_label} "
+          f"has the lower penumbra MAE in **{wins}**, the higher in **{losses}**, and none fits the budget in "
+          f"**{none}**.\n")
+
+    # Light size.
+    summary, family = per_label_over_scenes(measurements)
+    lo, hi = min(scales), max(scales)
+    w("## Light size\n")
+    w(f"Cost at {fmt_scale(hi)} over cost at {fmt_scale(lo)} per setting (fixed settings; the ratio is the mean "
+      "over scenes of each scene's ratio), and the penumbra MAE at both sizes (mean over scenes).\n")
+    w(f"| setting | technique | ms at {fmt_scale(lo)} | ms at {fmt_scale(hi)} | cost {fmt_scale(hi)} / {fmt_scale(lo)} | "
+      f"MAE at {fmt_scale(lo)} | MAE at {fmt_scale(hi)} |")
+    w("|---|---|---|---|---|---|---|")
+    per_scene_ratio = defaultdict(list)
+    for (scene, scale), cell in cells.items():
+        if scale != hi:
+            continue
+        for label, m in cell.items():
+            base = cells.get((scene, lo), {}).get(label)
+            if base and base[COST] > 0:
+                per_scene_ratio[label].append(m[COST] / base[COST])
+    for label in sorted(summary, key=lambda l: (family[l], summary[l].get(lo, (math.inf,))[0])):
+        s = summary[label]
+        if lo not in s or hi not in s:
+            continue
+        w(f"| {label} | {family_name(family[label])} | {fmt_ms(s[lo][0])} | {fmt_ms(s[hi][0])} | "
+          f"x{mean(per_scene_ratio[label]):.2f} | {s[lo][1]:.4f} | {s[hi][1]:.4f} |")
+    w("")
+    w("The cheapest setting of each technique whose penumbra MAE (mean over scenes) stays at or below a fixed "
+      "threshold at each light size, with its mean cost in ms and its MAE; '–' gives the technique's best MAE "
+      "when no setting reaches the threshold.\n")
+    w("| technique | MAE ≤ | " + " | ".join(fmt_scale(s) for s in scales) + " |")
+    w("|---|---|" + "---|" * len(scales))
+    for f in sorted(set(family.values())):
+        for threshold in thresholds:
+            cells_text = []
+            for s in scales:
+                options = [(v[s][0], label, v[s][1]) for label, v in summary.items() if family[label] == f and s in v]
+                ok = [o for o in options if o[2] <= threshold]
+                if ok:
+                    cost, label, mae = min(ok)
+                    cells_text.append(f"{label} ({fmt_ms(cost)} ms, {mae:.3f})")
+                elif options:
+                    best = min(options, key=lambda o: o[2])
+                    cells_text.append(f"– (best {best[1]}: {best[2]:.3f})")
+                else:
+                    cells_text.append("not run")
+            w(f"| {family_name(f)} | {threshold:g} | " + " | ".join(cells_text) + " |")
+    w("")
+
+    # Flicker.
+    w("## Temporal stability\n")
+    flicker = results["flicker"]
+    if flicker:
+        w(f"The light (default size) moves along its u axis by {meta['flicker_step_of_ground_span'] * 100:g} % of "
+          f"the scene's ground span per frame over {meta['flicker_frames']} frames. Excess flicker = mean |Δ "
+          "visibility| between consecutive frames over geometry pixels, minus the same for the truth (the shadow's "
+          "real motion). Positive: the technique changes more than the truth does.\n")
+        labels = []
+        for f in flicker:
+            if f["label"] not in labels:
+                labels.append(f["label"])
+        scenes = [s["name"] for s in results["scenes"]]
+        w("| setting | " + " | ".join(f"{s} (truth {next(x['truth_delta'] for x in flicker if x['scene'] == s):.4f})"
+                                      for s in scenes if any(x["scene"] == s for x in flicker)) + " | mean excess |")
+        w("|---|" + "---|" * (len([s for s in scenes if any(x['scene'] == s for x in flicker)]) + 1))
+        for label in labels:
+            rows = {x["scene"]: x for x in flicker if x["label"] == label}
+            w(f"| {label} | " + " | ".join(f"{rows[s]['excess']:+.4f}" if s in rows else "–"
+                                           for s in scenes if any(x["scene"] == s for x in flicker)) +
+              f" | **{mean(r['excess'] for r in rows.values()):+.4f}** |")
+        w("")
+    else:
+        w("No flicker measurement in this run.\n")
+
+    # Where the time goes.
+    w("## Where the time goes\n")
+    w(f"Mean over scenes and light sizes of the GPU time of the passes from the light (shadow map or slicing and "
+      f"prefilter: independent of the image size) and of the screen pass over the {meta['image'][0]}×"
+      f"{meta['image'][1]} G-buffer (proportional to the pixels shaded). At a larger image the screen share grows "
+      "by the ratio of pixel counts; the light passes stay.\n")
+    w("| setting | technique | light passes ms | screen pass ms | screen share | textures MiB |")
+    w("|---|---|---|---|---|---|")
+    split = defaultdict(list)
+    for m in measurements:
+        screen = m["passes"][-1]["gpu_ms"]
+        split[m["label"]].append((sum(p["gpu_ms"] for p in m["passes"][:-1]), screen, m["texture_bytes"]))
+    for label in sorted(split, key=lambda l: (family[l], mean(x[0] + x[1] for x in split[l]))):
+        light_ms, screen_ms = mean(x[0] for x in split[label]), mean(x[1] for x in split[label])
+        share = screen_ms / (light_ms + screen_ms) if light_ms + screen_ms > 0 else 0
+        w(f"| {label} | {family_name(family[label])} | {fmt_ms(light_ms)} | {fmt_ms(screen_ms)} | {share * 100:.0f} % | "
+          f"{split[label][0][2] / 2**20:.1f} |")
+    w("")
+
+    # Signed error.
+    w("## Too bright or too dark\n")
+    w("Mean signed error over penumbra pixels (estimate − truth, against the visibility reference), mean over "
+      "scenes: positive where a setting is too bright (light leaking through or around occluders), negative "
+      "where it is too dark (occlusion counted twice, penumbrae too wide). The montages show where.\n")
+    w("| setting | " + " | ".join(fmt_scale(s) for s in scales) + " |")
+    w("|---|" + "---|" * len(scales))
+    bias = defaultdict(lambda: defaultdict(list))
+    for m in measurements:
+        bias[m["label"]][m["light_scale"]].append(m["quality"]["penumbra_bias"])
+    for label in sorted(bias, key=lambda l: (family[l], l)):
+        w(f"| {label} | " + " | ".join(f"{mean(bias[label][s]):+.3f}" if bias[label][s] else "–" for s in scales) + " |")
+    w("")
+
+    # Pareto fronts.
+    w("## Pareto fronts\n")
+    w("Per scene and light size, the settings no other setting beats on both cost and penumbra MAE, cheapest "
+      "first.\n")
+    w("| scene | light | front: setting (ms, ratio, MAE) |")
+    w("|---|---|---|")
+    for (scene, scale), cell in sorted(cells.items()):
+        front = pareto_front(cell.values())
+        w(f"| {scene} | {fmt_scale(scale)} | " + "; ".join(
+            f"{m['label']} ({fmt_ms(m[COST])}, {ratio_text(m, cell, reference)}, {pen(m):.4f})" for m in front) + " |")
+    w("")
+
+    # Figures.
+    w("## Figures\n")
+    for path in figures:
+        rel = os.path.relpath(path, directory)
+        w(f"![{os.path.basename(path)}]({rel})\n")
+
+    # Every measurement.
+    w("## Every measurement\n")
+    w(f"GPU: summed timer queries; wall: to glFinish (shadow passes, shading, total); ratio: GPU cost against "
+      f"{reference or 'the reference'} at the same scene and light; texture memory from the layout's textures.\n")
+    w("| scene | light | setting | GPU ms (fastest) | ratio | wall ms (shadow + shading = total) | textures MiB | "
+      f"penumbra MAE / RMSE / p95 (px) | all MAE / RMSE / p95 (px) | penumbra MAE {other_metrics()} | penumbra bias | "
+      "passes, GPU ms |")
+    w("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for (scene, scale), cell in sorted(cells.items()):
+        for m in sorted(cell.values(), key=lambda m: (m["family"], m[COST])):
+            q, wall = quality(m), m["wall_ms"]
+            passes = ", ".join(f"{p['name']}{'×' + str(p['instances']) if p['instances'] > 1 else ''} "
+                               f"{fmt_ms(p['gpu_ms'])}" for p in m["passes"])
+            w(f"| {scene} | {fmt_scale(scale)} | {m['label']} | {fmt_ms(m[COST])} ({fmt_ms(m['gpu_ms_fastest'])}) | "
+              f"{ratio_text(m, cell, reference)} | "
+              f"{fmt_ms(wall['shadow_passes'])} + {fmt_ms(wall['shading'])} = {fmt_ms(wall['total'])} | "
+              f"{m['texture_bytes'] / 2**20:.1f} | {q['penumbra']['mae']:.4f} / {q['penumbra']['rmse']:.4f} / "
+              f"{q['penumbra']['p95']:.3f} ({q['penumbra']['pixels']}) | {q['all']['mae']:.4f} / "
+              f"{q['all']['rmse']:.4f} / {q['all']['p95']:.3f} ({q['all']['pixels']}) | {fair_text(m)} | "
+              f"{m['quality']['penumbra_bias']:+.3f} | {passes} |")
+    w("")
+    w("Ground truth per scene (computed or read from the cache): " + "; ".join(
+        f"{s['name']}: {sum(t['ms'] for t in s['truth']) / 1000:.1f} s for {len(s['truth'])} images "
+        f"({sum(1 for t in s['truth'] if t['cached'])} cached)" for s in results["scenes"]) + ".\n")
+
+    with open(os.path.join(directory, "report.md"), "w") as f:
+        f.write("\n".join(out))
+
+
+# ---- the CI check -------------------------------------------------------------------------------
+
+def non_finite(value, path="results"):
+    """Paths of every number in the JSON value that is null (NaN when written), infinite or NaN."""
+    if value is None:
+        return [path]
+    if isinstance(value, bool) or isinstance(value, str):
+        return []
+    if isinstance(value, (int, float)):
+        return [] if math.isfinite(value) else [path]
+    if isinstance(value, list):
+        return [p for i, v in enumerate(value) for p in non_finite(v, f"{path}[{i}]")]
+    if isinstance(value, dict):
+        return [p for k, v in value.items() for p in non_finite(v, f"{path}.{k}")]
+    return []
+
+
+def check(directory):
+    problems = []
+    results = load(directory)
+    bad = non_finite(results)
+    if bad:
+        problems.append(f"{len(bad)} numbers in results.json are not finite, e.g. {bad[0]}")
+    if not results["measurements"]:
+        problems.append("results.json has no measurements")
+    if not results["flicker"]:
+        problems.append("results.json has no flicker measurement")
+    report = os.path.join(directory, "report.md")
+    if not os.path.exists(report) or os.path.getsize(report) == 0:
+        problems.append("report.md is missing or empty")
+    else:
+        text = open(report).read()
+        for heading in ("## Equal time", "## Light size", "## Temporal stability", "## Too bright or too dark",
+                        "## Pareto fronts"):
+            if heading not in text:
+                problems.append(f"report.md has no '{heading}' section")
+    expected = [f"pareto_{s['name']}.png" for s in results["scenes"]] + ["cost_vs_light_size.png"] + [
+        f"montage_{fmt_scale(s)}.png" for s in results["meta"]["light_scales"]]
+    for name in expected:
+        path = os.path.join(directory, "figures", name)
+        if not os.path.exists(path) or os.path.getsize(path) < 1000:
+            problems.append(f"figure {name} is missing or empty")
+        elif open(path, "rb").read(8) != b"\x89PNG\r\n\x1a\n":
+            problems.append(f"figure {name} is not a PNG file")
+    for m in results["measurements"]:
+        for key in ("visibility", "error"):
+            if m.get("images") and not os.path.exists(os.path.join(directory, m["images"][key])):
+                problems.append(f"image {m['images'][key]} is missing")
+    for p in problems:
+        print(f"check: {p}", file=sys.stderr)
+    if not problems:
+        print(f"check: {directory}: report, {len(expected)} figures, {len(results['measurements'])} measurements, "
+              "every number finite")
+    return 1 if problems else 0
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("directory", help="the folder holding results.json (penumbra-bench-compare --out)")
+    parser.add_argument("--mae-thresholds", default="0.1,0.15,0.2",
+                        help="penumbra MAEs the light-size table keeps each technique under (default 0.1,0.15,0.2)")
+    parser.add_argument("--metric", choices=list(METRICS), default="visibility",
+                        help="the reference the conclusions use (default visibility; the others are shown beside it)")
+    parser.add_argument("--check", action="store_true", help="check an existing report instead of writing one")
+    args = parser.parse_args()
+    global METRIC
+    METRIC = args.metric
+    if not os.path.exists(os.path.join(args.directory, "results.json")):
+        print(f"error: {args.directory}/results.json not found; run penumbra-bench-compare --out "
+              f"{args.directory} first", file=sys.stderr)
+        return 2
+    if args.check:
+        return check(args.directory)
+    results = load(args.directory)
+    try:
+        figures = make_figures(results, args.directory)
+    except ImportError as e:
+        print(f"error: matplotlib is missing ({e}); install Debian's python3-matplotlib (scripts/setup.sh)",
+              file=sys.stderr)
+        return 1
+    try:
+        thresholds = [float(t) for t in args.mae_thresholds.split(",")]
+    except ValueError:
+        print(f"error: --mae-thresholds: '{args.mae_thresholds}' is not a list of numbers, e.g. 0.05,0.1",
+              file=sys.stderr)
+        return 2
+    write_report(results, args.directory, thresholds, figures)
+    print(f"wrote {args.directory}/report.md and {len(figures)} figures in {args.directory}/figures/")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
