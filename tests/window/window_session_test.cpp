@@ -132,6 +132,24 @@ wait 2
 screenshot split.png
 set split off
 wait 1
+set right.slices 16
+set right.technique pcss
+set right.pcss_blockers 8
+set right.pcss_filter 8
+set split on
+wait 2
+screenshot split_pcss.png
+set split off
+set technique shadowmap
+set view texture
+set view_texture penumbra_shadowMap
+wait 2
+screenshot shadow_depth.png
+set view_texture nope
+wait 1
+set view shaded
+set technique occlusion
+wait 2
 )";
 
 } // namespace
@@ -209,6 +227,18 @@ TEST_SUITE("session") {
         CHECK(mean_difference(base, split, 0, 95) < 0.01);
         CHECK(mean_difference(base, split, 97, 192) > 0.2);
         CHECK(out.find("config right: slices=2 ") != std::string::npos);
+
+        // Techniques: PCSS 8/8 on the right half of the split screen is another image; the main
+        // side switches to a hard shadow map, whose depth texture the texture view shows; an
+        // unknown texture is refused with the layout's list; back to occlusion textures.
+        const Image split_pcss = load(dir / "split_pcss.png");
+        CHECK(mean_difference(base, split_pcss, 0, 95) < 0.01);
+        CHECK(mean_difference(base, split_pcss, 97, 192) > 0.2);
+        CHECK(out.find("config right: technique=pcss shadow_resolution=1024 blockers=8 filter=8") != std::string::npos);
+        CHECK(out.find("config: technique=shadowmap") != std::string::npos);
+        CHECK(mean_difference(base, load(dir / "shadow_depth.png")) > 20.0);
+        CHECK(err.find("texture view: 'nope' is not a texture of this layout; allowed: penumbra_shadowMap") !=
+              std::string::npos);
 
         CHECK(std::regex_search(out, std::regex(R"(frames: \d+ at 192x144, frame time median [0-9.]+ ms)")));
         CHECK(out.find("reload: save to first frame median") != std::string::npos);

@@ -84,6 +84,35 @@ void main() {
 }
 )";
 
+// Any texture of a layout, one channel in grey: 2D, 2D array (one layer) or 3D (one depth slice)
+// at one mip level. Depth textures are read through a sampler object without comparison, so a
+// shadow map shows its stored depth.
+constexpr const char* layout_texture_fragment = R"(
+layout(binding = 0) uniform sampler2D u_texture2D;
+layout(binding = 1) uniform sampler2DArray u_textureArray;
+layout(binding = 2) uniform sampler3D u_texture3D;
+uniform int u_storage;  // 0: 2D, 1: 2D array, 2: 3D
+uniform int u_lod;      // mip level
+uniform int u_layer;    // array layer or depth slice
+uniform vec4 u_channel; // one-hot: the channel shown
+uniform vec2 u_range;   // value shown black, value shown white
+void main() {
+    vec4 texel;
+    if (u_storage == 0)
+        texel = texelFetch(u_texture2D, texel_under_pixel(textureSize(u_texture2D, u_lod)), u_lod);
+    else if (u_storage == 1)
+        texel = texelFetch(u_textureArray, ivec3(texel_under_pixel(textureSize(u_textureArray, u_lod).xy), u_layer), u_lod);
+    else
+        texel = texelFetch(u_texture3D, ivec3(texel_under_pixel(textureSize(u_texture3D, u_lod).xy), u_layer), u_lod);
+    float v = dot(texel, u_channel);
+    if (isnan(v)) {
+        color = vec4(NOT_COMPUTED, 1.0);
+        return;
+    }
+    color = vec4(vec3(clamp((v - u_range.x) / (u_range.y - u_range.x), 0.0, 1.0)), 1.0);
+}
+)";
+
 // Same slice and kernel arithmetic as the emitted penumbraVisibility (docs/model.md §1, emit_visibility.hpp).
 constexpr const char* slice_level_fragment = R"(
 layout(binding = 0) uniform sampler2D u_positions;
@@ -310,13 +339,15 @@ glm::vec3 level_color(float level) {
 }
 
 struct DebugViews::Programs {
-    GLuint scalar = 0, slice_texture = 0, slice_level = 0, error = 0;
+    GLuint scalar = 0, slice_texture = 0, slice_level = 0, error = 0, layout_texture = 0;
     GLuint vertex_array = 0; // empty: the vertex shader makes its own positions
+    GLuint raw_sampler = 0;  // nearest, no comparison: how the layout-texture view reads depth
     GLuint error_ramp = 0;   // 1D RGBA32F, magnitude_colors() at 256 evenly spaced values
 
     ~Programs() {
-        for (GLuint p : {scalar, slice_texture, slice_level, error})
+        for (GLuint p : {scalar, slice_texture, slice_level, error, layout_texture})
             if (p) glDeleteProgram(p);
+        if (raw_sampler) glDeleteSamplers(1, &raw_sampler);
         if (vertex_array) glDeleteVertexArrays(1, &vertex_array);
         if (error_ramp) glDeleteTextures(1, &error_ramp);
     }
@@ -331,7 +362,8 @@ std::unique_ptr<DebugViews> DebugViews::create(std::string* error) {
         {&p.scalar, {"scalar", scalar_fragment}},
         {&p.slice_texture, {"slice_texture", slice_texture_fragment}},
         {&p.slice_level, {"slice_level", slice_level_fragment}},
-        {&p.error, {"error", error_fragment}}};
+        {&p.error, {"error", error_fragment}},
+        {&p.layout_texture, {"layout_texture", layout_texture_fragment}}};
     for (const auto& [slot, source] : programs) {
         *slot = build_view_program(source.first, source.second, &log);
         if (!*slot) {
@@ -340,6 +372,10 @@ std::unique_ptr<DebugViews> DebugViews::create(std::string* error) {
         }
     }
     glCreateVertexArrays(1, &p.vertex_array);
+    glCreateSamplers(1, &p.raw_sampler);
+    glSamplerParameteri(p.raw_sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+    glSamplerParameteri(p.raw_sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glSamplerParameteri(p.raw_sampler, GL_TEXTURE_COMPARE_MODE, GL_NONE);
 
     std::vector<float> values(ramp_entries);
     for (int i = 0; i < ramp_entries; ++i)
@@ -387,6 +423,52 @@ std::string DebugViews::draw_scalar(GLuint texture, const ScalarView& view) cons
     glProgramUniform2f(program, location(program, "u_range"), view.min_value, view.max_value);
     draw_fullscreen(program, programs_->vertex_array, guard.viewport());
     return gl_error_after("draw_scalar");
+}
+
+std::string DebugViews::draw_layout_texture(const penumbra::gl::Runtime& runtime,
+                                            const LayoutTextureView& view) const {
+    const std::vector<penumbra::TextureDesc>& textures = runtime.layout().textures;
+    const penumbra::TextureDesc* desc = nullptr;
+    for (const penumbra::TextureDesc& t : textures)
+        if (t.name == view.texture) desc = &t;
+    if (!desc) {
+        std::string names;
+        for (const penumbra::TextureDesc& t : textures) names += (names.empty() ? "" : ", ") + t.name;
+        return "texture view: '" + view.texture + "' is not a texture of this layout; allowed: " + names;
+    }
+    const GLuint id = runtime.texture(desc->name);
+    if (!id) return "texture view: '" + desc->name + "' is not allocated yet (source " + desc->source + ")";
+    if (!desc->internal_format.empty() && desc->internal_format.back() == 'I') // RGBA32UI, R32I, …
+        return "texture view: '" + desc->name + "' holds integers (" + desc->internal_format +
+               "); this view shows float and depth textures";
+    if (view.level < 0 || view.level >= desc->mip_levels)
+        return "texture view: level " + std::to_string(view.level) + " is out of range; '" + desc->name +
+               "' has levels 0 to " + std::to_string(desc->mip_levels - 1);
+    const int layers = desc->target == "2D" ? 1 : desc->target == "3D" ? std::max(desc->depth >> view.level, 1)
+                                                                      : desc->depth;
+    if (view.layer < 0 || view.layer >= layers)
+        return "texture view: layer " + std::to_string(view.layer) + " is out of range; '" + desc->name +
+               "' has layers 0 to " + std::to_string(layers - 1) + " at level " + std::to_string(view.level);
+    if (view.channel < 0 || view.channel > 3)
+        return "texture view: channel " + std::to_string(view.channel) + " is out of range; allowed: 0 to 3";
+    if (!(view.max_value > view.min_value))
+        return "texture view: max_value (" + number(view.max_value) + ") must be greater than min_value (" +
+               number(view.min_value) + ")";
+    const int storage = desc->target == "2D" ? 0 : desc->target == "2D_ARRAY" ? 1 : 2;
+    const GLuint program = programs_->layout_texture;
+    StateGuard guard;
+    glBindTextureUnit(static_cast<GLuint>(storage), id);
+    glBindSampler(static_cast<GLuint>(storage), programs_->raw_sampler);
+    float channel[4] = {0, 0, 0, 0};
+    channel[view.channel] = 1.0f;
+    glProgramUniform1i(program, location(program, "u_storage"), storage);
+    glProgramUniform1i(program, location(program, "u_lod"), view.level);
+    glProgramUniform1i(program, location(program, "u_layer"), view.layer);
+    glProgramUniform4fv(program, location(program, "u_channel"), 1, channel);
+    glProgramUniform2f(program, location(program, "u_range"), view.min_value, view.max_value);
+    draw_fullscreen(program, programs_->vertex_array, guard.viewport());
+    glBindSampler(static_cast<GLuint>(storage), 0);
+    return gl_error_after("draw_layout_texture");
 }
 
 std::string DebugViews::draw_slice_texture(const penumbra::gl::Runtime& runtime,

@@ -57,6 +57,17 @@ struct ScalarView {
     float max_value = 1.0f; // shown white
 };
 
+// Any texture of the runtime's layout (a technique's shadow map, its occlusion storage, an
+// output-sized intermediate, a baked texture), one channel at one mip level and layer.
+struct LayoutTextureView {
+    std::string texture;    // the layout's name, e.g. "penumbra_shadowMap"
+    int level = 0;          // mip level
+    int layer = 0;          // array layer / depth slice of a 3D texture; 0 for 2D
+    int channel = 0;        // 0 to 3 (r, g, b, a); depth textures: 0
+    float min_value = 0.0f; // shown black
+    float max_value = 1.0f; // shown white
+};
+
 struct SliceTextureView {
     int slice = 0; // 0 (nearest the light) to slices − 1
     // Filter level 0 (the binary coverage) to L = log2(resolution). Level l shows the mean
@@ -101,6 +112,10 @@ public:
     // (atlas tile + channel, array layer + channel, volume depth + channel) and filter. Coverage
     // is white, empty black; the R×R slice (R >> level for mipmaps) fills the viewport.
     std::string draw_slice_texture(const penumbra::gl::Runtime& runtime, const SliceTextureView& view) const;
+
+    // (b') Any texture of the layout (LayoutTextureView), the whole texture over the viewport;
+    // depth textures are read without comparison. Integer formats are refused with a message.
+    std::string draw_layout_texture(const penumbra::gl::Runtime& runtime, const LayoutTextureView& view) const;
 
     // (c) Which slice / filter level each pixel uses, from a G-buffer of world positions
     // (RGBA32F, w = 1 on geometry; GBuffer::positions()) and runtime.frame() / config().

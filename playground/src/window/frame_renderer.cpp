@@ -57,6 +57,7 @@ const char* to_string(View view) {
     case View::slice_texture: return "slice_texture";
     case View::slice_map: return "slice_map";
     case View::level_map: return "level_map";
+    case View::texture: return "texture";
     }
     return "?";
 }
@@ -223,6 +224,21 @@ std::string FrameRenderer::draw_debug_view(penumbra::gl::Runtime* runtimes[2], c
     for (int side = 0; side < (split ? 2 : 1) && error.empty(); ++side) {
         const penumbra::gl::Runtime& runtime = *runtimes[side];
         const int x0 = side == 0 ? 0 : split_column, x1 = side == 0 ? split_column : width;
+        const bool occlusion_view = settings.view == View::slice_texture || settings.view == View::slice_map ||
+                                    settings.view == View::level_map;
+        if (occlusion_view && runtime.config().technique != Technique::occlusion) {
+            error = std::string("view ") + to_string(settings.view) + " shows occlusion textures; technique '" +
+                    std::string(to_string(runtime.config().technique)) + "' has none: use the texture view";
+            continue;
+        }
+        if (settings.view == View::texture) {
+            glViewport(x0, 0, x1 - x0, height);
+            LayoutTextureView view = settings.texture;
+            if (view.texture.empty() && !runtime.layout().textures.empty())
+                view.texture = runtime.layout().textures.front().name;
+            error = debug_views_->draw_layout_texture(runtime, view);
+            continue;
+        }
         if (settings.view == View::slice_texture) {
             // The texture itself: each half shows its runtime's texture whole.
             glViewport(x0, 0, x1 - x0, height);

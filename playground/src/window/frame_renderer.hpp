@@ -25,8 +25,9 @@ enum class View : int {
     slice_texture, // one slice's occlusion texture at one filter level
     slice_map,     // which slice contains each pixel's point
     level_map,     // which filter level the shading reads for each pixel
+    texture,       // any texture of the technique's layout (shadow map depth, levels, intermediates)
 };
-inline constexpr int view_count = 7;
+inline constexpr int view_count = 8;
 const char* to_string(View view);
 
 struct FrameSettings {
@@ -39,6 +40,7 @@ struct FrameSettings {
     float error_scale = 0.25f; // |error| shown at full heat
     int slice = 0;             // slice_texture: which slice; level_map: which slice (−1: nearest above)
     int level = 0;             // slice_texture: which filter level
+    LayoutTextureView texture; // texture view: which texture, level, layer, channel, value range
 };
 
 class FrameRenderer {

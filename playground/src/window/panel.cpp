@@ -33,9 +33,70 @@ template <class Enum> bool enum_combo(const char* label, Enum& value) {
 }
 
 // Returns true when the user changed something; `config` then holds the request.
+// Side of a power-of-two texture as a combo over 32 … 32·2^(count−1).
+bool power_of_two_combo(const char* label, int& side, int count) {
+    static const char* sides[] = {"32", "64", "128", "256", "512", "1024", "2048", "4096", "8192"};
+    int level = 0;
+    for (int r = side; r > 32; r /= 2) ++level;
+    if (!ImGui::Combo(label, &level, sides, count)) return false;
+    side = 32 << level;
+    return true;
+}
+
+// The parameters of the shadow-map family (shadowmap, pcf, pcss); validation happens when applied.
+bool shadow_map_editor(Config& config) {
+    bool changed = power_of_two_combo("shadow map", config.shadow_map.resolution, 9);
+    float bias[2] = {float(config.shadow_map.constant_bias), float(config.shadow_map.slope_bias)};
+    if (ImGui::DragFloat2("bias: constant, slope", bias, 0.005f, 0.0f, 16.0f, "%.3f")) {
+        config.shadow_map.constant_bias = bias[0];
+        config.shadow_map.slope_bias = bias[1];
+        changed = true;
+    }
+    if (config.technique == Technique::pcf) {
+        changed |= enum_combo("pattern", config.pcf.pattern);
+        if (config.pcf.pattern == TapPattern::grid)
+            changed |= ImGui::SliderInt("grid N (N x N taps)", &config.pcf.grid_size, 1, 16);
+        else
+            changed |= ImGui::SliderInt("Poisson taps", &config.pcf.poisson_taps, 1, 64);
+        float radius = float(config.pcf.radius);
+        if (ImGui::DragFloat("radius (scene units)", &radius, 0.005f, 0.001f, 10.0f, "%.3f")) {
+            config.pcf.radius = radius;
+            changed = true;
+        }
+        changed |= ImGui::Checkbox("rotate per pixel", &config.pcf.rotate);
+    }
+    if (config.technique == Technique::pcss) {
+        static const int presets[][2] = {{8, 8}, {16, 16}, {17, 34}, {32, 32}, {32, 64}};
+        static const char* names[] = {"8/8 (Bevy)", "16/16 (Filament)", "17/34 (three.js)", "32/32 (Godot ultra)",
+                                      "32/64 (PlayCanvas high)"};
+        int preset = -1;
+        for (int i = 0; i < 5; ++i)
+            if (config.pcss.blocker_samples == presets[i][0] && config.pcss.filter_samples == presets[i][1]) preset = i;
+        if (ImGui::Combo("engine preset", &preset, names, 5)) {
+            config.pcss.blocker_samples = presets[preset][0];
+            config.pcss.filter_samples = presets[preset][1];
+            changed = true;
+        }
+        changed |= ImGui::SliderInt("blocker samples", &config.pcss.blocker_samples, 1, 64);
+        changed |= ImGui::SliderInt("filter samples", &config.pcss.filter_samples, 1, 128);
+        changed |= ImGui::SliderInt("max filter texels", &config.pcss.max_filter_texels, 1,
+                                    config.shadow_map.resolution / 2);
+        changed |= ImGui::Checkbox("rotate per pixel", &config.pcss.rotate);
+    }
+    return changed;
+}
+
 bool config_editor(const char* id, Config& config) {
     ImGui::PushID(id);
-    bool changed = ImGui::SliderInt("slices", &config.slices, 1, 32);
+    bool changed = enum_combo("technique", config.technique);
+    if (config.technique != Technique::occlusion) {
+        if (uses_shadow_map(config)) changed |= shadow_map_editor(config);
+        changed |= enum_combo("light", config.light);
+        changed |= enum_combo("target", config.target);
+        ImGui::PopID();
+        return changed;
+    }
+    changed |= ImGui::SliderInt("slices", &config.slices, 1, 32);
     int level = 0;
     for (int r = config.resolution; r > 32; r /= 2) ++level;
     static const char* resolutions[] = {"32", "64", "128", "256", "512", "1024", "2048", "4096"};
@@ -100,7 +161,8 @@ void view_section(WindowApp& app) {
                                             "error heatmap",
                                             "slice occlusion texture",
                                             "slice per pixel",
-                                            "filter level per pixel"};
+                                            "filter level per pixel",
+                                            "any texture of the layout"};
     if (ImGui::Combo("view", &view, views, view_count)) c.view = static_cast<View>(view);
     const Config& config = app.config();
     if (c.view == View::slice_texture) {
@@ -108,6 +170,29 @@ void view_section(WindowApp& app) {
         ImGui::SliderInt("filter level", &c.view_level, 0, max_level(config));
     } else if (c.view == View::level_map) {
         ImGui::SliderInt("slice (-1: nearest above)", &c.view_slice, -1, config.slices - 1);
+    } else if (c.view == View::texture) {
+        const std::vector<TextureDesc>& textures = app.layout().textures;
+        const char* current = c.view_texture.texture.empty() && !textures.empty() ? textures.front().name.c_str()
+                                                                                  : c.view_texture.texture.c_str();
+        int mip_levels = 1, layers = 1;
+        if (ImGui::BeginCombo("texture", current)) {
+            for (const TextureDesc& t : textures)
+                if (ImGui::Selectable((t.name + "  (" + t.internal_format + ", " + t.source + ")").c_str(),
+                                      t.name == current)) {
+                    c.view_texture = {.texture = t.name};
+                    if (t.internal_format.rfind("DEPTH", 0) == 0) c.view_texture.max_value = 1.0f;
+                }
+            ImGui::EndCombo();
+        }
+        for (const TextureDesc& t : textures)
+            if (t.name == current) {
+                mip_levels = t.mip_levels;
+                layers = t.target == "2D" ? 1 : t.depth;
+            }
+        if (mip_levels > 1) ImGui::SliderInt("level", &c.view_texture.level, 0, mip_levels - 1);
+        if (layers > 1) ImGui::SliderInt("layer", &c.view_texture.layer, 0, layers - 1);
+        ImGui::SliderInt("channel (r g b a)", &c.view_texture.channel, 0, 3);
+        ImGui::DragFloatRange2("black .. white", &c.view_texture.min_value, &c.view_texture.max_value, 0.01f);
     } else if (c.view == View::slice_map) {
         for (int k = 0; k < config.slices; ++k) { // legend, debug_views.hpp colours
             const glm::vec3 color = slice_color(k);

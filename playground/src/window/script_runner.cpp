@@ -1,10 +1,13 @@
 #include "script_runner.hpp"
 
+#include "../../../generator/src/technique_flags.hpp"
+
 #include <penumbra/config.hpp>
 
 #include "../../../generator/src/printable.hpp"
 
 #include <charconv>
+#include <cstdlib>
 
 namespace penumbra::playground {
 
@@ -51,6 +54,18 @@ std::string set_value(WindowApp& app, std::string key, const std::string& value)
     }
     Config config = app.config(side);
     std::string error;
+    // A technique's parameters use the names of its command-line flags without the dashes:
+    // `set pcss_blockers 32` is `--pcss-blockers 32`, `set right.technique pcss` is `--technique pcss`.
+    std::string flag = "--" + key;
+    for (char& c : flag)
+        if (c == '_') c = '-';
+    if (penumbra_gen::is_technique_flag(flag)) {
+        penumbra_gen::TechniqueFlags flags;
+        error = penumbra_gen::parse_technique_flag(flag, value, flags);
+        if (!error.empty()) return error;
+        app.request_config(penumbra_gen::apply(flags, config), side);
+        return {};
+    }
     if (key == "slices")
         error = set_int(config.slices, key, value);
     else if (key == "resolution")
@@ -91,10 +106,26 @@ std::string set_value(WindowApp& app, std::string key, const std::string& value)
         }
         if (key == "view_slice") return set_int(c.view_slice, key, value);
         if (key == "view_level") return set_int(c.view_level, key, value);
+        if (key == "view_texture") {
+            c.view_texture.texture = value; // checked when drawn: the message lists the layout's textures
+            return {};
+        }
+        if (key == "view_texture_level") return set_int(c.view_texture.level, key, value);
+        if (key == "view_texture_layer") return set_int(c.view_texture.layer, key, value);
+        if (key == "view_texture_channel") return set_int(c.view_texture.channel, key, value);
+        if (key == "view_texture_max") {
+            char* end = nullptr;
+            const float v = std::strtof(value.c_str(), &end);
+            if (end == value.c_str() || *end != '\0' || !(v > 0.0f) || v > 1e9f)
+                return "view_texture_max: '" + value + "' is not allowed; allowed: a number in (0, 1e9]";
+            c.view_texture.max_value = v;
+            return {};
+        }
         return "set: unknown key '" + printable(key) +
-               "'; allowed: slices, resolution, filter, fusion, packing, light, target, leak_fix, fade (also "
-               "as "
-               "right.KEY), view, view_slice, view_level, split, animate_light, animate_object, scene";
+               "'; allowed: slices, resolution, filter, fusion, packing, light, target, leak_fix, fade, technique "
+               "and the technique flags of penumbra-gen without dashes (pcss_blockers, …) (also as right.KEY), "
+               "view, view_slice, view_level, view_texture, view_texture_level, view_texture_layer, "
+               "view_texture_channel, view_texture_max, split, animate_light, animate_object, scene";
     } else {
         return "set: unknown key 'right." + printable(key) + "'";
     }

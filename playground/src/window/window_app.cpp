@@ -55,12 +55,29 @@ Config default_right_config(const Config& left) {
 } // namespace
 
 std::string WindowApp::describe(const Config& c) {
+    const std::string common =
+        " light=" + std::string(to_string(c.light)) + " target=" + std::string(to_string(c.target));
+    const ShadowMapParams& sm = c.shadow_map;
+    const std::string shadow_map = " shadow_resolution=" + std::to_string(sm.resolution);
+    switch (c.technique) {
+    case Technique::occlusion: break;
+    case Technique::shadowmap: return "technique=shadowmap" + shadow_map + common;
+    case Technique::pcf:
+        return "technique=pcf" + shadow_map + " pattern=" + std::string(to_string(c.pcf.pattern)) +
+               " taps=" + std::to_string(pcf_taps(c.pcf)) + common;
+    case Technique::pcss:
+        return "technique=pcss" + shadow_map + " blockers=" + std::to_string(c.pcss.blocker_samples) +
+               " filter=" + std::to_string(c.pcss.filter_samples) + common;
+    default: return "technique=" + std::string(to_string(c.technique)) + common;
+    }
     return "slices=" + std::to_string(c.slices) + " resolution=" + std::to_string(c.resolution) +
            " filter=" + std::string(to_string(c.filter)) + " fusion=" + std::string(to_string(c.fusion)) +
            " packing=" + std::string(to_string(c.packing)) + " light=" + std::string(to_string(c.light)) +
            " leak_fix=" + (c.leak_fix ? "on" : "off") + " fade=" + (c.self_shadow_fade ? "on" : "off") +
            " target=" + std::string(to_string(c.target));
 }
+
+const Layout& WindowApp::layout() const { return session_.runtime().layout(); }
 
 WindowApp::WindowApp(const PlaygroundOptions& options) : options_(options), session_(options.watch_dir) {}
 
@@ -272,6 +289,7 @@ FrameSettings WindowApp::frame_settings() const {
     s.view = controls_.view;
     s.slice = controls_.view_slice;
     s.level = controls_.view_level;
+    s.texture = controls_.view_texture;
     s.truth_texture =
         truth_snapshot_.samples_per_axis > 0 || truth_snapshot_.progress > 0 ? truth_texture_ : 0;
     return s;

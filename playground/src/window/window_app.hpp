@@ -35,6 +35,7 @@ struct Controls {
     View view = View::shaded;
     int view_slice = 0; // slice_texture / level_map views: which slice (level_map: −1 nearest above)
     int view_level = 0; // slice_texture view: which filter level
+    LayoutTextureView view_texture; // texture view: texture (empty: the layout's first), level, layer, …
     bool split = false; // right half: the second configuration
 };
 
@@ -53,6 +54,8 @@ public:
     const std::vector<std::string>& overwrite_files() const { return pending_files_; }
     void answer_overwrite(bool overwrite);
     const std::string& config_message() const { return config_message_; }
+    // What the main side's runtime runs: its textures, programs and passes.
+    const Layout& layout() const;
 
     // --- scene, light, camera, view
     Controls& controls() { return controls_; }
