@@ -117,7 +117,7 @@ std::string set_value(WindowApp& app, std::string key, const std::string& value)
             char* end = nullptr;
             const float v = std::strtof(value.c_str(), &end);
             if (end == value.c_str() || *end != '\0' || !(v > 0.0f) || v > 1e9f)
-                return "view_texture_max: '" + value + "' is not allowed; allowed: a number in (0, 1e9]";
+                return "view_texture_max: '" + printable(value) + "' is not allowed; allowed: a number in (0, 1e9]";
             c.view_texture.max_value = v;
             return {};
         }
