@@ -51,6 +51,20 @@ enum class Target : std::uint8_t {
     vulkan,  // GLSL 450 for SPIR-V: set/binding decorations, parameters in a uniform block
 };
 
+// Occlusion interval maps (Donnelly & Demers, GPU Gems ch. 13): per texel of a unique texture
+// parameterization, the times along the sun's fixed path at which it rises and sets there, baked
+// offline; shading averages that visibility over the window the sun's disk covers.
+struct OimParams {
+    int resolution = 256; // interval-map side in texels; a power of two, 32 to 4096 (target limit)
+    int intervals = 8;    // visibility intervals per texel: 4, 8, 12 or 16 (four per RGBA rise/fall pair)
+    int samples = 256;    // instants along the path that the bake traces: 256 to 4096 (the chapter: 256)
+
+    friend constexpr bool operator==(const OimParams&, const OimParams&) = default;
+};
+
+// Number of RGBA rise/fall texture pairs: four intervals each.
+constexpr int oim_pairs(const OimParams& oim) { return (oim.intervals + 3) / 4; }
+
 struct Config {
     int slices = 16;                        // slices along the light normal; 1 to 32 (four per RGBA texture)
     int resolution = 512;                   // occlusion texture side in texels; a power of two, 32 to 4096
@@ -61,6 +75,7 @@ struct Config {
     bool leak_fix = true;                   // paper §3.4.1: a fragment of slice k also marks slice k+1
     bool self_shadow_fade = true;           // paper §3.4.2: fade out the slice containing the point
     Target target = Target::glsl450;        // shading language of the output
+    OimParams oim{};                        // oim: the interval maps
 
     friend constexpr bool operator==(const Config&, const Config&) = default;
 };

@@ -1,0 +1,66 @@
+// Occlusion interval maps (GPU Gems ch. 13) as text: one labelled evaluation per rise/fall pair,
+// no loop, the chapter's min/max/saturate/dot; validation of the oim fields. No glslang, no GL.
+#include <penumbra/penumbra.hpp>
+#include <penumbra/detail/oim/emit_oim.hpp>
+
+#include <doctest/doctest.h>
+
+#include <string>
+
+using namespace penumbra;
+
+namespace {
+
+int count(std::string_view text, std::string_view needle) {
+    int n = 0;
+    for (std::size_t at = text.find(needle); at != std::string_view::npos; at = text.find(needle, at + 1)) ++n;
+    return n;
+}
+
+std::string first_error(const Config& config) {
+    const std::vector<ConfigError> errors = validate(config);
+    return errors.empty() ? std::string() : errors.front().message;
+}
+
+} // namespace
+
+TEST_CASE("oim: the evaluation is unrolled per rise/fall pair, two fetches each") {
+    for (int intervals : {4, 8, 12, 16}) {
+        Config config;
+        config.oim.intervals = intervals;
+        CAPTURE(intervals);
+        REQUIRE(is_valid(config));
+        const std::string snippet = detail::oim_visibility_snippet(config).str();
+        const std::size_t start = snippet.find("float penumbraVisibility(vec2 texCoord)");
+        REQUIRE(start != std::string::npos);
+        const std::string body = snippet.substr(start, snippet.find("\n}\n", start) - start);
+        const int pairs = intervals / 4;
+        CHECK(count(body, "textureLod(") == 2 * pairs);
+        CHECK(count(body, "dot(inverseWidth, clamp(min(") == pairs);
+        for (int p = 0; p < pairs; ++p)
+            CHECK(body.find("// intervals " + std::to_string(4 * p) + " to " + std::to_string(4 * p + 3) + ": pair " +
+                            std::to_string(p)) != std::string::npos);
+        CHECK(count(body, "for (") + count(body, "while (") + count(body, "if (") == 0);
+        CHECK(count(snippet, "uniform sampler2D penumbra_rise") == pairs);
+        CHECK(count(snippet, "uniform sampler2D penumbra_fall") == pairs);
+        CHECK(snippet.find("#version") == std::string::npos);
+        CHECK(snippet.find("interval maps 256x256 | " + std::to_string(intervals) + " intervals") != std::string::npos);
+    }
+}
+
+TEST_CASE("oim: invalid fields are rejected with their message") {
+    auto with = [](auto change) {
+        Config c;
+        change(c.oim);
+        return first_error(c);
+    };
+    CHECK(with([](OimParams& o) { o.intervals = 6; }) ==
+          "oim.intervals: 6 is not allowed; allowed: 4, 8, 12 or 16 (four intervals per RGBA rise/fall texture pair)");
+    CHECK(with([](OimParams& o) { o.samples = 128; }).starts_with("oim.samples: 128 is not allowed; allowed: 256, 512"));
+    CHECK(with([](OimParams& o) { o.samples = 1000; }).starts_with("oim.samples: 1000 is not allowed"));
+    CHECK(with([](OimParams& o) { o.resolution = 100; }).starts_with("oim.resolution: 100 is not allowed"));
+    Config es;
+    es.target = Target::essl300;
+    es.oim.resolution = 4096;
+    CHECK(first_error(es).starts_with("oim.resolution: 4096 is larger than target 'essl300' guarantees; allowed: up to 2048"));
+}
