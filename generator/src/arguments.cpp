@@ -8,7 +8,9 @@ namespace {
 
 constexpr std::string_view flag_list =
     "--slices, --resolution, --filter, --fusion, --packing, --light, --target, --no-leak-fix, --no-fade, "
-    "--config, --validate, --out, --help";
+    "--config, --validate, --out, --help, --technique, --shadow-resolution, --shadow-bias, --shadow-slope-bias, "
+    "--pcf-pattern, --pcf-grid, --pcf-taps, --pcf-radius, --pcss-blockers, --pcss-filter, --pcss-max-texels, "
+    "--no-rotation";
 
 // "16" → 16; anything else (empty, sign only, trailing text, outside int) is an error.
 Parsed<int> parse_int(std::string_view flag, std::string_view text, std::string_view allowed) {
@@ -78,18 +80,21 @@ Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
             }
 
         // Flags without a value.
-        const bool is_switch = flag == "--no-leak-fix" || flag == "--no-fade" || flag == "--validate";
+        const bool is_switch = flag == "--no-leak-fix" || flag == "--no-fade" || flag == "--validate" ||
+                               is_technique_switch(flag);
         if (is_switch) {
             if (inline_value)
                 return {{}, std::string(flag) + ": takes no value (got '" + printable(*inline_value) + "')"};
             if (flag == "--no-leak-fix") out.flags.no_leak_fix = true;
             if (flag == "--no-fade") out.flags.no_fade = true;
             if (flag == "--validate") out.validate = true;
+            set_technique_switch(flag, out.flags.technique);
             continue;
         }
         const bool takes_value = flag == "--slices" || flag == "--resolution" || flag == "--filter" ||
                                  flag == "--fusion" || flag == "--packing" || flag == "--light" ||
-                                 flag == "--target" || flag == "--config" || flag == "--out";
+                                 flag == "--target" || flag == "--config" || flag == "--out" ||
+                                 is_technique_flag(flag);
         if (!takes_value) {
             if (arg.starts_with("-"))
                 return {{}, "unknown flag '" + printable(flag) + "'; allowed: " + std::string(flag_list)};
@@ -120,6 +125,8 @@ Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
             error = store(parse_name<penumbra::Light>(flag, value), out.flags.light);
         else if (flag == "--target")
             error = store(parse_name<penumbra::Target>(flag, value), out.flags.target);
+        else if (is_technique_flag(flag))
+            error = parse_technique_flag(flag, value, out.flags.technique);
         else if (value.empty())
             error = std::string(flag) + ": empty path; allowed: a file or directory path";
         else if (flag == "--config")
@@ -142,7 +149,7 @@ penumbra::Config apply(const ConfigFlags& flags, penumbra::Config config) {
     if (flags.target) config.target = *flags.target;
     if (flags.no_leak_fix) config.leak_fix = false;
     if (flags.no_fade) config.self_shadow_fade = false;
-    return config;
+    return apply(flags.technique, config);
 }
 
 std::string usage() {
@@ -156,10 +163,10 @@ std::string usage() {
     auto names = [](std::string text, std::string_view def) {
         return text + " (default " + std::string(def) + ")";
     };
-    std::string out = "usage: penumbra-gen [--slices N] [--resolution R] [--filter F] [--fusion U] "
+    std::string out = "usage: penumbra-gen [--technique T] [--slices N] [--resolution R] [--filter F] [--fusion U] "
                       "[--packing P] [--light L]\n"
-                      "                    [--target T] [--no-leak-fix] [--no-fade] [--config FILE.json] "
-                      "[--validate] --out DIR\n"
+                      "                    [--target T] [--no-leak-fix] [--no-fade] [technique flags] "
+                      "[--config FILE.json] [--validate] --out DIR\n"
                       "\n"
                       "Writes the GLSL of one Penumbra configuration and its layout.json into DIR.\n"
                       "\n"
@@ -177,11 +184,14 @@ std::string usage() {
                 std::string("turn off the leak fix (default ") + (d.leak_fix ? "on" : "off") + ")");
     out += line("--no-fade", std::string("turn off the self-shadow fade (default ") +
                                  (d.self_shadow_fade ? "on" : "off") + ")");
+    out += "\ntechnique (occlusion: the flags above; shadowmap, pcf, pcss: these, plus --light and --target):\n";
+    out += technique_usage(25);
     out +=
         line("--config FILE.json",
-             "read the configuration from JSON: an object with the keys slices, resolution, filter, fusion,\n"
-             "                      packing, light, leak_fix, self_shadow_fade, target (all optional), or a\n"
-             "                      layout.json, whose \"config\" object is read");
+             "read the configuration from JSON: an object with the keys technique, slices, resolution,\n"
+             "                      filter, fusion, packing, light, leak_fix, self_shadow_fade, target, and the\n"
+             "                      objects shadow_map, pcf, pcss (all optional), or a layout.json, whose\n"
+             "                      \"config\" object is read");
     out += "\noutput:\n";
     out += line("--out DIR", "directory to write into, created with its parents (required)");
     out +=

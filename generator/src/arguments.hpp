@@ -1,6 +1,8 @@
 // arguments.hpp — the command line of penumbra-gen, parsed into values; errors are values too.
 #pragma once
 
+#include "technique_flags.hpp"
+
 #include <penumbra/config.hpp>
 
 #include <optional>
@@ -19,6 +21,7 @@ struct ConfigFlags {
     std::optional<penumbra::Target> target;
     bool no_leak_fix = false;
     bool no_fade = false;
+    TechniqueFlags technique; // --technique and each technique's flags (technique_flags.hpp)
 };
 
 struct Arguments {

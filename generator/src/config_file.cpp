@@ -15,7 +15,8 @@ namespace {
 using nlohmann::json;
 
 constexpr std::string_view key_list =
-    "slices, resolution, filter, fusion, packing, light, leak_fix, self_shadow_fade, target";
+    "technique, slices, resolution, filter, fusion, packing, light, leak_fix, self_shadow_fade, target, shadow_map, "
+    "pcf, pcss, oim";
 
 std::string type_of(const json& value) {
     if (value.is_number_float()) return "a number with a fraction";
@@ -73,6 +74,82 @@ template <class T> std::string store(Parsed<T> parsed, T& slot) {
     return parsed.error;
 }
 
+Parsed<double> read_real(std::string_view key, const json& value, std::string_view allowed) {
+    if (!value.is_number())
+        return {{},
+                "key '" + std::string(key) + "' must be a number (" + std::string(allowed) + "), got " +
+                    type_of(value) + " " + shown(value)};
+    return {value.get<double>(), {}};
+}
+
+// A technique's parameter object ("shadow_map", "pcf", "pcss"): every key optional, `read` sets one
+// key and returns its error, or "unknown" when there is no such key.
+template <class Read>
+std::string read_section(std::string_view section, const json& value, std::string_view keys, Read read) {
+    if (!value.is_object())
+        return "key '" + std::string(section) + "' must be an object with the keys " + std::string(keys) + ", got " +
+               type_of(value);
+    for (const auto& [key, item] : value.items()) {
+        const std::string name = std::string(section) + "." + key;
+        std::string error = read(key, name, item);
+        if (error == "unknown")
+            return "unknown key '" + printable(name) + "'; allowed keys in '" + std::string(section) +
+                   "': " + std::string(keys);
+        if (!error.empty()) return error;
+    }
+    return {};
+}
+
+std::string read_shadow_map(const json& value, penumbra::ShadowMapParams& sm) {
+    return read_section("shadow_map", value, "resolution, constant_bias, slope_bias",
+                        [&](const std::string& key, const std::string& name, const json& item) -> std::string {
+                            if (key == "resolution")
+                                return store(read_int(name, item, "a power of two from 32 to 8192"), sm.resolution);
+                            if (key == "constant_bias") return store(read_real(name, item, "0 to 10"), sm.constant_bias);
+                            if (key == "slope_bias") return store(read_real(name, item, "0 to 16"), sm.slope_bias);
+                            return "unknown";
+                        });
+}
+
+std::string read_pcf(const json& value, penumbra::PcfParams& pcf) {
+    return read_section("pcf", value, "pattern, grid_size, poisson_taps, radius, rotate",
+                        [&](const std::string& key, const std::string& name, const json& item) -> std::string {
+                            if (key == "pattern") return store(read_enum<penumbra::TapPattern>(name, item), pcf.pattern);
+                            if (key == "grid_size") return store(read_int(name, item, "1 to 16"), pcf.grid_size);
+                            if (key == "poisson_taps") return store(read_int(name, item, "1 to 64"), pcf.poisson_taps);
+                            if (key == "radius") return store(read_real(name, item, "above 0 to 1000"), pcf.radius);
+                            if (key == "rotate") return store(read_bool(name, item), pcf.rotate);
+                            return "unknown";
+                        });
+}
+
+std::string read_pcss(const json& value, penumbra::PcssParams& pcss) {
+    return read_section("pcss", value, "blocker_samples, filter_samples, max_filter_texels, rotate",
+                        [&](const std::string& key, const std::string& name, const json& item) -> std::string {
+                            if (key == "blocker_samples")
+                                return store(read_int(name, item, "1 to 64"), pcss.blocker_samples);
+                            if (key == "filter_samples")
+                                return store(read_int(name, item, "1 to 128"), pcss.filter_samples);
+                            if (key == "max_filter_texels")
+                                return store(read_int(name, item, "1 to half the shadow-map resolution"),
+                                             pcss.max_filter_texels);
+                            if (key == "rotate") return store(read_bool(name, item), pcss.rotate);
+                            return "unknown";
+                        });
+}
+
+std::string read_oim(const json& value, penumbra::OimParams& oim) {
+    return read_section("oim", value, "resolution, intervals, samples",
+                        [&](const std::string& key, const std::string& name, const json& item) -> std::string {
+                            if (key == "resolution")
+                                return store(read_int(name, item, "a power of two from 32 to 4096"), oim.resolution);
+                            if (key == "intervals") return store(read_int(name, item, "4, 8, 12 or 16"), oim.intervals);
+                            if (key == "samples")
+                                return store(read_int(name, item, "256, 512, 1024 or 2048"), oim.samples);
+                            return "unknown";
+                        });
+}
+
 // nlohmann's what() without its "[json.exception.parse_error.101] " prefix, on one line, with
 // the raw bytes it quotes from the file ("last read: '…'") escaped.
 std::string parse_message(const json::exception& e) {
@@ -108,7 +185,17 @@ Parsed<penumbra::Config> parse_config_json(std::string_view text, std::string_vi
     penumbra::Config config;
     for (const auto& [key, value] : object->items()) {
         std::string error;
-        if (key == "slices")
+        if (key == "technique")
+            error = store(read_enum<penumbra::Technique>(key, value), config.technique);
+        else if (key == "shadow_map")
+            error = read_shadow_map(value, config.shadow_map);
+        else if (key == "pcf")
+            error = read_pcf(value, config.pcf);
+        else if (key == "pcss")
+            error = read_pcss(value, config.pcss);
+        else if (key == "oim")
+            error = read_oim(value, config.oim);
+        else if (key == "slices")
             error = store(read_int(key, value, "1 to 32"), config.slices);
         else if (key == "resolution")
             error = store(read_int(key, value, "a power of two from 32 to 4096"), config.resolution);

@@ -1,9 +1,13 @@
 // penumbra/config.hpp — the one value that decides every line Penumbra emits.
 //
 //   penumbra::Config config{.slices = 8, .resolution = 256, .filter = penumbra::Filter::sat};
+//   penumbra::Config pcss{.technique = penumbra::Technique::pcss, .pcss = {.blocker_samples = 16, .filter_samples = 16}};
 //
-// `Config{}` is the default configuration (16 slices, 512², N-buffers, probabilistic fusion,
-// the paper's atlas packing, rectangular light, leak fix and fade on, OpenGL 4.5 core).
+// `Config{}` is the default configuration (occlusion textures: 16 slices, 512², N-buffers,
+// probabilistic fusion, the paper's atlas packing, rectangular light, leak fix and fade on,
+// OpenGL 4.5 core). `technique` picks the shadowing method; each technique reads only its own
+// fields plus `light` and `target` (occlusion textures: slices … self_shadow_fade; shadow map
+// techniques: shadow_map, and pcf or pcss), so the other fields never change its output.
 // Config is a structural literal type, so it can also be a template argument
 // (see penumbra/static_glsl.hpp).
 #pragma once
@@ -51,13 +55,59 @@ enum class Target : std::uint8_t {
     vulkan,  // GLSL 450 for SPIR-V: set/binding decorations, parameters in a uniform block
 };
 
+// The shadowing technique the emitted programs implement.
+enum class Technique : std::uint8_t {
+    occlusion, // occlusion textures (Eisemann & Décoret 2008): slices, prefiltered, fused
+    shadowmap, // one depth map from the light, one hardware comparison tap: hard shadows
+    pcf,       // percentage-closer filtering (Reeves et al. 1987): fixed kernel of comparison taps
+    pcss,      // percentage-closer soft shadows (Fernando 2005): blocker search, penumbra estimate, PCF
+    oim,       // occlusion interval maps (GPU Gems ch. 13): baked visibility intervals of the sun on a fixed path
+};
+
+// Where the PCF taps lie in the kernel.
+enum class TapPattern : std::uint8_t {
+    grid,    // N x N taps on a regular grid over the square of half-side `radius`
+    poisson, // k taps of a Poisson disk (best-candidate, fixed seed) over the disk of `radius`
+};
+
+// The depth map from the light shared by shadowmap, pcf and pcss (see penumbra/light_frame.hpp
+// for its camera). Depth is stored linearly: (z - near) / (far - near), z along the light's axis.
+struct ShadowMapParams {
+    int resolution = 1024;         // shadow map side in texels; a power of two, 32 to 8192 (target limit)
+    double constant_bias = 0.02;   // added to every occluder depth (scene units along the light axis); 0 to 10
+    double slope_bias = 1.5;       // times the occluder's depth change across one shadow-map texel
+                                   // (scene units per texel, from screen-space derivatives); 0 to 16
+
+    friend constexpr bool operator==(const ShadowMapParams&, const ShadowMapParams&) = default;
+};
+
+struct PcfParams {
+    TapPattern pattern = TapPattern::poisson; // where the taps lie
+    int grid_size = 4;             // grid: N, giving N x N taps; 1 to 16
+    int poisson_taps = 16;         // poisson: k taps; 1 to 64
+    double radius = 0.1;           // kernel half-extent on the receiver (scene units); > 0, up to 1000
+    bool rotate = true;            // per-pixel rotation of the pattern (hash of the world position)
+
+    friend constexpr bool operator==(const PcfParams&, const PcfParams&) = default;
+};
+
+struct PcssParams {
+    int blocker_samples = 16;      // Poisson taps of the blocker search; 1 to 64
+    int filter_samples = 16;       // Poisson comparison taps of the final PCF; 1 to 128
+    int max_filter_texels = 64;    // the penumbra filter's half-width is clamped to this many texels;
+                                   // 1 to half the shadow-map resolution
+    bool rotate = true;            // per-pixel rotation of both patterns (hash of the world position)
+
+    friend constexpr bool operator==(const PcssParams&, const PcssParams&) = default;
+};
+
 // Occlusion interval maps (Donnelly & Demers, GPU Gems ch. 13): per texel of a unique texture
 // parameterization, the times along the sun's fixed path at which it rises and sets there, baked
 // offline; shading averages that visibility over the window the sun's disk covers.
 struct OimParams {
     int resolution = 256; // interval-map side in texels; a power of two, 32 to 4096 (target limit)
     int intervals = 8;    // visibility intervals per texel: 4, 8, 12 or 16 (four per RGBA rise/fall pair)
-    int samples = 256;    // instants along the path that the bake traces: 256 to 4096 (the chapter: 256)
+    int samples = 256;    // instants along the path that the bake traces: 256, 512, 1024 or 2048 (the chapter: 256)
 
     friend constexpr bool operator==(const OimParams&, const OimParams&) = default;
 };
@@ -66,6 +116,7 @@ struct OimParams {
 constexpr int oim_pairs(const OimParams& oim) { return (oim.intervals + 3) / 4; }
 
 struct Config {
+    Technique technique = Technique::occlusion; // which method the programs implement
     int slices = 16;                        // slices along the light normal; 1 to 32 (four per RGBA texture)
     int resolution = 512;                   // occlusion texture side in texels; a power of two, 32 to 4096
     Filter filter = Filter::nbuffer;        // prefilter of the occlusion textures
@@ -75,13 +126,22 @@ struct Config {
     bool leak_fix = true;                   // paper §3.4.1: a fragment of slice k also marks slice k+1
     bool self_shadow_fade = true;           // paper §3.4.2: fade out the slice containing the point
     Target target = Target::glsl450;        // shading language of the output
-    OimParams oim{};                        // oim: the interval maps
+    ShadowMapParams shadow_map{};           // shadowmap, pcf, pcss: the depth map from the light
+    PcfParams pcf{};                        // pcf: the fixed kernel
+    PcssParams pcss{};                      // pcss: blocker search and filter
+    OimParams oim{};                        // oim: the interval maps (the sun's path: penumbra/sun_path.hpp)
 
     friend constexpr bool operator==(const Config&, const Config&) = default;
 };
 
 // Names as they appear on the command line, in JSON and in diagnostics.
 template <class Enum> struct EnumNames;
+template <> struct EnumNames<Technique> {
+    static constexpr std::array<std::string_view, 5> names{"occlusion", "shadowmap", "pcf", "pcss", "oim"};
+};
+template <> struct EnumNames<TapPattern> {
+    static constexpr std::array<std::string_view, 2> names{"grid", "poisson"};
+};
 template <> struct EnumNames<Filter> {
     static constexpr std::array<std::string_view, 4> names{"mipmap", "nbuffer", "sat", "gaussian"};
 };
@@ -115,6 +175,17 @@ template <class Enum> constexpr auto all_values() {
     std::array<Enum, EnumNames<Enum>::names.size()> values{};
     for (std::size_t i = 0; i < values.size(); ++i) values[i] = static_cast<Enum>(i);
     return values;
+}
+
+// True for the techniques built on one depth map from the light (shadowmap, pcf, pcss).
+constexpr bool uses_shadow_map(const Config& config) {
+    return config.technique == Technique::shadowmap || config.technique == Technique::pcf ||
+           config.technique == Technique::pcss;
+}
+
+// Number of comparison taps of the PCF kernel.
+constexpr int pcf_taps(const PcfParams& pcf) {
+    return pcf.pattern == TapPattern::grid ? pcf.grid_size * pcf.grid_size : pcf.poisson_taps;
 }
 
 // Number of RGBA textures that hold the slices: four slices per texture, the last one may be partial.

@@ -89,17 +89,30 @@ inline std::string border_wrap(const Config& config) {
     return limits(config.target).clamp_to_border ? "CLAMP_TO_BORDER" : "CLAMP_TO_EDGE";
 }
 
+// The shading programs' own parameters, after penumbraVisibility()'s.
+inline std::vector<Param> shading_deferred_params(const Config& config) {
+    return config.technique == Technique::oim ? oim_deferred_params() : deferred_params();
+}
+inline std::vector<Param> shading_fragment_params(const Config& config) {
+    return config.technique == Technique::oim ? oim_example_fragment_params() : example_fragment_params();
+}
+inline std::vector<Param> shading_vertex_params(const Config& config) {
+    return config.technique == Technique::oim ? oim_example_vertex_params() : example_vertex_params();
+}
+
 inline std::vector<Param> program_params(const Config& config, std::string_view program) {
     if (program == "slicing") return slicing_params();
     if (program == "pack_atlas") return pack_atlas_params();
     if (program == "nbuffer_level" || program == "gaussian_level") return level_params(config);
     if (program == "sat_shift") return sat_shift_params(config);
     if (program == "sat_pass") return sat_pass_params(config);
-    std::vector<Param> params = visibility_params(config);
-    const std::vector<Param> extra = program == "shading_deferred" ? deferred_params() : example_fragment_params();
+    if (program == "shadow_depth") return shadow_depth_params();
+    std::vector<Param> params = technique_visibility_params(config);
+    const std::vector<Param> extra =
+        program == "shading_deferred" ? shading_deferred_params(config) : shading_fragment_params(config);
     params.insert(params.end(), extra.begin(), extra.end());
     if (program == "shading_example")
-        for (Param& p : example_vertex_params()) params.push_back(std::move(p));
+        for (Param& p : shading_vertex_params(config)) params.push_back(std::move(p));
     return params;
 }
 
@@ -109,15 +122,17 @@ inline std::vector<ParamDesc> describe_params(const Config& config, std::string_
     // Group parameters into the same declaration groups the emitters use, so bindings match.
     std::vector<std::pair<std::string_view, std::vector<Param>>> groups;
     if (program == "shading_example" || program == "shading_deferred") {
-        groups.push_back({"PenumbraVisibility", visibility_params(config)});
+        groups.push_back({"PenumbraVisibility", technique_visibility_params(config)});
         if (program == "shading_example") {
-            groups.push_back({"PenumbraExample", example_fragment_params()});
-            groups.push_back({"PenumbraCamera", example_vertex_params()});
+            groups.push_back({"PenumbraExample", shading_fragment_params(config)});
+            groups.push_back({"PenumbraCamera", shading_vertex_params(config)});
         } else {
-            groups.push_back({"PenumbraDeferred", deferred_params()});
+            groups.push_back({"PenumbraDeferred", shading_deferred_params(config)});
         }
     } else {
-        groups.push_back({program == "slicing" ? "PenumbraSlicing" : "PenumbraPass", params});
+        groups.push_back({program == "slicing" ? "PenumbraSlicing" : program == "shadow_depth" ? "PenumbraShadowDepth"
+                                                                                            : "PenumbraPass",
+                          params});
     }
     std::vector<ParamDesc> out;
     int next_binding = 0;
@@ -159,9 +174,87 @@ inline int binding_of(const std::vector<ParamDesc>& params, std::string_view nam
 
 } // namespace detail
 
+namespace detail {
+
+// Shadow map techniques: a depth pass from the light, then shading. PCSS reads the depth twice:
+// with comparison (the filter) and as plain depth (the blocker search), from a copy.
+inline Layout describe_shadow_map_layout(const Config& config) {
+    Layout layout;
+    layout.config = config;
+    const int R = config.shadow_map.resolution;
+    for (const ProgramPlan& plan : program_plan(config)) {
+        ProgramDesc program{std::string(plan.name), {}, describe_params(config, plan.name)};
+        for (Artifact a : plan.stages) program.files.emplace_back(file_name(a));
+        layout.programs.push_back(std::move(program));
+    }
+    layout.textures.push_back({std::string(shadow_map_texture), "2D", "DEPTH_COMPONENT32F", R, R, 1, 1, "LINEAR",
+                               "LINEAR", "CLAMP_TO_EDGE",
+                               "shadow map: (z - near) / (far - near) along the light axis, biased; compared LEQUAL"});
+    layout.passes.push_back({"shadow_depth", "draw_scene", "shadow_depth", {}, {{std::string(shadow_map_texture), 0, -1}},
+                             {}, R, R, "depth attachment, clear depth to 1, depth test LESS, depth write, no culling"});
+    if (config.technique == Technique::pcss) {
+        layout.textures.push_back({"penumbra_shadowDepth", "2D", "DEPTH_COMPONENT32F", R, R, 1, 1, "NEAREST",
+                                   "NEAREST", "CLAMP_TO_EDGE", "copy of the shadow map read without comparison"});
+        layout.passes.push_back({"copy_shadow_depth", "copy", "", {{"", std::string(shadow_map_texture), 0}},
+                                 {{"penumbra_shadowDepth", 0, -1}}, {}, R, R, ""});
+    }
+    PassDesc shading{"shading", "draw_scene", "shading_example", {}, {}, {}, 0, 0,
+                     "the caller's framebuffer; or run shading_deferred over a G-buffer of world positions"};
+    for (const ParamDesc& p : layout.programs[1].parameters)
+        if (p.binding >= 0) shading.inputs.push_back({p.name, p.texture, p.binding});
+    layout.passes.push_back(std::move(shading));
+    for (Artifact a : artifacts(config)) layout.files.emplace_back(file_name(a));
+    layout.files.emplace_back("layout.json");
+    return layout;
+}
+
+// Occlusion interval maps (GPU Gems ch. 13): the rise/fall textures come from an offline bake
+// (nearest filtering: the edges must not be blended); shading reads them at the surface's unique
+// texture coordinates, in the example pass or over the caller's G-buffer of texture coordinates.
+inline Layout describe_oim_layout(const Config& config) {
+    Layout layout;
+    layout.config = config;
+    const int R = config.oim.resolution;
+    for (const ProgramPlan& plan : program_plan(config)) {
+        ProgramDesc program{std::string(plan.name), {}, describe_params(config, plan.name)};
+        for (Artifact a : plan.stages) program.files.emplace_back(file_name(a));
+        layout.programs.push_back(std::move(program));
+    }
+    for (int p = 0; p < oim_pairs(config.oim); ++p)
+        for (const bool fall : {false, true}) {
+            TextureDesc t;
+            t.name = (fall ? oim_fall_name(p) : oim_rise_name(p)).str();
+            t.target = "2D";
+            t.internal_format = "RGBA16F";
+            t.width = t.height = R;
+            t.min_filter = t.mag_filter = "NEAREST";
+            t.wrap = "CLAMP_TO_EDGE";
+            t.purpose = std::string("supplied by the bake: ") + (fall ? "fall" : "rise") + " times of intervals " +
+                        std::to_string(4 * p) + " to " + std::to_string(4 * p + 3) +
+                        " (path time t; k / samples, exact in 16-bit floats; unused intervals [0, 0])";
+            layout.textures.push_back(std::move(t));
+        }
+    PassDesc shading;
+    shading.name = "shading";
+    shading.action = "draw_scene";
+    shading.program = "shading_example";
+    shading.state = "the caller's framebuffer (vertex attribute 2: the bake's texture coordinates); or run "
+                    "shading_deferred over a G-buffer of texture coordinates";
+    for (const ParamDesc& p : layout.programs[0].parameters)
+        if (p.binding >= 0) shading.inputs.push_back({p.name, p.texture, p.binding});
+    layout.passes.push_back(std::move(shading));
+    for (Artifact a : artifacts(config)) layout.files.emplace_back(file_name(a));
+    layout.files.emplace_back("layout.json");
+    return layout;
+}
+
+} // namespace detail
+
 // The layout of a valid configuration. Precondition: is_valid(config).
 inline Layout describe_layout(const Config& config) {
     using namespace detail;
+    if (uses_shadow_map(config)) return describe_shadow_map_layout(config);
+    if (config.technique == Technique::oim) return describe_oim_layout(config);
     Layout layout;
     layout.config = config;
     const int R = config.resolution, T = texture_count(config), L = max_level(config);
@@ -328,6 +421,7 @@ inline std::string to_json(const Layout& layout) {
     };
     o += "  \"generator\": \"penumbra " + std::string(detail::version_string) + "\",\n";
     o += "  \"config\": {\n";
+    field("    ", "technique", json_string(to_string(c.technique)));
     field("    ", "slices", std::to_string(c.slices));
     field("    ", "resolution", std::to_string(c.resolution));
     field("    ", "filter", json_string(to_string(c.filter)));
@@ -336,7 +430,24 @@ inline std::string to_json(const Layout& layout) {
     field("    ", "light", json_string(to_string(c.light)));
     field("    ", "leak_fix", c.leak_fix ? "true" : "false");
     field("    ", "self_shadow_fade", c.self_shadow_fade ? "true" : "false");
-    field("    ", "target", json_string(to_string(c.target)), false);
+    field("    ", "target", json_string(to_string(c.target)));
+    auto real = [](double v) { return detail::format_float(v).str(); };
+    auto flag = [](bool v) { return std::string(v ? "true" : "false"); };
+    field("    ", "shadow_map",
+          "{\"resolution\": " + std::to_string(c.shadow_map.resolution) + ", \"constant_bias\": " +
+              real(c.shadow_map.constant_bias) + ", \"slope_bias\": " + real(c.shadow_map.slope_bias) + "}");
+    field("    ", "pcf",
+          "{\"pattern\": " + json_string(to_string(c.pcf.pattern)) + ", \"grid_size\": " +
+              std::to_string(c.pcf.grid_size) + ", \"poisson_taps\": " + std::to_string(c.pcf.poisson_taps) +
+              ", \"radius\": " + real(c.pcf.radius) + ", \"rotate\": " + flag(c.pcf.rotate) + "}");
+    field("    ", "pcss",
+          "{\"blocker_samples\": " + std::to_string(c.pcss.blocker_samples) + ", \"filter_samples\": " +
+              std::to_string(c.pcss.filter_samples) + ", \"max_filter_texels\": " +
+              std::to_string(c.pcss.max_filter_texels) + ", \"rotate\": " + flag(c.pcss.rotate) + "}");
+    field("    ", "oim",
+          "{\"resolution\": " + std::to_string(c.oim.resolution) + ", \"intervals\": " +
+              std::to_string(c.oim.intervals) + ", \"samples\": " + std::to_string(c.oim.samples) + "}",
+          false);
     o += "  },\n";
     field("  ", "textures_per_layer", std::to_string(layout.textures_per_layer));
     field("  ", "max_level", std::to_string(layout.max_level));

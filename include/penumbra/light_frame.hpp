@@ -1,8 +1,11 @@
-// penumbra/light_frame.hpp — the uniforms that place the slices: light frame, slicing camera,
-// slice depths, from a light and the scene's bounds (design.md §1). GLM only, no GL.
+// penumbra/light_frame.hpp — the uniforms that place the slices (occlusion textures: light frame,
+// slicing camera, slice depths) and the shadow-map camera (shadowmap, pcf, pcss), from a light and
+// the scene's bounds. GLM only, no GL.
 //
 //   penumbra::SliceFrame f = penumbra::slice_frame(light, bounds_min, bounds_max, config.slices);
 //   // penumbra_lightFromWorld = f.light_from_world, penumbra_sliceClipFromWorld = f.slice_clip_from_world, ...
+//   penumbra::ShadowFrame s = penumbra::shadow_frame(light, bounds_min, bounds_max);
+//   // penumbra_shadowClipFromWorld = s.shadow_clip_from_world, penumbra_shadowDepthRange = s.depth_range, ...
 #pragma once
 
 #include "light.hpp"
@@ -26,6 +29,28 @@ struct SliceFrame {
     float tan_angular_radius = 0.0f;       // penumbra_tanAngularRadius (sun)
     bool contained = true;                 // false: a bounds corner lies on or above the light plane,
                                            // or d hit its cap (the scene cannot be seen at a sane field of view)
+};
+
+// The shadow-map camera. Conventions: the light frame is right-handed, x along the light's u axis,
+// y along v, z = depth along the light's direction (growing into the scene), in scene units. The
+// shadow map's uv is (0, 0) at the -x, -y corner: uv = 0.5 + xy / (2 tan_half_fov z) (rect,
+// perspective from the light centre) or 0.5 + xy / (2 window_half_size) (sun, orthographic). Clip z
+// is 0 (no clipping in depth); the depth pass writes gl_FragDepth = (z - near) / (far - near), so
+// stored depth runs linearly from 0 at the near plane to 1 at the far plane, and LESS keeps the
+// nearest occluder.
+struct ShadowFrame {
+    glm::mat4 light_from_world{1.0f};       // penumbra_lightFromWorld
+    glm::mat4 shadow_clip_from_world{1.0f}; // penumbra_shadowClipFromWorld (GL clip space, z = 0)
+    glm::vec2 depth_range{0.0f, 1.0f};      // penumbra_shadowDepthRange: near, far along the light axis (scene units)
+    float tan_half_fov = 0.0f;              // penumbra_shadowTanHalfFov (rect): square frustum holding the bounds
+    float window_half_size = 0.0f;          // penumbra_windowHalfSize (sun): half side of the orthographic window
+    glm::vec2 light_size{0.0f};             // penumbra_lightSize (rect): width, height (scene units)
+    float tan_angular_radius = 0.0f;        // penumbra_tanAngularRadius (sun)
+    // penumbra_lightSizeUV (PCSS): rect: the light's width, height on the near plane in shadow-map uv,
+    // w / (2 tan_half_fov near) (Fernando 2005's LIGHT_SIZE_UV); sun: the cone's footprint growth per
+    // unit of depth in uv, 2 tan(angular radius) / (2 window_half_size).
+    glm::vec2 light_size_uv{0.0f};
+    bool contained = true; // false: a bounds corner lies on or behind the light plane (rect)
 };
 
 namespace detail {
@@ -121,6 +146,65 @@ inline SliceFrame slice_frame(const SunLight& sun, glm::dvec3 bounds_min, glm::d
     f.window_half_size = static_cast<float>(half);
     f.tan_angular_radius = static_cast<float>(std::tan(0.5 * sun.angular_diameter));
     f.slice_depths = detail::depth_range_slices(zmin, zmax, slices);
+    return f;
+}
+
+// Rectangular light: perspective from the light centre along its normal; the square frustum's
+// half angle is the smallest that holds every corner of the bounds; near and far are the bounds'
+// nearest and farthest depths.
+inline ShadowFrame shadow_frame(const RectLight& light, glm::dvec3 bounds_min, glm::dvec3 bounds_max) {
+    ShadowFrame f;
+    const glm::dvec3 u = glm::normalize(light.u_axis), v = glm::normalize(light.v_axis), n = light.normal();
+    const glm::dmat4 lfw = detail::frame_matrix(u, v, n, light.center);
+    const std::array<glm::dvec3, 8> corners = detail::box_corners(bounds_min, bounds_max);
+    double zmin = std::numeric_limits<double>::max(), zmax = std::numeric_limits<double>::lowest();
+    for (const glm::dvec3& corner : corners) {
+        const double z = (lfw * glm::dvec4(corner, 1.0)).z;
+        zmin = std::min(zmin, z);
+        zmax = std::max(zmax, z);
+    }
+    f.contained = zmin > 0.0;
+    const double extent = std::max(glm::length(bounds_max - bounds_min), 1e-6);
+    const double near = std::max(zmin, 1e-3 * extent), far = std::max(zmax, near + 1e-3 * extent);
+    double tan_half = 1e-6; // x / z is quasi-linear: its largest |value| over the box is at a corner
+    for (const glm::dvec3& corner : corners) {
+        const glm::dvec3 p = glm::dvec3(lfw * glm::dvec4(corner, 1.0));
+        tan_half = std::max({tan_half, std::abs(p.x) / std::max(p.z, near), std::abs(p.y) / std::max(p.z, near)});
+    }
+    tan_half *= 1.001;
+    // clip = (x / t, y / t, 0, z) in light-frame coordinates
+    glm::dmat4 clip_from_light(0.0);
+    clip_from_light[0][0] = 1.0 / tan_half;
+    clip_from_light[1][1] = 1.0 / tan_half;
+    clip_from_light[2][3] = 1.0;
+    f.light_from_world = glm::mat4(lfw);
+    f.shadow_clip_from_world = glm::mat4(clip_from_light * lfw);
+    f.depth_range = {static_cast<float>(near), static_cast<float>(far)};
+    f.tan_half_fov = static_cast<float>(tan_half);
+    f.light_size = {static_cast<float>(light.width), static_cast<float>(light.height)};
+    f.light_size_uv = glm::vec2(glm::dvec2(light.width, light.height) / (2.0 * tan_half * near));
+    return f;
+}
+
+// Sun: orthographic along the light direction over a square window holding the bounds (the same
+// frame as the sun's slicing, slice_frame(SunLight, ...)).
+inline ShadowFrame shadow_frame(const SunLight& sun, glm::dvec3 bounds_min, glm::dvec3 bounds_max) {
+    const SliceFrame slices = slice_frame(sun, bounds_min, bounds_max, 1);
+    ShadowFrame f;
+    f.light_from_world = slices.light_from_world;
+    f.shadow_clip_from_world = slices.slice_clip_from_world;
+    double zmin = std::numeric_limits<double>::max(), zmax = std::numeric_limits<double>::lowest();
+    for (const glm::dvec3& corner : detail::box_corners(bounds_min, bounds_max)) {
+        const double z = (glm::dmat4(slices.light_from_world) * glm::dvec4(corner, 1.0)).z;
+        zmin = std::min(zmin, z);
+        zmax = std::max(zmax, z);
+    }
+    const double pad = 1e-4 * std::max(zmax - zmin, 1e-6);
+    f.depth_range = {static_cast<float>(zmin - pad), static_cast<float>(zmax + pad)};
+    f.window_half_size = slices.window_half_size;
+    f.tan_angular_radius = slices.tan_angular_radius;
+    const float growth = 2.0f * f.tan_angular_radius / (2.0f * f.window_half_size);
+    f.light_size_uv = {growth, growth};
     return f;
 }
 

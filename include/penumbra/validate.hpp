@@ -73,6 +73,73 @@ constexpr void add_oim_problems(const Config& config, std::vector<Problem>& prob
             "in the 16-bit float maps)");
 }
 
+// A double as diagnostics print it; values no literal can hold are named, not formatted.
+constexpr Text format_value(double value) {
+    if (value != value) return Text("nan");
+    if (value > 1e9 || value < -1e9) return Text(value > 0 ? "a number above 1e9" : "a number below -1e9");
+    return format_float(value);
+}
+
+// The shadow map techniques read shadow_map, pcf or pcss, light and target; nothing else.
+constexpr std::vector<Problem> shadow_map_problems(const Config& config) {
+    std::vector<Problem> problems;
+    auto add = [&](std::string_view field, Text value, Text message) {
+        problems.push_back({field, value, cat(field, ": ", value, " ", message)});
+    };
+    auto int_range = [&](std::string_view field, int value, int lo, int hi, std::string_view why) {
+        if (value < lo || value > hi)
+            add(field, format_int(value), cat(why, "; allowed: ", format_int(lo), " to ", format_int(hi)));
+    };
+    // `!(lo <= v && v <= hi)` also catches NaN.
+    auto real_range = [&](std::string_view field, double value, double lo, double hi, bool lo_open,
+                          std::string_view units) {
+        const bool above_lo = lo_open ? value > lo : value >= lo;
+        if (!(above_lo && value <= hi))
+            add(field, format_value(value),
+                cat("is out of range; allowed: ", lo_open ? "more than " : "", format_float(lo), " to ",
+                    format_float(hi), " ", units));
+    };
+    if (!in_range(config.light))
+        add("light", format_int(static_cast<int>(config.light)), cat("is not a known value; allowed: ", joined_names<Light>()));
+    if (!in_range(config.target))
+        add("target", format_int(static_cast<int>(config.target)), cat("is not a known value; allowed: ", joined_names<Target>()));
+    if (!problems.empty()) return problems;
+
+    const ShadowMapParams& sm = config.shadow_map;
+    const int max_size = limits(config.target).max_texture_size < 8192 ? limits(config.target).max_texture_size : 8192;
+    if (sm.resolution < 32 || sm.resolution > 8192 || !is_power_of_two(sm.resolution))
+        add("shadow_map.resolution", format_int(sm.resolution),
+            "is not allowed; allowed: a power of two from 32 to 8192 (32, 64, 128, 256, 512, 1024, 2048, 4096, 8192)");
+    else if (sm.resolution > max_size)
+        add("shadow_map.resolution", format_int(sm.resolution),
+            cat("is larger than target '", to_string(config.target), "' guarantees; allowed: a power of two from 32 to ",
+                format_int(max_size)));
+    real_range("shadow_map.constant_bias", sm.constant_bias, 0.0, 10.0, false, "scene units");
+    real_range("shadow_map.slope_bias", sm.slope_bias, 0.0, 16.0, false, "(times the depth change per texel)");
+
+    if (config.technique == Technique::pcf) {
+        const PcfParams& pcf = config.pcf;
+        if (!in_range(pcf.pattern))
+            add("pcf.pattern", format_int(static_cast<int>(pcf.pattern)),
+                cat("is not a known value; allowed: ", joined_names<TapPattern>()));
+        else if (pcf.pattern == TapPattern::grid)
+            int_range("pcf.grid_size", pcf.grid_size, 1, 16, "is out of range (N gives N x N taps)");
+        else
+            int_range("pcf.poisson_taps", pcf.poisson_taps, 1, 64, "is out of range");
+        real_range("pcf.radius", pcf.radius, 0.0, 1000.0, true, "scene units");
+    }
+    if (config.technique == Technique::pcss) {
+        const PcssParams& pcss = config.pcss;
+        int_range("pcss.blocker_samples", pcss.blocker_samples, 1, 64, "is out of range");
+        int_range("pcss.filter_samples", pcss.filter_samples, 1, 128, "is out of range");
+        if (pcss.max_filter_texels < 1 || pcss.max_filter_texels > sm.resolution / 2)
+            add("pcss.max_filter_texels", format_int(pcss.max_filter_texels),
+                cat("is a kernel the ", format_int(sm.resolution), "-texel shadow map cannot hold; allowed: 1 to ",
+                    format_int(sm.resolution / 2), " (half the shadow-map resolution)"));
+    }
+    return problems;
+}
+
 constexpr std::vector<Problem> find_problems(const Config& config) {
     std::vector<Problem> problems;
     auto add = [&](std::string_view field, Text value, Text message) {
@@ -82,6 +149,15 @@ constexpr std::vector<Problem> find_problems(const Config& config) {
         if (!in_range(value))
             add(field, format_int(static_cast<int>(value)), cat("is not a known value; allowed: ", joined_names<Enum>()));
     };
+    enum_problem("technique", config.technique);
+    if (!problems.empty()) return problems;
+    if (uses_shadow_map(config)) return shadow_map_problems(config);
+    if (config.technique == Technique::oim) {
+        enum_problem("target", config.target);
+        if (problems.empty()) add_oim_problems(config, problems);
+        return problems;
+    }
+
     if (config.slices < 1 || config.slices > 32)
         add("slices", format_int(config.slices), "is out of range; allowed: 1 to 32");
     if (config.resolution < 32 || config.resolution > 4096 || !is_power_of_two(config.resolution))
@@ -93,7 +169,6 @@ constexpr std::vector<Problem> find_problems(const Config& config) {
     enum_problem("light", config.light);
     enum_problem("target", config.target);
     if (!problems.empty()) return problems; // the rules below need valid fields
-    add_oim_problems(config, problems);
 
     const std::string_view filter = to_string(config.filter);
     const std::string_view target = to_string(config.target);

@@ -96,3 +96,54 @@ TEST_CASE("light_frame: sun window covers the bounds") {
         CHECK(uv.x == doctest::Approx(0.5 + p.x / (2.0 * f.window_half_size)).epsilon(1e-4));
     }
 }
+
+TEST_CASE("shadow_frame: rect light, the frustum holds the bounds, depth runs 0 to 1, the snippet's uv formula") {
+    for (const penumbra::RectLight& light : {penumbra::RectLight{}, tilted_light()}) {
+        const glm::dvec3 lo(-5.0, 0.0, -4.0), hi(5.0, 3.0, 4.0);
+        const penumbra::ShadowFrame f = penumbra::shadow_frame(light, lo, hi);
+        CHECK(f.contained);
+        const double near = f.depth_range.x, far = f.depth_range.y;
+        CHECK(near > 0.0);
+        bool touches = false;
+        for (const glm::dvec3& c : penumbra::detail::box_corners(lo, hi)) {
+            const glm::dvec2 uv = uv_of(f.shadow_clip_from_world, c);
+            CHECK(uv.x >= 0.0);
+            CHECK(uv.x <= 1.0);
+            CHECK(uv.y >= 0.0);
+            CHECK(uv.y <= 1.0);
+            touches = touches || std::abs(uv.x) < 2e-3 || std::abs(uv.x - 1) < 2e-3 || std::abs(uv.y) < 2e-3 ||
+                      std::abs(uv.y - 1) < 2e-3;
+            const glm::dvec3 p = glm::dvec3(glm::dmat4(f.light_from_world) * glm::dvec4(c, 1.0));
+            const double stored = (p.z - near) / (far - near);
+            CHECK(stored >= -1e-5);
+            CHECK(stored <= 1.0 + 1e-5);
+            // penumbra_shadowCoord: uv = 0.5 + xy / (2 tan_half_fov z)
+            CHECK(uv.x == doctest::Approx(0.5 + p.x / (2.0 * f.tan_half_fov * p.z)).epsilon(1e-4));
+            CHECK(uv.y == doctest::Approx(0.5 + p.y / (2.0 * f.tan_half_fov * p.z)).epsilon(1e-4));
+        }
+        CHECK(touches); // the smallest frustum that holds the bounds
+        // LIGHT_SIZE_UV: the light's size on the near plane over the frustum's width there
+        CHECK(f.light_size_uv.x == doctest::Approx(light.width / (2.0 * f.tan_half_fov * near)).epsilon(1e-4));
+        CHECK(f.light_size_uv.y == doctest::Approx(light.height / (2.0 * f.tan_half_fov * near)).epsilon(1e-4));
+    }
+    penumbra::RectLight low; // bounds reach above the light plane
+    low.center = {0.0, 2.0, 0.0};
+    CHECK_FALSE(penumbra::shadow_frame(low, {-1, 0, -1}, {1, 4, 1}).contained);
+}
+
+TEST_CASE("shadow_frame: sun, orthographic window over the bounds, depth range of the bounds") {
+    penumbra::SunLight sun;
+    sun.direction = glm::normalize(glm::dvec3(0.3, -1.0, 0.2));
+    sun.angular_diameter = 0.1;
+    const glm::dvec3 lo(-5.0, 0.0, -4.0), hi(5.0, 3.0, 4.0);
+    const penumbra::ShadowFrame f = penumbra::shadow_frame(sun, lo, hi);
+    for (const glm::dvec3& c : penumbra::detail::box_corners(lo, hi)) {
+        const glm::dvec2 uv = uv_of(f.shadow_clip_from_world, c);
+        const glm::dvec3 p = glm::dvec3(glm::dmat4(f.light_from_world) * glm::dvec4(c, 1.0));
+        CHECK(uv.x == doctest::Approx(0.5 + p.x / (2.0 * f.window_half_size)).epsilon(1e-4));
+        CHECK(p.z >= f.depth_range.x);
+        CHECK(p.z <= f.depth_range.y);
+    }
+    CHECK(f.tan_angular_radius == doctest::Approx(std::tan(0.05)));
+    CHECK(f.light_size_uv.x == doctest::Approx(std::tan(0.05) / f.window_half_size).epsilon(1e-4));
+}

@@ -2,7 +2,7 @@
 // a forward example (Lambert + shadow) and a deferred pass that reads world positions.
 #pragma once
 
-#include "emit_visibility.hpp"
+#include "technique_visibility.hpp"
 
 namespace penumbra::detail {
 
@@ -29,7 +29,7 @@ constexpr Text example_fragment(const Config& config) {
     out.line("layout(location = 0) out vec4 penumbra_color;");
     out.blank();
     int binding = 0;
-    write_visibility(out, config, binding);
+    write_technique_visibility(out, config, binding);
     out.blank();
     write_params(out, config, example_fragment_params(), "PenumbraExample", binding);
     out.chunk("example_main");
@@ -50,7 +50,9 @@ void main()
 // The vertex stage's bindings follow the fragment stage's (visibility block, its samplers, the
 // example block), so both stages fit one Vulkan pipeline layout.
 constexpr int example_fragment_binding_count(const Config& config) {
-    return 1 + static_cast<int>(storage_samplers(config).size()) + 1;
+    int samplers = 0;
+    for (const Param& p : technique_visibility_params(config)) samplers += is_sampler(p) ? 1 : 0;
+    return 1 + samplers + 1;
 }
 
 constexpr Text example_vertex(const Config& config) {
@@ -84,7 +86,7 @@ constexpr Text deferred_fragment(const Config& config) {
     out.line("layout(location = 0) out vec4 penumbra_visibility;");
     out.blank();
     int binding = 0;
-    write_visibility(out, config, binding);
+    write_technique_visibility(out, config, binding);
     out.blank();
     write_params(out, config, deferred_params(), "PenumbraDeferred", binding);
     write_deferred_main(out);

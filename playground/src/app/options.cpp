@@ -23,13 +23,17 @@ using penumbra_gen::printable;
 constexpr std::string_view flag_list =
     "--headless, --scene, --size, --light-size, --out, --visibility, --reference, --samples, --metrics, "
     "--reference-out, --error-out, --slices, --resolution, --filter, --fusion, --packing, --light, --target, "
-    "--no-leak-fix, --no-fade, --config, --watch, --frames, --screenshot, --script, --help";
+    "--no-leak-fix, --no-fade, --config, --watch, --frames, --screenshot, --script, --help, --technique, "
+    "--shadow-resolution, --shadow-bias, --shadow-slope-bias, --pcf-pattern, --pcf-grid, --pcf-taps, --pcf-radius, "
+    "--pcss-blockers, --pcss-filter, --pcss-max-texels, --no-rotation";
 
 bool is_switch(std::string_view flag) {
-    return flag == "--headless" || flag == "--reference" || flag == "--no-leak-fix" || flag == "--no-fade";
+    return flag == "--headless" || flag == "--reference" || flag == "--no-leak-fix" || flag == "--no-fade" ||
+           penumbra_gen::is_technique_switch(flag);
 }
 
 bool takes_value(std::string_view flag) {
+    if (penumbra_gen::is_technique_flag(flag)) return true;
     for (std::string_view f : {"--scene", "--size", "--light-size", "--out", "--visibility", "--samples", "--metrics",
                                "--reference-out", "--error-out", "--slices", "--resolution", "--filter", "--fusion",
                                "--packing", "--light", "--target", "--config", "--watch", "--frames", "--screenshot",
@@ -130,6 +134,7 @@ ParsedOptions parse_options(const std::vector<std::string>& args) {
             if (flag == "--reference") options.reference = true;
             if (flag == "--no-leak-fix") flags.no_leak_fix = true;
             if (flag == "--no-fade") flags.no_fade = true;
+            penumbra_gen::set_technique_switch(flag, flags.technique);
             continue;
         }
         if (!takes_value(flag)) {
@@ -151,7 +156,8 @@ ParsedOptions parse_options(const std::vector<std::string>& args) {
         } else if (flag == "--resolution") {
             error = parse_int(flag, value, number, "a power of two from 32 to 4096");
             if (error.empty()) flags.resolution = number;
-        } else if (flag == "--filter") error = parse_name(flag, value, flags.filter);
+        } else if (penumbra_gen::is_technique_flag(flag)) error = penumbra_gen::parse_technique_flag(flag, value, flags.technique);
+        else if (flag == "--filter") error = parse_name(flag, value, flags.filter);
         else if (flag == "--fusion") error = parse_name(flag, value, flags.fusion);
         else if (flag == "--packing") error = parse_name(flag, value, flags.packing);
         else if (flag == "--light") error = parse_name(flag, value, flags.light);
@@ -228,6 +234,8 @@ std::string usage() {
                                     to_string(d.target)));
     out += line("--no-leak-fix", "turn off the leak fix (paper §3.4.1; default on)");
     out += line("--no-fade", "turn off the self-shadow fade (paper §3.4.2; default on)");
+    out += "\ntechnique (occlusion: the flags above; shadowmap, pcf, pcss: these, plus --light and --target):\n";
+    out += penumbra_gen::technique_usage(25);
     out += line("--config FILE.json", "configuration from JSON (the keys of Config, or a layout.json)");
     out += "\nheadless output:\n";
     out += line("--out FILE.png", "the shaded image (required with --headless)");

@@ -14,23 +14,6 @@ namespace penumbra::detail {
 constexpr Text oim_rise_name(int pair) { return cat("penumbra_rise", format_int(pair)); }
 constexpr Text oim_fall_name(int pair) { return cat("penumbra_fall", format_int(pair)); }
 
-constexpr Text describe_oim(const Config& config) {
-    const OimParams& o = config.oim;
-    return cat("technique oim | interval maps ", format_int(o.resolution), "x", format_int(o.resolution), " | ",
-               format_int(o.intervals), " intervals in ", format_int(oim_pairs(o)), " rise/fall pair(s) | ",
-               format_int(o.samples), " bake samples along the path | target ", to_string(config.target));
-}
-
-constexpr void write_oim_preamble(LineWriter& out, const Config& config, std::string_view title) {
-    write_version(out, config);
-    out.line("// Penumbra ", version_string, " - ", title);
-    out.line("// ", describe_oim(config));
-    out.line("// Rise and fall times are path times t in [0, 1] (the sun's path over the day), baked offline.",
-             " Generated: edit the configuration, not this file.");
-    write_precision(out, config);
-    out.blank();
-}
-
 // Parameters of penumbraVisibility(): the window, then one rise and one fall texture per pair.
 constexpr std::vector<Param> oim_visibility_params(const Config& config) {
     std::vector<Param> params;
@@ -78,7 +61,7 @@ constexpr void write_oim_visibility(LineWriter& out, const Config& config, int& 
 constexpr Text oim_visibility_snippet(const Config& config) {
     LineWriter out;
     out.line("// Penumbra ", version_string, " - penumbra_visibility.glsl: float penumbraVisibility(vec2 texCoord)");
-    out.line("// ", describe_oim(config));
+    out.line("// ", describe(config));
     out.line("// Include after the version directive (and, for ES, precision statements). texCoord: the surface's unique texture");
     out.line("// coordinates, the ones the bake used. Generated: edit the configuration, not this file.");
     out.blank();
@@ -90,7 +73,7 @@ constexpr Text oim_visibility_snippet(const Config& config) {
 // One full-screen pass over the G-buffer of texture coordinates, drawn at its size.
 constexpr Text oim_deferred_fragment(const Config& config) {
     LineWriter out;
-    write_oim_preamble(out, config, "deferred visibility pass: penumbraVisibility of a G-buffer of texture coordinates");
+    write_preamble(out, config, "deferred visibility pass: penumbraVisibility of a G-buffer of texture coordinates");
     out.line("layout(location = 0) out vec4 penumbra_visibility;");
     out.blank();
     int binding = 0;
@@ -122,7 +105,7 @@ constexpr std::vector<Param> oim_example_vertex_params() {
 
 constexpr Text oim_example_fragment(const Config& config) {
     LineWriter out;
-    write_oim_preamble(out, config, "example shading pass: Lambert term times penumbraVisibility, fragment stage");
+    write_preamble(out, config, "example shading pass: Lambert term times penumbraVisibility, fragment stage");
     out.chunk("oim_example_inputs");
     out.line(varying(config, "in", 0, "vec3", "penumbra_worldPos"), " // scene units");
     out.line(varying(config, "in", 1, "vec3", "penumbra_worldNormal"));
@@ -154,7 +137,7 @@ constexpr int oim_example_fragment_binding_count(const Config& config) { return 
 
 constexpr Text oim_example_vertex(const Config& config) {
     LineWriter out;
-    write_oim_preamble(out, config, "example shading pass, vertex stage");
+    write_preamble(out, config, "example shading pass, vertex stage");
     out.chunk("oim_example_vertex_inputs");
     out.line("layout(location = 0) in vec3 penumbra_position; // world space (scene units)");
     out.line("layout(location = 1) in vec3 penumbra_normal;   // world space");

@@ -1,0 +1,160 @@
+#include "technique_flags.hpp"
+
+#include "arguments.hpp"
+
+#include <charconv>
+#include <cmath>
+
+namespace penumbra_gen {
+
+const std::string_view technique_flag_list =
+    "--technique, --shadow-resolution, --shadow-bias, --shadow-slope-bias, --pcf-pattern, --pcf-grid, --pcf-taps, "
+    "--pcf-radius, --pcss-blockers, --pcss-filter, --pcss-max-texels, --no-rotation, --oim-resolution, "
+    "--oim-intervals, --oim-samples";
+
+namespace {
+
+constexpr std::string_view value_flags[] = {"--technique",   "--shadow-resolution", "--shadow-bias",
+                                            "--shadow-slope-bias", "--pcf-pattern", "--pcf-grid",
+                                            "--pcf-taps",    "--pcf-radius",        "--pcss-blockers",
+                                            "--pcss-filter", "--pcss-max-texels", "--oim-resolution",
+                                            "--oim-intervals", "--oim-samples"};
+
+std::string parse_int(std::string_view flag, std::string_view text, std::optional<int>& slot,
+                      std::string_view allowed) {
+    int value = 0;
+    const char* end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (text.empty() || ec == std::errc::invalid_argument || ptr != end)
+        return std::string(flag) + ": '" + printable(text) + "' is not an integer; allowed: " + std::string(allowed);
+    if (ec == std::errc::result_out_of_range)
+        return std::string(flag) + ": " + printable(text) + " is out of range; allowed: " + std::string(allowed);
+    slot = value;
+    return {};
+}
+
+std::string parse_real(std::string_view flag, std::string_view text, std::optional<double>& slot,
+                       std::string_view allowed) {
+    double value = 0.0;
+    const char* end = text.data() + text.size();
+    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+    if (text.empty() || ec != std::errc() || ptr != end || !std::isfinite(value))
+        return std::string(flag) + ": '" + printable(text) + "' is not a number; allowed: " + std::string(allowed);
+    slot = value;
+    return {};
+}
+
+template <class Enum> std::string parse_name(std::string_view flag, std::string_view text, std::optional<Enum>& slot) {
+    if (std::optional<Enum> value = penumbra::parse_enum<Enum>(text)) {
+        slot = *value;
+        return {};
+    }
+    return std::string(flag) + ": '" + printable(text) + "' is not allowed; allowed: " + allowed_names<Enum>();
+}
+
+} // namespace
+
+bool is_technique_switch(std::string_view flag) { return flag == "--no-rotation"; }
+
+bool is_technique_flag(std::string_view flag) {
+    for (std::string_view f : value_flags)
+        if (f == flag) return true;
+    return false;
+}
+
+void set_technique_switch(std::string_view flag, TechniqueFlags& flags) {
+    if (flag == "--no-rotation") flags.no_rotation = true;
+}
+
+std::string parse_technique_flag(std::string_view flag, std::string_view value, TechniqueFlags& flags) {
+    if (flag == "--technique") return parse_name(flag, value, flags.technique);
+    if (flag == "--shadow-resolution")
+        return parse_int(flag, value, flags.shadow_resolution, "a power of two from 32 to 8192");
+    if (flag == "--shadow-bias") return parse_real(flag, value, flags.shadow_bias, "0 to 10 scene units");
+    if (flag == "--shadow-slope-bias") return parse_real(flag, value, flags.shadow_slope_bias, "0 to 16");
+    if (flag == "--pcf-pattern") return parse_name(flag, value, flags.pcf_pattern);
+    if (flag == "--pcf-grid") return parse_int(flag, value, flags.pcf_grid, "1 to 16");
+    if (flag == "--pcf-taps") return parse_int(flag, value, flags.pcf_taps, "1 to 64");
+    if (flag == "--pcf-radius") return parse_real(flag, value, flags.pcf_radius, "more than 0 to 1000 scene units");
+    if (flag == "--pcss-blockers") return parse_int(flag, value, flags.pcss_blockers, "1 to 64");
+    if (flag == "--pcss-filter") return parse_int(flag, value, flags.pcss_filter, "1 to 128");
+    if (flag == "--oim-resolution")
+        return parse_int(flag, value, flags.oim_resolution, "a power of two from 32 to 4096");
+    if (flag == "--oim-intervals") return parse_int(flag, value, flags.oim_intervals, "4, 8, 12 or 16");
+    if (flag == "--oim-samples") return parse_int(flag, value, flags.oim_samples, "256, 512, 1024 or 2048");
+    return parse_int(flag, value, flags.pcss_max_texels, "1 to half the shadow-map resolution"); // --pcss-max-texels
+}
+
+penumbra::Config apply(const TechniqueFlags& flags, penumbra::Config config) {
+    if (flags.technique) config.technique = *flags.technique;
+    if (flags.shadow_resolution) config.shadow_map.resolution = *flags.shadow_resolution;
+    if (flags.shadow_bias) config.shadow_map.constant_bias = *flags.shadow_bias;
+    if (flags.shadow_slope_bias) config.shadow_map.slope_bias = *flags.shadow_slope_bias;
+    if (flags.pcf_pattern) config.pcf.pattern = *flags.pcf_pattern;
+    if (flags.pcf_grid) {
+        config.pcf.grid_size = *flags.pcf_grid;
+        if (!flags.pcf_pattern) config.pcf.pattern = penumbra::TapPattern::grid; // --pcf-grid N means a grid
+    }
+    if (flags.pcf_taps) {
+        config.pcf.poisson_taps = *flags.pcf_taps;
+        if (!flags.pcf_pattern) config.pcf.pattern = penumbra::TapPattern::poisson;
+    }
+    if (flags.pcf_radius) config.pcf.radius = *flags.pcf_radius;
+    if (flags.pcss_blockers) config.pcss.blocker_samples = *flags.pcss_blockers;
+    if (flags.pcss_filter) config.pcss.filter_samples = *flags.pcss_filter;
+    if (flags.pcss_max_texels) config.pcss.max_filter_texels = *flags.pcss_max_texels;
+    if (flags.no_rotation) config.pcf.rotate = config.pcss.rotate = false;
+    if (flags.oim_resolution) config.oim.resolution = *flags.oim_resolution;
+    if (flags.oim_intervals) config.oim.intervals = *flags.oim_intervals;
+    if (flags.oim_samples) config.oim.samples = *flags.oim_samples;
+    return config;
+}
+
+std::string technique_usage(std::size_t column) {
+    using namespace penumbra;
+    const Config d{};
+    auto line = [&](std::string_view flag, std::string_view text) {
+        std::string out = "  " + std::string(flag);
+        out.resize(std::max<std::size_t>(out.size() + 1, column), ' ');
+        return out + std::string(text) + "\n";
+    };
+    auto real = [](double v) {
+        std::string s = std::to_string(v);
+        while (s.size() > 1 && s.back() == '0') s.pop_back();
+        if (s.back() == '.') s.pop_back();
+        return s;
+    };
+    std::string out;
+    out += line("--technique T", "shadowing technique: " + allowed_names<Technique>() + " (default " +
+                                     std::string(to_string(d.technique)) + ")");
+    out += line("--shadow-resolution R", "shadowmap, pcf, pcss: shadow map side in texels, a power of two 32 to "
+                                         "8192 (default " + std::to_string(d.shadow_map.resolution) + ")");
+    out += line("--shadow-bias B", "constant depth bias in scene units along the light axis, 0 to 10 (default " +
+                                       real(d.shadow_map.constant_bias) + ")");
+    out += line("--shadow-slope-bias S", "slope bias: S times the depth change across one texel, 0 to 16 "
+                                         "(default " + real(d.shadow_map.slope_bias) + ")");
+    out += line("--pcf-pattern P", "pcf: tap pattern, " + allowed_names<TapPattern>() + " (default " +
+                                       std::string(to_string(d.pcf.pattern)) + ")");
+    out += line("--pcf-grid N", "pcf: N x N grid taps, 1 to 16 (implies --pcf-pattern grid; default " +
+                                    std::to_string(d.pcf.grid_size) + ")");
+    out += line("--pcf-taps K", "pcf: K Poisson taps, 1 to 64 (implies --pcf-pattern poisson; default " +
+                                    std::to_string(d.pcf.poisson_taps) + ")");
+    out += line("--pcf-radius X", "pcf: kernel radius on the receiver in scene units, above 0 to 1000 (default " +
+                                      real(d.pcf.radius) + ")");
+    out += line("--pcss-blockers N", "pcss: blocker-search samples, 1 to 64 (default " +
+                                         std::to_string(d.pcss.blocker_samples) + ")");
+    out += line("--pcss-filter N", "pcss: filter samples, 1 to 128 (default " +
+                                       std::to_string(d.pcss.filter_samples) + ")");
+    out += line("--pcss-max-texels N", "pcss: largest filter half-width in texels, 1 to resolution / 2 (default " +
+                                           std::to_string(d.pcss.max_filter_texels) + ")");
+    out += line("--no-rotation", "pcf, pcss: no per-pixel rotation of the tap pattern (default on)");
+    out += line("--oim-resolution R", "oim: interval-map side in texels, a power of two 32 to 4096 (default " +
+                                          std::to_string(d.oim.resolution) + ")");
+    out += line("--oim-intervals N", "oim: visibility intervals per texel, 4, 8, 12 or 16 (default " +
+                                         std::to_string(d.oim.intervals) + ")");
+    out += line("--oim-samples N", "oim: instants the bake traces along the sun's path, 256, 512, 1024 or 2048 "
+                                       "(default " + std::to_string(d.oim.samples) + ")");
+    return out;
+}
+
+} // namespace penumbra_gen

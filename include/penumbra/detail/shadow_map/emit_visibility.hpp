@@ -1,0 +1,171 @@
+// penumbra/detail/shadow_map/emit_visibility.hpp — float penumbraVisibility(vec3 worldPos) for the
+// shadow map techniques:
+//   shadowmap  one hardware comparison tap (bilinear, 2x2 texels): hard shadows;
+//   pcf        a fixed kernel of comparison taps, radius in scene units on the receiver;
+//   pcss       Fernando 2005: blocker search over the region the light subtends, parallel-planes
+//              penumbra estimate, PCF over that width (clamped to pcss.max_filter_texels).
+// Tap counts, tap offsets (poisson.hpp), radii and clamps are literals; the tap loops are written out
+// tap by tap, one comment per group of taps, no loop statement.
+#pragma once
+
+#include "parameters.hpp"
+#include "poisson.hpp"
+
+namespace penumbra::detail {
+
+// The blocker search uses its own pattern, so it does not sample where the filter does.
+inline constexpr std::uint64_t blocker_seed = 0xB10C4E5ull;
+
+constexpr Text shadow_taps_label(const Config& config) {
+    switch (config.technique) {
+    case Technique::pcf:
+        return cat(format_int(pcf_taps(config.pcf)), " ", to_string(config.pcf.pattern), " taps, radius ",
+                   format_float(config.pcf.radius), " scene units, rotation ", on_off(config.pcf.rotate));
+    case Technique::pcss:
+        return cat(format_int(config.pcss.blocker_samples), " blocker / ", format_int(config.pcss.filter_samples),
+                   " filter taps, filter at most ", format_int(config.pcss.max_filter_texels), " texels, rotation ",
+                   on_off(config.pcss.rotate));
+    default: return Text("1 comparison tap");
+    }
+}
+
+// penumbra_shadowCoord: xy shadow-map uv, z the depth as the map stores it, w depth along the light axis.
+constexpr void write_shadow_coord_function(LineWriter& out, const Config& config) {
+    out.chunk("shadow_coord");
+    out.comment("xy: shadow-map uv, z: depth as stored, (z - near) / (far - near), w: depth along the light axis");
+    out.line("vec4 penumbra_shadowCoord(vec3 worldPos)");
+    out.line("{");
+    out.line("vec3 p = (penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz;");
+    if (config.light == Light::rect) {
+        out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
+        out.comment("perspective from the light centre, square frustum");
+        out.line("vec2 uv = 0.5 + p.xy / (2.0 * penumbra_shadowTanHalfFov * p.z);");
+    } else {
+        out.comment("orthographic along the sun's direction");
+        out.line("vec2 uv = 0.5 + p.xy / (2.0 * penumbra_windowHalfSize);");
+    }
+    out.line("vec2 range = penumbra_shadowDepthRange;");
+    out.line("return vec4(uv, (p.z - range.x) / (range.y - range.x), p.z);");
+    out.line("}");
+    out.blank();
+    if (config.technique == Technique::shadowmap) return;
+    out.comment("shadow-map uv per scene unit, measured on the receiver at depth z");
+    out.line("float penumbra_uvPerUnit(float z)");
+    out.line("{");
+    if (config.light == Light::rect)
+        out.line("return 1.0 / (2.0 * penumbra_shadowTanHalfFov * z);");
+    else
+        out.line("return 1.0 / (2.0 * penumbra_windowHalfSize);");
+    out.line("}");
+    out.blank();
+}
+
+constexpr bool rotates(const Config& config) {
+    return (config.technique == Technique::pcf && config.pcf.rotate) ||
+           (config.technique == Technique::pcss && config.pcss.rotate);
+}
+
+constexpr void write_rotation_function(LineWriter& out, const Config& config) {
+    if (!rotates(config)) return;
+    out.chunk("rotation");
+    out.comment("per-pixel rotation of the tap pattern: an angle from a hash of the world position");
+    out.line("mat2 penumbra_rotation(vec3 worldPos)");
+    out.line("{");
+    out.line("float angle = 6.283185307 * fract(sin(dot(worldPos, vec3(12.9898, 78.233, 37.719))) * 43758.5453);");
+    out.line("float c = cos(angle);");
+    out.line("float s = sin(angle);");
+    out.line("return mat2(c, s, -s, c);");
+    out.line("}");
+    out.blank();
+}
+
+constexpr Text tap_offset(const Config& config, const Tap& tap, std::string_view scale) {
+    const Text v = cat("vec2(", format_float(tap.x), ", ", format_float(tap.y), ")");
+    return choose(rotates(config), cat("penumbra_rot * ", v, " * ", scale), cat(v, " * ", scale));
+}
+
+// One line per tap (the blocker search: two), a comment before each group of `group` taps.
+template <class WriteTap>
+constexpr void write_taps(LineWriter& out, const std::vector<Tap>& taps, int group, std::string_view what,
+                          WriteTap write_tap) {
+    for (int i = 0; i < static_cast<int>(taps.size()); ++i) {
+        if (i % group == 0) {
+            const int last = i + group - 1 < static_cast<int>(taps.size()) - 1 ? i + group - 1
+                                                                                : static_cast<int>(taps.size()) - 1;
+            out.line("// ", what, " ", format_int(i), choose(last > i, cat(" to ", format_int(last)), Text()));
+        }
+        write_tap(taps[static_cast<std::size_t>(i)]);
+    }
+}
+
+constexpr void write_comparison_taps(LineWriter& out, const Config& config, const std::vector<Tap>& taps, int group,
+                                     std::string_view what, std::string_view scale) {
+    out.line("float penumbra_lit = 0.0;");
+    write_taps(out, taps, group, what, [&](const Tap& tap) {
+        out.line("penumbra_lit += textureLod(", shadow_map_texture, ", vec3(coord.xy + ", tap_offset(config, tap, scale),
+                 ", coord.z), 0.0);");
+    });
+    out.line("return penumbra_lit * ", format_float(1.0 / static_cast<double>(taps.size())), ";");
+}
+
+constexpr void write_pcss_body(LineWriter& out, const Config& config) {
+    const PcssParams& pcss = config.pcss;
+    const bool rect = config.light == Light::rect;
+    out.comment("Fernando 2005, step 1: blocker search over the region the light subtends on the near plane");
+    if (rect)
+        out.line("vec2 search = min(0.5 * penumbra_lightSizeUV * (coord.w - penumbra_shadowDepthRange.x) / coord.w, vec2(0.5));");
+    else
+        out.line("vec2 search = min(0.5 * penumbra_lightSizeUV * (coord.w - penumbra_shadowDepthRange.x), vec2(0.5));");
+    out.line("vec2 penumbra_blocker = vec2(0.0); // x: sum of blocker depths (as stored), y: blocker count");
+    out.line("float d;");
+    write_taps(out, poisson_disk(pcss.blocker_samples, blocker_seed), 4, "blocker taps", [&](const Tap& tap) {
+        out.line("d = textureLod(penumbra_shadowDepth, coord.xy + ", tap_offset(config, tap, "search"), ", 0.0).r;");
+        out.line("penumbra_blocker += step(d, coord.z) * vec2(d, 1.0);");
+    });
+    out.comment("no blocker: fully lit (a real branch: the filter is skipped)");
+    out.line("if (penumbra_blocker.y == 0.0) return 1.0;");
+    out.line("vec2 range = penumbra_shadowDepthRange;");
+    out.line("float zBlocker = range.x + penumbra_blocker.x / penumbra_blocker.y * (range.y - range.x);");
+    out.comment("step 2, parallel planes: w_p = (d_receiver - d_blocker) * w_light / d_blocker, on the receiver");
+    if (rect)
+        out.line("vec2 penumbraWidth = (coord.w - zBlocker) * penumbra_lightSize / zBlocker;");
+    else
+        out.line("vec2 penumbraWidth = vec2(2.0 * (coord.w - zBlocker) * penumbra_tanAngularRadius);");
+    out.line("// step 3: PCF over half that width each side, in shadow-map uv, at most ",
+             format_int(pcss.max_filter_texels), " texels");
+    out.line("vec2 filterUV = min(0.5 * penumbraWidth * penumbra_uvPerUnit(coord.w), vec2(",
+             format_float(static_cast<double>(pcss.max_filter_texels) / config.shadow_map.resolution), "));");
+    write_comparison_taps(out, config, poisson_disk(pcss.filter_samples), 4, "filter taps", "filterUV");
+}
+
+// Declarations and functions of penumbraVisibility for a shadow map technique.
+constexpr void write_shadow_visibility(LineWriter& out, const Config& config, int& next_binding) {
+    write_params(out, config, shadow_visibility_params(config), "PenumbraVisibility", next_binding);
+    write_shadow_coord_function(out, config);
+    write_rotation_function(out, config);
+    out.chunk("visibility");
+    out.comment(cat("Fraction of the light visible from worldPos: 1 lit, 0 in shadow (", to_string(config.technique),
+                    ": ", shadow_taps_label(config), ")."));
+    out.line("float penumbraVisibility(vec3 worldPos)");
+    out.line("{");
+    out.line("vec4 coord = penumbra_shadowCoord(worldPos);");
+    if (rotates(config)) out.line("mat2 penumbra_rot = penumbra_rotation(worldPos);");
+    if (config.technique == Technique::shadowmap) {
+        out.comment("one comparison tap; the hardware filters the 2x2 comparisons around it bilinearly");
+        out.line("return textureLod(", shadow_map_texture, ", vec3(coord.xy, coord.z), 0.0);");
+    } else if (config.technique == Technique::pcf) {
+        const PcfParams& pcf = config.pcf;
+        out.comment(cat("kernel radius: ", format_float(pcf.radius),
+                        " scene units on the receiver, in shadow-map uv, at most half the map"));
+        out.line("float radius = min(", format_float(pcf.radius), " * penumbra_uvPerUnit(coord.w), 0.5);");
+        if (pcf.pattern == TapPattern::grid)
+            write_comparison_taps(out, config, grid_taps(pcf.grid_size), pcf.grid_size, "grid row, taps", "radius");
+        else
+            write_comparison_taps(out, config, poisson_disk(pcf.poisson_taps), 4, "taps", "radius");
+    } else {
+        write_pcss_body(out, config);
+    }
+    out.line("}");
+}
+
+} // namespace penumbra::detail
