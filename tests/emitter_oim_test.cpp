@@ -1,7 +1,6 @@
 // Occlusion interval maps (GPU Gems ch. 13) as text: one labelled evaluation per rise/fall pair,
 // no loop, the chapter's min/max/saturate/dot; validation of the oim fields. No glslang, no GL.
 #include <penumbra/penumbra.hpp>
-#include <penumbra/detail/oim/emit_oim.hpp>
 
 #include <doctest/doctest.h>
 
@@ -26,11 +25,11 @@ std::string first_error(const Config& config) {
 
 TEST_CASE("oim: the evaluation is unrolled per rise/fall pair, two fetches each") {
     for (int intervals : {4, 8, 12, 16}) {
-        Config config;
+        Config config{.technique = Technique::oim};
         config.oim.intervals = intervals;
         CAPTURE(intervals);
         REQUIRE(is_valid(config));
-        const std::string snippet = detail::oim_visibility_snippet(config).str();
+        const std::string snippet = emit_file(config, Artifact::visibility_snippet).text;
         const std::size_t start = snippet.find("float penumbraVisibility(vec2 texCoord)");
         REQUIRE(start != std::string::npos);
         const std::string body = snippet.substr(start, snippet.find("\n}\n", start) - start);
@@ -50,7 +49,7 @@ TEST_CASE("oim: the evaluation is unrolled per rise/fall pair, two fetches each"
 
 TEST_CASE("oim: invalid fields are rejected with their message") {
     auto with = [](auto change) {
-        Config c;
+        Config c{.technique = Technique::oim};
         change(c.oim);
         return first_error(c);
     };
@@ -59,8 +58,34 @@ TEST_CASE("oim: invalid fields are rejected with their message") {
     CHECK(with([](OimParams& o) { o.samples = 128; }).starts_with("oim.samples: 128 is not allowed; allowed: 256, 512"));
     CHECK(with([](OimParams& o) { o.samples = 1000; }).starts_with("oim.samples: 1000 is not allowed"));
     CHECK(with([](OimParams& o) { o.resolution = 100; }).starts_with("oim.resolution: 100 is not allowed"));
-    Config es;
-    es.target = Target::essl300;
+    Config es{.technique = Technique::oim, .target = Target::essl300};
     es.oim.resolution = 4096;
     CHECK(first_error(es).starts_with("oim.resolution: 4096 is larger than target 'essl300' guarantees; allowed: up to 2048"));
+    // the occlusion-texture fields are not the technique's: out-of-range values there do not matter
+    Config other{.technique = Technique::oim, .slices = 99};
+    CHECK(first_error(other) == "");
+}
+
+TEST_CASE("oim: the layout marks the maps as baked, nearest, one rise and one fall per pair") {
+    Config config{.technique = Technique::oim};
+    config.oim.intervals = 12;
+    const Layout layout = describe_layout(config);
+    REQUIRE(layout.textures.size() == 6);
+    for (const TextureDesc& t : layout.textures) {
+        CHECK(t.internal_format == "RGBA16F");
+        CHECK(t.width == 256);
+        CHECK(t.min_filter == "NEAREST");
+        CHECK(t.purpose.starts_with("supplied by the bake"));
+    }
+    CHECK(layout.textures[4].name == "penumbra_rise2");
+    CHECK(layout.textures[5].name == "penumbra_fall2");
+    REQUIRE(layout.programs.size() == 2);
+    const std::string json = to_json(layout);
+    CHECK(json.find("\"technique\": \"oim\"") != std::string::npos);
+    CHECK(json.find("\"oim\": {\"resolution\": 256, \"intervals\": 12, \"samples\": 256}") != std::string::npos);
+    // the deferred program reads the G-buffer of texture coordinates after the six maps
+    bool texcoords = false;
+    for (const ParamDesc& p : layout.programs[1].parameters)
+        if (p.name == "penumbra_texCoords") texcoords = p.binding == 6;
+    CHECK(texcoords);
 }

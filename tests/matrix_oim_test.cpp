@@ -1,6 +1,5 @@
 // Occlusion interval maps: every program of the parameter matrix compiles and links with glslang.
 #include <penumbra/penumbra.hpp>
-#include <penumbra/detail/oim/emit_oim.hpp>
 #include <penumbra/validation.hpp>
 
 #include <doctest/doctest.h>
@@ -12,8 +11,7 @@ TEST_CASE("oim: every interval count, resolution and target compiles and links w
     for (Target target : all_values<Target>())
         for (int intervals : {4, 8, 12, 16})
             for (int resolution : {32, 256, 2048}) {
-                Config config{.slices = 4, .resolution = 256}; // occlusion fields valid for every target
-                config.target = target;
+                Config config{.technique = Technique::oim, .target = target};
                 config.oim.intervals = intervals;
                 config.oim.resolution = resolution;
                 if (!is_valid(config)) { // a map larger than the target guarantees
@@ -21,15 +19,10 @@ TEST_CASE("oim: every interval count, resolution and target compiles and links w
                     ++rejected;
                     continue;
                 }
-                const Program deferred{"shading_deferred",
-                                       {{"penumbra_fullscreen.vert", Stage::vertex, detail::fullscreen_vertex(config).str()},
-                                        {"penumbra_oim_deferred.frag", Stage::fragment,
-                                         detail::oim_deferred_fragment(config).str()}}};
-                const Program example{"shading_example",
-                                      {{"penumbra_oim_shading.vert", Stage::vertex, detail::oim_example_vertex(config).str()},
-                                       {"penumbra_oim_shading.frag", Stage::fragment,
-                                        detail::oim_example_fragment(config).str()}}};
-                for (const Program& program : {deferred, example}) {
+                const Result<Emission> emission = emit(config);
+                REQUIRE(emission.value);
+                REQUIRE(emission.value->programs.size() == 2); // shading_example, shading_deferred
+                for (const Program& program : emission.value->programs) {
                     ++programs;
                     const std::vector<ShaderDiagnostic> diagnostics = validate_program(program, target);
                     for (const ShaderDiagnostic& d : diagnostics) MESSAGE(format(d));
