@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <random>
 #include <set>
 #include <sstream>
@@ -161,12 +162,44 @@ TEST_CASE("--validate passes the emitted programs through glslang") {
     }
 }
 
+TEST_CASE("layout.json (version 2): phases, structured state, the deferred pass and its textures") {
+    const fs::path dir = scratch().fresh("layout_v2");
+    REQUIRE(run_gen(with_out({"--packing", "array"}, dir)).exit_code == 0);
+    const nlohmann::json layout = nlohmann::json::parse(read_text(dir / "layout.json"));
+    CHECK(layout.at("layout_version") == 2);
+    CHECK(layout.at("technique") == "occlusion");
+    const std::string result = layout.at("result");
+    std::map<std::string, nlohmann::json> textures;
+    for (const nlohmann::json& t : layout.at("textures")) textures[t.at("name")] = t;
+    REQUIRE(textures.count(result) == 1);
+    CHECK(textures.at(result).at("size") == "output");
+    const nlohmann::json& world = textures.at("penumbra_worldPositions");
+    CHECK(world.at("source") == "caller");
+    CHECK(world.at("internal_format") == "RGBA32F");
+    CHECK(textures.at("penumbra_levels").at("border_color") == nlohmann::json::array({0, 0, 0, 0}));
+    int screen_passes = 0;
+    for (const nlohmann::json& pass : layout.at("passes")) {
+        CHECK(pass.at("state").is_object());
+        CHECK(pass.at("state").at("blend").is_boolean());
+        if (pass.at("phase") != "screen") continue;
+        ++screen_passes;
+        CHECK(pass.at("program") == "shading_deferred");
+        CHECK(pass.at("outputs").at(0).at("texture") == result);
+        bool reads_world = false;
+        for (const nlohmann::json& in : pass.at("inputs")) reads_world = reads_world || in.at("texture") == "penumbra_worldPositions";
+        CHECK(reads_world);
+    }
+    CHECK(screen_passes == 1);
+    CHECK(layout.at("passes").at(0).at("state").at("blend_equation") == "MAX");
+}
+
 TEST_CASE("--config reads a config object or a whole layout.json; flags override it") {
     const fs::path first = scratch().fresh("from-json");
     REQUIRE(run_gen(with_out({"--config", write_text("config.json", valid_config_json).string()}, first))
                 .exit_code == 0);
     const nlohmann::json layout = nlohmann::json::parse(read_text(first / "layout.json"));
-    CHECK(layout.at("config") == nlohmann::json::parse(valid_config_json));
+    const nlohmann::json given = nlohmann::json::parse(valid_config_json);
+    for (const auto& [key, value] : given.items()) CHECK(layout.at("config").at(key) == value);
 
     // layout.json itself, and its "config" object alone, give back the same layout.json.
     const fs::path whole = scratch().fresh("from-layout");
@@ -503,4 +536,61 @@ TEST_CASE("fuzz: truncated, random and mutated config files exit 0 or 2, never c
         fs::remove(file, ec);
     }
     CHECK(written >= 1); // some mutations leave a valid configuration
+}
+
+TEST_CASE("--technique and each technique's flags: files, layout.json, --help, messages, exit codes") {
+    const std::vector<std::vector<std::string>> cases{
+        {"--technique", "shadowmap"},
+        {"--technique", "pcf", "--pcf-grid", "3", "--pcf-radius", "0.25", "--no-rotation", "--target", "essl300"},
+        {"--technique", "pcf", "--pcf-taps", "32", "--light", "sun", "--target", "vulkan"},
+        {"--technique", "pcss", "--pcss-blockers", "17", "--pcss-filter", "34", "--shadow-resolution", "512",
+         "--shadow-bias", "0.01", "--shadow-slope-bias", "2", "--target", "glsl330"},
+    };
+    for (const std::vector<std::string>& args : cases) {
+        CAPTURE(joined(args));
+        const fs::path dir = scratch().fresh("technique");
+        std::vector<std::string> full = with_out(args, dir);
+        full.push_back("--validate");
+        const Run run = run_gen(full);
+        INFO(run.err);
+        REQUIRE(run.exit_code == 0);
+        CHECK(listing(dir) == layout_files(dir));
+        CHECK(listing(dir).count("penumbra_shadow_depth.frag") == 1);
+        CHECK(listing(dir).count("penumbra_visibility.glsl") == 1);
+        const nlohmann::json layout = nlohmann::json::parse(read_text(dir / "layout.json"));
+        CHECK(layout.at("config").at("technique") == args[1]);
+        // layout.json gives back the same files
+        const fs::path again = scratch().fresh("technique-again");
+        REQUIRE(run_gen(with_out({"--config", (dir / "layout.json").string()}, again)).exit_code == 0);
+        for (const std::string& name : listing(dir)) CHECK(read_text(again / name) == read_text(dir / name));
+    }
+    const fs::path pcss = scratch().fresh("pcss-flags");
+    REQUIRE(run_gen(with_out({"--technique", "pcss", "--pcss-blockers", "17", "--pcss-filter", "34"}, pcss))
+                .exit_code == 0);
+    const nlohmann::json config = nlohmann::json::parse(read_text(pcss / "layout.json")).at("config");
+    CHECK(config.at("pcss").at("blocker_samples") == 17);
+    CHECK(config.at("pcss").at("filter_samples") == 34);
+
+    const std::vector<std::pair<std::vector<std::string>, std::string>> bad{
+        {{"--technique", "vsm"}, "--technique: 'vsm' is not allowed; allowed: occlusion, shadowmap, pcf, pcss"},
+        {{"--technique", "pcss", "--pcss-filter", "0"}, "pcss.filter_samples: 0 is out of range; allowed: 1 to 128"},
+        {{"--technique", "pcf", "--pcf-radius", "wide"}, "--pcf-radius: 'wide' is not a number"},
+        {{"--technique", "pcss", "--shadow-resolution", "100"}, "shadow_map.resolution: 100 is not allowed"},
+        {{"--no-rotation=1"}, "--no-rotation: takes no value"},
+    };
+    for (const auto& [args, expected] : bad) {
+        CAPTURE(joined(args));
+        const fs::path dir = scratch().fresh("technique-bad");
+        const Run run = run_gen(with_out(args, dir));
+        CHECK(run.exit_code == 2);
+        CHECK(run.first_error_line().find(expected) != std::string::npos);
+        CHECK(!fs::exists(dir));
+    }
+    const Run help = run_gen({"--help"});
+    for (const char* flag : {"--technique", "--shadow-resolution", "--shadow-bias", "--shadow-slope-bias",
+                             "--pcf-pattern", "--pcf-grid", "--pcf-taps", "--pcf-radius", "--pcss-blockers",
+                             "--pcss-filter", "--pcss-max-texels", "--no-rotation"})
+        CHECK_MESSAGE(help.out.find(flag) != std::string::npos, flag);
+    for (std::string_view name : penumbra::EnumNames<penumbra::Technique>::names)
+        CHECK(help.out.find(name) != std::string::npos);
 }

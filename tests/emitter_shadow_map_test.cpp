@@ -3,6 +3,7 @@
 // each other, compile time = run time, layout. No glslang, no GL.
 #include <penumbra/penumbra.hpp>
 #include <penumbra/static_glsl.hpp>
+#include <penumbra/texture_memory.hpp>
 
 #include <doctest/doctest.h>
 
@@ -223,4 +224,21 @@ TEST_CASE("shadow map layouts: a depth pass, the shading programs, every referen
         const std::string json = to_json(layout);
         CHECK(json.find("\"technique\": \"" + std::string(to_string(config.technique)) + "\"") != std::string::npos);
     }
+}
+
+TEST_CASE("texture memory of a layout: formats, mip chains, arrays") {
+    // shadow map 1024², 32-bit depth: 4 MiB; PCSS keeps a plain-depth copy as well
+    CHECK(texture_bytes(describe_layout(Config{.technique = Technique::pcf})) == 4ll * 1024 * 1024);
+    CHECK(texture_bytes(describe_layout(Config{.technique = Technique::pcss, .shadow_map = {.resolution = 512}})) ==
+          2ll * 4 * 512 * 512);
+    // occlusion, mipmap atlas: T·R × R RGBA8 with a full chain
+    const Config mip{.slices = 4, .resolution = 64, .filter = Filter::mipmap};
+    long long expected = 64ll * 64 * 4; // the slices array: one RGBA8 layer
+    for (int w = 64, h = 64;; w = std::max(w / 2, 1), h = std::max(h / 2, 1)) {
+        expected += 4ll * w * h;
+        if (w == 1 && h == 1) break;
+    }
+    CHECK(texture_bytes(describe_layout(mip)) == expected);
+    CHECK(bytes_per_texel("RGBA16F") == 8);
+    CHECK(bytes_per_texel("no such format") == 0);
 }

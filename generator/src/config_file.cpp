@@ -15,7 +15,7 @@ namespace {
 using nlohmann::json;
 
 constexpr std::string_view key_list =
-    "technique, slices, resolution, filter, fusion, packing, light, leak_fix, self_shadow_fade, target, shadow_map, "
+    "slices, resolution, filter, fusion, packing, light, leak_fix, self_shadow_fade, target, technique, shadow_map, "
     "pcf, pcss, oim";
 
 std::string type_of(const json& value) {

@@ -10,26 +10,40 @@
 #include "detail/artifacts.hpp"
 #include "validate.hpp"
 
+#include <array>
+#include <cstdio>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace penumbra {
 
+inline constexpr int layout_version = 2; // "layout_version" in layout.json
+
 struct TextureDesc {
     std::string name;
     std::string target;          // "2D", "2D_ARRAY", "3D" (GL_TEXTURE_… / VK_IMAGE_TYPE_…)
-    std::string internal_format; // "RGBA8", "RGBA16F", "RGBA32F"
-    int width = 0, height = 0;
+    // "RGBA8", "RGBA16F", "RGBA32F", "R8", "R16F", "R32F", "RG16F", "RG32F", "RGBA32UI",
+    // "DEPTH_COMPONENT24", "DEPTH_COMPONENT32F"
+    std::string internal_format;
+    int width = 0, height = 0;   // 0 × 0 when size is "output"
     int depth = 1;               // layers of a 2D array, depth of a 3D texture, 1 otherwise
     int mip_levels = 1;
-    std::string min_filter, mag_filter; // "NEAREST", "LINEAR", "LINEAR_MIPMAP_LINEAR"
-    std::string wrap;            // "CLAMP_TO_BORDER" (border 0,0,0,0) or "CLAMP_TO_EDGE"
+    std::string min_filter, mag_filter; // "NEAREST", "LINEAR", "LINEAR_MIPMAP_LINEAR", "NEAREST_MIPMAP_NEAREST"
+    std::string wrap;            // "CLAMP_TO_BORDER" (colour border_color) or "CLAMP_TO_EDGE"
+    std::array<float, 4> border_color{0.0f, 0.0f, 0.0f, 0.0f}; // used when wrap is CLAMP_TO_BORDER
+    std::string size = "fixed";    // "fixed": width × height; "output": the output image's size (per frame)
+    std::string source = "passes"; // "passes": written by the layout's passes; "caller": the engine fills it
+                                   // every frame; "bake": uploaded once from an offline bake
+    std::string compare;           // "" or a compare func ("LEQUAL", …): depth texture read with
+                                   // hardware comparison (sampler2DShadow)
     std::string purpose;
 };
 
 struct ParamDesc {
     std::string name, type, meaning, units;
+    std::string source;          // plain uniforms: "light" (uniform_values.hpp), "pass" (int_uniforms), "camera"
     int binding = -1;            // sampler: texture unit / Vulkan binding; -1 for plain uniforms
     std::string texture;         // sampler: the texture bound to it when the program runs its usual pass
     std::string block;           // Vulkan: uniform block holding this value
@@ -46,13 +60,32 @@ struct ProgramDesc {
 struct AttachmentDesc {
     std::string texture;
     int level = 0;
-    int layer = -1; // layer of an array / depth slice of a 3D texture; -1 for a 2D texture
+    int layer = -1;             // layer of an array / depth slice of a 3D texture; -1 for a 2D texture
+    std::string kind = "color"; // "color" (colour attachment i = i-th colour output) or "depth"
 };
 
 struct BindingDesc {
     std::string sampler; // parameter name in the program
     std::string texture;
     int binding = 0;
+    int level = -1;      // -1: all levels; n: the pass reads only level n (base = max level = n while it
+                         // runs), so it may render another level of the same texture (min-max mip chains)
+};
+
+// Fixed-function state of a pass. Blend, depth test and culling are off unless set; polygon
+// offset is on when factor or units is non-zero.
+struct RenderState {
+    bool blend = false;
+    std::string blend_equation = "ADD"; // "ADD", "MAX", "MIN"
+    std::string blend_src = "ONE", blend_dst = "ZERO";
+    bool depth_test = false;
+    std::string depth_func = "LESS";    // "LESS", "LEQUAL", "ALWAYS", …
+    bool depth_write = false;
+    std::array<bool, 4> color_mask{true, true, true, true};
+    std::string cull = "NONE";          // "NONE", "BACK", "FRONT"
+    std::optional<std::array<float, 4>> clear_color; // cleared before drawing when set
+    std::optional<float> clear_depth;
+    float polygon_offset_factor = 0.0f, polygon_offset_units = 0.0f; // slope-scaled depth bias
 };
 
 struct PassDesc {
@@ -63,19 +96,26 @@ struct PassDesc {
     std::string action;
     std::string program;
     std::vector<BindingDesc> inputs;
-    std::vector<AttachmentDesc> outputs; // colour attachment i = outputs[i]
+    std::vector<AttachmentDesc> outputs;
     std::vector<std::pair<std::string, int>> int_uniforms;
-    int viewport_width = 0, viewport_height = 0; // 0: the caller's (shading passes)
-    std::string state;                           // blend / clear / depth state the pass needs
+    int viewport_width = 0, viewport_height = 0; // 0 × 0 in phase "screen": the output size
+    RenderState state;
+    // "shadow": run when the scene or the light changes (Runtime::build); "screen": run every frame
+    // at the output size over the caller's textures (Runtime::run_screen); "example": drawn by the
+    // engine itself with its camera (the runtime does not run it)
+    std::string phase = "shadow";
 };
 
 struct Layout {
+    int version = layout_version;
+    std::string technique = "occlusion";
     Config config;
     int textures_per_layer = 0; // T: RGBA occlusion textures, four slices each
     int max_level = 0;          // L = log2(resolution)
     std::vector<TextureDesc> textures;
     std::vector<ProgramDesc> programs;
     std::vector<PassDesc> passes;
+    std::string result; // the texture holding the visibility after the screen phase
     std::vector<std::string> files; // every file an emission writes, layout.json included
 };
 
@@ -83,6 +123,12 @@ namespace detail {
 
 constexpr std::string_view level_format(const Config& config) {
     return config.target == Target::essl300 ? "RGBA8" : "RGBA16F"; // ES 3.0 cannot render to half floats
+}
+
+// The screen-phase result: a format every target can render to. ES 3.0 renders R32F / R16F only
+// with EXT_color_buffer_float; R8 is colour-renderable in core ES 3.0 (8 bits of visibility).
+constexpr std::string_view visibility_format(const Config& config) {
+    return config.target == Target::essl300 ? "R8" : "R32F";
 }
 
 inline std::string border_wrap(const Config& config) {
@@ -149,6 +195,7 @@ inline std::vector<ParamDesc> describe_params(const Config& config, std::string_
             desc.units = std::string(p.units);
             desc.binding = bindings[i];
             desc.texture = p.texture.str();
+            if (!is_sampler(p)) desc.source = std::string(p.source);
             if (!is_sampler(p) && is_vulkan(config)) {
                 // std140: scalars align to 4, vec2 to 8, vec3/vec4/mat4 to 16
                 const int size = p.type == "mat4" ? 64 : p.type == "vec4" ? 16 : p.type == "vec3" ? 12
@@ -262,11 +309,6 @@ inline Layout describe_layout(const Config& config) {
     layout.max_level = L;
     const std::string wrap = border_wrap(config);
     const std::string level_fmt(level_format(config));
-    auto texture = [&](std::string name, std::string target, std::string format, int w, int h, int d, int mips,
-                       std::string min, std::string mag, std::string purpose) {
-        layout.textures.push_back({std::move(name), std::move(target), std::move(format), w, h, d, mips,
-                                   std::move(min), std::move(mag), wrap, std::move(purpose)});
-    };
 
     // Programs with their parameters, in pass order.
     for (const ProgramPlan& plan : program_plan(config)) {
@@ -279,11 +321,47 @@ inline Layout describe_layout(const Config& config) {
             if (p.name == program) return p.parameters;
         return layout.programs.front().parameters;
     };
+    auto texture = [&](std::string name, std::string target, std::string format, int w, int h, int d, int mips,
+                       std::string min, std::string mag, std::string purpose) -> TextureDesc& {
+        TextureDesc t;
+        t.name = std::move(name);
+        t.target = std::move(target);
+        t.internal_format = std::move(format);
+        t.width = w;
+        t.height = h;
+        t.depth = d;
+        t.mip_levels = mips;
+        t.min_filter = std::move(min);
+        t.mag_filter = std::move(mag);
+        t.wrap = wrap;
+        t.purpose = std::move(purpose);
+        layout.textures.push_back(std::move(t));
+        return layout.textures.back();
+    };
+    auto pass = [&](std::string name, std::string action, std::string program, std::vector<BindingDesc> inputs,
+                    std::vector<AttachmentDesc> outputs, std::vector<std::pair<std::string, int>> ints, int w, int h,
+                    RenderState state = {}, std::string phase = "shadow") {
+        for (BindingDesc& b : inputs)
+            if (!program.empty()) b.binding = binding_of(params_of(program), b.sampler);
+        PassDesc p;
+        p.name = std::move(name);
+        p.action = std::move(action);
+        p.program = std::move(program);
+        p.inputs = std::move(inputs);
+        p.outputs = std::move(outputs);
+        p.int_uniforms = std::move(ints);
+        p.viewport_width = w;
+        p.viewport_height = h;
+        p.state = std::move(state);
+        p.phase = std::move(phase);
+        layout.passes.push_back(std::move(p));
+    };
+
+    // Full-screen passes: no blending, no depth test, an empty vertex array, 3 vertices.
     auto fullscreen = [&](std::string name, std::string program, std::vector<BindingDesc> inputs,
                           AttachmentDesc output, std::vector<std::pair<std::string, int>> ints, int w, int h) {
-        for (BindingDesc& b : inputs) b.binding = binding_of(params_of(program), b.sampler);
-        layout.passes.push_back({std::move(name), "fullscreen", std::move(program), std::move(inputs), {std::move(output)},
-                                 std::move(ints), w, h, "no blending, no depth test, empty vertex array, 3 vertices"});
+        pass(std::move(name), "fullscreen", std::move(program), std::move(inputs), {std::move(output)}, std::move(ints),
+             w, h);
     };
 
     // Storage, and where the slicing pass writes slice texture t.
@@ -329,8 +407,12 @@ inline Layout describe_layout(const Config& config) {
                 "level being built (a texture cannot be sampled and rendered at once)");
     }
 
-    layout.passes.push_back({"slicing", "draw_scene", "slicing", {}, slicing_outputs, {}, R, R,
-                             "clear colour to 0, blend equation MAX (factors ONE, ONE), no depth test, no culling"});
+    RenderState max_blend; // a texel is covered when any triangle covers it: blend MAX over a cleared target
+    max_blend.blend = true;
+    max_blend.blend_equation = "MAX";
+    max_blend.blend_src = max_blend.blend_dst = "ONE";
+    max_blend.clear_color = std::array<float, 4>{0.0f, 0.0f, 0.0f, 0.0f};
+    pass("slicing", "draw_scene", "slicing", {}, slicing_outputs, {}, R, R, max_blend);
 
     // Prefilter passes.
     const std::string level_program = config.filter == Filter::gaussian ? "gaussian_level" : "nbuffer_level";
@@ -340,7 +422,7 @@ inline Layout describe_layout(const Config& config) {
     }
     if (config.filter == Filter::mipmap) {
         const std::string storage = config.packing == Packing::atlas ? "penumbra_occlusionAtlas" : "penumbra_occlusion";
-        layout.passes.push_back({"mipmaps", "generate_mipmap", "", {}, {{storage, 0, -1}}, {}, 0, 0, ""});
+        pass("mipmaps", "generate_mipmap", "", {}, {{storage, 0, -1}}, {}, 0, 0);
     } else if (config.filter == Filter::sat) {
         const bool atlas = config.packing == Packing::atlas;
         const std::string final_name = atlas ? "penumbra_satAtlas" : "penumbra_sat";
@@ -375,19 +457,39 @@ inline Layout describe_layout(const Config& config) {
                 const std::string storage = array ? "penumbra_levels" : volume_name(t).str();
                 fullscreen(level_program, level_program, {{"penumbra_source", storage}}, {"penumbra_scratch", 0, -1},
                            {step, {"penumbra_sourceLayer", array ? (l - 1) * T + t : l - 1}}, R, R);
-                layout.passes.push_back({"copy_level", "copy", "", {{"", "penumbra_scratch", 0}},
-                                         {{storage, 0, array ? l * T + t : l}}, {}, R, R, ""});
+                pass("copy_level", "copy", "", {{"", "penumbra_scratch", 0}}, {{storage, 0, array ? l * T + t : l}}, {},
+                     R, R);
             }
         }
     }
 
-    // Shading: the example program; shading_deferred or the engine's own shader including
-    // penumbra_visibility.glsl bind the same storage samplers.
-    PassDesc shading{"shading", "draw_scene", "shading_example", {}, {}, {}, 0, 0,
-                     "the caller's framebuffer; or run shading_deferred over a G-buffer of world positions"};
+    // Screen phase: the deferred visibility over the caller's G-buffer, at the output size.
+    TextureDesc& world = texture("penumbra_worldPositions", "2D", "RGBA32F", 0, 0, 1, 1, "NEAREST", "NEAREST",
+                                 "G-buffer filled by the engine every frame: xyz world position, w = 1 on geometry, "
+                                 "0 on the background; read with texelFetch (no filtering)");
+    world.wrap = "CLAMP_TO_EDGE";
+    world.size = "output";
+    world.source = "caller";
+    TextureDesc& visibility = texture("penumbra_visibility", "2D", std::string(visibility_format(config)), 0, 0, 1, 1,
+                                      "NEAREST", "NEAREST", "visibility of each output pixel, 0 shadowed to 1 lit");
+    visibility.wrap = "CLAMP_TO_EDGE";
+    visibility.size = "output";
+    layout.result = visibility.name;
+    std::vector<BindingDesc> deferred_inputs;
+    for (const ParamDesc& p : params_of("shading_deferred"))
+        if (p.binding >= 0) deferred_inputs.push_back({p.name, p.texture, p.binding});
+    pass("shading", "fullscreen", "shading_deferred", deferred_inputs, {{layout.result, 0, -1}}, {}, 0, 0, {}, "screen");
+
+    // Example phase: the engine draws its scene with shading_example (or its own shader including
+    // penumbra_visibility.glsl, binding the same storage samplers) into its own framebuffer.
+    std::vector<BindingDesc> example_inputs;
     for (const ParamDesc& p : params_of("shading_example"))
-        if (p.binding >= 0) shading.inputs.push_back({p.name, p.texture, p.binding});
-    layout.passes.push_back(std::move(shading));
+        if (p.binding >= 0) example_inputs.push_back({p.name, p.texture, p.binding});
+    RenderState depth_tested;
+    depth_tested.depth_test = depth_tested.depth_write = true;
+    depth_tested.clear_color = std::array<float, 4>{0.0f, 0.0f, 0.0f, 1.0f};
+    depth_tested.clear_depth = 1.0f;
+    pass("shading_example", "draw_scene", "shading_example", example_inputs, {}, {}, 0, 0, depth_tested, "example");
 
     for (Artifact a : artifacts(config)) layout.files.emplace_back(file_name(a));
     layout.files.emplace_back("layout.json");
@@ -409,6 +511,33 @@ inline std::string json_string(std::string_view text) {
     return out + "\"";
 }
 
+inline std::string json_number(float value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", static_cast<double>(value));
+    return text;
+}
+
+inline std::string json_floats(const std::array<float, 4>& values) {
+    std::string out = "[";
+    for (std::size_t i = 0; i < values.size(); ++i) out += (i ? ", " : "") + json_number(values[i]);
+    return out + "]";
+}
+
+inline std::string json_state(const RenderState& s) {
+    auto b = [](bool v) { return std::string(v ? "true" : "false"); };
+    std::string o = "{\"blend\": " + b(s.blend) + ", \"blend_equation\": " + json_string(s.blend_equation) +
+                    ", \"blend_src\": " + json_string(s.blend_src) + ", \"blend_dst\": " + json_string(s.blend_dst) +
+                    ", \"depth_test\": " + b(s.depth_test) + ", \"depth_func\": " + json_string(s.depth_func) +
+                    ", \"depth_write\": " + b(s.depth_write) + ", \"color_mask\": [" + b(s.color_mask[0]) + ", " +
+                    b(s.color_mask[1]) + ", " + b(s.color_mask[2]) + ", " + b(s.color_mask[3]) +
+                    "], \"cull\": " + json_string(s.cull) + ", \"clear_color\": " +
+                    (s.clear_color ? json_floats(*s.clear_color) : "null") +
+                    ", \"clear_depth\": " + (s.clear_depth ? json_number(*s.clear_depth) : "null") +
+                    ", \"polygon_offset_factor\": " + json_number(s.polygon_offset_factor) +
+                    ", \"polygon_offset_units\": " + json_number(s.polygon_offset_units) + "}";
+    return o;
+}
+
 } // namespace detail
 
 // layout.json: the layout as JSON (two-space indentation, keys as in the C++ structs).
@@ -420,6 +549,8 @@ inline std::string to_json(const Layout& layout) {
         o += std::string(indent) + json_string(key) + ": " + value + (comma ? ",\n" : "\n");
     };
     o += "  \"generator\": \"penumbra " + std::string(detail::version_string) + "\",\n";
+    field("  ", "layout_version", std::to_string(layout.version));
+    field("  ", "technique", json_string(layout.technique));
     o += "  \"config\": {\n";
     field("    ", "technique", json_string(to_string(c.technique)));
     field("    ", "slices", std::to_string(c.slices));
@@ -458,8 +589,11 @@ inline std::string to_json(const Layout& layout) {
              ", \"internal_format\": " + json_string(t.internal_format) + ", \"width\": " + std::to_string(t.width) +
              ", \"height\": " + std::to_string(t.height) + ", \"depth\": " + std::to_string(t.depth) +
              ", \"mip_levels\": " + std::to_string(t.mip_levels) + ", \"min_filter\": " + json_string(t.min_filter) +
-             ", \"mag_filter\": " + json_string(t.mag_filter) + ", \"wrap\": " + json_string(t.wrap) +
-             ", \"purpose\": " + json_string(t.purpose) + "}" + (i + 1 < layout.textures.size() ? ",\n" : "\n");
+             ", \"mag_filter\": " + json_string(t.mag_filter) + ", \"wrap\": " + json_string(t.wrap);
+        if (t.wrap == "CLAMP_TO_BORDER") o += ", \"border_color\": " + detail::json_floats(t.border_color);
+        o += ", \"size\": " + json_string(t.size) + ", \"source\": " + json_string(t.source) +
+             ", \"compare\": " + json_string(t.compare) + ", \"purpose\": " + json_string(t.purpose) + "}" +
+             (i + 1 < layout.textures.size() ? ",\n" : "\n");
     }
     o += "  ],\n  \"programs\": [\n";
     for (std::size_t i = 0; i < layout.programs.size(); ++i) {
@@ -471,6 +605,7 @@ inline std::string to_json(const Layout& layout) {
             const ParamDesc& d = p.parameters[u];
             o += "      {\"name\": " + json_string(d.name) + ", \"type\": " + json_string(d.type) +
                  ", \"meaning\": " + json_string(d.meaning) + ", \"units\": " + json_string(d.units);
+            if (!d.source.empty()) o += ", \"source\": " + json_string(d.source);
             if (d.binding >= 0) o += ", \"binding\": " + std::to_string(d.binding) + ", \"texture\": " + json_string(d.texture);
             if (d.offset >= 0)
                 o += ", \"block\": " + json_string(d.block) + ", \"block_binding\": " + std::to_string(d.block_binding) +
@@ -482,24 +617,26 @@ inline std::string to_json(const Layout& layout) {
     o += "  ],\n  \"passes\": [\n";
     for (std::size_t i = 0; i < layout.passes.size(); ++i) {
         const PassDesc& p = layout.passes[i];
-        o += "    {\"name\": " + json_string(p.name) + ", \"action\": " + json_string(p.action) +
-             ", \"program\": " + json_string(p.program) + ", \"inputs\": [";
+        o += "    {\"name\": " + json_string(p.name) + ", \"phase\": " + json_string(p.phase) +
+             ", \"action\": " + json_string(p.action) + ", \"program\": " + json_string(p.program) + ", \"inputs\": [";
         for (std::size_t b = 0; b < p.inputs.size(); ++b)
             o += (b ? ", " : "") + std::string("{\"sampler\": ") + json_string(p.inputs[b].sampler) +
                  ", \"texture\": " + json_string(p.inputs[b].texture) + ", \"binding\": " +
-                 std::to_string(p.inputs[b].binding) + "}";
+                 std::to_string(p.inputs[b].binding) + ", \"level\": " + std::to_string(p.inputs[b].level) + "}";
         o += "], \"outputs\": [";
         for (std::size_t a = 0; a < p.outputs.size(); ++a)
             o += (a ? ", " : "") + std::string("{\"texture\": ") + json_string(p.outputs[a].texture) +
-                 ", \"level\": " + std::to_string(p.outputs[a].level) + ", \"layer\": " +
-                 std::to_string(p.outputs[a].layer) + "}";
+                 ", \"kind\": " + json_string(p.outputs[a].kind) + ", \"level\": " + std::to_string(p.outputs[a].level) +
+                 ", \"layer\": " + std::to_string(p.outputs[a].layer) + "}";
         o += "], \"int_uniforms\": {";
         for (std::size_t u = 0; u < p.int_uniforms.size(); ++u)
             o += (u ? ", " : "") + json_string(p.int_uniforms[u].first) + ": " + std::to_string(p.int_uniforms[u].second);
         o += "}, \"viewport\": [" + std::to_string(p.viewport_width) + ", " + std::to_string(p.viewport_height) +
-             "], \"state\": " + json_string(p.state) + "}" + (i + 1 < layout.passes.size() ? ",\n" : "\n");
+             "], \"state\": " + detail::json_state(p.state) + "}" + (i + 1 < layout.passes.size() ? ",\n" : "\n");
     }
-    o += "  ],\n  \"files\": [";
+    o += "  ],\n";
+    field("  ", "result", json_string(layout.result));
+    o += "  \"files\": [";
     for (std::size_t f = 0; f < layout.files.size(); ++f) o += (f ? ", " : "") + json_string(layout.files[f]);
     o += "]\n}\n";
     return o;

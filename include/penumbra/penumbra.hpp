@@ -10,6 +10,9 @@
 //   e.snippet.text;                              // float penumbraVisibility(vec3 worldPos)
 //   penumbra::to_json(e.layout);                 // textures, parameters, bindings, passes
 //
+// Techniques (config.technique): occlusion textures (the default; detail/emit_*.hpp) and the
+// shadow map family, shadowmap / pcf / pcss (detail/shadow_map/); every one emits the same
+// float penumbraVisibility(vec3 worldPos). Texture memory of a layout: penumbra/texture_memory.hpp.
 // The same model with uniforms instead of baked constants: penumbra::emit_generic (penumbra/generic.hpp).
 // At compile time: penumbra::static_glsl<config, penumbra::Artifact::…> (penumbra/static_glsl.hpp).
 // Validation with glslang: penumbra/validation.hpp (target penumbra::validation).
@@ -21,4 +24,5 @@
 #include "layout.hpp"
 #include "program.hpp"
 #include "static_glsl.hpp"
+#include "texture_memory.hpp"
 #include "validate.hpp"

@@ -26,9 +26,9 @@ constexpr Text fullscreen_vertex(const Config& config) {
 }
 
 constexpr Param step_param() {
-    return {"penumbra_step", "int", "offset between the windows combined by this pass", "texels"};
+    return {"penumbra_step", "int", "offset between the windows combined by this pass", "texels", {}, "pass"};
 }
-constexpr Param layer_param(std::string_view meaning) { return {"penumbra_sourceLayer", "int", meaning, ""}; }
+constexpr Param layer_param(std::string_view meaning) { return {"penumbra_sourceLayer", "int", meaning, "", {}, "pass"}; }
 
 // Parameters of a level-building pass (N-buffer or Gaussian): the window step and the source.
 constexpr std::vector<Param> level_params(const Config& config) {
@@ -158,7 +158,7 @@ constexpr std::vector<Param> sat_shift_params(const Config& config) {
 }
 
 constexpr std::vector<Param> sat_pass_params(const Config& config) {
-    std::vector<Param> params{step_param(), {"penumbra_vertical", "int", "0: pass along x, 1: pass along y", ""}};
+    std::vector<Param> params{step_param(), {"penumbra_vertical", "int", "0: pass along x, 1: pass along y", "", {}, "pass"}};
     if (config.packing == Packing::atlas) {
         params.push_back({"penumbra_source", "sampler2D", "partial sums of the previous pass", ""});
     } else {

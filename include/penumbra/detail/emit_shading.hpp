@@ -12,7 +12,7 @@ constexpr std::vector<Param> example_fragment_params() {
              "scene units"}};
 }
 constexpr std::vector<Param> example_vertex_params() {
-    return {{"penumbra_clipFromWorld", "mat4", "world to clip space of the viewer's camera", ""}};
+    return {{"penumbra_clipFromWorld", "mat4", "world to clip space of the viewer's camera", "", {}, "camera"}};
 }
 constexpr std::vector<Param> deferred_params() {
     return {{"penumbra_worldPositions", "sampler2D",

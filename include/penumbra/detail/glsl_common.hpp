@@ -20,6 +20,10 @@ struct Param {
     std::string_view meaning; // one line, for the declaration comment and layout.json
     std::string_view units;   // "scene units", "texels", "" when unitless
     Text texture = {};        // samplers: the layout texture bound to it
+    // Plain uniforms: where the value comes from. "light": computed from the light frame
+    // (penumbra::uniform_value, penumbra/uniform_values.hpp); "pass": the pass's int_uniforms;
+    // "camera": the engine's camera (also in uniform_value when the camera is given).
+    std::string_view source = "light";
 };
 
 constexpr bool is_sampler(const Param& param) { return param.type.starts_with("sampler"); }

@@ -130,13 +130,10 @@ private:
     // Light uniforms from the runtime's frame, the configuration's values, and the textures.
     std::string bind_inputs(const Runtime& runtime, GLuint world_positions) const {
         auto location = [&](const std::string& name) { return glGetUniformLocation(program_, name.c_str()); };
-        const SliceFrame& f = runtime.frame();
-        glProgramUniformMatrix4fv(program_, location("penumbra_lightFromWorld"), 1, GL_FALSE, glm::value_ptr(f.light_from_world));
-        glProgramUniform2fv(program_, location("penumbra_lightSize"), 1, glm::value_ptr(f.light_size));
-        glProgramUniform1f(program_, location("penumbra_copDistance"), f.cop_distance);
-        glProgramUniform2fv(program_, location("penumbra_sliceDepths"), 1, glm::value_ptr(f.slice_depths));
-        glProgramUniform1f(program_, location("penumbra_windowHalfSize"), f.window_half_size);
-        glProgramUniform1f(program_, location("penumbra_tanAngularRadius"), f.tan_angular_radius);
+        const UniformInputs inputs = runtime.uniform_inputs();
+        for (const UniformRule& rule : uniform_rules())
+            if (const std::optional<UniformValue> v = rule.value(inputs))
+                detail::set_uniform(program_, location(std::string(rule.name)), *v);
         for (const GenericValue& v : generic_values(runtime.config())) {
             if (v.type == "int") glProgramUniform1i(program_, location(v.name), static_cast<GLint>(v.value));
             else glProgramUniform1f(program_, location(v.name), static_cast<GLfloat>(v.value));

@@ -164,7 +164,10 @@ TEST_CASE("specialized vs generic: the 3.30 and ES 3.00 dialects (sampler arrays
         double max_diff = 0.0;
         for (std::size_t i = 0; i < images.specialized.size(); ++i)
             max_diff = std::max(max_diff, std::abs(double(images.specialized[i]) - images.generic[i]));
-        CHECK(max_diff <= max_difference);
+        // ES 3.00: the layout's result texture is R8 (colour-renderable without extensions), so the
+        // specialized side is rounded to 1/255; the generic pass writes R32F.
+        const double rounding = config.target == Target::essl300 ? 0.5 / 255.0 : 0.0;
+        CHECK(max_diff <= max_difference + rounding);
     }
 }
 

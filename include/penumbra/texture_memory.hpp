@@ -1,0 +1,50 @@
+// penumbra/texture_memory.hpp — how many bytes a layout's textures take on the GPU (the storage
+// they ask for; drivers may pad). For comparing techniques on equal terms, e.g. in metrics.json.
+//
+//   long long bytes = penumbra::texture_bytes(penumbra::describe_layout(config), width, height);
+#pragma once
+
+#include "layout.hpp"
+
+#include <string_view>
+
+namespace penumbra {
+
+// Bytes per texel of a layout internal format ("RGBA16F" → 8); 0 for a name it does not know.
+constexpr int bytes_per_texel(std::string_view format) {
+    struct Entry {
+        std::string_view name;
+        int bytes;
+    };
+    constexpr Entry table[] = {{"R8", 1},       {"R16F", 2},     {"R32F", 4},
+                               {"RG16F", 4},    {"RG32F", 8},    {"RGBA8", 4},
+                               {"RGBA16F", 8},  {"RGBA32F", 16}, {"RGBA32UI", 16},
+                               {"DEPTH_COMPONENT16", 2}, {"DEPTH_COMPONENT24", 4}, {"DEPTH_COMPONENT32F", 4}};
+    for (const Entry& e : table)
+        if (e.name == format) return e.bytes;
+    return 0;
+}
+
+// One texture with its whole mip chain; a texture sized like the output (width 0) takes the
+// output's size.
+inline long long texture_bytes(const TextureDesc& t, int output_width, int output_height) {
+    long long w = t.width > 0 ? t.width : output_width, h = t.height > 0 ? t.height : output_height;
+    long long d = t.depth;
+    long long texels = 0;
+    for (int level = 0; level < t.mip_levels; ++level) {
+        texels += w * h * d;
+        w = w > 1 ? w / 2 : 1;
+        h = h > 1 ? h / 2 : 1;
+        if (t.target == "3D") d = d > 1 ? d / 2 : 1; // array layers stay, 3D depth shrinks
+    }
+    return texels * bytes_per_texel(t.internal_format);
+}
+
+// Every texture of the layout (the caller's G-buffer is not part of it).
+inline long long texture_bytes(const Layout& layout, int output_width = 0, int output_height = 0) {
+    long long total = 0;
+    for (const TextureDesc& t : layout.textures) total += texture_bytes(t, output_width, output_height);
+    return total;
+}
+
+} // namespace penumbra

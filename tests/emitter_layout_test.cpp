@@ -1,0 +1,181 @@
+// layout.json vocabulary (layout version 2): phases, structured render state, output-sized and
+// caller textures, border colours, uniform sources. No glslang, no GL.
+#include <penumbra/penumbra.hpp>
+#include <penumbra/uniform_values.hpp>
+
+#include <doctest/doctest.h>
+
+#include <set>
+
+using namespace penumbra;
+
+namespace {
+
+std::vector<Config> vocabulary_configs() {
+    std::vector<Config> configs;
+    for (Filter filter : all_values<Filter>())
+        for (Packing packing : all_values<Packing>())
+            for (Light light : all_values<Light>())
+                for (Target target : all_values<Target>()) {
+                    Config c{.slices = 5, .resolution = 64, .filter = filter, .packing = packing, .light = light,
+                             .target = target};
+                    if (is_valid(c)) configs.push_back(c);
+                }
+    return configs;
+}
+
+const TextureDesc* find_texture(const Layout& layout, std::string_view name) {
+    for (const TextureDesc& t : layout.textures)
+        if (t.name == name) return &t;
+    return nullptr;
+}
+
+} // namespace
+
+TEST_CASE("layout v2: version, technique, the screen pass and its result") {
+    const std::vector<Config> configs = vocabulary_configs();
+    REQUIRE(configs.size() > 40);
+    for (const Config& config : configs) {
+        CAPTURE(to_string(config.filter));
+        CAPTURE(to_string(config.packing));
+        CAPTURE(to_string(config.light));
+        CAPTURE(to_string(config.target));
+        const Layout layout = describe_layout(config);
+        CHECK(layout.version == 2);
+        CHECK(layout.technique == "occlusion");
+        const std::string json = to_json(layout);
+        CHECK(json.find("\"layout_version\": 2,") != std::string::npos);
+        CHECK(json.find("\"technique\": \"occlusion\",") != std::string::npos);
+        CHECK(json.find("\"result\": \"penumbra_visibility\",") != std::string::npos);
+
+        // The G-buffer is the caller's, sized like the output; the result is ours, sized like the output.
+        const TextureDesc* world = find_texture(layout, "penumbra_worldPositions");
+        REQUIRE(world);
+        CHECK(world->source == "caller");
+        CHECK(world->size == "output");
+        CHECK(world->internal_format == "RGBA32F");
+        CHECK(world->width == 0);
+        CHECK(world->purpose.find("texelFetch") != std::string::npos);
+        const TextureDesc* result = find_texture(layout, layout.result);
+        REQUIRE(result);
+        CHECK(result->source == "passes");
+        CHECK(result->size == "output");
+        CHECK(result->internal_format == (config.target == Target::essl300 ? "R8" : "R32F"));
+
+        // Exactly one screen pass writes the result; it reads the G-buffer and every storage sampler the
+        // example pass reads, at the same bindings as the deferred program declares.
+        std::set<std::string> phases;
+        const PassDesc* screen = nullptr;
+        const PassDesc* example = nullptr;
+        for (const PassDesc& pass : layout.passes) {
+            phases.insert(pass.phase);
+            if (pass.phase == "screen") {
+                CHECK(screen == nullptr);
+                screen = &pass;
+            }
+            if (pass.phase == "example") example = &pass;
+        }
+        CHECK(phases == std::set<std::string>{"shadow", "screen", "example"});
+        REQUIRE(screen);
+        REQUIRE(example);
+        CHECK(screen->program == "shading_deferred");
+        CHECK(screen->action == "fullscreen");
+        CHECK(screen->viewport_width == 0);
+        REQUIRE(screen->outputs.size() == 1);
+        CHECK(screen->outputs[0].texture == layout.result);
+        CHECK(screen->outputs[0].kind == "color");
+        std::set<std::string> screen_reads, example_reads;
+        for (const BindingDesc& b : screen->inputs) screen_reads.insert(b.texture);
+        for (const BindingDesc& b : example->inputs) example_reads.insert(b.texture);
+        CHECK(screen_reads.count("penumbra_worldPositions") == 1);
+        example_reads.insert("penumbra_worldPositions");
+        CHECK(screen_reads == example_reads);
+        CHECK(example->program == "shading_example");
+        CHECK(example->state.depth_test);
+        CHECK(json.find("\"phase\": \"screen\", \"action\": \"fullscreen\", \"program\": \"shading_deferred\"") !=
+              std::string::npos);
+    }
+}
+
+TEST_CASE("layout v2: structured state, border colours, attachment kinds, levels") {
+    for (const Config& config : vocabulary_configs()) {
+        CAPTURE(to_string(config.filter));
+        CAPTURE(to_string(config.packing));
+        CAPTURE(to_string(config.target));
+        const Layout layout = describe_layout(config);
+        const std::string json = to_json(layout);
+        // slicing: blend MAX with factors ONE, ONE over a target cleared to 0; nothing else
+        const RenderState& slicing = layout.passes.front().state;
+        CHECK(layout.passes.front().name == "slicing");
+        CHECK(slicing.blend);
+        CHECK(slicing.blend_equation == "MAX");
+        CHECK(slicing.blend_src == "ONE");
+        CHECK(slicing.blend_dst == "ONE");
+        REQUIRE(slicing.clear_color.has_value());
+        CHECK(*slicing.clear_color == std::array<float, 4>{0.0f, 0.0f, 0.0f, 0.0f});
+        CHECK_FALSE(slicing.depth_test);
+        CHECK(slicing.cull == "NONE");
+        CHECK(json.find("\"state\": {\"blend\": true, \"blend_equation\": \"MAX\", \"blend_src\": \"ONE\", "
+                        "\"blend_dst\": \"ONE\", \"depth_test\": false") != std::string::npos);
+        CHECK(json.find("\"clear_color\": [0, 0, 0, 0], \"clear_depth\": null") != std::string::npos);
+        for (const PassDesc& pass : layout.passes) {
+            CAPTURE(pass.name);
+            if (pass.action == "fullscreen") CHECK_FALSE(pass.state.blend);
+            for (const AttachmentDesc& out : pass.outputs) CHECK(out.kind == "color");
+            for (const BindingDesc& in : pass.inputs) CHECK(in.level == -1);
+        }
+        // a border colour exactly where the wrap is CLAMP_TO_BORDER (ES 3.0 has none)
+        int borders = 0;
+        for (const TextureDesc& t : layout.textures) {
+            CHECK((t.size == "fixed") == (t.width > 0));
+            CHECK(t.compare.empty());
+            borders += t.wrap == "CLAMP_TO_BORDER";
+        }
+        int border_fields = 0;
+        for (std::size_t at = json.find("\"border_color\": [0, 0, 0, 0]"); at != std::string::npos;
+             at = json.find("\"border_color\"", at + 1))
+            ++border_fields;
+        CHECK(border_fields == borders);
+        CHECK((borders == 0) == (config.target == Target::essl300));
+    }
+}
+
+TEST_CASE("layout v2: every plain uniform says where its value comes from, and the table has it") {
+    for (const Config& config : vocabulary_configs()) {
+        CAPTURE(to_string(config.filter));
+        CAPTURE(to_string(config.packing));
+        CAPTURE(to_string(config.light));
+        const Layout layout = describe_layout(config);
+        for (const ProgramDesc& program : layout.programs) {
+            CAPTURE(program.name);
+            for (const ParamDesc& p : program.parameters) {
+                CAPTURE(p.name);
+                if (p.binding >= 0) {
+                    CHECK(p.source.empty());
+                    continue;
+                }
+                CHECK((p.source == "light" || p.source == "pass" || p.source == "camera"));
+                if (p.source != "pass") CHECK(has_uniform_rule(p.name));
+                if (p.source != "pass") continue;
+                // every pass running this program sets it
+                for (const PassDesc& pass : layout.passes) {
+                    if (pass.program != program.name) continue;
+                    bool set = false;
+                    for (const auto& [name, value] : pass.int_uniforms) set = set || name == p.name;
+                    CHECK(set);
+                }
+            }
+        }
+    }
+    // the table computes from the frame: rect origin at the light centre, sun direction towards the sun
+    RectLight light;
+    light.center = {1.0, 5.0, 2.0};
+    const UniformInputs rect{slice_frame(light, {-1, 0, -1}, {1, 1, 1}, 4), Light::rect, std::nullopt};
+    const auto to_light = std::get<glm::vec4>(*uniform_value("penumbra_toLight", rect));
+    CHECK(to_light.x == doctest::Approx(1.0));
+    CHECK(to_light.y == doctest::Approx(5.0));
+    CHECK(to_light.w == 1.0f);
+    CHECK(std::get<glm::vec2>(*uniform_value("penumbra_sliceDepths", rect)) == rect.frame.slice_depths);
+    CHECK_FALSE(uniform_value("penumbra_clipFromWorld", rect).has_value()); // no camera given
+    CHECK_FALSE(uniform_value("penumbra_noSuchUniform", rect).has_value());
+}
