@@ -70,18 +70,24 @@ TEST_CASE("oim: the layout marks the maps as baked, nearest, one rise and one fa
     Config config{.technique = Technique::oim};
     config.oim.intervals = 12;
     const Layout layout = describe_layout(config);
-    REQUIRE(layout.textures.size() == 6);
-    for (const TextureDesc& t : layout.textures) {
+    REQUIRE(layout.textures.size() == 8); // 3 pairs, the caller's texture coordinates, the visibility
+    for (int i = 0; i < 6; ++i) {
+        const TextureDesc& t = layout.textures[static_cast<std::size_t>(i)];
         CHECK(t.internal_format == "RGBA16F");
         CHECK(t.width == 256);
         CHECK(t.min_filter == "NEAREST");
-        CHECK(t.purpose.starts_with("supplied by the bake"));
+        CHECK(t.source == "bake");
     }
+    CHECK(layout.textures[6].source == "caller");
+    CHECK(layout.textures[6].size == "output");
+    CHECK(layout.result == "penumbra_visibility");
+    CHECK(layout.passes.front().phase == "screen");
     CHECK(layout.textures[4].name == "penumbra_rise2");
     CHECK(layout.textures[5].name == "penumbra_fall2");
     REQUIRE(layout.programs.size() == 2);
     const std::string json = to_json(layout);
     CHECK(json.find("\"technique\": \"oim\"") != std::string::npos);
+    CHECK(json.find("\"source\": \"bake\"") != std::string::npos);
     CHECK(json.find("\"oim\": {\"resolution\": 256, \"intervals\": 12, \"samples\": 256}") != std::string::npos);
     // the deferred program reads the G-buffer of texture coordinates after the six maps
     bool texcoords = false;

@@ -234,19 +234,43 @@ inline Layout describe_shadow_map_layout(const Config& config) {
         for (Artifact a : plan.stages) program.files.emplace_back(file_name(a));
         layout.programs.push_back(std::move(program));
     }
-    layout.textures.push_back({std::string(shadow_map_texture), "2D", "DEPTH_COMPONENT32F", R, R, 1, 1, "LINEAR",
-                               "LINEAR", "CLAMP_TO_EDGE",
-                               "shadow map: (z - near) / (far - near) along the light axis, biased; compared LEQUAL"});
-    layout.passes.push_back({"shadow_depth", "draw_scene", "shadow_depth", {}, {{std::string(shadow_map_texture), 0, -1}},
-                             {}, R, R, "depth attachment, clear depth to 1, depth test LESS, depth write, no culling"});
+    // (interim: the shadow map layout in the layout vocabulary, until tech's own rewrite lands)
+    auto depth_texture = [&](std::string name, std::string filter, std::string purpose) {
+        TextureDesc t;
+        t.name = std::move(name);
+        t.target = "2D";
+        t.internal_format = "DEPTH_COMPONENT32F";
+        t.width = t.height = R;
+        t.min_filter = t.mag_filter = filter;
+        t.wrap = "CLAMP_TO_EDGE";
+        t.purpose = std::move(purpose);
+        layout.textures.push_back(std::move(t));
+    };
+    depth_texture(std::string(shadow_map_texture), "LINEAR",
+                  "shadow map: (z - near) / (far - near) along the light axis, biased; compared LEQUAL");
+    PassDesc depth;
+    depth.name = depth.program = "shadow_depth";
+    depth.action = "draw_scene";
+    depth.outputs = {{std::string(shadow_map_texture), 0, -1, "depth"}};
+    depth.viewport_width = depth.viewport_height = R;
+    depth.state.depth_test = depth.state.depth_write = true;
+    depth.state.clear_depth = 1.0f;
+    layout.passes.push_back(std::move(depth));
     if (config.technique == Technique::pcss) {
-        layout.textures.push_back({"penumbra_shadowDepth", "2D", "DEPTH_COMPONENT32F", R, R, 1, 1, "NEAREST",
-                                   "NEAREST", "CLAMP_TO_EDGE", "copy of the shadow map read without comparison"});
-        layout.passes.push_back({"copy_shadow_depth", "copy", "", {{"", std::string(shadow_map_texture), 0}},
-                                 {{"penumbra_shadowDepth", 0, -1}}, {}, R, R, ""});
+        depth_texture("penumbra_shadowDepth", "NEAREST", "copy of the shadow map read without comparison");
+        PassDesc copy;
+        copy.name = "copy_shadow_depth";
+        copy.action = "copy";
+        copy.inputs = {{"", std::string(shadow_map_texture), 0}};
+        copy.outputs = {{"penumbra_shadowDepth", 0, -1}};
+        copy.viewport_width = copy.viewport_height = R;
+        layout.passes.push_back(std::move(copy));
     }
-    PassDesc shading{"shading", "draw_scene", "shading_example", {}, {}, {}, 0, 0,
-                     "the caller's framebuffer; or run shading_deferred over a G-buffer of world positions"};
+    PassDesc shading;
+    shading.name = "shading";
+    shading.action = "draw_scene";
+    shading.program = "shading_example";
+    shading.phase = "example";
     for (const ParamDesc& p : layout.programs[1].parameters)
         if (p.binding >= 0) shading.inputs.push_back({p.name, p.texture, p.binding});
     layout.passes.push_back(std::move(shading));
@@ -260,6 +284,7 @@ inline Layout describe_shadow_map_layout(const Config& config) {
 // texture coordinates, in the example pass or over the caller's G-buffer of texture coordinates.
 inline Layout describe_oim_layout(const Config& config) {
     Layout layout;
+    layout.technique = "oim";
     layout.config = config;
     const int R = config.oim.resolution;
     for (const ProgramPlan& plan : program_plan(config)) {
@@ -267,29 +292,59 @@ inline Layout describe_oim_layout(const Config& config) {
         for (Artifact a : plan.stages) program.files.emplace_back(file_name(a));
         layout.programs.push_back(std::move(program));
     }
+    auto texture = [&](Text name, std::string format, int size, std::string purpose) -> TextureDesc& {
+        TextureDesc t;
+        t.name = name.str();
+        t.target = "2D";
+        t.internal_format = std::move(format);
+        t.width = t.height = size;
+        t.min_filter = t.mag_filter = "NEAREST";
+        t.wrap = "CLAMP_TO_EDGE";
+        t.purpose = std::move(purpose);
+        layout.textures.push_back(std::move(t));
+        return layout.textures.back();
+    };
     for (int p = 0; p < oim_pairs(config.oim); ++p)
-        for (const bool fall : {false, true}) {
-            TextureDesc t;
-            t.name = (fall ? oim_fall_name(p) : oim_rise_name(p)).str();
-            t.target = "2D";
-            t.internal_format = "RGBA16F";
-            t.width = t.height = R;
-            t.min_filter = t.mag_filter = "NEAREST";
-            t.wrap = "CLAMP_TO_EDGE";
-            t.purpose = std::string("supplied by the bake: ") + (fall ? "fall" : "rise") + " times of intervals " +
-                        std::to_string(4 * p) + " to " + std::to_string(4 * p + 3) +
-                        " (path time t; k / samples, exact in 16-bit floats; unused intervals [0, 0])";
-            layout.textures.push_back(std::move(t));
-        }
+        for (const bool fall : {false, true})
+            texture(fall ? oim_fall_name(p) : oim_rise_name(p), "RGBA16F", R,
+                    std::string(fall ? "fall" : "rise") + " times of intervals " + std::to_string(4 * p) + " to " +
+                        std::to_string(4 * p + 3) +
+                        " (path time t, k / samples: exact in 16-bit floats; unused intervals [0, 0])")
+                .source = "bake";
+    TextureDesc& coords = texture("penumbra_texCoords", "RGBA32F", 0,
+                                  "G-buffer filled by the engine every frame: xy the surface's unique texture "
+                                  "coordinates (the bake's), w = 1 on geometry, 0 on the background");
+    coords.size = "output";
+    coords.source = "caller";
+    TextureDesc& visibility = texture("penumbra_visibility", std::string(visibility_format(config)), 0,
+                                      "visibility of each output pixel, 0 shadowed to 1 lit");
+    visibility.size = "output";
+    layout.result = visibility.name;
+
+    auto inputs_of = [&](const ProgramDesc& program) {
+        std::vector<BindingDesc> inputs;
+        for (const ParamDesc& p : program.parameters)
+            if (p.binding >= 0) inputs.push_back({p.name, p.texture, p.binding});
+        return inputs;
+    };
     PassDesc shading;
     shading.name = "shading";
-    shading.action = "draw_scene";
-    shading.program = "shading_example";
-    shading.state = "the caller's framebuffer (vertex attribute 2: the bake's texture coordinates); or run "
-                    "shading_deferred over a G-buffer of texture coordinates";
-    for (const ParamDesc& p : layout.programs[0].parameters)
-        if (p.binding >= 0) shading.inputs.push_back({p.name, p.texture, p.binding});
+    shading.action = "fullscreen";
+    shading.program = "shading_deferred";
+    shading.inputs = inputs_of(layout.programs[1]);
+    shading.outputs = {{layout.result, 0, -1}};
+    shading.phase = "screen";
     layout.passes.push_back(std::move(shading));
+    PassDesc example;
+    example.name = "shading_example";
+    example.action = "draw_scene";
+    example.program = "shading_example";
+    example.inputs = inputs_of(layout.programs[0]);
+    example.state.depth_test = example.state.depth_write = true;
+    example.state.clear_color = std::array<float, 4>{0.0f, 0.0f, 0.0f, 1.0f};
+    example.state.clear_depth = 1.0f;
+    example.phase = "example";
+    layout.passes.push_back(std::move(example));
     for (Artifact a : artifacts(config)) layout.files.emplace_back(file_name(a));
     layout.files.emplace_back("layout.json");
     return layout;

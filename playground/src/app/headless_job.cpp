@@ -3,8 +3,11 @@
 
 #include "rendering/egl_context.hpp"
 #include "app/image_io.hpp"
+#include "bake/oim_scene.hpp"
 #include "scenes/obj_loader.hpp"
 #include "scenes/scenes.hpp"
+
+#include <penumbra/layout.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -45,16 +48,9 @@ nlohmann::ordered_json stats_json(const ErrorStats& s) {
 }
 
 // The keys of layout.json's "config" object, so that --config metrics.json reproduces the run.
+// (layout.json's own writer, so every technique's section is there).
 nlohmann::ordered_json config_json(const Config& c) {
-    return {{"slices", c.slices},
-            {"resolution", c.resolution},
-            {"filter", to_string(c.filter)},
-            {"fusion", to_string(c.fusion)},
-            {"packing", to_string(c.packing)},
-            {"light", to_string(c.light)},
-            {"leak_fix", c.leak_fix},
-            {"self_shadow_fade", c.self_shadow_fade},
-            {"target", to_string(c.target)}};
+    return nlohmann::ordered_json::parse(penumbra::to_json(penumbra::describe_layout(c)))["config"];
 }
 
 nlohmann::ordered_json light_json(const Scene& scene, Light light) {
@@ -128,9 +124,29 @@ int run_headless(const PlaygroundOptions& options) {
     std::string error;
     std::optional<HeadlessContext> context = HeadlessContext::create(&error);
     if (!context) return fail("no OpenGL 4.5 context: " + error);
+    // Occlusion interval maps: unique texture coordinates, the sun at --sun-time, the bake (or its cache).
+    RenderOptions render_options;
+    std::optional<OimSetup> oim;
+    if (options.config.technique == Technique::oim) {
+        penumbra::SunPath path;
+        if (!options.sun_path.empty()) path = *parse_sun_path(options.sun_path, &error);
+        const std::filesystem::path cache = options.bake_cache.empty() ? default_oim_cache_dir()
+                                                                        : std::filesystem::path(options.bake_cache);
+        oim = prepare_oim(scene, options.config, path, options.sun_time, cache, &error);
+        if (!oim) return fail(error, 2);
+        const OimBake& b = oim->cached.bake;
+        std::printf("oim bake %dx%d, %d intervals, %d samples: %s %s (%.0f ms to bake, %llu rays, %zu texels merged, "
+                    "%.1f MiB on disk)\n",
+                    b.resolution, b.resolution, b.intervals, b.samples, oim->cached.from_cache ? "read" : "baked into",
+                    oim->cached.file.string().c_str(), b.bake_ms, static_cast<unsigned long long>(b.rays),
+                    b.merged_texels, static_cast<double>(oim->cached.file_bytes) / (1024.0 * 1024.0));
+        if (!oim->cached.warning.empty()) std::cerr << "warning: " << oim->cached.warning << "\n";
+        render_options.bake_textures = oim->textures;
+        render_options.time_window = oim->time_window;
+    }
     HeadlessResult result;
     const auto render_start = std::chrono::steady_clock::now();
-    if (!render_headless(scene, options.config, width, height, result, &error)) return fail(error);
+    if (!render_headless(scene, options.config, width, height, result, &error, render_options)) return fail(error);
     const double render_ms = milliseconds_since(render_start);
     if (!write_png_rgb(options.out_path, width, height, result.rgb, RowOrder::top_down, &error)) return fail(error);
     std::cout << "wrote " << options.out_path << " (" << scene.name << ", " << width << "x" << height << ", "
@@ -146,17 +162,26 @@ int run_headless(const PlaygroundOptions& options) {
         {"width", width},
         {"height", height},
         {"config", config_json(options.config)},
-        {"light", light_json(scene, options.config.light)},
+        {"light", light_json(scene, shading_light(options.config))},
         {"shadowed_fraction", shadowed_fraction(result)},
         {"render_ms", render_ms},
     };
     nlohmann::ordered_json passes = nlohmann::ordered_json::array();
     for (const penumbra::gl::PassTiming& t : result.timings) passes.push_back({{"name", t.name}, {"ms", t.milliseconds}});
     metrics["passes"] = passes;
+    if (oim)
+        metrics["bake"] = {{"kind", "oim"},
+                           {"sun_time", options.sun_time},
+                           {"from_cache", oim->cached.from_cache},
+                           {"bake_ms", oim->cached.bake.bake_ms},
+                           {"rays", oim->cached.bake.rays},
+                           {"merged_texels", oim->cached.bake.merged_texels},
+                           {"cache_file", oim->cached.file.string()},
+                           {"cache_bytes", oim->cached.file_bytes}};
 
     if (options.reference) {
         const auto reference_start = std::chrono::steady_clock::now();
-        const std::vector<float> truth = reference_visibility(scene, result, options.samples, options.config.light);
+        const std::vector<float> truth = reference_visibility(scene, result, options.samples, shading_light(options.config));
         const double reference_ms = milliseconds_since(reference_start);
         const Metrics m = compare(result, truth);
         const std::string truth_path =

@@ -8,6 +8,8 @@
 #include "../../../generator/src/arguments.hpp"
 #include "../../../generator/src/config_file.hpp"
 
+#include "bake/oim_scene.hpp"
+
 #include <penumbra/validate.hpp>
 
 #include <charconv>
@@ -25,7 +27,8 @@ constexpr std::string_view flag_list =
     "--reference-out, --error-out, --slices, --resolution, --filter, --fusion, --packing, --light, --target, "
     "--no-leak-fix, --no-fade, --config, --watch, --frames, --screenshot, --script, --help, --technique, "
     "--shadow-resolution, --shadow-bias, --shadow-slope-bias, --pcf-pattern, --pcf-grid, --pcf-taps, --pcf-radius, "
-    "--pcss-blockers, --pcss-filter, --pcss-max-texels, --no-rotation";
+    "--pcss-blockers, --pcss-filter, --pcss-max-texels, --no-rotation, --oim-resolution, --oim-intervals, "
+    "--oim-samples, --sun-time, --sun-path, --bake-cache";
 
 bool is_switch(std::string_view flag) {
     return flag == "--headless" || flag == "--reference" || flag == "--no-leak-fix" || flag == "--no-fade" ||
@@ -37,6 +40,7 @@ bool takes_value(std::string_view flag) {
     for (std::string_view f : {"--scene", "--size", "--light-size", "--out", "--visibility", "--samples", "--metrics",
                                "--reference-out", "--error-out", "--slices", "--resolution", "--filter", "--fusion",
                                "--packing", "--light", "--target", "--config", "--watch", "--frames", "--screenshot",
+                               "--sun-time", "--sun-path", "--bake-cache",
                                "--script"})
         if (flag == f) return true;
     return false;
@@ -102,6 +106,10 @@ std::string check(const PlaygroundOptions& o) {
     if (o.light_size && o.config.light == penumbra::Light::sun && *o.light_size >= 90.0)
         return "--light-size: " + std::to_string(*o.light_size) +
                " degrees is too wide for the sun; allowed: an angular diameter above 0 and below 90";
+    if (!o.sun_path.empty()) {
+        std::string error;
+        if (!parse_sun_path(o.sun_path, &error)) return error;
+    }
     if (!o.headless) return {};
     if (o.out_path.empty()) return "--out: missing; --headless needs the image to write (--out image.png)";
     if (!o.reference && !o.reference_path.empty()) return "--reference-out: needs --reference";
@@ -165,7 +173,16 @@ ParsedOptions parse_options(const std::vector<std::string>& args) {
         else if (flag == "--size") error = parse_size(value, options.width, options.height);
         else if (flag == "--samples") error = parse_int_in(flag, value, 1, 1024, options.samples);
         else if (flag == "--frames") error = parse_int_in(flag, value, 0, 1000000000, options.frames);
-        else if (flag == "--light-size") {
+        else if (flag == "--sun-time") {
+            const char* end = value.data() + value.size();
+            const auto [ptr, ec] = std::from_chars(value.data(), end, options.sun_time);
+            if (value.empty() || ec != std::errc() || ptr != end || !(options.sun_time >= 0.0 && options.sun_time <= 1.0))
+                error = "--sun-time: '" + printable(value) + "' is not allowed; allowed: a path time from 0 to 1";
+        } else if (flag == "--sun-path") {
+            options.sun_path = std::string(value);
+        } else if (flag == "--bake-cache") {
+            options.bake_cache = std::string(value);
+        } else if (flag == "--light-size") {
             double size = 0.0;
             error = parse_light_size(value, size);
             if (error.empty()) options.light_size = size;
@@ -237,6 +254,13 @@ std::string usage() {
     out += "\ntechnique (occlusion: the flags above; shadowmap, pcf, pcss: these, plus --light and --target):\n";
     out += penumbra_gen::technique_usage(25);
     out += line("--config FILE.json", "configuration from JSON (the keys of Config, or a layout.json)");
+    out += "\noim (occlusion interval maps: the sun on a fixed path, baked with Embree, cached on disk):\n";
+    out += line("--sun-time T", "path time of the rendered instant, 0 (first point) to 1 (last) (default 0.5)");
+    out += line("--sun-path AZ:EL,...", "the path: azimuth:elevation points in degrees, evenly spaced in time\n"
+                                        "                        (azimuth clockwise from north, -z; east +x; default "
+                                        "100:10,180:50,260:10)");
+    out += line("--bake-cache DIR", "where bakes are cached (default $PENUMBRA_CACHE_DIR/oim, else\n"
+                                    "                        $XDG_CACHE_HOME/penumbra/oim, else ~/.cache/penumbra/oim)");
     out += "\nheadless output:\n";
     out += line("--out FILE.png", "the shaded image (required with --headless)");
     out += line("--visibility FILE.pfm", "the estimated visibility, one float per pixel (1 on background)");

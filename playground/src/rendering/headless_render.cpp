@@ -11,6 +11,10 @@
 
 namespace penumbra::playground {
 
+Light shading_light(const Config& config) {
+    return config.technique == Technique::oim ? Light::sun : config.light;
+}
+
 bool render_headless(const Scene& scene, const Config& config, int width, int height, HeadlessResult& out,
                      std::string* error, const RenderOptions& options) {
     auto runtime = penumbra::gl::Runtime::create(config, error);
@@ -21,15 +25,33 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
     gbuffer->render(mesh, scene.camera.projection_matrix(static_cast<float>(width) / height) * scene.camera.view_matrix());
 
     // Penumbra passes.
-    if (config.light == Light::sun) runtime->set_light(scene.sun, glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
+    for (const auto& [name, texels] : options.bake_textures)
+        if (std::string d = runtime->supply_texture(name, texels); !d.empty()) {
+            if (error) *error = d;
+            return false;
+        }
+    if (options.time_window) runtime->set_time_window(*options.time_window);
+    if (shading_light(config) == Light::sun) runtime->set_light(scene.sun, glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
     else runtime->set_light(scene.light, glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
     out.timings.clear();
     if (std::string d = runtime->build([&](GLuint) { mesh.draw(); }, &out.timings); !d.empty()) {
         if (error) *error = d;
         return false;
     }
+    // Every G-buffer texture the layouts know; each technique's screen pass reads the ones it declares.
+    std::vector<penumbra::gl::PassTiming> screen_timings;
+    if (std::string d = runtime->run_screen({{"penumbra_worldPositions", gbuffer->positions()},
+                                             {"penumbra_texCoords", gbuffer->tex_coords()}},
+                                            width, height, &screen_timings);
+        !d.empty()) {
+        if (error) *error = d;
+        return false;
+    }
     penumbra::gl::PassTiming shading_timing;
-    if (!runtime->shade_deferred(gbuffer->positions(), width, height, error, &shading_timing)) return false;
+    for (const penumbra::gl::PassTiming& t : screen_timings) {
+        shading_timing.name += (shading_timing.name.empty() ? "" : "+") + t.name;
+        shading_timing.milliseconds += t.milliseconds;
+    }
     out.timings.push_back(shading_timing);
     if (options.inspect) options.inspect(*runtime);
     const std::vector<float> vis = runtime->read_visibility();
@@ -64,7 +86,7 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
             out.positions[dst] = glm::vec3(pos[src]);
             out.normals[dst] = glm::vec3(nrm[src]);
             out.visibility[dst] = vis[src];
-            const glm::vec3 to_light = config.light == Light::sun ? -glm::vec3(glm::normalize(scene.sun.direction))
+            const glm::vec3 to_light = shading_light(config) == Light::sun ? -glm::vec3(glm::normalize(scene.sun.direction))
                                                                   : glm::normalize(light_centre - glm::vec3(pos[src]));
             const float lambert = std::abs(glm::dot(glm::vec3(nrm[src]), to_light));
             const float shade = 0.15f + 0.85f * lambert * vis[src];

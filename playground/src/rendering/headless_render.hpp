@@ -10,6 +10,8 @@
 #include <penumbra/gl/runtime.hpp>
 
 #include <functional>
+#include <optional>
+#include <utility>
 
 #include <string>
 #include <vector>
@@ -30,7 +32,14 @@ struct RenderOptions {
     // Called after the deferred shading pass, while the runtime and its textures still exist:
     // lets tests and the oracle read back intermediate textures (runtime.texture(name)).
     std::function<void(const penumbra::gl::Runtime&)> inspect;
+    // Textures the layout marks "bake" (name → texels, RGBA floats at the layout's size) and the sun's
+    // time window along its path (occlusion interval maps; bake/oim_scene.hpp prepares both).
+    std::vector<std::pair<std::string, std::vector<float>>> bake_textures;
+    std::optional<glm::vec4> time_window;
 };
+
+// The kind of light a configuration is lit by: occlusion interval maps follow the sun.
+Light shading_light(const Config& config);
 
 // Runs the whole pipeline; returns false with *error set on any failure (never throws for GL).
 bool render_headless(const Scene& scene, const Config& config, int width, int height, HeadlessResult& out,

@@ -17,8 +17,9 @@ constexpr Text oim_fall_name(int pair) { return cat("penumbra_fall", format_int(
 // Parameters of penumbraVisibility(): the window, then one rise and one fall texture per pair.
 constexpr std::vector<Param> oim_visibility_params(const Config& config) {
     std::vector<Param> params;
-    params.push_back({"penumbra_timeWindow", "vec3",
-                      "time window of the sun's disk along its path: x = start, y = end (path time t), z = 1 / (end - start)",
+    params.push_back({"penumbra_timeWindow", "vec4",
+                      "time window of the sun's disk along its path (penumbra/sun_path.hpp): x = start, y = end, "
+                      "z = 1 / (end - start), w = its centre t (path times)",
                       ""});
     for (int p = 0; p < oim_pairs(config.oim); ++p) {
         params.push_back({oim_rise_name(p), "sampler2D", "rise times of four visibility intervals (path time t)", "",
@@ -100,7 +101,7 @@ constexpr std::vector<Param> oim_example_fragment_params() {
     return {{"penumbra_toLight", "vec4", "direction towards the sun (xyz, w = 0) for the Lambert term", ""}};
 }
 constexpr std::vector<Param> oim_example_vertex_params() {
-    return {{"penumbra_clipFromWorld", "mat4", "world to clip space of the viewer's camera", ""}};
+    return {{"penumbra_clipFromWorld", "mat4", "world to clip space of the viewer's camera", "", {}, "camera"}};
 }
 
 constexpr Text oim_example_fragment(const Config& config) {
