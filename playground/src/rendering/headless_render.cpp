@@ -55,9 +55,10 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
     out.timings.push_back(shading_timing);
     if (options.inspect) options.inspect(*runtime);
     const std::vector<float> vis = runtime->read_visibility();
-    std::vector<glm::vec4> pos(static_cast<std::size_t>(width) * height), nrm(pos.size());
+    std::vector<glm::vec4> pos(static_cast<std::size_t>(width) * height), nrm(pos.size()), uv(pos.size());
     glGetTextureImage(gbuffer->positions(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pos.size() * sizeof(glm::vec4)), pos.data());
     glGetTextureImage(gbuffer->normals(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(nrm.size() * sizeof(glm::vec4)), nrm.data());
+    glGetTextureImage(gbuffer->tex_coords(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(uv.size() * sizeof(glm::vec4)), uv.data());
     if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
         if (error) *error = "GL error " + std::to_string(e) + " in the headless pipeline";
         return false;
@@ -70,6 +71,7 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
     out.visibility.assign(n, 1.0f);
     out.positions.assign(n, glm::vec3(std::numeric_limits<float>::quiet_NaN()));
     out.normals.assign(n, glm::vec3(0.0f));
+    out.tex_coords.assign(n, glm::vec2(0.0f));
     out.geometry.assign(n, 0);
     out.rgb.assign(3 * n, 0.0f);
     const glm::vec3 light_centre(scene.light.center);
@@ -85,6 +87,7 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
             out.geometry[dst] = 1;
             out.positions[dst] = glm::vec3(pos[src]);
             out.normals[dst] = glm::vec3(nrm[src]);
+            out.tex_coords[dst] = glm::vec2(uv[src]);
             out.visibility[dst] = vis[src];
             const glm::vec3 to_light = shading_light(config) == Light::sun ? -glm::vec3(glm::normalize(scene.sun.direction))
                                                                   : glm::normalize(light_centre - glm::vec3(pos[src]));

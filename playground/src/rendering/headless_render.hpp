@@ -23,6 +23,7 @@ struct HeadlessResult {
     std::vector<float> visibility;       // width·height, top row first; 1 on background
     std::vector<glm::vec3> positions;    // world positions, top row first; NaN on background
     std::vector<glm::vec3> normals;      // unit normals, zero on background
+    std::vector<glm::vec2> tex_coords;   // the mesh's texture coordinates (0 without them or on background)
     std::vector<unsigned char> geometry; // 1 where a surface was rasterised
     std::vector<float> rgb;              // Lambert shading, 3 floats per pixel, top row first
     std::vector<penumbra::gl::PassTiming> timings; // GPU time of each pass (timer queries), shading last
