@@ -4,6 +4,7 @@
 #include <penumbra/penumbra.hpp>
 #include <penumbra/static_glsl.hpp>
 #include <penumbra/texture_memory.hpp>
+#include <penumbra/uniform_values.hpp>
 
 #include <doctest/doctest.h>
 
@@ -241,4 +242,46 @@ TEST_CASE("texture memory of a layout: formats, mip chains, arrays") {
     CHECK(texture_bytes(describe_layout(mip)) == expected);
     CHECK(bytes_per_texel("RGBA16F") == 8);
     CHECK(bytes_per_texel("no such format") == 0);
+}
+
+TEST_CASE("shadow map layouts in the layout vocabulary: phases, depth attachment, compare, uniform sources") {
+    for (const Config& config : shadow_configs()) {
+        CAPTURE(std::string(detail::describe(config).view()));
+        const Layout layout = describe_layout(config);
+        CHECK(layout.technique == to_string(config.technique));
+        const PassDesc& depth = layout.passes.front();
+        CHECK(depth.phase == "shadow");
+        CHECK(depth.action == "draw_scene");
+        REQUIRE(depth.outputs.size() == 1);
+        CHECK(depth.outputs[0].kind == "depth");
+        CHECK(depth.state.depth_test);
+        CHECK(depth.state.depth_write);
+        CHECK(depth.state.clear_depth == 1.0f);
+        CHECK(layout.textures.front().compare == "LEQUAL");
+        const bool pcss = config.technique == Technique::pcss;
+        int screen = 0, example = 0, shadow = 0;
+        for (const PassDesc& pass : layout.passes) {
+            screen += pass.phase == "screen";
+            example += pass.phase == "example";
+            shadow += pass.phase == "shadow";
+        }
+        CHECK(screen == 1);
+        CHECK(example == 1);
+        CHECK(shadow == (pcss ? 2 : 1));
+        // every plain uniform has a value in the table, or is set by the pass
+        for (const ProgramDesc& program : layout.programs)
+            for (const ParamDesc& p : program.parameters) {
+                CAPTURE(p.name);
+                if (p.binding >= 0) continue;
+                if (p.source == "light" || p.source == "camera") CHECK(has_uniform_rule(p.name));
+            }
+    }
+    // the table's shadow values come from shadow_frame
+    RectLight light;
+    const ShadowFrame shadow = shadow_frame(light, {-1, 0, -1}, {1, 1, 1});
+    const UniformInputs in{slice_frame(light, {-1, 0, -1}, {1, 1, 1}, 4), Light::rect, std::nullopt, shadow};
+    CHECK(std::get<glm::vec2>(*uniform_value("penumbra_shadowDepthRange", in)) == shadow.depth_range);
+    CHECK(std::get<float>(*uniform_value("penumbra_shadowTanHalfFov", in)) == shadow.tan_half_fov);
+    CHECK(std::get<glm::vec2>(*uniform_value("penumbra_lightSizeUV", in)) == shadow.light_size_uv);
+    CHECK(std::get<glm::mat4>(*uniform_value("penumbra_lightFromWorld", in)) == shadow.light_from_world);
 }

@@ -221,163 +221,21 @@ inline int binding_of(const std::vector<ParamDesc>& params, std::string_view nam
 
 } // namespace detail
 
+
 namespace detail {
 
-// Shadow map techniques: a depth pass from the light, then shading. PCSS reads the depth twice:
-// with comparison (the filter) and as plain depth (the blocker search), from a copy.
-inline Layout describe_shadow_map_layout(const Config& config) {
-    Layout layout;
-    layout.config = config;
-    const int R = config.shadow_map.resolution;
-    for (const ProgramPlan& plan : program_plan(config)) {
-        ProgramDesc program{std::string(plan.name), {}, describe_params(config, plan.name)};
-        for (Artifact a : plan.stages) program.files.emplace_back(file_name(a));
-        layout.programs.push_back(std::move(program));
-    }
-    // (interim: the shadow map layout in the layout vocabulary, until tech's own rewrite lands)
-    auto depth_texture = [&](std::string name, std::string filter, std::string purpose) {
-        TextureDesc t;
-        t.name = std::move(name);
-        t.target = "2D";
-        t.internal_format = "DEPTH_COMPONENT32F";
-        t.width = t.height = R;
-        t.min_filter = t.mag_filter = filter;
-        t.wrap = "CLAMP_TO_EDGE";
-        t.purpose = std::move(purpose);
-        layout.textures.push_back(std::move(t));
-    };
-    depth_texture(std::string(shadow_map_texture), "LINEAR",
-                  "shadow map: (z - near) / (far - near) along the light axis, biased; compared LEQUAL");
-    PassDesc depth;
-    depth.name = depth.program = "shadow_depth";
-    depth.action = "draw_scene";
-    depth.outputs = {{std::string(shadow_map_texture), 0, -1, "depth"}};
-    depth.viewport_width = depth.viewport_height = R;
-    depth.state.depth_test = depth.state.depth_write = true;
-    depth.state.clear_depth = 1.0f;
-    layout.passes.push_back(std::move(depth));
-    if (config.technique == Technique::pcss) {
-        depth_texture("penumbra_shadowDepth", "NEAREST", "copy of the shadow map read without comparison");
-        PassDesc copy;
-        copy.name = "copy_shadow_depth";
-        copy.action = "copy";
-        copy.inputs = {{"", std::string(shadow_map_texture), 0}};
-        copy.outputs = {{"penumbra_shadowDepth", 0, -1}};
-        copy.viewport_width = copy.viewport_height = R;
-        layout.passes.push_back(std::move(copy));
-    }
-    PassDesc shading;
-    shading.name = "shading";
-    shading.action = "draw_scene";
-    shading.program = "shading_example";
-    shading.phase = "example";
-    for (const ParamDesc& p : layout.programs[1].parameters)
-        if (p.binding >= 0) shading.inputs.push_back({p.name, p.texture, p.binding});
-    layout.passes.push_back(std::move(shading));
-    for (Artifact a : artifacts(config)) layout.files.emplace_back(file_name(a));
-    layout.files.emplace_back("layout.json");
-    return layout;
-}
+// Adds textures and passes to a layout whose programs are already described.
+struct LayoutBuilder {
+    Layout& layout;
+    std::string wrap; // the default wrap mode of new textures
 
-// Occlusion interval maps (GPU Gems ch. 13): the rise/fall textures come from an offline bake
-// (nearest filtering: the edges must not be blended); shading reads them at the surface's unique
-// texture coordinates, in the example pass or over the caller's G-buffer of texture coordinates.
-inline Layout describe_oim_layout(const Config& config) {
-    Layout layout;
-    layout.technique = "oim";
-    layout.config = config;
-    const int R = config.oim.resolution;
-    for (const ProgramPlan& plan : program_plan(config)) {
-        ProgramDesc program{std::string(plan.name), {}, describe_params(config, plan.name)};
-        for (Artifact a : plan.stages) program.files.emplace_back(file_name(a));
-        layout.programs.push_back(std::move(program));
-    }
-    auto texture = [&](Text name, std::string format, int size, std::string purpose) -> TextureDesc& {
-        TextureDesc t;
-        t.name = name.str();
-        t.target = "2D";
-        t.internal_format = std::move(format);
-        t.width = t.height = size;
-        t.min_filter = t.mag_filter = "NEAREST";
-        t.wrap = "CLAMP_TO_EDGE";
-        t.purpose = std::move(purpose);
-        layout.textures.push_back(std::move(t));
-        return layout.textures.back();
-    };
-    for (int p = 0; p < oim_pairs(config.oim); ++p)
-        for (const bool fall : {false, true})
-            texture(fall ? oim_fall_name(p) : oim_rise_name(p), "RGBA16F", R,
-                    std::string(fall ? "fall" : "rise") + " times of intervals " + std::to_string(4 * p) + " to " +
-                        std::to_string(4 * p + 3) +
-                        " (path time t, k / samples: exact in 16-bit floats; unused intervals [0, 0])")
-                .source = "bake";
-    TextureDesc& coords = texture("penumbra_texCoords", "RGBA32F", 0,
-                                  "G-buffer filled by the engine every frame: xy the surface's unique texture "
-                                  "coordinates (the bake's), w = 1 on geometry, 0 on the background");
-    coords.size = "output";
-    coords.source = "caller";
-    TextureDesc& visibility = texture("penumbra_visibility", std::string(visibility_format(config)), 0,
-                                      "visibility of each output pixel, 0 shadowed to 1 lit");
-    visibility.size = "output";
-    layout.result = visibility.name;
-
-    auto inputs_of = [&](const ProgramDesc& program) {
-        std::vector<BindingDesc> inputs;
-        for (const ParamDesc& p : program.parameters)
-            if (p.binding >= 0) inputs.push_back({p.name, p.texture, p.binding});
-        return inputs;
-    };
-    PassDesc shading;
-    shading.name = "shading";
-    shading.action = "fullscreen";
-    shading.program = "shading_deferred";
-    shading.inputs = inputs_of(layout.programs[1]);
-    shading.outputs = {{layout.result, 0, -1}};
-    shading.phase = "screen";
-    layout.passes.push_back(std::move(shading));
-    PassDesc example;
-    example.name = "shading_example";
-    example.action = "draw_scene";
-    example.program = "shading_example";
-    example.inputs = inputs_of(layout.programs[0]);
-    example.state.depth_test = example.state.depth_write = true;
-    example.state.clear_color = std::array<float, 4>{0.0f, 0.0f, 0.0f, 1.0f};
-    example.state.clear_depth = 1.0f;
-    example.phase = "example";
-    layout.passes.push_back(std::move(example));
-    for (Artifact a : artifacts(config)) layout.files.emplace_back(file_name(a));
-    layout.files.emplace_back("layout.json");
-    return layout;
-}
-
-} // namespace detail
-
-// The layout of a valid configuration. Precondition: is_valid(config).
-inline Layout describe_layout(const Config& config) {
-    using namespace detail;
-    if (uses_shadow_map(config)) return describe_shadow_map_layout(config);
-    if (config.technique == Technique::oim) return describe_oim_layout(config);
-    Layout layout;
-    layout.config = config;
-    const int R = config.resolution, T = texture_count(config), L = max_level(config);
-    layout.textures_per_layer = T;
-    layout.max_level = L;
-    const std::string wrap = border_wrap(config);
-    const std::string level_fmt(level_format(config));
-
-    // Programs with their parameters, in pass order.
-    for (const ProgramPlan& plan : program_plan(config)) {
-        ProgramDesc program{std::string(plan.name), {}, describe_params(config, plan.name)};
-        for (Artifact a : plan.stages) program.files.emplace_back(file_name(a));
-        layout.programs.push_back(std::move(program));
-    }
-    auto params_of = [&](std::string_view program) -> const std::vector<ParamDesc>& {
+    const std::vector<ParamDesc>& params_of(std::string_view program) const {
         for (const ProgramDesc& p : layout.programs)
             if (p.name == program) return p.parameters;
         return layout.programs.front().parameters;
-    };
-    auto texture = [&](std::string name, std::string target, std::string format, int w, int h, int d, int mips,
-                       std::string min, std::string mag, std::string purpose) -> TextureDesc& {
+    }
+    TextureDesc& texture(std::string name, std::string target, std::string format, int w, int h, int d, int mips,
+                         std::string min, std::string mag, std::string purpose) {
         TextureDesc t;
         t.name = std::move(name);
         t.target = std::move(target);
@@ -392,10 +250,10 @@ inline Layout describe_layout(const Config& config) {
         t.purpose = std::move(purpose);
         layout.textures.push_back(std::move(t));
         return layout.textures.back();
-    };
-    auto pass = [&](std::string name, std::string action, std::string program, std::vector<BindingDesc> inputs,
-                    std::vector<AttachmentDesc> outputs, std::vector<std::pair<std::string, int>> ints, int w, int h,
-                    RenderState state = {}, std::string phase = "shadow") {
+    }
+    void pass(std::string name, std::string action, std::string program, std::vector<BindingDesc> inputs,
+              std::vector<AttachmentDesc> outputs, std::vector<std::pair<std::string, int>> ints, int w, int h,
+              RenderState state = {}, std::string phase = "shadow") {
         for (BindingDesc& b : inputs)
             if (!program.empty()) b.binding = binding_of(params_of(program), b.sampler);
         PassDesc p;
@@ -410,55 +268,59 @@ inline Layout describe_layout(const Config& config) {
         p.state = std::move(state);
         p.phase = std::move(phase);
         layout.passes.push_back(std::move(p));
-    };
-
+    }
     // Full-screen passes: no blending, no depth test, an empty vertex array, 3 vertices.
-    auto fullscreen = [&](std::string name, std::string program, std::vector<BindingDesc> inputs,
-                          AttachmentDesc output, std::vector<std::pair<std::string, int>> ints, int w, int h) {
+    void fullscreen(std::string name, std::string program, std::vector<BindingDesc> inputs, AttachmentDesc output,
+                    std::vector<std::pair<std::string, int>> ints, int w, int h) {
         pass(std::move(name), "fullscreen", std::move(program), std::move(inputs), {std::move(output)}, std::move(ints),
              w, h);
-    };
+    }
+};
 
+// Occlusion textures, phase "shadow": slicing into the slices' storage, then the prefilter passes.
+inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
+    const int R = config.resolution, T = texture_count(config), L = max_level(config);
+    const std::string level_fmt(level_format(config));
     // Storage, and where the slicing pass writes slice texture t.
     std::vector<AttachmentDesc> slicing_outputs;
     const bool sliced_into_array = config.packing == Packing::atlas || config.filter == Filter::sat;
     if (sliced_into_array) {
-        texture("penumbra_slices", "2D_ARRAY", "RGBA8", R, R, T, 1, "NEAREST", "NEAREST",
+        b.texture("penumbra_slices", "2D_ARRAY", "RGBA8", R, R, T, 1, "NEAREST", "NEAREST",
                 "slicing output: binary coverage, one layer per four slices");
         for (int t = 0; t < T; ++t) slicing_outputs.push_back({"penumbra_slices", 0, t});
     }
     if (config.filter == Filter::mipmap && config.packing == Packing::atlas) {
-        texture("penumbra_occlusionAtlas", "2D", "RGBA8", T * R, R, 1, L + 1, "LINEAR_MIPMAP_LINEAR", "LINEAR",
+        b.texture("penumbra_occlusionAtlas", "2D", "RGBA8", T * R, R, 1, L + 1, "LINEAR_MIPMAP_LINEAR", "LINEAR",
                 "occlusion tiles side by side, mip chain");
     } else if (config.filter == Filter::mipmap) {
-        texture("penumbra_occlusion", "2D_ARRAY", "RGBA8", R, R, T, L + 1, "LINEAR_MIPMAP_LINEAR", "LINEAR",
+        b.texture("penumbra_occlusion", "2D_ARRAY", "RGBA8", R, R, T, L + 1, "LINEAR_MIPMAP_LINEAR", "LINEAR",
                 "occlusion textures, mip chain");
         for (int t = 0; t < T; ++t) slicing_outputs.push_back({"penumbra_occlusion", 0, t});
     } else if (config.filter == Filter::sat) {
         const bool atlas = config.packing == Packing::atlas;
         for (const char* name : {"penumbra_sat", "penumbra_satScratch"}) {
             const std::string n = atlas ? std::string(name) == "penumbra_sat" ? "penumbra_satAtlas" : name : name;
-            texture(n, atlas ? "2D" : "2D_ARRAY", "RGBA32F", atlas ? T * (R + 1) : R + 1, R + 1, atlas ? 1 : T, 1,
+            b.texture(n, atlas ? "2D" : "2D_ARRAY", "RGBA32F", atlas ? T * (R + 1) : R + 1, R + 1, atlas ? 1 : T, 1,
                     "LINEAR", "LINEAR", n == "penumbra_satScratch" ? "summed-area ping-pong target"
                                                                    : "exclusive summed-area tables, (R+1)-texel tiles");
         }
     } else if (config.packing == Packing::atlas) {
         for (int l = 0; l <= L; ++l)
-            texture(atlas_level_name(l).str(), "2D", level_fmt, T * R, R, 1, 1, "LINEAR", "LINEAR",
+            b.texture(atlas_level_name(l).str(), "2D", level_fmt, T * R, R, 1, 1, "LINEAR", "LINEAR",
                     "filter level " + std::to_string(l) + ", tiles side by side");
     } else if (config.packing == Packing::array) {
-        texture("penumbra_levels", "2D_ARRAY", level_fmt, R, R, (L + 1) * T, 1, "LINEAR", "LINEAR",
+        b.texture("penumbra_levels", "2D_ARRAY", level_fmt, R, R, (L + 1) * T, 1, "LINEAR", "LINEAR",
                 "filter levels, layer = level * T + texture");
-        texture("penumbra_scratch", "2D", level_fmt, R, R, 1, 1, "NEAREST", "NEAREST",
+        b.texture("penumbra_scratch", "2D", level_fmt, R, R, 1, 1, "NEAREST", "NEAREST",
                 "level being built (a texture cannot be sampled and rendered at once)");
         for (int t = 0; t < T; ++t) slicing_outputs.push_back({"penumbra_levels", 0, t});
     } else {
         for (int t = 0; t < T; ++t) {
-            texture(volume_name(t).str(), "3D", level_fmt, R, R, L + 1, 1, "LINEAR", "LINEAR",
+            b.texture(volume_name(t).str(), "3D", level_fmt, R, R, L + 1, 1, "LINEAR", "LINEAR",
                     "slices " + std::to_string(4 * t) + " to " + std::to_string(4 * t + 3) + ", levels along depth");
             slicing_outputs.push_back({volume_name(t).str(), 0, 0});
         }
-        texture("penumbra_scratch", "2D", level_fmt, R, R, 1, 1, "NEAREST", "NEAREST",
+        b.texture("penumbra_scratch", "2D", level_fmt, R, R, 1, 1, "NEAREST", "NEAREST",
                 "level being built (a texture cannot be sampled and rendered at once)");
     }
 
@@ -467,17 +329,17 @@ inline Layout describe_layout(const Config& config) {
     max_blend.blend_equation = "MAX";
     max_blend.blend_src = max_blend.blend_dst = "ONE";
     max_blend.clear_color = std::array<float, 4>{0.0f, 0.0f, 0.0f, 0.0f};
-    pass("slicing", "draw_scene", "slicing", {}, slicing_outputs, {}, R, R, max_blend);
+    b.pass("slicing", "draw_scene", "slicing", {}, slicing_outputs, {}, R, R, max_blend);
 
     // Prefilter passes.
     const std::string level_program = config.filter == Filter::gaussian ? "gaussian_level" : "nbuffer_level";
     if (config.packing == Packing::atlas && config.filter != Filter::sat) {
         const std::string level0 = config.filter == Filter::mipmap ? "penumbra_occlusionAtlas" : "penumbra_level0";
-        fullscreen("pack_atlas", "pack_atlas", {{"penumbra_slices", "penumbra_slices"}}, {level0, 0, -1}, {}, T * R, R);
+        b.fullscreen("pack_atlas", "pack_atlas", {{"penumbra_slices", "penumbra_slices"}}, {level0, 0, -1}, {}, T * R, R);
     }
     if (config.filter == Filter::mipmap) {
         const std::string storage = config.packing == Packing::atlas ? "penumbra_occlusionAtlas" : "penumbra_occlusion";
-        pass("mipmaps", "generate_mipmap", "", {}, {{storage, 0, -1}}, {}, 0, 0);
+        b.pass("mipmaps", "generate_mipmap", "", {}, {{storage, 0, -1}}, {}, 0, 0);
     } else if (config.filter == Filter::sat) {
         const bool atlas = config.packing == Packing::atlas;
         const std::string final_name = atlas ? "penumbra_satAtlas" : "penumbra_sat";
@@ -486,7 +348,7 @@ inline Layout describe_layout(const Config& config) {
             const int layer = atlas ? -1 : t;
             std::vector<std::pair<std::string, int>> ints;
             if (!atlas) ints.push_back({"penumbra_sourceLayer", t});
-            fullscreen("sat_shift", "sat_shift", {{"penumbra_slices", "penumbra_slices"}}, {final_name, 0, layer},
+            b.fullscreen("sat_shift", "sat_shift", {{"penumbra_slices", "penumbra_slices"}}, {final_name, 0, layer},
                        ints, w, R + 1);
             std::string from = final_name, to = "penumbra_satScratch";
             for (int vertical = 0; vertical <= 1; ++vertical)
@@ -494,7 +356,7 @@ inline Layout describe_layout(const Config& config) {
                     std::vector<std::pair<std::string, int>> pass_ints{{"penumbra_step", 1 << l},
                                                                        {"penumbra_vertical", vertical}};
                     if (!atlas) pass_ints.push_back({"penumbra_sourceLayer", t});
-                    fullscreen("sat_pass", "sat_pass", {{"penumbra_source", from}}, {to, 0, layer}, pass_ints, w,
+                    b.fullscreen("sat_pass", "sat_pass", {{"penumbra_source", from}}, {to, 0, layer}, pass_ints, w,
                                R + 1);
                     std::swap(from, to);
                 }
@@ -503,48 +365,122 @@ inline Layout describe_layout(const Config& config) {
         for (int l = 1; l <= L; ++l) {
             const std::pair<std::string, int> step{"penumbra_step", 1 << (l - 1)};
             if (config.packing == Packing::atlas) {
-                fullscreen(level_program, level_program, {{"penumbra_source", atlas_level_name(l - 1).str()}},
+                b.fullscreen(level_program, level_program, {{"penumbra_source", atlas_level_name(l - 1).str()}},
                            {atlas_level_name(l).str(), 0, -1}, {step}, T * R, R);
                 continue;
             }
             for (int t = 0; t < T; ++t) {
                 const bool array = config.packing == Packing::array;
                 const std::string storage = array ? "penumbra_levels" : volume_name(t).str();
-                fullscreen(level_program, level_program, {{"penumbra_source", storage}}, {"penumbra_scratch", 0, -1},
+                b.fullscreen(level_program, level_program, {{"penumbra_source", storage}}, {"penumbra_scratch", 0, -1},
                            {step, {"penumbra_sourceLayer", array ? (l - 1) * T + t : l - 1}}, R, R);
-                pass("copy_level", "copy", "", {{"", "penumbra_scratch", 0}}, {{storage, 0, array ? l * T + t : l}}, {},
+                b.pass("copy_level", "copy", "", {{"", "penumbra_scratch", 0}}, {{storage, 0, array ? l * T + t : l}}, {},
                      R, R);
             }
         }
     }
+}
 
-    // Screen phase: the deferred visibility over the caller's G-buffer, at the output size.
-    TextureDesc& world = texture("penumbra_worldPositions", "2D", "RGBA32F", 0, 0, 1, 1, "NEAREST", "NEAREST",
-                                 "G-buffer filled by the engine every frame: xyz world position, w = 1 on geometry, "
-                                 "0 on the background; read with texelFetch (no filtering)");
+// Shadow map techniques, phase "shadow": the depth pass from the light (shadow_frame in
+// light_frame.hpp), and for PCSS a copy of the depth that the blocker search reads without
+// comparison (a texture has one compare mode).
+inline void describe_shadow_map_passes(LayoutBuilder& b, const Config& config) {
+    const int R = config.shadow_map.resolution;
+    TextureDesc& map = b.texture(std::string(shadow_map_texture), "2D", "DEPTH_COMPONENT32F", R, R, 1, 1, "LINEAR",
+                                 "LINEAR", "shadow map: (z - near) / (far - near) along the light axis, biased; "
+                                           "read with hardware comparison, bilinear");
+    map.wrap = "CLAMP_TO_EDGE"; // kernels reaching past the map read its edge, not a shadowing border
+    map.compare = "LEQUAL";     // lit where the receiver's depth <= the stored (biased) occluder depth
+    RenderState depth_only;
+    depth_only.depth_test = depth_only.depth_write = true;
+    depth_only.depth_func = "LESS";
+    depth_only.clear_depth = 1.0f;
+    b.pass("shadow_depth", "draw_scene", "shadow_depth", {}, {{std::string(shadow_map_texture), 0, -1, "depth"}}, {},
+           R, R, depth_only);
+    if (config.technique == Technique::pcss) {
+        TextureDesc& plain = b.texture("penumbra_shadowDepth", "2D", "DEPTH_COMPONENT32F", R, R, 1, 1, "NEAREST",
+                                       "NEAREST", "copy of the shadow map, read as depth for the blocker search");
+        plain.wrap = "CLAMP_TO_EDGE";
+        b.pass("copy_shadow_depth", "copy", "", {{"", std::string(shadow_map_texture), 0}},
+               {{"penumbra_shadowDepth", 0, -1, "depth"}}, {}, R, R);
+    }
+}
+
+} // namespace detail
+
+// The layout of a valid configuration. Precondition: is_valid(config).
+// Occlusion interval maps (GPU Gems ch. 13): no pass before shading; the rise/fall textures come
+// from an offline bake (nearest filtering: the edges must not be blended).
+inline void describe_oim_textures(LayoutBuilder& b, const Config& config) {
+    const int R = config.oim.resolution;
+    for (int p = 0; p < oim_pairs(config.oim); ++p)
+        for (const bool fall : {false, true}) {
+            TextureDesc& t = b.texture((fall ? oim_fall_name(p) : oim_rise_name(p)).str(), "2D", "RGBA16F", R, R, 1, 1,
+                                       "NEAREST", "NEAREST",
+                                       std::string(fall ? "fall" : "rise") + " times of intervals " +
+                                           std::to_string(4 * p) + " to " + std::to_string(4 * p + 3) +
+                                           " (path time t, k / samples: exact in 16-bit floats; unused intervals [0, 0])");
+            t.wrap = "CLAMP_TO_EDGE";
+            t.source = "bake";
+        }
+}
+
+inline Layout describe_layout(const Config& config) {
+    using namespace detail;
+    Layout layout;
+    layout.config = config;
+    layout.technique = std::string(to_string(config.technique));
+    if (config.technique == Technique::occlusion) {
+        layout.textures_per_layer = texture_count(config);
+        layout.max_level = max_level(config);
+    }
+
+    // Programs with their parameters, in pass order.
+    for (const ProgramPlan& plan : program_plan(config)) {
+        ProgramDesc program{std::string(plan.name), {}, describe_params(config, plan.name)};
+        for (Artifact a : plan.stages) program.files.emplace_back(file_name(a));
+        layout.programs.push_back(std::move(program));
+    }
+    LayoutBuilder build{layout, border_wrap(config)};
+    if (uses_shadow_map(config))
+        describe_shadow_map_passes(build, config);
+    else if (config.technique == Technique::oim)
+        describe_oim_textures(build, config);
+    else
+        describe_occlusion_passes(build, config);
+    // Screen phase: the deferred visibility over the caller's G-buffer, at the output size (world
+    // positions; for occlusion interval maps, whose maps are per surface, texture coordinates).
+    TextureDesc& world =
+        config.technique == Technique::oim
+            ? build.texture("penumbra_texCoords", "2D", "RGBA32F", 0, 0, 1, 1, "NEAREST", "NEAREST",
+                            "G-buffer filled by the engine every frame: xy the surface's unique texture coordinates "
+                            "(the bake's), w = 1 on geometry, 0 on the background; read with texelFetch")
+            : build.texture("penumbra_worldPositions", "2D", "RGBA32F", 0, 0, 1, 1, "NEAREST", "NEAREST",
+                            "G-buffer filled by the engine every frame: xyz world position, w = 1 on geometry, "
+                            "0 on the background; read with texelFetch (no filtering)");
     world.wrap = "CLAMP_TO_EDGE";
     world.size = "output";
     world.source = "caller";
-    TextureDesc& visibility = texture("penumbra_visibility", "2D", std::string(visibility_format(config)), 0, 0, 1, 1,
+    TextureDesc& visibility = build.texture("penumbra_visibility", "2D", std::string(visibility_format(config)), 0, 0, 1, 1,
                                       "NEAREST", "NEAREST", "visibility of each output pixel, 0 shadowed to 1 lit");
     visibility.wrap = "CLAMP_TO_EDGE";
     visibility.size = "output";
     layout.result = visibility.name;
     std::vector<BindingDesc> deferred_inputs;
-    for (const ParamDesc& p : params_of("shading_deferred"))
+    for (const ParamDesc& p : build.params_of("shading_deferred"))
         if (p.binding >= 0) deferred_inputs.push_back({p.name, p.texture, p.binding});
-    pass("shading", "fullscreen", "shading_deferred", deferred_inputs, {{layout.result, 0, -1}}, {}, 0, 0, {}, "screen");
+    build.pass("shading", "fullscreen", "shading_deferred", deferred_inputs, {{layout.result, 0, -1}}, {}, 0, 0, {}, "screen");
 
     // Example phase: the engine draws its scene with shading_example (or its own shader including
     // penumbra_visibility.glsl, binding the same storage samplers) into its own framebuffer.
     std::vector<BindingDesc> example_inputs;
-    for (const ParamDesc& p : params_of("shading_example"))
+    for (const ParamDesc& p : build.params_of("shading_example"))
         if (p.binding >= 0) example_inputs.push_back({p.name, p.texture, p.binding});
     RenderState depth_tested;
     depth_tested.depth_test = depth_tested.depth_write = true;
     depth_tested.clear_color = std::array<float, 4>{0.0f, 0.0f, 0.0f, 1.0f};
     depth_tested.clear_depth = 1.0f;
-    pass("shading_example", "draw_scene", "shading_example", example_inputs, {}, {}, 0, 0, depth_tested, "example");
+    build.pass("shading_example", "draw_scene", "shading_example", example_inputs, {}, {}, 0, 0, depth_tested, "example");
 
     for (Artifact a : artifacts(config)) layout.files.emplace_back(file_name(a));
     layout.files.emplace_back("layout.json");

@@ -27,6 +27,7 @@ struct UniformInputs {
     SliceFrame frame;                         // slice_frame(light, bounds_min, bounds_max, slices)
     Light light = Light::rect;                // which slice_frame made it
     std::optional<glm::mat4> clip_from_world; // the viewer's camera, when the caller has one
+    ShadowFrame shadow;                       // shadow_frame(light, bounds_min, bounds_max): shadow map techniques
     // Occlusion interval maps: the sun's time window along its path (penumbra::sun_window: start,
     // end, 1 / width, centre t), when the light is a sun on a path.
     std::optional<glm::vec4> time_window;
@@ -48,6 +49,12 @@ inline const std::vector<UniformRule>& uniform_rules() {
         {"penumbra_copDistance", [](const UniformInputs& in) -> V { return in.frame.cop_distance; }},
         {"penumbra_windowHalfSize", [](const UniformInputs& in) -> V { return in.frame.window_half_size; }},
         {"penumbra_tanAngularRadius", [](const UniformInputs& in) -> V { return in.frame.tan_angular_radius; }},
+        // shadow map techniques (shadow_frame); penumbra_lightFromWorld, penumbra_lightSize,
+        // penumbra_windowHalfSize and penumbra_tanAngularRadius are the same in both frames
+        {"penumbra_shadowClipFromWorld", [](const UniformInputs& in) -> V { return in.shadow.shadow_clip_from_world; }},
+        {"penumbra_shadowDepthRange", [](const UniformInputs& in) -> V { return in.shadow.depth_range; }},
+        {"penumbra_shadowTanHalfFov", [](const UniformInputs& in) -> V { return in.shadow.tan_half_fov; }},
+        {"penumbra_lightSizeUV", [](const UniformInputs& in) -> V { return in.shadow.light_size_uv; }},
         // rect: the light's centre (the light frame's origin), w = 1; sun: the direction towards the
         // sun (minus the light frame's z axis), w = 0
         {"penumbra_toLight",

@@ -364,7 +364,13 @@ public:
     void set_time_window(glm::vec4 window) { time_window_ = window; }
 
     // What "light" (and "camera") uniforms are computed from (penumbra/uniform_values.hpp).
-    UniformInputs uniform_inputs() const { return {frame_, config_.light, std::nullopt, time_window_}; }
+    UniformInputs uniform_inputs() const { return {frame_, config_.light, std::nullopt, shadow_frame(), time_window_}; }
+    // The shadow-map camera (shadow map techniques) of the last set_light; the default frame after set_frame.
+    ShadowFrame shadow_frame() const {
+        if (const auto* rect = std::get_if<RectLight>(&light_)) return penumbra::shadow_frame(*rect, bounds_min_, bounds_max_);
+        if (const auto* sun = std::get_if<SunLight>(&light_)) return penumbra::shadow_frame(*sun, bounds_min_, bounds_max_);
+        return {};
+    }
 
     // Switches to `config`: re-emits, rebuilds only the programs whose text changed and reallocates only the
     // textures whose description changed. On any failure (invalid configuration, compile/link error, GL
