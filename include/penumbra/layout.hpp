@@ -406,9 +406,6 @@ inline void describe_shadow_map_passes(LayoutBuilder& b, const Config& config) {
     }
 }
 
-} // namespace detail
-
-// The layout of a valid configuration. Precondition: is_valid(config).
 // Occlusion interval maps (GPU Gems ch. 13): no pass before shading; the rise/fall textures come
 // from an offline bake (nearest filtering: the edges must not be blended).
 inline void describe_oim_textures(LayoutBuilder& b, const Config& config) {
@@ -425,6 +422,9 @@ inline void describe_oim_textures(LayoutBuilder& b, const Config& config) {
         }
 }
 
+} // namespace detail
+
+// The layout of a valid configuration. Precondition: is_valid(config).
 inline Layout describe_layout(const Config& config) {
     using namespace detail;
     Layout layout;
