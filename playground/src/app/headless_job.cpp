@@ -117,7 +117,7 @@ int run_headless(const PlaygroundOptions& options) {
     SceneLoad loaded = load_scene(options.scene);
     if (!loaded.scene) return fail(loaded.error, 2);
     Scene& scene = *loaded.scene;
-    if (options.light_size) apply_light_size(scene, options.config.light, *options.light_size);
+    if (options.light_size) apply_light_size(scene, shading_light(options.config), *options.light_size);
     const int width = options.width > 0 ? options.width : 512;
     const int height = options.height > 0 ? options.height : 512;
 

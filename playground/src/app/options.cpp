@@ -103,7 +103,8 @@ std::string check(const PlaygroundOptions& o) {
     if (o.config.target == penumbra::Target::vulkan)
         return "--target: 'vulkan' cannot run here, the playground renders with OpenGL; allowed: glsl330, glsl450, "
                "essl300";
-    if (o.light_size && o.config.light == penumbra::Light::sun && *o.light_size >= 90.0)
+    const bool sun = o.config.light == penumbra::Light::sun || o.config.technique == penumbra::Technique::oim;
+    if (o.light_size && sun && *o.light_size >= 90.0)
         return "--light-size: " + std::to_string(*o.light_size) +
                " degrees is too wide for the sun; allowed: an angular diameter above 0 and below 90";
     if (!o.sun_path.empty()) {
@@ -223,6 +224,7 @@ std::string usage() {
         "usage: penumbra-playground --headless --scene NAME|FILE.obj [configuration flags] [--size WxH]\n"
         "           [--light-size X] --out image.png [--visibility vis.pfm] [--reference] [--samples N]\n"
         "           [--metrics metrics.json] [--reference-out truth.pfm] [--error-out error.png]\n"
+        "           [--sun-time T] [--sun-path AZ:EL,...] [--bake-cache DIR]  (--technique oim)\n"
         "       penumbra-playground [--scene NAME|FILE.obj] [configuration flags] [--size WxH] [--light-size X]\n"
         "           [--watch DIR] [--frames N] [--screenshot FILE] [--script FILE]\n"
         "\n"
