@@ -39,14 +39,17 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
         return false;
     }
     // Every G-buffer texture the layouts know; each technique's screen pass reads the ones it declares.
+    // Run twice, timing the second: llvmpipe compiles a program at its first draw, and that first
+    // number would be the compiler's, not the shading's.
+    const penumbra::gl::Runtime::TextureMap gbuffer_textures{{"penumbra_worldPositions", gbuffer->positions()},
+                                                             {"penumbra_texCoords", gbuffer->tex_coords()}};
     std::vector<penumbra::gl::PassTiming> screen_timings;
-    if (std::string d = runtime->run_screen({{"penumbra_worldPositions", gbuffer->positions()},
-                                             {"penumbra_texCoords", gbuffer->tex_coords()}},
-                                            width, height, &screen_timings);
-        !d.empty()) {
-        if (error) *error = d;
-        return false;
-    }
+    for (int run = 0; run < 2; ++run)
+        if (std::string d = runtime->run_screen(gbuffer_textures, width, height, run ? &screen_timings : nullptr);
+            !d.empty()) {
+            if (error) *error = d;
+            return false;
+        }
     penumbra::gl::PassTiming shading_timing;
     for (const penumbra::gl::PassTiming& t : screen_timings) {
         shading_timing.name += (shading_timing.name.empty() ? "" : "+") + t.name;

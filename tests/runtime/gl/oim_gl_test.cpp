@@ -66,7 +66,7 @@ TEST_CASE("oim: the shader evaluates the bake exactly, and both follow Embree's 
     testing::TempDir dir;
     const penumbra::Config config = oim_config(128);
     const double t = 0.4;
-    const Rendered r = render_oim("planes", config, t, 0.0093 * 5.0, 96, dir.file("cache"));
+    const Rendered r = render_oim("planes", config, t, 0.0093 * 5.0, 128, dir.file("cache"));
     const OimBake& bake = r.setup.cached.bake;
     const glm::vec4 w = r.setup.time_window;
     const std::vector<TexelSample> texels = texel_samples(r.scene.mesh, config.oim.resolution);
@@ -88,9 +88,9 @@ TEST_CASE("oim: the shader evaluates the bake exactly, and both follow Embree's 
         normals.push_back(texels[static_cast<std::size_t>(texel)].normal);
         shaded.push_back(r.result.visibility[i]);
     }
-    CHECK(compared > 4000);
+    CHECK(compared > 3000);
     CHECK(mismatched == 0);
-    CHECK(soft > 20);
+    CHECK(soft > 8); // penumbra pixels are among them
 
     // Shader = Embree's visibility of the linear light (64 instants of the window) at the texels'
     // points, within what 256 bake instants can resolve.
