@@ -4,6 +4,7 @@
 #include "reference/ground_truth.hpp"
 
 #include <penumbra/gl/runtime.hpp>
+#include <penumbra/texture_memory.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -33,23 +34,32 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
     if (options.time_window) runtime->set_time_window(*options.time_window);
     if (shading_light(config) == Light::sun) runtime->set_light(scene.sun, glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
     else runtime->set_light(scene.light, glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
+    // Every G-buffer texture the layouts know; each technique's screen pass reads the ones it declares.
+    const penumbra::gl::Runtime::TextureMap gbuffer_textures{{"penumbra_worldPositions", gbuffer->positions()},
+                                                             {"penumbra_texCoords", gbuffer->tex_coords()}};
+    if (options.warm_up) {
+        if (std::string d = runtime->build([&](GLuint) { mesh.draw(); }); !d.empty()) {
+            if (error) *error = d;
+            return false;
+        }
+        if (std::string d = runtime->run_screen(gbuffer_textures, width, height); !d.empty()) {
+            if (error) *error = d;
+            return false;
+        }
+        glFinish();
+    }
+    out.warm = options.warm_up;
+    out.texture_bytes = penumbra::texture_bytes(runtime->layout(), width, height);
     out.timings.clear();
     if (std::string d = runtime->build([&](GLuint) { mesh.draw(); }, &out.timings); !d.empty()) {
         if (error) *error = d;
         return false;
     }
-    // Every G-buffer texture the layouts know; each technique's screen pass reads the ones it declares.
-    // Run twice, timing the second: llvmpipe compiles a program at its first draw, and that first
-    // number would be the compiler's, not the shading's.
-    const penumbra::gl::Runtime::TextureMap gbuffer_textures{{"penumbra_worldPositions", gbuffer->positions()},
-                                                             {"penumbra_texCoords", gbuffer->tex_coords()}};
     std::vector<penumbra::gl::PassTiming> screen_timings;
-    for (int run = 0; run < 2; ++run)
-        if (std::string d = runtime->run_screen(gbuffer_textures, width, height, run ? &screen_timings : nullptr);
-            !d.empty()) {
-            if (error) *error = d;
-            return false;
-        }
+    if (std::string d = runtime->run_screen(gbuffer_textures, width, height, &screen_timings); !d.empty()) {
+        if (error) *error = d;
+        return false;
+    }
     penumbra::gl::PassTiming shading_timing;
     for (const penumbra::gl::PassTiming& t : screen_timings) {
         shading_timing.name += (shading_timing.name.empty() ? "" : "+") + t.name;

@@ -27,6 +27,8 @@ struct HeadlessResult {
     std::vector<unsigned char> geometry; // 1 where a surface was rasterised
     std::vector<float> rgb;              // Lambert shading, 3 floats per pixel, top row first
     std::vector<penumbra::gl::PassTiming> timings; // GPU time of each pass (timer queries), shading last
+    bool warm = false;                             // timings of a second run (RenderOptions::warm_up)
+    long long texture_bytes = 0;                   // the layout's textures at this output size
 };
 
 struct RenderOptions {
@@ -37,6 +39,9 @@ struct RenderOptions {
     // time window along its path (occlusion interval maps; bake/oim_scene.hpp prepares both).
     std::vector<std::pair<std::string, std::vector<float>>> bake_textures;
     std::optional<glm::vec4> time_window;
+    // Run the passes once before the timed run, so the timings are warm: llvmpipe (and some
+    // drivers) compile a shader at its first draw, which the first run's GPU time would include.
+    bool warm_up = false;
 };
 
 // The kind of light a configuration is lit by: occlusion interval maps follow the sun.
