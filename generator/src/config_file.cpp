@@ -14,7 +14,7 @@ using nlohmann::json;
 
 constexpr std::string_view key_list =
     "slices, resolution, filter, fusion, packing, light, leak_fix, self_shadow_fade, tangent_clip, target, "
-    "technique, shadow_map, pcf, pcss";
+    "technique, shadow_map, pcf, pcss, oim";
 
 std::string type_of(const json& value) {
     if (value.is_number_float()) return "a number with a fraction";
@@ -136,6 +136,18 @@ std::string read_pcss(const json& value, penumbra::PcssParams& pcss) {
                         });
 }
 
+std::string read_oim(const json& value, penumbra::OimParams& oim) {
+    return read_section("oim", value, "resolution, intervals, samples",
+                        [&](const std::string& key, const std::string& name, const json& item) -> std::string {
+                            if (key == "resolution")
+                                return store(read_int(name, item, "a power of two from 32 to 4096"), oim.resolution);
+                            if (key == "intervals") return store(read_int(name, item, "4, 8, 12 or 16"), oim.intervals);
+                            if (key == "samples")
+                                return store(read_int(name, item, "256, 512, 1024 or 2048"), oim.samples);
+                            return "unknown";
+                        });
+}
+
 // nlohmann's what() without its "[json.exception.parse_error.101] " prefix, on one line, with
 // the raw bytes it quotes from the file ("last read: '…'") escaped.
 std::string parse_message(const json::exception& e) {
@@ -238,6 +250,8 @@ Parsed<penumbra::Config> parse_config_json(std::string_view text, std::string_vi
             error = read_pcf(value, config.pcf);
         else if (key == "pcss")
             error = read_pcss(value, config.pcss);
+        else if (key == "oim")
+            error = read_oim(value, config.oim);
         else if (key == "slices")
             error = store(read_int(key, value, allowed_for(key)), config.slices);
         else if (key == "resolution")

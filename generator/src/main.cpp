@@ -31,7 +31,7 @@ int fail(const std::string& message) {
 
 std::string describe(const penumbra::Config& c) {
     using penumbra::to_string;
-    if (penumbra::uses_shadow_map(c)) return penumbra::detail::describe(c).str();
+    if (c.technique != penumbra::Technique::occlusion) return penumbra::detail::describe(c).str();
     return std::to_string(c.slices) + " slices, " + std::to_string(c.resolution) + "², " +
            std::string(to_string(c.filter)) + ", " + std::string(to_string(c.fusion)) + ", " +
            std::string(to_string(c.packing)) + ", " + std::string(to_string(c.light)) + ", " +

@@ -9,14 +9,16 @@ namespace penumbra_gen {
 
 const std::string_view technique_flag_list =
     "--technique, --shadow-resolution, --shadow-bias, --shadow-slope-bias, --pcf-pattern, --pcf-grid, --pcf-taps, "
-    "--pcf-radius, --pcss-blockers, --pcss-filter, --pcss-max-texels, --no-rotation";
+    "--pcf-radius, --pcss-blockers, --pcss-filter, --pcss-max-texels, --no-rotation, --oim-resolution, "
+    "--oim-intervals, --oim-samples";
 
 namespace {
 
 constexpr std::string_view value_flags[] = {"--technique",   "--shadow-resolution", "--shadow-bias",
                                             "--shadow-slope-bias", "--pcf-pattern", "--pcf-grid",
                                             "--pcf-taps",    "--pcf-radius",        "--pcss-blockers",
-                                            "--pcss-filter", "--pcss-max-texels"};
+                                            "--pcss-filter", "--pcss-max-texels", "--oim-resolution",
+                                            "--oim-intervals", "--oim-samples"};
 
 std::string parse_int(std::string_view flag, std::string_view text, std::optional<int>& slot,
                       std::string_view allowed) {
@@ -76,6 +78,10 @@ std::string parse_technique_flag(std::string_view flag, std::string_view value, 
     if (flag == "--pcf-radius") return parse_real(flag, value, flags.pcf_radius, "more than 0 to 1000 scene units");
     if (flag == "--pcss-blockers") return parse_int(flag, value, flags.pcss_blockers, "1 to 64");
     if (flag == "--pcss-filter") return parse_int(flag, value, flags.pcss_filter, "1 to 128");
+    if (flag == "--oim-resolution")
+        return parse_int(flag, value, flags.oim_resolution, "a power of two from 32 to 4096");
+    if (flag == "--oim-intervals") return parse_int(flag, value, flags.oim_intervals, "4, 8, 12 or 16");
+    if (flag == "--oim-samples") return parse_int(flag, value, flags.oim_samples, "256, 512, 1024 or 2048");
     return parse_int(flag, value, flags.pcss_max_texels, "1 to half the shadow-map resolution"); // --pcss-max-texels
 }
 
@@ -98,6 +104,9 @@ penumbra::Config apply(const TechniqueFlags& flags, penumbra::Config config) {
     if (flags.pcss_filter) config.pcss.filter_samples = *flags.pcss_filter;
     if (flags.pcss_max_texels) config.pcss.max_filter_texels = *flags.pcss_max_texels;
     if (flags.no_rotation) config.pcf.rotate = config.pcss.rotate = false;
+    if (flags.oim_resolution) config.oim.resolution = *flags.oim_resolution;
+    if (flags.oim_intervals) config.oim.intervals = *flags.oim_intervals;
+    if (flags.oim_samples) config.oim.samples = *flags.oim_samples;
     return config;
 }
 
@@ -139,6 +148,12 @@ std::string technique_usage(std::size_t column) {
     out += line("--pcss-max-texels N", "pcss: largest filter half-width in texels, 1 to resolution / 2 (default " +
                                            std::to_string(d.pcss.max_filter_texels) + ")");
     out += line("--no-rotation", "pcf, pcss: no per-pixel rotation of the tap pattern (default on)");
+    out += line("--oim-resolution R", "oim: interval-map side in texels, a power of two 32 to 4096 (default " +
+                                          std::to_string(d.oim.resolution) + ")");
+    out += line("--oim-intervals N", "oim: visibility intervals per texel, 4, 8, 12 or 16 (default " +
+                                         std::to_string(d.oim.intervals) + ")");
+    out += line("--oim-samples N", "oim: instants the bake traces along the sun's path, 256, 512, 1024 or 2048 "
+                                       "(default " + std::to_string(d.oim.samples) + ")");
     return out;
 }
 

@@ -1,5 +1,5 @@
 // technique_flags.hpp — the command-line flags that pick the technique and set its parameters
-// (--technique, --shadow-*, --pcf-*, --pcss-*, --no-rotation), shared by penumbra-gen and
+// (--technique, --shadow-*, --pcf-*, --pcss-*, --no-rotation, --oim-*), shared by penumbra-gen and
 // penumbra-playground. Ranges are checked by penumbra::validate, so both tools give its messages.
 #pragma once
 
@@ -20,6 +20,7 @@ struct TechniqueFlags {
     std::optional<double> pcf_radius;
     std::optional<int> pcss_blockers, pcss_filter, pcss_max_texels;
     bool no_rotation = false;
+    std::optional<int> oim_resolution, oim_intervals, oim_samples;
 };
 
 // "--technique, --shadow-resolution, …": for the lists of allowed flags in messages.

@@ -63,6 +63,7 @@ enum class Technique : std::uint8_t {
     shadowmap, // one depth map from the light, one hardware comparison tap: hard shadows
     pcf,       // percentage-closer filtering (Reeves et al. 1987): fixed kernel of comparison taps
     pcss,      // percentage-closer soft shadows (Fernando 2005): blocker search, penumbra estimate, PCF
+    oim,       // occlusion interval maps (GPU Gems ch. 13): baked visibility intervals of the sun on a fixed path
 };
 
 // Where the PCF taps lie in the kernel.
@@ -102,6 +103,20 @@ struct PcssParams {
     friend constexpr bool operator==(const PcssParams&, const PcssParams&) = default;
 };
 
+// Occlusion interval maps (Donnelly & Demers, GPU Gems ch. 13): per texel of a unique texture
+// parameterization, the times along the sun's fixed path at which it rises and sets there, baked
+// offline; shading averages that visibility over the window the sun's disk covers.
+struct OimParams {
+    int resolution = 256; // interval-map side in texels; a power of two, 32 to 4096 (target limit)
+    int intervals = 8;    // visibility intervals per texel: 4, 8, 12 or 16 (four per RGBA rise/fall pair)
+    int samples = 256;    // instants along the path that the bake traces: 256, 512, 1024 or 2048 (the chapter: 256)
+
+    friend constexpr bool operator==(const OimParams&, const OimParams&) = default;
+};
+
+// Number of RGBA rise/fall texture pairs: four intervals each.
+constexpr int oim_pairs(const OimParams& oim) { return (oim.intervals + 3) / 4; }
+
 struct Config {
     Technique technique = Technique::occlusion; // which method the programs implement
     int slices = 16;                        // slices along the light normal; 1 to 32 (four per RGBA texture)
@@ -118,6 +133,7 @@ struct Config {
     ShadowMapParams shadow_map{};           // shadowmap, pcf, pcss: the depth map from the light
     PcfParams pcf{};                        // pcf: the fixed kernel
     PcssParams pcss{};                      // pcss: blocker search and filter
+    OimParams oim{};                        // oim: the interval maps (the sun's path: penumbra/sun_path.hpp)
 
     friend constexpr bool operator==(const Config&, const Config&) = default;
 };
@@ -125,7 +141,7 @@ struct Config {
 // Names as they appear on the command line, in JSON and in diagnostics.
 template <class Enum> struct EnumNames;
 template <> struct EnumNames<Technique> {
-    static constexpr std::array<std::string_view, 4> names{"occlusion", "shadowmap", "pcf", "pcss"};
+    static constexpr std::array<std::string_view, 5> names{"occlusion", "shadowmap", "pcf", "pcss", "oim"};
 };
 template <> struct EnumNames<TapPattern> {
     static constexpr std::array<std::string_view, 2> names{"grid", "poisson"};
@@ -167,13 +183,16 @@ template <class Enum> constexpr auto all_values() {
 }
 
 // True for the techniques built on one depth map from the light (shadowmap, pcf, pcss).
+constexpr bool uses_shadow_map(const Config& config) {
+    return config.technique == Technique::shadowmap || config.technique == Technique::pcf ||
+           config.technique == Technique::pcss;
+}
+
 // True when the occlusion-texture kernels are clipped to the receiver's tangent plane: the snippet
 // then takes the normal, and the deferred pass reads the caller's penumbra_worldNormals.
 constexpr bool clips_to_tangent_plane(const Config& config) {
     return config.technique == Technique::occlusion && config.tangent_clip;
 }
-
-constexpr bool uses_shadow_map(const Config& config) { return config.technique != Technique::occlusion; }
 
 // Number of comparison taps of the PCF kernel.
 constexpr int pcf_taps(const PcfParams& pcf) {

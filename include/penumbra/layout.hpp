@@ -138,6 +138,17 @@ inline std::string border_wrap(const Config& config) {
     return limits(config.target).clamp_to_border ? "CLAMP_TO_BORDER" : "CLAMP_TO_EDGE";
 }
 
+// The shading programs' own parameters, after penumbraVisibility()'s.
+inline std::vector<Param> shading_deferred_params(const Config& config) {
+    return config.technique == Technique::oim ? oim_deferred_params() : deferred_params(config);
+}
+inline std::vector<Param> shading_fragment_params(const Config& config) {
+    return config.technique == Technique::oim ? oim_example_fragment_params() : example_fragment_params();
+}
+inline std::vector<Param> shading_vertex_params(const Config& config) {
+    return config.technique == Technique::oim ? oim_example_vertex_params() : example_vertex_params();
+}
+
 inline std::vector<Param> program_params(const Config& config, std::string_view program) {
     if (program == "slicing") return slicing_params();
     if (program == "pack_atlas") return pack_atlas_params();
@@ -146,10 +157,11 @@ inline std::vector<Param> program_params(const Config& config, std::string_view 
     if (program == "sat_pass") return sat_pass_params(config);
     if (program == "shadow_depth") return shadow_depth_params();
     std::vector<Param> params = technique_visibility_params(config);
-    const std::vector<Param> extra = program == "shading_deferred" ? deferred_params(config) : example_fragment_params();
+    const std::vector<Param> extra =
+        program == "shading_deferred" ? shading_deferred_params(config) : shading_fragment_params(config);
     params.insert(params.end(), extra.begin(), extra.end());
     if (program == "shading_example")
-        for (Param& p : example_vertex_params()) params.push_back(std::move(p));
+        for (Param& p : shading_vertex_params(config)) params.push_back(std::move(p));
     return params;
 }
 
@@ -161,10 +173,10 @@ inline std::vector<ParamDesc> describe_params(const Config& config, std::string_
     if (program == "shading_example" || program == "shading_deferred") {
         groups.push_back({"PenumbraVisibility", technique_visibility_params(config)});
         if (program == "shading_example") {
-            groups.push_back({"PenumbraExample", example_fragment_params()});
-            groups.push_back({"PenumbraCamera", example_vertex_params()});
+            groups.push_back({"PenumbraExample", shading_fragment_params(config)});
+            groups.push_back({"PenumbraCamera", shading_vertex_params(config)});
         } else {
-            groups.push_back({"PenumbraDeferred", deferred_params(config)});
+            groups.push_back({"PenumbraDeferred", shading_deferred_params(config)});
         }
     } else {
         groups.push_back({program == "slicing" ? "PenumbraSlicing" : program == "shadow_depth" ? "PenumbraShadowDepth"
@@ -401,6 +413,22 @@ inline void describe_shadow_map_passes(LayoutBuilder& b, const Config& config) {
     }
 }
 
+// Occlusion interval maps (GPU Gems ch. 13): no pass before shading; the rise/fall textures come
+// from an offline bake (nearest filtering: the edges must not be blended).
+inline void describe_oim_textures(LayoutBuilder& b, const Config& config) {
+    const int R = config.oim.resolution;
+    for (int p = 0; p < oim_pairs(config.oim); ++p)
+        for (const bool fall : {false, true}) {
+            TextureDesc& t = b.texture((fall ? oim_fall_name(p) : oim_rise_name(p)).str(), "2D", "RGBA16F", R, R, 1, 1,
+                                       "NEAREST", "NEAREST",
+                                       std::string(fall ? "fall" : "rise") + " times of intervals " +
+                                           std::to_string(4 * p) + " to " + std::to_string(4 * p + 3) +
+                                           " (path time t, k / samples: exact in 16-bit floats; unused intervals [0, 0])");
+            t.wrap = "CLAMP_TO_EDGE";
+            t.source = "bake";
+        }
+}
+
 } // namespace detail
 
 // The layout of a valid configuration. Precondition: is_valid(config).
@@ -409,7 +437,7 @@ inline Layout describe_layout(const Config& config) {
     Layout layout;
     layout.config = config;
     layout.technique = std::string(to_string(config.technique));
-    if (!uses_shadow_map(config)) {
+    if (config.technique == Technique::occlusion) {
         layout.textures_per_layer = texture_count(config);
         layout.max_level = max_level(config);
     }
@@ -423,12 +451,20 @@ inline Layout describe_layout(const Config& config) {
     LayoutBuilder build{layout, border_wrap(config)};
     if (uses_shadow_map(config))
         describe_shadow_map_passes(build, config);
+    else if (config.technique == Technique::oim)
+        describe_oim_textures(build, config);
     else
         describe_occlusion_passes(build, config);
-    // Screen phase: the deferred visibility over the caller's G-buffer, at the output size.
-    TextureDesc& world = build.texture("penumbra_worldPositions", "2D", "RGBA32F", 0, 0, 1, 1, "NEAREST", "NEAREST",
-                                 "G-buffer filled by the engine every frame: xyz world position, w = 1 on geometry, "
-                                 "0 on the background; read with texelFetch (no filtering)");
+    // Screen phase: the deferred visibility over the caller's G-buffer, at the output size (world
+    // positions; for occlusion interval maps, whose maps are per surface, texture coordinates).
+    TextureDesc& world =
+        config.technique == Technique::oim
+            ? build.texture("penumbra_texCoords", "2D", "RGBA32F", 0, 0, 1, 1, "NEAREST", "NEAREST",
+                            "G-buffer filled by the engine every frame: xy the surface's unique texture coordinates "
+                            "(the bake's), w = 1 on geometry, 0 on the background; read with texelFetch")
+            : build.texture("penumbra_worldPositions", "2D", "RGBA32F", 0, 0, 1, 1, "NEAREST", "NEAREST",
+                            "G-buffer filled by the engine every frame: xyz world position, w = 1 on geometry, "
+                            "0 on the background; read with texelFetch (no filtering)");
     world.wrap = "CLAMP_TO_EDGE";
     world.size = "output";
     world.source = "caller";
@@ -545,7 +581,10 @@ inline std::string to_json(const Layout& layout) {
     field("    ", "pcss",
           "{\"blocker_samples\": " + std::to_string(c.pcss.blocker_samples) + ", \"filter_samples\": " +
               std::to_string(c.pcss.filter_samples) + ", \"max_filter_texels\": " +
-              std::to_string(c.pcss.max_filter_texels) + ", \"rotate\": " + flag(c.pcss.rotate) + "}",
+              std::to_string(c.pcss.max_filter_texels) + ", \"rotate\": " + flag(c.pcss.rotate) + "}");
+    field("    ", "oim",
+          "{\"resolution\": " + std::to_string(c.oim.resolution) + ", \"intervals\": " +
+              std::to_string(c.oim.intervals) + ", \"samples\": " + std::to_string(c.oim.samples) + "}",
           false);
     o += "  },\n";
     field("  ", "textures_per_layer", std::to_string(layout.textures_per_layer));

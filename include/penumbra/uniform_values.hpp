@@ -28,6 +28,9 @@ struct UniformInputs {
     Light light = Light::rect;                // which slice_frame made it
     std::optional<glm::mat4> clip_from_world; // the viewer's camera, when the caller has one
     ShadowFrame shadow;                       // shadow_frame(light, bounds_min, bounds_max): shadow map techniques
+    // Occlusion interval maps: the sun's time window along its path (penumbra::sun_window: start,
+    // end, 1 / width, centre t), when the light is a sun on a path.
+    std::optional<glm::vec4> time_window;
 };
 
 struct UniformRule {
@@ -59,6 +62,11 @@ inline const std::vector<UniformRule>& uniform_rules() {
              const glm::mat4 world_from_light = glm::inverse(in.frame.light_from_world);
              if (in.light == Light::sun) return glm::vec4(-glm::vec3(world_from_light[2]), 0.0f);
              return glm::vec4(glm::vec3(world_from_light[3]), 1.0f);
+         }},
+        {"penumbra_timeWindow",
+         [](const UniformInputs& in) -> V {
+             if (!in.time_window) return std::nullopt;
+             return *in.time_window;
          }},
         {"penumbra_clipFromWorld",
          [](const UniformInputs& in) -> V {

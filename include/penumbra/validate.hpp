@@ -50,6 +50,29 @@ constexpr long long widest_2d_texture(const Config& config) {
     return config.packing == Packing::atlas ? tile * texture_count(config) : tile;
 }
 
+// Occlusion interval maps (GPU Gems ch. 13): the fields of config.oim.
+constexpr void add_oim_problems(const Config& config, std::vector<Problem>& problems) {
+    auto add = [&](std::string_view field, Text value, Text message) {
+        problems.push_back({field, value, cat(field, ": ", value, " ", message)});
+    };
+    const OimParams& o = config.oim;
+    const TargetLimits limit = limits(config.target);
+    if (o.resolution < 32 || o.resolution > 4096 || !is_power_of_two(o.resolution))
+        add("oim.resolution", format_int(o.resolution),
+            "is not allowed; allowed: a power of two from 32 to 4096 (32, 64, 128, 256, 512, 1024, 2048, 4096)");
+    else if (o.resolution > limit.max_texture_size)
+        add("oim.resolution", format_int(o.resolution),
+            cat("is larger than target '", to_string(config.target), "' guarantees; allowed: up to ",
+                format_int(limit.max_texture_size)));
+    if (o.intervals != 4 && o.intervals != 8 && o.intervals != 12 && o.intervals != 16)
+        add("oim.intervals", format_int(o.intervals),
+            "is not allowed; allowed: 4, 8, 12 or 16 (four intervals per RGBA rise/fall texture pair)");
+    if (o.samples < 256 || o.samples > 2048 || !is_power_of_two(o.samples))
+        add("oim.samples", format_int(o.samples),
+            "is not allowed; allowed: 256, 512, 1024 or 2048 (a power of two, so the edge times k / samples are exact "
+            "in the 16-bit float maps)");
+}
+
 // A double as diagnostics print it; values no literal can hold are named, not formatted.
 constexpr Text format_value(double value) {
     if (value != value) return Text("nan");
@@ -129,6 +152,11 @@ constexpr std::vector<Problem> find_problems(const Config& config) {
     enum_problem("technique", config.technique);
     if (!problems.empty()) return problems;
     if (uses_shadow_map(config)) return shadow_map_problems(config);
+    if (config.technique == Technique::oim) {
+        enum_problem("target", config.target);
+        if (problems.empty()) add_oim_problems(config, problems);
+        return problems;
+    }
 
     if (config.slices < 1 || config.slices > 32)
         add("slices", format_int(config.slices), "is out of range; allowed: 1 to 32");

@@ -5,6 +5,7 @@
 #include "emit_prefilter.hpp"
 #include "emit_shading.hpp"
 #include "emit_slicing.hpp"
+#include "oim/emit_oim.hpp"
 #include "shadow_map/emit_depth.hpp"
 
 namespace penumbra {
@@ -25,6 +26,9 @@ enum class Artifact : std::uint8_t {
     visibility_snippet, // penumbra_visibility.glsl, no #version: for inclusion into the engine's shaders
     shadow_depth_vert,  // shadow map techniques: the depth pass from the light
     shadow_depth_frag,
+    oim_shading_vert,   // occlusion interval maps: the example pass (with texture coordinates)
+    oim_shading_frag,
+    oim_deferred_frag,  // occlusion interval maps: the deferred pass over a G-buffer of texture coordinates
 };
 
 constexpr std::string_view file_name(Artifact artifact) {
@@ -43,6 +47,9 @@ constexpr std::string_view file_name(Artifact artifact) {
     case Artifact::visibility_snippet: return "penumbra_visibility.glsl";
     case Artifact::shadow_depth_vert: return "penumbra_shadow_depth.vert";
     case Artifact::shadow_depth_frag: return "penumbra_shadow_depth.frag";
+    case Artifact::oim_shading_vert: return "penumbra_oim_shading.vert";
+    case Artifact::oim_shading_frag: return "penumbra_oim_shading.frag";
+    case Artifact::oim_deferred_frag: return "penumbra_oim_deferred.frag";
     }
     return "";
 }
@@ -52,7 +59,8 @@ constexpr Stage artifact_stage(Artifact artifact) {
     case Artifact::slicing_vert:
     case Artifact::shadow_depth_vert:
     case Artifact::fullscreen_vert:
-    case Artifact::shading_vert: return Stage::vertex;
+    case Artifact::shading_vert:
+    case Artifact::oim_shading_vert: return Stage::vertex;
     default: return Stage::fragment;
     }
 }
@@ -76,6 +84,9 @@ constexpr Text artifact_text(const Config& config, Artifact artifact) {
     case Artifact::visibility_snippet: return technique_visibility_snippet(config);
     case Artifact::shadow_depth_vert: return shadow_depth_vertex(config);
     case Artifact::shadow_depth_frag: return shadow_depth_fragment(config);
+    case Artifact::oim_shading_vert: return oim_example_vertex(config);
+    case Artifact::oim_shading_frag: return oim_example_fragment(config);
+    case Artifact::oim_deferred_frag: return oim_deferred_fragment(config);
     }
     return {};
 }
@@ -86,8 +97,11 @@ struct ProgramPlan {
 };
 
 // Programs in the order their passes run: slicing, prefilter, shading (occlusion); depth, shading
-// (shadow map techniques).
+// (shadow map techniques); shading only (occlusion interval maps: the maps come from a bake).
 constexpr std::vector<ProgramPlan> program_plan(const Config& config) {
+    if (config.technique == Technique::oim)
+        return {{"shading_example", {Artifact::oim_shading_vert, Artifact::oim_shading_frag}},
+                {"shading_deferred", {Artifact::fullscreen_vert, Artifact::oim_deferred_frag}}};
     if (uses_shadow_map(config))
         return {{"shadow_depth", {Artifact::shadow_depth_vert, Artifact::shadow_depth_frag}},
                 {"shading_example", {Artifact::shading_vert, Artifact::shading_frag}},

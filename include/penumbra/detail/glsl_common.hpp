@@ -54,9 +54,17 @@ constexpr Text describe_shadow_map(const Config& config) {
     return out += cat(" | light ", to_string(config.light), " | target ", to_string(config.target)), out;
 }
 
+constexpr Text describe_oim(const Config& config) {
+    const OimParams& o = config.oim;
+    return cat("technique oim | interval maps ", format_int(o.resolution), "x", format_int(o.resolution), " | ",
+               format_int(o.intervals), " intervals in ", format_int(oim_pairs(o)), " rise/fall pair(s) | ",
+               format_int(o.samples), " bake samples along the path | target ", to_string(config.target));
+}
+
 // The configuration line of every file's header: only the fields the technique reads.
 constexpr Text describe(const Config& config) {
     if (uses_shadow_map(config)) return describe_shadow_map(config);
+    if (config.technique == Technique::oim) return describe_oim(config);
     return cat("slices ", format_int(config.slices), " | resolution ", format_int(config.resolution), "x",
                format_int(config.resolution), " | filter ", to_string(config.filter), " | fusion ",
                to_string(config.fusion), " | packing ", to_string(config.packing), " | light ",
@@ -96,6 +104,9 @@ constexpr void write_preamble(LineWriter& out, const Config& config, std::string
     if (uses_shadow_map(config))
         out.line("// Shadow map depth stored as (z - near) / (far - near) along the light axis. Generated: edit the "
                  "configuration, not this file.");
+    else if (config.technique == Technique::oim)
+        out.line("// Rise and fall times are path times t in [0, 1] (the sun's path over the day), baked offline. "
+                 "Generated: edit the configuration, not this file.");
     else
         out.line("// ", format_int(texture_count(config)), " RGBA occlusion texture(s), filter levels 0 to ",
                  format_int(max_level(config)), ". Generated: edit the configuration, not this file.");

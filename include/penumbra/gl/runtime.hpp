@@ -359,8 +359,12 @@ public:
         bounds_min_ = bounds_min;
         bounds_max_ = bounds_max;
     }
+    // The sun's time window along its path (penumbra/sun_path.hpp), for techniques whose light is a
+    // sun on a fixed path (occlusion interval maps): start, end, 1 / (end − start), centre t.
+    void set_time_window(glm::vec4 window) { time_window_ = window; }
+
     // What "light" (and "camera") uniforms are computed from (penumbra/uniform_values.hpp).
-    UniformInputs uniform_inputs() const { return {frame_, config_.light, std::nullopt, shadow_frame()}; }
+    UniformInputs uniform_inputs() const { return {frame_, config_.light, std::nullopt, shadow_frame(), time_window_}; }
     // The shadow-map camera (shadow map techniques) of the last set_light; the default frame after set_frame.
     ShadowFrame shadow_frame() const {
         if (const auto* rect = std::get_if<RectLight>(&light_)) return penumbra::shadow_frame(*rect, bounds_min_, bounds_max_);
@@ -910,6 +914,7 @@ private:
     GLuint empty_vao_ = 0, fbo_ = 0;
     int output_width_ = 0, output_height_ = 0;
     std::variant<std::monostate, RectLight, SunLight> light_; // last set_light, for reconfigure
+    std::optional<glm::vec4> time_window_;                    // last set_time_window
     glm::dvec3 bounds_min_{0.0}, bounds_max_{0.0};
     ReconfigureStats last_reconfigure_;
 };

@@ -3,11 +3,13 @@
 
 #include "rendering/egl_context.hpp"
 #include "app/image_io.hpp"
+#include "bake/oim_scene.hpp"
 #include "scenes/obj_loader.hpp"
 #include "scenes/scenes.hpp"
 
 #include "../../../generator/src/file_transaction.hpp"
 #include "../../../generator/src/printable.hpp"
+#include <penumbra/layout.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -111,16 +113,35 @@ int run_headless(const PlaygroundOptions& options) {
     SceneLoad loaded = load_scene(options.scene);
     if (!loaded.scene) return fail(loaded.error, 2);
     Scene& scene = *loaded.scene;
-    if (options.light_size) apply_light_size(scene, options.config.light, *options.light_size);
+    if (options.light_size) apply_light_size(scene, shading_light(options.config), *options.light_size);
     const int width = options.width > 0 ? options.width : 512;
     const int height = options.height > 0 ? options.height : 512;
 
     std::string error;
     std::optional<HeadlessContext> context = HeadlessContext::create(&error);
     if (!context) return fail("no OpenGL 4.5 context: " + error);
+    // Occlusion interval maps: unique texture coordinates, the sun at --sun-time, the bake (or its cache).
+    RenderOptions render_options;
+    std::optional<OimSetup> oim;
+    if (options.config.technique == Technique::oim) {
+        penumbra::SunPath path;
+        if (!options.sun_path.empty()) path = *parse_sun_path(options.sun_path, &error);
+        const std::filesystem::path cache = options.bake_cache.empty() ? default_oim_cache_dir()
+                                                                        : std::filesystem::path(options.bake_cache);
+        oim = prepare_oim(scene, options.config, path, options.sun_time, cache, &error);
+        if (!oim) return fail(error, 2);
+        const OimBake& b = oim->cached.bake;
+        std::printf("oim bake %dx%d, %d intervals, %d samples: %s %s (%.0f ms to bake, %llu rays, %zu texels merged, "
+                    "%.1f MiB on disk)\n",
+                    b.resolution, b.resolution, b.intervals, b.samples, oim->cached.from_cache ? "read" : "baked into",
+                    oim->cached.file.string().c_str(), b.bake_ms, static_cast<unsigned long long>(b.rays),
+                    b.merged_texels, static_cast<double>(oim->cached.file_bytes) / (1024.0 * 1024.0));
+        if (!oim->cached.warning.empty()) std::cerr << "warning: " << oim->cached.warning << "\n";
+        render_options.bake_textures = oim->textures;
+        render_options.time_window = oim->time_window;
+    }
     HeadlessResult result;
     const auto render_start = std::chrono::steady_clock::now();
-    RenderOptions render_options;
     render_options.warm_up = true; // timings of a second run: the first compiles the shaders on llvmpipe
     if (!render_headless(scene, options.config, width, height, result, &error, render_options)) return fail(error);
     const double render_ms = milliseconds_since(render_start);
@@ -139,19 +160,28 @@ int run_headless(const PlaygroundOptions& options) {
         {"height", height},
         {"technique", to_string(options.config.technique)},
         {"config", config_json(options.config)},
-        {"light", light_json(scene, options.config.light)},
+        {"light", light_json(scene, shading_light(options.config))},
         {"shadowed_fraction", shadowed_fraction(result)},
         {"render_ms", render_ms},
     };
     nlohmann::ordered_json passes = nlohmann::ordered_json::array();
     for (const penumbra::gl::PassTiming& t : result.timings) passes.push_back({{"name", t.name}, {"ms", t.milliseconds}});
     metrics["passes"] = passes;
+    if (oim)
+        metrics["bake"] = {{"kind", "oim"},
+                           {"sun_time", options.sun_time},
+                           {"from_cache", oim->cached.from_cache},
+                           {"bake_ms", oim->cached.bake.bake_ms},
+                           {"rays", oim->cached.bake.rays},
+                           {"merged_texels", oim->cached.bake.merged_texels},
+                           {"cache_file", oim->cached.file.string()},
+                           {"cache_bytes", oim->cached.file_bytes}};
     metrics["timing"] = result.warm ? "warm: GPU times of a second run (the first compiles the shaders)" : "cold";
     metrics["texture_bytes"] = result.texture_bytes;
 
     if (options.reference) {
         const auto reference_start = std::chrono::steady_clock::now();
-        const References references = reference_all(scene, result, options.samples, options.config.light);
+        const References references = reference_all(scene, result, options.samples, shading_light(options.config));
         const std::vector<float>& truth = references.visibility;
         const double reference_ms = milliseconds_since(reference_start);
         const QualityMetrics q = compare_quality(result, references);

@@ -8,6 +8,8 @@
 #include "../../../generator/src/arguments.hpp"
 #include "../../../generator/src/config_file.hpp"
 
+#include "bake/oim_scene.hpp"
+
 #include <penumbra/validate.hpp>
 
 #include <charconv>
@@ -26,7 +28,8 @@ constexpr std::string_view flag_list =
     "--reference-out, --error-out, --slices, --resolution, --filter, --fusion, --packing, --light, --target, "
     "--no-leak-fix, --no-fade, --tangent-clip, --no-tangent-clip, --config, --watch, --frames, --screenshot, "
     "--script, --help, --technique, --shadow-resolution, --shadow-bias, --shadow-slope-bias, --pcf-pattern, "
-    "--pcf-grid, --pcf-taps, --pcf-radius, --pcss-blockers, --pcss-filter, --pcss-max-texels, --no-rotation";
+    "--pcf-grid, --pcf-taps, --pcf-radius, --pcss-blockers, --pcss-filter, --pcss-max-texels, --no-rotation, "
+    "--oim-resolution, --oim-intervals, --oim-samples, --sun-time, --sun-path, --bake-cache";
 
 bool is_switch(std::string_view flag) {
     return flag == "--headless" || flag == "--reference" || flag == "--no-leak-fix" || flag == "--no-fade" ||
@@ -38,6 +41,7 @@ bool takes_value(std::string_view flag) {
     for (std::string_view f : {"--scene", "--size", "--light-size", "--out", "--visibility", "--samples", "--metrics",
                                "--reference-out", "--error-out", "--slices", "--resolution", "--filter", "--fusion",
                                "--packing", "--light", "--target", "--config", "--watch", "--frames", "--screenshot",
+                               "--sun-time", "--sun-path", "--bake-cache",
                                "--script"})
         if (flag == f) return true;
     return false;
@@ -110,12 +114,16 @@ std::string check(const PlaygroundOptions& o) {
     if (o.config.target == penumbra::Target::vulkan)
         return "--target: 'vulkan' cannot run here, the playground renders with OpenGL; allowed: glsl330, glsl450, "
                "essl300";
-    if (o.light_size && o.config.light == penumbra::Light::sun && *o.light_size >= 90.0)
-    {
+    const bool sun = o.config.light == penumbra::Light::sun || o.config.technique == penumbra::Technique::oim;
+    if (o.light_size && sun && *o.light_size >= 90.0) {
         char shown[32];
         std::snprintf(shown, sizeof shown, "%g", *o.light_size);
         return "--light-size: " + std::string(shown) +
                " degrees is too wide for the sun; allowed: an angular diameter above 0 and below 90";
+    }
+    if (!o.sun_path.empty()) {
+        std::string error;
+        if (!parse_sun_path(o.sun_path, &error)) return error;
     }
     if (!o.headless) return {};
     if (o.out_path.empty()) return "--out: missing; --headless needs the image to write (--out image.png)";
@@ -182,7 +190,16 @@ ParsedOptions parse_options(const std::vector<std::string>& args) {
         else if (flag == "--size") error = parse_size(value, options.width, options.height);
         else if (flag == "--samples") error = parse_int_in(flag, value, 1, 1024, options.samples);
         else if (flag == "--frames") error = parse_int_in(flag, value, 0, 1000000000, options.frames);
-        else if (flag == "--light-size") {
+        else if (flag == "--sun-time") {
+            const char* end = value.data() + value.size();
+            const auto [ptr, ec] = std::from_chars(value.data(), end, options.sun_time);
+            if (value.empty() || ec != std::errc() || ptr != end || !(options.sun_time >= 0.0 && options.sun_time <= 1.0))
+                error = "--sun-time: '" + printable(value) + "' is not allowed; allowed: a path time from 0 to 1";
+        } else if (flag == "--sun-path") {
+            options.sun_path = std::string(value);
+        } else if (flag == "--bake-cache") {
+            options.bake_cache = std::string(value);
+        } else if (flag == "--light-size") {
             double size = 0.0;
             error = parse_light_size(value, size);
             if (error.empty()) options.light_size = size;
@@ -223,6 +240,7 @@ std::string usage() {
         "usage: penumbra-playground --headless --scene NAME|FILE.obj [configuration flags] [--size WxH]\n"
         "           [--light-size X] --out image.png [--visibility vis.pfm] [--reference] [--samples N]\n"
         "           [--metrics metrics.json] [--reference-out truth.pfm] [--error-out error.png]\n"
+        "           [--sun-time T] [--sun-path AZ:EL,...] [--bake-cache DIR]  (--technique oim)\n"
         "       penumbra-playground [--scene NAME|FILE.obj] [configuration flags] [--size WxH] [--light-size X]\n"
         "           [--watch DIR] [--frames N] [--screenshot FILE] [--script FILE]\n"
         "\n"
@@ -259,6 +277,13 @@ std::string usage() {
     out += penumbra_gen::technique_usage(25);
     out += line("--config FILE.json", "configuration from JSON (the keys of Config, or a layout.json); a regular\n"
                                       "                        file of at most 1 MiB");
+    out += "\noim (occlusion interval maps: the sun on a fixed path, baked with Embree, cached on disk):\n";
+    out += line("--sun-time T", "path time of the rendered instant, 0 (first point) to 1 (last) (default 0.5)");
+    out += line("--sun-path AZ:EL,...", "the path: azimuth:elevation points in degrees, evenly spaced in time\n"
+                                        "                        (azimuth clockwise from north, -z; east +x; default "
+                                        "100:10,180:50,260:10)");
+    out += line("--bake-cache DIR", "where bakes are cached (default $PENUMBRA_CACHE_DIR/oim, else\n"
+                                    "                        $XDG_CACHE_HOME/penumbra/oim, else ~/.cache/penumbra/oim)");
     out += "\nheadless output:\n";
     out += line("--out FILE.png", "the shaded image (required with --headless)");
     out += line("--visibility FILE.pfm", "the estimated visibility, one float per pixel (1 on background)");

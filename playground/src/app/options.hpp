@@ -16,6 +16,10 @@ struct PlaygroundOptions {
     penumbra::Config config;
     int width = 0, height = 0;      // 0: mode default (headless 512x512, window 1280x720)
     std::optional<double> light_size; // --light-size: rectangle side / sun angular diameter (degrees)
+    // technique oim: the sun on its path (penumbra/sun_path.hpp) and where bakes are cached
+    double sun_time = 0.5;          // --sun-time T: path time, 0 to 1
+    std::string sun_path;           // --sun-path AZ:EL,…: degrees (empty: the default day)
+    std::string bake_cache;         // --bake-cache DIR (empty: bake/oim_cache.hpp's default folder)
 
     // headless
     std::string out_path;           // --out image.png

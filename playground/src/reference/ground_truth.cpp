@@ -379,4 +379,35 @@ std::vector<float> GroundTruth::visibility(std::span<const glm::vec3> positions,
     return result;
 }
 
+std::vector<std::uint8_t> GroundTruth::unoccluded(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+                                                  std::span<const glm::vec3> directions) const {
+    check_inputs(positions, normals, 1);
+    const std::size_t count = directions.size();
+    std::vector<std::uint8_t> result(positions.size() * count, 1);
+    impl_->parallel_for(positions.size(), [&](std::size_t index) {
+        const glm::vec3 p = positions[index];
+        if (has_nan(p)) return;
+        for (std::size_t d = 0; d < count; ++d) {
+            const glm::vec3 origin = p + impl_->offset * facing_normal(normals[index], directions[d]);
+            result[index * count + d] =
+                impl_->unoccluded(origin, directions[d], std::numeric_limits<float>::infinity()) ? 1 : 0;
+        }
+    });
+    impl_->throw_if_error("tracing rays along directions");
+    return result;
+}
+
+std::vector<float> GroundTruth::visibility(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+                                           std::span<const glm::vec3> directions) const {
+    if (directions.empty()) throw GroundTruthError("ground truth: a light of no directions");
+    const std::vector<std::uint8_t> open = unoccluded(positions, normals, directions);
+    std::vector<float> result(positions.size());
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+        std::size_t visible = 0;
+        for (std::size_t d = 0; d < directions.size(); ++d) visible += open[i * directions.size() + d];
+        result[i] = static_cast<float>(visible) / static_cast<float>(directions.size());
+    }
+    return result;
+}
+
 } // namespace penumbra::playground

@@ -73,6 +73,17 @@ public:
     Oriented oriented(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
                       const penumbra::SunLight& sun, int samples_per_axis = 32) const;
 
+    // A light made of directions (unit vectors towards it, at infinity), e.g. the sun's path over
+    // a window of time sampled at several instants: per point and direction, 1 where the ray is
+    // unblocked. Row-major: element p·directions.size() + d. The origin is offset along the normal
+    // turned towards that direction. A point with a NaN component sees everything (1).
+    std::vector<std::uint8_t> unoccluded(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+                                         std::span<const glm::vec3> directions) const;
+
+    // Per point: the unblocked fraction of `directions` (same rules as unoccluded()).
+    std::vector<float> visibility(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
+                                  std::span<const glm::vec3> directions) const;
+
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;

@@ -27,7 +27,8 @@ void main() {
 // G-buffer); 0 with "name.vert:line: message" diagnostics in *error.
 GLuint build_program(const std::string& name, std::string vertex, std::string fragment, std::string* error);
 
-// Vertex buffers of a Mesh: attribute 0 = position, 1 = normal (what the slicing pass expects).
+// Vertex buffers of a Mesh: attribute 0 = position, 1 = normal (what the slicing pass expects),
+// 2 = texture coordinates when the mesh has them (otherwise the attribute stays disabled: (0, 0)).
 class MeshBuffers {
 public:
     explicit MeshBuffers(const Mesh& mesh);
@@ -37,12 +38,12 @@ public:
     void draw() const;
 
 private:
-    GLuint vao_ = 0, positions_ = 0, normals_ = 0, indices_ = 0;
+    GLuint vao_ = 0, positions_ = 0, normals_ = 0, indices_ = 0, uvs_ = 0;
     GLsizei count_ = 0;
 };
 
-// World positions (RGBA32F, w = 1 on geometry, 0 on background) and unit normals (RGBA32F) of
-// what a camera sees, plus a depth buffer.
+// World positions (RGBA32F, w = 1 on geometry, 0 on background), unit normals (RGBA32F) and
+// texture coordinates (RGBA32F: xy, w = 1 on geometry) of what a camera sees, plus a depth buffer.
 class GBuffer {
 public:
     // nullptr with *error set when the program does not build or the framebuffer is incomplete.
@@ -58,12 +59,13 @@ public:
     int height() const { return height_; }
     GLuint positions() const { return textures_[0]; }
     GLuint normals() const { return textures_[1]; }
+    GLuint tex_coords() const { return textures_[2]; }
     GLuint framebuffer() const { return fbo_; }
 
 private:
     GBuffer() = default;
     int width_ = 0, height_ = 0;
-    GLuint program_ = 0, textures_[2] = {0, 0}, depth_ = 0, fbo_ = 0;
+    GLuint program_ = 0, textures_[3] = {0, 0, 0}, depth_ = 0, fbo_ = 0;
 };
 
 } // namespace penumbra::playground

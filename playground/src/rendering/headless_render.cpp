@@ -12,6 +12,10 @@
 
 namespace penumbra::playground {
 
+Light shading_light(const Config& config) {
+    return config.technique == Technique::oim ? Light::sun : config.light;
+}
+
 bool render_headless(const Scene& scene, const Config& config, int width, int height, HeadlessResult& out,
                      std::string* error, const RenderOptions& options) {
     auto runtime = penumbra::gl::Runtime::create(config, error);
@@ -22,14 +26,27 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
     gbuffer->render(mesh, scene.camera.projection_matrix(static_cast<float>(width) / height) * scene.camera.view_matrix());
 
     // Penumbra passes.
-    if (config.light == Light::sun) runtime->set_light(scene.sun, glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
+    for (const auto& [name, texels] : options.bake_textures)
+        if (std::string d = runtime->supply_texture(name, texels); !d.empty()) {
+            if (error) *error = d;
+            return false;
+        }
+    if (options.time_window) runtime->set_time_window(*options.time_window);
+    if (shading_light(config) == Light::sun) runtime->set_light(scene.sun, glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
     else runtime->set_light(scene.light, glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
+    // Every G-buffer texture the layouts know; each technique's screen pass reads the ones it declares.
+    const penumbra::gl::Runtime::TextureMap gbuffer_textures{{"penumbra_worldPositions", gbuffer->positions()},
+                                                             {"penumbra_worldNormals", gbuffer->normals()},
+                                                             {"penumbra_texCoords", gbuffer->tex_coords()}};
     if (options.warm_up) {
         if (std::string d = runtime->build([&](GLuint) { mesh.draw(); }); !d.empty()) {
             if (error) *error = d;
             return false;
         }
-        if (!runtime->shade_deferred(gbuffer->positions(), width, height, error)) return false;
+        if (std::string d = runtime->run_screen(gbuffer_textures, width, height); !d.empty()) {
+            if (error) *error = d;
+            return false;
+        }
         glFinish();
     }
     out.warm = options.warm_up;
@@ -39,15 +56,23 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
         if (error) *error = d;
         return false;
     }
-    penumbra::gl::PassTiming shading_timing;
-    if (!runtime->shade_deferred(gbuffer->positions(), width, height, error, &shading_timing, gbuffer->normals()))
+    std::vector<penumbra::gl::PassTiming> screen_timings;
+    if (std::string d = runtime->run_screen(gbuffer_textures, width, height, &screen_timings); !d.empty()) {
+        if (error) *error = d;
         return false;
+    }
+    penumbra::gl::PassTiming shading_timing;
+    for (const penumbra::gl::PassTiming& t : screen_timings) {
+        shading_timing.name += (shading_timing.name.empty() ? "" : "+") + t.name;
+        shading_timing.milliseconds += t.milliseconds;
+    }
     out.timings.push_back(shading_timing);
     if (options.inspect) options.inspect(*runtime);
     const std::vector<float> vis = runtime->read_visibility();
-    std::vector<glm::vec4> pos(static_cast<std::size_t>(width) * height), nrm(pos.size());
+    std::vector<glm::vec4> pos(static_cast<std::size_t>(width) * height), nrm(pos.size()), uv(pos.size());
     glGetTextureImage(gbuffer->positions(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pos.size() * sizeof(glm::vec4)), pos.data());
     glGetTextureImage(gbuffer->normals(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(nrm.size() * sizeof(glm::vec4)), nrm.data());
+    glGetTextureImage(gbuffer->tex_coords(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(uv.size() * sizeof(glm::vec4)), uv.data());
     if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
         if (error) *error = "GL error " + std::to_string(e) + " in the headless pipeline";
         return false;
@@ -60,6 +85,7 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
     out.visibility.assign(n, 1.0f);
     out.positions.assign(n, glm::vec3(std::numeric_limits<float>::quiet_NaN()));
     out.normals.assign(n, glm::vec3(0.0f));
+    out.tex_coords.assign(n, glm::vec2(0.0f));
     out.geometry.assign(n, 0);
     out.rgb.assign(3 * n, 0.0f);
     const glm::vec3 light_centre(scene.light.center);
@@ -75,8 +101,9 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
             out.geometry[dst] = 1;
             out.positions[dst] = glm::vec3(pos[src]);
             out.normals[dst] = glm::vec3(nrm[src]);
+            out.tex_coords[dst] = glm::vec2(uv[src]);
             out.visibility[dst] = vis[src];
-            const glm::vec3 to_light = config.light == Light::sun ? -glm::vec3(glm::normalize(scene.sun.direction))
+            const glm::vec3 to_light = shading_light(config) == Light::sun ? -glm::vec3(glm::normalize(scene.sun.direction))
                                                                   : glm::normalize(light_centre - glm::vec3(pos[src]));
             const float lambert = std::abs(glm::dot(glm::vec3(nrm[src]), to_light));
             const float shade = 0.15f + 0.85f * lambert * vis[src];

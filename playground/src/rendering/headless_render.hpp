@@ -10,6 +10,8 @@
 #include <penumbra/gl/runtime.hpp>
 
 #include <functional>
+#include <optional>
+#include <utility>
 
 #include <string>
 #include <vector>
@@ -21,6 +23,7 @@ struct HeadlessResult {
     std::vector<float> visibility;       // width·height, top row first; 1 on background
     std::vector<glm::vec3> positions;    // world positions, top row first; NaN on background
     std::vector<glm::vec3> normals;      // unit normals, zero on background
+    std::vector<glm::vec2> tex_coords;   // the mesh's texture coordinates (0 without them or on background)
     std::vector<unsigned char> geometry; // 1 where a surface was rasterised
     std::vector<float> rgb;              // Lambert shading, 3 floats per pixel, top row first
     std::vector<penumbra::gl::PassTiming> timings; // GPU time of each pass (timer queries), shading last
@@ -32,10 +35,17 @@ struct RenderOptions {
     // Called after the deferred shading pass, while the runtime and its textures still exist:
     // lets tests and the oracle read back intermediate textures (runtime.texture(name)).
     std::function<void(const penumbra::gl::Runtime&)> inspect;
+    // Textures the layout marks "bake" (name → texels, RGBA floats at the layout's size) and the sun's
+    // time window along its path (occlusion interval maps; bake/oim_scene.hpp prepares both).
+    std::vector<std::pair<std::string, std::vector<float>>> bake_textures;
+    std::optional<glm::vec4> time_window;
     // Run the passes once before the timed run, so the timings are warm: llvmpipe (and some
     // drivers) compile a shader at its first draw, which the first run's GPU time would include.
     bool warm_up = false;
 };
+
+// The kind of light a configuration is lit by: occlusion interval maps follow the sun.
+Light shading_light(const Config& config);
 
 // Runs the whole pipeline; returns false with *error set on any failure (never throws for GL).
 bool render_headless(const Scene& scene, const Config& config, int width, int height, HeadlessResult& out,

@@ -127,6 +127,15 @@ std::string validate_mesh(const Mesh& mesh) {
         out << mesh.normals.size() << " normals for " << mesh.positions.size() << " vertices";
         return out.str();
     }
+    if (!mesh.uvs.empty() && mesh.uvs.size() != mesh.positions.size()) {
+        out << mesh.uvs.size() << " texture coordinates for " << mesh.positions.size() << " vertices";
+        return out.str();
+    }
+    for (std::size_t i = 0; i < mesh.uvs.size(); ++i)
+        if (!std::isfinite(mesh.uvs[i].x) || !std::isfinite(mesh.uvs[i].y)) {
+            out << "vertex " << i << " has non-finite texture coordinates";
+            return out.str();
+        }
     for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
         if (mesh.indices[i] >= mesh.positions.size()) {
             out << "index " << mesh.indices[i] << " (triangle " << i / 3 << ") is out of range ("

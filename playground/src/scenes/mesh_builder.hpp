@@ -35,7 +35,8 @@ void compute_vertex_normals(Mesh& mesh);
 std::pair<glm::vec3, glm::vec3> compute_bounds(const Mesh& mesh);
 
 // Empty string if the mesh is well formed (index count a multiple of 3, every index in range,
-// one finite normal per vertex, finite positions); otherwise a one-line description of the
+// one finite normal per vertex, finite positions, texture coordinates absent or one finite pair
+// per vertex); otherwise a one-line description of the
 // first problem found.
 std::string validate_mesh(const Mesh& mesh);
 

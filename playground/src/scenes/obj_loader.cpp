@@ -14,6 +14,8 @@
 #include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <map>
 #include <sstream>
 
 namespace penumbra::playground {
@@ -156,11 +158,13 @@ LoadResult load_obj_scene(const std::string& path) {
 
     const std::size_t vertex_count = attrib.vertices.size() / 3;
     const std::size_t normal_count = attrib.normals.size() / 3;
+    const std::size_t texcoord_count = attrib.texcoords.size() / 2;
 
     // Validate every corner of every polygon, then fan-triangulate (fine for the convex
     // polygons OBJ exporters write). `corners` holds three validated corners per triangle.
     std::vector<tinyobj::index_t> corners;
     bool all_corners_have_normals = true;
+    bool all_corners_have_texcoords = texcoord_count > 0;
     std::size_t face_number = 0;
     for (const tinyobj::shape_t& shape : shapes) {
         std::size_t offset = 0;
@@ -194,6 +198,13 @@ LoadResult load_obj_scene(const std::string& path) {
                     return failure(path, msg.str());
                 }
                 if (idx.normal_index < 0) all_corners_have_normals = false;
+                if (idx.texcoord_index >= 0 && static_cast<std::size_t>(idx.texcoord_index) >= texcoord_count) {
+                    std::ostringstream msg;
+                    msg << "face " << face_number + 1 << " refers to texture coordinate " << idx.texcoord_index + 1
+                        << " but the file has " << texcoord_count << " texture coordinates";
+                    return failure(path, msg.str());
+                }
+                if (idx.texcoord_index < 0) all_corners_have_texcoords = false;
             }
             for (std::size_t c = 1; c + 1 < count; ++c)
                 corners.insert(corners.end(), {shape.mesh.indices[offset], shape.mesh.indices[offset + c],
@@ -206,6 +217,10 @@ LoadResult load_obj_scene(const std::string& path) {
     auto file_position = [&](int i) {
         const std::size_t v = static_cast<std::size_t>(i) * 3;
         return glm::vec3(attrib.vertices[v], attrib.vertices[v + 1], attrib.vertices[v + 2]);
+    };
+    auto file_texcoord = [&](int i) {
+        const std::size_t t = static_cast<std::size_t>(i) * 2;
+        return glm::vec2(attrib.texcoords[t], attrib.texcoords[t + 1]);
     };
     auto file_normal = [&](int i) {
         const std::size_t n = static_cast<std::size_t>(i) * 3;
@@ -230,12 +245,29 @@ LoadResult load_obj_scene(const std::string& path) {
             mesh.indices.push_back(static_cast<std::uint32_t>(mesh.positions.size()));
             mesh.positions.push_back(file_position(idx.vertex_index));
             mesh.normals.push_back(glm::normalize(file_normal(idx.normal_index)));
+            if (all_corners_have_texcoords) mesh.uvs.push_back(file_texcoord(idx.texcoord_index));
         }
     } else {
         // Share the file's vertices so the computed normals are smooth across faces.
         for (std::size_t i = 0; i < vertex_count; ++i) mesh.positions.push_back(file_position(static_cast<int>(i)));
         for (const tinyobj::index_t& idx : corners) mesh.indices.push_back(static_cast<std::uint32_t>(idx.vertex_index));
         compute_vertex_normals(mesh);
+        if (all_corners_have_texcoords) {
+            // Texture seams: one vertex per distinct (position, texture coordinate) pair, normals kept smooth.
+            Mesh split;
+            std::map<std::pair<int, int>, std::uint32_t> vertex_of;
+            for (const tinyobj::index_t& idx : corners) {
+                auto [it, added] = vertex_of.try_emplace({idx.vertex_index, idx.texcoord_index},
+                                                         static_cast<std::uint32_t>(split.positions.size()));
+                if (added) {
+                    split.positions.push_back(mesh.positions[static_cast<std::size_t>(idx.vertex_index)]);
+                    split.normals.push_back(mesh.normals[static_cast<std::size_t>(idx.vertex_index)]);
+                    split.uvs.push_back(file_texcoord(idx.texcoord_index));
+                }
+                split.indices.push_back(it->second);
+            }
+            mesh = std::move(split);
+        }
     }
 
     for (const glm::vec3& p : mesh.positions)

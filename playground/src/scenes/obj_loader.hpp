@@ -15,7 +15,8 @@ struct LoadResult {
 
 // Loads every polygon of every object/group into one mesh (polygons are fan-triangulated; lines,
 // points and materials are ignored). Normals from the file are used when every corner of every
-// face has one; otherwise smooth normals are computed. The scene gets the default light above its
+// face has one; otherwise smooth normals are computed. Texture coordinates (`vt`) are kept in
+// mesh.uvs when every corner has one (vertices split at texture seams). The scene gets the default light above its
 // bounds and a camera framing it (scene_defaults.hpp), and is named after the file's stem.
 // Never throws on bad input: missing files, unparsable lines, face indices out of range, faces
 // with fewer than three corners and files without triangles are reported in `error`.

@@ -22,6 +22,8 @@ struct Mesh {
     std::vector<glm::vec3> positions;
     std::vector<glm::vec3> normals;      // same size as positions, unit length
     std::vector<std::uint32_t> indices;  // three per triangle, each < positions.size()
+    std::vector<glm::vec2> uvs;          // texture coordinates in [0,1]², same size as positions; empty
+                                         // when the mesh has none (scenes/charts.hpp makes unique ones)
 
     std::size_t triangle_count() const { return indices.size() / 3; }
 };
@@ -58,6 +60,9 @@ struct Scene {
     OrbitCamera camera;
     glm::vec3 bounds_min{0.0f}; // axis-aligned bounds of mesh.positions
     glm::vec3 bounds_max{0.0f};
+    // True for the procedural scenes: their texture coordinates may be generated (one chart per
+    // connected planar piece, scenes/charts.hpp). A loaded file keeps its own or has none.
+    bool generated_charts = false;
 };
 
 } // namespace penumbra::playground

@@ -293,6 +293,7 @@ std::optional<Scene> make_scene(std::string_view name) {
         Scene scene;
         scene.name = std::string(name);
         scene.mesh = e.build();
+        scene.generated_charts = true;
         finish_scene(scene);
         return scene;
     }
