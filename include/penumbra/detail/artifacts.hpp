@@ -6,6 +6,7 @@
 #include "emit_shading.hpp"
 #include "emit_slicing.hpp"
 #include "shadow_map/emit_depth.hpp"
+#include "erosion/emit_passes.hpp"
 
 namespace penumbra {
 
@@ -25,6 +26,11 @@ enum class Artifact : std::uint8_t {
     visibility_snippet, // penumbra_visibility.glsl, no #version: for inclusion into the engine's shaders
     shadow_depth_vert,  // shadow map techniques: the depth pass from the light
     shadow_depth_frag,
+    erosion_hard_frag,  // erosion: the screen passes (erosion/emit_passes.hpp)
+    erosion_edges_frag,
+    erosion_reduce_frag,
+    erosion_erode_frag,
+    erosion_blur_frag,
 };
 
 constexpr std::string_view file_name(Artifact artifact) {
@@ -43,6 +49,11 @@ constexpr std::string_view file_name(Artifact artifact) {
     case Artifact::visibility_snippet: return "penumbra_visibility.glsl";
     case Artifact::shadow_depth_vert: return "penumbra_shadow_depth.vert";
     case Artifact::shadow_depth_frag: return "penumbra_shadow_depth.frag";
+    case Artifact::erosion_hard_frag: return "penumbra_erosion_hard.frag";
+    case Artifact::erosion_edges_frag: return "penumbra_erosion_edges.frag";
+    case Artifact::erosion_reduce_frag: return "penumbra_erosion_reduce.frag";
+    case Artifact::erosion_erode_frag: return "penumbra_erosion_erode.frag";
+    case Artifact::erosion_blur_frag: return "penumbra_erosion_blur.frag";
     }
     return "";
 }
@@ -76,6 +87,11 @@ constexpr Text artifact_text(const Config& config, Artifact artifact) {
     case Artifact::visibility_snippet: return technique_visibility_snippet(config);
     case Artifact::shadow_depth_vert: return shadow_depth_vertex(config);
     case Artifact::shadow_depth_frag: return shadow_depth_fragment(config);
+    case Artifact::erosion_hard_frag: return erosion_fragment(config, "erosion_hard");
+    case Artifact::erosion_edges_frag: return erosion_fragment(config, "erosion_edges");
+    case Artifact::erosion_reduce_frag: return erosion_fragment(config, "erosion_reduce");
+    case Artifact::erosion_erode_frag: return erosion_fragment(config, "erosion_erode");
+    case Artifact::erosion_blur_frag: return erosion_fragment(config, "erosion_blur");
     }
     return {};
 }
@@ -88,6 +104,14 @@ struct ProgramPlan {
 // Programs in the order their passes run: slicing, prefilter, shading (occlusion); depth, shading
 // (shadow map techniques).
 constexpr std::vector<ProgramPlan> program_plan(const Config& config) {
+    if (config.technique == Technique::erosion) // screen passes instead of shading_deferred
+        return {{"shadow_depth", {Artifact::shadow_depth_vert, Artifact::shadow_depth_frag}},
+                {"erosion_hard", {Artifact::fullscreen_vert, Artifact::erosion_hard_frag}},
+                {"erosion_edges", {Artifact::fullscreen_vert, Artifact::erosion_edges_frag}},
+                {"erosion_reduce", {Artifact::fullscreen_vert, Artifact::erosion_reduce_frag}},
+                {"erosion_erode", {Artifact::fullscreen_vert, Artifact::erosion_erode_frag}},
+                {"erosion_blur", {Artifact::fullscreen_vert, Artifact::erosion_blur_frag}},
+                {"shading_example", {Artifact::shading_vert, Artifact::shading_frag}}};
     if (uses_shadow_map(config))
         return {{"shadow_depth", {Artifact::shadow_depth_vert, Artifact::shadow_depth_frag}},
                 {"shading_example", {Artifact::shading_vert, Artifact::shading_frag}},
