@@ -184,7 +184,7 @@ std::string usage() {
                 std::string("turn off the leak fix (default ") + (d.leak_fix ? "on" : "off") + ")");
     out += line("--no-fade", std::string("turn off the self-shadow fade (default ") +
                                  (d.self_shadow_fade ? "on" : "off") + ")");
-    out += "\ntechnique (occlusion: the flags above; shadowmap, pcf, pcss: these, plus --light and --target):\n";
+    out += "\ntechnique (occlusion: the flags above; shadowmap, pcf, pcss, erosion: these, plus --light and --target):\n";
     out += technique_usage(25);
     out +=
         line("--config FILE.json",

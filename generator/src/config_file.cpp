@@ -16,7 +16,7 @@ using nlohmann::json;
 
 constexpr std::string_view key_list =
     "slices, resolution, filter, fusion, packing, light, leak_fix, self_shadow_fade, target, technique, shadow_map, "
-    "pcf, pcss";
+    "pcf, pcss, erosion";
 
 std::string type_of(const json& value) {
     if (value.is_number_float()) return "a number with a fraction";
@@ -138,6 +138,19 @@ std::string read_pcss(const json& value, penumbra::PcssParams& pcss) {
                         });
 }
 
+std::string read_erosion(const json& value, penumbra::ErosionParams& erosion) {
+    return read_section("erosion", value, "max_search_radius, edge_threshold, search_taps, blur_taps",
+                        [&](const std::string& key, const std::string& name, const json& item) -> std::string {
+                            if (key == "max_search_radius")
+                                return store(read_int(name, item, "1 to 256 pixels"), erosion.max_search_radius);
+                            if (key == "edge_threshold")
+                                return store(read_real(name, item, "above 0 to 4"), erosion.edge_threshold);
+                            if (key == "search_taps") return store(read_int(name, item, "1 to 64"), erosion.search_taps);
+                            if (key == "blur_taps") return store(read_int(name, item, "1 to 64"), erosion.blur_taps);
+                            return "unknown";
+                        });
+}
+
 // nlohmann's what() without its "[json.exception.parse_error.101] " prefix, on one line, with
 // the raw bytes it quotes from the file ("last read: '…'") escaped.
 std::string parse_message(const json::exception& e) {
@@ -181,6 +194,8 @@ Parsed<penumbra::Config> parse_config_json(std::string_view text, std::string_vi
             error = read_pcf(value, config.pcf);
         else if (key == "pcss")
             error = read_pcss(value, config.pcss);
+        else if (key == "erosion")
+            error = read_erosion(value, config.erosion);
         else if (key == "slices")
             error = store(read_int(key, value, "1 to 32"), config.slices);
         else if (key == "resolution")

@@ -9,14 +9,17 @@ namespace penumbra_gen {
 
 const std::string_view technique_flag_list =
     "--technique, --shadow-resolution, --shadow-bias, --shadow-slope-bias, --pcf-pattern, --pcf-grid, --pcf-taps, "
-    "--pcf-radius, --pcss-blockers, --pcss-filter, --pcss-max-texels, --no-rotation";
+    "--pcf-radius, --pcss-blockers, --pcss-filter, --pcss-max-texels, --no-rotation, --erosion-radius, "
+    "--erosion-edge-threshold, --erosion-search-taps, --erosion-blur-taps";
 
 namespace {
 
 constexpr std::string_view value_flags[] = {"--technique",   "--shadow-resolution", "--shadow-bias",
                                             "--shadow-slope-bias", "--pcf-pattern", "--pcf-grid",
                                             "--pcf-taps",    "--pcf-radius",        "--pcss-blockers",
-                                            "--pcss-filter", "--pcss-max-texels"};
+                                            "--pcss-filter", "--pcss-max-texels",
+                                            "--erosion-radius", "--erosion-edge-threshold",
+                                            "--erosion-search-taps", "--erosion-blur-taps"};
 
 std::string parse_int(std::string_view flag, std::string_view text, std::optional<int>& slot,
                       std::string_view allowed) {
@@ -76,6 +79,11 @@ std::string parse_technique_flag(std::string_view flag, std::string_view value, 
     if (flag == "--pcf-radius") return parse_real(flag, value, flags.pcf_radius, "more than 0 to 1000 scene units");
     if (flag == "--pcss-blockers") return parse_int(flag, value, flags.pcss_blockers, "1 to 64");
     if (flag == "--pcss-filter") return parse_int(flag, value, flags.pcss_filter, "1 to 128");
+    if (flag == "--erosion-radius") return parse_int(flag, value, flags.erosion_radius, "1 to 256 pixels");
+    if (flag == "--erosion-edge-threshold")
+        return parse_real(flag, value, flags.erosion_edge_threshold, "more than 0 to 4");
+    if (flag == "--erosion-search-taps") return parse_int(flag, value, flags.erosion_search_taps, "1 to 64");
+    if (flag == "--erosion-blur-taps") return parse_int(flag, value, flags.erosion_blur_taps, "1 to 64");
     return parse_int(flag, value, flags.pcss_max_texels, "1 to half the shadow-map resolution"); // --pcss-max-texels
 }
 
@@ -98,6 +106,10 @@ penumbra::Config apply(const TechniqueFlags& flags, penumbra::Config config) {
     if (flags.pcss_filter) config.pcss.filter_samples = *flags.pcss_filter;
     if (flags.pcss_max_texels) config.pcss.max_filter_texels = *flags.pcss_max_texels;
     if (flags.no_rotation) config.pcf.rotate = config.pcss.rotate = false;
+    if (flags.erosion_radius) config.erosion.max_search_radius = *flags.erosion_radius;
+    if (flags.erosion_edge_threshold) config.erosion.edge_threshold = *flags.erosion_edge_threshold;
+    if (flags.erosion_search_taps) config.erosion.search_taps = *flags.erosion_search_taps;
+    if (flags.erosion_blur_taps) config.erosion.blur_taps = *flags.erosion_blur_taps;
     return config;
 }
 
@@ -118,7 +130,7 @@ std::string technique_usage(std::size_t column) {
     std::string out;
     out += line("--technique T", "shadowing technique: " + allowed_names<Technique>() + " (default " +
                                      std::string(to_string(d.technique)) + ")");
-    out += line("--shadow-resolution R", "shadowmap, pcf, pcss: shadow map side in texels, a power of two 32 to "
+    out += line("--shadow-resolution R", "shadowmap, pcf, pcss, erosion: shadow map side in texels, a power of two 32 to "
                                          "8192 (default " + std::to_string(d.shadow_map.resolution) + ")");
     out += line("--shadow-bias B", "constant depth bias in scene units along the light axis, 0 to 10 (default " +
                                        real(d.shadow_map.constant_bias) + ")");
@@ -139,6 +151,14 @@ std::string technique_usage(std::size_t column) {
     out += line("--pcss-max-texels N", "pcss: largest filter half-width in texels, 1 to resolution / 2 (default " +
                                            std::to_string(d.pcss.max_filter_texels) + ")");
     out += line("--no-rotation", "pcf, pcss: no per-pixel rotation of the tap pattern (default on)");
+    out += line("--erosion-radius N", "erosion: largest penumbra half-width searched, in output pixels, 1 to 256 "
+                                      "(default " + std::to_string(d.erosion.max_search_radius) + ")");
+    out += line("--erosion-edge-threshold X", "erosion: |Laplacian| of the hard shadow marking an edge, above 0 to 4 "
+                                              "(default " + real(d.erosion.edge_threshold) + ")");
+    out += line("--erosion-search-taps N", "erosion: Poisson taps of the nearest-edge search, 1 to 64 (default " +
+                                               std::to_string(d.erosion.search_taps) + ")");
+    out += line("--erosion-blur-taps N", "erosion: Poisson taps of the final blur, 1 to 64 (default " +
+                                             std::to_string(d.erosion.blur_taps) + ")");
     return out;
 }
 

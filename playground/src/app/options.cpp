@@ -234,7 +234,7 @@ std::string usage() {
                                     to_string(d.target)));
     out += line("--no-leak-fix", "turn off the leak fix (paper §3.4.1; default on)");
     out += line("--no-fade", "turn off the self-shadow fade (paper §3.4.2; default on)");
-    out += "\ntechnique (occlusion: the flags above; shadowmap, pcf, pcss: these, plus --light and --target):\n";
+    out += "\ntechnique (occlusion: the flags above; shadowmap, pcf, pcss, erosion: these, plus --light and --target):\n";
     out += penumbra_gen::technique_usage(25);
     out += line("--config FILE.json", "configuration from JSON (the keys of Config, or a layout.json)");
     out += "\nheadless output:\n";
