@@ -195,7 +195,7 @@ constexpr void write_erode_main(LineWriter& out, const Config& config) {
     out.line("float spacing = radius * ", format_float(erosion_sqrt(3.14159265358979 / e.search_taps)), ";");
     out.line("int level = clamp(int(floor(log2(max(spacing, 1.0)))), 0, ", format_int(K), ");");
     out.line("vec2 centre = vec2(pixel) + 0.5;");
-    out.line("float nearest = penumbra_fetch(", erosion_edges_texture, ", pixel, 0).r > 0.5 ? 0.0 : radius;");
+    out.line("float nearest = penumbra_fetch(", erosion_edges_texture, ", pixel, 0).r > 0.5 ? 0.5 : radius; // an edge pixel: the edge lies half a pixel away");
     out.line("float e;");
     for (int i = 0; i < static_cast<int>(taps.size()); ++i) {
         if (i % 4 == 0)
