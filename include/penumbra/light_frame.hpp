@@ -165,7 +165,8 @@ inline ShadowFrame shadow_frame(const RectLight& light, glm::dvec3 bounds_min, g
     }
     f.contained = zmin > 0.0;
     const double extent = std::max(glm::length(bounds_max - bounds_min), 1e-6);
-    const double near = std::max(zmin, 1e-3 * extent), far = std::max(zmax, near + 1e-3 * extent);
+    // far: 1% beyond the farthest corner, so the depth bias of the farthest surfaces is not clamped away
+    const double near = std::max(zmin, 1e-3 * extent), far = std::max(zmax, near + 1e-3 * extent) + 0.01 * (zmax - zmin);
     double tan_half = 1e-6; // x / z is quasi-linear: its largest |value| over the box is at a corner
     for (const glm::dvec3& corner : corners) {
         const glm::dvec3 p = glm::dvec3(lfw * glm::dvec4(corner, 1.0));
@@ -200,7 +201,7 @@ inline ShadowFrame shadow_frame(const SunLight& sun, glm::dvec3 bounds_min, glm:
         zmax = std::max(zmax, z);
     }
     const double pad = 1e-4 * std::max(zmax - zmin, 1e-6);
-    f.depth_range = {static_cast<float>(zmin - pad), static_cast<float>(zmax + pad)};
+    f.depth_range = {static_cast<float>(zmin - pad), static_cast<float>(zmax + 0.01 * (zmax - zmin) + pad)};
     f.window_half_size = slices.window_half_size;
     f.tan_angular_radius = slices.tan_angular_radius;
     const float growth = 2.0f * f.tan_angular_radius / (2.0f * f.window_half_size);

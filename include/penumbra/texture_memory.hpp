@@ -40,10 +40,12 @@ inline long long texture_bytes(const TextureDesc& t, int output_width, int outpu
     return texels * bytes_per_texel(t.internal_format);
 }
 
-// Every texture of the layout (the caller's G-buffer is not part of it).
+// Every texture the layout allocates, output-sized ones at output_width × output_height; textures
+// the caller supplies (source "caller", e.g. the G-buffer) are the engine's and not counted.
 inline long long texture_bytes(const Layout& layout, int output_width = 0, int output_height = 0) {
     long long total = 0;
-    for (const TextureDesc& t : layout.textures) total += texture_bytes(t, output_width, output_height);
+    for (const TextureDesc& t : layout.textures)
+        if (t.source != "caller") total += texture_bytes(t, output_width, output_height);
     return total;
 }
 

@@ -44,17 +44,9 @@ nlohmann::ordered_json stats_json(const ErrorStats& s) {
     return {{"mae", s.mae}, {"rmse", s.rmse}, {"p95", s.p95}, {"pixels", s.count}};
 }
 
-// The keys of layout.json's "config" object, so that --config metrics.json reproduces the run.
+// layout.json's "config" object (every technique's keys), so that --config metrics.json reproduces the run.
 nlohmann::ordered_json config_json(const Config& c) {
-    return {{"slices", c.slices},
-            {"resolution", c.resolution},
-            {"filter", to_string(c.filter)},
-            {"fusion", to_string(c.fusion)},
-            {"packing", to_string(c.packing)},
-            {"light", to_string(c.light)},
-            {"leak_fix", c.leak_fix},
-            {"self_shadow_fade", c.self_shadow_fade},
-            {"target", to_string(c.target)}};
+    return nlohmann::ordered_json::parse(to_json(describe_layout(c))).at("config");
 }
 
 nlohmann::ordered_json light_json(const Scene& scene, Light light) {
@@ -130,7 +122,9 @@ int run_headless(const PlaygroundOptions& options) {
     if (!context) return fail("no OpenGL 4.5 context: " + error);
     HeadlessResult result;
     const auto render_start = std::chrono::steady_clock::now();
-    if (!render_headless(scene, options.config, width, height, result, &error)) return fail(error);
+    RenderOptions render_options;
+    render_options.warm_up = true; // timings of a second run: the first compiles the shaders on llvmpipe
+    if (!render_headless(scene, options.config, width, height, result, &error, render_options)) return fail(error);
     const double render_ms = milliseconds_since(render_start);
     if (!write_png_rgb(options.out_path, width, height, result.rgb, RowOrder::top_down, &error)) return fail(error);
     std::cout << "wrote " << options.out_path << " (" << scene.name << ", " << width << "x" << height << ", "
@@ -145,6 +139,7 @@ int run_headless(const PlaygroundOptions& options) {
         {"renderer", context->renderer()},
         {"width", width},
         {"height", height},
+        {"technique", to_string(options.config.technique)},
         {"config", config_json(options.config)},
         {"light", light_json(scene, options.config.light)},
         {"shadowed_fraction", shadowed_fraction(result)},
@@ -153,6 +148,8 @@ int run_headless(const PlaygroundOptions& options) {
     nlohmann::ordered_json passes = nlohmann::ordered_json::array();
     for (const penumbra::gl::PassTiming& t : result.timings) passes.push_back({{"name", t.name}, {"ms", t.milliseconds}});
     metrics["passes"] = passes;
+    metrics["timing"] = result.warm ? "warm: GPU times of a second run (the first compiles the shaders)" : "cold";
+    metrics["texture_bytes"] = result.texture_bytes;
 
     if (options.reference) {
         const auto reference_start = std::chrono::steady_clock::now();
@@ -181,9 +178,10 @@ int run_headless(const PlaygroundOptions& options) {
                                 {"all", stats_json(m.all)},
                                 {"penumbra", stats_json(m.penumbra)}};
     }
-    std::printf("passes (GPU ms):");
+    std::printf("passes (GPU ms, %s):", result.warm ? "warm" : "cold");
     for (const penumbra::gl::PassTiming& t : result.timings) std::printf(" %s %.2f", t.name.c_str(), t.milliseconds);
-    std::printf("\n");
+    std::printf("\ntexture memory: %lld bytes (%.2f MiB)\n", result.texture_bytes,
+                static_cast<double>(result.texture_bytes) / (1024.0 * 1024.0));
     std::fflush(stdout);
     if (!options.metrics_path.empty()) {
         if (!write_text(options.metrics_path, metrics.dump(2) + "\n", &error)) return fail(error);

@@ -4,6 +4,7 @@
 #include "reference/ground_truth.hpp"
 
 #include <penumbra/gl/runtime.hpp>
+#include <penumbra/texture_memory.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -23,6 +24,16 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
     // Penumbra passes.
     if (config.light == Light::sun) runtime->set_light(scene.sun, glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
     else runtime->set_light(scene.light, glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
+    if (options.warm_up) {
+        if (std::string d = runtime->build([&](GLuint) { mesh.draw(); }); !d.empty()) {
+            if (error) *error = d;
+            return false;
+        }
+        if (!runtime->shade_deferred(gbuffer->positions(), width, height, error)) return false;
+        glFinish();
+    }
+    out.warm = options.warm_up;
+    out.texture_bytes = penumbra::texture_bytes(runtime->layout(), width, height);
     out.timings.clear();
     if (std::string d = runtime->build([&](GLuint) { mesh.draw(); }, &out.timings); !d.empty()) {
         if (error) *error = d;

@@ -24,12 +24,17 @@ struct HeadlessResult {
     std::vector<unsigned char> geometry; // 1 where a surface was rasterised
     std::vector<float> rgb;              // Lambert shading, 3 floats per pixel, top row first
     std::vector<penumbra::gl::PassTiming> timings; // GPU time of each pass (timer queries), shading last
+    bool warm = false;                             // timings of a second run (RenderOptions::warm_up)
+    long long texture_bytes = 0;                   // the layout's textures at this output size
 };
 
 struct RenderOptions {
     // Called after the deferred shading pass, while the runtime and its textures still exist:
     // lets tests and the oracle read back intermediate textures (runtime.texture(name)).
     std::function<void(const penumbra::gl::Runtime&)> inspect;
+    // Run the passes once before the timed run, so the timings are warm: llvmpipe (and some
+    // drivers) compile a shader at its first draw, which the first run's GPU time would include.
+    bool warm_up = false;
 };
 
 // Runs the whole pipeline; returns false with *error set on any failure (never throws for GL).

@@ -221,4 +221,48 @@ TEST_CASE("playground cli: an OBJ file written by the test loads and casts a sha
     CHECK_MESSAGE(missing.err.find("absent.obj") != std::string::npos, missing.err);
 }
 
+TEST_CASE("playground cli: --technique renders any technique; metrics.json has one schema, warm pass times") {
+    TempDir dir;
+    std::vector<nlohmann::json> all;
+    for (const char* technique : {"occlusion", "shadowmap", "pcf", "pcss"}) {
+        CAPTURE(technique);
+        const std::string metrics = std::string(technique) + ".json";
+        const Run run = run_playground(dir, {"--headless", "--scene", "boxes", "--size", "32x32", "--technique",
+                                             technique, "--shadow-resolution", "256", "--reference", "--samples", "2",
+                                             "--out", std::string(technique) + ".png", "--metrics", metrics});
+        REQUIRE_MESSAGE(run.exit_code == 0, run.err);
+        CHECK(run.out.find("(GPU ms, warm)") != std::string::npos);
+        const nlohmann::json m = read_json(dir.file(metrics));
+        CHECK(m["technique"] == technique);
+        CHECK(m["config"]["technique"] == technique);
+        CHECK(m["timing"].get<std::string>().starts_with("warm"));
+        CHECK(m["texture_bytes"].get<long long>() > 0);
+        CHECK(m["passes"].back()["name"] == "shading");
+        if (std::string(technique) != "occlusion") CHECK(m["passes"].front()["name"] == "shadow_depth");
+        all.push_back(m);
+    }
+    // the same keys for every technique
+    auto keys = [](const nlohmann::json& j) {
+        std::vector<std::string> out;
+        for (const auto& [key, value] : j.items()) out.push_back(key);
+        return out;
+    };
+    for (const nlohmann::json& m : all) {
+        CHECK(keys(m) == keys(all.front()));
+        CHECK(keys(m["reference"]["penumbra"]) == keys(all.front()["reference"]["penumbra"]));
+    }
+    // a shadow map of 256² in 32-bit depth: 256 KiB (pcss: twice) plus the 32×32 R32F result
+    CHECK(all[1]["texture_bytes"] == 256 * 256 * 4 + 32 * 32 * 4);
+    CHECK(all[3]["texture_bytes"] == 2 * 256 * 256 * 4 + 32 * 32 * 4);
+    // metrics.json reproduces a technique's run
+    const Run again = run_playground(dir, {"--headless", "--scene", "boxes", "--size", "32x32", "--config", "pcss.json",
+                                           "--out", "again.png", "--metrics", "again.json"});
+    REQUIRE_MESSAGE(again.exit_code == 0, again.err);
+    CHECK(read_json(dir.file("again.json"))["config"] == all[3]["config"]);
+    const Run bad = run_playground(dir, {"--headless", "--scene", "boxes", "--technique", "pcss", "--pcss-blockers",
+                                         "0", "--out", "x.png"});
+    CHECK(bad.exit_code == 2);
+    CHECK(bad.err.find("pcss.blocker_samples: 0 is out of range") != std::string::npos);
+}
+
 #endif // PENUMBRA_PLAYGROUND_PATH

@@ -116,11 +116,13 @@ constexpr void write_pcss_body(LineWriter& out, const Config& config) {
         out.line("vec2 search = min(0.5 * penumbra_lightSizeUV * (coord.w - penumbra_shadowDepthRange.x) / coord.w, vec2(0.5));");
     else
         out.line("vec2 search = min(0.5 * penumbra_lightSizeUV * (coord.w - penumbra_shadowDepthRange.x), vec2(0.5));");
+    out.comment("a blocker is strictly nearer than the receiver: a receiver on the far plane, whose biased depth");
+    out.comment("the map clamps to 1, is not its own blocker");
     out.line("vec2 penumbra_blocker = vec2(0.0); // x: sum of blocker depths (as stored), y: blocker count");
     out.line("float d;");
     write_taps(out, poisson_disk(pcss.blocker_samples, blocker_seed), 4, "blocker taps", [&](const Tap& tap) {
         out.line("d = textureLod(penumbra_shadowDepth, coord.xy + ", tap_offset(config, tap, "search"), ", 0.0).r;");
-        out.line("penumbra_blocker += step(d, coord.z) * vec2(d, 1.0);");
+        out.line("penumbra_blocker += float(d < coord.z) * vec2(d, 1.0);");
     });
     out.comment("no blocker: fully lit (a real branch: the filter is skipped)");
     out.line("if (penumbra_blocker.y == 0.0) return 1.0;");
