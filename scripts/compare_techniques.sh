@@ -14,7 +14,7 @@ playground="$build/playground/penumbra-playground"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 for scene in $scenes; do
-    for technique in occlusion shadowmap pcf pcss; do
+    for technique in occlusion shadowmap pcf pcss erosion; do
         "$playground" --headless --scene "$scene" --size "$size" --technique "$technique" --reference \
             --samples "$samples" --out "$out/$scene-$technique.png" --metrics "$out/$scene-$technique.json" >/dev/null
     done
@@ -26,9 +26,10 @@ print(f"{'scene':8} {'technique':10} {'pen. MAE':>9} {'pen. p95':>9} {'shading m
       f"{'all passes ms':>14} {'x occl.':>8} {'textures MiB':>13}")
 for scene in scenes:
     base = None
-    for technique in ["occlusion", "shadowmap", "pcf", "pcss"]:
+    for technique in ["occlusion", "shadowmap", "pcf", "pcss", "erosion"]:
         m = json.load(open(f"{out}/{scene}-{technique}.json"))
-        shading = sum(p["ms"] for p in m["passes"] if p["name"] == "shading")
+        # erosion: its screen passes, timed together ("erosion_hard+...+erosion_blur")
+        shading = sum(p["ms"] for p in m["passes"] if p["name"] == "shading" or p["name"].startswith("erosion_"))
         total = sum(p["ms"] for p in m["passes"])
         if base is None:
             base = (shading, total)

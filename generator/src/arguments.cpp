@@ -173,7 +173,7 @@ std::string usage() {
     out += line("--tangent-clip", std::string("kernels cover only the light above the receiver's tangent plane;\n"
                                               "                      penumbraVisibility takes the normal (default ") +
                                       (d.tangent_clip ? "on" : "off") + "; --no-tangent-clip turns it off)");
-    out += "\ntechnique (occlusion: the flags above; shadowmap, pcf, pcss: these, plus --light and --target):\n";
+    out += "\ntechnique (occlusion: the flags above; shadowmap, pcf, pcss, erosion, oim: these, plus --light and --target):\n";
     out += technique_usage(25);
     out +=
         line("--config FILE.json",

@@ -14,7 +14,7 @@ using nlohmann::json;
 
 constexpr std::string_view key_list =
     "slices, resolution, filter, fusion, packing, light, leak_fix, self_shadow_fade, tangent_clip, target, "
-    "technique, shadow_map, pcf, pcss, oim";
+    "technique, shadow_map, pcf, pcss, oim, erosion";
 
 std::string type_of(const json& value) {
     if (value.is_number_float()) return "a number with a fraction";
@@ -148,6 +148,19 @@ std::string read_oim(const json& value, penumbra::OimParams& oim) {
                         });
 }
 
+std::string read_erosion(const json& value, penumbra::ErosionParams& erosion) {
+    return read_section("erosion", value, "max_search_radius, edge_threshold, search_taps, blur_taps",
+                        [&](const std::string& key, const std::string& name, const json& item) -> std::string {
+                            if (key == "max_search_radius")
+                                return store(read_int(name, item, "1 to 256 pixels"), erosion.max_search_radius);
+                            if (key == "edge_threshold")
+                                return store(read_real(name, item, "above 0 to 4"), erosion.edge_threshold);
+                            if (key == "search_taps") return store(read_int(name, item, "1 to 64"), erosion.search_taps);
+                            if (key == "blur_taps") return store(read_int(name, item, "1 to 64"), erosion.blur_taps);
+                            return "unknown";
+                        });
+}
+
 // nlohmann's what() without its "[json.exception.parse_error.101] " prefix, on one line, with
 // the raw bytes it quotes from the file ("last read: '…'") escaped.
 std::string parse_message(const json::exception& e) {
@@ -252,6 +265,8 @@ Parsed<penumbra::Config> parse_config_json(std::string_view text, std::string_vi
             error = read_pcss(value, config.pcss);
         else if (key == "oim")
             error = read_oim(value, config.oim);
+        else if (key == "erosion")
+            error = read_erosion(value, config.erosion);
         else if (key == "slices")
             error = store(read_int(key, value, allowed_for(key)), config.slices);
         else if (key == "resolution")

@@ -10,7 +10,8 @@ namespace penumbra_gen {
 const std::string_view technique_flag_list =
     "--technique, --shadow-resolution, --shadow-bias, --shadow-slope-bias, --pcf-pattern, --pcf-grid, --pcf-taps, "
     "--pcf-radius, --pcss-blockers, --pcss-filter, --pcss-max-texels, --no-rotation, --oim-resolution, "
-    "--oim-intervals, --oim-samples";
+    "--oim-intervals, --oim-samples, --erosion-radius, --erosion-edge-threshold, --erosion-search-taps, "
+    "--erosion-blur-taps";
 
 namespace {
 
@@ -18,7 +19,9 @@ constexpr std::string_view value_flags[] = {"--technique",   "--shadow-resolutio
                                             "--shadow-slope-bias", "--pcf-pattern", "--pcf-grid",
                                             "--pcf-taps",    "--pcf-radius",        "--pcss-blockers",
                                             "--pcss-filter", "--pcss-max-texels", "--oim-resolution",
-                                            "--oim-intervals", "--oim-samples"};
+                                            "--oim-intervals", "--oim-samples",
+                                            "--erosion-radius", "--erosion-edge-threshold",
+                                            "--erosion-search-taps", "--erosion-blur-taps"};
 
 std::string parse_int(std::string_view flag, std::string_view text, std::optional<int>& slot,
                       std::string_view allowed) {
@@ -82,6 +85,11 @@ std::string parse_technique_flag(std::string_view flag, std::string_view value, 
         return parse_int(flag, value, flags.oim_resolution, "a power of two from 32 to 4096");
     if (flag == "--oim-intervals") return parse_int(flag, value, flags.oim_intervals, "4, 8, 12 or 16");
     if (flag == "--oim-samples") return parse_int(flag, value, flags.oim_samples, "256, 512, 1024 or 2048");
+    if (flag == "--erosion-radius") return parse_int(flag, value, flags.erosion_radius, "1 to 256 pixels");
+    if (flag == "--erosion-edge-threshold")
+        return parse_real(flag, value, flags.erosion_edge_threshold, "more than 0 to 4");
+    if (flag == "--erosion-search-taps") return parse_int(flag, value, flags.erosion_search_taps, "1 to 64");
+    if (flag == "--erosion-blur-taps") return parse_int(flag, value, flags.erosion_blur_taps, "1 to 64");
     return parse_int(flag, value, flags.pcss_max_texels, "1 to half the shadow-map resolution"); // --pcss-max-texels
 }
 
@@ -107,6 +115,10 @@ penumbra::Config apply(const TechniqueFlags& flags, penumbra::Config config) {
     if (flags.oim_resolution) config.oim.resolution = *flags.oim_resolution;
     if (flags.oim_intervals) config.oim.intervals = *flags.oim_intervals;
     if (flags.oim_samples) config.oim.samples = *flags.oim_samples;
+    if (flags.erosion_radius) config.erosion.max_search_radius = *flags.erosion_radius;
+    if (flags.erosion_edge_threshold) config.erosion.edge_threshold = *flags.erosion_edge_threshold;
+    if (flags.erosion_search_taps) config.erosion.search_taps = *flags.erosion_search_taps;
+    if (flags.erosion_blur_taps) config.erosion.blur_taps = *flags.erosion_blur_taps;
     return config;
 }
 
@@ -127,7 +139,7 @@ std::string technique_usage(std::size_t column) {
     std::string out;
     out += line("--technique T", "shadowing technique: " + allowed_names<Technique>() + " (default " +
                                      std::string(to_string(d.technique)) + ")");
-    out += line("--shadow-resolution R", "shadowmap, pcf, pcss: shadow map side in texels, a power of two 32 to "
+    out += line("--shadow-resolution R", "shadowmap, pcf, pcss, erosion: shadow map side in texels, a power of two 32 to "
                                          "8192 (default " + std::to_string(d.shadow_map.resolution) + ")");
     out += line("--shadow-bias B", "constant depth bias in scene units along the light axis, 0 to 10 (default " +
                                        real(d.shadow_map.constant_bias) + ")");
@@ -154,6 +166,14 @@ std::string technique_usage(std::size_t column) {
                                          std::to_string(d.oim.intervals) + ")");
     out += line("--oim-samples N", "oim: instants the bake traces along the sun's path, 256, 512, 1024 or 2048 "
                                        "(default " + std::to_string(d.oim.samples) + ")");
+    out += line("--erosion-radius N", "erosion: largest penumbra half-width searched, in output pixels, 1 to 256 "
+                                      "(default " + std::to_string(d.erosion.max_search_radius) + ")");
+    out += line("--erosion-edge-threshold X", "erosion: |Laplacian| of the hard shadow marking an edge, above 0 to 4 "
+                                              "(default " + real(d.erosion.edge_threshold) + ")");
+    out += line("--erosion-search-taps N", "erosion: Poisson taps of the nearest-edge search, 1 to 64 (default " +
+                                               std::to_string(d.erosion.search_taps) + ")");
+    out += line("--erosion-blur-taps N", "erosion: Poisson taps of the final blur, 1 to 64 (default " +
+                                             std::to_string(d.erosion.blur_taps) + ")");
     return out;
 }
 

@@ -19,6 +19,8 @@ struct TechniqueFlags {
     std::optional<int> pcf_grid, pcf_taps;
     std::optional<double> pcf_radius;
     std::optional<int> pcss_blockers, pcss_filter, pcss_max_texels;
+    std::optional<int> erosion_radius, erosion_search_taps, erosion_blur_taps; // erosion
+    std::optional<double> erosion_edge_threshold;
     bool no_rotation = false;
     std::optional<int> oim_resolution, oim_intervals, oim_samples;
 };

@@ -64,6 +64,8 @@ enum class Technique : std::uint8_t {
     pcf,       // percentage-closer filtering (Reeves et al. 1987): fixed kernel of comparison taps
     pcss,      // percentage-closer soft shadows (Fernando 2005): blocker search, penumbra estimate, PCF
     oim,       // occlusion interval maps (GPU Gems ch. 13): baked visibility intervals of the sun on a fixed path
+    erosion,   // contact-hardening soft shadows by erosion (Klein et al.): screen-space hard shadow, edges,
+               // min-max chain, variable-size erosion, penumbra-wide blur
 };
 
 // Where the PCF taps lie in the kernel.
@@ -117,6 +119,24 @@ struct OimParams {
 // Number of RGBA rise/fall texture pairs: four intervals each.
 constexpr int oim_pairs(const OimParams& oim) { return (oim.intervals + 3) / 4; }
 
+// Erosion (Klein et al., "Contact Hardening Soft Shadows using Erosion"): every pass runs in screen
+// space at the output size; distances are in output pixels.
+struct ErosionParams {
+    int max_search_radius = 16;    // largest penumbra half-width searched for edges (output pixels); 1 to 256
+    double edge_threshold = 0.5;   // |Laplacian| of the 0/1 hard shadow that marks an edge pixel; more than 0 to 4
+    int search_taps = 32;          // Poisson taps of the erosion's nearest-edge search; 1 to 64
+    int blur_taps = 16;            // Poisson taps of the final blur over the penumbra's width; 1 to 64
+
+    friend constexpr bool operator==(const ErosionParams&, const ErosionParams&) = default;
+};
+
+// Levels above 0 of the erosion's min-max edge chain: the coarsest texel spans the search radius.
+constexpr int erosion_levels(const ErosionParams& erosion) {
+    int levels = 0;
+    while ((1 << levels) < erosion.max_search_radius) ++levels;
+    return levels;
+}
+
 struct Config {
     Technique technique = Technique::occlusion; // which method the programs implement
     int slices = 16;                        // slices along the light normal; 1 to 32 (four per RGBA texture)
@@ -134,6 +154,7 @@ struct Config {
     PcfParams pcf{};                        // pcf: the fixed kernel
     PcssParams pcss{};                      // pcss: blocker search and filter
     OimParams oim{};                        // oim: the interval maps (the sun's path: penumbra/sun_path.hpp)
+    ErosionParams erosion{};                // erosion: edge search and blur (screen space)
 
     friend constexpr bool operator==(const Config&, const Config&) = default;
 };
@@ -141,7 +162,8 @@ struct Config {
 // Names as they appear on the command line, in JSON and in diagnostics.
 template <class Enum> struct EnumNames;
 template <> struct EnumNames<Technique> {
-    static constexpr std::array<std::string_view, 5> names{"occlusion", "shadowmap", "pcf", "pcss", "oim"};
+    static constexpr std::array<std::string_view, 6> names{"occlusion", "shadowmap", "pcf", "pcss", "oim",
+                                                           "erosion"};
 };
 template <> struct EnumNames<TapPattern> {
     static constexpr std::array<std::string_view, 2> names{"grid", "poisson"};
@@ -182,10 +204,10 @@ template <class Enum> constexpr auto all_values() {
     return values;
 }
 
-// True for the techniques built on one depth map from the light (shadowmap, pcf, pcss).
+// True for the techniques built on one depth map from the light (shadowmap, pcf, pcss, erosion).
 constexpr bool uses_shadow_map(const Config& config) {
     return config.technique == Technique::shadowmap || config.technique == Technique::pcf ||
-           config.technique == Technique::pcss;
+           config.technique == Technique::pcss || config.technique == Technique::erosion;
 }
 
 // True when the occlusion-texture kernels are clipped to the receiver's tangent plane: the snippet

@@ -156,6 +156,7 @@ inline std::vector<Param> program_params(const Config& config, std::string_view 
     if (program == "sat_shift") return sat_shift_params(config);
     if (program == "sat_pass") return sat_pass_params(config);
     if (program == "shadow_depth") return shadow_depth_params();
+    if (program.starts_with("erosion_")) return erosion_params(config, program);
     std::vector<Param> params = technique_visibility_params(config);
     const std::vector<Param> extra =
         program == "shading_deferred" ? shading_deferred_params(config) : shading_fragment_params(config);
@@ -404,7 +405,7 @@ inline void describe_shadow_map_passes(LayoutBuilder& b, const Config& config) {
     depth_only.clear_depth = 1.0f;
     b.pass("shadow_depth", "draw_scene", "shadow_depth", {}, {{std::string(shadow_map_texture), 0, -1, "depth"}}, {},
            R, R, depth_only);
-    if (config.technique == Technique::pcss) {
+    if (config.technique == Technique::pcss || config.technique == Technique::erosion) {
         TextureDesc& plain = b.texture("penumbra_shadowDepth", "2D", "DEPTH_COMPONENT32F", R, R, 1, 1, "NEAREST",
                                        "NEAREST", "copy of the shadow map, read as depth for the blocker search");
         plain.wrap = "CLAMP_TO_EDGE";
@@ -427,6 +428,45 @@ inline void describe_oim_textures(LayoutBuilder& b, const Config& config) {
             t.wrap = "CLAMP_TO_EDGE";
             t.source = "bake";
         }
+}
+
+// Erosion, phase "screen" (erosion/emit_passes.hpp): output-sized textures, hard shadow, edges, the
+// min-max chain one level at a time (read level n, write n + 1), erosion, blur into the result.
+inline void describe_erosion_passes(LayoutBuilder& b, const Config& config) {
+    const int K = erosion_levels(config.erosion);
+    const std::string fmt(level_format(config));
+    auto screen_texture = [&](std::string_view name, int mips, std::string purpose) {
+        TextureDesc& t = b.texture(std::string(name), "2D", fmt, 0, 0, 1, mips, mips > 1 ? "NEAREST_MIPMAP_NEAREST" : "NEAREST",
+                                   "NEAREST", std::move(purpose));
+        t.wrap = "CLAMP_TO_EDGE";
+        t.size = "output";
+    };
+    screen_texture(erosion_hard_texture, 1,
+                   "r: hard visibility (0/1), g: penumbra half-width / max search radius (shadowed pixels), a: geometry");
+    screen_texture(erosion_edges_texture, K + 1,
+                   "min-max chain of the Laplacian edges: r edge, g half-width / max search radius (max), "
+                   "b min and a max of the hard shadow");
+    screen_texture(erosion_penumbra_texture, 1,
+                   "r: eroded visibility, g: search radius / max search radius, b: geometry");
+    const std::string hard(erosion_hard_texture), edges(erosion_edges_texture), pen(erosion_penumbra_texture);
+    auto inputs = [&](std::string_view program) {
+        std::vector<BindingDesc> in;
+        for (const ParamDesc& p : b.params_of(program))
+            if (p.binding >= 0) in.push_back({p.name, p.texture, p.binding});
+        return in;
+    };
+    auto screen = [&](std::string name, std::string program, std::vector<BindingDesc> in, AttachmentDesc out) {
+        b.pass(std::move(name), "fullscreen", std::move(program), std::move(in), {std::move(out)}, {}, 0, 0, {}, "screen");
+    };
+    screen("erosion_hard", "erosion_hard", inputs("erosion_hard"), {hard, 0, -1});
+    screen("erosion_edges", "erosion_edges", inputs("erosion_edges"), {edges, 0, -1});
+    for (int level = 0; level < K; ++level) {
+        std::vector<BindingDesc> in = inputs("erosion_reduce");
+        in.front().level = level;
+        screen("erosion_reduce", "erosion_reduce", std::move(in), {edges, level + 1, -1});
+    }
+    screen("erosion_erode", "erosion_erode", inputs("erosion_erode"), {pen, 0, -1});
+    screen("erosion_blur", "erosion_blur", inputs("erosion_blur"), {b.layout.result, 0, -1});
 }
 
 } // namespace detail
@@ -481,10 +521,15 @@ inline Layout describe_layout(const Config& config) {
     visibility.wrap = "CLAMP_TO_EDGE";
     visibility.size = "output";
     layout.result = visibility.name;
-    std::vector<BindingDesc> deferred_inputs;
-    for (const ParamDesc& p : build.params_of("shading_deferred"))
-        if (p.binding >= 0) deferred_inputs.push_back({p.name, p.texture, p.binding});
-    build.pass("shading", "fullscreen", "shading_deferred", deferred_inputs, {{layout.result, 0, -1}}, {}, 0, 0, {}, "screen");
+    if (config.technique == Technique::erosion) {
+        describe_erosion_passes(build, config);
+    } else {
+        std::vector<BindingDesc> deferred_inputs;
+        for (const ParamDesc& p : build.params_of("shading_deferred"))
+            if (p.binding >= 0) deferred_inputs.push_back({p.name, p.texture, p.binding});
+        build.pass("shading", "fullscreen", "shading_deferred", deferred_inputs, {{layout.result, 0, -1}}, {}, 0, 0, {},
+                   "screen");
+    }
 
     // Example phase: the engine draws its scene with shading_example (or its own shader including
     // penumbra_visibility.glsl, binding the same storage samplers) into its own framebuffer.
@@ -584,7 +629,11 @@ inline std::string to_json(const Layout& layout) {
               std::to_string(c.pcss.max_filter_texels) + ", \"rotate\": " + flag(c.pcss.rotate) + "}");
     field("    ", "oim",
           "{\"resolution\": " + std::to_string(c.oim.resolution) + ", \"intervals\": " +
-              std::to_string(c.oim.intervals) + ", \"samples\": " + std::to_string(c.oim.samples) + "}",
+              std::to_string(c.oim.intervals) + ", \"samples\": " + std::to_string(c.oim.samples) + "}");
+    field("    ", "erosion",
+          "{\"max_search_radius\": " + std::to_string(c.erosion.max_search_radius) + ", \"edge_threshold\": " +
+              real(c.erosion.edge_threshold) + ", \"search_taps\": " + std::to_string(c.erosion.search_taps) +
+              ", \"blur_taps\": " + std::to_string(c.erosion.blur_taps) + "}",
           false);
     o += "  },\n";
     field("  ", "textures_per_layer", std::to_string(layout.textures_per_layer));

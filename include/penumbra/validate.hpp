@@ -80,7 +80,7 @@ constexpr Text format_value(double value) {
     return format_float(value);
 }
 
-// The shadow map techniques read shadow_map, pcf or pcss, light and target; nothing else.
+// The shadow map techniques read shadow_map, pcf, pcss or erosion, light and target; nothing else.
 constexpr std::vector<Problem> shadow_map_problems(const Config& config) {
     std::vector<Problem> problems;
     auto add = [&](std::string_view field, Text value, Text message) {
@@ -136,6 +136,17 @@ constexpr std::vector<Problem> shadow_map_problems(const Config& config) {
             add("pcss.max_filter_texels", format_int(pcss.max_filter_texels),
                 cat("is a kernel the ", format_int(sm.resolution), "-texel shadow map cannot hold; allowed: 1 to ",
                     format_int(sm.resolution / 2), " (half the shadow-map resolution)"));
+    }
+    if (config.technique == Technique::erosion) {
+        const ErosionParams& e = config.erosion;
+        const int max_size = limits(config.target).max_texture_size;
+        if (e.max_search_radius < 1 || e.max_search_radius > 256 || e.max_search_radius > max_size / 2)
+            add("erosion.max_search_radius", format_int(e.max_search_radius),
+                cat("pixels is a search beyond the image (its min-max chain needs an image of at least twice the "
+                    "radius); allowed: 1 to ", format_int(max_size / 2 < 256 ? max_size / 2 : 256), " pixels"));
+        real_range("erosion.edge_threshold", e.edge_threshold, 0.0, 4.0, true, "(|Laplacian| of the 0/1 hard shadow)");
+        int_range("erosion.search_taps", e.search_taps, 1, 64, "is out of range");
+        int_range("erosion.blur_taps", e.blur_taps, 1, 64, "is out of range");
     }
     return problems;
 }

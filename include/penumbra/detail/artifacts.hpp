@@ -7,6 +7,7 @@
 #include "emit_slicing.hpp"
 #include "oim/emit_oim.hpp"
 #include "shadow_map/emit_depth.hpp"
+#include "erosion/emit_passes.hpp"
 
 namespace penumbra {
 
@@ -29,6 +30,11 @@ enum class Artifact : std::uint8_t {
     oim_shading_vert,   // occlusion interval maps: the example pass (with texture coordinates)
     oim_shading_frag,
     oim_deferred_frag,  // occlusion interval maps: the deferred pass over a G-buffer of texture coordinates
+    erosion_hard_frag,  // erosion: the screen passes (erosion/emit_passes.hpp)
+    erosion_edges_frag,
+    erosion_reduce_frag,
+    erosion_erode_frag,
+    erosion_blur_frag,
 };
 
 constexpr std::string_view file_name(Artifact artifact) {
@@ -50,6 +56,11 @@ constexpr std::string_view file_name(Artifact artifact) {
     case Artifact::oim_shading_vert: return "penumbra_oim_shading.vert";
     case Artifact::oim_shading_frag: return "penumbra_oim_shading.frag";
     case Artifact::oim_deferred_frag: return "penumbra_oim_deferred.frag";
+    case Artifact::erosion_hard_frag: return "penumbra_erosion_hard.frag";
+    case Artifact::erosion_edges_frag: return "penumbra_erosion_edges.frag";
+    case Artifact::erosion_reduce_frag: return "penumbra_erosion_reduce.frag";
+    case Artifact::erosion_erode_frag: return "penumbra_erosion_erode.frag";
+    case Artifact::erosion_blur_frag: return "penumbra_erosion_blur.frag";
     }
     return "";
 }
@@ -87,6 +98,11 @@ constexpr Text artifact_text(const Config& config, Artifact artifact) {
     case Artifact::oim_shading_vert: return oim_example_vertex(config);
     case Artifact::oim_shading_frag: return oim_example_fragment(config);
     case Artifact::oim_deferred_frag: return oim_deferred_fragment(config);
+    case Artifact::erosion_hard_frag: return erosion_fragment(config, "erosion_hard");
+    case Artifact::erosion_edges_frag: return erosion_fragment(config, "erosion_edges");
+    case Artifact::erosion_reduce_frag: return erosion_fragment(config, "erosion_reduce");
+    case Artifact::erosion_erode_frag: return erosion_fragment(config, "erosion_erode");
+    case Artifact::erosion_blur_frag: return erosion_fragment(config, "erosion_blur");
     }
     return {};
 }
@@ -102,6 +118,14 @@ constexpr std::vector<ProgramPlan> program_plan(const Config& config) {
     if (config.technique == Technique::oim)
         return {{"shading_example", {Artifact::oim_shading_vert, Artifact::oim_shading_frag}},
                 {"shading_deferred", {Artifact::fullscreen_vert, Artifact::oim_deferred_frag}}};
+    if (config.technique == Technique::erosion) // screen passes instead of shading_deferred
+        return {{"shadow_depth", {Artifact::shadow_depth_vert, Artifact::shadow_depth_frag}},
+                {"erosion_hard", {Artifact::fullscreen_vert, Artifact::erosion_hard_frag}},
+                {"erosion_edges", {Artifact::fullscreen_vert, Artifact::erosion_edges_frag}},
+                {"erosion_reduce", {Artifact::fullscreen_vert, Artifact::erosion_reduce_frag}},
+                {"erosion_erode", {Artifact::fullscreen_vert, Artifact::erosion_erode_frag}},
+                {"erosion_blur", {Artifact::fullscreen_vert, Artifact::erosion_blur_frag}},
+                {"shading_example", {Artifact::shading_vert, Artifact::shading_frag}}};
     if (uses_shadow_map(config))
         return {{"shadow_depth", {Artifact::shadow_depth_vert, Artifact::shadow_depth_frag}},
                 {"shading_example", {Artifact::shading_vert, Artifact::shading_frag}},

@@ -51,6 +51,10 @@ constexpr Text describe_shadow_map(const Config& config) {
         out += cat(" | pcss ", format_int(config.pcss.blocker_samples), " blocker / ",
                    format_int(config.pcss.filter_samples), " filter samples, filter at most ",
                    format_int(config.pcss.max_filter_texels), " texels, rotation ", on_off(config.pcss.rotate));
+    if (config.technique == Technique::erosion)
+        out += cat(" | erosion search at most ", format_int(config.erosion.max_search_radius), " px, edge threshold ",
+                   format_float(config.erosion.edge_threshold), ", ", format_int(config.erosion.search_taps),
+                   " search / ", format_int(config.erosion.blur_taps), " blur taps");
     return out += cat(" | light ", to_string(config.light), " | target ", to_string(config.target)), out;
 }
 

@@ -273,7 +273,7 @@ std::string usage() {
     out += line("--no-fade", "turn off the self-shadow fade (paper §3.4.2; default on)");
     out += line("--[no-]tangent-clip", std::string("kernels cover only the light above the receiver's tangent plane (default ") +
                                            (d.tangent_clip ? "on" : "off") + ")");
-    out += "\ntechnique (occlusion: the flags above; shadowmap, pcf, pcss: these, plus --light and --target):\n";
+    out += "\ntechnique (occlusion: the flags above; shadowmap, pcf, pcss, erosion, oim: these, plus --light and --target):\n";
     out += penumbra_gen::technique_usage(25);
     out += line("--config FILE.json", "configuration from JSON (the keys of Config, or a layout.json); a regular\n"
                                       "                        file of at most 1 MiB");

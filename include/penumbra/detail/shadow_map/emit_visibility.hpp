@@ -152,7 +152,9 @@ constexpr void write_shadow_visibility(LineWriter& out, const Config& config, in
     out.line("{");
     out.line("vec4 coord = penumbra_shadowCoord(worldPos);");
     if (rotates(config)) out.line("mat2 penumbra_rot = penumbra_rotation(worldPos);");
-    if (config.technique == Technique::shadowmap) {
+    if (config.technique == Technique::shadowmap || config.technique == Technique::erosion) {
+        if (config.technique == Technique::erosion)
+            out.comment("erosion is a screen-space filter: per point, only its hard shadow (the soft one: the screen passes)");
         out.comment("one comparison tap; the hardware filters the 2x2 comparisons around it bilinearly");
         out.line("return textureLod(", shadow_map_texture, ", vec3(coord.xy, coord.z), 0.0);");
     } else if (config.technique == Technique::pcf) {

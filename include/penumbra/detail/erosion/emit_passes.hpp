@@ -1,0 +1,277 @@
+// penumbra/detail/erosion/emit_passes.hpp — the screen passes of the erosion technique (Klein et al.,
+// "Contact Hardening Soft Shadows using Erosion"), each a full-screen fragment stage at the output size:
+//   erosion_hard    hard shadow from the shadow map; blocker-receiver distance -> penumbra half-width
+//                   in output pixels (parallel planes; pixel footprint from the world-position G-buffer)
+//   erosion_edges   Laplacian of the hard shadow: edge pixels, with the penumbra half-width found there
+//   erosion_reduce  min-max chain: level n+1 = max (edges, widths, hard) / min (hard) of level n
+//   erosion_erode   variable-size erosion: the chain's coarsest level bounds the search radius, Poisson
+//                   taps at the level matching their spacing find the nearest edge; its distance over
+//                   the radius gives the visibility across the penumbra
+//   erosion_blur    the paper's first solution: a blur over the penumbra's width
+// Every texture value is in [0, 1] (widths divided by erosion.max_search_radius), so ES 3.0 can store
+// them in RGBA8. Tap counts, offsets and radii are literals; taps are written out one by one.
+#pragma once
+
+#include "../shadow_map/emit_visibility.hpp"
+
+namespace penumbra::detail {
+
+inline constexpr std::string_view erosion_hard_texture = "penumbra_erosionHard";
+inline constexpr std::string_view erosion_edges_texture = "penumbra_erosionEdges";
+inline constexpr std::string_view erosion_penumbra_texture = "penumbra_erosionPenumbra";
+inline constexpr std::uint64_t erosion_search_seed = 0xE505105ull;
+inline constexpr std::uint64_t erosion_blur_seed = 0xB1C4ull;
+
+constexpr Param sampler_param(std::string_view name, std::string_view meaning) {
+    return {Text(name), "sampler2D", meaning, "", Text(name)};
+}
+
+constexpr Param world_positions_param() {
+    return {"penumbra_worldPositions", "sampler2D",
+            "G-buffer: xyz world position, w = 1 where there is geometry and 0 for the background", "scene units",
+            "penumbra_worldPositions"};
+}
+
+constexpr std::vector<Param> erosion_params(const Config& config, std::string_view program) {
+    if (program == "erosion_hard") {
+        std::vector<Param> params{light_from_world_param(), projection_param(config), depth_range_param()};
+        if (config.light == Light::rect)
+            params.push_back({"penumbra_lightSize", "vec2", "light rectangle width, height", "scene units"});
+        else
+            params.push_back({"penumbra_tanAngularRadius", "float", "tangent of the sun's angular radius", ""});
+        params.push_back(sampler_param("penumbra_shadowDepth", "shadow map read as depth (no comparison)"));
+        params.push_back(world_positions_param());
+        return params;
+    }
+    if (program == "erosion_edges")
+        return {sampler_param(erosion_hard_texture, "r: hard visibility, g: penumbra half-width / max radius, a: geometry")};
+    if (program == "erosion_reduce")
+        return {sampler_param(erosion_edges_texture, "the level being reduced (the pass binds one level)")};
+    if (program == "erosion_erode")
+        return {sampler_param(erosion_edges_texture, "min-max chain: r edge, g half-width / max radius, b min, a max"),
+                sampler_param(erosion_hard_texture, "r: hard visibility, a: geometry")};
+    return {sampler_param(erosion_penumbra_texture, "r: eroded visibility, g: search radius / max radius, b: geometry")};
+}
+
+constexpr double erosion_sqrt(double x) {
+    if (x <= 0.0) return 0.0;
+    double r = x < 1.0 ? 1.0 : x;
+    for (int i = 0; i < 64; ++i) r = 0.5 * (r + x / r);
+    return r;
+}
+
+constexpr Text erosion_title(std::string_view program) {
+    if (program == "erosion_hard") return Text("erosion: hard shadow and penumbra half-width, fragment stage");
+    if (program == "erosion_edges") return Text("erosion: Laplacian edges of the hard shadow, fragment stage");
+    if (program == "erosion_reduce") return Text("erosion: min-max chain, level n to n+1, fragment stage");
+    if (program == "erosion_erode") return Text("erosion: variable-size erosion, fragment stage");
+    return Text("erosion: blur over the penumbra width (final visibility), fragment stage");
+}
+
+// `name`'s texel at p, clamped to the level: texelFetch outside a level is undefined.
+constexpr void write_fetch_function(LineWriter& out) {
+    out.chunk("fetch");
+    out.line("vec4 penumbra_fetch(sampler2D s, ivec2 p, int level)");
+    out.line("{");
+    out.line("return texelFetch(s, clamp(p, ivec2(0), textureSize(s, level) - 1), level);");
+    out.line("}");
+    out.blank();
+}
+
+constexpr void write_hard_main(LineWriter& out, const Config& config) {
+    const double max_r = config.erosion.max_search_radius;
+    out.chunk("erosion_hard_main");
+    out.line("void main()");
+    out.line("{");
+    out.line("ivec2 pixel = ivec2(gl_FragCoord.xy);");
+    out.line("vec4 world = penumbra_fetch(penumbra_worldPositions, pixel, 0);");
+    out.line("if (world.w < 0.5)");
+    out.line("{");
+    out.line("penumbra_out = vec4(1.0, 0.0, 0.0, 0.0);");
+    out.line("return;");
+    out.line("}");
+    out.line("vec4 coord = penumbra_shadowCoord(world.xyz);");
+    out.line("float stored = textureLod(penumbra_shadowDepth, coord.xy, 0.0).r;");
+    out.line("float hard = coord.z <= stored ? 1.0 : 0.0;");
+    out.comment("footprint of the pixel on the receiver: the shortest step to a neighbouring geometry pixel");
+    out.line("float footprint = 1e30;");
+    out.line("vec4 n;");
+    for (const char* step : {"ivec2(1, 0)", "ivec2(-1, 0)", "ivec2(0, 1)", "ivec2(0, -1)"}) {
+        out.line("// neighbour ", step);
+        out.line("n = penumbra_fetch(penumbra_worldPositions, pixel + ", step, ", 0);");
+        out.line("if (n.w > 0.5) footprint = min(footprint, distance(n.xyz, world.xyz));");
+    }
+    out.line("footprint = footprint < 1e29 ? footprint : 1.0;");
+    out.comment("blocker-receiver distance along the light axis; parallel planes give the penumbra width");
+    out.line("vec2 range = penumbra_shadowDepthRange;");
+    out.line("float zBlocker = max(range.x + stored * (range.y - range.x), 1e-4);");
+    out.line("float gap = max(coord.w - zBlocker, 0.0);");
+    if (config.light == Light::rect)
+        out.line("float width = gap * 0.5 * (penumbra_lightSize.x + penumbra_lightSize.y) / zBlocker;");
+    else
+        out.line("float width = 2.0 * gap * penumbra_tanAngularRadius;");
+    out.line("// half-width in output pixels, stored over the largest search radius (", format_int(config.erosion.max_search_radius), " pixels)");
+    out.line("float halfWidth = hard > 0.5 ? 0.0 : min(0.5 * width / footprint, ", format_float(max_r), ") * ",
+             format_float(1.0 / max_r), ";");
+    out.line("penumbra_out = vec4(hard, halfWidth, 0.0, 1.0);");
+    out.line("}");
+}
+
+constexpr void write_edges_main(LineWriter& out, const Config& config) {
+    out.chunk("erosion_edges_main");
+    out.line("void main()");
+    out.line("{");
+    out.line("ivec2 pixel = ivec2(gl_FragCoord.xy);");
+    out.line("vec4 c = penumbra_fetch(", erosion_hard_texture, ", pixel, 0);");
+    out.comment("4-neighbour Laplacian of the hard shadow; a background neighbour counts as the centre");
+    out.line("float laplacian = 0.0;");
+    out.line("float halfWidth = c.g;");
+    out.line("vec4 n;");
+    for (const char* step : {"ivec2(1, 0)", "ivec2(-1, 0)", "ivec2(0, 1)", "ivec2(0, -1)"}) {
+        out.line("// neighbour ", step);
+        out.line("n = penumbra_fetch(", erosion_hard_texture, ", pixel + ", step, ", 0);");
+        out.line("laplacian += (n.a > 0.5 ? n.r : c.r) - c.r;");
+        out.line("halfWidth = max(halfWidth, n.a > 0.5 ? n.g : 0.0);");
+    }
+    out.line("float edge = c.a > 0.5 && abs(laplacian) > ", format_float(config.erosion.edge_threshold),
+             " ? 1.0 : 0.0;");
+    out.comment("r: edge, g: penumbra half-width at the edge, b: min and a: max of the hard shadow");
+    out.line("penumbra_out = vec4(edge, edge * halfWidth, c.r, c.r);");
+    out.line("}");
+}
+
+constexpr void write_reduce_main(LineWriter& out) {
+    out.chunk("erosion_reduce_main");
+    out.comment("level n is the sampler's only level; a 3x3 window over 2p..2p+2 also covers odd sizes");
+    out.line("void main()");
+    out.line("{");
+    out.line("ivec2 base = 2 * ivec2(gl_FragCoord.xy);");
+    out.line("vec4 m = penumbra_fetch(", erosion_edges_texture, ", base, 0);");
+    out.line("vec4 t;");
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 3; ++x) {
+            if (x == 0 && y == 0) continue;
+            out.line("// texel (", format_int(x), ", ", format_int(y), ")");
+            out.line("t = penumbra_fetch(", erosion_edges_texture, ", base + ivec2(", format_int(x), ", ", format_int(y), "), 0);");
+            out.line("m = vec4(max(m.rg, t.rg), min(m.b, t.b), max(m.a, t.a));");
+        }
+    out.line("penumbra_out = m;");
+    out.line("}");
+}
+
+constexpr void write_erode_main(LineWriter& out, const Config& config) {
+    const ErosionParams& e = config.erosion;
+    const int K = erosion_levels(e);
+    const double max_r = e.max_search_radius;
+    const std::vector<Tap> taps = poisson_disk(e.search_taps, erosion_search_seed);
+    out.chunk("erosion_erode_main");
+    out.line("void main()");
+    out.line("{");
+    out.line("ivec2 pixel = ivec2(gl_FragCoord.xy);");
+    out.line("vec4 hard = penumbra_fetch(", erosion_hard_texture, ", pixel, 0);");
+    out.line("if (hard.a < 0.5)");
+    out.line("{");
+    out.line("penumbra_out = vec4(1.0, 0.0, 0.0, 0.0);");
+    out.line("return;");
+    out.line("}");
+    out.line("// coarsest chain level ", format_int(K), ": texels of ", format_int(1 << K),
+             " pixels; the 3x3 around the pixel hold every edge within the search radius");
+    out.line("ivec2 coarse = pixel / ", format_int(1 << K), ";");
+    out.line("vec4 m = vec4(0.0);");
+    for (int y = -1; y <= 1; ++y)
+        for (int x = -1; x <= 1; ++x) {
+            out.line("// coarse texel (", format_int(x), ", ", format_int(y), ")");
+            out.line("m = max(m, penumbra_fetch(", erosion_edges_texture, ", coarse + ivec2(", format_int(x), ", ",
+                     format_int(y), "), ", format_int(K), "));");
+        }
+    out.comment("no edge in reach: the hard shadow is the answer (a real branch: the search is skipped)");
+    out.line("if (m.r < 0.5)");
+    out.line("{");
+    out.line("penumbra_out = vec4(hard.r, 0.0, 1.0, 0.0);");
+    out.line("return;");
+    out.line("}");
+    out.line("float radius = clamp(m.g * ", format_float(max_r), ", 1.0, ", format_float(max_r), "); // pixels");
+    out.comment("the chain level whose texels match the taps' spacing, so thin edges are not stepped over");
+    out.line("float spacing = radius * ", format_float(erosion_sqrt(3.14159265358979 / e.search_taps)), ";");
+    out.line("int level = clamp(int(floor(log2(max(spacing, 1.0)))), 0, ", format_int(K), ");");
+    out.line("vec2 centre = vec2(pixel) + 0.5;");
+    out.line("float nearest = penumbra_fetch(", erosion_edges_texture, ", pixel, 0).r > 0.5 ? 0.5 : radius; // an edge pixel: the edge lies half a pixel away");
+    out.line("float e;");
+    for (int i = 0; i < static_cast<int>(taps.size()); ++i) {
+        if (i % 4 == 0)
+            out.line("// search taps ", format_int(i), " to ",
+                     format_int(i + 3 < static_cast<int>(taps.size()) ? i + 3 : static_cast<int>(taps.size()) - 1));
+        const Tap& t = taps[static_cast<std::size_t>(i)];
+        out.line("e = penumbra_fetch(", erosion_edges_texture, ", ivec2(centre + vec2(", format_float(t.x), ", ",
+                 format_float(t.y), ") * radius) >> level, level).r;");
+        out.line("nearest = min(nearest, e > 0.5 ? ", format_float(erosion_sqrt(t.x * t.x + t.y * t.y)),
+                 " * radius : radius);");
+    }
+    out.comment("erosion: the penumbra is centred on the hard edge; 0.5 there, 0 or 1 a radius away");
+    out.line("float s = 0.5 * clamp(nearest / radius, 0.0, 1.0);");
+    out.line("float visibility = hard.r > 0.5 ? 0.5 + s : 0.5 - s;");
+    out.line("penumbra_out = vec4(visibility, radius * ", format_float(1.0 / max_r), ", 1.0, 0.0);");
+    out.line("}");
+}
+
+constexpr void write_blur_main(LineWriter& out, const Config& config) {
+    const ErosionParams& e = config.erosion;
+    const std::vector<Tap> taps = poisson_disk(e.blur_taps, erosion_blur_seed);
+    out.chunk("erosion_blur_main");
+    out.line("void main()");
+    out.line("{");
+    out.line("ivec2 pixel = ivec2(gl_FragCoord.xy);");
+    out.line("vec4 c = penumbra_fetch(", erosion_penumbra_texture, ", pixel, 0);");
+    out.comment("background, or no penumbra here: nothing to blur (a real branch)");
+    out.line("if (c.b < 0.5 || c.g == 0.0)");
+    out.line("{");
+    out.line("penumbra_visibility = vec4(c.b < 0.5 ? 1.0 : c.r);");
+    out.line("return;");
+    out.line("}");
+    out.comment("half the penumbra half-width: smooths the erosion's steps without widening the penumbra");
+    out.line("float radius = 0.5 * c.g * ", format_float(static_cast<double>(e.max_search_radius)), ";");
+    out.line("vec2 centre = vec2(pixel) + 0.5;");
+    out.line("vec2 sum = vec2(c.r, 1.0); // x: visibility, y: weight (geometry taps only)");
+    out.line("vec4 t;");
+    for (int i = 0; i < static_cast<int>(taps.size()); ++i) {
+        if (i % 4 == 0)
+            out.line("// blur taps ", format_int(i), " to ",
+                     format_int(i + 3 < static_cast<int>(taps.size()) ? i + 3 : static_cast<int>(taps.size()) - 1));
+        const Tap& t = taps[static_cast<std::size_t>(i)];
+        out.line("t = penumbra_fetch(", erosion_penumbra_texture, ", ivec2(centre + vec2(", format_float(t.x), ", ",
+                 format_float(t.y), ") * radius), 0);");
+        out.line("sum += t.b > 0.5 ? vec2(t.r, 1.0) : vec2(0.0);");
+    }
+    out.line("penumbra_visibility = vec4(sum.x / sum.y);");
+    out.line("}");
+}
+
+// The fragment stage of erosion program `program`.
+constexpr Text erosion_fragment(const Config& config, std::string_view program) {
+    LineWriter out;
+    write_preamble(out, config, erosion_title(program));
+    out.line("// ", to_string(config.technique), ": search radius at most ", format_int(config.erosion.max_search_radius),
+             " pixels, chain levels 0 to ", format_int(erosion_levels(config.erosion)), ", ",
+             format_int(config.erosion.search_taps), " search / ", format_int(config.erosion.blur_taps), " blur taps");
+    out.line(program == "erosion_blur" ? "layout(location = 0) out vec4 penumbra_visibility;"
+                                       : "layout(location = 0) out vec4 penumbra_out;");
+    out.blank();
+    int binding = 0;
+    write_params(out, config, erosion_params(config, program), "PenumbraPass", binding);
+    write_fetch_function(out);
+    if (program == "erosion_hard") {
+        write_shadow_coord_function(out, config);
+        write_hard_main(out, config);
+    } else if (program == "erosion_edges") {
+        write_edges_main(out, config);
+    } else if (program == "erosion_reduce") {
+        write_reduce_main(out);
+    } else if (program == "erosion_erode") {
+        write_erode_main(out, config);
+    } else {
+        write_blur_main(out, config);
+    }
+    return out.take();
+}
+
+} // namespace penumbra::detail

@@ -1,0 +1,54 @@
+// Erosion's emitted structure: tap counts in the text equal the configuration's, no loop statement
+// in the unrolled passes, the min-max chain as one reduction pass per level in the layout.
+#include <penumbra/penumbra.hpp>
+
+#include <doctest/doctest.h>
+
+#include <string>
+
+using namespace penumbra;
+
+namespace {
+
+int count(const std::string& text, const std::string& what) {
+    int n = 0;
+    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
+    return n;
+}
+
+std::string text_of(const Config& config, Artifact artifact) { return emit_file(config, artifact).text; }
+
+} // namespace
+
+TEST_CASE("erosion: tap counts equal the configuration's, no loop statements") {
+    for (ErosionParams e : {ErosionParams{}, ErosionParams{.max_search_radius = 5, .search_taps = 7, .blur_taps = 3},
+                            ErosionParams{.max_search_radius = 64, .search_taps = 64, .blur_taps = 1}}) {
+        const Config config{.technique = Technique::erosion, .erosion = e};
+        const std::string erode = text_of(config, Artifact::erosion_erode_frag);
+        const std::string blur = text_of(config, Artifact::erosion_blur_frag);
+        CHECK(count(erode, "e = penumbra_fetch(penumbra_erosionEdges, ivec2(centre") == e.search_taps);
+        CHECK(count(erode, "// search taps ") == (e.search_taps + 3) / 4);
+        CHECK(count(erode, "// coarse texel (") == 9);
+        CHECK(count(blur, "t = penumbra_fetch(penumbra_erosionPenumbra, ivec2(centre") == e.blur_taps);
+        CHECK(count(blur, "// blur taps ") == (e.blur_taps + 3) / 4);
+        CHECK(erode.find(", " + std::to_string(erosion_levels(e)) + "));") != std::string::npos);
+        for (Artifact a : {Artifact::erosion_hard_frag, Artifact::erosion_edges_frag, Artifact::erosion_reduce_frag,
+                           Artifact::erosion_erode_frag, Artifact::erosion_blur_frag}) {
+            const std::string text = text_of(config, a);
+            CHECK(text.find("for (") == std::string::npos);
+            CHECK(text.find("while (") == std::string::npos);
+        }
+        const Layout layout = describe_layout(config);
+        int reductions = 0;
+        for (const PassDesc& pass : layout.passes)
+            if (pass.name == "erosion_reduce") {
+                CHECK(pass.inputs.front().level == reductions);
+                CHECK(pass.outputs.front().level == reductions + 1);
+                ++reductions;
+            }
+        CHECK(reductions == erosion_levels(e));
+    }
+    CHECK(erosion_levels({.max_search_radius = 16}) == 4);
+    CHECK(erosion_levels({.max_search_radius = 17}) == 5);
+    CHECK(erosion_levels({.max_search_radius = 1}) == 0);
+}
