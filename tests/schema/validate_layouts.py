@@ -58,18 +58,25 @@ def main():
     shutil.rmtree(work, ignore_errors=True)
     work.mkdir(parents=True)
 
-    matrix = list(itertools.product(["mipmap", "nbuffer", "sat", "gaussian"], ["atlas", "array", "volume"],
-                                    ["rect", "sun"], ["glsl330", "glsl450", "essl300", "vulkan"],
-                                    [(5, 32), (16, 128)]))
+    matrix = [(f"{filt}-{packing}-{light}-{target}-S{slices}-R{resolution}",
+               ["--filter", filt, "--packing", packing, "--light", light, "--target", target,
+                "--slices", str(slices), "--resolution", str(resolution)])
+              for filt, packing, light, target, (slices, resolution) in itertools.product(
+                  ["mipmap", "nbuffer", "sat", "gaussian"], ["atlas", "array", "volume"], ["rect", "sun"],
+                  ["glsl330", "glsl450", "essl300", "vulkan"], [(5, 32), (16, 128)])]
+    # Every other technique (its own textures, passes and uniforms), every light and target.
+    matrix += [(f"{technique}-{light}-{target}", ["--technique", technique, "--light", light, "--target", target])
+               for technique, light, target in itertools.product(
+                   ["shadowmap", "pcf", "pcss", "oim", "erosion"], ["rect", "sun"],
+                   ["glsl330", "glsl450", "essl300", "vulkan"])]
+    matrix += [(f"occlusion-chained-clip-{target}", ["--fusion", "chained", "--tangent-clip", "--target", target])
+               for target in ["glsl330", "glsl450", "essl300", "vulkan"]]
 
     def generate(entry):
         """(name, layout or None when penumbra-gen refuses the combination, failure text)"""
-        filt, packing, light, target, (slices, resolution) = entry
-        name = f"{filt}-{packing}-{light}-{target}-S{slices}-R{resolution}"
+        name, flags = entry
         out = work / name
-        run = subprocess.run([gen, "--filter", filt, "--packing", packing, "--light", light, "--target", target,
-                              "--slices", str(slices), "--resolution", str(resolution), "--out", str(out)],
-                             capture_output=True, text=True)
+        run = subprocess.run([gen, *flags, "--out", str(out)], capture_output=True, text=True)
         if run.returncode == 2:  # a combination the validator refuses (e.g. gaussian with a rect light)
             return name, None, ""
         if run.returncode != 0:
@@ -124,7 +131,7 @@ def main():
           f"{len(breakages)} broken layouts rejected")
     for f in failures[:20]:
         print("FAIL:", f)
-    return 1 if failures or checked < 100 else 0
+    return 1 if failures or checked < 140 else 0
 
 
 if __name__ == "__main__":

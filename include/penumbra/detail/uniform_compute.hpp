@@ -51,6 +51,34 @@ inline constexpr UniformCompute uniform_computes[] = {
      "(C, 1): the light's centre, w = 1 (the origin of penumbra_lightFromWorld in world space)",
      "(-normalize(direction), 0): the direction towards the sun, w = 0"},
     {"penumbra_clipFromWorld", "the viewer's camera: projection * view (world to clip space)", ""},
+    // The shadow-map family (shadowmap, pcf, pcss, erosion): penumbra::shadow_frame (light_frame.hpp).
+    {"penumbra_shadowClipFromWorld",
+     "ShadowFrame::shadow_clip_from_world of penumbra::shadow_frame(RectLight, bounds_min, bounds_max): "
+     "clip_from_light * light_from_world, clip_from_light maps light-frame (a, b, z) to (a/t, b/t, 0, z) "
+     "with t = penumbra_shadowTanHalfFov (a perspective from the light's centre C)",
+     "ShadowFrame::shadow_clip_from_world of penumbra::shadow_frame(SunLight, bounds_min, bounds_max): the sun's "
+     "slicing matrix, light-frame (a, b, z) to (a/s, b/s, 0, 1) with s = penumbra_windowHalfSize"},
+    {"penumbra_shadowDepthRange",
+     "ShadowFrame::depth_range = (near, far) along the light's normal: [zmin, zmax] = light-frame z range of the "
+     "8 bounds corners, e = max(length(bounds_max - bounds_min), 1e-6); near = max(zmin, 1e-3*e); "
+     "far = max(zmax, near + 1e-3*e) + 0.01*(zmax - zmin); stored depth = (z - near)/(far - near)",
+     "ShadowFrame::depth_range = (near, far): [zmin, zmax] = light-frame z range of the 8 bounds corners, "
+     "pad = 1e-4*max(zmax - zmin, 1e-6); near = zmin - pad; far = zmax + 0.01*(zmax - zmin) + pad"},
+    {"penumbra_shadowTanHalfFov",
+     "ShadowFrame::tan_half_fov t = 1.001 * max over the 8 bounds corners p (light frame) of "
+     "max(|p.x|, |p.y|) / max(p.z, near): the square frustum from C that holds the bounds",
+     ""},
+    {"penumbra_lightSizeUV",
+     "ShadowFrame::light_size_uv = (w, h) / (2*t*near): the light's size on the shadow map's near plane in uv "
+     "(Fernando 2005's LIGHT_SIZE_UV), t = penumbra_shadowTanHalfFov, near = penumbra_shadowDepthRange.x",
+     "ShadowFrame::light_size_uv = (g, g), g = 2*tan(angular_diameter/2) / (2*s): the sun cone's footprint "
+     "growth per unit of depth in uv, s = penumbra_windowHalfSize"},
+    // Occlusion interval maps: penumbra::sun_window (sun_path.hpp).
+    {"penumbra_timeWindow",
+     "",
+     "(start, end, 1/dt, t) of penumbra::sun_window(SunPath, t, angular_diameter) (sun_path.hpp): "
+     "dt = max(angular_diameter / sun_speed(path, t), 1e-6), the time the sun takes to move by its diameter; "
+     "start = t - dt/2, end = t + dt/2"},
 };
 
 // The "compute" text of uniform `name` for `light`; empty when the table has none.

@@ -166,7 +166,9 @@ TEST_CASE("oim: every scene renders without a GL error and shadows like the sun'
         const double shadowed = shadowed_fraction(r.result), expected = shadowed_fraction(reference);
         std::printf("oim %-10s shadowed %.3f (truth %.3f), bake %.0f ms\n", std::string(name).c_str(), shadowed, expected,
                     r.setup.cached.bake.bake_ms);
-        CHECK(shadowed > 0.01);
+        // Some shadow where the truth has some (the one-box scene casts only a small one at noon).
+        CHECK(expected > 0.0);
+        CHECK(shadowed > 0.5 * expected);
         CHECK(std::abs(shadowed - expected) < 0.1);
     }
 }
