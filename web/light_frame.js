@@ -82,6 +82,7 @@ export function rectFrame(light, boundsMin, boundsMax, slices) {
             penumbra_sliceDepths: depthRangeSlices(Math.max(zmin, 0), zmax, slices),
             penumbra_windowHalfSize: 0,
             penumbra_tanAngularRadius: 0,
+            penumbra_toLight: [...light.center, 1], // the light's centre, w = 1 (uniform_values.hpp)
         },
         contained,
     };
@@ -119,6 +120,7 @@ export function sunFrame(sun, boundsMin, boundsMax, slices) {
             penumbra_sliceDepths: depthRangeSlices(zmin, zmax, slices),
             penumbra_windowHalfSize: half,
             penumbra_tanAngularRadius: Math.tan(0.5 * sun.angularDiameter),
+            penumbra_toLight: [-n[0], -n[1], -n[2], 0], // towards the sun, w = 0 (uniform_values.hpp)
         },
         contained: true,
     };

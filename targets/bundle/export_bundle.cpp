@@ -167,13 +167,20 @@ nlohmann::ordered_json floats(const float* values, int count) {
     return out;
 }
 
-// Every "light" uniform by its GLSL name (penumbra/uniform_values.hpp's table; matrices
-// column-major), from the frame the GL run used. Uniforms the table cannot compute without a camera
-// are left out.
-nlohmann::ordered_json uniforms_json(const SliceFrame& frame, Light light) {
+// Every "light" uniform the emission's programs declare, by its GLSL name (penumbra/uniform_values.hpp's
+// table; matrices column-major), from the frame the GL run used. Uniforms the table cannot compute
+// without a camera are left out.
+nlohmann::ordered_json uniforms_json(const SliceFrame& frame, Light light, const Layout& layout) {
     const UniformInputs inputs{.frame = frame, .light = light, .clip_from_world = std::nullopt};
+    auto declared = [&](std::string_view name) {
+        for (const ProgramDesc& program : layout.programs)
+            for (const ParamDesc& p : program.parameters)
+                if (p.name == name && p.source == "light") return true;
+        return false;
+    };
     nlohmann::ordered_json out = nlohmann::ordered_json::object();
     for (const UniformRule& rule : uniform_rules()) {
+        if (!declared(rule.name)) continue;
         const std::optional<UniformValue> value = rule.value(inputs);
         if (!value) continue;
         std::visit(
@@ -267,7 +274,7 @@ int run(const std::vector<std::string>& args) {
         {"light", light_json(scene, a.config.light)},
         {"triangles", triangles.size() / 3},
         {"renderer", context->renderer()},
-        {"uniforms", uniforms_json(frame, gl_config.light)},
+        {"uniforms", uniforms_json(frame, gl_config.light, emitted.value->layout)},
     };
     std::ofstream json(dir / "uniforms.json", std::ios::binary);
     json << uniforms.dump(2) << '\n';
