@@ -261,26 +261,33 @@ Oracle::Sample Oracle::filtered(int slice, glm::dvec2 centre, double side) const
     return mix_levels(at_level(lo), at_level(std::min(lo + 1, L)), t, false);
 }
 
+// paper §3.4.2 fade: 0 at or below the point, a ramp over the nearest plane above, then 1
+// (without the fade: 1 above the point, else 0).
+double Oracle::fade_weight(double z, double zeta) const {
+    return config_.self_shadow_fade ? std::clamp((z - zeta) / slice_depths_.y, 0.0, 1.0) : (zeta < z ? 1.0 : 0.0);
+}
+
+Oracle::Kernel Oracle::kernel(glm::dvec3 p, double zeta) const {
+    if (config_.light == Light::rect) {
+        // docs/model.md §1.4: the rays from p to the light rectangle cut the plane in a square
+        const double scale = cop_distance_ / (p.z * (cop_distance_ + zeta));
+        return {0.5 + glm::dvec2(p) * (zeta * scale) / light_size_, std::max(p.z - zeta, 0.0) * scale};
+    }
+    // journal §3.5: orthographic slicing, the cone towards the sun grows linearly
+    return {0.5 + glm::dvec2(p) / (2.0 * window_half_size_),
+            std::max(p.z - zeta, 0.0) * tan_angular_radius_ / window_half_size_};
+}
+
 std::vector<double> Oracle::occlusions(glm::vec3 world) const {
     glm::dvec3 p = glm::dvec3(light_from_world_ * glm::dvec4(glm::dvec3(world), 1.0));
     p.z = std::max(p.z, 1e-6);
     std::vector<double> q(config_.slices, 0.0);
     for (int s = 0; s < config_.slices; ++s) {
         const double zeta = slice_depths_.x + (s + 1) * slice_depths_.y;
-        const double weight = config_.self_shadow_fade ? std::clamp((p.z - zeta) / slice_depths_.y, 0.0, 1.0)
-                                                       : (zeta < p.z ? 1.0 : 0.0);
+        const double weight = fade_weight(p.z, zeta);
         if (weight == 0.0) continue;
-        glm::dvec2 centre;
-        double side;
-        if (config_.light == Light::rect) {
-            const double scale = cop_distance_ / (p.z * (cop_distance_ + zeta));
-            centre = 0.5 + glm::dvec2(p) * (zeta * scale) / light_size_;
-            side = std::max(p.z - zeta, 0.0) * scale;
-        } else {
-            centre = 0.5 + glm::dvec2(p) / (2.0 * window_half_size_);
-            side = std::max(p.z - zeta, 0.0) * tan_angular_radius_ / window_half_size_;
-        }
-        q[s] = weight * filtered(s, centre, side).value;
+        const Kernel k = kernel(p, zeta);
+        q[s] = weight * filtered(s, k.centre, k.side).value;
     }
     return q;
 }
@@ -320,24 +327,11 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
     }
     for (int s = config_.slices - 1; s >= 0; --s) {
         const double zeta = z0 + (s + 1) * thickness; // the slice's bottom plane
-        // paper §3.4.2 fade: 0 at or below the point, a ramp over the nearest plane above, then 1
-        const double weight = config_.self_shadow_fade ? std::clamp((p.z - zeta) / thickness, 0.0, 1.0)
-                                                       : (zeta < p.z ? 1.0 : 0.0);
+        const double weight = fade_weight(p.z, zeta);
         // without the fade, a point within fp32 rounding of a plane may fall on either side
         const bool ambiguous = !config_.self_shadow_fade && std::abs(p.z - zeta) <= 1e-5 * std::max(1.0, p.z);
         if (weight == 0.0 && !ambiguous) continue;
-        glm::dvec2 centre;
-        double side;
-        if (config_.light == Light::rect) {
-            // docs/model.md §1.4: the rays from p to the light rectangle cut the plane in a square
-            const double scale = cop_distance_ / (p.z * (cop_distance_ + zeta));
-            centre = 0.5 + glm::dvec2(p) * (zeta * scale) / light_size_;
-            side = std::max(p.z - zeta, 0.0) * scale;
-        } else {
-            // journal §3.5: orthographic slicing, the cone towards the sun grows linearly
-            centre = 0.5 + glm::dvec2(p) / (2.0 * window_half_size_);
-            side = std::max(p.z - zeta, 0.0) * tan_angular_radius_ / window_half_size_;
-        }
+        auto [centre, side] = kernel(p, zeta);
         centre += glm::dvec2(clip) * side; // tangent clip (identity when off)
         side *= clip.z;
         const Sample o = filtered(s, centre, side);

@@ -86,6 +86,15 @@ private:
         double at(int x, int y) const { return texels[static_cast<std::size_t>(y) * width + x]; }
     };
 
+    // The kernel square on the plane at depth zeta for the light-frame point p: centre and side in
+    // the slice texture's uv (before the tangent clip).
+    struct Kernel {
+        glm::dvec2 centre;
+        double side = 0;
+    };
+    Kernel kernel(glm::dvec3 p, double zeta) const;
+    double fade_weight(double z, double zeta) const;
+
     void build_levels(const SliceTextures& slices);
     double stored(int slice, int level, int x, int y) const;
     double storage_error(int level) const;
