@@ -8,9 +8,10 @@
 //
 // It is the yardstick that shows what specialization buys, and a second witness of correctness:
 // on the same textures it must give the specialized program's images. Its text depends only on
-// filter, packing, light and target (shares_generic_program), so one program serves every slice
+// filter, packing, light, target and tangent clip (shares_generic_program), so one program serves every slice
 // count, resolution, fusion rule and fade setting. It reads the textures of the configuration's
-// layout (describe_layout) after the usual slicing and prefilter passes.
+// layout (describe_layout) after the usual slicing and prefilter passes; with the tangent clip it
+// also reads the caller's world-normal G-buffer.
 #pragma once
 
 #include "detail/emit_generic.hpp"
@@ -37,8 +38,9 @@ struct GenericSampler {
     std::string type;    // "sampler2D", "sampler2DArray", "sampler3D"
     int binding = 0;     // OpenGL: texture unit. Vulkan: descriptor binding (arrays: element `element`)
     int element = 0;     // array element, 0 for a single sampler
-    std::string texture; // layout texture (describe_layout), "penumbra_worldPositions" for the G-buffer,
-                         // empty for an array element this configuration does not use
+    std::string texture; // layout texture (describe_layout); "penumbra_worldPositions" and
+                         // "penumbra_worldNormals" for the caller's G-buffer; empty for an array
+                         // element this configuration does not use
 };
 
 struct GenericShading {
@@ -49,7 +51,8 @@ struct GenericShading {
 
 // True when `a` and `b` get the same generic program text (their values differ).
 constexpr bool shares_generic_program(const Config& a, const Config& b) {
-    return a.filter == b.filter && a.packing == b.packing && a.light == b.light && a.target == b.target;
+    return a.filter == b.filter && a.packing == b.packing && a.light == b.light && a.target == b.target &&
+           clips_to_tangent_plane(a) == clips_to_tangent_plane(b);
 }
 
 // The uniform values of a valid configuration.
@@ -89,10 +92,6 @@ inline std::vector<GenericSampler> generic_samplers(const Config& config) {
 inline Result<GenericShading> emit_generic(const Config& config) {
     Result<GenericShading> result;
     result.errors = validate(config);
-    if (config.tangent_clip)
-        result.errors.push_back({"tangent_clip", "true",
-                                 "tangent_clip: true is not implemented by the generic reference (it keeps the paper's "
-                                 "whole-light kernels); allowed: false"});
     if (!result.errors.empty()) return result;
     Program program{"shading_generic",
                     {{"penumbra_generic.vert", Stage::vertex, detail::generic_vertex(config).str()},

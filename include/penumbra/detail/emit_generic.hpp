@@ -74,18 +74,19 @@ constexpr std::vector<GenericSamplerDecl> generic_storage_samplers(const Config&
              "element t: slices 4t to 4t+3, levels along depth; elements from T on unused"}};
 }
 
-// Every sampler, in declaration (and binding) order: storage, then the G-buffer.
+// Every sampler, in declaration (and binding) order: storage, then the G-buffer (world positions,
+// and world normals when the kernels are clipped to the tangent plane).
 constexpr std::vector<GenericSamplerDecl> generic_samplers_decl(const Config& config) {
     std::vector<GenericSamplerDecl> samplers = generic_storage_samplers(config);
-    const Param world = deferred_params(config).front();
-    samplers.push_back({world.name, world.type, 1, world.meaning});
+    for (const Param& gbuffer : deferred_params(config)) samplers.push_back({gbuffer.name, gbuffer.type, 1, gbuffer.meaning});
     return samplers;
 }
 
-// What this text is specialized for: only the fields that pick resources and dialect.
+// What this text is specialized for: only the fields that pick resources, inputs and dialect.
 constexpr Text describe_generic(const Config& config) {
     return cat("filter ", to_string(config.filter), " | packing ", to_string(config.packing), " | light ",
-               to_string(config.light), " | target ", to_string(config.target));
+               to_string(config.light), " | target ", to_string(config.target),
+               choose(clips_to_tangent_plane(config), " | tangent clip", ""));
 }
 
 constexpr void write_generic_preamble(LineWriter& out, const Config& config, std::string_view title) {
@@ -122,6 +123,7 @@ constexpr void write_generic_params(LineWriter& out, const Config& config) {
 
 constexpr void write_generic_kernel(LineWriter& out, const Config& config) {
     write_kernel_function(out, config, "penumbra_resolution", "float(penumbra_maxLevel)");
+    if (clips_to_tangent_plane(config)) write_tangent_clip_function(out, config);
     out.chunk("fade");
     out.comment("paper §3.4.2 when penumbra_fade is 1; otherwise planes strictly above the point count fully");
     out.line("float penumbra_weight(float zPoint, float zeta)");
@@ -256,11 +258,11 @@ constexpr void write_generic_accumulate(LineWriter& out) {
 }
 
 // A `for` loop over the slices, from the bottom one up to the light, one lookup each.
-constexpr void write_generic_slice_loop(LineWriter& out) {
+constexpr void write_generic_slice_loop(LineWriter& out, const Config& config) {
     out.chunk("slice_loop");
     out.line("for (int s = penumbra_sliceCount - 1; s >= 0; --s) {");
     out.line("float zeta = penumbra_sliceDepths.x + float(s + 1) * penumbra_sliceDepths.y;");
-    out.line("vec4 kernel = penumbra_kernel(p, zeta);");
+    out.line("vec4 kernel = ", kernel_call(config), ";");
     out.comment("texture s / 4 holds the slice, channel s % 4");
     out.line("float q = penumbra_weight(p.z, zeta) * penumbra_filtered(kernel, s / 4)[s % 4];");
     write_generic_accumulate(out);
@@ -269,7 +271,7 @@ constexpr void write_generic_slice_loop(LineWriter& out) {
 
 // paper Algorithm 2 with `for` over the levels: the slices whose kernel falls in a level are read
 // there, each once, from the nearest slice above the point upwards.
-constexpr void write_generic_level_loop(LineWriter& out) {
+constexpr void write_generic_level_loop(LineWriter& out, const Config& config) {
     out.chunk("level_loop");
     out.line("float penumbra_k = clamp(ceil((p.z - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 2.0, -1.0, "
              "float(penumbra_sliceCount - 1));");
@@ -277,7 +279,7 @@ constexpr void write_generic_level_loop(LineWriter& out) {
     out.line("bool last = level == penumbra_maxLevel;");
     out.line("while (penumbra_k >= 0.0) {");
     out.line("float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;");
-    out.line("vec4 kernel = penumbra_kernel(p, zeta);");
+    out.line("vec4 kernel = ", kernel_call(config), ";");
     out.line("if (!last && kernel.w >= float(level + 1)) break;");
     out.line("int s = int(penumbra_k);");
     out.line("vec4 texel = penumbra_atlasLevel(level, kernel, s / 4);");
@@ -298,22 +300,29 @@ constexpr Text generic_fragment(const Config& config) {
     else write_generic_lookup(out, config);
     write_generic_fusion(out);
     out.chunk("visibility");
-    out.comment("Fraction of the light visible from worldPos: 1 lit, 0 in umbra.");
-    out.line("float penumbraVisibility(vec3 worldPos)");
+    const bool clip = clips_to_tangent_plane(config);
+    if (clip) {
+        out.comment("Fraction of the part of the light above the tangent plane at worldPos that is visible.");
+        out.line("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)");
+    } else {
+        out.comment("Fraction of the light visible from worldPos: 1 lit, 0 in umbra.");
+        out.line("float penumbraVisibility(vec3 worldPos)");
+    }
     out.line("{");
     out.line("vec3 p = (penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz;");
     out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
+    if (clip) write_tangent_clip_setup(out, config, cat(format_float(tangent_clip_offset_texels), " / penumbra_resolution"));
     out.line("float penumbra_lit = 1.0;");
     out.line("float penumbra_sum = 0.0;");
     out.line("float penumbra_max = 0.0;");
     out.line("float penumbra_chain = 1.0;");
     out.line("float penumbra_prev = 0.0;");
-    if (uses_generic_level_loop(config)) write_generic_level_loop(out);
-    else write_generic_slice_loop(out);
+    if (uses_generic_level_loop(config)) write_generic_level_loop(out, config);
+    else write_generic_slice_loop(out, config);
     out.line("return penumbra_fused(penumbra_lit, penumbra_sum, penumbra_max, penumbra_chain);");
     out.line("}");
     out.blank();
-    write_deferred_main(out);
+    write_deferred_main(out, clip);
     return out.take();
 }
 

@@ -115,11 +115,13 @@ constexpr void write_tangent_clip_function(LineWriter& out, const Config& config
 // The tangent clip's set-up in penumbraVisibility: the normal in the light frame, the clip, and
 // the sideways offset (every surface is rasterised into the slices it crosses, so without it a
 // wall's kernels would sit on the wall's own texels).
-constexpr void write_tangent_clip_setup(LineWriter& out, const Config& config) {
+// `offset` is the GLSL float expression of that offset in uv of the slicing grid: a baked literal
+// in the specialized code, a uniform expression in the generic reference (emit_generic.hpp).
+constexpr void write_tangent_clip_setup(LineWriter& out, const Config& config, std::string_view offset) {
     out.line("vec3 n = mat3(penumbra_lightFromWorld) * worldNormal;");
     out.line("n *= inversesqrt(max(dot(n, n), 1e-20));");
     out.line("vec3 penumbra_clip = penumbra_tangentClip(p, n);");
-    const Text texels = format_float(tangent_clip_offset_texels / config.resolution);
+    const Text texels(offset);
     out.comment(cat("move the point ", format_float(tangent_clip_offset_texels),
                     " slicing texels sideways along its normal, off its own texels"));
     if (config.light == Light::rect)
@@ -127,6 +129,10 @@ constexpr void write_tangent_clip_setup(LineWriter& out, const Config& config) {
                  ");");
     else
         out.line("p.xy += n.xy * (2.0 * penumbra_windowHalfSize * ", texels, ");");
+}
+
+constexpr void write_tangent_clip_setup(LineWriter& out, const Config& config) {
+    write_tangent_clip_setup(out, config, format_float(tangent_clip_offset_texels / config.resolution).view());
 }
 
 constexpr void write_weight_function(LineWriter& out, const Config& config) {

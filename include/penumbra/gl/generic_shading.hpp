@@ -4,11 +4,11 @@
 //   std::string error;
 //   auto generic = penumbra::gl::GenericVisibilityPass::create(runtime->config(), &error);
 //   // after runtime->build(...):
-//   if (std::string d = generic->shade(*runtime, world_positions, width, height); !d.empty()) { /* d */ }
+//   if (std::string d = generic->shade(*runtime, world_positions, width, height, world_normals); !d.empty()) { /* d */ }
 //   std::vector<float> visibility = generic->read_visibility(); // R32F, bottom row first
 //
 // One compiled pass serves every runtime whose configuration shares its program text
-// (same filter, packing, light and target): slices, resolution, fusion and fade are uniforms set
+// (same filter, packing, light, target and tangent clip): slices, resolution, fusion and fade are uniforms set
 // at each shade() from that runtime's configuration. Header-only; <epoxy/gl.h>, no EGL or GLFW.
 #pragma once
 
@@ -64,9 +64,10 @@ public:
     GLuint visibility() const { return visibility_; } // R32F, width × height of the last shade()
 
     // Visibility of every G-buffer texel (RGBA32F world positions, w = 1 on geometry) from the
-    // textures `runtime` built, with its light frame and its configuration's values. Returns an
-    // empty string on success, else a diagnostic.
-    std::string shade(const Runtime& runtime, GLuint world_positions, int width, int height) {
+    // textures `runtime` built, with its light frame and its configuration's values. With the
+    // tangent clip, `world_normals` (RGBA32F, xyz = normal of the side the viewer sees) is required.
+    // Returns an empty string on success, else a diagnostic.
+    std::string shade(const Runtime& runtime, GLuint world_positions, int width, int height, GLuint world_normals = 0) {
         const Config& config = runtime.config();
         if (!shares_generic_program(config_, config))
             return "generic pass built for " + penumbra::detail::describe_generic(config_).str() +
@@ -81,7 +82,7 @@ public:
         glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0, visibility_, 0);
         const GLenum buffer = GL_COLOR_ATTACHMENT0;
         glNamedFramebufferDrawBuffers(fbo_, 1, &buffer);
-        std::string diagnostic = bind_inputs(runtime, world_positions);
+        std::string diagnostic = bind_inputs(runtime, world_positions, world_normals);
         if (diagnostic.empty() && glCheckNamedFramebufferStatus(fbo_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
             diagnostic = "generic visibility framebuffer incomplete";
         if (diagnostic.empty()) {
@@ -128,7 +129,7 @@ private:
     }
 
     // Light uniforms from the runtime's frame, the configuration's values, and the textures.
-    std::string bind_inputs(const Runtime& runtime, GLuint world_positions) const {
+    std::string bind_inputs(const Runtime& runtime, GLuint world_positions, GLuint world_normals) const {
         auto location = [&](const std::string& name) { return glGetUniformLocation(program_, name.c_str()); };
         const UniformInputs inputs = runtime.uniform_inputs();
         for (const UniformRule& rule : uniform_rules())
@@ -141,7 +142,10 @@ private:
         for (const GenericSampler& s : generic_samplers(runtime.config())) {
             GLuint texture = 0; // array elements this configuration does not use read nothing
             if (s.texture == "penumbra_worldPositions") texture = world_positions;
+            else if (s.texture == "penumbra_worldNormals") texture = world_normals;
             else if (!s.texture.empty()) texture = runtime.texture(s.texture);
+            if (s.texture == "penumbra_worldNormals" && !texture)
+                return "the tangent clip reads the caller's world normals: pass the penumbra_worldNormals G-buffer to shade()";
             if (!s.texture.empty() && !texture) return "the runtime has no texture " + s.texture + " for " + s.name;
             glBindTextureUnit(static_cast<GLuint>(s.binding), texture);
             // glsl330 and essl300 have no layout(binding): the unit is set here

@@ -66,9 +66,12 @@ Images shade_both(const SceneOnGpu& s, const Config& config, gl::GenericVisibili
     else runtime->set_light(s.scene.light, lo, hi);
     const std::string built = runtime->build([&](GLuint) { s.mesh->draw(); });
     REQUIRE_MESSAGE(built.empty(), built);
-    REQUIRE_MESSAGE(runtime->shade_deferred(s.gbuffer->positions(), image_size, image_size, &error), error);
+    REQUIRE_MESSAGE(runtime->shade_deferred(s.gbuffer->positions(), image_size, image_size, &error, nullptr,
+                                            s.gbuffer->normals()),
+                    error);
     Images images{runtime->read_visibility(), {}};
-    const std::string shaded = generic.shade(*runtime, s.gbuffer->positions(), image_size, image_size);
+    const std::string shaded =
+        generic.shade(*runtime, s.gbuffer->positions(), image_size, image_size, s.gbuffer->normals());
     REQUIRE_MESSAGE(shaded.empty(), shaded);
     images.generic = generic.read_visibility();
     return images;
@@ -99,7 +102,7 @@ TEST_CASE("specialized vs generic: same images within 1e-4, every filter x packi
     for (Filter filter : all_values<Filter>())
         for (Packing packing : all_values<Packing>()) {
             const Light light = filter == Filter::gaussian ? Light::sun : Light::rect;
-            const Config storage{.filter = filter, .packing = packing, .light = light};
+            const Config storage{.filter = filter, .packing = packing, .light = light, .tangent_clip = false};
             if (!is_valid(storage)) continue;
             // one generic program for every size and fusion rule of this storage
             auto generic = gl::GenericVisibilityPass::create(storage, &error);
@@ -142,6 +145,53 @@ TEST_CASE("specialized vs generic: same images within 1e-4, every filter x packi
     std::printf("specialized vs generic (%s), boxes %dx%d: %d configurations, worst max |diff| %.3g (bound %.0e)\n",
                 context->renderer().c_str(), image_size, image_size, compared, worst, max_difference);
     CHECK(compared == 10 * 2 * static_cast<int>(all_values<Fusion>().size())); // storages x sizes x fusion rules
+}
+
+TEST_CASE("specialized vs generic: tangent clip, every storage (the normals G-buffer is read)") {
+    std::string error;
+    auto context = HeadlessContext::create(&error);
+    REQUIRE_MESSAGE(context, error);
+    const SceneOnGpu box = upload("box", &error);
+    int compared = 0;
+    for (Filter filter : all_values<Filter>())
+        for (Packing packing : all_values<Packing>()) {
+            const Light light = filter == Filter::gaussian ? Light::sun : Light::rect;
+            const Config config{.slices = 16, .resolution = 128, .filter = filter, .fusion = Fusion::chained,
+                                .packing = packing, .light = light, .tangent_clip = true};
+            if (!is_valid(config)) continue;
+            CAPTURE(name_of(config));
+            auto generic = gl::GenericVisibilityPass::create(config, &error);
+            REQUIRE_MESSAGE(generic, error);
+            const Images clipped = shade_both(box, config, *generic);
+            double max_diff = 0.0;
+            for (std::size_t i = 0; i < clipped.specialized.size(); ++i)
+                if (box.positions[i].w > 0.5f)
+                    max_diff = std::max(max_diff, std::abs(double(clipped.specialized[i]) - clipped.generic[i]));
+            CHECK(max_diff <= max_difference);
+            // the clip changes the image: the box's walls no longer shadow themselves
+            Config whole = config;
+            whole.tangent_clip = false;
+            auto generic_whole = gl::GenericVisibilityPass::create(whole, &error);
+            REQUIRE_MESSAGE(generic_whole, error);
+            const Images unclipped = shade_both(box, whole, *generic_whole);
+            double clip_effect = 0.0;
+            for (std::size_t i = 0; i < clipped.generic.size(); ++i)
+                clip_effect = std::max(clip_effect, std::abs(double(clipped.generic[i]) - unclipped.generic[i]));
+            CHECK(clip_effect > 0.2);
+            ++compared;
+        }
+    CHECK(compared == 10);
+
+    // without the normals the pass says what it needs instead of reading texture unit garbage
+    const Config config{.slices = 8, .resolution = 64, .tangent_clip = true};
+    auto generic = gl::GenericVisibilityPass::create(config, &error);
+    REQUIRE_MESSAGE(generic, error);
+    auto runtime = gl::Runtime::create(config, &error);
+    REQUIRE_MESSAGE(runtime, error);
+    runtime->set_light(box.scene.light, glm::dvec3(box.scene.bounds_min), glm::dvec3(box.scene.bounds_max));
+    REQUIRE(runtime->build([&](GLuint) { box.mesh->draw(); }).empty());
+    const std::string refused = generic->shade(*runtime, box.gbuffer->positions(), 8, 8);
+    CHECK(refused.find("penumbra_worldNormals") != std::string::npos);
 }
 
 TEST_CASE("specialized vs generic: the 3.30 and ES 3.00 dialects (sampler arrays read by constant index)") {
