@@ -281,7 +281,7 @@ bool run_frame(gl::Runtime& runtime, const MeshBuffers& mesh, const Pixels& pixe
     const auto shading_start = std::chrono::steady_clock::now();
     gl::PassTiming shading;
     if (!runtime.shade_deferred(pixels.gbuffer->positions(), pixels.gbuffer->width(), pixels.gbuffer->height(), error,
-                                &shading))
+                                &shading, pixels.gbuffer->normals()))
         return false;
     glFinish();
     out.wall_shading_ms = milliseconds_since(shading_start);

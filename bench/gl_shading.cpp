@@ -168,11 +168,14 @@ int main(int argc, char** argv) {
                 return 1;
             }
             const Timing specialized = median_times(options.runs, [&] {
-                if (!runtime->shade_deferred(gbuffer->positions(), options.size, options.size, &error))
+                if (!runtime->shade_deferred(gbuffer->positions(), options.size, options.size, &error, nullptr,
+                                             gbuffer->normals()))
                     std::fprintf(stderr, "error: %s\n", error.c_str());
             });
             const Timing generic_time = median_times(options.runs, [&] {
-                if (std::string d = generic->shade(*runtime, gbuffer->positions(), options.size, options.size); !d.empty())
+                if (std::string d =
+                        generic->shade(*runtime, gbuffer->positions(), options.size, options.size, gbuffer->normals());
+                    !d.empty())
                     std::fprintf(stderr, "error: %s\n", d.c_str());
             });
             const std::vector<float> a = runtime->read_visibility(), b = generic->read_visibility();

@@ -2,7 +2,7 @@
 #
 #   penumbra_generate_shaders(<target> OUT_DIR <dir>
 #       [SLICES <n>] [RESOLUTION <r>] [FILTER <f>] [FUSION <u>] [PACKING <p>] [LIGHT <l>]
-#       [TARGET_API <t>] [CONFIG <file.json>] [NO_LEAK_FIX] [NO_FADE] [VALIDATE])
+#       [TARGET_API <t>] [CONFIG <file.json>] [NO_LEAK_FIX] [NO_FADE] [NO_TANGENT_CLIP] [VALIDATE])
 #
 # Runs penumbra-gen when the generator or the options change, writing the shaders and
 # <dir>/layout.json, makes <target> depend on them and defines PENUMBRA_SHADER_DIR="<dir>" in
@@ -14,7 +14,7 @@ include_guard(GLOBAL)
 
 function(penumbra_generate_shaders target)
     cmake_parse_arguments(PARSE_ARGV 1 arg
-        "NO_LEAK_FIX;NO_FADE;VALIDATE"
+        "NO_LEAK_FIX;NO_FADE;NO_TANGENT_CLIP;VALIDATE"
         "OUT_DIR;SLICES;RESOLUTION;FILTER;FUSION;PACKING;LIGHT;TARGET_API;CONFIG"
         "")
     if(arg_UNPARSED_ARGUMENTS)
@@ -62,6 +62,9 @@ function(penumbra_generate_shaders target)
     endif()
     if(arg_NO_FADE)
         list(APPEND args --no-fade)
+    endif()
+    if(arg_NO_TANGENT_CLIP)
+        list(APPEND args --no-tangent-clip)
     endif()
     if(arg_VALIDATE)
         list(APPEND args --validate)

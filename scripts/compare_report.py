@@ -19,7 +19,7 @@ COST = "gpu_ms"  # the cost of a frame: median over the timed runs of the summed
 REFERENCE = "PCSS 16/16"  # ratios are given against this setting at the same scene and light size
 FALLBACK_REFERENCE = "OT nbuffer 16/512"  # when the run has no PCSS 16/16 (and says so)
 EQUAL_TIME_BUDGETS = ["PCSS 16/16", "PCSS 32/64"]
-FAMILY_NAMES = {"occlusion": "occlusion textures", "shadowmap": "hard shadow map", "pcf": "PCF", "pcss": "PCSS"}
+FAMILY_NAMES = {"occlusion": "occlusion textures", "paper": "occlusion textures, the paper's model", "shadowmap": "hard shadow map", "pcf": "PCF", "pcss": "PCSS"}
 
 
 def family_name(family):

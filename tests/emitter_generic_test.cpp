@@ -83,7 +83,7 @@ TEST_CASE("generic: real loops over uniform bounds, channels by index, nothing u
         // the channel is an index, not a rotated one-hot vector
         CHECK(std::regex_search(text, std::regex(R"(\)\[s % 4\];|texel\[s % 4\];)")));
         CHECK(text.find("yzwx") == std::string::npos);
-        CHECK(text.find("dot(") == std::string::npos);
+        CHECK(text.find(", penumbra_i)") == std::string::npos);
         // no labelled unrolled iteration
         CHECK(text.find("// slice ") == std::string::npos);
         CHECK(text.find("// level ") == std::string::npos);
@@ -184,27 +184,38 @@ TEST_CASE("generic: samplers read the layout's textures, the same ones the speci
                     std::set<int> units;
                     const std::vector<GenericSampler> samplers = generic_samplers(config);
                     for (const GenericSampler& s : samplers) {
-                        if (s.texture.empty() || s.texture == "penumbra_worldPositions") continue;
+                        if (s.texture.empty() || s.texture == "penumbra_worldPositions" ||
+                            s.texture == "penumbra_worldNormals")
+                            continue;
                         CHECK(layout_textures.count(s.texture) == 1);
                         generic_reads.insert(s.texture);
                         if (!detail::is_vulkan(config)) CHECK(units.insert(s.binding).second);
                     }
                     CHECK(generic_reads == specialized_reads);
-                    CHECK(samplers.back().texture == "penumbra_worldPositions");
+                    // the G-buffer last: positions, then the tangent clip's normals
+                    const bool clip = clips_to_tangent_plane(config);
+                    REQUIRE(samplers.size() >= 2);
+                    const GenericSampler& positions = samplers[samplers.size() - (clip ? 2 : 1)];
+                    CHECK(positions.texture == "penumbra_worldPositions");
+                    if (clip) CHECK(samplers.back().texture == "penumbra_worldNormals");
                     // explicit bindings in the text agree with the list
                     const std::string text = generic_fragment(config);
                     if (target == Target::glsl450)
-                        CHECK(text.find("layout(binding = " + std::to_string(samplers.back().binding) +
+                        CHECK(text.find("layout(binding = " + std::to_string(positions.binding) +
                                         ") uniform sampler2D penumbra_worldPositions;") != std::string::npos);
                 }
 }
 
-TEST_CASE("generic: the tangent clip is refused with a message") {
-    const Result<GenericShading> result = emit_generic(Config{.fusion = Fusion::chained, .tangent_clip = true});
-    CHECK_FALSE(result.value);
-    REQUIRE(result.errors.size() == 1);
-    CHECK(result.errors[0].field == "tangent_clip");
-    CHECK(result.errors[0].message.find("allowed: false") != std::string::npos);
+TEST_CASE("generic: the tangent clip is part of the program text, and reads the normals") {
+    const Config clipped{.fusion = Fusion::chained, .tangent_clip = true};
+    const Config whole{.fusion = Fusion::chained, .tangent_clip = false};
+    CHECK_FALSE(shares_generic_program(clipped, whole));
+    const std::string text = generic_fragment(clipped);
+    CHECK(text.find("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)") != std::string::npos);
+    CHECK(text.find("vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);") != std::string::npos);
+    CHECK(text.find("uniform sampler2D penumbra_worldNormals;") != std::string::npos);
+    CHECK(text.find("3.0 / penumbra_resolution") != std::string::npos); // the offset follows the resolution uniform
+    CHECK(generic_fragment(whole).find("penumbra_worldNormals") == std::string::npos);
 }
 
 TEST_CASE("generic: an invalid configuration gives the validator's messages and no program") {

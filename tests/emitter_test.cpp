@@ -33,8 +33,10 @@ std::vector<Config> structure_configs() {
         for (Packing packing : all_values<Packing>())
             for (int slices : {1, 4, 5, 16, 32})
                 for (Fusion fusion : all_values<Fusion>()) {
+                    // half the rules with the tangent clip (the default), half with the paper's kernels
                     Config c{.slices = slices, .resolution = 512, .filter = filter, .fusion = fusion,
-                             .packing = packing, .light = filter == Filter::gaussian ? Light::sun : Light::rect};
+                             .packing = packing, .light = filter == Filter::gaussian ? Light::sun : Light::rect,
+                             .tangent_clip = static_cast<int>(fusion) % 2 == 0};
                     if (is_valid(c)) configs.push_back(c);
                 }
     return configs;
@@ -55,7 +57,10 @@ TEST_CASE("the shading function is specialized: unrolled, swizzled, constants ba
         CAPTURE(to_string(config.filter));
         CAPTURE(to_string(config.packing));
         const std::string snippet = emit_file(config, Artifact::visibility_snippet).text;
-        const std::string_view body = function_body(snippet, "\nfloat penumbraVisibility(vec3 worldPos)");
+        // with the clip, the loops live in the function both penumbraVisibility overloads call
+        const std::string_view body =
+            function_body(snippet, config.tangent_clip ? "\nfloat penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)"
+                                                       : "\nfloat penumbraVisibility(vec3 worldPos)");
         const int S = config.slices, L = max_level(config);
 
         // no loop statement for the static loop; the atlas level loop keeps one bounded walk per level
@@ -129,8 +134,12 @@ TEST_CASE("tangent clip: the normal is an input, each kernel is restricted, the 
     for (const ProgramDesc& p : layout.programs)
         for (const ParamDesc& param : p.parameters) normals |= p.name == "shading_deferred" && param.name == "penumbra_worldNormals";
     CHECK(normals);
+    // and without a normal, the whole light through the same loops
+    CHECK(snippet.find("float penumbraVisibility(vec3 worldPos)\n") != std::string::npos);
+    CHECK(snippet.find("return penumbra_clippedVisibility(p, vec3(0.0, 0.0, 1.0));") != std::string::npos);
+    CHECK(count(snippet, "// slice 0:") + count(snippet, "// level 0:") == 1); // the loops are written once
     // off: the paper's signature and no clip
-    const std::string plain = emit_file(Config{}, Artifact::visibility_snippet).text;
+    const std::string plain = emit_file(Config{.tangent_clip = false}, Artifact::visibility_snippet).text;
     CHECK(plain.find("float penumbraVisibility(vec3 worldPos)") != std::string::npos);
     CHECK(plain.find("penumbra_tangentClip") == std::string::npos);
 }

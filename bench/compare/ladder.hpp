@@ -13,7 +13,7 @@
 namespace penumbra::bench {
 
 struct LadderEntry {
-    std::string family;  // the technique's name: "occlusion", "shadowmap", "pcf", "pcss" (tables group by it)
+    std::string family;  // the technique's name: "occlusion", "paper", "shadowmap", "pcf", "pcss" (tables group by it)
     std::string label;   // short, unique name: "OT nbuffer 16/512"
     Config config;
     bool representative; // also in the flicker measurement and the image montage
@@ -27,6 +27,16 @@ inline LadderEntry occlusion_entry(Filter filter, int slices, int resolution, bo
     return {"occlusion",
             "OT " + std::string(to_string(filter)) + " " + std::to_string(slices) + "/" + std::to_string(resolution),
             config, representative};
+}
+
+// The paper's own model at the default size: probabilistic fusion (eq. 5) and whole-light kernels,
+// in its own family so that the tables show how far the default (chained fusion, tangent clip)
+// moved from it and never pick it as "occlusion textures".
+inline LadderEntry paper_entry(int slices, int resolution) {
+    Config config{.slices = slices, .resolution = resolution, .filter = Filter::nbuffer};
+    config.fusion = Fusion::probabilistic;
+    config.tangent_clip = false;
+    return {"paper", "paper nbuffer " + std::to_string(slices) + "/" + std::to_string(resolution), config, false};
 }
 
 // The shadow-map family (penumbra/config.hpp: shadowmap, pcf, pcss), one depth map of 1024².
@@ -54,6 +64,7 @@ inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
         occlusion_entry(Filter::nbuffer, 8, 256),
         occlusion_entry(Filter::nbuffer, 16, 256),
         occlusion_entry(Filter::nbuffer, 16, 512, true), // the default configuration
+        paper_entry(16, 512),
         occlusion_entry(Filter::nbuffer, 32, 512),
         occlusion_entry(Filter::sat, 8, 256),
         occlusion_entry(Filter::sat, 16, 512, true),

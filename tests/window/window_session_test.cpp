@@ -98,7 +98,7 @@ set filter nbuffer
 set slices 8
 wait 2
 screenshot config_back.png
-edit penumbra_deferred.frag replace vec3(penumbraVisibility(world.xyz)) => vec3(penumbraVisibility(world.xyz) * 0.5)
+edit penumbra_deferred.frag replace vec3(penumbraVisibility(world.xyz, normal)) => vec3(penumbraVisibility(world.xyz, normal) * 0.5)
 wait_reload 10
 wait 2
 screenshot edited.png

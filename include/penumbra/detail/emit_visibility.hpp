@@ -368,17 +368,17 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
     if (config.tangent_clip) write_tangent_clip_function(out, config);
     out.chunk("visibility");
     if (config.tangent_clip) {
-        out.comment("Fraction of the part of the light above the tangent plane at worldPos (worldNormal: the normal of");
-        out.comment("the side being lit, any length but not zero) that is visible: 1 lit, 0 in umbra.");
-        out.line("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)");
+        out.comment("The fused visibility at light-frame point p of the part of the light that penumbra_clip keeps.");
+        out.line("float penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)");
     } else {
         out.comment("Fraction of the light visible from worldPos: 1 lit, 0 in umbra.");
         out.line("float penumbraVisibility(vec3 worldPos)");
     }
     out.line("{");
-    out.line("vec3 p = (penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz;");
-    out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
-    if (config.tangent_clip) write_tangent_clip_setup(out, config);
+    if (!config.tangent_clip) {
+        out.line("vec3 p = (penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz;");
+        out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
+    }
     write_fusion_start(out, config);
     if (uses_level_loop(config))
         write_level_loop(out, config);
@@ -386,13 +386,35 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
         write_slice_loop(out, config);
     write_fusion_result(out, config);
     out.line("}");
+    if (!config.tangent_clip) return;
+    out.blank();
+    out.chunk("visibility");
+    out.comment("Fraction of the part of the light above the tangent plane at worldPos (worldNormal: the normal of");
+    out.comment("the side being lit, any length but not zero) that is visible: 1 lit, 0 in umbra.");
+    out.line("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)");
+    out.line("{");
+    out.line("vec3 p = (penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz;");
+    out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
+    write_tangent_clip_setup(out, config);
+    out.line("return penumbra_clippedVisibility(p, penumbra_clip);");
+    out.line("}");
+    out.blank();
+    out.comment("Without a normal: the fraction of the whole light that is visible (the paper's kernels, no clip),");
+    out.comment("for shaders written against penumbraVisibility(vec3 worldPos) of every technique.");
+    out.line("float penumbraVisibility(vec3 worldPos)");
+    out.line("{");
+    out.line("vec3 p = (penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz;");
+    out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
+    out.line("return penumbra_clippedVisibility(p, vec3(0.0, 0.0, 1.0));");
+    out.line("}");
 }
 
 // The includable snippet penumbra_visibility.glsl: no #version, declarations from binding 0.
 constexpr Text visibility_snippet(const Config& config) {
     LineWriter out;
     out.line("// Penumbra ", version_string, " - penumbra_visibility.glsl: float penumbraVisibility(vec3 worldPos",
-             choose(config.tangent_clip, ", vec3 worldNormal", ""), ")");
+             choose(config.tangent_clip, ", vec3 worldNormal) (clipped to the tangent plane) and (vec3 worldPos", ""),
+             ")");
     out.line("// ", describe(config));
     out.comment("Include after the #version line of a stage for this target. Bindings start at 0.");
     out.blank();

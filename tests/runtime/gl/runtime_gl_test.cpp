@@ -100,9 +100,9 @@ TEST_CASE("gl runtime: a GL error provoked during build is caught by the KHR_deb
     CHECK(callback == nullptr);
     CHECK(!glIsEnabled(GL_DEBUG_OUTPUT));
 
-    // shade_deferred reports the same way: a texture name that does not exist.
+    // shade_deferred reports the same way: texture names that do not exist (positions and normals).
     std::string shade_error;
-    CHECK(runtime->shade_deferred(987654, 16, 16, &shade_error) == 0);
+    CHECK(runtime->shade_deferred(987654, 16, 16, &shade_error, nullptr, 987655) == 0);
     MESSAGE(shade_error);
     CHECK(shade_error.find("GL error in shade_deferred") != std::string::npos);
     CHECK(shade_error.find("GL_INVALID_OPERATION") != std::string::npos);

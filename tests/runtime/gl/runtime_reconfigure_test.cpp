@@ -55,7 +55,7 @@ struct Planes {
     std::vector<float> render(Runtime& rt, penumbra::gl::PassTiming* timing = nullptr) {
         error = rt.build([&](GLuint) { mesh->draw(); });
         if (!error.empty()) return {};
-        if (!rt.shade_deferred(gbuffer->positions(), kSize, kSize, &error, timing)) return {};
+        if (!rt.shade_deferred(gbuffer->positions(), kSize, kSize, &error, timing, gbuffer->normals())) return {};
         return rt.read_visibility();
     }
 };

@@ -110,13 +110,15 @@ TEST_CASE("scenes: on box, chained fusion with the tangent clip is close to the 
     REQUIRE(scene);
     std::optional<References> truth;
     double mae[2] = {0, 0};
-    const penumbra::Config configs[2] = {{}, {.fusion = penumbra::Fusion::chained, .tangent_clip = true}};
+    const penumbra::Config configs[2] = {{.fusion = penumbra::Fusion::probabilistic, .tangent_clip = false},
+                                         {.fusion = penumbra::Fusion::chained, .tangent_clip = true}};
     for (int i = 0; i < 2; ++i) {
         HeadlessResult result;
         REQUIRE_MESSAGE(render_headless(*scene, configs[i], 256, 256, result, &error), error);
         if (!truth) truth = reference_all(*scene, result, 16);
         const QualityMetrics q = compare_quality(result, *truth);
-        print_metrics(i ? "box, chained + tangent clip, fair (oriented)" : "box, default, fair (oriented)", q.oriented);
+        print_metrics(i ? "box, chained + tangent clip (the default), fair (oriented)" : "box, the paper's model, fair (oriented)",
+                      q.oriented);
         mae[i] = q.oriented.penumbra.mae;
         CHECK(q.oriented.penumbra.count > 300);
     }
@@ -133,7 +135,7 @@ TEST_CASE("scenes: the same occluder in the middle of its slice is measurably of
 namespace {
 
 // Penumbra MAE of each fusion rule (probabilistic, maximum, additive) on a built-in scene:
-// default configuration but the leak fix off, since the leak fix draws every surface into two
+// the paper's whole-light kernels and the leak fix off, since the leak fix draws every surface into two
 // slices and so darkens every rule that sums (paper §3.4.1: "umbrae are a little overestimated").
 // 128², one Embree reference (16×16 rays) for the three.
 std::array<double, 3> fusion_penumbra_mae(std::string_view scene_name) {
@@ -148,7 +150,8 @@ std::array<double, 3> fusion_penumbra_mae(std::string_view scene_name) {
     std::vector<float> truth; // the G-buffer does not depend on the fusion rule: one reference
     for (int i = 0; i < 3; ++i) {
         HeadlessResult result;
-        REQUIRE_MESSAGE(render_headless(*scene, penumbra::Config{.fusion = fusions[i], .leak_fix = false}, 128, 128, result, &error), error);
+        const penumbra::Config config{.fusion = fusions[i], .leak_fix = false, .tangent_clip = false};
+        REQUIRE_MESSAGE(render_headless(*scene, config, 128, 128, result, &error), error);
         if (truth.empty()) truth = reference_visibility(*scene, result, 16);
         const Metrics m = compare(result, truth);
         print_metrics((std::string(scene_name) + ", fusion " + std::string(penumbra::to_string(fusions[i]))).c_str(), m);
@@ -198,7 +201,8 @@ TEST_CASE("scenes: every scene renders with every filter and packing and casts a
                     CHECK(glGetError() == GL_NO_ERROR);
                     const double shadowed = shadowed_fraction(result);
                     std::printf("%-36s shadowed %.3f\n", label.c_str(), shadowed);
-                    CHECK(shadowed > 0.01);
+                    // box at 64²: 0.8 % of the image (its walls are lit: the tangent clip)
+                    CHECK(shadowed > 0.005);
                     CHECK(shadowed < 0.8);
                 }
     }

@@ -170,6 +170,13 @@ constexpr void write_shadow_visibility(LineWriter& out, const Config& config, in
         write_pcss_body(out, config);
     }
     out.line("}");
+    out.blank();
+    out.comment("The same with the receiver's normal, so that shaders written for the occlusion technique's");
+    out.comment("tangent clip compile unchanged; a depth map has no use for it.");
+    out.line("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)");
+    out.line("{");
+    out.line("return penumbraVisibility(worldPos);");
+    out.line("}");
 }
 
 } // namespace penumbra::detail
