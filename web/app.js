@@ -1,5 +1,5 @@
 // app.js — the page: loads a target bundle (penumbra-export-bundle --target essl300: the scene's
-// triangles, its light, a G-buffer of world positions, and the essl300 emission), runs the emission
+// triangles, its light, its G-buffers (world positions and normals), and the essl300 emission), runs the emission
 // with LayoutRunner, shows the shadowed scene, and lets the light move. Moving the light recomputes
 // the light-frame uniforms in JavaScript (light_frame.js) from the rectangle (or the sun) and the
 // scene's bounds, then re-runs the shadow phase.
@@ -69,10 +69,19 @@ async function main() {
 
     const bundle = await (await fetchOk(base + "uniforms.json")).json();
     const triangles = new Float32Array(await (await fetchOk(base + "mesh.f32")).arrayBuffer());
-    const positions = new Float32Array(await (await fetchOk(base + "positions.f32")).arrayBuffer());
-    if (positions.length !== 4 * bundle.width * bundle.height)
-        throw new Error(`positions.f32: ${positions.length} floats, expected 4 × ${bundle.width} × ${bundle.height}`);
     const runner = await LayoutRunner.load(gl, base + "emission/");
+    // The G-buffers the layout leaves to the caller (source "caller": world positions, and the
+    // normals with the tangent clip), from the bundle's files for them (uniforms.json caller_textures).
+    const callerTextures = {};
+    for (const t of runner.layout.textures) {
+        if (t.source !== "caller") continue;
+        const file = (bundle.caller_textures || {})[t.name];
+        if (!file) throw new Error(`the layout's caller texture ${t.name} has no file in the bundle's caller_textures`);
+        const texels = new Float32Array(await (await fetchOk(base + file)).arrayBuffer());
+        if (texels.length !== 4 * bundle.width * bundle.height)
+            throw new Error(`${file}: ${texels.length} floats, expected 4 × ${bundle.width} × ${bundle.height}`);
+        callerTextures[t.name] = texels;
+    }
     const config = runner.layout.config;
     const box = bounds(triangles);
 
@@ -117,13 +126,13 @@ async function main() {
 
     const frameOf = () => (light.kind === "sun" ? sunFrame(light, box.lo, box.hi, config.slices)
                                                 : rectFrame(light, box.lo, box.hi, config.slices));
-    // Shadow phase: slicing and prefilter, then the deferred visibility over the bundle's G-buffer.
+    // Shadow phase: slicing and prefilter, then the deferred visibility over the bundle's G-buffers.
     const rebuild = () => {
         state.frame = frameOf();
         runner.setUniforms(state.useBundleUniforms ? exported : state.frame.uniforms);
         const t0 = performance.now();
         runner.runPhase("shadow", drawScene, null, state.bundleSlices ? {slicing: replaceSlicing} : {});
-        runner.fillTexture("penumbra_worldPositions", bundle.width, bundle.height, positions);
+        for (const [name, texels] of Object.entries(callerTextures)) runner.fillTexture(name, bundle.width, bundle.height, texels);
         runner.runPhase("screen", null, {width: bundle.width, height: bundle.height});
         gl.finish();
         state.shadowMs = performance.now() - t0;

@@ -1,8 +1,8 @@
 // penumbra-export-bundle — the inputs and the expected output of one run, for a runner that is
 // not the desktop GL runtime (a browser, Vulkan): the scene's triangles, the light-frame uniforms,
-// the world-position G-buffer, the GL runtime's deferred visibility and slicing output, the CPU
-// oracle's per-pixel value and bound, and the emission of the requested target. README.md in this
-// folder documents the files.
+// the G-buffers (world positions and normals), the GL runtime's deferred visibility and slicing
+// output, the CPU oracle's per-pixel value and bound, and the emission of the requested target.
+// README.md in this folder documents the files.
 //
 //   penumbra-export-bundle --scene NAME|FILE.obj [configuration flags] [--size WxH] [--light-size X] --out DIR
 //
@@ -61,19 +61,20 @@ constexpr std::string_view usage_text =
     "\n"
     "Renders the scene with the desktop GL runtime (the configuration's emission; glsl450 for the vulkan\n"
     "target) and writes, for a foreign runner to reproduce: mesh.f32, uniforms.json, positions.f32,\n"
-    "visibility_gl.f32, slices.f32, oracle.f32, bound.f32 and emission/ (penumbra-gen's files for\n"
-    "--target). See targets/bundle/README.md.\n"
+    "normals.f32, visibility_gl.f32, slices.f32, oracle.f32, bound.f32 and emission/ (penumbra-gen's files\n"
+    "for --target). See targets/bundle/README.md.\n"
     "\n"
     "  --scene NAME|FILE.obj  planes, boxes, tree, butterfly, terrain, crowd, or a Wavefront OBJ file\n"
     "  --size WxH             image size, each side 1 to 4096 (default 128x128)\n"
     "  --light-size X         the rectangle's longer side (scene units) or the sun's angular diameter (degrees)\n"
     "  --out DIR              the bundle directory (created; its emission/ is replaced)\n"
     "  configuration flags    as penumbra-gen: --slices, --resolution, --filter, --fusion, --packing, --light,\n"
-    "                         --target, --no-leak-fix, --no-fade, --config FILE.json (see penumbra-gen --help)\n";
+    "                         --target, --no-leak-fix, --no-fade, --[no-]tangent-clip, --config FILE.json\n"
+    "                         (see penumbra-gen --help)\n";
 
 constexpr std::string_view flag_list =
     "--scene, --size, --light-size, --out, --slices, --resolution, --filter, --fusion, --packing, --light, --target, "
-    "--no-leak-fix, --no-fade, --config, --help";
+    "--no-leak-fix, --no-fade, --tangent-clip, --no-tangent-clip, --config, --help";
 
 std::string parse_positive_int(std::string_view text, int& value) {
     const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
@@ -103,7 +104,8 @@ penumbra_gen::Parsed<BundleArguments> parse(const std::vector<std::string>& args
         const bool ours = flag == "--scene" || flag == "--size" || flag == "--light-size" || flag == "--out";
         const bool configuration = flag == "--slices" || flag == "--resolution" || flag == "--filter" ||
                                    flag == "--fusion" || flag == "--packing" || flag == "--light" || flag == "--target" ||
-                                   flag == "--config" || flag == "--no-leak-fix" || flag == "--no-fade";
+                                   flag == "--config" || flag == "--no-leak-fix" || flag == "--no-fade" ||
+                                   flag == "--tangent-clip" || flag == "--no-tangent-clip";
         if (!ours && !configuration && flag.starts_with("-"))
             return fail("unknown flag '" + printable(flag) + "'; allowed: " + std::string(flag_list));
         if (!ours) {
@@ -236,9 +238,11 @@ int run(const std::vector<std::string>& args) {
     const std::vector<float> coverage = slices.coverage; // slices.f32: what a runner can rasterize differently
     const Oracle oracle(gl_config, frame, std::move(slices));
 
-    // Bottom row first: the G-buffer the GL run shaded (background (0, 0, 0, 0)) and the bound.
+    // Bottom row first: the G-buffers the GL run shaded (background (0, 0, 0, 0)) and the bound.
+    // The normal is the one of the side the camera sees, as the runtime's G-buffer holds it; the
+    // oracle clips the kernels to its tangent plane where the configuration does (tangent_clip).
     const std::size_t pixels = static_cast<std::size_t>(a.width) * a.height;
-    std::vector<glm::vec4> positions(pixels, glm::vec4(0.0f));
+    std::vector<glm::vec4> positions(pixels, glm::vec4(0.0f)), normals(pixels, glm::vec4(0.0f));
     std::vector<float> bound(pixels, 0.0f), model(pixels, 1.0f);
     for (int y = 0; y < a.height; ++y)
         for (int x = 0; x < a.width; ++x) {
@@ -246,7 +250,8 @@ int run(const std::vector<std::string>& args) {
             const std::size_t bottom_first = static_cast<std::size_t>(y) * a.width + x;
             if (!result.geometry[top_first]) continue;
             positions[bottom_first] = glm::vec4(result.positions[top_first], 1.0f);
-            const OracleValue value = oracle.visibility(result.positions[top_first]);
+            normals[bottom_first] = glm::vec4(result.normals[top_first], 0.0f);
+            const OracleValue value = oracle.visibility(result.positions[top_first], result.normals[top_first], gl_config.fusion);
             bound[bottom_first] = static_cast<float>(value.bound);
             model[bottom_first] = static_cast<float>(value.visibility);
         }
@@ -275,11 +280,13 @@ int run(const std::vector<std::string>& args) {
         {"triangles", triangles.size() / 3},
         {"renderer", context->renderer()},
         {"uniforms", uniforms_json(frame, gl_config.light, emitted.value->layout)},
+        {"caller_textures", {{"penumbra_worldPositions", "positions.f32"}, {"penumbra_worldNormals", "normals.f32"}}},
     };
     std::ofstream json(dir / "uniforms.json", std::ios::binary);
     json << uniforms.dump(2) << '\n';
     if (!json) return fail("cannot write " + (dir / "uniforms.json").string());
     if (!write_floats(dir / "mesh.f32", triangles, &error) || !write_floats(dir / "positions.f32", positions, &error) ||
+        !write_floats(dir / "normals.f32", normals, &error) ||
         !write_floats(dir / "visibility_gl.f32", visibility_gl, &error) || !write_floats(dir / "bound.f32", bound, &error) ||
         !write_floats(dir / "oracle.f32", model, &error) || !write_floats(dir / "slices.f32", coverage, &error))
         return fail(error);

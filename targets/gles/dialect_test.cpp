@@ -113,10 +113,21 @@ Outcome check_bundle(const fs::path& dir, std::map<std::string, HeadlessContext>
         glBindVertexArray(0);
     };
     const int width = bundle["width"], height = bundle["height"];
-    const std::vector<float> positions = read_floats(dir / "positions.f32");
-    if (positions.size() != 4u * width * height) return fail("positions.f32 does not hold width × height RGBA floats");
     error = runner->run_phase("shadow", draw, width, height);
-    if (error.empty()) error = runner->fill_texture("penumbra_worldPositions", width, height, positions.data());
+    // Every texture the layout leaves to the caller, from the bundle's G-buffer file for it.
+    const json caller_files = bundle.value("caller_textures", json::object());
+    for (const json& t : layout["textures"]) {
+        if (!error.empty() || t.value("source", "passes") != "caller") continue;
+        const std::string name = t["name"];
+        if (!caller_files.contains(name)) {
+            error = "the layout's caller texture " + name + " has no file in the bundle's caller_textures";
+            break;
+        }
+        const std::string file = caller_files.at(name);
+        const std::vector<float> texels = read_floats(dir / file);
+        if (texels.size() != 4u * width * height) error = file + " does not hold width × height RGBA floats";
+        else error = runner->fill_texture(name, width, height, texels.data());
+    }
     if (error.empty()) error = runner->run_phase("screen", nullptr, width, height);
     const std::vector<float> visibility = runner->read_result();
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -148,10 +159,11 @@ Outcome check_bundle(const fs::path& dir, std::map<std::string, HeadlessContext>
     const json& c = layout["config"];
     char line[512];
     std::snprintf(line, sizeof line,
-                  "%s %s on %s: %s/%s/%s %d slices %d², %dx%d: max |runner − desktop| = %.3e, max |runner − oracle| = "
+                  "%s %s on %s: %s/%s/%s/%s%s %d slices %d², %dx%d: max |runner − desktop| = %.3e, max |runner − oracle| = "
                   "%.3e (max bound %.3e, %s result), %d shadowed pixels, %d outside the bound (q = %.4f); %.0f ms",
                   outside || shadowed == 0 ? "FAIL" : "ok  ", target.c_str(), context.version().c_str(),
                   std::string(c["filter"]).c_str(), std::string(c["packing"]).c_str(), std::string(c["light"]).c_str(),
+                  std::string(c["fusion"]).c_str(), c.value("tangent_clip", false) ? " tangent-clip" : "",
                   c["slices"].get<int>(), c["resolution"].get<int>(), width, height, worst, worst_model, worst_bound,
                   result_format.c_str(), shadowed, outside, step, ms);
     Outcome outcome{outside == 0 && shadowed > 0, line};

@@ -35,12 +35,14 @@ bool read_bundle(const std::filesystem::path& dir, Bundle& out, std::string* err
         *error = "cannot read " + uniforms_path.string() + " (is " + dir.string() + " a bundle?)";
         return false;
     }
+    std::map<std::string, std::string> caller_files; // texture name → file in the bundle
     try {
         const nlohmann::json json = nlohmann::json::parse(file);
         out.width = json.at("width").get<int>();
         out.height = json.at("height").get<int>();
         for (const auto& [name, value] : json.at("uniforms").items())
             out.uniforms[name] = value.is_array() ? value.get<std::vector<float>>() : std::vector<float>{value.get<float>()};
+        for (const auto& [name, file] : json.at("caller_textures").items()) caller_files[name] = file.get<std::string>();
     } catch (const nlohmann::json::exception& e) {
         *error = uniforms_path.string() + ": " + e.what();
         return false;
@@ -57,9 +59,10 @@ bool read_bundle(const std::filesystem::path& dir, Bundle& out, std::string* err
                  " floats, not whole triangles (9 floats each)";
         return false;
     }
-    return
-           read_floats(dir / "positions.f32", 4 * pixels, out.positions, error) &&
-           read_floats(dir / "visibility_gl.f32", pixels, out.visibility_gl, error) &&
+    for (const auto& [name, file] : caller_files)
+        if (!read_floats(dir / file, 4 * pixels, out.caller_textures[name], error)) return false;
+    return read_floats(dir / "visibility_gl.f32", pixels, out.visibility_gl, error) &&
+           read_floats(dir / "oracle.f32", pixels, out.oracle, error) &&
            read_floats(dir / "bound.f32", pixels, out.bound, error);
 }
 

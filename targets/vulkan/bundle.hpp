@@ -1,5 +1,5 @@
 // targets/vulkan/bundle.hpp — a target bundle as penumbra-export-bundle writes it
-// (targets/bundle/README.md): the scene's triangles, the light-frame uniforms, the G-buffer, the
+// (targets/bundle/README.md): the scene's triangles, the light-frame uniforms, the G-buffers, the
 // GL runtime's visibility and the oracle's bound, and the emission's folder.
 #pragma once
 
@@ -15,8 +15,11 @@ struct Bundle {
     int width = 0, height = 0;                   // the output image
     std::vector<float> triangles;                // mesh.f32: xyz, 3 vertices per triangle
     std::map<std::string, std::vector<float>> uniforms; // uniforms.json "uniforms": GLSL name → floats
-    std::vector<float> positions;                // positions.f32: RGBA32F, bottom row first
+    // The G-buffers of uniforms.json "caller_textures" (positions.f32, normals.f32) by texture name:
+    // RGBA32F, bottom row first. The runner fills those the layout declares with source "caller".
+    std::map<std::string, std::vector<float>> caller_textures;
     std::vector<float> visibility_gl;            // visibility_gl.f32
+    std::vector<float> oracle;                   // oracle.f32: the CPU model's visibility
     std::vector<float> bound;                    // bound.f32
 };
 

@@ -1,11 +1,11 @@
 // penumbra-vulkan-run — runs a target bundle's vulkan emission (targets/bundle/README.md) by its
 // layout.json alone, under the Khronos validation layer, and compares the visibility with the
-// desktop GL runtime's within the CPU oracle's bound.
+// desktop GL runtime's and with the CPU oracle's, within the oracle's bound.
 //
 //   penumbra-vulkan-run --bundle DIR [--epsilon E] [--min-penumbra N] [--out visibility.f32]
 //
-// Passes when every pixel satisfies |Vulkan − GL| ≤ bound + E (default E = 1e-4: the rounding of
-// one 16-bit float level), the GL image has at least N penumbra pixels (0.02 < visibility < 0.98;
+// Passes when every pixel satisfies |Vulkan − GL| ≤ bound + E and |Vulkan − oracle| ≤ bound + E
+// (default E = 1e-4: the rounding of one 16-bit float level), the GL image has at least N penumbra pixels (0.02 < visibility < 0.98;
 // default 0), so that the comparison means something, and the validation layer reported nothing. Exit status: 0 pass;
 // 1 a difference beyond the bound, a validation message, or a failure; 2 bad arguments;
 // 77 no Vulkan device (the test is skipped).
@@ -83,7 +83,7 @@ int run(const std::vector<std::string>& args) {
     inputs.height = bundle.height;
     inputs.triangles = bundle.triangles;
     inputs.uniforms = bundle.uniforms;
-    inputs.caller_textures["penumbra_worldPositions"] = bundle.positions; // the bundle's G-buffer
+    inputs.caller_textures = bundle.caller_textures; // the bundle's G-buffers; the layout says which it reads
 
     Context::Failure failure = Context::Failure::none;
     std::optional<Context> context = Context::create(&failure, &error);
@@ -104,20 +104,23 @@ int run(const std::vector<std::string>& args) {
     const int messages = *counter;
     if (!error.empty()) return fail(error);
 
-    // |Vulkan − GL| against the oracle's bound, pixel by pixel.
-    double max_difference = 0, max_bound = 0;
-    std::size_t beyond = 0, penumbra = 0;
+    // |Vulkan − GL| and |Vulkan − oracle| against the oracle's bound, pixel by pixel.
+    double max_difference = 0, max_to_oracle = 0, max_bound = 0;
+    std::size_t beyond = 0, beyond_oracle = 0, penumbra = 0;
     for (std::size_t i = 0; i < output.result.size(); ++i) {
         const double difference = std::abs(static_cast<double>(output.result[i]) - bundle.visibility_gl[i]);
+        const double to_oracle = std::abs(static_cast<double>(output.result[i]) - bundle.oracle[i]);
         max_difference = std::max(max_difference, difference);
+        max_to_oracle = std::max(max_to_oracle, to_oracle);
         max_bound = std::max(max_bound, static_cast<double>(bundle.bound[i]));
         beyond += !(difference <= bundle.bound[i] + epsilon); // NaN counts as beyond
+        beyond_oracle += !(to_oracle <= bundle.bound[i] + epsilon);
         penumbra += bundle.visibility_gl[i] > 0.02f && bundle.visibility_gl[i] < 0.98f;
     }
-    std::printf("vulkan %s: %zu passes, %d validation messages, %.0f ms; max |vulkan - gl| %.3g, max bound %.3g, "
-                "%zu of %zu pixels beyond bound + %.0e, %zu penumbra pixels\n",
-                device.c_str(), output.passes.size(), messages, ms, max_difference, max_bound, beyond,
-                output.result.size(), epsilon, penumbra);
+    std::printf("vulkan %s: %zu passes, %d validation messages, %.0f ms; max |vulkan - gl| %.3g, max |vulkan - oracle| "
+                "%.3g, max bound %.3g, %zu (gl) and %zu (oracle) of %zu pixels beyond bound + %.0e, %zu penumbra pixels\n",
+                device.c_str(), output.passes.size(), messages, ms, max_difference, max_to_oracle, max_bound, beyond,
+                beyond_oracle, output.result.size(), epsilon, penumbra);
     if (!out_path.empty()) {
         std::ofstream file(out_path, std::ios::binary);
         file.write(reinterpret_cast<const char*>(output.result.data()),
@@ -129,6 +132,7 @@ int run(const std::vector<std::string>& args) {
         return fail("only " + std::to_string(penumbra) + " penumbra pixels in the GL image; the check needs " +
                     std::to_string(min_penumbra));
     if (beyond > 0) return fail(std::to_string(beyond) + " pixels differ from the GL runtime beyond the oracle's bound");
+    if (beyond_oracle > 0) return fail(std::to_string(beyond_oracle) + " pixels differ from the oracle beyond its bound");
     return pass;
 }
 

@@ -104,7 +104,8 @@ function compare(visibility, reference, q) {
 async function checkBundle(browser, port, index, dir, screenshots) {
     const bundle = JSON.parse(fs.readFileSync(path.join(dir, "uniforms.json"), "utf8"));
     const c = bundle.config;
-    const label = `${bundle.scene} ${c.filter}/${c.packing}/${c.light} ${c.slices}×${c.resolution}² ${bundle.width}x${bundle.height}`;
+    const label = `${bundle.scene} ${c.filter}/${c.packing}/${c.light}/${c.fusion}${c.tangent_clip ? " tangent-clip" : ""} ` +
+                  `${c.slices}×${c.resolution}² ${bundle.width}x${bundle.height}`;
     const page = await browser.newPage();
     await page.setViewport({width: 1000, height: 700});
     const problems = [];
@@ -161,7 +162,7 @@ async function checkBundle(browser, port, index, dir, screenshots) {
     for (let i = 0; i < after.length; ++i) if (Math.abs(after[i] - before[i]) > 2 * R8_STEP) ++changed;
     if (screenshots) {
         fs.mkdirSync(screenshots, {recursive: true});
-        await page.screenshot({path: path.join(screenshots, `${index}_${c.filter}_${c.packing}.png`)});
+        await page.screenshot({path: path.join(screenshots, `${index}_${c.filter}_${c.packing}${c.tangent_clip ? "_clip" : ""}.png`)});
     }
     await page.close();
 
