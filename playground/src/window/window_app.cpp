@@ -74,7 +74,7 @@ std::string WindowApp::describe(const Config& c) {
            " filter=" + std::string(to_string(c.filter)) + " fusion=" + std::string(to_string(c.fusion)) +
            " packing=" + std::string(to_string(c.packing)) + " light=" + std::string(to_string(c.light)) +
            " leak_fix=" + (c.leak_fix ? "on" : "off") + " fade=" + (c.self_shadow_fade ? "on" : "off") +
-           " target=" + std::string(to_string(c.target));
+           " tangent_clip=" + (c.tangent_clip ? "on" : "off") + " target=" + std::string(to_string(c.target));
 }
 
 const Layout& WindowApp::layout() const { return session_.runtime().layout(); }
