@@ -289,7 +289,8 @@ struct LayoutBuilder {
     }
 };
 
-// Occlusion textures, phase "shadow": slicing into the slices' storage, then the prefilter passes.
+// Occlusion textures, phase "shadow": slicing into the slices' storage (beyond 32 slices: into bits,
+// then unpack draws into that storage), then the prefilter passes.
 inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
     const int R = config.resolution, T = texture_count(config), L = max_level(config);
     const std::string level_fmt(level_format(config));
