@@ -148,6 +148,8 @@ TEST_CASE("--validate passes the emitted programs through glslang") {
          "--resolution", "256"},
         {"--filter", "mipmap", "--packing", "atlas", "--target", "essl300"},
         {"--slices", "5", "--fusion", "average", "--no-leak-fix", "--no-fade", "--resolution=32"},
+        {"--slices", "64", "--resolution", "256", "--fusion", "chained", "--tangent-clip"},       // bits, unpacked
+        {"--slices", "128", "--resolution", "64", "--packing", "array", "--target", "vulkan"},
     };
     for (const std::vector<std::string>& args : cases) {
         CAPTURE(joined(args));
@@ -244,7 +246,7 @@ TEST_CASE("bad arguments and bad config files: exit 2, one clear error line, not
         {"positional", {"extra"}, "unexpected argument 'extra'"},
         {"missing value", {"--slices"}, "--slices: missing value", nullptr, true},
         {"missing value before flag", {"--filter"}, "--filter: missing value", nullptr, true},
-        {"not an integer", {"--slices", "abc"}, "--slices: 'abc' is not an integer; allowed: 1 to 32"},
+        {"not an integer", {"--slices", "abc"}, "--slices: 'abc' is not an integer; allowed: 1 to 32, 64 or 128"},
         {"trailing text", {"--resolution", "512px"}, "--resolution: '512px' is not an integer"},
         {"empty integer", {"--slices="}, "--slices: '' is not an integer"},
         {"beyond int",
@@ -262,7 +264,7 @@ TEST_CASE("bad arguments and bad config files: exit 2, one clear error line, not
         {"switch with value", {"--validate=yes"}, "--validate: takes no value"},
         {"missing --out", {"--slices", "8"}, "--out", nullptr, true},
         {"empty --out", {"--out", ""}, "--out: empty path", nullptr, true},
-        {"slices out of range", {"--slices", "0"}, "slices: 0 is out of range; allowed: 1 to 32"},
+        {"slices out of range", {"--slices", "0"}, "slices: 0 is out of range; allowed: 1 to 32, 64 or 128"},
         {"resolution not a power of two", {"--resolution", "500"}, "resolution: 500 is not allowed"},
         {"missing config",
          {"--config", "/nonexistent/penumbra.json"},
@@ -287,7 +289,7 @@ TEST_CASE("bad arguments and bad config files: exit 2, one clear error line, not
         {"array top level", {}, "top level must be a JSON object", "[1, 2]"},
         {"string top level", {}, "top level must be a JSON object", "\"slices\""},
         {"config not an object", {}, "\"config\" must be an object", R"({"config": 5})"},
-        {"invalid value in json", {}, "slices: 64 is out of range", R"({"slices": 64})"},
+        {"invalid value in json", {}, "slices: 65 is out of range", R"({"slices": 65})"},
     };
     for (const BadInput& c : cases) {
         CAPTURE(c.name);
@@ -337,6 +339,10 @@ TEST_CASE("invalid combinations: exit 2 with penumbra::validate's message") {
         {{"--slices", "32", "--resolution", "512", "--target", "glsl330"},
          {.slices = 32, .resolution = 512, .target = Target::glsl330},
          "resolution"},
+        {{"--slices", "64", "--target", "essl300", "--resolution", "128"},
+         {.slices = 64, .resolution = 128, .target = Target::essl300},
+         "slices"},
+        {{"--slices", "128", "--resolution", "1024"}, {.slices = 128, .resolution = 1024}, "resolution"},
     };
     for (const Combination& c : cases) {
         CAPTURE(joined(c.args));

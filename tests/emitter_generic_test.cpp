@@ -223,6 +223,6 @@ TEST_CASE("generic: an invalid configuration gives the validator's messages and 
     const Result<GenericShading> result = emit_generic(config);
     CHECK_FALSE(result.value);
     REQUIRE(result.errors.size() == 2);
-    CHECK(result.errors[0].message == "slices: 40 is out of range; allowed: 1 to 32");
+    CHECK(result.errors[0].message == "slices: 40 is out of range; allowed: 1 to 32, 64 or 128");
     CHECK(result.errors[1].field == "resolution");
 }

@@ -189,3 +189,63 @@ TEST_CASE("layout v2: every plain uniform says where its value comes from, and t
     CHECK_FALSE(uniform_value("penumbra_clipFromWorld", rect).has_value()); // no camera given
     CHECK_FALSE(uniform_value("penumbra_noSuchUniform", rect).has_value());
 }
+
+TEST_CASE("layout v2: more than 32 slices are sliced as OR-ed bits, then unpacked into the occlusion textures") {
+    for (int slices : {64, 128})
+        for (Filter filter : {Filter::mipmap, Filter::nbuffer, Filter::sat})
+            for (Packing packing : {Packing::atlas, Packing::array})
+                for (Target target : {Target::glsl330, Target::glsl450, Target::vulkan}) {
+                    const Config config{.slices = slices, .resolution = 32, .filter = filter,
+                                        .fusion = Fusion::chained, .packing = packing, .leak_fix = true, .tangent_clip = true,
+                                        .target = target};
+                    CAPTURE(slices);
+                    CAPTURE(to_string(filter));
+                    CAPTURE(to_string(packing));
+                    CAPTURE(to_string(target));
+                    if (!is_valid(config)) { // 32 tiles of 33 texels: wider than glsl330's 1024
+                        CHECK((slices == 128 && filter == Filter::sat && packing == Packing::atlas &&
+                               target == Target::glsl330));
+                        continue;
+                    }
+                    const Layout layout = describe_layout(config);
+                    // slicing: one RGBA32UI target, cleared to 0, fragments OR-ed, no blending
+                    const PassDesc& slicing = layout.passes.front();
+                    CHECK(slicing.name == "slicing");
+                    REQUIRE(slicing.outputs.size() == 1);
+                    const TextureDesc* bits = find_texture(layout, slicing.outputs[0].texture);
+                    REQUIRE(bits);
+                    CHECK(bits->internal_format == "RGBA32UI");
+                    CHECK(bits->min_filter == "NEAREST");
+                    CHECK(slicing.state.logic_op == "OR");
+                    CHECK_FALSE(slicing.state.blend);
+                    CHECK(slicing.state.clear_color == std::array<float, 4>{0.0f, 0.0f, 0.0f, 0.0f});
+                    CHECK(to_json(layout).find("\"logic_op\": \"OR\"") != std::string::npos);
+                    // the unpack draws write every occlusion texture's slicing attachment once, in order, at
+                    // most the target's colour attachments per draw, each from its first slice
+                    const int T = texture_count(config), per_draw = target == Target::vulkan ? 4 : 8;
+                    std::vector<AttachmentDesc> written;
+                    int draws = 0;
+                    for (const PassDesc& pass : layout.passes) {
+                        if (pass.program != "unpack_slices") continue;
+                        CHECK(pass.state.logic_op == "NONE");
+                        CHECK(static_cast<int>(pass.outputs.size()) == per_draw);
+                        REQUIRE(pass.int_uniforms.size() == 1);
+                        CHECK(pass.int_uniforms[0] == std::pair<std::string, int>{"penumbra_firstSlice", 4 * per_draw * draws});
+                        REQUIRE(pass.inputs.size() == 1);
+                        CHECK(pass.inputs[0].texture == bits->name);
+                        written.insert(written.end(), pass.outputs.begin(), pass.outputs.end());
+                        ++draws;
+                    }
+                    CHECK(draws == T / per_draw);
+                    REQUIRE(static_cast<int>(written.size()) == T);
+                    for (int t = 0; t < T; ++t) {
+                        CHECK(written[t].layer == t);
+                        CHECK(written[t].level == 0);
+                    }
+                    CHECK(layout.passes[static_cast<std::size_t>(draws + 1)].program != "unpack_slices");
+                }
+    // 32 slices and fewer keep the colour channels and MAX blending
+    const Layout channels = describe_layout(Config{.slices = 32, .resolution = 32});
+    CHECK(channels.passes.front().state.logic_op == "NONE");
+    CHECK(channels.passes.front().outputs.size() == 8);
+}

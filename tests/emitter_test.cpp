@@ -194,8 +194,8 @@ TEST_CASE("invalid configurations: each names the field, the value and what is a
         std::string message;
     };
     const Case cases[] = {
-        {{.slices = 0}, "slices", "slices: 0 is out of range; allowed: 1 to 32"},
-        {{.slices = 33}, "slices", "slices: 33 is out of range; allowed: 1 to 32"},
+        {{.slices = 0}, "slices", "slices: 0 is out of range; allowed: 1 to 32, 64 or 128"},
+        {{.slices = 33}, "slices", "slices: 33 is out of range; allowed: 1 to 32, 64 or 128"},
         {{.resolution = 100}, "resolution", "resolution: 100 is not allowed; allowed: a power of two from 32 to 4096"},
         {{.resolution = 8192}, "resolution", "resolution: 8192 is not allowed"},
         {{.resolution = 16}, "resolution", "resolution: 16 is not allowed"},
@@ -215,6 +215,21 @@ TEST_CASE("invalid configurations: each names the field, the value and what is a
         {{.resolution = 2048, .packing = Packing::array, .target = Target::glsl330}, "resolution", "guarantees only 1024"},
         {{.resolution = 512, .packing = Packing::volume, .target = Target::vulkan}, "resolution",
          "is too large for packing 'volume'"},
+        // more than 32 slices: bits of one target combined by a logical OR (paper §3.7)
+        {{.slices = 100}, "slices", "slices: 100 is out of range; allowed: 1 to 32, 64 or 128"},
+        {{.slices = 64, .resolution = 128, .target = Target::essl300}, "slices",
+         "slices: 64 needs a logical OR on the slicing target (more than 32 slices are written as bits, paper §3.7), "
+         "which target 'essl300' does not have; allowed for essl300: 1 to 16"},
+        {{.slices = 24, .target = Target::vulkan}, "slices", "allowed for vulkan: 1 to 16, 64 or 128"},
+        {{.slices = 64, .resolution = 128, .packing = Packing::volume}, "packing",
+         "packing: volume needs 16 3D textures for 64 slices"},
+        {{.slices = 128, .resolution = 1024, .packing = Packing::atlas, .target = Target::glsl450}, "resolution",
+         "resolution: 1024 needs a 32768-texel wide atlas but target 'glsl450' guarantees only 16384 texels; allowed "
+         "with 128 slices and packing atlas: up to 512, or fewer slices, another packing or another target"},
+        {{.slices = 128, .resolution = 64, .filter = Filter::sat, .packing = Packing::atlas, .target = Target::glsl330},
+         "resolution", "allowed with 128 slices and packing atlas: none"},
+        {{.slices = 128, .resolution = 256, .packing = Packing::array, .target = Target::glsl330}, "packing",
+         "packing: array needs 288 layers but target 'glsl330' guarantees 256"},
     };
     for (const Case& c : cases) {
         CAPTURE(c.message);

@@ -1,5 +1,7 @@
 #include "arguments.hpp"
 
+#include <penumbra/validate.hpp>
+
 #include <charconv>
 #include <string_view>
 
@@ -97,7 +99,7 @@ Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
 
         std::string error;
         if (flag == "--slices")
-            error = store(parse_int(flag, value, "1 to 32"), out.flags.slices);
+            error = store(parse_int(flag, value, penumbra::allowed_slices), out.flags.slices);
         else if (flag == "--resolution")
             error = store(parse_int(flag, value, "a power of two from 32 to 4096"), out.flags.resolution);
         else if (flag == "--filter")
@@ -158,7 +160,7 @@ std::string usage() {
                       "\n"
                       "configuration (flags override the --config file):\n";
     out += line("--slices N",
-                "slices along the light normal: 1 to 32 (default " + std::to_string(d.slices) + ")");
+                "slices along the light normal: " + std::string(penumbra::allowed_slices) + " (default " + std::to_string(d.slices) + ")");
     out += line("--resolution R", "occlusion texture side in texels: a power of two, 32 to 4096 (default " +
                                       std::to_string(d.resolution) + ")");
     out += line("--filter F", names("prefilter: " + allowed_names<Filter>(), to_string(d.filter)));

@@ -3,6 +3,7 @@
 #include "bounded_read.hpp"
 
 #include <nlohmann/json.hpp>
+#include <penumbra/validate.hpp>
 
 #include <limits>
 #include <vector>
@@ -172,7 +173,7 @@ std::string parse_message(const json::exception& e) {
 
 // What a key allows, for the messages that cannot come from the value's own check.
 std::string allowed_for(const std::string& key) {
-    if (key == "slices") return "1 to 32";
+    if (key == "slices") return std::string(penumbra::allowed_slices);
     if (key == "resolution") return "a power of two from 32 to 4096";
     if (key == "filter") return "one of " + allowed_names<penumbra::Filter>();
     if (key == "fusion") return "one of " + allowed_names<penumbra::Fusion>();

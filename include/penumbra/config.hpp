@@ -142,7 +142,8 @@ constexpr int erosion_levels(const ErosionParams& erosion) {
 
 struct Config {
     Technique technique = Technique::occlusion; // which method the programs implement
-    int slices = 16;                        // slices along the light normal; 1 to 32 (four per RGBA texture)
+    int slices = 16;                        // slices along the light normal; 1 to 32 (four per RGBA texture),
+                                            // 64 or 128 (sliced as bits of one RGBA32UI target, paper §3.7)
     int resolution = 512;                   // occlusion texture side in texels; a power of two, 32 to 4096
     Filter filter = Filter::nbuffer;        // prefilter of the occlusion textures
     Fusion fusion = Fusion::chained;        // rule combining the slices' occlusion
@@ -226,6 +227,13 @@ constexpr int pcf_taps(const PcfParams& pcf) {
 
 // Number of RGBA textures that hold the slices: four slices per texture, the last one may be partial.
 constexpr int texture_count(const Config& config) { return (config.slices + 3) / 4; }
+
+// Most slices one geometry pass writes as colour channels (eight RGBA targets, MAX blending).
+inline constexpr int max_channel_slices = 32;
+
+// True when the slicing pass writes the slices as bits of one RGBA32UI target (logical OR) and an
+// unpack pass turns them into the RGBA occlusion textures (paper §3.7): slices > 32.
+constexpr bool slices_as_bits(const Config& config) { return config.slices > max_channel_slices; }
 
 // Number of filter levels above the full-resolution one: L = log2(resolution).
 constexpr int max_level(const Config& config) {

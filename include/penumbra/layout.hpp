@@ -89,6 +89,9 @@ struct RenderState {
     std::optional<std::array<float, 4>> clear_color; // cleared before drawing when set
     std::optional<float> clear_depth;
     float polygon_offset_factor = 0.0f, polygon_offset_units = 0.0f; // slope-scaled depth bias
+    // "NONE" or "OR": a logical operation combines each fragment with the (integer) target instead of
+    // blending (glLogicOp / VkPipelineColorBlendStateCreateInfo::logicOp); blend is then false
+    std::string logic_op = "NONE";
 };
 
 struct PassDesc {
@@ -152,6 +155,7 @@ inline std::vector<Param> shading_vertex_params(const Config& config) {
 inline std::vector<Param> program_params(const Config& config, std::string_view program) {
     if (program == "slicing") return slicing_params();
     if (program == "pack_atlas") return pack_atlas_params();
+    if (program == "unpack_slices") return unpack_params();
     if (program == "nbuffer_level" || program == "gaussian_level") return level_params(config);
     if (program == "sat_shift") return sat_shift_params(config);
     if (program == "sat_pass") return sat_pass_params(config);
@@ -285,7 +289,8 @@ struct LayoutBuilder {
     }
 };
 
-// Occlusion textures, phase "shadow": slicing into the slices' storage, then the prefilter passes.
+// Occlusion textures, phase "shadow": slicing into the slices' storage (beyond 32 slices: into bits,
+// then unpack draws into that storage), then the prefilter passes.
 inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
     const int R = config.resolution, T = texture_count(config), L = max_level(config);
     const std::string level_fmt(level_format(config));
@@ -337,7 +342,25 @@ inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
     max_blend.blend_equation = "MAX";
     max_blend.blend_src = max_blend.blend_dst = "ONE";
     max_blend.clear_color = std::array<float, 4>{0.0f, 0.0f, 0.0f, 0.0f};
-    b.pass("slicing", "draw_scene", "slicing", {}, slicing_outputs, {}, R, R, max_blend);
+    if (slices_as_bits(config)) {
+        // paper §3.7: every slice a bit of one RGBA32UI target, OR-ed, then unpacked into the textures
+        // the slicing would otherwise write, one group of colour attachments per draw
+        TextureDesc& bits = b.texture("penumbra_sliceBits", "2D", "RGBA32UI", R, R, 1, 1, "NEAREST", "NEAREST",
+                                      "slicing output: bit k % 32 of component k / 32 marks slice k");
+        bits.wrap = "CLAMP_TO_EDGE";
+        RenderState or_bits;
+        or_bits.logic_op = "OR";
+        or_bits.clear_color = max_blend.clear_color;
+        b.pass("slicing", "draw_scene", "slicing", {}, {{"penumbra_sliceBits", 0, -1}}, {}, R, R, or_bits);
+        const int group = unpack_group(config);
+        for (int d = 0; d < unpack_draws(config); ++d) {
+            const auto first = slicing_outputs.begin() + d * group;
+            b.pass("unpack_slices", "fullscreen", "unpack_slices", {{"penumbra_sliceBits", "penumbra_sliceBits"}},
+                   {first, first + group}, {{"penumbra_firstSlice", 4 * group * d}}, R, R);
+        }
+    } else {
+        b.pass("slicing", "draw_scene", "slicing", {}, slicing_outputs, {}, R, R, max_blend);
+    }
 
     // Prefilter passes.
     const std::string level_program = config.filter == Filter::gaussian ? "gaussian_level" : "nbuffer_level";
@@ -585,7 +608,8 @@ inline std::string json_state(const RenderState& s) {
                     (s.clear_color ? json_floats(*s.clear_color) : "null") +
                     ", \"clear_depth\": " + (s.clear_depth ? json_number(*s.clear_depth) : "null") +
                     ", \"polygon_offset_factor\": " + json_number(s.polygon_offset_factor) +
-                    ", \"polygon_offset_units\": " + json_number(s.polygon_offset_units) + "}";
+                    ", \"polygon_offset_units\": " + json_number(s.polygon_offset_units) +
+                    ", \"logic_op\": " + json_string(s.logic_op) + "}";
     return o;
 }
 

@@ -14,6 +14,9 @@
 
 namespace penumbra {
 
+// The slice counts a configuration may have, as diagnostics and --help texts say it.
+inline constexpr std::string_view allowed_slices = "1 to 32, 64 or 128";
+
 struct ConfigError {
     std::string field;   // "slices", "resolution", "filter", …
     std::string value;   // the value given, as text
@@ -169,8 +172,8 @@ constexpr std::vector<Problem> find_problems(const Config& config) {
         return problems;
     }
 
-    if (config.slices < 1 || config.slices > 32)
-        add("slices", format_int(config.slices), "is out of range; allowed: 1 to 32");
+    if (config.slices < 1 || (config.slices > max_channel_slices && config.slices != 64 && config.slices != 128))
+        add("slices", format_int(config.slices), cat("is out of range; allowed: ", allowed_slices));
     if (config.resolution < 32 || config.resolution > 4096 || !is_power_of_two(config.resolution))
         add("resolution", format_int(config.resolution),
             "is not allowed; allowed: a power of two from 32 to 4096 (32, 64, 128, 256, 512, 1024, 2048, 4096)");
@@ -197,17 +200,32 @@ constexpr std::vector<Problem> find_problems(const Config& config) {
         add("filter", Text("sat"),
             cat("needs renderable, filterable 32-bit float textures, which target '", target,
                 "' does not guarantee; allowed filters for ", target, ": mipmap, nbuffer, gaussian"));
-    if (texture_count(config) > limit.max_draw_buffers)
+    const Text allowed_slices = cat("1 to ", format_int(4 * limit.max_draw_buffers), limit.logic_op ? ", 64 or 128" : "");
+    if (slices_as_bits(config) && !limit.logic_op)
+        add("slices", format_int(config.slices),
+            cat("needs a logical OR on the slicing target (more than 32 slices are written as bits, paper §3.7), "
+                "which target '", target, "' does not have; allowed for ", target, ": ", allowed_slices));
+    else if (!slices_as_bits(config) && texture_count(config) > limit.max_draw_buffers)
         add("slices", format_int(config.slices),
             cat("needs ", format_int(texture_count(config)), " render targets (four slices each) but target '", target,
-                "' guarantees ", format_int(limit.max_draw_buffers), "; allowed for ", target, ": 1 to ",
-                format_int(4 * limit.max_draw_buffers)));
-    if (widest_2d_texture(config) > limit.max_texture_size)
+                "' guarantees ", format_int(limit.max_draw_buffers), "; allowed for ", target, ": ", allowed_slices));
+    if (slices_as_bits(config) && config.packing == Packing::volume)
+        add("packing", Text("volume"),
+            cat("needs ", format_int(texture_count(config)), " 3D textures for ", format_int(config.slices),
+                " slices, more samplers than a shading pass is guaranteed (16); allowed with more than 32 slices: atlas, "
+                "array"));
+    if (widest_2d_texture(config) > limit.max_texture_size) {
+        Config smaller = config;
+        while (smaller.resolution > 32 && widest_2d_texture(smaller) > limit.max_texture_size) smaller.resolution /= 2;
+        const bool fits = widest_2d_texture(smaller) <= limit.max_texture_size;
         add("resolution", format_int(config.resolution),
             cat("needs a ", format_int(widest_2d_texture(config)), "-texel wide ",
                 config.packing == Packing::atlas ? "atlas" : "texture", " but target '", target,
-                "' guarantees only ", format_int(limit.max_texture_size),
-                " texels; use fewer slices, a lower resolution, another packing or another target"));
+                "' guarantees only ", format_int(limit.max_texture_size), " texels; allowed with ",
+                format_int(config.slices), " slices and packing ", to_string(config.packing), ": ",
+                fits ? cat("up to ", format_int(smaller.resolution)) : Text("none"),
+                ", or fewer slices, another packing or another target"));
+    }
     const int level_count = config.filter == Filter::mipmap || config.filter == Filter::sat ? 1 : max_level(config) + 1;
     if (config.packing == Packing::array && level_count * texture_count(config) > limit.max_array_layers)
         add("packing", Text("array"),

@@ -248,6 +248,8 @@ void LayoutRunner::apply_uniforms(const Program& program) {
 
 std::string LayoutRunner::apply_state(const json& s) {
     auto on = [](GLenum cap, bool enabled) { enabled ? glEnable(cap) : glDisable(cap); };
+    if (s.value("logic_op", "NONE") != "NONE") // ES 3.0 has no glLogicOp (penumbra emits none for essl300)
+        return "state: logic_op " + s.value("logic_op", "") + " is not available on OpenGL ES; allowed: NONE";
     on(GL_BLEND, s.value("blend", false));
     if (s.value("blend", false)) {
         const GLenum equation = gl_enum(s["blend_equation"]), src = gl_enum(s["blend_src"]), dst = gl_enum(s["blend_dst"]);

@@ -40,7 +40,8 @@ FormatInfo format_info(const std::string& name) {
         {"RGBA8", {VK_FORMAT_R8G8B8A8_UNORM, 4, 1, true}},       {"R8", {VK_FORMAT_R8_UNORM, 1, 1, true}},
         {"RGBA16F", {VK_FORMAT_R16G16B16A16_SFLOAT, 4, 2, false}}, {"R16F", {VK_FORMAT_R16_SFLOAT, 1, 2, false}},
         {"RG16F", {VK_FORMAT_R16G16_SFLOAT, 2, 2, false}},        {"RGBA32F", {VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4, false}},
-        {"R32F", {VK_FORMAT_R32_SFLOAT, 1, 4, false}},            {"RG32F", {VK_FORMAT_R32G32_SFLOAT, 2, 4, false}}};
+        {"R32F", {VK_FORMAT_R32_SFLOAT, 1, 4, false}},            {"RG32F", {VK_FORMAT_R32G32_SFLOAT, 2, 4, false}},
+        {"RGBA32UI", {VK_FORMAT_R32G32B32A32_UINT, 4, 4, false}}}; // the slicing bits of 64 / 128 slices
     auto it = formats.find(name);
     if (it == formats.end()) fail("internal format '" + name + "' is not supported by this runner");
     return it->second;
@@ -489,7 +490,7 @@ private:
                 Block& block = prog.blocks[p.at("block_binding").get<int>()];
                 block.size = std::max(block.size, p.at("offset").get<int>() + std140_size(type));
                 block.members.push_back(p);
-            } else if (type.starts_with("sampler") && p.contains("binding")) {
+            } else if (type.find("sampler") != std::string::npos && p.contains("binding")) { // usampler2D too
                 prog.samplers[p.at("binding").get<int>()] = p;
             } else {
                 fail("program " + name + ": parameter " + p.at("name").get<std::string>() +
@@ -586,6 +587,11 @@ private:
         raster.lineWidth = 1.0f;
         VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
         multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+        const std::string logic_op = state.value("logic_op", "NONE");
+        if (logic_op != "NONE" && logic_op != "OR")
+            fail("pass state: logic_op " + logic_op + " is not supported by this runner; allowed: NONE, OR");
+        if (logic_op == "OR" && !c_.logic_op())
+            fail("pass state: logic_op OR needs the device feature logicOp, which this device lacks");
         VkPipelineColorBlendAttachmentState blend{};
         blend.blendEnable = state.at("blend").get<bool>() ? VK_TRUE : VK_FALSE;
         blend.colorBlendOp = blend.alphaBlendOp = blend_op(state.at("blend_equation"));
@@ -596,6 +602,8 @@ private:
             if (mask[i]) blend.colorWriteMask |= VK_COLOR_COMPONENT_R_BIT << i;
         const std::vector<VkPipelineColorBlendAttachmentState> blends(formats.size(), blend);
         VkPipelineColorBlendStateCreateInfo blending{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+        blending.logicOpEnable = logic_op == "OR" ? VK_TRUE : VK_FALSE; // integer targets: fragments OR-ed in
+        blending.logicOp = VK_LOGIC_OP_OR;
         blending.attachmentCount = static_cast<std::uint32_t>(blends.size());
         blending.pAttachments = blends.data();
         const VkDynamicState dynamic_states[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};

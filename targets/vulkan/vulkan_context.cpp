@@ -123,8 +123,13 @@ std::optional<Context> Context::create(Failure* failure, std::string* error) {
     queue.pQueuePriorities = &priority;
     VkPhysicalDeviceVulkan13Features features13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     features13.dynamicRendering = VK_TRUE;
+    VkPhysicalDeviceFeatures supported{}, enabled{};
+    vkGetPhysicalDeviceFeatures(c.physical_, &supported);
+    enabled.logicOp = supported.logicOp; // the slicing of 64 and 128 slices ORs bits into its target
+    c.logic_op_ = supported.logicOp == VK_TRUE;
     VkDeviceCreateInfo device_info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     device_info.pNext = &features13;
+    device_info.pEnabledFeatures = &enabled;
     device_info.queueCreateInfoCount = 1;
     device_info.pQueueCreateInfos = &queue;
     if (VkResult r = vkCreateDevice(c.physical_, &device_info, nullptr, &c.device_); r != VK_SUCCESS)
@@ -143,8 +148,8 @@ std::optional<Context> Context::create(Failure* failure, std::string* error) {
 Context::Context(Context&& o) noexcept
     : instance_(std::exchange(o.instance_, VK_NULL_HANDLE)), messenger_(std::exchange(o.messenger_, VK_NULL_HANDLE)),
       physical_(o.physical_), properties_(o.properties_), device_(std::exchange(o.device_, VK_NULL_HANDLE)),
-      queue_(o.queue_), queue_family_(o.queue_family_), pool_(std::exchange(o.pool_, VK_NULL_HANDLE)),
-      messages_(std::move(o.messages_)) {}
+      queue_(o.queue_), queue_family_(o.queue_family_), logic_op_(o.logic_op_),
+      pool_(std::exchange(o.pool_, VK_NULL_HANDLE)), messages_(std::move(o.messages_)) {}
 
 Context::~Context() { release(); }
 

@@ -36,6 +36,8 @@ public:
     VkDevice device() const { return device_; }
     VkPhysicalDevice physical_device() const { return physical_; }
     const VkPhysicalDeviceProperties& properties() const { return properties_; }
+    // True when the device has (and the context enabled) the logicOp feature: logic_op OR passes.
+    bool logic_op() const { return logic_op_; }
     // Warning and error messages reported so far (validation layer, loader, driver).
     int messages() const { return *messages_; }
     // The same count, readable after the context is destroyed: destroying the device reports
@@ -60,6 +62,7 @@ private:
     VkDevice device_ = VK_NULL_HANDLE;
     VkQueue queue_ = VK_NULL_HANDLE;
     std::uint32_t queue_family_ = 0;
+    bool logic_op_ = false;
     VkCommandPool pool_ = VK_NULL_HANDLE;
     // Heap-allocated so that the messenger's user pointer survives a move of the Context.
     std::shared_ptr<int> messages_ = std::make_shared<int>(0);

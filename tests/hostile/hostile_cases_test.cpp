@@ -60,7 +60,7 @@ struct Inputs {
         sparse = scratch().write("sparse", "");
         fs::resize_file(sparse, std::uintmax_t(2) << 30); // 2 GiB of holes: no disk used
         config_1e309 = scratch().write("overflow.json", R"({"slices": 1e309})");
-        config_two_errors = scratch().write("two.json", R"({"slices": 64, "resolution": 500})");
+        config_two_errors = scratch().write("two.json", R"({"slices": 65, "resolution": 500})");
         script_nul = scratch().write("nul.script", std::string("jump\0\x01\xff", 7));
     }
 };
@@ -125,9 +125,9 @@ TEST_CASE("hostile: numbers out of range name the key or flag and the allowed ra
         std::string expected;
     };
     const std::vector<Case> cases{
-        {"config 1e309", &gen, {"--config", in.config_1e309.string(), "--out", out.string()}, "key 'slices': 1e309 is out of range; allowed: 1 to 32"},
-        {"config 1e309 playground", &playground, {"--headless", "--config", in.config_1e309.string(), "--out", png.string()}, "key 'slices': 1e309 is out of range; allowed: 1 to 32"},
-        {"config two errors, one line", &gen, {"--config", in.config_two_errors.string(), "--out", out.string()}, "slices: 64 is out of range; allowed: 1 to 32; resolution: 500"},
+        {"config 1e309", &gen, {"--config", in.config_1e309.string(), "--out", out.string()}, "key 'slices': 1e309 is out of range; allowed: 1 to 32, 64 or 128"},
+        {"config 1e309 playground", &playground, {"--headless", "--config", in.config_1e309.string(), "--out", png.string()}, "key 'slices': 1e309 is out of range; allowed: 1 to 32, 64 or 128"},
+        {"config two errors, one line", &gen, {"--config", in.config_two_errors.string(), "--out", out.string()}, "slices: 65 is out of range; allowed: 1 to 32, 64 or 128; resolution: 500"},
         {"flags two errors, one line", &gen, {"--slices", "0", "--resolution", "7", "--out", out.string()}, "slices: 0 is out of range"},
         {"size 99999x99999", &playground, {"--headless", "--size", "99999x99999", "--out", png.string()}, "--size: 99999x99999 is out of range; allowed: two integers 1 to 8192"},
         {"size 0x16", &playground, {"--headless", "--size", "0x16", "--out", png.string()}, "--size: 0x16 is out of range"},

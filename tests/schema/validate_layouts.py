@@ -71,6 +71,12 @@ def main():
                    ["glsl330", "glsl450", "essl300", "vulkan"])]
     matrix += [(f"occlusion-chained-clip-{target}", ["--fusion", "chained", "--tangent-clip", "--target", target])
                for target in ["glsl330", "glsl450", "essl300", "vulkan"]]
+    # More than 32 slices: the slicing as bits (logic op OR) and the unpack passes.
+    matrix += [(f"bits-{filt}-{packing}-{target}-S{slices}",
+                ["--filter", filt, "--packing", packing, "--target", target, "--slices", str(slices),
+                 "--resolution", "32"])
+               for filt, packing, target, slices in itertools.product(
+                   ["mipmap", "nbuffer", "sat"], ["atlas", "array"], ["glsl330", "glsl450", "vulkan"], [64, 128])]
 
     def generate(entry):
         """(name, layout or None when penumbra-gen refuses the combination, failure text)"""
@@ -119,6 +125,8 @@ def main():
             {"sampler": "x", "texture": "penumbra_nothing", "binding": 9, "level": -1}),
         "result not written": lambda d: d.update(result=d["textures"][0]["name"]),
         "extra field": lambda d: d["passes"][0].update(colour="blue"),
+        "unknown logic op": lambda d: d["passes"][0]["state"].update(logic_op="XOR"),
+        "logic op with blending": lambda d: d["passes"][0]["state"].update(logic_op="OR", blend=True),
     }
     if sample is None:
         failures.append("no layout was generated")

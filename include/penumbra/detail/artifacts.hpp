@@ -5,6 +5,7 @@
 #include "emit_prefilter.hpp"
 #include "emit_shading.hpp"
 #include "emit_slicing.hpp"
+#include "emit_unpack.hpp"
 #include "oim/emit_oim.hpp"
 #include "shadow_map/emit_depth.hpp"
 #include "erosion/emit_passes.hpp"
@@ -35,6 +36,7 @@ enum class Artifact : std::uint8_t {
     erosion_reduce_frag,
     erosion_erode_frag,
     erosion_blur_frag,
+    unpack_slices_frag, // more than 32 slices: the sliced bits into RGBA occlusion textures (emit_unpack.hpp)
 };
 
 constexpr std::string_view file_name(Artifact artifact) {
@@ -61,6 +63,7 @@ constexpr std::string_view file_name(Artifact artifact) {
     case Artifact::erosion_reduce_frag: return "penumbra_erosion_reduce.frag";
     case Artifact::erosion_erode_frag: return "penumbra_erosion_erode.frag";
     case Artifact::erosion_blur_frag: return "penumbra_erosion_blur.frag";
+    case Artifact::unpack_slices_frag: return "penumbra_unpack_slices.frag";
     }
     return "";
 }
@@ -103,6 +106,7 @@ constexpr Text artifact_text(const Config& config, Artifact artifact) {
     case Artifact::erosion_reduce_frag: return erosion_fragment(config, "erosion_reduce");
     case Artifact::erosion_erode_frag: return erosion_fragment(config, "erosion_erode");
     case Artifact::erosion_blur_frag: return erosion_fragment(config, "erosion_blur");
+    case Artifact::unpack_slices_frag: return unpack_fragment(config);
     }
     return {};
 }
@@ -131,6 +135,8 @@ constexpr std::vector<ProgramPlan> program_plan(const Config& config) {
                 {"shading_example", {Artifact::shading_vert, Artifact::shading_frag}},
                 {"shading_deferred", {Artifact::fullscreen_vert, Artifact::deferred_frag}}};
     std::vector<ProgramPlan> plan{{"slicing", {Artifact::slicing_vert, Artifact::slicing_frag}}};
+    if (slices_as_bits(config))
+        plan.push_back({"unpack_slices", {Artifact::fullscreen_vert, Artifact::unpack_slices_frag}});
     if (config.packing == Packing::atlas && config.filter != Filter::sat)
         plan.push_back({"pack_atlas", {Artifact::fullscreen_vert, Artifact::pack_atlas_frag}});
     if (config.filter == Filter::nbuffer)

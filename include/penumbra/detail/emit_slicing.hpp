@@ -1,6 +1,8 @@
 // penumbra/detail/emit_slicing.hpp — the slicing pass (paper §3.4): the scene seen from the
 // slicing camera, each fragment marking the channel of its slice in one of T render targets.
-// Blending is MAX, so a texel is 1 where anything in that slice covers it.
+// Blending is MAX, so a texel is 1 where anything in that slice covers it. Beyond 32 slices
+// (paper §3.7) each fragment sets the bit of its slice in one RGBA32UI target instead, combined by
+// a logical OR, and the unpack pass (emit_unpack.hpp) writes the RGBA occlusion textures.
 #pragma once
 
 #include "parameters.hpp"
@@ -30,10 +32,21 @@ void main()
 
 constexpr Text slicing_fragment(const Config& config) {
     LineWriter out;
-    write_preamble(out, config, "slicing pass, fragment stage (blend equation MAX, clear to 0)");
+    const bool bits = slices_as_bits(config);
+    write_preamble(out, config,
+                   bits ? "slicing pass, fragment stage: writes slice k as bit k of an RGBA32UI target (logic op OR, "
+                          "clear to 0)"
+                        : "slicing pass, fragment stage (blend equation MAX, clear to 0)");
     out.chunk("slicing_outputs");
     out.line(varying(config, "in", 0, "float", "penumbra_depth"));
-    for (int t = 0; t < texture_count(config); ++t) {
+    if (bits) {
+        out.comment("paper §3.7: more slices than colour channels (eight RGBA targets hold 32) from one geometry pass,");
+        out.comment("as in bitmask voxelization [ED06a]: bit k % 32 of component k / 32 marks slice k, and the unpack");
+        out.comment("pass redistributes the bits into colour channels independently of the scene. Integer targets do");
+        out.comment("not blend: the pass combines fragments by a logical OR.");
+        out.line("layout(location = 0) out uvec4 penumbra_sliceBits; // slices 0 to ", format_int(config.slices - 1));
+    }
+    for (int t = 0; !bits && t < texture_count(config); ++t) {
         const int last = t * 4 + 3 < config.slices - 1 ? t * 4 + 3 : config.slices - 1;
         out.line("layout(location = ", format_int(t), ") out vec4 penumbra_occlusion", format_int(t), "; // slices ",
                  format_int(t * 4), " to ", format_int(last));
@@ -41,6 +54,16 @@ constexpr Text slicing_fragment(const Config& config) {
     out.blank();
     int binding = 0;
     write_params(out, config, slicing_params(), "PenumbraSlicing", binding);
+    if (bits) {
+        out.chunk("slice_bit");
+        out.comment("the uvec4 with only the bit of slice `slice` set");
+        out.line("uvec4 penumbra_sliceBit(float slice)");
+        out.line("{");
+        out.line("int s = int(slice);");
+        out.line("return uvec4(equal(ivec4(s / 32), ivec4(0, 1, 2, 3))) << uint(s % 32);");
+        out.line("}");
+        out.blank();
+    }
     out.chunk("slicing_fragment_main");
     out.line("void main()");
     out.line("{");
@@ -51,7 +74,11 @@ constexpr Text slicing_fragment(const Config& config) {
         out.comment("paper §3.4.1 leak fix: also mark the next slice away from the light");
         out.line("float next = min(k + 1.0, ", format_float(config.slices - 1), ");");
     }
-    for (int t = 0; t < texture_count(config); ++t) {
+    if (bits) {
+        out.line("penumbra_sliceBits = penumbra_sliceBit(k);");
+        if (config.leak_fix) out.line("penumbra_sliceBits |= penumbra_sliceBit(next);");
+    }
+    for (int t = 0; !bits && t < texture_count(config); ++t) {
         const Text first = cat("vec4(", format_float(4 * t), ", ", format_float(4 * t + 1), ", ", format_float(4 * t + 2),
                                ", ", format_float(4 * t + 3), ")");
         out.line("// texture ", format_int(t));

@@ -26,7 +26,9 @@ struct Param {
     std::string_view source = "light";
 };
 
-constexpr bool is_sampler(const Param& param) { return param.type.starts_with("sampler"); }
+constexpr bool is_sampler(const Param& param) {
+    return param.type.starts_with("sampler") || param.type.starts_with("usampler") || param.type.starts_with("isampler");
+}
 
 constexpr bool is_vulkan(const Config& config) { return config.target == Target::vulkan; }
 constexpr bool has_explicit_bindings(const Config& config) {

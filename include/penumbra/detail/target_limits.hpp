@@ -15,14 +15,17 @@ struct TargetLimits {
     int max_draw_buffers;       // GL_MAX_DRAW_BUFFERS / maxColorAttachments
     bool float32_render_filter; // 32-bit float textures are colour-renderable and filterable
     bool clamp_to_border;       // CLAMP_TO_BORDER with a transparent black border exists
+    bool logic_op;              // logical operations on integer colour targets (glLogicOp / logicOp OR)
 };
 
 constexpr TargetLimits limits(Target target) {
     switch (target) {
-    case Target::glsl330: return {1024, 256, 256, 8, true, true};   // OpenGL 3.3 core, table 6.54
-    case Target::glsl450: return {16384, 2048, 2048, 8, true, true}; // OpenGL 4.5 core, table 23.53
-    case Target::essl300: return {2048, 256, 256, 4, false, false};  // OpenGL ES 3.0, table 6.28
-    case Target::vulkan: return {4096, 256, 256, 4, true, true};     // Vulkan 1.0 required limits
+    case Target::glsl330: return {1024, 256, 256, 8, true, true, true};   // OpenGL 3.3 core, table 6.54
+    case Target::glsl450: return {16384, 2048, 2048, 8, true, true, true}; // OpenGL 4.5 core, table 23.53
+    // OpenGL ES 3.0, table 6.28; ES 3.x and WebGL2 have no glLogicOp
+    case Target::essl300: return {2048, 256, 256, 4, false, false, false};
+    // Vulkan 1.0 required limits; logicOp is a device feature (every desktop driver and lavapipe have it)
+    case Target::vulkan: return {4096, 256, 256, 4, true, true, true};
     }
     return {};
 }

@@ -25,6 +25,7 @@
 #include <epoxy/gl.h>
 #include <glm/gtc/type_ptr.hpp>
 
+#include <array>
 #include <charconv>
 #include <cstdint>
 #include <cstdio>
@@ -204,7 +205,7 @@ inline GLenum gl_enum(const std::string& name) {
         {"DST_COLOR", GL_DST_COLOR},
         {"NEVER", GL_NEVER}, {"LESS", GL_LESS}, {"EQUAL", GL_EQUAL}, {"LEQUAL", GL_LEQUAL}, {"GREATER", GL_GREATER},
         {"NOTEQUAL", GL_NOTEQUAL}, {"GEQUAL", GL_GEQUAL}, {"ALWAYS", GL_ALWAYS},
-        {"BACK", GL_BACK}, {"FRONT", GL_FRONT}};
+        {"BACK", GL_BACK}, {"FRONT", GL_FRONT}, {"OR", GL_OR}};
     auto it = names.find(name);
     return it == names.end() ? 0 : it->second;
 }
@@ -259,6 +260,12 @@ inline void apply_state(const RenderState& s) {
     } else {
         glEnable(GL_CULL_FACE);
         glCullFace(gl_enum(s.cull));
+    }
+    if (s.logic_op != "NONE") { // integer targets: each fragment OR-ed into the texel (no blending)
+        glEnable(GL_COLOR_LOGIC_OP);
+        glLogicOp(gl_enum(s.logic_op));
+    } else {
+        glDisable(GL_COLOR_LOGIC_OP);
     }
     if (s.polygon_offset_factor != 0.0f || s.polygon_offset_units != 0.0f) {
         glEnable(GL_POLYGON_OFFSET_FILL);
@@ -832,6 +839,7 @@ private:
         glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
         detach_all();
         std::vector<GLenum> buffers;
+        std::vector<bool> integer_buffers; // cleared with glClearBufferuiv
         bool has_depth = false;
         for (const AttachmentDesc& out : pass.outputs) {
             const bool depth = out.kind == "depth";
@@ -840,8 +848,13 @@ private:
                 glNamedFramebufferTextureLayer(fbo_, attachment, resolve(out.texture), out.level, out.layer);
             else
                 glNamedFramebufferTexture(fbo_, attachment, resolve(out.texture), out.level);
-            if (depth) has_depth = true;
-            else buffers.push_back(attachment);
+            if (depth) {
+                has_depth = true;
+            } else {
+                buffers.push_back(attachment);
+                const TextureDesc* desc = find_texture(out.texture);
+                integer_buffers.push_back(desc && detail::is_integer_format(desc->internal_format));
+            }
         }
         if (buffers.empty()) glNamedFramebufferDrawBuffer(fbo_, GL_NONE);
         else glNamedFramebufferDrawBuffers(fbo_, static_cast<GLsizei>(buffers.size()), buffers.data());
@@ -856,8 +869,15 @@ private:
         const RenderState& state = pass.state;
         if (state.clear_color) {
             glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-            for (std::size_t i = 0; i < buffers.size(); ++i)
-                glClearBufferfv(GL_COLOR, static_cast<GLint>(i), state.clear_color->data());
+            for (std::size_t i = 0; i < buffers.size(); ++i) {
+                if (integer_buffers[i]) {
+                    std::array<GLuint, 4> value{};
+                    for (int c = 0; c < 4; ++c) value[c] = static_cast<GLuint>((*state.clear_color)[c]);
+                    glClearBufferuiv(GL_COLOR, static_cast<GLint>(i), value.data());
+                } else {
+                    glClearBufferfv(GL_COLOR, static_cast<GLint>(i), state.clear_color->data());
+                }
+            }
         }
         if (state.clear_depth && has_depth) {
             glDepthMask(GL_TRUE);

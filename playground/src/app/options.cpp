@@ -176,7 +176,7 @@ ParsedOptions parse_options(const std::vector<std::string>& args) {
         int number = 0;
         if (flag == "--slices") {
             // The range is checked by penumbra::validate, with the same message penumbra-gen gives.
-            error = parse_int(flag, value, number, "1 to 32");
+            error = parse_int(flag, value, number, penumbra::allowed_slices);
             if (error.empty()) flags.slices = number;
         } else if (flag == "--resolution") {
             error = parse_int(flag, value, number, "a power of two from 32 to 4096");
@@ -259,7 +259,7 @@ std::string usage() {
                                   "diameter in degrees, below 90\n"
                                   "                        (default 2.66, five times the real sun)");
     out += "\nconfiguration (as penumbra-gen; flags override the --config file):\n";
-    out += line("--slices N", "slices along the light normal: 1 to 32 (default " + std::to_string(d.slices) + ")");
+    out += line("--slices N", "slices along the light normal: " + std::string(penumbra::allowed_slices) + " (default " + std::to_string(d.slices) + ")");
     out += line("--resolution R",
                 "occlusion texture side: a power of two, 32 to 4096 (default " + std::to_string(d.resolution) + ")");
     auto names = [&](std::string text, std::string_view def) { return text + " (default " + std::string(def) + ")"; };

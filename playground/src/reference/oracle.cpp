@@ -53,8 +53,18 @@ bool read_slice_textures(const penumbra::gl::Runtime& runtime, SliceTextures& ou
     for (const PassDesc& pass : runtime.emission().layout.passes) {
         if (pass.action != "draw_scene" || pass.program != "slicing") continue;
         std::vector<float> rgba(static_cast<std::size_t>(4) * R * R);
+        if (slices_as_bits(config)) { // paper §3.7: slice k is bit k % 32 of component k / 32 of one RGBA32UI target
+            const AttachmentDesc& target = pass.outputs.at(0);
+            std::vector<GLuint> bits(static_cast<std::size_t>(4) * R * R);
+            glGetTextureSubImage(runtime.texture(target.texture), target.level, 0, 0, 0, R, R, 1, GL_RGBA_INTEGER,
+                                 GL_UNSIGNED_INT, static_cast<GLsizei>(bits.size() * sizeof(GLuint)), bits.data());
+            for (int slice = 0; slice < config.slices; ++slice)
+                for (int texel = 0; texel < R * R; ++texel)
+                    out.coverage[static_cast<std::size_t>(slice) * R * R + texel] =
+                        static_cast<float>((bits[4 * texel + slice / 32] >> (slice % 32)) & 1u);
+        }
         // Colour attachment t holds slices 4t .. 4t+3 in its channels.
-        for (std::size_t t = 0; t < pass.outputs.size(); ++t) {
+        for (std::size_t t = 0; !slices_as_bits(config) && t < pass.outputs.size(); ++t) {
             const AttachmentDesc& target = pass.outputs[t];
             glGetTextureSubImage(runtime.texture(target.texture), target.level, 0, 0, std::max(target.layer, 0), R, R, 1,
                                  GL_RGBA, GL_FLOAT, static_cast<GLsizei>(rgba.size() * sizeof(float)), rgba.data());

@@ -46,7 +46,8 @@ struct SliceTextures {
 };
 
 // Reads the level-0 render targets of the slicing pass of a runtime that has run build() (call
-// it from RenderOptions::inspect). Returns false with *error set when the layout has no slicing
+// it from RenderOptions::inspect); beyond 32 slices, decodes the bits of its RGBA32UI target (the
+// unpack pass that follows is then checked through the filtered visibility). Returns false with *error set when the layout has no slicing
 // pass or a read fails.
 bool read_slice_textures(const penumbra::gl::Runtime& runtime, SliceTextures& out, std::string* error);
 

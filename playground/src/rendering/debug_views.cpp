@@ -149,7 +149,7 @@ void main() {
     // slice s holds depths (z0 + s·Δ, z0 + (s+1)·Δ]
     int s = clamp(int(ceil((p.z - u_sliceDepths.x) / u_sliceDepths.y)) - 1, 0, u_slices - 1);
     if (u_mode == 0) {
-        color = vec4(u_slicePalette[s], 1.0);
+        color = vec4(u_slicePalette[s % 32], 1.0); // 64 or 128 slices: the colours repeat every 32
         return;
     }
     int k = u_levelSlice < 0 ? s - 1 : u_levelSlice;
@@ -320,7 +320,7 @@ glm::vec3 slice_color(int slice) {
         glm::vec3(0.349f, 0.631f, 0.310f), glm::vec3(0.929f, 0.788f, 0.282f),
         glm::vec3(0.690f, 0.478f, 0.631f), glm::vec3(1.000f, 0.616f, 0.655f)};
     static constexpr std::array<float, 4> band_brightness{1.0f, 0.7f, 0.5f, 0.35f};
-    slice = std::clamp(slice, 0, max_palette_slices - 1);
+    slice = std::max(slice, 0) % max_palette_slices;
     return hues[static_cast<std::size_t>(slice % 8)] * band_brightness[static_cast<std::size_t>(slice / 8)];
 }
 

@@ -46,10 +46,10 @@ namespace penumbra::playground {
 inline constexpr glm::vec3 background_color{0.0f, 0.0f, 0.0f};
 inline constexpr glm::vec3 no_slice_color{0.5f, 0.5f, 0.5f};
 inline constexpr glm::vec3 not_computed_color{0.0f, 1.0f, 0.0f}; // NaN (image_io.hpp's convention)
-inline constexpr int max_palette_slices = 32;                    // Config allows 1 to 32 slices
+inline constexpr int max_palette_slices = 32;                    // colours; slices 32 to 127 repeat them
 inline constexpr int max_palette_level = 12;                     // resolution 4096: levels 0 to 12
 
-glm::vec3 slice_color(int slice);   // slice in [0, 32); others clamp
+glm::vec3 slice_color(int slice);   // slice in [0, 32), repeating every 32 slices; negative: slice 0
 glm::vec3 level_color(float level); // level in [0, 12]; others clamp
 
 struct ScalarView {

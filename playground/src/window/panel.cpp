@@ -96,7 +96,18 @@ bool config_editor(const char* id, Config& config) {
         ImGui::PopID();
         return changed;
     }
-    changed |= ImGui::SliderInt("slices", &config.slices, 1, 32);
+    int channel_slices = std::min(config.slices, max_channel_slices); // 1 to 32: colour channels
+    if (ImGui::SliderInt("slices", &channel_slices, 1, max_channel_slices)) {
+        config.slices = channel_slices;
+        changed = true;
+    }
+    for (const int bit_slices : {64, 128}) { // paper §3.7: sliced as bits, then unpacked
+        ImGui::SameLine();
+        if (ImGui::RadioButton(std::to_string(bit_slices).c_str(), config.slices == bit_slices)) {
+            config.slices = bit_slices;
+            changed = true;
+        }
+    }
     int level = 0;
     for (int r = config.resolution; r > 32; r /= 2) ++level;
     static const char* resolutions[] = {"32", "64", "128", "256", "512", "1024", "2048", "4096"};

@@ -107,6 +107,16 @@ std::vector<Config> oracle_matrix() {
     configs.push_back({.slices = 16, .resolution = 256, .filter = Filter::mipmap, .tangent_clip = false});
     configs.push_back({.slices = 16, .resolution = 256, .filter = Filter::gaussian, .packing = Packing::volume,
                        .light = Light::sun, .tangent_clip = false});
+    // more than 32 slices: sliced as bits (logic op OR), unpacked, then the same filters; the oracle
+    // decodes the bits, so the unpack is checked through the visibility
+    configs.push_back({.slices = 64, .resolution = 64, .filter = Filter::nbuffer, .packing = Packing::atlas,
+                       .light = Light::rect, .leak_fix = true, .self_shadow_fade = true, .tangent_clip = false});
+    configs.push_back({.slices = 64, .resolution = 64, .filter = Filter::mipmap, .packing = Packing::array,
+                       .light = Light::rect, .leak_fix = false, .self_shadow_fade = true, .tangent_clip = true});
+    configs.push_back({.slices = 128, .resolution = 64, .filter = Filter::sat, .packing = Packing::array,
+                       .light = Light::rect, .leak_fix = true, .self_shadow_fade = true, .tangent_clip = true});
+    configs.push_back({.slices = 128, .resolution = 64, .filter = Filter::gaussian, .packing = Packing::atlas,
+                       .light = Light::sun, .leak_fix = true, .self_shadow_fade = true, .tangent_clip = false});
     return configs;
 }
 

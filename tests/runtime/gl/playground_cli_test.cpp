@@ -101,7 +101,7 @@ TEST_CASE("playground cli: bad arguments exit 2 with a message naming what is al
         {{"--headless", "--out", "a.png", "--scene", "nope"},
          "error: --scene: unknown scene 'nope'; allowed: planes, boxes, tree, butterfly, terrain, crowd, box, or a"},
         {{"--headless", "--scene", "planes"}, "error: --out: missing"},
-        {{"--headless", "--out", "a.png", "--slices", "40"}, "error: slices: 40 is out of range; allowed: 1 to 32"},
+        {{"--headless", "--out", "a.png", "--slices", "40"}, "error: slices: 40 is out of range; allowed: 1 to 32, 64 or 128"},
         {{"--headless", "--out", "a.png", "--slices", "many"}, "error: --slices: 'many' is not an integer"},
         {{"--headless", "--out", "a.png", "--size", "64"}, "error: --size: '64' is not WxH"},
         {{"--headless", "--out", "a.png", "--samples", "0"}, "error: --samples: 0 is out of range; allowed: 1 to 1024"},

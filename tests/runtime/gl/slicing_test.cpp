@@ -114,6 +114,10 @@ TEST_CASE("slicing: planes, the occlusion textures are the analytic coverage of 
          .leak_fix = false},
         {.slices = 16, .resolution = 256, .filter = Filter::gaussian, .packing = Packing::volume, .light = Light::sun,
          .leak_fix = true},
+        // more than 32 slices (paper §3.7): bits of one RGBA32UI target, decoded by read_slice_textures
+        {.slices = 64, .resolution = 128, .packing = Packing::atlas, .leak_fix = true},
+        {.slices = 128, .resolution = 64, .filter = Filter::mipmap, .packing = Packing::array, .light = Light::sun,
+         .leak_fix = false},
     };
     for (const Config& config : configs) {
         const std::string name = std::string(to_string(config.light)) + " S=" + std::to_string(config.slices) +
@@ -122,9 +126,27 @@ TEST_CASE("slicing: planes, the occlusion textures are the analytic coverage of 
         SliceTextures gpu;
         SliceFrame frame;
         bool read = false;
+        std::size_t unpacked = 0, unpack_wrong = 0;
         RenderOptions options{.inspect = [&](const gl::Runtime& runtime) {
             read = read_slice_textures(runtime, gpu, &error);
             frame = runtime.frame();
+            // the unpack draws' outputs: slice firstSlice + 4i + c in channel c of attachment i, as the bits say
+            const int R = config.resolution;
+            std::vector<float> rgba(static_cast<std::size_t>(4) * R * R);
+            for (const PassDesc& pass : runtime.emission().layout.passes) {
+                if (pass.program != "unpack_slices" || !read) continue;
+                for (std::size_t i = 0; i < pass.outputs.size(); ++i) {
+                    const AttachmentDesc& out = pass.outputs[i];
+                    glGetTextureSubImage(runtime.texture(out.texture), out.level, 0, 0, std::max(out.layer, 0), R, R, 1,
+                                         GL_RGBA, GL_FLOAT, static_cast<GLsizei>(rgba.size() * sizeof(float)), rgba.data());
+                    for (int c = 0; c < 4; ++c) {
+                        const int slice = pass.int_uniforms.at(0).second + 4 * static_cast<int>(i) + c;
+                        for (int texel = 0; texel < R * R; ++texel)
+                            unpack_wrong += rgba[4 * texel + c] != gpu.at(slice, texel % R, texel / R);
+                        ++unpacked;
+                    }
+                }
+            }
         }};
         HeadlessResult result;
         REQUIRE_MESSAGE(render_headless(*scene, config, 16, 16, result, &error, options), name, ": ", error);
@@ -153,6 +175,9 @@ TEST_CASE("slicing: planes, the occlusion textures are the analytic coverage of 
         std::printf("slicing %-44s covered texels %zu, wrong %zu, leak-fix texels %zu (marked %zu)\n", name.c_str(),
                     covered, wrong, leak_texels, leak_marked);
         CHECK_MESSAGE(non_binary == 0, name, ": slicing output must be binary");
+        CHECK_MESSAGE(unpacked == (slices_as_bits(config) ? static_cast<std::size_t>(config.slices) : 0u), name,
+                      ": the unpack draws wrote ", unpacked, " slices");
+        CHECK_MESSAGE(unpack_wrong == 0, name, ": ", unpack_wrong, " unpacked texels differ from the sliced bits");
         CHECK_MESSAGE(wrong == 0, name, ": ", wrong, " texels disagree with the analytic coverage away from edges");
         // Four planes at four heights (ground included): under the rect light each has its own slice;
         // under the tilted sun the ground spans several slices and two occluders may share one.
