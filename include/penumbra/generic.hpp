@@ -93,6 +93,10 @@ inline Result<GenericShading> emit_generic(const Config& config) {
         result.errors.push_back({"tangent_clip", "true",
                                  "tangent_clip: true is not implemented by the generic reference (it keeps the paper's "
                                  "whole-light kernels); allowed: false"});
+    if (config.slice_placement == SlicePlacement::adaptive)
+        result.errors.push_back({"slice_placement", "adaptive",
+                                 "slice_placement: adaptive is not implemented by the generic reference (its slices "
+                                 "are uniform, from penumbra_sliceDepths); allowed: uniform"});
     if (!result.errors.empty()) return result;
     Program program{"shading_generic",
                     {{"penumbra_generic.vert", Stage::vertex, detail::generic_vertex(config).str()},

@@ -4,6 +4,7 @@
 #include "../program.hpp"
 #include "emit_prefilter.hpp"
 #include "emit_shading.hpp"
+#include "emit_slice_placement.hpp"
 #include "emit_slicing.hpp"
 #include "oim/emit_oim.hpp"
 #include "shadow_map/emit_depth.hpp"
@@ -35,6 +36,9 @@ enum class Artifact : std::uint8_t {
     erosion_reduce_frag,
     erosion_erode_frag,
     erosion_blur_frag,
+    depth_bins_vert,       // adaptive slice placement: the depth-bin pre-pass (emit_slice_placement.hpp)
+    depth_bins_frag,
+    slice_boundaries_frag, // adaptive slice placement: boundaries from the depth bins
 };
 
 constexpr std::string_view file_name(Artifact artifact) {
@@ -61,6 +65,9 @@ constexpr std::string_view file_name(Artifact artifact) {
     case Artifact::erosion_reduce_frag: return "penumbra_erosion_reduce.frag";
     case Artifact::erosion_erode_frag: return "penumbra_erosion_erode.frag";
     case Artifact::erosion_blur_frag: return "penumbra_erosion_blur.frag";
+    case Artifact::depth_bins_vert: return "penumbra_depth_bins.vert";
+    case Artifact::depth_bins_frag: return "penumbra_depth_bins.frag";
+    case Artifact::slice_boundaries_frag: return "penumbra_slice_boundaries.frag";
     }
     return "";
 }
@@ -68,6 +75,7 @@ constexpr std::string_view file_name(Artifact artifact) {
 constexpr Stage artifact_stage(Artifact artifact) {
     switch (artifact) {
     case Artifact::slicing_vert:
+    case Artifact::depth_bins_vert:
     case Artifact::shadow_depth_vert:
     case Artifact::fullscreen_vert:
     case Artifact::shading_vert:
@@ -103,6 +111,9 @@ constexpr Text artifact_text(const Config& config, Artifact artifact) {
     case Artifact::erosion_reduce_frag: return erosion_fragment(config, "erosion_reduce");
     case Artifact::erosion_erode_frag: return erosion_fragment(config, "erosion_erode");
     case Artifact::erosion_blur_frag: return erosion_fragment(config, "erosion_blur");
+    case Artifact::depth_bins_vert: return depth_bins_vertex(config);
+    case Artifact::depth_bins_frag: return depth_bins_fragment(config);
+    case Artifact::slice_boundaries_frag: return slice_boundaries_fragment(config);
     }
     return {};
 }
@@ -112,7 +123,7 @@ struct ProgramPlan {
     std::vector<Artifact> stages;
 };
 
-// Programs in the order their passes run: slicing, prefilter, shading (occlusion); depth, shading
+// Programs in the order their passes run: [slice placement,] slicing, prefilter, shading (occlusion); depth, shading
 // (shadow map techniques); shading only (occlusion interval maps: the maps come from a bake).
 constexpr std::vector<ProgramPlan> program_plan(const Config& config) {
     if (config.technique == Technique::oim)
@@ -130,7 +141,12 @@ constexpr std::vector<ProgramPlan> program_plan(const Config& config) {
         return {{"shadow_depth", {Artifact::shadow_depth_vert, Artifact::shadow_depth_frag}},
                 {"shading_example", {Artifact::shading_vert, Artifact::shading_frag}},
                 {"shading_deferred", {Artifact::fullscreen_vert, Artifact::deferred_frag}}};
-    std::vector<ProgramPlan> plan{{"slicing", {Artifact::slicing_vert, Artifact::slicing_frag}}};
+    std::vector<ProgramPlan> plan;
+    if (places_slices_adaptively(config)) { // paper §5: slice boundaries from the scene's depths, before slicing
+        plan.push_back({"depth_bins", {Artifact::depth_bins_vert, Artifact::depth_bins_frag}});
+        plan.push_back({"slice_boundaries", {Artifact::fullscreen_vert, Artifact::slice_boundaries_frag}});
+    }
+    plan.push_back({"slicing", {Artifact::slicing_vert, Artifact::slicing_frag}});
     if (config.packing == Packing::atlas && config.filter != Filter::sat)
         plan.push_back({"pack_atlas", {Artifact::fullscreen_vert, Artifact::pack_atlas_frag}});
     if (config.filter == Filter::nbuffer)

@@ -129,9 +129,20 @@ constexpr void write_tangent_clip_setup(LineWriter& out, const Config& config) {
         out.line("p.xy += n.xy * (2.0 * penumbra_windowHalfSize * ", texels, ");");
 }
 
+// Adaptive placement with the fade: each plane's ramp runs over the slice below it (the one a point
+// crosses while the ramp is active; the last slice's own), so the fade takes that thickness.
+constexpr bool fades_over_own_thickness(const Config& config) {
+    return config.self_shadow_fade && places_slices_adaptively(config);
+}
+
 constexpr void write_weight_function(LineWriter& out, const Config& config) {
     out.chunk("fade");
-    if (config.self_shadow_fade) {
+    if (fades_over_own_thickness(config)) {
+        out.comment("paper §3.4.2: 0 for planes at or below the point, a ramp over the slice below the plane, then 1");
+        out.line("float penumbra_weight(float zPoint, float zeta, float thickness)");
+        out.line("{");
+        out.line("return clamp((zPoint - zeta) / thickness, 0.0, 1.0);");
+    } else if (config.self_shadow_fade) {
         out.comment("paper §3.4.2: 0 for planes at or below the point, a ramp over the nearest plane above, then 1");
         out.line("float penumbra_weight(float zPoint, float zeta)");
         out.line("{");
@@ -144,6 +155,11 @@ constexpr void write_weight_function(LineWriter& out, const Config& config) {
     }
     out.line("}");
     out.blank();
+}
+
+// How the loops call the fade function.
+constexpr Text weight_call(const Config& config) {
+    return choose(fades_over_own_thickness(config), "penumbra_weight(p.z, zeta, thickness)", "penumbra_weight(p.z, zeta)");
 }
 
 // N-buffer level l stores at a texel the mean of the 2^l-texel window anchored there, so a window
@@ -287,14 +303,25 @@ constexpr void write_slice_loop(LineWriter& out, const Config& config) {
     out.line("vec4 penumbra_i = ", one_hot((config.slices - 1) % 4), ";");
     for (int s = config.slices - 1; s >= 0; --s) {
         const int tile = s / 4;
-        out.line("// slice ", format_int(s), ": texture ", format_int(tile), ", channel ", channel_name(s % 4),
-                 ", bottom plane at z0 + ", format_int(s + 1), " * thickness");
-        out.line("{");
-        out.line("float zeta = penumbra_sliceDepths.x + ", format_float(s + 1), " * penumbra_sliceDepths.y;");
+        if (places_slices_adaptively(config)) {
+            out.line("// slice ", format_int(s), ": texture ", format_int(tile), ", channel ", channel_name(s % 4),
+                     ", bottom plane at boundary ", format_int(s + 1));
+            out.line("{");
+            out.line("float zeta = penumbra_boundary(", format_int(s + 1), ");");
+            const int below = s + 2 < config.slices ? s + 2 : config.slices; // the slice below the plane, or the last
+            if (fades_over_own_thickness(config))
+                out.line("float thickness = penumbra_boundary(", format_int(below), ") - penumbra_boundary(",
+                         format_int(below - 1), ");");
+        } else {
+            out.line("// slice ", format_int(s), ": texture ", format_int(tile), ", channel ", channel_name(s % 4),
+                     ", bottom plane at z0 + ", format_int(s + 1), " * thickness");
+            out.line("{");
+            out.line("float zeta = penumbra_sliceDepths.x + ", format_float(s + 1), " * penumbra_sliceDepths.y;");
+        }
         out.line("vec4 kernel = ", kernel_call(config), ";");
         const Text lookup = choose(config.packing == Packing::volume, cat("penumbra_filtered", format_int(tile), "(kernel)"),
                                    cat("penumbra_filtered(kernel, ", format_float(tile), ")"));
-        out.line("float q = penumbra_weight(p.z, zeta) * dot(", lookup, ", penumbra_i);");
+        out.line("float q = ", weight_call(config), " * dot(", lookup, ", penumbra_i);");
         write_accumulate(out, config);
         out.line("}");
         if (s > 0) out.line("penumbra_i = penumbra_i.yzwx;");
@@ -310,8 +337,14 @@ constexpr void write_level_loop(LineWriter& out, const Config& config) {
     const int levels = max_level(config);
     out.chunk("level_loop");
     out.comment("start at the nearest slice above the point; slices below it have weight 0");
-    out.line("float penumbra_k = clamp(ceil((p.z - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 2.0, -1.0, ",
-             k.S_minus_1, ");");
+    if (places_slices_adaptively(config)) {
+        out.comment("(adaptive placement: one less than the number of boundaries above the point)");
+        out.line("float penumbra_k = -1.0;");
+        write_boundary_count(out, "penumbra_k", "p.z", 1, config.slices);
+    } else {
+        out.line("float penumbra_k = clamp(ceil((p.z - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 2.0, -1.0, ",
+                 k.S_minus_1, ");");
+    }
     out.line("vec4 penumbra_i = vec4(equal(vec4(mod(max(penumbra_k, 0.0), 4.0)), vec4(0.0, 1.0, 2.0, 3.0)));");
     out.line("float penumbra_delta = floor(max(penumbra_k, 0.0) / 4.0) * ", k.inv_T,
              "; // horizontal offset of the slice's tile");
@@ -325,7 +358,16 @@ constexpr void write_level_loop(LineWriter& out, const Config& config) {
             out.line("// level ", format_int(level), ": windows of ", format_int(1 << level), " to ",
                      format_int(2 << level), " texels");
         out.line("while (penumbra_k >= 0.0) {");
-        out.line("float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;");
+        if (places_slices_adaptively(config)) {
+            out.line("float zeta = penumbra_boundary(int(penumbra_k) + 1);");
+            if (fades_over_own_thickness(config)) {
+                out.line("int below = min(int(penumbra_k) + 2, ", format_int(config.slices),
+                         "); // the slice below the plane, or the last");
+                out.line("float thickness = penumbra_boundary(below) - penumbra_boundary(below - 1);");
+            }
+        } else {
+            out.line("float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;");
+        }
         out.line("vec4 kernel = ", kernel_call(config), ";");
         auto read = [&](int l) {
             const Text shift = choose(config.filter == Filter::nbuffer, nbuffer_shift(config, l), Text("0.0"));
@@ -339,7 +381,7 @@ constexpr void write_level_loop(LineWriter& out, const Config& config) {
             out.line("vec4 texel = mix(", read(level), ",");
             out.line("    ", read(level + 1), ", kernel.w - ", format_float(level), ");");
         }
-        out.line("float q = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);");
+        out.line("float q = ", weight_call(config), " * dot(texel, penumbra_i);");
         write_accumulate(out, config);
         out.comment("next slice up: the channel rotates; wrapping from r to a moves one tile left");
         out.line("penumbra_k -= 1.0;");
@@ -356,6 +398,7 @@ constexpr bool uses_level_loop(const Config& config) {
 // Declarations and functions of penumbraVisibility, ready to paste into any stage of the target.
 constexpr void write_visibility(LineWriter& out, const Config& config, int& next_binding) {
     write_params(out, config, visibility_params(config), "PenumbraVisibility", next_binding);
+    if (places_slices_adaptively(config)) write_boundary_function(out);
     write_kernel_function(out, config);
     write_weight_function(out, config);
     if (!uses_level_loop(config)) write_lookup_function(out, config);
