@@ -152,17 +152,22 @@ TEST_CASE("adaptive slice placement: boundaries counted in slicing, read per sli
             CHECK(snippet.find("| slice placement adaptive |") != std::string::npos);
             CHECK(snippet.find("penumbra_sliceDepths.x + ") == std::string::npos); // no uniform plane left
             CHECK((snippet.find("penumbra_weight(p.z, zeta, thickness)") != std::string::npos) == fade);
+            // each plane's fade ramps over the slice below it; the last over its own thickness
+            CHECK((snippet.find("float penumbra_below = 2.0 * penumbra_boundary(5) - penumbra_boundary(4);") !=
+                   std::string::npos) == fade);
+            CHECK((snippet.find("float thickness = penumbra_below - zeta; // the slice below the plane") !=
+                   std::string::npos) == fade);
             if (packing == Packing::array) {
                 CHECK(snippet.find("float zeta = penumbra_boundary(5);") != std::string::npos);
-                if (fade) // slice 3's plane fades over slice 4; the last slice's over its own thickness
-                    CHECK(snippet.find("float thickness = penumbra_boundary(5) - penumbra_boundary(4);") !=
-                          std::string::npos);
-            } else {
-                CHECK(snippet.find("penumbra_k += float(p.z > penumbra_boundary(5));") != std::string::npos);
+            } else { // binary search for the first slice above the point: steps 4, 2, 1 over 5 boundaries
+                CHECK(snippet.find("penumbra_above += (penumbra_above + 4 <= 5 && p.z > penumbra_boundary(min("
+                                   "penumbra_above + 4, 5))) ? 4 : 0;") != std::string::npos);
+                CHECK(snippet.find("penumbra_above + 1 <= 5") != std::string::npos);
                 CHECK(snippet.find("float zeta = penumbra_boundary(int(penumbra_k) + 1);") != std::string::npos);
             }
             const std::string slicing = emit_file(config, Artifact::slicing_frag).text;
-            CHECK(slicing.find("k += float(penumbra_depth > penumbra_boundary(4));") != std::string::npos);
+            CHECK(slicing.find("inner += (inner + 2 <= 4 && penumbra_depth > penumbra_boundary(min(inner + 2, 4))) ? 2 : 0;") !=
+                  std::string::npos);
             CHECK(slicing.find("penumbra_boundary(5)") == std::string::npos); // inner boundaries only
             const std::string boundaries = emit_file(config, Artifact::slice_boundaries_frag).text;
             CHECK(boundaries.find("paper §5") != std::string::npos);

@@ -55,8 +55,8 @@ constexpr Text slicing_fragment(const Config& config) {
     out.line("{");
     if (places_slices_adaptively(config)) {
         out.comment("slice k holds the depths in (boundary k, boundary k + 1]: k counts the inner boundaries above");
-        out.line("float k = 0.0;");
-        write_boundary_count(out, "k", "penumbra_depth", 1, config.slices - 1);
+        write_boundary_search(out, "inner", "penumbra_depth", config.slices - 1);
+        out.line("float k = float(inner);");
     } else {
         out.comment("slice k holds the depths in (z0 + k * thickness, z0 + (k + 1) * thickness]");
         out.line("float k = clamp(ceil((penumbra_depth - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 1.0, 0.0, ",

@@ -130,7 +130,9 @@ constexpr void write_tangent_clip_setup(LineWriter& out, const Config& config) {
 }
 
 // Adaptive placement with the fade: each plane's ramp runs over the slice below it (the one a point
-// crosses while the ramp is active; the last slice's own), so the fade takes that thickness.
+// crosses while the ramp is active), so the fade takes that thickness. Both loops visit the planes
+// from the bottom up and keep the plane below in penumbra_below (one fetch per slice); below the
+// last plane lies a virtual one, a last slice's thickness further.
 constexpr bool fades_over_own_thickness(const Config& config) {
     return config.self_shadow_fade && places_slices_adaptively(config);
 }
@@ -155,6 +157,14 @@ constexpr void write_weight_function(LineWriter& out, const Config& config) {
     }
     out.line("}");
     out.blank();
+}
+
+// penumbra_below before the bottom plane: the virtual plane a last slice's thickness below it, so
+// the last plane's ramp runs over the last slice's own thickness.
+constexpr void write_virtual_plane(LineWriter& out, const Config& config) {
+    const Text S = format_int(config.slices), S1 = format_int(config.slices - 1);
+    out.line("float penumbra_below = 2.0 * penumbra_boundary(", S, ") - penumbra_boundary(", S1,
+             "); // below the bottom plane");
 }
 
 // How the loops call the fade function.
@@ -301,6 +311,8 @@ constexpr void write_slice_loop(LineWriter& out, const Config& config) {
     out.chunk("slice_loop");
     out.comment("static loop over the slices, unrolled; i selects the slice's channel");
     out.line("vec4 penumbra_i = ", one_hot((config.slices - 1) % 4), ";");
+    if (fades_over_own_thickness(config))
+        write_virtual_plane(out, config);
     for (int s = config.slices - 1; s >= 0; --s) {
         const int tile = s / 4;
         if (places_slices_adaptively(config)) {
@@ -308,10 +320,10 @@ constexpr void write_slice_loop(LineWriter& out, const Config& config) {
                      ", bottom plane at boundary ", format_int(s + 1));
             out.line("{");
             out.line("float zeta = penumbra_boundary(", format_int(s + 1), ");");
-            const int below = s + 2 < config.slices ? s + 2 : config.slices; // the slice below the plane, or the last
-            if (fades_over_own_thickness(config))
-                out.line("float thickness = penumbra_boundary(", format_int(below), ") - penumbra_boundary(",
-                         format_int(below - 1), ");");
+            if (fades_over_own_thickness(config)) {
+                out.line("float thickness = penumbra_below - zeta; // the slice below the plane");
+                out.line("penumbra_below = zeta;");
+            }
         } else {
             out.line("// slice ", format_int(s), ": texture ", format_int(tile), ", channel ", channel_name(s % 4),
                      ", bottom plane at z0 + ", format_int(s + 1), " * thickness");
@@ -339,8 +351,14 @@ constexpr void write_level_loop(LineWriter& out, const Config& config) {
     out.comment("start at the nearest slice above the point; slices below it have weight 0");
     if (places_slices_adaptively(config)) {
         out.comment("(adaptive placement: one less than the number of boundaries above the point)");
-        out.line("float penumbra_k = -1.0;");
-        write_boundary_count(out, "penumbra_k", "p.z", 1, config.slices);
+        write_boundary_search(out, "penumbra_above", "p.z", config.slices);
+        out.line("float penumbra_k = float(penumbra_above - 1);");
+        if (fades_over_own_thickness(config)) {
+            write_virtual_plane(out, config);
+            out.comment("the plane below the first slice visited, when it is not the last");
+            out.line("if (penumbra_above < ", format_int(config.slices),
+                     ") penumbra_below = penumbra_boundary(penumbra_above + 1);");
+        }
     } else {
         out.line("float penumbra_k = clamp(ceil((p.z - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 2.0, -1.0, ",
                  k.S_minus_1, ");");
@@ -361,9 +379,8 @@ constexpr void write_level_loop(LineWriter& out, const Config& config) {
         if (places_slices_adaptively(config)) {
             out.line("float zeta = penumbra_boundary(int(penumbra_k) + 1);");
             if (fades_over_own_thickness(config)) {
-                out.line("int below = min(int(penumbra_k) + 2, ", format_int(config.slices),
-                         "); // the slice below the plane, or the last");
-                out.line("float thickness = penumbra_boundary(below) - penumbra_boundary(below - 1);");
+                out.line("float thickness = penumbra_below - zeta; // the slice below the plane");
+                out.line("penumbra_below = zeta;");
             }
         } else {
             out.line("float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;");

@@ -130,11 +130,19 @@ constexpr void write_boundary_function(LineWriter& out) {
     out.blank();
 }
 
-// Adds to `k` how many of boundaries first .. last lie above `depth` (nearer the light: depth > boundary),
-// one comparison per line.
-constexpr void write_boundary_count(LineWriter& out, std::string_view k, std::string_view depth, int first, int last) {
-    for (int j = first; j <= last; ++j)
-        out.line(k, " += float(", depth, " > penumbra_boundary(", format_int(j), "));");
+// Declares int `count` = how many of boundaries 1 .. last lie above `depth` (nearer the light: depth >
+// boundary). The boundaries increase, so a binary search finds it: steps of 16, 8, 4, 2, 1 boundaries,
+// each taken when the boundary it reaches is still above the point, one fetch per step.
+constexpr void write_boundary_search(LineWriter& out, std::string_view count, std::string_view depth, int last) {
+    out.line("int ", count, " = 0;");
+    if (last < 1) return;
+    int step = 1;
+    while (step * 2 <= last) step *= 2;
+    out.comment(cat("binary search over the increasing boundaries 1 to ", format_int(last)));
+    for (; step >= 1; step /= 2)
+        out.line(count, " += (", count, " + ", format_int(step), " <= ", format_int(last), " && ", depth,
+                 " > penumbra_boundary(min(", count, " + ", format_int(step), ", ", format_int(last), "))) ? ",
+                 format_int(step), " : 0;");
 }
 
 } // namespace penumbra::detail

@@ -108,12 +108,17 @@ Oracle::Oracle(const Config& config, const SliceFrame& frame, SliceTextures slic
         throw std::invalid_argument("oracle: " + std::to_string(boundaries.size()) + " slice boundaries, the configuration needs " +
                                     std::to_string(S + 1));
     // uniform: slice s holds (z0 + s·Δ, z0 + (s+1)·Δ] and every fade ramps over Δ; adaptive: the
-    // boundaries, each plane's fade over the slice below it (the last slice's own), as the GLSL does
+    // boundaries, each plane's fade over the slice below it, down to a virtual plane a last slice's
+    // thickness below the last one, in fp32 as the GLSL computes them (emit_visibility.hpp)
     const double z0 = frame.slice_depths.x, thickness = frame.slice_depths.y;
     for (int k = 0; k <= S; ++k) planes_.push_back(boundaries.empty() ? z0 + k * thickness : double(boundaries[k]));
     for (int s = 0; s < S; ++s) {
-        const int below = std::min(s + 2, S);
-        fade_thickness_.push_back(boundaries.empty() ? thickness : double(boundaries[below] - boundaries[below - 1]));
+        if (boundaries.empty()) {
+            fade_thickness_.push_back(thickness);
+            continue;
+        }
+        const float below = s + 2 <= S ? boundaries[s + 2] : 2.0f * boundaries[S] - boundaries[S - 1];
+        fade_thickness_.push_back(double(below - boundaries[s + 1]));
     }
     window_half_size_ = frame.window_half_size;
     tan_angular_radius_ = frame.tan_angular_radius;
