@@ -33,14 +33,16 @@ struct SliceSetting {
     int slices = 16, resolution = 512;
 };
 
-// A model variant: fusion rule and tangent clip ("chained+clip").
+// A model variant: fusion rule, tangent clip and slice placement ("chained+clip+adaptive").
 struct Variant {
     penumbra::Fusion fusion = penumbra::Config{}.fusion;
     bool tangent_clip = penumbra::Config{}.tangent_clip;
+    penumbra::SlicePlacement placement = penumbra::Config{}.slice_placement;
 };
 
 std::string variant_name(const Variant& v) {
-    return std::string(penumbra::to_string(v.fusion)) + (v.tangent_clip ? "+clip" : "");
+    return std::string(penumbra::to_string(v.fusion)) + (v.tangent_clip ? "+clip" : "") +
+           (v.placement == penumbra::SlicePlacement::adaptive ? "+adaptive" : "");
 }
 
 struct Options {
@@ -60,8 +62,9 @@ constexpr const char* usage_text =
     "  --size      image size (default 256x256)\n"
     "  --samples   ground-truth rays per light axis (default 16: 256 rays per pixel)\n"
     "  --repeat    render each configuration N times and keep each pass's fastest time (default 3)\n"
-    "  --variants  model variants: a fusion rule, optionally +clip for the tangent clip, e.g.\n"
-    "              probabilistic,chained+clip (default: Config{}'s)\n";
+    "  --variants  model variants: a fusion rule, optionally +clip for the tangent clip and +adaptive for\n"
+    "              adaptive slice placement, e.g. probabilistic,chained+clip,chained+clip+adaptive\n"
+    "              (default: Config{}'s)\n";
 
 std::vector<std::string_view> split(std::string_view text) {
     std::vector<std::string_view> parts;
@@ -128,12 +131,24 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
             o.variants.clear();
             for (std::string_view name : split(value)) {
                 Variant v;
-                v.tangent_clip = name.ends_with("+clip");
-                if (v.tangent_clip) name.remove_suffix(5);
+                v.tangent_clip = false;
+                v.placement = penumbra::SlicePlacement::uniform;
+                for (bool more = true; more;) { // the suffixes, in any order
+                    more = false;
+                    if (name.ends_with("+clip")) {
+                        v.tangent_clip = more = true;
+                        name.remove_suffix(5);
+                    }
+                    if (name.ends_with("+adaptive")) {
+                        v.placement = penumbra::SlicePlacement::adaptive;
+                        more = true;
+                        name.remove_suffix(9);
+                    }
+                }
                 const std::optional<penumbra::Fusion> fusion = penumbra::parse_enum<penumbra::Fusion>(name);
                 if (!fusion) {
                     error = "--variants: '" + std::string(name) + "' is not a fusion rule; allowed: probabilistic, "
-                            "additive, maximum, average, chained, each optionally followed by +clip";
+                            "additive, maximum, average, chained, each optionally followed by +clip and +adaptive";
                     return std::nullopt;
                 }
                 v.fusion = *fusion;
@@ -209,7 +224,8 @@ int main(int argc, char** argv) {
     }
     std::printf("penumbra-bench-quality: %s; image %dx%d; ground truth %dx%d rays per pixel; fastest of %d\n"
                 "light: each scene's default (2x2 rectangle for the built-in scenes); filter column: filter and\n"
-                "variant (fusion, +clip: tangent clip); atlas, leak fix and fade on; penumbra pixels: truth or estimate < 0.98; times: GPU ms per pass\n\n",
+                "variant (fusion, +clip: tangent clip, +adaptive: adaptive slice placement, whose passes count as slicing);\n"
+                "atlas, leak fix and fade on; penumbra pixels: truth or estimate < 0.98; times: GPU ms per pass\n\n",
                 context->renderer().c_str(), options->width, options->height, options->samples, options->samples,
                 options->repeat);
     std::printf("| scene | filter | S/R | MAE | RMSE | p95 | penumbra MAE | penumbra RMSE | penumbra p95 | penumbra px "
@@ -226,7 +242,8 @@ int main(int argc, char** argv) {
             for (penumbra::Filter filter : options->filters)
             for (const Variant& variant : options->variants) {
                 const penumbra::Config config{.slices = setting.slices, .resolution = setting.resolution, .filter = filter,
-                                              .fusion = variant.fusion, .tangent_clip = variant.tangent_clip};
+                                              .fusion = variant.fusion, .tangent_clip = variant.tangent_clip,
+                                              .slice_placement = variant.placement};
                 const std::string label = scene_name + " | " + std::string(penumbra::to_string(filter)) + " " +
                                           variant_name(variant) + " | " + std::to_string(setting.slices) + "/" +
                                           std::to_string(setting.resolution);
@@ -257,7 +274,9 @@ int main(int argc, char** argv) {
                 double slicing = 0, prefilter = 0, shading = 0;
                 std::string line = label + ":";
                 for (const PassTotal& t : totals) {
-                    if (t.name == "slicing") slicing += t.milliseconds;
+                    // adaptive placement's passes count as slicing: they only place its boundaries
+                    if (t.name == "slicing" || t.name.starts_with("depth_bins") || t.name == "slice_boundaries")
+                        slicing += t.milliseconds;
                     else if (t.name == "shading") shading += t.milliseconds;
                     else prefilter += t.milliseconds;
                     char part[96];

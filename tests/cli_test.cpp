@@ -227,6 +227,16 @@ TEST_CASE("--config reads a config object or a whole layout.json; flags override
     CHECK(read_text(overridden / "penumbra_visibility.glsl").find("penumbraVisibility(vec3 worldPos, vec3 worldNormal)") !=
           std::string::npos);
     CHECK(config.at("resolution") == penumbra::Config{}.resolution);
+
+    // --slice-placement and the JSON key slice_placement; a wrong value names the allowed ones
+    const fs::path adaptive = scratch().fresh("adaptive");
+    const fs::path placement = write_text("placement.json", R"({"slice_placement": "adaptive"})");
+    REQUIRE(run_gen(with_out({"--config", placement.string()}, adaptive)).exit_code == 0);
+    CHECK(nlohmann::json::parse(read_text(adaptive / "layout.json")).at("config").at("slice_placement") == "adaptive");
+    CHECK(fs::exists(adaptive / "penumbra_slice_boundaries.frag"));
+    const Run wrong = run_gen(with_out({"--slice-placement", "quantile"}, scratch().fresh("wrong-placement")));
+    CHECK(wrong.exit_code == 2);
+    CHECK(wrong.err.find("--slice-placement: 'quantile' is not allowed; allowed: uniform, adaptive") != std::string::npos);
 }
 
 namespace {
@@ -368,8 +378,8 @@ TEST_CASE("--help documents every flag and every allowed value") {
         CHECK(run.exit_code == 0);
         for (const char* name :
              {"--slices", "--resolution", "--filter", "--fusion", "--packing", "--light", "--target",
-              "--no-leak-fix", "--no-fade", "--tangent-clip", "--no-tangent-clip", "--config", "--validate", "--out",
-              "--help"})
+              "--no-leak-fix", "--no-fade", "--tangent-clip", "--no-tangent-clip", "--slice-placement", "--config",
+              "--validate", "--out", "--help"})
             CHECK_MESSAGE(run.out.find(name) != std::string::npos, name);
         auto check_names = [&]<class Enum>(Enum) {
             for (std::string_view name : penumbra::EnumNames<Enum>::names)
@@ -379,6 +389,7 @@ TEST_CASE("--help documents every flag and every allowed value") {
         check_names(penumbra::Fusion{});
         check_names(penumbra::Packing{});
         check_names(penumbra::Light{});
+        check_names(penumbra::SlicePlacement{});
         check_names(penumbra::Target{});
         CHECK(run.out.find("default 16") != std::string::npos);
         CHECK(run.out.find("default 512") != std::string::npos);

@@ -218,6 +218,15 @@ TEST_CASE("generic: the tangent clip is part of the program text, and reads the 
     CHECK(generic_fragment(whole).find("penumbra_worldNormals") == std::string::npos);
 }
 
+TEST_CASE("generic: adaptive slice placement is refused with a message") {
+    const Result<GenericShading> result =
+        emit_generic(Config{.tangent_clip = false, .slice_placement = SlicePlacement::adaptive});
+    CHECK_FALSE(result.value);
+    REQUIRE(result.errors.size() == 1);
+    CHECK(result.errors[0].field == "slice_placement");
+    CHECK(result.errors[0].message.find("allowed: uniform") != std::string::npos);
+}
+
 TEST_CASE("generic: an invalid configuration gives the validator's messages and no program") {
     const Config config{.slices = 40, .resolution = 100};
     const Result<GenericShading> result = emit_generic(config);

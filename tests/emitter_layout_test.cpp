@@ -249,3 +249,50 @@ TEST_CASE("layout v2: more than 32 slices are sliced as OR-ed bits, then unpacke
     CHECK(channels.passes.front().state.logic_op == "NONE");
     CHECK(channels.passes.front().outputs.size() == 8);
 }
+
+// Adaptive slice placement (paper §5): before slicing, four depth-bin draws (16 bins each, four
+// layers of penumbra_depthBins), its mip chain, then the boundary pass into penumbra_sliceBoundaries,
+// which the slicing pass and both shading passes bind. Uniform placement has none of it.
+TEST_CASE("layout: adaptive slice placement runs the depth bins and the boundary pass before slicing") {
+    for (Target target : all_values<Target>()) {
+        CAPTURE(to_string(target));
+        const Config config{.slices = 5, .resolution = 64, .filter = Filter::nbuffer, .fusion = Fusion::chained,
+                            .packing = Packing::atlas, .tangent_clip = true,
+                            .slice_placement = SlicePlacement::adaptive, .target = target};
+        const Layout layout = describe_layout(config);
+        const TextureDesc* bins = find_texture(layout, "penumbra_depthBins");
+        const TextureDesc* boundaries = find_texture(layout, "penumbra_sliceBoundaries");
+        REQUIRE(bins);
+        REQUIRE(boundaries);
+        CHECK(bins->target == "2D_ARRAY");
+        CHECK(bins->depth == depth_bins / 4);
+        CHECK(bins->mip_levels == depth_bins_read_level + 1);
+        CHECK(boundaries->internal_format == "R32UI");
+        CHECK(boundaries->width == config.slices + 1);
+        CHECK(boundaries->height == 1);
+        std::vector<std::string> order;
+        for (const PassDesc& pass : layout.passes) {
+            if (pass.phase != "shadow" || order.size() >= 7) continue;
+            order.push_back(pass.name);
+            if (pass.name == "depth_bins") {
+                CHECK(pass.outputs.size() == 4);
+                CHECK(pass.int_uniforms.at(0).first == "penumbra_firstBin");
+                CHECK(pass.int_uniforms.at(0).second == (order.size() - 1) * depth_bins_per_draw);
+                CHECK(pass.state.blend_equation == "MAX");
+            }
+        }
+        CHECK(order == std::vector<std::string>{"depth_bins", "depth_bins", "depth_bins", "depth_bins",
+                                                "depth_bins_mipmaps", "slice_boundaries", "slicing"});
+        for (const PassDesc& pass : layout.passes) {
+            if (pass.name != "slicing" && pass.name != "shading" && pass.name != "shading_example") continue;
+            bool reads = false;
+            for (const BindingDesc& in : pass.inputs) reads = reads || in.texture == "penumbra_sliceBoundaries";
+            CHECK_MESSAGE(reads, pass.name, " does not bind penumbra_sliceBoundaries");
+        }
+        CHECK(to_json(layout).find("\"slice_placement\": \"adaptive\"") != std::string::npos);
+    }
+    const Layout uniform = describe_layout(Config{.slices = 5, .resolution = 64, .tangent_clip = false,
+                                                  .slice_placement = SlicePlacement::uniform});
+    CHECK(find_texture(uniform, "penumbra_sliceBoundaries") == nullptr);
+    CHECK(find_texture(uniform, "penumbra_depthBins") == nullptr);
+}

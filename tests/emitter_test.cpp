@@ -144,6 +144,53 @@ TEST_CASE("tangent clip: the normal is an input, each kernel is restricted, the 
     CHECK(plain.find("penumbra_tangentClip") == std::string::npos);
 }
 
+TEST_CASE("adaptive slice placement: boundaries counted in slicing, read per slice in penumbraVisibility") {
+    for (const bool fade : {true, false}) {
+        // the slice loop (array packing) and the level loop (atlas N-buffers)
+        for (const Packing packing : {Packing::array, Packing::atlas}) {
+            const Config config{.slices = 5, .resolution = 64, .filter = Filter::nbuffer, .fusion = Fusion::chained,
+                                .packing = packing, .self_shadow_fade = fade, .tangent_clip = false,
+                                .slice_placement = SlicePlacement::adaptive};
+            CAPTURE(to_string(packing));
+            CAPTURE(fade);
+            const Emission emission = *emit(config).value;
+            const std::string& snippet = emission.snippet.text;
+            CHECK(snippet.find("uniform usampler2D penumbra_sliceBoundaries;") != std::string::npos);
+            CHECK(snippet.find("return uintBitsToFloat(texelFetch(penumbra_sliceBoundaries, ivec2(k, 0), 0).r);") !=
+                  std::string::npos);
+            CHECK(snippet.find("| slice placement adaptive |") != std::string::npos);
+            CHECK(snippet.find("penumbra_sliceDepths.x + ") == std::string::npos); // no uniform plane left
+            CHECK((snippet.find("penumbra_weight(p.z, zeta, thickness)") != std::string::npos) == fade);
+            // each plane's fade ramps over the slice below it; the last over its own thickness
+            CHECK((snippet.find("float penumbra_below = 2.0 * penumbra_boundary(5) - penumbra_boundary(4);") !=
+                   std::string::npos) == fade);
+            CHECK((snippet.find("float thickness = penumbra_below - zeta; // the slice below the plane") !=
+                   std::string::npos) == fade);
+            if (packing == Packing::array) {
+                CHECK(snippet.find("float zeta = penumbra_boundary(5);") != std::string::npos);
+            } else { // binary search for the first slice above the point: steps 4, 2, 1 over 5 boundaries
+                CHECK(snippet.find("penumbra_above += (penumbra_above + 4 <= 5 && p.z > penumbra_boundary(min("
+                                   "penumbra_above + 4, 5))) ? 4 : 0;") != std::string::npos);
+                CHECK(snippet.find("penumbra_above + 1 <= 5") != std::string::npos);
+                CHECK(snippet.find("float zeta = penumbra_boundary(int(penumbra_k) + 1);") != std::string::npos);
+            }
+            const std::string slicing = emit_file(config, Artifact::slicing_frag).text;
+            CHECK(slicing.find("inner += (inner + 2 <= 4 && penumbra_depth > penumbra_boundary(min(inner + 2, 4))) ? 2 : 0;") !=
+                  std::string::npos);
+            CHECK(slicing.find("penumbra_boundary(5)") == std::string::npos); // inner boundaries only
+            const std::string boundaries = emit_file(config, Artifact::slice_boundaries_frag).text;
+            CHECK(boundaries.find("paper §5") != std::string::npos);
+            CHECK(boundaries.find("penumbra_boundary = floatBitsToUint(z);") != std::string::npos);
+        }
+    }
+    // uniform placement keeps the uniform text
+    const std::string uniform =
+        emit_file(Config{.slices = 5, .resolution = 64, .packing = Packing::array, .tangent_clip = false},
+                  Artifact::visibility_snippet).text;
+    CHECK(uniform.find("penumbra_sliceBoundaries") == std::string::npos);
+    CHECK(uniform.find("float zeta = penumbra_sliceDepths.x + 5.0 * penumbra_sliceDepths.y;") != std::string::npos);
+}
+
 TEST_CASE("every emitted file states its configuration and carries chunk markers") {
     const Config config{.slices = 5, .resolution = 64, .filter = Filter::sat, .packing = Packing::array};
     const Emission emission = *emit(config).value;

@@ -142,3 +142,37 @@ TEST_CASE("64 and 128 slices compile and link with glslang where the target has 
                 valid, seconds, largest_snippet, slowest, slowest_name.c_str());
     CHECK(valid >= 48);
 }
+
+// Adaptive slice placement adds two programs (the depth-bin pre-pass, the boundary pass) and changes
+// the slicing fragment and penumbraVisibility (boundaries read from an R32UI texture): every filter ×
+// packing × light × target, with 1 slice (no inner boundary) and the fade on, and with 16 slices,
+// the tangent clip on and the fade off.
+TEST_CASE("adaptive slice placement compiles and links with glslang for every filter, packing, light and target") {
+    int valid = 0;
+    for (Filter filter : all_values<Filter>())
+        for (Packing packing : all_values<Packing>())
+            for (Target target : all_values<Target>())
+                for (Light light : all_values<Light>())
+                    for (bool switches : {false, true}) {
+                        const Config config{.slices = switches ? 16 : 1, .resolution = 256, .filter = filter,
+                                            .fusion = switches ? Fusion::chained : Fusion::probabilistic,
+                                            .packing = packing, .light = light, .self_shadow_fade = !switches,
+                                            .tangent_clip = switches, .slice_placement = SlicePlacement::adaptive,
+                                            .target = target};
+                        Result<Emission> result = emit(config);
+                        if (!result.value) continue;
+                        ++valid;
+                        int placement_programs = 0;
+                        for (const Program& program : result.value->programs) {
+                            placement_programs += program.name == "depth_bins" || program.name == "slice_boundaries";
+                            const std::vector<ShaderDiagnostic> diagnostics = validate_program(program, config.target);
+                            if (has_errors(diagnostics)) {
+                                for (const ShaderDiagnostic& d : diagnostics) MESSAGE(name_of(config) << ": " << format(d));
+                                FAIL(name_of(config) << " adaptive placement: program " << program.name
+                                                     << " does not compile");
+                            }
+                        }
+                        CHECK_MESSAGE(placement_programs == 2, name_of(config));
+                    }
+    CHECK(valid > 60);
+}

@@ -10,7 +10,7 @@ namespace {
 
 constexpr std::string_view flag_list =
     "--slices, --resolution, --filter, --fusion, --packing, --light, --target, --no-leak-fix, --no-fade, "
-    "--tangent-clip, --no-tangent-clip, --config, --validate, --out, --help, --technique, --shadow-resolution, "
+    "--tangent-clip, --no-tangent-clip, --slice-placement, --config, --validate, --out, --help, --technique, --shadow-resolution, "
     "--shadow-bias, --shadow-slope-bias, --pcf-pattern, --pcf-grid, --pcf-taps, --pcf-radius, --pcss-blockers, "
     "--pcss-filter, --pcss-max-texels, --no-rotation";
 
@@ -80,7 +80,8 @@ Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
         }
         const bool takes_value = flag == "--slices" || flag == "--resolution" || flag == "--filter" ||
                                  flag == "--fusion" || flag == "--packing" || flag == "--light" ||
-                                 flag == "--target" || flag == "--config" || flag == "--out" ||
+                                 flag == "--target" || flag == "--slice-placement" || flag == "--config" ||
+                                 flag == "--out" ||
                                  is_technique_flag(flag);
         if (!takes_value) {
             if (arg.starts_with("-"))
@@ -112,6 +113,8 @@ Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
             error = store(parse_name<penumbra::Light>(flag, value), out.flags.light);
         else if (flag == "--target")
             error = store(parse_name<penumbra::Target>(flag, value), out.flags.target);
+        else if (flag == "--slice-placement")
+            error = store(parse_name<penumbra::SlicePlacement>(flag, value), out.flags.slice_placement);
         else if (is_technique_flag(flag))
             error = parse_technique_flag(flag, value, out.flags.technique);
         else if (value.empty())
@@ -137,6 +140,7 @@ penumbra::Config apply(const ConfigFlags& flags, penumbra::Config config) {
     if (flags.no_leak_fix) config.leak_fix = false;
     if (flags.no_fade) config.self_shadow_fade = false;
     if (flags.tangent_clip) config.tangent_clip = *flags.tangent_clip;
+    if (flags.slice_placement) config.slice_placement = *flags.slice_placement;
     return apply(flags.technique, config);
 }
 
@@ -153,7 +157,7 @@ std::string usage() {
     };
     std::string out = "usage: penumbra-gen [--technique T] [--slices N] [--resolution R] [--filter F] [--fusion U] "
                       "[--packing P] [--light L]\n"
-                      "                    [--target T] [--no-leak-fix] [--no-fade] [--[no-]tangent-clip]\n"
+                      "                    [--target T] [--no-leak-fix] [--no-fade] [--[no-]tangent-clip] [--slice-placement P]\n"
                       "                    [technique flags] [--config FILE.json] [--validate] --out DIR\n"
                       "\n"
                       "Writes the GLSL of one Penumbra configuration and its layout.json into DIR.\n"
@@ -175,13 +179,17 @@ std::string usage() {
     out += line("--tangent-clip", std::string("kernels cover only the light above the receiver's tangent plane;\n"
                                               "                      penumbraVisibility takes the normal (default ") +
                                       (d.tangent_clip ? "on" : "off") + "; --no-tangent-clip turns it off)");
+    out += line("--slice-placement P",
+                names("slice boundaries: uniform (equal slices over the bounds) or adaptive (at the\n"
+                      "                      depths the geometry occupies, computed on the GPU; paper §5)",
+                      to_string(d.slice_placement)));
     out += "\ntechnique (occlusion: the flags above; shadowmap, pcf, pcss, erosion, oim: these, plus --light and --target):\n";
     out += technique_usage(25);
     out +=
         line("--config FILE.json",
              "read the configuration from JSON: an object with the keys technique, slices, resolution,\n"
              "                      filter, fusion, packing, light, leak_fix, self_shadow_fade, tangent_clip,\n"
-             "                      target, and the objects shadow_map, pcf, pcss (all optional), or a\n"
+             "                      slice_placement, target, and the objects shadow_map, pcf, pcss (all optional), or a\n"
              "                      layout.json, whose \"config\" object is read; a regular file of at most 1 MiB");
     out += "\noutput:\n";
     out += line("--out DIR", "directory to write into, created with its parents (required); all files or\n"

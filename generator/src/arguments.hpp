@@ -23,6 +23,7 @@ struct ConfigFlags {
     bool no_leak_fix = false;
     bool no_fade = false;
     std::optional<bool> tangent_clip; // --tangent-clip / --no-tangent-clip
+    std::optional<penumbra::SlicePlacement> slice_placement; // --slice-placement
     TechniqueFlags technique; // --technique and each technique's flags (technique_flags.hpp)
 };
 

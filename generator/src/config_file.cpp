@@ -14,7 +14,8 @@ namespace {
 using nlohmann::json;
 
 constexpr std::string_view key_list =
-    "slices, resolution, filter, fusion, packing, light, leak_fix, self_shadow_fade, tangent_clip, target, "
+    "slices, resolution, filter, fusion, packing, light, leak_fix, self_shadow_fade, tangent_clip, slice_placement, "
+    "target, "
     "technique, shadow_map, pcf, pcss, oim, erosion";
 
 std::string type_of(const json& value) {
@@ -288,6 +289,8 @@ Parsed<penumbra::Config> parse_config_json(std::string_view text, std::string_vi
             error = store(read_bool(key, value), config.self_shadow_fade);
         else if (key == "tangent_clip")
             error = store(read_bool(key, value), config.tangent_clip);
+        else if (key == "slice_placement")
+            error = store(read_enum<penumbra::SlicePlacement>(key, value), config.slice_placement);
         else
             error = "unknown key '" + printable(key) + "'; allowed keys: " + std::string(key_list);
         if (!error.empty()) return {{}, where + ": " + error};

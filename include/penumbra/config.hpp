@@ -5,10 +5,11 @@
 //
 // `Config{}` is the default configuration (occlusion textures: 16 slices, 512², N-buffers,
 // chained fusion, the paper's atlas packing, rectangular light, leak fix, fade and tangent clip on,
-// OpenGL 4.5 core). Chained fusion and the tangent clip are where it departs from the paper: on the
-// built-in scenes they cut the penumbra error against a ray-traced, orientation-aware truth by
-// about two thirds at the same cost (docs/model.md); `fusion = probabilistic, tangent_clip = false`
-// is the paper's model, whose penumbraVisibility takes no normal. `technique` picks the shadowing method; each technique reads only its own
+// uniform slice placement, OpenGL 4.5 core). Chained fusion and the tangent clip are where it departs
+// from the paper: on the built-in scenes they cut the penumbra error against a ray-traced,
+// orientation-aware truth by about two thirds at the same cost (docs/model.md); `fusion =
+// probabilistic, tangent_clip = false` is the paper's model, whose penumbraVisibility takes no
+// normal. `technique` picks the shadowing method; each technique reads only its own
 // fields plus `light` and `target` (occlusion textures: slices … self_shadow_fade; shadow map
 // techniques: shadow_map, and pcf or pcss), so the other fields never change its output.
 // Config is a structural literal type, so it can also be a template argument
@@ -45,6 +46,13 @@ enum class Packing : std::uint8_t {
     atlas,  // one texture per filter level, the T occlusion textures side by side (paper §3.6)
     array,  // one 2D array texture, layer = level·T + t
     volume, // one 3D texture per group of four slices, depth = filter levels (paper §3.7)
+};
+
+// Where the slice boundaries lie along the light normal (paper §5, future work: slice placement).
+enum class SlicePlacement : std::uint8_t {
+    uniform,  // S equal slices over the scene bounds' depth range: penumbra_sliceDepths = (z0, thickness)
+    adaptive, // boundaries at quantiles of the depths the geometry occupies, computed on the GPU from a
+              // low-resolution depth-bin pre-pass (penumbra_sliceBoundaries); half the slices stay uniform
 };
 
 enum class Light : std::uint8_t {
@@ -153,6 +161,7 @@ struct Config {
     bool self_shadow_fade = true;           // paper §3.4.2: fade out the slice containing the point
     bool tangent_clip = true;               // kernels cover only the part of the light above the receiver's
                                             // tangent plane (penumbraVisibility then takes the normal)
+    SlicePlacement slice_placement = SlicePlacement::uniform; // slice boundaries: uniform or from the scene's depths
     Target target = Target::glsl450;        // shading language of the output
     ShadowMapParams shadow_map{};           // shadowmap, pcf, pcss: the depth map from the light
     PcfParams pcf{};                        // pcf: the fixed kernel
@@ -181,6 +190,9 @@ template <> struct EnumNames<Fusion> {
 };
 template <> struct EnumNames<Packing> {
     static constexpr std::array<std::string_view, 3> names{"atlas", "array", "volume"};
+};
+template <> struct EnumNames<SlicePlacement> {
+    static constexpr std::array<std::string_view, 2> names{"uniform", "adaptive"};
 };
 template <> struct EnumNames<Light> {
     static constexpr std::array<std::string_view, 2> names{"rect", "sun"};
@@ -223,6 +235,18 @@ constexpr bool clips_to_tangent_plane(const Config& config) {
 // Number of comparison taps of the PCF kernel.
 constexpr int pcf_taps(const PcfParams& pcf) {
     return pcf.pattern == TapPattern::grid ? pcf.grid_size * pcf.grid_size : pcf.poisson_taps;
+}
+
+// Adaptive slice placement (SlicePlacement::adaptive): the pre-pass sorts the geometry seen from the
+// slicing camera into depth bins over the uniform slices' range, at a low resolution, four bins per
+// RGBA8 channel set and 16 per draw (four render targets, what every target guarantees).
+inline constexpr int depth_bins = 64;              // bins over [z0, z0 + S * thickness]
+inline constexpr int depth_bins_resolution = 64;   // side of the pre-pass image (texels)
+inline constexpr int depth_bins_per_draw = 16;     // four RGBA8 targets x four channels
+inline constexpr int depth_bins_read_level = 3;    // mip level the boundary pass reads: 8 x 8 cells, where one
+                                                   // covered texel of level 0 still rounds to a non-zero RGBA8 value
+constexpr bool places_slices_adaptively(const Config& config) {
+    return config.technique == Technique::occlusion && config.slice_placement == SlicePlacement::adaptive;
 }
 
 // Number of RGBA textures that hold the slices: four slices per texture, the last one may be partial.

@@ -92,6 +92,10 @@ inline std::vector<GenericSampler> generic_samplers(const Config& config) {
 inline Result<GenericShading> emit_generic(const Config& config) {
     Result<GenericShading> result;
     result.errors = validate(config);
+    if (config.slice_placement == SlicePlacement::adaptive)
+        result.errors.push_back({"slice_placement", "adaptive",
+                                 "slice_placement: adaptive is not implemented by the generic reference (its slices "
+                                 "are uniform, from penumbra_sliceDepths); allowed: uniform"});
     if (!result.errors.empty()) return result;
     Program program{"shading_generic",
                     {{"penumbra_generic.vert", Stage::vertex, detail::generic_vertex(config).str()},

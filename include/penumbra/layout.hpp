@@ -26,7 +26,7 @@ inline constexpr int layout_version = 2; // "layout_version" in layout.json
 struct TextureDesc {
     std::string name;
     std::string target;          // "2D", "2D_ARRAY", "3D" (GL_TEXTURE_… / VK_IMAGE_TYPE_…)
-    // "RGBA8", "RGBA16F", "RGBA32F", "R8", "R16F", "R32F", "RG16F", "RG32F", "RGBA32UI",
+    // "RGBA8", "RGBA16F", "RGBA32F", "R8", "R16F", "R32F", "RG16F", "RG32F", "RGBA32UI", "R32UI",
     // "DEPTH_COMPONENT24", "DEPTH_COMPONENT32F"
     std::string internal_format;
     int width = 0, height = 0;   // 0 × 0 when size is "output"
@@ -153,7 +153,9 @@ inline std::vector<Param> shading_vertex_params(const Config& config) {
 }
 
 inline std::vector<Param> program_params(const Config& config, std::string_view program) {
-    if (program == "slicing") return slicing_params();
+    if (program == "slicing") return slicing_params(config);
+    if (program == "depth_bins") return depth_bins_params();
+    if (program == "slice_boundaries") return slice_boundaries_params();
     if (program == "pack_atlas") return pack_atlas_params();
     if (program == "unpack_slices") return unpack_params();
     if (program == "nbuffer_level" || program == "gaussian_level") return level_params(config);
@@ -289,6 +291,30 @@ struct LayoutBuilder {
     }
 };
 
+// Adaptive slice placement (emit_slice_placement.hpp), phase "shadow", before slicing: the depth
+// bins in draws of 16 bins (four layers each), their mip chain, then the S + 1 boundaries.
+inline void describe_slice_placement_passes(LayoutBuilder& b, const Config& config, const RenderState& max_blend) {
+    const int D = depth_bins_resolution, layers = depth_bins / 4;
+    TextureDesc& bins = b.texture("penumbra_depthBins", "2D_ARRAY", "RGBA8", D, D, layers, depth_bins_read_level + 1,
+                                  "NEAREST_MIPMAP_NEAREST", "NEAREST",
+                                  "adaptive slice placement: coverage of " + std::to_string(depth_bins) +
+                                      " depth bins seen from the slicing camera, four per layer, mip chain");
+    bins.wrap = "CLAMP_TO_EDGE";
+    TextureDesc& boundaries =
+        b.texture("penumbra_sliceBoundaries", "2D", "R32UI", config.slices + 1, 1, 1, 1, "NEAREST", "NEAREST",
+                  "adaptive slice placement: texel k = bits of the depth of slice k's top (texel S: the last slice's "
+                  "bottom), scene units; read with texelFetch and uintBitsToFloat");
+    boundaries.wrap = "CLAMP_TO_EDGE";
+    for (int first = 0; first < depth_bins; first += depth_bins_per_draw) {
+        std::vector<AttachmentDesc> outputs;
+        for (int t = 0; t < depth_bins_per_draw / 4; ++t) outputs.push_back({"penumbra_depthBins", 0, first / 4 + t});
+        b.pass("depth_bins", "draw_scene", "depth_bins", {}, outputs, {{"penumbra_firstBin", first}}, D, D, max_blend);
+    }
+    b.pass("depth_bins_mipmaps", "generate_mipmap", "", {}, {{"penumbra_depthBins", 0, -1}}, {}, 0, 0);
+    b.fullscreen("slice_boundaries", "slice_boundaries", {{"penumbra_depthBins", "penumbra_depthBins"}},
+                 {"penumbra_sliceBoundaries", 0, -1}, {}, config.slices + 1, 1);
+}
+
 // Occlusion textures, phase "shadow": slicing into the slices' storage (beyond 32 slices: into bits,
 // then unpack draws into that storage), then the prefilter passes.
 inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
@@ -342,6 +368,11 @@ inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
     max_blend.blend_equation = "MAX";
     max_blend.blend_src = max_blend.blend_dst = "ONE";
     max_blend.clear_color = std::array<float, 4>{0.0f, 0.0f, 0.0f, 0.0f};
+    std::vector<BindingDesc> slicing_inputs;
+    if (places_slices_adaptively(config)) {
+        describe_slice_placement_passes(b, config, max_blend);
+        slicing_inputs.push_back({"penumbra_sliceBoundaries", "penumbra_sliceBoundaries"});
+    }
     if (slices_as_bits(config)) {
         // paper §3.7: every slice a bit of one RGBA32UI target, OR-ed, then unpacked into the textures
         // the slicing would otherwise write, one group of colour attachments per draw
@@ -351,7 +382,7 @@ inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
         RenderState or_bits;
         or_bits.logic_op = "OR";
         or_bits.clear_color = max_blend.clear_color;
-        b.pass("slicing", "draw_scene", "slicing", {}, {{"penumbra_sliceBits", 0, -1}}, {}, R, R, or_bits);
+        b.pass("slicing", "draw_scene", "slicing", slicing_inputs, {{"penumbra_sliceBits", 0, -1}}, {}, R, R, or_bits);
         const int group = unpack_group(config);
         for (int d = 0; d < unpack_draws(config); ++d) {
             const auto first = slicing_outputs.begin() + d * group;
@@ -359,7 +390,7 @@ inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
                    {first, first + group}, {{"penumbra_firstSlice", 4 * group * d}}, R, R);
         }
     } else {
-        b.pass("slicing", "draw_scene", "slicing", {}, slicing_outputs, {}, R, R, max_blend);
+        b.pass("slicing", "draw_scene", "slicing", slicing_inputs, slicing_outputs, {}, R, R, max_blend);
     }
 
     // Prefilter passes.
@@ -637,6 +668,7 @@ inline std::string to_json(const Layout& layout) {
     field("    ", "leak_fix", c.leak_fix ? "true" : "false");
     field("    ", "self_shadow_fade", c.self_shadow_fade ? "true" : "false");
     field("    ", "tangent_clip", c.tangent_clip ? "true" : "false");
+    field("    ", "slice_placement", json_string(to_string(c.slice_placement)));
     field("    ", "target", json_string(to_string(c.target)));
     auto real = [](double v) { return detail::format_float(v).str(); };
     auto flag = [](bool v) { return std::string(v ? "true" : "false"); };

@@ -19,6 +19,7 @@ constexpr int bytes_per_texel(std::string_view format) {
     constexpr Entry table[] = {{"R8", 1},       {"R16F", 2},     {"R32F", 4},
                                {"RG16F", 4},    {"RG32F", 8},    {"RGBA8", 4},
                                {"RGBA16F", 8},  {"RGBA32F", 16}, {"RGBA32UI", 16},
+                               {"R32UI", 4},
                                {"DEPTH_COMPONENT16", 2}, {"DEPTH_COMPONENT24", 4}, {"DEPTH_COMPONENT32F", 4}};
     for (const Entry& e : table)
         if (e.name == format) return e.bytes;

@@ -182,6 +182,7 @@ constexpr std::vector<Problem> find_problems(const Config& config) {
     enum_problem("packing", config.packing);
     enum_problem("light", config.light);
     enum_problem("target", config.target);
+    enum_problem("slice_placement", config.slice_placement);
     if (!problems.empty()) return problems; // the rules below need valid fields
 
     const std::string_view filter = to_string(config.filter);

@@ -77,6 +77,12 @@ def main():
                  "--resolution", "32"])
                for filt, packing, target, slices in itertools.product(
                    ["mipmap", "nbuffer", "sat"], ["atlas", "array"], ["glsl330", "glsl450", "vulkan"], [64, 128])]
+    # Adaptive slice placement (paper §5): the depth-bin and boundary passes and their textures.
+    matrix += [(f"occlusion-adaptive-{packing}-{light}-{target}",
+                ["--slice-placement", "adaptive", "--packing", packing, "--light", light, "--target", target,
+                 "--slices", "5", "--resolution", "64"])
+               for packing, light, target in itertools.product(
+                   ["atlas", "array"], ["rect", "sun"], ["glsl330", "glsl450", "essl300", "vulkan"])]
 
     def generate(entry):
         """(name, layout or None when penumbra-gen refuses the combination, failure text)"""

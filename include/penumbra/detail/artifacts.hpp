@@ -4,6 +4,7 @@
 #include "../program.hpp"
 #include "emit_prefilter.hpp"
 #include "emit_shading.hpp"
+#include "emit_slice_placement.hpp"
 #include "emit_slicing.hpp"
 #include "emit_unpack.hpp"
 #include "oim/emit_oim.hpp"
@@ -37,6 +38,9 @@ enum class Artifact : std::uint8_t {
     erosion_erode_frag,
     erosion_blur_frag,
     unpack_slices_frag, // more than 32 slices: the sliced bits into RGBA occlusion textures (emit_unpack.hpp)
+    depth_bins_vert,       // adaptive slice placement: the depth-bin pre-pass (emit_slice_placement.hpp)
+    depth_bins_frag,
+    slice_boundaries_frag, // adaptive slice placement: boundaries from the depth bins
 };
 
 constexpr std::string_view file_name(Artifact artifact) {
@@ -64,6 +68,9 @@ constexpr std::string_view file_name(Artifact artifact) {
     case Artifact::erosion_erode_frag: return "penumbra_erosion_erode.frag";
     case Artifact::erosion_blur_frag: return "penumbra_erosion_blur.frag";
     case Artifact::unpack_slices_frag: return "penumbra_unpack_slices.frag";
+    case Artifact::depth_bins_vert: return "penumbra_depth_bins.vert";
+    case Artifact::depth_bins_frag: return "penumbra_depth_bins.frag";
+    case Artifact::slice_boundaries_frag: return "penumbra_slice_boundaries.frag";
     }
     return "";
 }
@@ -71,6 +78,7 @@ constexpr std::string_view file_name(Artifact artifact) {
 constexpr Stage artifact_stage(Artifact artifact) {
     switch (artifact) {
     case Artifact::slicing_vert:
+    case Artifact::depth_bins_vert:
     case Artifact::shadow_depth_vert:
     case Artifact::fullscreen_vert:
     case Artifact::shading_vert:
@@ -107,6 +115,9 @@ constexpr Text artifact_text(const Config& config, Artifact artifact) {
     case Artifact::erosion_erode_frag: return erosion_fragment(config, "erosion_erode");
     case Artifact::erosion_blur_frag: return erosion_fragment(config, "erosion_blur");
     case Artifact::unpack_slices_frag: return unpack_fragment(config);
+    case Artifact::depth_bins_vert: return depth_bins_vertex(config);
+    case Artifact::depth_bins_frag: return depth_bins_fragment(config);
+    case Artifact::slice_boundaries_frag: return slice_boundaries_fragment(config);
     }
     return {};
 }
@@ -116,7 +127,7 @@ struct ProgramPlan {
     std::vector<Artifact> stages;
 };
 
-// Programs in the order their passes run: slicing, prefilter, shading (occlusion); depth, shading
+// Programs in the order their passes run: [slice placement,] slicing, prefilter, shading (occlusion); depth, shading
 // (shadow map techniques); shading only (occlusion interval maps: the maps come from a bake).
 constexpr std::vector<ProgramPlan> program_plan(const Config& config) {
     if (config.technique == Technique::oim)
@@ -134,7 +145,12 @@ constexpr std::vector<ProgramPlan> program_plan(const Config& config) {
         return {{"shadow_depth", {Artifact::shadow_depth_vert, Artifact::shadow_depth_frag}},
                 {"shading_example", {Artifact::shading_vert, Artifact::shading_frag}},
                 {"shading_deferred", {Artifact::fullscreen_vert, Artifact::deferred_frag}}};
-    std::vector<ProgramPlan> plan{{"slicing", {Artifact::slicing_vert, Artifact::slicing_frag}}};
+    std::vector<ProgramPlan> plan;
+    if (places_slices_adaptively(config)) { // paper §5: slice boundaries from the scene's depths, before slicing
+        plan.push_back({"depth_bins", {Artifact::depth_bins_vert, Artifact::depth_bins_frag}});
+        plan.push_back({"slice_boundaries", {Artifact::fullscreen_vert, Artifact::slice_boundaries_frag}});
+    }
+    plan.push_back({"slicing", {Artifact::slicing_vert, Artifact::slicing_frag}});
     if (slices_as_bits(config))
         plan.push_back({"unpack_slices", {Artifact::fullscreen_vert, Artifact::unpack_slices_frag}});
     if (config.packing == Packing::atlas && config.filter != Filter::sat)

@@ -9,15 +9,19 @@
 
 namespace penumbra::detail {
 
-constexpr Text slicing_vertex(const Config& config) {
+// The scene seen from the slicing camera, with its depth along the light normal: the vertex stage of
+// the slicing pass and of the depth-bin pre-pass (emit_slice_placement.hpp), each declaring its
+// program's parameters so the stages agree on the uniform block.
+constexpr Text slicing_camera_vertex(const Config& config, std::string_view title, const std::vector<Param>& params,
+                                     std::string_view block) {
     LineWriter out;
-    write_preamble(out, config, "slicing pass, vertex stage");
+    write_preamble(out, config, title);
     out.chunk("slicing_inputs");
     out.line("layout(location = 0) in vec3 penumbra_position; // world space (scene units)");
     out.line(varying(config, "out", 0, "float", "penumbra_depth"), " // depth along the light normal (scene units)");
     out.blank();
     int binding = 0;
-    write_params(out, config, slicing_params(), "PenumbraSlicing", binding);
+    write_params(out, config, params, block, binding);
     out.chunk("slicing_vertex_main");
     out.block(R"(
 void main()
@@ -28,6 +32,10 @@ void main()
 }
 )");
     return out.take();
+}
+
+constexpr Text slicing_vertex(const Config& config) {
+    return slicing_camera_vertex(config, "slicing pass, vertex stage", slicing_params(), "PenumbraSlicing");
 }
 
 constexpr Text slicing_fragment(const Config& config) {
@@ -53,7 +61,7 @@ constexpr Text slicing_fragment(const Config& config) {
     }
     out.blank();
     int binding = 0;
-    write_params(out, config, slicing_params(), "PenumbraSlicing", binding);
+    write_params(out, config, slicing_params(config), "PenumbraSlicing", binding);
     if (bits) {
         out.chunk("slice_bit");
         out.comment("the uvec4 with only the bit of slice `slice` set");
@@ -64,12 +72,19 @@ constexpr Text slicing_fragment(const Config& config) {
         out.line("}");
         out.blank();
     }
+    if (places_slices_adaptively(config)) write_boundary_function(out);
     out.chunk("slicing_fragment_main");
     out.line("void main()");
     out.line("{");
-    out.comment("slice k holds the depths in (z0 + k * thickness, z0 + (k + 1) * thickness]");
-    out.line("float k = clamp(ceil((penumbra_depth - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 1.0, 0.0, ",
-             format_float(config.slices - 1), ");");
+    if (places_slices_adaptively(config)) {
+        out.comment("slice k holds the depths in (boundary k, boundary k + 1]: k counts the inner boundaries above");
+        write_boundary_search(out, "inner", "penumbra_depth", config.slices - 1);
+        out.line("float k = float(inner);");
+    } else {
+        out.comment("slice k holds the depths in (z0 + k * thickness, z0 + (k + 1) * thickness]");
+        out.line("float k = clamp(ceil((penumbra_depth - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 1.0, 0.0, ",
+                 format_float(config.slices - 1), ");");
+    }
     if (config.leak_fix) {
         out.comment("paper §3.4.1 leak fix: also mark the next slice away from the light");
         out.line("float next = min(k + 1.0, ", format_float(config.slices - 1), ");");

@@ -135,9 +135,22 @@ constexpr void write_tangent_clip_setup(LineWriter& out, const Config& config) {
     write_tangent_clip_setup(out, config, format_float(tangent_clip_offset_texels / config.resolution).view());
 }
 
+// Adaptive placement with the fade: each plane's ramp runs over the slice below it (the one a point
+// crosses while the ramp is active), so the fade takes that thickness. Both loops visit the planes
+// from the bottom up and keep the plane below in penumbra_below (one fetch per slice); below the
+// last plane lies a virtual one, a last slice's thickness further.
+constexpr bool fades_over_own_thickness(const Config& config) {
+    return config.self_shadow_fade && places_slices_adaptively(config);
+}
+
 constexpr void write_weight_function(LineWriter& out, const Config& config) {
     out.chunk("fade");
-    if (config.self_shadow_fade) {
+    if (fades_over_own_thickness(config)) {
+        out.comment("paper §3.4.2: 0 for planes at or below the point, a ramp over the slice below the plane, then 1");
+        out.line("float penumbra_weight(float zPoint, float zeta, float thickness)");
+        out.line("{");
+        out.line("return clamp((zPoint - zeta) / thickness, 0.0, 1.0);");
+    } else if (config.self_shadow_fade) {
         out.comment("paper §3.4.2: 0 for planes at or below the point, a ramp over the nearest plane above, then 1");
         out.line("float penumbra_weight(float zPoint, float zeta)");
         out.line("{");
@@ -150,6 +163,19 @@ constexpr void write_weight_function(LineWriter& out, const Config& config) {
     }
     out.line("}");
     out.blank();
+}
+
+// penumbra_below before the bottom plane: the virtual plane a last slice's thickness below it, so
+// the last plane's ramp runs over the last slice's own thickness.
+constexpr void write_virtual_plane(LineWriter& out, const Config& config) {
+    const Text S = format_int(config.slices), S1 = format_int(config.slices - 1);
+    out.line("float penumbra_below = 2.0 * penumbra_boundary(", S, ") - penumbra_boundary(", S1,
+             "); // below the bottom plane");
+}
+
+// How the loops call the fade function.
+constexpr Text weight_call(const Config& config) {
+    return choose(fades_over_own_thickness(config), "penumbra_weight(p.z, zeta, thickness)", "penumbra_weight(p.z, zeta)");
 }
 
 // N-buffer level l stores at a texel the mean of the 2^l-texel window anchored there, so a window
@@ -291,16 +317,29 @@ constexpr void write_slice_loop(LineWriter& out, const Config& config) {
     out.chunk("slice_loop");
     out.comment("static loop over the slices, unrolled; i selects the slice's channel");
     out.line("vec4 penumbra_i = ", one_hot((config.slices - 1) % 4), ";");
+    if (fades_over_own_thickness(config))
+        write_virtual_plane(out, config);
     for (int s = config.slices - 1; s >= 0; --s) {
         const int tile = s / 4;
-        out.line("// slice ", format_int(s), ": texture ", format_int(tile), ", channel ", channel_name(s % 4),
-                 ", bottom plane at z0 + ", format_int(s + 1), " * thickness");
-        out.line("{");
-        out.line("float zeta = penumbra_sliceDepths.x + ", format_float(s + 1), " * penumbra_sliceDepths.y;");
+        if (places_slices_adaptively(config)) {
+            out.line("// slice ", format_int(s), ": texture ", format_int(tile), ", channel ", channel_name(s % 4),
+                     ", bottom plane at boundary ", format_int(s + 1));
+            out.line("{");
+            out.line("float zeta = penumbra_boundary(", format_int(s + 1), ");");
+            if (fades_over_own_thickness(config)) {
+                out.line("float thickness = penumbra_below - zeta; // the slice below the plane");
+                out.line("penumbra_below = zeta;");
+            }
+        } else {
+            out.line("// slice ", format_int(s), ": texture ", format_int(tile), ", channel ", channel_name(s % 4),
+                     ", bottom plane at z0 + ", format_int(s + 1), " * thickness");
+            out.line("{");
+            out.line("float zeta = penumbra_sliceDepths.x + ", format_float(s + 1), " * penumbra_sliceDepths.y;");
+        }
         out.line("vec4 kernel = ", kernel_call(config), ";");
         const Text lookup = choose(config.packing == Packing::volume, cat("penumbra_filtered", format_int(tile), "(kernel)"),
                                    cat("penumbra_filtered(kernel, ", format_float(tile), ")"));
-        out.line("float q = penumbra_weight(p.z, zeta) * dot(", lookup, ", penumbra_i);");
+        out.line("float q = ", weight_call(config), " * dot(", lookup, ", penumbra_i);");
         write_accumulate(out, config);
         out.line("}");
         if (s > 0) out.line("penumbra_i = penumbra_i.yzwx;");
@@ -316,8 +355,20 @@ constexpr void write_level_loop(LineWriter& out, const Config& config) {
     const int levels = max_level(config);
     out.chunk("level_loop");
     out.comment("start at the nearest slice above the point; slices below it have weight 0");
-    out.line("float penumbra_k = clamp(ceil((p.z - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 2.0, -1.0, ",
-             k.S_minus_1, ");");
+    if (places_slices_adaptively(config)) {
+        out.comment("(adaptive placement: one less than the number of boundaries above the point)");
+        write_boundary_search(out, "penumbra_above", "p.z", config.slices);
+        out.line("float penumbra_k = float(penumbra_above - 1);");
+        if (fades_over_own_thickness(config)) {
+            write_virtual_plane(out, config);
+            out.comment("the plane below the first slice visited, when it is not the last");
+            out.line("if (penumbra_above < ", format_int(config.slices),
+                     ") penumbra_below = penumbra_boundary(penumbra_above + 1);");
+        }
+    } else {
+        out.line("float penumbra_k = clamp(ceil((p.z - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 2.0, -1.0, ",
+                 k.S_minus_1, ");");
+    }
     out.line("vec4 penumbra_i = vec4(equal(vec4(mod(max(penumbra_k, 0.0), 4.0)), vec4(0.0, 1.0, 2.0, 3.0)));");
     out.line("float penumbra_delta = floor(max(penumbra_k, 0.0) / 4.0) * ", k.inv_T,
              "; // horizontal offset of the slice's tile");
@@ -331,7 +382,15 @@ constexpr void write_level_loop(LineWriter& out, const Config& config) {
             out.line("// level ", format_int(level), ": windows of ", format_int(1 << level), " to ",
                      format_int(2 << level), " texels");
         out.line("while (penumbra_k >= 0.0) {");
-        out.line("float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;");
+        if (places_slices_adaptively(config)) {
+            out.line("float zeta = penumbra_boundary(int(penumbra_k) + 1);");
+            if (fades_over_own_thickness(config)) {
+                out.line("float thickness = penumbra_below - zeta; // the slice below the plane");
+                out.line("penumbra_below = zeta;");
+            }
+        } else {
+            out.line("float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;");
+        }
         out.line("vec4 kernel = ", kernel_call(config), ";");
         auto read = [&](int l) {
             const Text shift = choose(config.filter == Filter::nbuffer, nbuffer_shift(config, l), Text("0.0"));
@@ -345,7 +404,7 @@ constexpr void write_level_loop(LineWriter& out, const Config& config) {
             out.line("vec4 texel = mix(", read(level), ",");
             out.line("    ", read(level + 1), ", kernel.w - ", format_float(level), ");");
         }
-        out.line("float q = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);");
+        out.line("float q = ", weight_call(config), " * dot(texel, penumbra_i);");
         write_accumulate(out, config);
         out.comment("next slice up: the channel rotates; wrapping from r to a moves one tile left");
         out.line("penumbra_k -= 1.0;");
@@ -362,6 +421,7 @@ constexpr bool uses_level_loop(const Config& config) {
 // Declarations and functions of penumbraVisibility, ready to paste into any stage of the target.
 constexpr void write_visibility(LineWriter& out, const Config& config, int& next_binding) {
     write_params(out, config, visibility_params(config), "PenumbraVisibility", next_binding);
+    if (places_slices_adaptively(config)) write_boundary_function(out);
     write_kernel_function(out, config);
     write_weight_function(out, config);
     if (!uses_level_loop(config)) write_lookup_function(out, config);

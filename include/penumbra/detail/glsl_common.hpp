@@ -75,7 +75,8 @@ constexpr Text describe(const Config& config) {
                format_int(config.resolution), " | filter ", to_string(config.filter), " | fusion ",
                to_string(config.fusion), " | packing ", to_string(config.packing), " | light ",
                to_string(config.light), " | leak fix ", on_off(config.leak_fix), " | fade ",
-               on_off(config.self_shadow_fade), choose(clips_to_tangent_plane(config), " | tangent clip on", ""), " | target ",
+               on_off(config.self_shadow_fade), choose(clips_to_tangent_plane(config), " | tangent clip on", ""),
+               choose(places_slices_adaptively(config), " | slice placement adaptive", ""), " | target ",
                to_string(config.target));
 }
 
@@ -99,6 +100,7 @@ constexpr void write_precision(LineWriter& out, const Config& config) {
     out.line("precision highp sampler2DArray;");
     out.line("precision highp sampler3D;");
     if (uses_shadow_map(config)) out.line("precision highp sampler2DShadow;");
+    if (places_slices_adaptively(config)) out.line("precision highp usampler2D;"); // penumbra_sliceBoundaries
 }
 
 // First lines of every stage: the version directive must come first, then what this file is

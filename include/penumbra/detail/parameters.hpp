@@ -48,6 +48,14 @@ constexpr std::vector<Param> storage_samplers(const Config& config) {
     return samplers;
 }
 
+// Adaptive slice placement: the S + 1 slice boundaries the slice_boundaries pass computed.
+constexpr Param slice_boundaries_sampler() {
+    return {"penumbra_sliceBoundaries", "usampler2D",
+            "adaptive slice placement: texel k (of S + 1, one row) = bits of the depth of slice k's top; texel S: the "
+            "last slice's bottom (uintBitsToFloat)",
+            "scene units", "penumbra_sliceBoundaries"};
+}
+
 // Parameters of penumbraVisibility(): the light frame and the slices, then the storage.
 constexpr std::vector<Param> visibility_params(const Config& config) {
     std::vector<Param> params;
@@ -68,10 +76,12 @@ constexpr std::vector<Param> visibility_params(const Config& config) {
     }
     params.push_back({"penumbra_sliceDepths", "vec2", "x: depth z0 of the first slice's top, y: slice thickness",
                       "scene units"});
+    if (places_slices_adaptively(config)) params.push_back(slice_boundaries_sampler());
     for (Param& sampler : storage_samplers(config)) params.push_back(std::move(sampler));
     return params;
 }
 
+// The slicing pass's vertex stage (and the depth-bin pre-pass's): the slicing camera.
 constexpr std::vector<Param> slicing_params() {
     return {
         {"penumbra_sliceClipFromWorld", "mat4",
@@ -81,6 +91,58 @@ constexpr std::vector<Param> slicing_params() {
          "scene units"},
         {"penumbra_sliceDepths", "vec2", "x: depth z0 of the first slice's top, y: slice thickness", "scene units"},
     };
+}
+
+// The slicing pass's fragment stage: the camera's parameters and, with adaptive placement, the boundaries.
+constexpr std::vector<Param> slicing_params(const Config& config) {
+    std::vector<Param> params = slicing_params();
+    if (places_slices_adaptively(config)) params.push_back(slice_boundaries_sampler());
+    return params;
+}
+
+// The depth-bin pre-pass of adaptive slice placement: the slicing camera and the first bin of the draw.
+constexpr std::vector<Param> depth_bins_params() {
+    std::vector<Param> params = slicing_params();
+    params.push_back({"penumbra_firstBin", "int", "depth bin written to channel r of the first render target", "",
+                      {}, "pass"});
+    return params;
+}
+
+// The pass that turns the depth bins into slice boundaries.
+constexpr std::vector<Param> slice_boundaries_params() {
+    return {
+        {"penumbra_sliceDepths", "vec2", "x: depth z0 of the uniform slices' top, y: uniform slice thickness",
+         "scene units"},
+        {"penumbra_depthBins", "sampler2DArray", "depth-bin coverage, four bins per layer, mip chain", "",
+         "penumbra_depthBins"},
+    };
+}
+
+// Adaptive slice placement: boundary k of the S + 1 the slice_boundaries pass wrote (k = 0: the first
+// slice's top, k = S: the last slice's bottom).
+constexpr void write_boundary_function(LineWriter& out) {
+    out.chunk("slice_boundaries");
+    out.comment("adaptive slice placement (paper §5): depth of boundary k, stored as the float's bits");
+    out.line("float penumbra_boundary(int k)");
+    out.line("{");
+    out.line("return uintBitsToFloat(texelFetch(penumbra_sliceBoundaries, ivec2(k, 0), 0).r);");
+    out.line("}");
+    out.blank();
+}
+
+// Declares int `count` = how many of boundaries 1 .. last lie above `depth` (nearer the light: depth >
+// boundary). The boundaries increase, so a binary search finds it: steps of 16, 8, 4, 2, 1 boundaries,
+// each taken when the boundary it reaches is still above the point, one fetch per step.
+constexpr void write_boundary_search(LineWriter& out, std::string_view count, std::string_view depth, int last) {
+    out.line("int ", count, " = 0;");
+    if (last < 1) return;
+    int step = 1;
+    while (step * 2 <= last) step *= 2;
+    out.comment(cat("binary search over the increasing boundaries 1 to ", format_int(last)));
+    for (; step >= 1; step /= 2)
+        out.line(count, " += (", count, " + ", format_int(step), " <= ", format_int(last), " && ", depth,
+                 " > penumbra_boundary(min(", count, " + ", format_int(step), ", ", format_int(last), "))) ? ",
+                 format_int(step), " : 0;");
 }
 
 } // namespace penumbra::detail

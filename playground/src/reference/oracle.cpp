@@ -25,6 +25,8 @@
 #include <penumbra/layout.hpp>
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <stdexcept>
 
@@ -85,7 +87,23 @@ bool read_slice_textures(const penumbra::gl::Runtime& runtime, SliceTextures& ou
     return false;
 }
 
-Oracle::Oracle(const Config& config, const SliceFrame& frame, SliceTextures slices) : config_(config) {
+bool read_slice_boundaries(const penumbra::gl::Runtime& runtime, std::vector<float>& out, std::string* error) {
+    out.clear();
+    const Config& config = runtime.config();
+    if (!places_slices_adaptively(config)) return true;
+    std::vector<std::uint32_t> bits(static_cast<std::size_t>(config.slices) + 1);
+    glGetTextureImage(runtime.texture("penumbra_sliceBoundaries"), 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                      static_cast<GLsizei>(bits.size() * sizeof(std::uint32_t)), bits.data());
+    if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
+        if (error) *error = "GL error " + std::to_string(e) + " reading penumbra_sliceBoundaries";
+        return false;
+    }
+    for (std::uint32_t b : bits) out.push_back(std::bit_cast<float>(b));
+    return true;
+}
+
+Oracle::Oracle(const Config& config, const SliceFrame& frame, SliceTextures slices, std::vector<float> boundaries)
+    : config_(config) {
     const std::size_t R = static_cast<std::size_t>(config.resolution);
     if (slices.resolution != config.resolution || slices.slices != config.slices ||
         slices.coverage.size() != R * R * static_cast<std::size_t>(config.slices))
@@ -95,7 +113,23 @@ Oracle::Oracle(const Config& config, const SliceFrame& frame, SliceTextures slic
     light_from_world_ = glm::dmat4(frame.light_from_world);
     cop_distance_ = frame.cop_distance;
     light_size_ = glm::dvec2(frame.light_size);
-    slice_depths_ = glm::dvec2(frame.slice_depths);
+    const int S = config.slices;
+    if (!boundaries.empty() && boundaries.size() != static_cast<std::size_t>(S) + 1)
+        throw std::invalid_argument("oracle: " + std::to_string(boundaries.size()) + " slice boundaries, the configuration needs " +
+                                    std::to_string(S + 1));
+    // uniform: slice s holds (z0 + s·Δ, z0 + (s+1)·Δ] and every fade ramps over Δ; adaptive: the
+    // boundaries, each plane's fade over the slice below it, down to a virtual plane a last slice's
+    // thickness below the last one, in fp32 as the GLSL computes them (emit_visibility.hpp)
+    const double z0 = frame.slice_depths.x, thickness = frame.slice_depths.y;
+    for (int k = 0; k <= S; ++k) planes_.push_back(boundaries.empty() ? z0 + k * thickness : double(boundaries[k]));
+    for (int s = 0; s < S; ++s) {
+        if (boundaries.empty()) {
+            fade_thickness_.push_back(thickness);
+            continue;
+        }
+        const float below = s + 2 <= S ? boundaries[s + 2] : 2.0f * boundaries[S] - boundaries[S - 1];
+        fade_thickness_.push_back(double(below - boundaries[s + 1]));
+    }
     window_half_size_ = frame.window_half_size;
     tan_angular_radius_ = frame.tan_angular_radius;
     levels_top_ = max_level(config);
@@ -273,8 +307,9 @@ Oracle::Sample Oracle::filtered(int slice, glm::dvec2 centre, double side) const
 
 // paper §3.4.2 fade: 0 at or below the point, a ramp over the nearest plane above, then 1
 // (without the fade: 1 above the point, else 0).
-double Oracle::fade_weight(double z, double zeta) const {
-    return config_.self_shadow_fade ? std::clamp((z - zeta) / slice_depths_.y, 0.0, 1.0) : (zeta < z ? 1.0 : 0.0);
+double Oracle::fade_weight(double z, int slice) const {
+    const double plane = zeta(slice);
+    return config_.self_shadow_fade ? std::clamp((z - plane) / fade_thickness_[slice], 0.0, 1.0) : (plane < z ? 1.0 : 0.0);
 }
 
 Oracle::Kernel Oracle::kernel(glm::dvec3 p, double zeta) const {
@@ -293,10 +328,9 @@ std::vector<double> Oracle::occlusions(glm::vec3 world) const {
     p.z = std::max(p.z, 1e-6);
     std::vector<double> q(config_.slices, 0.0);
     for (int s = 0; s < config_.slices; ++s) {
-        const double zeta = slice_depths_.x + (s + 1) * slice_depths_.y;
-        const double weight = fade_weight(p.z, zeta);
+        const double weight = fade_weight(p.z, s);
         if (weight == 0.0) continue;
-        const Kernel k = kernel(p, zeta);
+        const Kernel k = kernel(p, zeta(s));
         q[s] = weight * filtered(s, k.centre, k.side).value;
     }
     return q;
@@ -305,7 +339,6 @@ std::vector<double> Oracle::occlusions(glm::vec3 world) const {
 OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion) const {
     glm::dvec3 p = glm::dvec3(light_from_world_ * glm::dvec4(glm::dvec3(world), 1.0));
     p.z = std::max(p.z, 1e-6); // points on or behind the light plane
-    const double z0 = slice_depths_.x, thickness = slice_depths_.y;
     double lit = 1.0, sum = 0.0, maximum = 0.0, bound = 0.0, chain = 1.0, previous = 0.0;
     // Tangent clip (emit_visibility.hpp): the part of the light above the tangent plane, in the
     // light's unit square, cut along the axis the plane crosses most steeply; then the point
@@ -336,12 +369,11 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
         else p += glm::dvec3(glm::dvec2(n) * (2.0 * window_half_size_ * texels), 0.0);
     }
     for (int s = config_.slices - 1; s >= 0; --s) {
-        const double zeta = z0 + (s + 1) * thickness; // the slice's bottom plane
-        const double weight = fade_weight(p.z, zeta);
+        const double weight = fade_weight(p.z, s);
         // without the fade, a point within fp32 rounding of a plane may fall on either side
-        const bool ambiguous = !config_.self_shadow_fade && std::abs(p.z - zeta) <= 1e-5 * std::max(1.0, p.z);
+        const bool ambiguous = !config_.self_shadow_fade && std::abs(p.z - zeta(s)) <= 1e-5 * std::max(1.0, p.z);
         if (weight == 0.0 && !ambiguous) continue;
-        auto [centre, side] = kernel(p, zeta);
+        auto [centre, side] = kernel(p, zeta(s));
         centre += glm::dvec2(clip) * side; // tangent clip (identity when off)
         side *= clip.z;
         const Sample o = filtered(s, centre, side);

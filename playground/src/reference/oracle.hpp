@@ -51,6 +51,11 @@ struct SliceTextures {
 // pass or a read fails.
 bool read_slice_textures(const penumbra::gl::Runtime& runtime, SliceTextures& out, std::string* error);
 
+// Adaptive slice placement: reads the S + 1 slice boundaries (penumbra_sliceBoundaries, scene units)
+// the GPU computed; leaves `out` empty when the layout places slices uniformly. Returns false with
+// *error set when a read fails.
+bool read_slice_boundaries(const penumbra::gl::Runtime& runtime, std::vector<float>& out, std::string* error);
+
 struct OracleValue {
     double visibility = 1.0;
     double bound = 0.0; // |GPU − oracle| that texture precision explains at this point
@@ -60,7 +65,9 @@ class Oracle {
 public:
     // Builds the filter of `config` from `slices`. Precondition: the slices match the config's
     // slice count and resolution (the constructor checks and throws std::invalid_argument).
-    Oracle(const Config& config, const SliceFrame& frame, SliceTextures slices);
+    // `boundaries`: the S + 1 slice boundaries of adaptive placement (read_slice_boundaries); empty:
+    // the uniform slices of frame.slice_depths.
+    Oracle(const Config& config, const SliceFrame& frame, SliceTextures slices, std::vector<float> boundaries = {});
 
     OracleValue visibility(glm::vec3 world) const { return visibility(world, config_.fusion); }
     // The same with another fusion rule (the filter does not depend on it).
@@ -94,7 +101,8 @@ private:
         double side = 0;
     };
     Kernel kernel(glm::dvec3 p, double zeta) const;
-    double fade_weight(double z, double zeta) const;
+    double zeta(int slice) const { return planes_[slice + 1]; } // the slice's bottom plane
+    double fade_weight(double z, int slice) const;
 
     void build_levels(const SliceTextures& slices);
     double stored(int slice, int level, int x, int y) const;
@@ -107,7 +115,9 @@ private:
     Config config_;
     glm::dmat4 light_from_world_{1.0};
     double cop_distance_ = 0, window_half_size_ = 0, tan_angular_radius_ = 0;
-    glm::dvec2 light_size_{0.0}, slice_depths_{0.0};
+    glm::dvec2 light_size_{0.0};
+    std::vector<double> planes_;         // the S + 1 slice boundaries: slice s holds depths (planes_[s], planes_[s + 1]]
+    std::vector<double> fade_thickness_; // [slice]: the depth over which its plane's fade ramps
     int levels_top_ = 0;                      // L = log2(R)
     std::vector<std::vector<Plane>> levels_;  // [slice][level]: mip chain, N-buffer or Gaussian levels
     std::vector<Plane> prefix_;               // [slice]: (R+1)² table, texel (X, Y) = sum over x < X, y < Y

@@ -124,6 +124,7 @@ bool config_editor(const char* id, Config& config) {
     ImGui::SameLine();
     changed |= ImGui::Checkbox("fade (§3.4.2)", &config.self_shadow_fade);
     changed |= ImGui::Checkbox("tangent clip", &config.tangent_clip);
+    changed |= enum_combo("slice placement (§5)", config.slice_placement);
     ImGui::PopID();
     return changed;
 }

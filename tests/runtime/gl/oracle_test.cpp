@@ -40,7 +40,8 @@ std::string describe_config(const Config& c) {
     return std::string(to_string(c.light)) + " " + std::string(to_string(c.filter)) + " " +
            std::string(to_string(c.fusion)) + " " + std::string(to_string(c.packing)) + " S=" + std::to_string(c.slices) +
            " R=" + std::to_string(c.resolution) + (c.leak_fix ? "" : " leak-fix-off") +
-           (c.self_shadow_fade ? "" : " fade-off") + (c.tangent_clip ? " tangent-clip" : "");
+           (c.self_shadow_fade ? "" : " fade-off") + (c.tangent_clip ? " tangent-clip" : "") +
+           (c.slice_placement == SlicePlacement::adaptive ? " adaptive" : "");
 }
 
 // The GPU run of one configuration: visibility at the shaded world positions, and what the
@@ -49,13 +50,15 @@ struct GpuRun {
     HeadlessResult result;
     SliceTextures slices;
     SliceFrame frame;
+    std::vector<float> boundaries; // adaptive slice placement: the GPU's S + 1 boundaries
 };
 
 bool render(const Scene& scene, const Config& config, int size, GpuRun& run, std::string* error) {
     bool read = false;
     std::string read_error;
     RenderOptions options{.inspect = [&](const gl::Runtime& runtime) {
-        read = read_slice_textures(runtime, run.slices, &read_error);
+        read = read_slice_textures(runtime, run.slices, &read_error) &&
+               read_slice_boundaries(runtime, run.boundaries, &read_error);
         run.frame = runtime.frame();
     }};
     if (!render_headless(scene, config, size, size, run.result, error, options)) return false;
@@ -117,6 +120,20 @@ std::vector<Config> oracle_matrix() {
                        .light = Light::rect, .leak_fix = true, .self_shadow_fade = true, .tangent_clip = true});
     configs.push_back({.slices = 128, .resolution = 64, .filter = Filter::gaussian, .packing = Packing::atlas,
                        .light = Light::sun, .leak_fix = true, .self_shadow_fade = true, .tangent_clip = false});
+    // adaptive slice placement (paper §5): the GPU's boundaries, read back, place the oracle's slices;
+    // the level loop (atlas N-buffers), the slice loop (array, volume, summed-area table), the fade
+    // off, the tangent clip and the sun
+    const SlicePlacement adaptive = SlicePlacement::adaptive;
+    configs.push_back({.slices = 16, .resolution = 256, .filter = Filter::nbuffer, .packing = Packing::atlas,
+                       .tangent_clip = false, .slice_placement = adaptive});
+    configs.push_back({.slices = 16, .resolution = 256, .filter = Filter::nbuffer, .packing = Packing::atlas,
+                       .tangent_clip = true, .slice_placement = adaptive});
+    configs.push_back({.slices = 16, .resolution = 64, .filter = Filter::mipmap, .packing = Packing::array,
+                       .self_shadow_fade = false, .tangent_clip = false, .slice_placement = adaptive});
+    configs.push_back({.slices = 4, .resolution = 64, .filter = Filter::sat, .packing = Packing::array,
+                       .tangent_clip = false, .slice_placement = adaptive});
+    configs.push_back({.slices = 16, .resolution = 256, .filter = Filter::gaussian, .packing = Packing::volume,
+                       .light = Light::sun, .tangent_clip = true, .slice_placement = adaptive});
     return configs;
 }
 
@@ -146,7 +163,7 @@ TEST_CASE("oracle: GPU matches the CPU oracle within texture precision, every fi
             // The filter does not depend on the fusion: one oracle serves the four rules, as long
             // as the slicing pass wrote the same textures (it is deterministic).
             if (!oracle) {
-                oracle.emplace(config, run.frame, run.slices);
+                oracle.emplace(config, run.frame, run.slices, run.boundaries);
                 oracle_input = std::move(run.slices);
             } else {
                 CHECK_MESSAGE(run.slices.coverage == oracle_input.coverage, describe_config(config),

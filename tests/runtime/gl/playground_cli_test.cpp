@@ -81,7 +81,8 @@ TEST_CASE("playground cli: --help documents both modes and every configuration f
     const Run run = run_playground(dir, {"--help"});
     CHECK(run.exit_code == 0);
     for (const char* text : {"--headless", "window", "--slices", "--resolution", "--filter", "--fusion", "--packing",
-                             "--light", "--target", "--no-leak-fix", "--no-fade", "--config", "--light-size",
+                             "--light", "--target", "--no-leak-fix", "--no-fade", "--slice-placement", "--config",
+                             "--light-size",
                              "--reference", "--samples", "--metrics", "--visibility", "--watch", "--frames",
                              "--screenshot", "--script"}) {
         CAPTURE(text);

@@ -189,3 +189,50 @@ TEST_CASE("slicing: planes, the occlusion textures are the analytic coverage of 
                       config.leak_fix ? "on, but the next slice is not marked" : "off, but the next slice is marked");
     }
 }
+
+// Adaptive slice placement (paper §5): on the "planes" scene the geometry occupies four depths only
+// (the ground and three horizontal occluders), so the boundaries the GPU computes from its depth bins
+// must crowd there: half the depth weight goes to the few occupied bins, the other half keeps every
+// slice at most twice the uniform thickness. The ends stay the bounds' range.
+TEST_CASE("adaptive slice placement: the GPU's boundaries gather at the depths the geometry occupies") {
+    std::string error;
+    auto context = HeadlessContext::create(&error);
+    REQUIRE_MESSAGE(context, error);
+    std::optional<Scene> scene = make_scene("planes");
+    REQUIRE(scene);
+    for (const bool tangent_clip : {false, true}) {
+        const Config config{.slices = 16, .resolution = 128, .filter = Filter::nbuffer, .fusion = Fusion::chained,
+                            .packing = Packing::atlas, .tangent_clip = tangent_clip,
+                            .slice_placement = SlicePlacement::adaptive};
+        std::vector<float> boundaries;
+        SliceFrame frame;
+        bool read = false;
+        RenderOptions options{.inspect = [&](const gl::Runtime& runtime) {
+            read = read_slice_boundaries(runtime, boundaries, &error);
+            frame = runtime.frame();
+        }};
+        HeadlessResult result;
+        REQUIRE_MESSAGE(render_headless(*scene, config, 64, 64, result, &error, options), error);
+        REQUIRE_MESSAGE(read, error);
+        REQUIRE(boundaries.size() == 17);
+        const double z0 = frame.slice_depths.x, thickness = frame.slice_depths.y, bin = 16 * thickness / depth_bins;
+        CHECK(boundaries.front() == doctest::Approx(z0).epsilon(1e-6));
+        CHECK(boundaries.back() == doctest::Approx(z0 + 16 * thickness).epsilon(1e-6));
+        for (int k = 0; k < 16; ++k) {
+            CHECK_MESSAGE(boundaries[k + 1] > boundaries[k], "boundary ", k + 1, " is not below boundary ", k);
+            CHECK_MESSAGE(boundaries[k + 1] - boundaries[k] <= 2.0 * thickness * (1 + 1e-4), "slice ", k, " is ",
+                          (boundaries[k + 1] - boundaries[k]) / thickness, " uniform thicknesses thick");
+        }
+        // every occupied depth (each plane's light-frame z) has at least two boundaries within a bin's
+        // width of it; the uniform slices put at most one there
+        const glm::dmat4 light_from_world(frame.light_from_world);
+        std::vector<double> depths{(light_from_world * glm::dvec4(0.0, 0.0, 0.0, 1.0)).z};
+        for (float h : planes_occluder_heights) depths.push_back((light_from_world * glm::dvec4(0.0, h, 0.0, 1.0)).z);
+        for (double depth : depths) {
+            int near = 0;
+            for (float b : boundaries) near += std::abs(b - depth) <= bin;
+            CHECK_MESSAGE(near >= 2, "only ", near, " boundaries within a bin of depth ", depth);
+            CHECK(2 * bin < thickness); // the uniform slices are thicker than the window
+        }
+    }
+}
