@@ -36,7 +36,8 @@ std::string describe(const penumbra::Config& c) {
            std::string(to_string(c.filter)) + ", " + std::string(to_string(c.fusion)) + ", " +
            std::string(to_string(c.packing)) + ", " + std::string(to_string(c.light)) + ", " +
            std::string(to_string(c.target)) + (c.leak_fix ? "" : ", no leak fix") +
-           (c.self_shadow_fade ? "" : ", no fade");
+           (c.self_shadow_fade ? "" : ", no fade") + (c.tangent_clip ? ", tangent clip" : "") +
+           (c.slice_placement == penumbra::SlicePlacement::adaptive ? ", adaptive slices" : "");
 }
 
 int run(const std::vector<std::string>& args) {
