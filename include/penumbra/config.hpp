@@ -158,6 +158,7 @@ struct Config {
     Packing packing = Packing::atlas;       // storage of the filtered levels
     Light light = Light::rect;              // kind of area light
     bool leak_fix = true;                   // paper §3.4.1: a fragment of slice k also marks slice k+1
+                                            // (k+1 to k+S/16 beyond 16 slices: leak_fix_reach)
     bool self_shadow_fade = true;           // paper §3.4.2: fade out the slice containing the point
     bool tangent_clip = true;               // kernels cover only the part of the light above the receiver's
                                             // tangent plane (penumbraVisibility then takes the normal)
@@ -247,6 +248,13 @@ inline constexpr int depth_bins_read_level = 3;    // mip level the boundary pas
                                                    // covered texel of level 0 still rounds to a non-zero RGBA8 value
 constexpr bool places_slices_adaptively(const Config& config) {
     return config.technique == Technique::occlusion && config.slice_placement == SlicePlacement::adaptive;
+}
+
+// Slices beyond its own that the leak fix marks: one per 16 slices, so that the copies reach the
+// same depth whatever the slice count (paper §3.4.1 marks one; 0 with the leak fix off).
+constexpr int leak_fix_reach(const Config& config) {
+    if (!config.leak_fix) return 0;
+    return config.slices > 16 ? config.slices / 16 : 1;
 }
 
 // Number of RGBA textures that hold the slices: four slices per texture, the last one may be partial.

@@ -85,21 +85,32 @@ constexpr Text slicing_fragment(const Config& config) {
         out.line("float k = clamp(ceil((penumbra_depth - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 1.0, 0.0, ",
                  format_float(config.slices - 1), ");");
     }
-    if (config.leak_fix) {
+    const int reach = leak_fix_reach(config);
+    if (reach == 1) {
         out.comment("paper §3.4.1 leak fix: also mark the next slice away from the light");
         out.line("float next = min(k + 1.0, ", format_float(config.slices - 1), ");");
+    } else if (reach > 1) {
+        out.comment(cat("paper §3.4.1 leak fix, over a constant depth: also mark the next ", format_int(reach),
+                        " slices away from the light"));
+        out.comment("(one sixteenth of the depth range, as one slice of 16: a sheet that crosses thin slices then has");
+        out.comment("all its bands in one slice, which chained fusion's maximum over neighbours needs)");
+        out.line("float next = min(k + ", format_float(reach), ", ", format_float(config.slices - 1), ");");
     }
     if (bits) {
         out.line("penumbra_sliceBits = penumbra_sliceBit(k);");
-        if (config.leak_fix) out.line("penumbra_sliceBits |= penumbra_sliceBit(next);");
+        for (int j = 1; j <= reach; ++j)
+            out.line("penumbra_sliceBits |= penumbra_sliceBit(min(k + ", format_float(j), ", next));");
     }
     for (int t = 0; !bits && t < texture_count(config); ++t) {
         const Text first = cat("vec4(", format_float(4 * t), ", ", format_float(4 * t + 1), ", ", format_float(4 * t + 2),
                                ", ", format_float(4 * t + 3), ")");
         out.line("// texture ", format_int(t));
-        if (config.leak_fix)
+        if (reach == 1)
             out.line("penumbra_occlusion", format_int(t), " = max(vec4(equal(vec4(k), ", first,
                      ")), vec4(equal(vec4(next), ", first, ")));");
+        else if (reach > 1)
+            out.line("penumbra_occlusion", format_int(t), " = vec4(greaterThanEqual(", first, ", vec4(k))) * vec4(lessThanEqual(",
+                     first, ", vec4(next)));");
         else
             out.line("penumbra_occlusion", format_int(t), " = vec4(equal(vec4(k), ", first, "));");
     }

@@ -51,7 +51,8 @@ glm::dvec3 project(const Config& config, const SliceFrame& frame, glm::dvec3 wor
     return {uv * static_cast<double>(config.resolution), p.z};
 }
 
-ExpectedSlices expected_slices(const Mesh& mesh, const Config& config, const SliceFrame& frame, bool leak_fix) {
+// `reach`: the slices beyond its own that a fragment also marks (penumbra::leak_fix_reach).
+ExpectedSlices expected_slices(const Mesh& mesh, const Config& config, const SliceFrame& frame, int reach) {
     const int R = config.resolution, S = config.slices;
     ExpectedSlices out{R, S, std::vector<Expect>(static_cast<std::size_t>(S) * R * R, Expect::empty)};
     const double z0 = frame.slice_depths.x, thickness = frame.slice_depths.y;
@@ -87,8 +88,8 @@ ExpectedSlices expected_slices(const Mesh& mesh, const Config& config, const Sli
                 for (int s = slice; s <= std::min(slice + (on_boundary ? 1 : 0), S - 1); ++s) {
                     const Expect m = on_boundary ? Expect::either : mark;
                     out.at(s, x, y) = merge(out.at(s, x, y), m);
-                    // paper §3.4.1 leak fix: a fragment of slice k also marks slice k+1
-                    if (leak_fix && s + 1 < S) out.at(s + 1, x, y) = merge(out.at(s + 1, x, y), m);
+                    // paper §3.4.1 leak fix: a fragment of slice k also marks slices k+1 to k+reach
+                    for (int j = 1; j <= reach && s + j < S; ++j) out.at(s + j, x, y) = merge(out.at(s + j, x, y), m);
                 }
             }
     }
@@ -151,9 +152,11 @@ TEST_CASE("slicing: planes, the occlusion textures are the analytic coverage of 
         HeadlessResult result;
         REQUIRE_MESSAGE(render_headless(*scene, config, 16, 16, result, &error, options), name, ": ", error);
         REQUIRE_MESSAGE(read, name, ": ", error);
-        ExpectedSlices expected = expected_slices(scene->mesh, config, frame, config.leak_fix);
+        ExpectedSlices expected = expected_slices(scene->mesh, config, frame, leak_fix_reach(config));
         // The texels where the leak fix makes a difference: they must follow the configuration.
-        ExpectedSlices other = expected_slices(scene->mesh, config, frame, !config.leak_fix);
+        Config toggled = config;
+        toggled.leak_fix = !config.leak_fix;
+        ExpectedSlices other = expected_slices(scene->mesh, config, frame, leak_fix_reach(toggled));
 
         const int R = config.resolution;
         std::size_t non_binary = 0, wrong = 0, covered = 0, leak_texels = 0, leak_marked = 0;
