@@ -7,7 +7,7 @@
 // The text is computed by the compiler and stored in the program as a constant; it is the same
 // text emit_file() returns at run time. An invalid configuration is a compile error whose
 // template argument carries the validator's message, e.g.
-//   'penumbra::detail::invalid_configuration<…{"slices: 40 is out of range; allowed: 1 to 32"}>'
+//   'penumbra::detail::invalid_configuration<…{"slices: 40 is out of range; allowed: 1 to 32, 64 or 128"}>'
 #pragma once
 
 #include "detail/artifacts.hpp"
