@@ -309,8 +309,7 @@ constexpr Text generic_fragment(const Config& config) {
         out.line("float penumbraVisibility(vec3 worldPos)");
     }
     out.line("{");
-    out.line("vec3 p = (penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz;");
-    out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
+    write_light_frame_point(out);
     if (clip) write_tangent_clip_setup(out, config, cat(format_float(tangent_clip_offset_texels), " / penumbra_resolution"));
     out.line("float penumbra_lit = 1.0;");
     out.line("float penumbra_sum = 0.0;");

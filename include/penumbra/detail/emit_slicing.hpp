@@ -35,7 +35,7 @@ void main()
 }
 
 constexpr Text slicing_vertex(const Config& config) {
-    return slicing_camera_vertex(config, "slicing pass, vertex stage", slicing_params(), "PenumbraSlicing");
+    return slicing_camera_vertex(config, "slicing pass, vertex stage", slicing_camera_params(), "PenumbraSlicing");
 }
 
 constexpr Text slicing_fragment(const Config& config) {
@@ -86,14 +86,15 @@ constexpr Text slicing_fragment(const Config& config) {
                  format_float(config.slices - 1), ");");
     }
     const int reach = leak_fix_reach(config);
-    if (reach == 1) {
-        out.comment("paper §3.4.1 leak fix: also mark the next slice away from the light");
-        out.line("float next = min(k + 1.0, ", format_float(config.slices - 1), ");");
-    } else if (reach > 1) {
+    if (reach == 1) out.comment("paper §3.4.1 leak fix: also mark the next slice away from the light");
+    if (reach > 1) {
         out.comment(cat("paper §3.4.1 leak fix, over a constant depth: also mark the next ", format_int(reach),
                         " slices away from the light"));
         out.comment("(one sixteenth of the depth range, as one slice of 16: a sheet that crosses thin slices then has");
         out.comment("all its bands in one slice, which chained fusion's maximum over neighbours needs)");
+    }
+    if (reach > 0) {
+        out.comment("slices k to next are marked");
         out.line("float next = min(k + ", format_float(reach), ", ", format_float(config.slices - 1), ");");
     }
     if (bits) {
@@ -105,10 +106,7 @@ constexpr Text slicing_fragment(const Config& config) {
         const Text first = cat("vec4(", format_float(4 * t), ", ", format_float(4 * t + 1), ", ", format_float(4 * t + 2),
                                ", ", format_float(4 * t + 3), ")");
         out.line("// texture ", format_int(t));
-        if (reach == 1)
-            out.line("penumbra_occlusion", format_int(t), " = max(vec4(equal(vec4(k), ", first,
-                     ")), vec4(equal(vec4(next), ", first, ")));");
-        else if (reach > 1)
+        if (reach > 0)
             out.line("penumbra_occlusion", format_int(t), " = vec4(greaterThanEqual(", first, ", vec4(k))) * vec4(lessThanEqual(",
                      first, ", vec4(next)));");
         else

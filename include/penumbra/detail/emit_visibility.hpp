@@ -112,6 +112,12 @@ constexpr void write_tangent_clip_function(LineWriter& out, const Config& config
     out.blank();
 }
 
+// The receiver in the light frame, p, at the start of every penumbraVisibility (and its generic twin).
+constexpr void write_light_frame_point(LineWriter& out) {
+    out.line("vec3 p = (penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz;");
+    out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
+}
+
 // The tangent clip's set-up in penumbraVisibility: the normal in the light frame, the clip, and
 // the sideways offset (every surface is rasterised into the slices it crosses, so without it a
 // wall's kernels would sit on the wall's own texels).
@@ -435,10 +441,7 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
         out.line("float penumbraVisibility(vec3 worldPos)");
     }
     out.line("{");
-    if (!config.tangent_clip) {
-        out.line("vec3 p = (penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz;");
-        out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
-    }
+    if (!config.tangent_clip) write_light_frame_point(out);
     write_fusion_start(out, config);
     if (uses_level_loop(config))
         write_level_loop(out, config);
@@ -453,8 +456,7 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
     out.comment("the side being lit, any length but not zero) that is visible: 1 lit, 0 in umbra.");
     out.line("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)");
     out.line("{");
-    out.line("vec3 p = (penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz;");
-    out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
+    write_light_frame_point(out);
     write_tangent_clip_setup(out, config);
     out.line("return penumbra_clippedVisibility(p, penumbra_clip);");
     out.line("}");
@@ -463,8 +465,7 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
     out.comment("for shaders written against penumbraVisibility(vec3 worldPos) of every technique.");
     out.line("float penumbraVisibility(vec3 worldPos)");
     out.line("{");
-    out.line("vec3 p = (penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz;");
-    out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
+    write_light_frame_point(out);
     out.line("return penumbra_clippedVisibility(p, vec3(0.0, 0.0, 1.0));");
     out.line("}");
 }

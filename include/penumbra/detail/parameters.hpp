@@ -82,7 +82,7 @@ constexpr std::vector<Param> visibility_params(const Config& config) {
 }
 
 // The slicing pass's vertex stage (and the depth-bin pre-pass's): the slicing camera.
-constexpr std::vector<Param> slicing_params() {
+constexpr std::vector<Param> slicing_camera_params() {
     return {
         {"penumbra_sliceClipFromWorld", "mat4",
          "world to clip space of the slicing camera (perspective from the centre of projection, or orthographic)",
@@ -95,14 +95,14 @@ constexpr std::vector<Param> slicing_params() {
 
 // The slicing pass's fragment stage: the camera's parameters and, with adaptive placement, the boundaries.
 constexpr std::vector<Param> slicing_params(const Config& config) {
-    std::vector<Param> params = slicing_params();
+    std::vector<Param> params = slicing_camera_params();
     if (places_slices_adaptively(config)) params.push_back(slice_boundaries_sampler());
     return params;
 }
 
 // The depth-bin pre-pass of adaptive slice placement: the slicing camera and the first bin of the draw.
 constexpr std::vector<Param> depth_bins_params() {
-    std::vector<Param> params = slicing_params();
+    std::vector<Param> params = slicing_camera_params();
     params.push_back({"penumbra_firstBin", "int", "depth bin written to channel r of the first render target", "",
                       {}, "pass"});
     return params;
