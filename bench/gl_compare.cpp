@@ -29,6 +29,7 @@
 #include "rendering/headless_render.hpp"
 #include "scenes/scenes.hpp"
 
+#include <penumbra/cost_model.hpp>
 #include <penumbra/gl/runtime.hpp>
 #include <penumbra/layout.hpp>
 #include <penumbra/texture_memory.hpp>
@@ -318,6 +319,19 @@ std::vector<std::pair<std::string, double>> pass_totals(const std::vector<gl::Pa
     return totals;
 }
 
+// penumbra/cost_model.hpp's figures for one phase: what a GPU's time follows.
+json phase_cost_json(const PhaseCost& p) {
+    return {{"passes", p.passes}, {"fragments", p.fragments}, {"texel_fetches", p.texel_fetches},
+            {"bytes_read", p.bytes_read}, {"bytes_written", p.bytes_written}};
+}
+
+// The measured GPU time of the passes from the light (phase "shadow"): every pass but the last (shading).
+double light_pass_ms(const FrameTimes& t) {
+    double sum = 0;
+    for (std::size_t i = 0; i + 1 < t.passes.size(); ++i) sum += t.passes[i].milliseconds;
+    return sum;
+}
+
 json stats_json(const ErrorStats& s) {
     return {{"mae", s.mae}, {"rmse", s.rmse}, {"p95", s.p95}, {"pixels", s.count}};
 }
@@ -562,12 +576,17 @@ int main(int argc, char** argv) {
             std::vector<QualityMetrics> quality(ladder.size());
             std::vector<double> bias(ladder.size());
             std::vector<std::vector<FrameTimes>> timed(ladder.size());
+            std::vector<CostModel> costs(ladder.size());
             for (std::size_t e = 0; e < ladder.size(); ++e) {
                 const bench::LadderEntry& entry = ladder[e];
                 progress.step("warm-up", where + ": warm-up and quality, " + entry.label);
                 runtimes[e]->set_light(scaled_light(scene.light, scale), glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
                 FrameTimes warmup;
                 if (!run_frame(*runtimes[e], mesh, *pixels, warmup, &error)) return fail(entry.label + ": " + error);
+                // set_light fitted level_bound to this light: memory, configuration and cost as they run
+                texture_bytes[e] = static_cast<std::uint64_t>(penumbra::texture_bytes(runtimes[e]->layout(), options->width, options->height));
+                configs[e] = json::parse(to_json(runtimes[e]->layout()))["config"];
+                costs[e] = cost_model(runtimes[e]->layout(), options->width, options->height);
                 const std::vector<float> visibility = read_visibility(*runtimes[e], *pixels);
                 quality[e] = compare_quality(visibility, pixels->frame.geometry, truths[s].visibility,
                                              truths[s].oriented, truths[s].irradiance);
@@ -599,6 +618,10 @@ int main(int argc, char** argv) {
                                {"config", configs[e]},
                                {"texture_bytes", texture_bytes[e]}};
                 record.update(cost_json(timed[e]));
+                std::vector<double> light_ms;
+                for (const FrameTimes& t : timed[e]) light_ms.push_back(light_pass_ms(t));
+                record["light_passes_gpu_ms"] = median(light_ms);
+                record["cost_model"] = {{"shadow", phase_cost_json(costs[e].shadow)}, {"screen", phase_cost_json(costs[e].screen)}};
                 // "all"/"penumbra": against the visibility of the whole light (rays behind the
                 // receiver's tangent plane blocked); the fair references beside it.
                 const QualityMetrics& q = quality[e];
@@ -614,10 +637,12 @@ int main(int argc, char** argv) {
                                         {"truth", dir + "/truth.png"}};
                 }
                 std::printf("%-10s x%-4s %-20s GPU %8.2f ms  wall %8.2f ms  textures %7.1f MiB  penumbra MAE %.4f  "
-                            "oriented %.4f\n",
+                            "oriented %.4f  light passes %7.2f ms, model %6.1f MB %6.1f Mfetch; shading model %6.1f Mfetch\n",
                             scene.name.c_str(), scale_text(scale).c_str(), entry.label.c_str(),
                             record["gpu_ms"].get<double>(), record["wall_ms"]["total"].get<double>(),
-                            texture_bytes[e] / 1048576.0, q.visibility.penumbra.mae, q.oriented.penumbra.mae);
+                            texture_bytes[e] / 1048576.0, q.visibility.penumbra.mae, q.oriented.penumbra.mae,
+                            record["light_passes_gpu_ms"].get<double>(), costs[e].shadow.bytes() / 1e6,
+                            costs[e].shadow.texel_fetches / 1e6, costs[e].screen.texel_fetches / 1e6);
                 std::fflush(stdout);
                 results["measurements"].push_back(std::move(record));
             }

@@ -1,6 +1,7 @@
 // layout.json vocabulary (layout version 2): phases, structured render state, output-sized and
 // caller textures, border colours, uniform sources. No glslang, no GL.
 #include <penumbra/penumbra.hpp>
+#include <penumbra/cost_model.hpp>
 #include <penumbra/uniform_values.hpp>
 
 #include <doctest/doctest.h>
@@ -295,4 +296,94 @@ TEST_CASE("layout: adaptive slice placement runs the depth bins and the boundary
                                                   .slice_placement = SlicePlacement::uniform});
     CHECK(find_texture(uniform, "penumbra_sliceBoundaries") == nullptr);
     CHECK(find_texture(uniform, "penumbra_depthBins") == nullptr);
+}
+
+// Only the levels the kernels reach (penumbra/level_bound.hpp): level_bound caps what is built,
+// allocated and read; the summed-area table keeps every doubling step.
+TEST_CASE("layout: level_bound builds, allocates and reads only levels 0 to the bound") {
+    const Config all{.slices = 16, .resolution = 512};
+    Config bounded = all;
+    bounded.level_bound = 5;
+    const Layout full = describe_layout(all), cut = describe_layout(bounded);
+    CHECK(full.max_level == 9);
+    CHECK(cut.max_level == 5);
+    CHECK(to_json(cut).find("\"max_kernel_texels\": 32") != std::string::npos);
+    CHECK(to_json(cut).find("\"level_bound\": 5") != std::string::npos);
+    CHECK(find_texture(cut, "penumbra_level5") != nullptr);
+    CHECK(find_texture(cut, "penumbra_level6") == nullptr);
+    auto count = [](const Layout& l, std::string_view pass) {
+        int n = 0;
+        for (const PassDesc& p : l.passes) n += p.name == pass;
+        return n;
+    };
+    CHECK(count(full, "nbuffer_level") == 9);
+    CHECK(count(cut, "nbuffer_level") == 5);
+    // 16 slices at 512²: ten RGBA8 levels of 2048 × 512 (40 MiB) against six (24 MiB), plus the slices
+    CHECK(texture_bytes(full) - texture_bytes(cut) == 4LL * 2048 * 512 * 4);
+    Config half = bounded;
+    half.level_format = LevelFormat::rgba16f;
+    CHECK(texture_bytes(describe_layout(half)) - texture_bytes(cut) == 6LL * 2048 * 512 * 4);
+    CHECK(find_texture(describe_layout(half), "penumbra_level3")->internal_format == "RGBA16F");
+    CHECK(find_texture(cut, "penumbra_level3")->internal_format == "RGBA8");
+    const std::string shading = std::string(emit(bounded).value->snippet.text);
+    CHECK(shading.find("penumbra_level5") != std::string::npos);
+    CHECK(shading.find("penumbra_level6") == std::string::npos);
+    CHECK(shading.find(", 0.0, 5.0)") != std::string::npos); // the kernel's level clamped to the bound
+
+    Config sat = all;
+    sat.filter = Filter::sat;
+    Config sat_bounded = sat;
+    sat_bounded.level_bound = 2;
+    CHECK(count(describe_layout(sat), "sat_pass") == count(describe_layout(sat_bounded), "sat_pass"));
+
+    Config bad = all;
+    bad.level_bound = 10;
+    REQUIRE(!is_valid(bad));
+    CHECK(validate(bad).front().field == "level_bound");
+    bad.level_bound = -2;
+    CHECK(!is_valid(bad));
+}
+
+TEST_CASE("kernel_level_bound: the widest kernel of a receiver on the bounds' bottom through the top plane") {
+    const RectLight light{.center = {0, 5, 0}, .u_axis = {1, 0, 0}, .v_axis = {0, 0, 1}, .width = 1, .height = 1};
+    const Config config{.slices = 16, .resolution = 512};
+    const SliceFrame small = slice_frame(light, {-4, 0, -4}, {4, 1, 4}, 16);
+    const int bound = kernel_level_bound(small, config);
+    // σ = d (z_S − ζ_0) / (z_S (d + ζ_0)) by hand
+    const double d = small.cop_distance, z0 = small.slice_depths.x, dz = small.slice_depths.y;
+    const double zS = z0 + 16 * dz, zeta = z0 + dz;
+    CHECK(bound == static_cast<int>(std::ceil(std::log2(d * (zS - zeta) / (zS * (d + zeta)) * 512))));
+    RectLight large = light;
+    large.width = large.height = 8;
+    CHECK(kernel_level_bound(slice_frame(large, {-4, 0, -4}, {4, 1, 4}, 16), config) > bound);
+    Config sat = config;
+    sat.filter = Filter::sat;
+    CHECK(kernel_level_bound(small, sat) == -1);
+}
+
+TEST_CASE("cost_model: fragments, fetches and bytes per pass, from the layout") {
+    Config config{.slices = 16, .resolution = 512};
+    config.level_bound = 5;
+    const Layout layout = describe_layout(config);
+    const CostModel cost = cost_model(layout, 256, 256);
+    int levels = 0;
+    for (const PassCost& p : cost.passes) {
+        if (p.name != "nbuffer_level") continue;
+        ++levels;
+        CHECK(p.fragments == 2048LL * 512);
+        CHECK(p.texel_fetches == 4LL * 2048 * 512);
+        CHECK(p.bytes_written == 4LL * 2048 * 512); // RGBA8
+        CHECK(p.bytes_read == 4LL * 2048 * 512);    // the previous level, each texel once
+    }
+    CHECK(levels == 5);
+    CHECK(cost.shadow.passes == 1 + 1 + 5); // slicing, pack_atlas, five levels
+    CHECK(cost.screen.passes == 1);
+    CHECK(cost.screen.fragments == 256LL * 256);
+    CHECK(cost.screen.texel_fetches == 256LL * 256 * (2 + 16 * 8)); // G-buffer (positions, normals) + 2 bilinear per slice
+    // the same configuration in half floats moves twice the level bytes
+    Config half = config;
+    half.level_format = LevelFormat::rgba16f;
+    const CostModel wider = cost_model(describe_layout(half), 256, 256);
+    CHECK(wider.shadow.bytes() > cost.shadow.bytes());
+    CHECK(wider.shadow.texel_fetches == cost.shadow.texel_fetches);
 }

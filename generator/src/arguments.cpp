@@ -10,7 +10,7 @@ namespace {
 
 constexpr std::string_view flag_list =
     "--slices, --resolution, --filter, --fusion, --packing, --light, --target, --no-leak-fix, --no-fade, "
-    "--tangent-clip, --no-tangent-clip, --slice-placement, --config, --validate, --out, --help, --technique, --shadow-resolution, "
+    "--tangent-clip, --no-tangent-clip, --slice-placement, --level-bound, --level-format, --config, --validate, --out, --help, --technique, --shadow-resolution, "
     "--shadow-bias, --shadow-slope-bias, --pcf-pattern, --pcf-grid, --pcf-taps, --pcf-radius, --pcss-blockers, "
     "--pcss-filter, --pcss-max-texels, --no-rotation";
 
@@ -80,7 +80,7 @@ Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
         }
         const bool takes_value = flag == "--slices" || flag == "--resolution" || flag == "--filter" ||
                                  flag == "--fusion" || flag == "--packing" || flag == "--light" ||
-                                 flag == "--target" || flag == "--slice-placement" || flag == "--config" ||
+                                 flag == "--target" || flag == "--slice-placement" || flag == "--level-bound" || flag == "--level-format" || flag == "--config" ||
                                  flag == "--out" ||
                                  is_technique_flag(flag);
         if (!takes_value) {
@@ -115,6 +115,10 @@ Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
             error = store(parse_name<penumbra::Target>(flag, value), out.flags.target);
         else if (flag == "--slice-placement")
             error = store(parse_name<penumbra::SlicePlacement>(flag, value), out.flags.slice_placement);
+        else if (flag == "--level-format")
+            error = store(parse_name<penumbra::LevelFormat>(flag, value), out.flags.level_format);
+        else if (flag == "--level-bound")
+            error = store(parse_int(flag, value, "-1 (every level) or 0 to log2(resolution)"), out.flags.level_bound);
         else if (is_technique_flag(flag))
             error = parse_technique_flag(flag, value, out.flags.technique);
         else if (value.empty())
@@ -141,6 +145,8 @@ penumbra::Config apply(const ConfigFlags& flags, penumbra::Config config) {
     if (flags.no_fade) config.self_shadow_fade = false;
     if (flags.tangent_clip) config.tangent_clip = *flags.tangent_clip;
     if (flags.slice_placement) config.slice_placement = *flags.slice_placement;
+    if (flags.level_bound) config.level_bound = *flags.level_bound;
+    if (flags.level_format) config.level_format = *flags.level_format;
     return apply(flags.technique, config);
 }
 
@@ -158,6 +164,7 @@ std::string usage() {
     std::string out = "usage: penumbra-gen [--technique T] [--slices N] [--resolution R] [--filter F] [--fusion U] "
                       "[--packing P] [--light L]\n"
                       "                    [--target T] [--no-leak-fix] [--no-fade] [--[no-]tangent-clip] [--slice-placement P]\n"
+                      "                    [--level-bound N] [--level-format F]\n"
                       "                    [technique flags] [--config FILE.json] [--validate] --out DIR\n"
                       "\n"
                       "Writes the GLSL of one Penumbra configuration and its layout.json into DIR.\n"
@@ -183,13 +190,20 @@ std::string usage() {
                 names("slice boundaries: uniform (equal slices over the bounds) or adaptive (at the\n"
                       "                      depths the geometry occupies, computed on the GPU; paper §5)",
                       to_string(d.slice_placement)));
+    out += line("--level-bound N", "highest filter level built and read: wider kernels read level N; the widest\n"
+                                   "                      kernel of a light and scene is 2^N texels for the N of\n"
+                                   "                      penumbra::kernel_level_bound; -1 or 0 to log2(resolution)\n"
+                                   "                      (default -1: every level)");
+    out += line("--level-format F", names("storage of the filtered levels: " + allowed_names<LevelFormat>() +
+                                              "\n                      (essl300: always rgba8)",
+                                          to_string(d.level_format)));
     out += "\ntechnique (occlusion: the flags above; shadowmap, pcf, pcss, erosion, oim: these, plus --light and --target):\n";
     out += technique_usage(25);
     out +=
         line("--config FILE.json",
              "read the configuration from JSON: an object with the keys technique, slices, resolution,\n"
              "                      filter, fusion, packing, light, leak_fix, self_shadow_fade, tangent_clip,\n"
-             "                      slice_placement, target, and the objects shadow_map, pcf, pcss (all optional), or a\n"
+             "                      slice_placement, level_format, level_bound, target, and the objects shadow_map, pcf, pcss (all optional), or a\n"
              "                      layout.json, whose \"config\" object is read; a regular file of at most 1 MiB");
     out += "\noutput:\n";
     out += line("--out DIR", "directory to write into, created with its parents (required); all files or\n"

@@ -24,6 +24,8 @@ struct ConfigFlags {
     bool no_fade = false;
     std::optional<bool> tangent_clip; // --tangent-clip / --no-tangent-clip
     std::optional<penumbra::SlicePlacement> slice_placement; // --slice-placement
+    std::optional<int> level_bound;                           // --level-bound
+    std::optional<penumbra::LevelFormat> level_format;        // --level-format
     TechniqueFlags technique; // --technique and each technique's flags (technique_flags.hpp)
 };
 

@@ -15,7 +15,7 @@ using nlohmann::json;
 
 constexpr std::string_view key_list =
     "slices, resolution, filter, fusion, packing, light, leak_fix, self_shadow_fade, tangent_clip, slice_placement, "
-    "target, "
+    "level_format, level_bound, target, "
     "technique, shadow_map, pcf, pcss, oim, erosion";
 
 std::string type_of(const json& value) {
@@ -182,6 +182,7 @@ std::string allowed_for(const std::string& key) {
     if (key == "light") return "one of " + allowed_names<penumbra::Light>();
     if (key == "target") return "one of " + allowed_names<penumbra::Target>();
     if (key == "leak_fix" || key == "self_shadow_fade") return "true or false";
+    if (key == "level_bound") return "-1 (every level) or 0 to log2(resolution)";
     return {};
 }
 
@@ -291,6 +292,10 @@ Parsed<penumbra::Config> parse_config_json(std::string_view text, std::string_vi
             error = store(read_bool(key, value), config.tangent_clip);
         else if (key == "slice_placement")
             error = store(read_enum<penumbra::SlicePlacement>(key, value), config.slice_placement);
+        else if (key == "level_format")
+            error = store(read_enum<penumbra::LevelFormat>(key, value), config.level_format);
+        else if (key == "level_bound")
+            error = store(read_int(key, value, allowed_for(key)), config.level_bound);
         else
             error = "unknown key '" + printable(key) + "'; allowed keys: " + std::string(key_list);
         if (!error.empty()) return {{}, where + ": " + error};

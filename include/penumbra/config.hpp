@@ -55,6 +55,12 @@ enum class SlicePlacement : std::uint8_t {
               // low-resolution depth-bin pre-pass (penumbra_sliceBoundaries); half the slices stay uniform
 };
 
+// How the filtered levels (N-buffers, Gaussian) are stored. Level 0 is binary coverage either way.
+enum class LevelFormat : std::uint8_t {
+    rgba8,   // 8-bit unsigned normalized: half the bytes of rgba16f; a window mean is rounded to 1/255 per level
+    rgba16f, // half floats (11-bit mantissa)
+};
+
 enum class Light : std::uint8_t {
     rect, // rectangular area light: perspective slicing from behind the light (paper §3.4)
     sun,  // light at infinity with an angular radius: orthographic slicing (journal §3.5)
@@ -163,6 +169,12 @@ struct Config {
     bool tangent_clip = true;               // kernels cover only the part of the light above the receiver's
                                             // tangent plane (penumbraVisibility then takes the normal)
     SlicePlacement slice_placement = SlicePlacement::uniform; // slice boundaries: uniform or from the scene's depths
+    LevelFormat level_format = LevelFormat::rgba8; // storage of the filtered levels (ES 3.0: always rgba8)
+    int level_bound = -1;                   // highest filter level built and read (N-buffer, Gaussian, mip chain):
+                                            // wider kernels read that level; -1: log2(resolution), every level.
+                                            // penumbra::kernel_level_bound (level_bound.hpp) gives the one a light
+                                            // and bounds need; the GL runtime fits it at set_light (grows it as
+                                            // the light grows)
     Target target = Target::glsl450;        // shading language of the output
     ShadowMapParams shadow_map{};           // shadowmap, pcf, pcss: the depth map from the light
     PcfParams pcf{};                        // pcf: the fixed kernel
@@ -194,6 +206,9 @@ template <> struct EnumNames<Packing> {
 };
 template <> struct EnumNames<SlicePlacement> {
     static constexpr std::array<std::string_view, 2> names{"uniform", "adaptive"};
+};
+template <> struct EnumNames<LevelFormat> {
+    static constexpr std::array<std::string_view, 2> names{"rgba8", "rgba16f"};
 };
 template <> struct EnumNames<Light> {
     static constexpr std::array<std::string_view, 2> names{"rect", "sun"};
@@ -267,11 +282,19 @@ inline constexpr int max_channel_slices = 32;
 // unpack pass turns them into the RGBA occlusion textures (paper §3.7): slices > 32.
 constexpr bool slices_as_bits(const Config& config) { return config.slices > max_channel_slices; }
 
-// Number of filter levels above the full-resolution one: L = log2(resolution).
-constexpr int max_level(const Config& config) {
+// log2(resolution): the levels a full filter chain has above the full-resolution one (and the
+// summed-area table's doubling steps per axis, minus one).
+constexpr int resolution_levels(const Config& config) {
     int levels = 0;
     for (int r = config.resolution; r > 1; r /= 2) ++levels;
     return levels;
+}
+
+// Highest filter level built and read: L = log2(resolution), or level_bound when it is set (the
+// largest kernel any receiver inside the bounds can ask for; level_bound.hpp).
+constexpr int max_level(const Config& config) {
+    const int all = resolution_levels(config);
+    return config.level_bound >= 0 && config.level_bound < all ? config.level_bound : all;
 }
 
 } // namespace penumbra

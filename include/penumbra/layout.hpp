@@ -117,18 +117,25 @@ struct Layout {
     std::string technique = "occlusion";
     Config config;
     int textures_per_layer = 0; // T: RGBA occlusion textures, four slices each
-    int max_level = 0;          // L = log2(resolution)
+    int max_level = 0;          // L: the highest filter level built, log2(resolution) or config.level_bound
     std::vector<TextureDesc> textures;
     std::vector<ProgramDesc> programs;
     std::vector<PassDesc> passes;
     std::string result; // the texture holding the visibility after the screen phase
     std::vector<std::string> files; // every file an emission writes, layout.json included
+    // What each phase's output depends on ("light", "geometry", "camera", "caller_textures", "bake"):
+    // an engine reruns a phase only when one of them changed (a camera-only change skips "shadow").
+    std::vector<std::pair<std::string, std::vector<std::string>>> phase_inputs;
 };
 
 namespace detail {
 
+// The filtered levels' format (Config::level_format); ES 3.0 cannot render to half floats. Other
+// techniques' screen-sized intermediates (erosion) stay in half floats where the target has them.
 constexpr std::string_view level_format(const Config& config) {
-    return config.target == Target::essl300 ? "RGBA8" : "RGBA16F"; // ES 3.0 cannot render to half floats
+    if (config.target == Target::essl300) return "RGBA8";
+    if (config.technique == Technique::occlusion && config.level_format == LevelFormat::rgba8) return "RGBA8";
+    return "RGBA16F";
 }
 
 // The screen-phase result: a format every target can render to. ES 3.0 renders R32F / R16F only
@@ -318,6 +325,7 @@ inline void describe_slice_placement_passes(LayoutBuilder& b, const Config& conf
 // Occlusion textures, phase "shadow": slicing into the slices' storage (beyond 32 slices: into bits,
 // then unpack draws into that storage), then the prefilter passes.
 inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
+    // L: the highest filter level (level_bound); the summed-area table doubles over all log2(R) steps
     const int R = config.resolution, T = texture_count(config), L = max_level(config);
     const std::string level_fmt(level_format(config));
     // Storage, and where the slicing pass writes slice texture t.
@@ -414,7 +422,7 @@ inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
                        ints, w, R + 1);
             std::string from = final_name, to = "penumbra_satScratch";
             for (int vertical = 0; vertical <= 1; ++vertical)
-                for (int l = 0; l <= L; ++l) {
+                for (int l = 0; l <= resolution_levels(config); ++l) {
                     std::vector<std::pair<std::string, int>> pass_ints{{"penumbra_step", 1 << l},
                                                                        {"penumbra_vertical", vertical}};
                     if (!atlas) pass_ints.push_back({"penumbra_sourceLayer", t});
@@ -598,6 +606,15 @@ inline Layout describe_layout(const Config& config) {
 
     for (Artifact a : artifacts(config)) layout.files.emplace_back(file_name(a));
     layout.files.emplace_back("layout.json");
+    // The configuration is implied everywhere: a new one is a new layout.
+    bool has_shadow = false;
+    for (const PassDesc& p : layout.passes) has_shadow = has_shadow || p.phase == "shadow";
+    if (has_shadow) layout.phase_inputs.push_back({"shadow", {"light", "geometry"}});
+    if (config.technique == Technique::oim)
+        layout.phase_inputs.push_back({"screen", {"camera", "caller_textures", "bake"}});
+    else
+        layout.phase_inputs.push_back({"screen", {"light", "geometry", "camera", "caller_textures"}});
+    layout.phase_inputs.push_back({"example", {"light", "geometry", "camera"}});
     return layout;
 }
 
@@ -669,6 +686,8 @@ inline std::string to_json(const Layout& layout) {
     field("    ", "self_shadow_fade", c.self_shadow_fade ? "true" : "false");
     field("    ", "tangent_clip", c.tangent_clip ? "true" : "false");
     field("    ", "slice_placement", json_string(to_string(c.slice_placement)));
+    field("    ", "level_format", json_string(to_string(c.level_format)));
+    field("    ", "level_bound", std::to_string(c.level_bound));
     field("    ", "target", json_string(to_string(c.target)));
     auto real = [](double v) { return detail::format_float(v).str(); };
     auto flag = [](bool v) { return std::string(v ? "true" : "false"); };
@@ -694,6 +713,7 @@ inline std::string to_json(const Layout& layout) {
     o += "  },\n";
     field("  ", "textures_per_layer", std::to_string(layout.textures_per_layer));
     field("  ", "max_level", std::to_string(layout.max_level));
+    field("  ", "max_kernel_texels", std::to_string(layout.technique == "occlusion" ? 1 << layout.max_level : 0));
     o += "  \"textures\": [\n";
     for (std::size_t i = 0; i < layout.textures.size(); ++i) {
         const TextureDesc& t = layout.textures[i];
@@ -748,6 +768,14 @@ inline std::string to_json(const Layout& layout) {
     }
     o += "  ],\n";
     field("  ", "result", json_string(layout.result));
+    o += "  \"phase_inputs\": {";
+    for (std::size_t p = 0; p < layout.phase_inputs.size(); ++p) {
+        o += (p ? ", " : "") + json_string(layout.phase_inputs[p].first) + ": [";
+        const std::vector<std::string>& inputs = layout.phase_inputs[p].second;
+        for (std::size_t i = 0; i < inputs.size(); ++i) o += (i ? ", " : "") + json_string(inputs[i]);
+        o += "]";
+    }
+    o += "},\n";
     o += "  \"files\": [";
     for (std::size_t f = 0; f < layout.files.size(); ++f) o += (f ? ", " : "") + json_string(layout.files[f]);
     o += "]\n}\n";

@@ -17,6 +17,8 @@
 // Techniques (config.technique): occlusion textures (the default; detail/emit_*.hpp) and the
 // shadow map family, shadowmap / pcf / pcss (detail/shadow_map/); every one emits the same
 // float penumbraVisibility(vec3 worldPos). Texture memory of a layout: penumbra/texture_memory.hpp.
+// Only the filter levels a light's kernels reach: config.level_bound = penumbra::kernel_level_bound(f, config)
+// (penumbra/level_bound.hpp).
 // The same model with uniforms instead of baked constants: penumbra::emit_generic (penumbra/generic.hpp).
 // At compile time: penumbra::static_glsl<config, penumbra::Artifact::…> (penumbra/static_glsl.hpp).
 // Validation with glslang: penumbra/validation.hpp (target penumbra::validation).
@@ -26,6 +28,7 @@
 #include "emit.hpp"
 #include "generic.hpp"
 #include "layout.hpp"
+#include "level_bound.hpp"
 #include "light_frame.hpp"
 #include "program.hpp"
 #include "static_glsl.hpp"

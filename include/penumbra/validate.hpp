@@ -183,6 +183,11 @@ constexpr std::vector<Problem> find_problems(const Config& config) {
     enum_problem("light", config.light);
     enum_problem("target", config.target);
     enum_problem("slice_placement", config.slice_placement);
+    enum_problem("level_format", config.level_format);
+    if (problems.empty() && (config.level_bound < -1 || config.level_bound > resolution_levels(config)))
+        add("level_bound", format_int(config.level_bound),
+            cat("is out of range; allowed: -1 (every level) or 0 to ", format_int(resolution_levels(config)),
+                " (log2 of resolution ", format_int(config.resolution), ")"));
     if (!problems.empty()) return problems; // the rules below need valid fields
 
     const std::string_view filter = to_string(config.filter);

@@ -5,7 +5,7 @@
 //   // with a current GL 4.5 core context (libepoxy resolves the entry points)
 //   std::string error;
 //   auto runtime = penumbra::gl::Runtime::create(config, &error);
-//   runtime->set_light(light, bounds_min, bounds_max);
+//   runtime->set_light(light, bounds_min, bounds_max); // fits config.level_bound to the light (RuntimeOptions)
 //   runtime->build([&](GLuint program) { /* bind VAO: location 0 = world position; draw */ });
 //   GLuint visibility = runtime->shade_deferred(world_positions_texture, width, height); // R32F
 //   runtime->reconfigure(other_config);            // recreates only what changed
@@ -18,6 +18,7 @@
 #pragma once
 
 #include "../emit.hpp"
+#include "../level_bound.hpp"
 #include "../light_frame.hpp"
 #include "../uniform_values.hpp"
 #include "link_program.hpp"
@@ -55,6 +56,11 @@ struct RuntimeOptions {
 #else
     bool debug_output = true;
 #endif
+    // Only the filter levels the light's kernels reach (penumbra/level_bound.hpp): for a configuration
+    // whose level_bound is -1, set_light / set_frame re-emit with the bound the light and bounds need
+    // (the first time exactly, later only when the light grows past it: a smaller light keeps the
+    // levels). Off: every level, as configured.
+    bool fit_level_bound = true;
 };
 
 namespace detail {
@@ -210,6 +216,14 @@ inline GLenum gl_enum(const std::string& name) {
     return it == names.end() ? 0 : it->second;
 }
 
+// Two frames give the same uniforms (and so the same shadow phase output).
+inline bool same_frame(const SliceFrame& a, const SliceFrame& b) {
+    return a.light_from_world == b.light_from_world && a.slice_clip_from_world == b.slice_clip_from_world &&
+           a.light_size == b.light_size && a.cop_distance == b.cop_distance && a.slice_depths == b.slice_depths &&
+           a.window_half_size == b.window_half_size && a.tan_angular_radius == b.tan_angular_radius &&
+           a.contained == b.contained;
+}
+
 inline bool is_depth_format(const std::string& format) { return format.starts_with("DEPTH_COMPONENT"); }
 inline bool is_integer_format(const std::string& format) { return format.ends_with("UI"); }
 // Components of a colour format: R → 1, RG → 2, RGBA → 4.
@@ -300,7 +314,9 @@ public:
             if (error) *error = invalid_configuration(result.errors);
             return nullptr;
         }
-        return create(std::move(*result.value), error, options);
+        std::unique_ptr<Runtime> rt = create(std::move(*result.value), error, options);
+        if (rt) rt->fits_levels_ = options.fit_level_bound && config.level_bound < 0;
+        return rt;
     }
     // The same from an emission (a layout and its programs), e.g. one edited or built by hand.
     static std::unique_ptr<Runtime> create(Emission emission, std::string* error = nullptr,
@@ -314,6 +330,7 @@ public:
         // From an empty runtime, adopt builds every program and allocates every texture.
         if (std::string d = rt->adopt(std::move(emission)); !d.empty()) return fail(d);
         rt->last_reconfigure_ = {};
+        rt->requested_ = rt->config_;
         detail::DebugCapture capture(options.debug_output);
         glCreateVertexArrays(1, &rt->empty_vao_);
         glCreateFramebuffers(1, &rt->fbo_);
@@ -334,7 +351,11 @@ public:
     // What runs: the emission of config(), with the stages of replaced programs (replace_program).
     const Emission& emission() const { return emission_; }
     const Layout& layout() const { return emission_.layout; }
+    // The configuration that runs: requested_config() with level_bound fitted to the light
+    // (RuntimeOptions::fit_level_bound), the one layout() describes.
     const Config& config() const { return config_; }
+    // The configuration given to create / reconfigure.
+    const Config& requested_config() const { return requested_; }
     const SliceFrame& frame() const { return frame_; }
     // True when calls report KHR_debug messages (RuntimeOptions::debug_output and KHR_debug present).
     bool debug_output() const { return options_.debug_output && detail::DebugCapture::available(); }
@@ -350,21 +371,31 @@ public:
         return 0;
     }
 
-    void set_frame(const SliceFrame& frame) {
+    // Each returns an empty string, or the diagnostic of re-emitting with a larger level_bound (the
+    // runtime then keeps running with the levels it had).
+    std::string set_frame(const SliceFrame& frame) {
+        if (!detail::same_frame(frame_, frame)) shadow_current_ = false;
         frame_ = frame;
         light_ = std::monostate{}; // a frame set by hand is not recomputed by reconfigure
+        return fit_level_bound();
     }
-    void set_light(const RectLight& light, glm::dvec3 bounds_min, glm::dvec3 bounds_max) {
-        frame_ = slice_frame(light, bounds_min, bounds_max, config_.slices);
+    std::string set_light(const RectLight& light, glm::dvec3 bounds_min, glm::dvec3 bounds_max) {
+        const SliceFrame frame = slice_frame(light, bounds_min, bounds_max, config_.slices);
+        if (!detail::same_frame(frame_, frame)) shadow_current_ = false;
+        frame_ = frame;
         light_ = light;
         bounds_min_ = bounds_min;
         bounds_max_ = bounds_max;
+        return fit_level_bound();
     }
-    void set_light(const SunLight& sun, glm::dvec3 bounds_min, glm::dvec3 bounds_max) {
-        frame_ = slice_frame(sun, bounds_min, bounds_max, config_.slices);
+    std::string set_light(const SunLight& sun, glm::dvec3 bounds_min, glm::dvec3 bounds_max) {
+        const SliceFrame frame = slice_frame(sun, bounds_min, bounds_max, config_.slices);
+        if (!detail::same_frame(frame_, frame)) shadow_current_ = false;
+        frame_ = frame;
         light_ = sun;
         bounds_min_ = bounds_min;
         bounds_max_ = bounds_max;
+        return fit_level_bound();
     }
     // The sun's time window along its path (penumbra/sun_path.hpp), for techniques whose light is a
     // sun on a fixed path (occlusion interval maps): start, end, 1 / (end − start), centre t.
@@ -384,11 +415,24 @@ public:
     // error) returns a diagnostic and leaves the runtime exactly as it was. Empty string on success. "Text"
     // is compared without comments (see detail::code_of). The frame is recomputed for the new slice count
     // from the last set_light; after changing config.light, call set_light again. Kept textures keep their
-    // old contents until the next build().
+    // old contents until the next build(). A level_bound of -1 is fitted to the last light (see
+    // RuntimeOptions::fit_level_bound).
     std::string reconfigure(const Config& config) {
-        Result<Emission> result = emit(config);
+        const bool fits = options_.fit_level_bound && config.level_bound < 0;
+        Config next = config;
+        if (fits && has_frame()) {
+            SliceFrame frame = frame_;
+            if (const auto* rect = std::get_if<RectLight>(&light_)) frame = slice_frame(*rect, bounds_min_, bounds_max_, config.slices);
+            if (const auto* sun = std::get_if<SunLight>(&light_)) frame = slice_frame(*sun, bounds_min_, bounds_max_, config.slices);
+            next.level_bound = kernel_level_bound(frame, config);
+        }
+        Result<Emission> result = emit(next);
         if (!result.value) return invalid_configuration(result.errors);
-        return adopt(std::move(*result.value));
+        if (std::string d = adopt(std::move(*result.value)); !d.empty()) return d;
+        requested_ = config;
+        fits_levels_ = fits;
+        fitted_ = fits && has_frame();
+        return {};
     }
     struct ReconfigureStats {
         int programs_rebuilt = 0, textures_reallocated = 0;
@@ -432,6 +476,7 @@ public:
         glDeleteProgram(programs_.at(name));
         programs_[name] = id;
         running->stages = stages;
+        shadow_current_ = false; // a replaced program may be one of the shadow phase
         return {};
     }
 
@@ -439,6 +484,7 @@ public:
     // runtime's), used wherever the layout names it. Empty string on success.
     std::string supply_texture(const std::string& name, GLuint id) {
         if (std::string d = check_bake(name); !d.empty()) return d;
+        shadow_current_ = false;
         if (id) supplied_[name] = id;
         else supplied_.erase(name);
         return {};
@@ -459,8 +505,27 @@ public:
         detail::DebugCapture capture(options_.debug_output);
         std::string diagnostic = run_phase("shadow", draw, timings);
         if (std::string d = capture.take_diagnostic("build"); diagnostic.empty()) diagnostic = d;
+        shadow_current_ = diagnostic.empty();
         return diagnostic;
     }
+
+    // build() only when what the shadow phase depends on changed since the last build (layout.json
+    // "phase_inputs"): the light (a set_light or set_frame that changed the frame), the
+    // configuration (reconfigure, a grown level bound), or the geometry, which only the caller knows
+    // (`geometry_changed`). A camera-only change runs nothing: the occlusion textures stay valid.
+    // *ran tells whether the passes ran. Empty string on success, else build()'s diagnostic.
+    std::string update(const DrawScene& draw, bool geometry_changed, bool* ran = nullptr,
+                       std::vector<PassTiming>* timings = nullptr) {
+        const bool needed = geometry_changed || !shadow_current_;
+        if (ran) *ran = needed;
+        if (!needed) {
+            if (timings) timings->clear();
+            return {};
+        }
+        return build(draw, timings);
+    }
+    // False when the next update() will run the shadow phase whatever the geometry does.
+    bool shadow_current() const { return shadow_current_; }
 
     // Runs the passes of phase "screen" at width × height over the caller's textures (every texture
     // whose source is "caller", by layout name). Output-sized textures are (re)allocated for this size.
@@ -537,6 +602,25 @@ private:
     // "caller" textures come with every screen run.
     static bool allocated_at_create(const TextureDesc& t) { return t.source != "caller" && t.size != "output"; }
 
+    bool has_frame() const { return !std::holds_alternative<std::monostate>(light_) || frame_set_by_hand_; }
+
+    // RuntimeOptions::fit_level_bound: the first frame sets the bound it needs, later ones grow it.
+    std::string fit_level_bound() {
+        frame_set_by_hand_ = std::holds_alternative<std::monostate>(light_);
+        if (!fits_levels_) return {};
+        const int needed = kernel_level_bound(frame_, requested_);
+        if (needed < 0 || (fitted_ && needed <= config_.level_bound)) return {};
+        Config next = requested_;
+        next.level_bound = needed;
+        Result<Emission> result = emit(next);
+        if (!result.value) return invalid_configuration(result.errors);
+        const ReconfigureStats stats = last_reconfigure_;
+        if (std::string d = adopt(std::move(*result.value)); !d.empty()) return "level_bound " + std::to_string(needed) + ": " + d;
+        last_reconfigure_ = stats; // what reconfigure did stays reported
+        fitted_ = true;
+        return {};
+    }
+
     // Switches to `next`; see reconfigure.
     std::string adopt(Emission next) {
         detail::DebugCapture capture(options_.debug_output);
@@ -599,6 +683,7 @@ private:
         }
         programs_ = std::move(next_programs);
         textures_ = std::move(next_textures);
+        shadow_current_ = false; // new programs or textures: the shadow phase runs again
         config_ = next.layout.config;
         emission_ = std::move(next);
         if (const auto* rect = std::get_if<RectLight>(&light_))
@@ -923,7 +1008,10 @@ private:
         return diagnostic;
     }
 
-    Config config_;
+    Config config_;    // what runs (level_bound fitted)
+    Config requested_; // what create / reconfigure were given
+    bool fits_levels_ = false, fitted_ = false, frame_set_by_hand_ = false;
+    bool shadow_current_ = false; // the shadow phase ran since the light, configuration or textures changed
     Emission emission_;
     SliceFrame frame_;
     RuntimeOptions options_;

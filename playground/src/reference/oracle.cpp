@@ -1,11 +1,13 @@
 // playground/src/reference/oracle.cpp — the CPU oracle (see oracle.hpp), and its error bound.
 //
 // Why the GPU may differ from the oracle, per filtered lookup (all of it texture precision):
-//   1. storage: filtered levels are stored rounded (level_format: RGBA16F levels, RGBA8 mip
-//      chains, RGBA32F summed-area tables) and each level is built from the rounded previous
+//   1. storage: filtered levels are stored rounded (level_format: RGBA8 or RGBA16F levels, RGBA8
+//      mip chains, RGBA32F summed-area tables) and each level is built from the rounded previous
 //      one, so a texel of level l is off by at most l units of the format's last place (1/255
 //      for RGBA8, 2^-11 relative for half floats, i.e. ≤ 2^-11 for values ≤ 1). Texels whose
-//      exact value is 0 or 1 are exact (a mean of zeros or of ones rounds to itself).
+//      exact value is 0 or 1 are exact (a mean of zeros or of ones rounds to itself). RGBA8
+//      N-buffer and Gaussian levels are modelled: the oracle rounds each level to the nearest
+//      1/255 before building the next, so what is left is the GPU's fp32 sum at a rounding tie.
 //   2. bilinear weights: GPUs quantize the sub-texel fraction to 8 bits, so each weight is off by
 //      up to δ = 2^-8; a bilinear fetch is then off by ≤ (2δ + δ²)·(max − min of its 4 texels).
 //      The same δ applies to the hardware's fraction between two levels (mipmap trilinear, the
@@ -187,6 +189,10 @@ void Oracle::build_levels(const SliceTextures& slices) {
                     return result;
                 };
                 next = filter_1d(filter_1d(prev, true), false);
+                // RGBA8 levels (level_format): each level is stored rounded to the nearest 1/255 and
+                // the next one is built from the rounded texels, as on the GPU
+                if (detail::level_format(config_) == "RGBA8")
+                    for (double& texel : next.texels) texel = std::round(texel * 255.0) / 255.0;
             }
             chain.push_back(std::move(next));
         }
@@ -282,9 +288,18 @@ Oracle::Sample Oracle::filtered(int slice, glm::dvec2 centre, double side) const
     const int R = config_.resolution, L = levels_top_;
     const double bias = config_.filter == Filter::gaussian ? gaussian_bias : 0.0;
     // windows narrower than one texel read level 0
-    const double level = std::clamp(std::log2(std::max(side * R, 1.0)) + bias, 0.0, static_cast<double>(L));
+    // (clamped to the highest level built: config.level_bound)
+    const double wanted = std::log2(std::max(side * R, 1.0)) + bias;
+    const double level = std::clamp(wanted, 0.0, static_cast<double>(L));
     const int lo = static_cast<int>(std::floor(level));
     const double t = level - lo;
+    Sample result = filtered_at(slice, centre, level, lo, t);
+    result.clamped = L < resolution_levels(config_) && wanted > L + 1e-6;
+    return result;
+}
+
+Oracle::Sample Oracle::filtered_at(int slice, glm::dvec2 centre, double level, int lo, double t) const {
+    const int R = config_.resolution, L = levels_top_;
     if (config_.filter == Filter::mipmap) {
         // hardware trilinear: each level read at the same uv in its own texel grid
         auto at_level = [&](int l) { return bilinear(slice, l, centre * static_cast<double>(R >> l)); };
@@ -340,6 +355,7 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
     glm::dvec3 p = glm::dvec3(light_from_world_ * glm::dvec4(glm::dvec3(world), 1.0));
     p.z = std::max(p.z, 1e-6); // points on or behind the light plane
     double lit = 1.0, sum = 0.0, maximum = 0.0, bound = 0.0, chain = 1.0, previous = 0.0;
+    bool beyond = false;
     // Tangent clip (emit_visibility.hpp): the part of the light above the tangent plane, in the
     // light's unit square, cut along the axis the plane crosses most steeply; then the point
     // moves tangent_clip_offset_texels slicing texels sideways along its normal.
@@ -377,6 +393,7 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
         centre += glm::dvec2(clip) * side; // tangent clip (identity when off)
         side *= clip.z;
         const Sample o = filtered(s, centre, side);
+        beyond = beyond || (o.clamped && weight > 0.0);
         bound += ambiguous ? o.value + o.bound : clip_ambiguous ? 1.0 : weight * o.bound + arithmetic_error;
         const double q = weight * o.value;
         lit *= 1.0 - q;
@@ -394,7 +411,7 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
     case Fusion::average: v = 1.0 - 0.5 * (std::min(1.0, sum) + maximum); break; // Soler & Sillion
     case Fusion::chained: v = std::clamp(chain, 0.0, 1.0); break;
     }
-    return {v, bound};
+    return {v, bound, beyond};
 }
 
 } // namespace penumbra::playground

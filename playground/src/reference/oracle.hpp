@@ -59,6 +59,9 @@ bool read_slice_boundaries(const penumbra::gl::Runtime& runtime, std::vector<flo
 struct OracleValue {
     double visibility = 1.0;
     double bound = 0.0; // |GPU − oracle| that texture precision explains at this point
+    // a slice with weight > 0 asked for a filter level above config.level_bound (and got that level):
+    // the bound was too small for this receiver (penumbra/level_bound.hpp)
+    bool beyond_level_bound = false;
 };
 
 class Oracle {
@@ -84,6 +87,7 @@ public:
     struct Sample {
         double value = 0.0;
         double bound = 0.0;
+        bool clamped = false; // the kernel's level was above the highest built one (level_bound)
     };
     Sample filtered(int slice, glm::dvec2 centre, double side) const;
 
@@ -108,6 +112,7 @@ private:
     double stored(int slice, int level, int x, int y) const;
     double storage_error(int level) const;
     Sample bilinear(int slice, int level, glm::dvec2 texel_coords) const;
+    Sample filtered_at(int slice, glm::dvec2 centre, double level, int lo, double t) const;
     Sample mix_levels(const Sample& lo, const Sample& hi, double t, bool hardware) const;
     Sample box_filtered(int slice, glm::dvec2 centre, double side) const;
     double prefix(int slice, glm::dvec2 corner) const;
@@ -118,7 +123,7 @@ private:
     glm::dvec2 light_size_{0.0};
     std::vector<double> planes_;         // the S + 1 slice boundaries: slice s holds depths (planes_[s], planes_[s + 1]]
     std::vector<double> fade_thickness_; // [slice]: the depth over which its plane's fade ramps
-    int levels_top_ = 0;                      // L = log2(R)
+    int levels_top_ = 0;                      // L: log2(R), or config.level_bound when set
     std::vector<std::vector<Plane>> levels_;  // [slice][level]: mip chain, N-buffer or Gaussian levels
     std::vector<Plane> prefix_;               // [slice]: (R+1)² table, texel (X, Y) = sum over x < X, y < Y
 };

@@ -101,8 +101,8 @@ glm::mat4 FrameRenderer::moving_object_at(double seconds) const {
                       glm::vec3(object_size_));
 }
 
-void FrameRenderer::update_meshes(const std::optional<glm::mat4>& moving_object) {
-    if (mesh_built_ && moving_object == mesh_object_) return;
+bool FrameRenderer::update_meshes(const std::optional<glm::mat4>& moving_object) {
+    if (mesh_built_ && moving_object == mesh_object_) return false;
     if (!moving_object) {
         mesh_ = std::make_unique<MeshBuffers>(scene_->mesh);
     } else {
@@ -113,6 +113,7 @@ void FrameRenderer::update_meshes(const std::optional<glm::mat4>& moving_object)
     }
     mesh_object_ = moving_object;
     mesh_built_ = true;
+    return true;
 }
 
 std::string FrameRenderer::render(penumbra::gl::Runtime& left, penumbra::gl::Runtime* right,
@@ -123,7 +124,7 @@ std::string FrameRenderer::render(penumbra::gl::Runtime& left, penumbra::gl::Run
         gbuffer_ = GBuffer::create(width, height, &error);
         if (!gbuffer_) return error;
     }
-    update_meshes(settings.moving_object);
+    const bool geometry_changed = update_meshes(settings.moving_object);
 
     glBeginQuery(GL_TIME_ELAPSED, queries_[0]);
     gbuffer_->render(*mesh_, settings.camera.projection_matrix(static_cast<float>(width) / height) *
@@ -143,8 +144,10 @@ std::string FrameRenderer::render(penumbra::gl::Runtime& left, penumbra::gl::Run
             runtime->set_light(settings.sun, glm::dvec3(bounds_min_), glm::dvec3(bounds_max_));
         else
             runtime->set_light(settings.rect, glm::dvec3(bounds_min_), glm::dvec3(bounds_max_));
+        // The passes from the light run only when the light, the geometry or the configuration
+        // changed (layout.json "phase_inputs"): a camera-only change reuses the occlusion textures.
         std::vector<penumbra::gl::PassTiming> timings;
-        if (std::string d = runtime->build([&](GLuint) { mesh_->draw(); }, &timings); !d.empty())
+        if (std::string d = runtime->update([&](GLuint) { mesh_->draw(); }, geometry_changed, nullptr, &timings); !d.empty())
             return prefix + d;
         // A pass that runs once per level (nbuffer_level, …) counts as one entry: its total.
         std::vector<std::pair<std::string, double>> totals;

@@ -65,7 +65,8 @@ public:
 
 private:
     FrameRenderer() = default;
-    void update_meshes(const std::optional<glm::mat4>& moving_object);
+    // True when the geometry changed (first frame, the moving object moved or appeared).
+    bool update_meshes(const std::optional<glm::mat4>& moving_object);
     std::string draw_debug_view(penumbra::gl::Runtime* runtimes[2], const GLuint visibility[2],
                                 const FrameSettings& settings, int width, int height);
 

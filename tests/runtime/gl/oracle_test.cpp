@@ -34,6 +34,8 @@ struct Agreement {
     double max_bound = 0;   // the largest per-pixel bound
     double worst_ratio = 0; // max over the pixels of |GPU − oracle| / bound
     std::size_t pixels = 0, beyond_bound = 0, penumbra_pixels = 0;
+    std::size_t beyond_level_bound = 0; // pixels whose kernel asked for a level above config.level_bound
+    int level_bound = -1;               // the level_bound the runtime fitted to the light
 };
 
 std::string describe_config(const Config& c) {
@@ -51,6 +53,7 @@ struct GpuRun {
     SliceTextures slices;
     SliceFrame frame;
     std::vector<float> boundaries; // adaptive slice placement: the GPU's S + 1 boundaries
+    Config config;                 // what ran: level_bound fitted to the light
 };
 
 bool render(const Scene& scene, const Config& config, int size, GpuRun& run, std::string* error) {
@@ -60,6 +63,7 @@ bool render(const Scene& scene, const Config& config, int size, GpuRun& run, std
         read = read_slice_textures(runtime, run.slices, &read_error) &&
                read_slice_boundaries(runtime, run.boundaries, &read_error);
         run.frame = runtime.frame();
+        run.config = runtime.config();
     }};
     if (!render_headless(scene, config, size, size, run.result, error, options)) return false;
     if (!read) *error = read_error;
@@ -80,6 +84,7 @@ Agreement compare(const Oracle& oracle, const Config& config, const HeadlessResu
         out.max_bound = std::max(out.max_bound, expected.bound);
         out.worst_ratio = std::max(out.worst_ratio, difference / std::max(expected.bound, 1e-12));
         out.beyond_bound += difference > expected.bound;
+        out.beyond_level_bound += expected.beyond_level_bound;
         out.penumbra_pixels += expected.visibility > 0.02 && expected.visibility < 0.98;
     }
     out.mean_difference = out.pixels ? sum / out.pixels : 0.0;
@@ -162,18 +167,23 @@ TEST_CASE("oracle: GPU matches the CPU oracle within texture precision, every fi
             if (!rendered) continue;
             // The filter does not depend on the fusion: one oracle serves the four rules, as long
             // as the slicing pass wrote the same textures (it is deterministic).
+            // the runtime fitted level_bound to the light: the oracle builds the same levels
+            CHECK_MESSAGE((run.config.filter == Filter::sat || run.config.level_bound >= 0), describe_config(config));
             if (!oracle) {
-                oracle.emplace(config, run.frame, run.slices, run.boundaries);
+                oracle.emplace(run.config, run.frame, run.slices, run.boundaries);
                 oracle_input = std::move(run.slices);
             } else {
                 CHECK_MESSAGE(run.slices.coverage == oracle_input.coverage, describe_config(config),
                               ": the slicing output changed with the fusion rule");
             }
-            const Agreement a = compare(*oracle, config, run.result);
+            Agreement a = compare(*oracle, config, run.result);
+            a.level_bound = run.config.level_bound;
             std::printf("oracle %-44s max %.2e mean %.2e  bound max %.2e  worst diff/bound %.3f  beyond %zu/%zu  "
-                        "penumbra %zu\n",
+                        "penumbra %zu  level bound %d (over it %zu)\n",
                         a.name.c_str(), a.max_difference, a.mean_difference, a.max_bound, a.worst_ratio,
-                        a.beyond_bound, a.pixels, a.penumbra_pixels);
+                        a.beyond_bound, a.pixels, a.penumbra_pixels, a.level_bound, a.beyond_level_bound);
+            CHECK_MESSAGE(a.beyond_level_bound == 0, a.name, ": ", a.beyond_level_bound,
+                          " pixels asked for a level above the fitted level_bound ", a.level_bound);
             CHECK_MESSAGE(a.beyond_bound == 0, a.name, ": ", a.beyond_bound, " pixels beyond the bound, max |diff| ",
                           a.max_difference);
             // (the small sun's additive penumbrae with the clip: 37 pixels of 64², measured)

@@ -97,7 +97,7 @@ TEST_CASE("reconfigure: changing fusion rebuilds only the shading programs and r
     Config additive = kSmall;
     additive.fusion = penumbra::Fusion::additive;
     REQUIRE(rt->reconfigure(additive) == "");
-    CHECK(rt->config() == additive);
+    CHECK(rt->requested_config() == additive);
     CHECK(rt->last_reconfigure().programs_rebuilt == 2);
     CHECK(rt->last_reconfigure().textures_reallocated == 0);
     for (const auto& [name, id] : program_ids(*rt)) {
@@ -216,7 +216,7 @@ TEST_CASE("reconfigure: an invalid configuration returns a diagnostic and change
     const std::string diagnostic = rt->reconfigure(invalid);
     CHECK(diagnostic.find("slices") != std::string::npos);
     CHECK(diagnostic.find("40") != std::string::npos);
-    CHECK(rt->config() == kSmall);
+    CHECK(rt->requested_config() == kSmall);
     CHECK(program_ids(*rt) == programs);
     CHECK(texture_ids(*rt) == textures);
     CHECK(identical(planes.render(*rt), before));
@@ -298,4 +298,94 @@ TEST_CASE("shade_deferred: times the shading pass when asked") {
     CHECK(timing.name == "shading");
     CHECK(timing.milliseconds > 0.0);
     CHECK(timing.milliseconds < 10000.0);
+}
+
+// RuntimeOptions::fit_level_bound (penumbra/level_bound.hpp): set_light builds only the levels the
+// light's kernels reach, the image is the one of every level, and a larger light grows the bound
+// (a smaller one keeps it).
+TEST_CASE("fit_level_bound: only the levels the light reaches, the same image, grown with the light") {
+    Planes planes;
+    REQUIRE_MESSAGE(planes.ready(), planes.error);
+    auto fitted = planes.runtime(kSmall);
+    REQUIRE_MESSAGE(fitted, planes.error);
+    const int all = penumbra::resolution_levels(kSmall);
+    const int bound = fitted->config().level_bound;
+    CHECK(fitted->requested_config() == kSmall);
+    CHECK(bound == penumbra::kernel_level_bound(fitted->frame(), kSmall));
+    REQUIRE(bound >= 1);
+    REQUIRE(bound < all); // the planes scene's default light reaches fewer than log2(128) = 7 levels
+    CHECK(fitted->layout().max_level == bound);
+    CHECK(fitted->texture("penumbra_level" + std::to_string(bound)) != 0);
+    CHECK(fitted->texture("penumbra_level" + std::to_string(bound + 1)) == 0);
+
+    Config every_level = kSmall;
+    every_level.level_bound = all; // set: never fitted
+    auto full = planes.runtime(every_level);
+    REQUIRE_MESSAGE(full, planes.error);
+    CHECK(full->config().level_bound == all);
+    const std::vector<float> a = planes.render(*fitted), b = planes.render(*full);
+    REQUIRE_MESSAGE(!a.empty(), planes.error);
+    REQUIRE_MESSAGE(!b.empty(), planes.error);
+    CHECK(identical(a, b)); // no receiver inside the bounds reads above the bound
+
+    penumbra::RectLight large = planes.scene->light;
+    large.width *= 8;
+    large.height *= 8;
+    CHECK(fitted->set_light(large, glm::dvec3(planes.scene->bounds_min), glm::dvec3(planes.scene->bounds_max)) == "");
+    const int grown = fitted->config().level_bound;
+    CHECK(grown > bound);
+    CHECK(grown == penumbra::kernel_level_bound(fitted->frame(), kSmall));
+    CHECK(fitted->set_light(planes.scene->light, glm::dvec3(planes.scene->bounds_min),
+                            glm::dvec3(planes.scene->bounds_max)) == "");
+    CHECK(fitted->config().level_bound == grown); // a smaller light keeps the levels
+}
+
+// Runtime::update skips the passes from the light when neither the light nor the geometry nor the
+// configuration changed (layout.json "phase_inputs"), and the image stays the same.
+TEST_CASE("update: the shadow phase runs only when the light, the geometry or the configuration changed") {
+    Planes planes;
+    REQUIRE_MESSAGE(planes.ready(), planes.error);
+    auto rt = planes.runtime(kSmall);
+    REQUIRE_MESSAGE(rt, planes.error);
+    int draws = 0;
+    auto draw = [&](GLuint) {
+        ++draws;
+        planes.mesh->draw();
+    };
+    bool ran = false;
+    CHECK(!rt->shadow_current());
+    REQUIRE(rt->update(draw, false, &ran) == "");
+    CHECK(ran); // never built
+    const int first = draws;
+    CHECK(first >= 1);
+    REQUIRE(rt->shade_deferred(planes.gbuffer->positions(), kSize, kSize, &planes.error, nullptr, planes.gbuffer->normals()));
+    const std::vector<float> before = rt->read_visibility();
+
+    const glm::dvec3 lo(planes.scene->bounds_min), hi(planes.scene->bounds_max);
+    CHECK(rt->set_light(planes.scene->light, lo, hi) == ""); // the same light: nothing to redo
+    std::vector<penumbra::gl::PassTiming> timings{{"stale", 1.0}};
+    REQUIRE(rt->update(draw, false, &ran, &timings) == "");
+    CHECK(!ran);
+    CHECK(timings.empty());
+    CHECK(draws == first);
+    REQUIRE(rt->shade_deferred(planes.gbuffer->positions(), kSize, kSize, &planes.error, nullptr, planes.gbuffer->normals()));
+    CHECK(identical(rt->read_visibility(), before));
+
+    REQUIRE(rt->update(draw, true, &ran) == ""); // the caller says the geometry moved
+    CHECK(ran);
+    CHECK(draws == 2 * first);
+
+    penumbra::RectLight moved = planes.scene->light;
+    moved.center.x += 0.1;
+    CHECK(rt->set_light(moved, lo, hi) == "");
+    REQUIRE(rt->update(draw, false, &ran) == "");
+    CHECK(ran);
+    REQUIRE(rt->update(draw, false, &ran) == "");
+    CHECK(!ran);
+
+    Config other = kSmall;
+    other.fusion = penumbra::Fusion::additive;
+    REQUIRE(rt->reconfigure(other) == "");
+    REQUIRE(rt->update(draw, false, &ran) == "");
+    CHECK(ran); // a new configuration may have new textures
 }
