@@ -55,15 +55,15 @@ else
     quality_args=(--filters mipmap,nbuffer,sat --configs 16x512,4x128 --size 256x256 --samples 16 --repeat 3)
 fi
 
-echo "comparison: $build/bench/penumbra-bench-compare ${compare_args[*]} --out $out/compare"
-"$build/bench/penumbra-bench-compare" "${compare_args[@]}" --out "$out/compare" >"$out/compare.txt" 2>&1 ||
+echo "comparison: $build/penumbra-bench-compare ${compare_args[*]} --out $out/compare"
+"$build/penumbra-bench-compare" "${compare_args[@]}" --out "$out/compare" >"$out/compare.txt" 2>&1 ||
     { tail -20 "$out/compare.txt" >&2; echo "error: penumbra-bench-compare failed ($out/compare.txt)" >&2; exit 1; }
 /usr/bin/python3 scripts/compare_report.py "$out/compare" >"$out/compare_report.txt" 2>&1 ||
     { cat "$out/compare_report.txt" >&2; echo "error: compare_report.py failed" >&2; exit 1; }
 compared=$(date +%s)
 
-echo "quality: $build/bench/penumbra-bench-quality ${quality_args[*]}"
-"$build/bench/penumbra-bench-quality" "${quality_args[@]}" >"$out/quality.txt" 2>&1 ||
+echo "quality: $build/penumbra-bench-quality ${quality_args[*]}"
+"$build/penumbra-bench-quality" "${quality_args[@]}" >"$out/quality.txt" 2>&1 ||
     { tail -20 "$out/quality.txt" >&2; echo "error: penumbra-bench-quality failed ($out/quality.txt)" >&2; exit 1; }
 done_at=$(date +%s)
 
@@ -74,8 +74,8 @@ renderer=$(/usr/bin/python3 -c 'import json,sys; m=json.load(open(sys.argv[1]))[
     echo "- renderer: $renderer"
     echo "- date: $(date -u +%Y-%m-%dT%H:%M:%SZ), commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown)"
     echo "- build $((built - start)) s, comparison $((compared - built)) s, quality $((done_at - compared)) s"
-    echo "- comparison: \`$build/bench/penumbra-bench-compare ${compare_args[*]} --out $out/compare\`"
-    echo "- quality: \`$build/bench/penumbra-bench-quality ${quality_args[*]}\`"
+    echo "- comparison: \`$build/penumbra-bench-compare ${compare_args[*]} --out $out/compare\`"
+    echo "- quality: \`$build/penumbra-bench-quality ${quality_args[*]}\`"
     echo
     echo "## Comparison (per setting: GPU time of every pass, texture memory, fair penumbra MAE)"
     echo
