@@ -5,6 +5,7 @@
 // desktop runtime, include/penumbra/gl/runtime.hpp).
 //
 //   const runner = await LayoutRunner.load(gl, "emission/");           // layout.json + its files
+//   const runner = LayoutRunner.fromEmission(gl, emitter.emit(config));  // or an emission in memory
 //   runner.setUniforms({penumbra_lightFromWorld: [...16], ...});        // by GLSL name
 //   runner.runPhase("shadow", (program) => drawTriangles());            // slicing + prefilter
 //   runner.fillTexture("penumbra_worldPositions", w, h, positions);     // a "caller" texture
@@ -56,6 +57,17 @@ export class LayoutRunner {
         for (const program of layout.programs || [])
             for (const file of program.files) if (!(file in sources)) sources[file] = await fetchText(file);
         return new LayoutRunner(gl, layout, sources);
+    }
+
+    // From an emission in memory: {files: {"<name>": text, ...}, layout} as penumbra_emitter.js's
+    // emit() returns it (layout: layout.json parsed; taken from files["layout.json"] when absent).
+    static fromEmission(gl, {files, layout}) {
+        if (!files) fail("fromEmission: no files (an emission that failed? see its diagnostics)");
+        const parsed = layout ?? (files["layout.json"] !== undefined ? JSON.parse(files["layout.json"]) : null);
+        if (!parsed) fail("fromEmission: no layout and no layout.json among the files");
+        for (const program of parsed.programs || [])
+            for (const file of program.files) if (typeof files[file] !== "string") fail(`fromEmission: program ${program.name}: no file ${file}`);
+        return new LayoutRunner(gl, parsed, files);
     }
 
     constructor(gl, layout, sources) {
