@@ -115,7 +115,8 @@ class App {
         this.emitter = await loadEmitter(params.get("wasm") || undefined);
         // The emitter's defaults (Config{}), for WebGL2: target essl300, 256² occlusion textures.
         this.defaults = this.emitter.emit({target: "essl300"}).layout.config;
-        this.state = {view: "shaded", camera: "orbit", split: false, yaw: 0.6, pitch: 0.6, useBundleUniforms: false, bundleSlices: null,
+        // With ?bundle= the page starts at the bundle's camera (its G-buffers): what the desktop ran.
+        this.state = {view: "shaded", camera: params.get("bundle") ? "bundle" : "orbit", split: false, yaw: 0.6, pitch: 0.6, useBundleUniforms: false, bundleSlices: null,
                       renders: 0, frameMs: 0};
         this.gbuffer = new GBuffer(this.gl);
         this.composite = new Composite(this.gl);
