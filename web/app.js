@@ -207,7 +207,8 @@ class App {
         }
         runner.runPhase("screen", null, {width, height});
         this.composite.draw({visibility: runner.texture(runner.layout.result).id, positions: positions.id, normals: normals.id,
-                             reference: bundleCamera ? this.reference : null}, area, this.state.view, toLight);
+                             reference: bundleCamera ? this.reference : null}, [this.canvas.width, this.canvas.height], area,
+                            this.state.view, toLight);
         return frame.contained;
     }
 

@@ -175,7 +175,7 @@ uniform highp sampler2D visibility;
 uniform highp sampler2D positions;
 uniform highp sampler2D normals;
 uniform highp sampler2D reference;
-uniform vec4 area;      // x, y, width, height of the canvas area the image fills
+uniform vec4 area;      // x, y, width, height of the canvas rectangle the images cover
 uniform vec4 toLight;   // (centre, 1) for a rectangle, (direction to the sun, 0)
 uniform int mode;
 out vec4 color;
@@ -211,12 +211,13 @@ export class Composite {
         gl.bindTexture(gl.TEXTURE_2D, null);
     }
 
-    // textures: {visibility, positions, normals, reference (optional)} GL texture ids; area: the
-    // canvas rectangle [x, y, w, h] (scissored), mode "shaded" | "visibility" | "error".
-    draw(textures, area, mode, toLight) {
+    // textures: {visibility, positions, normals, reference (optional)} GL texture ids, images of
+    // the whole canvas; canvas: [width, height]; area: the rectangle [x, y, w, h] of the canvas to
+    // draw (a split view's half); mode "shaded" | "visibility" | "error".
+    draw(textures, canvas, area, mode, toLight) {
         const gl = this.gl;
         gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-        gl.viewport(area[0], area[1], area[2], area[3]);
+        gl.viewport(0, 0, canvas[0], canvas[1]);
         gl.enable(gl.SCISSOR_TEST);
         gl.scissor(area[0], area[1], area[2], area[3]);
         gl.disable(gl.DEPTH_TEST);
@@ -229,7 +230,7 @@ export class Composite {
             gl.bindTexture(gl.TEXTURE_2D, textures[name] ?? this.white);
             gl.uniform1i(gl.getUniformLocation(this.program, name), unit);
         });
-        gl.uniform4fv(gl.getUniformLocation(this.program, "area"), area);
+        gl.uniform4fv(gl.getUniformLocation(this.program, "area"), [0, 0, canvas[0], canvas[1]]);
         gl.uniform4fv(gl.getUniformLocation(this.program, "toLight"), toLight);
         gl.uniform1i(gl.getUniformLocation(this.program, "mode"), {shaded: 0, visibility: 1, error: 2}[mode]);
         gl.bindVertexArray(this.vao);
