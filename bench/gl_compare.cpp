@@ -20,6 +20,7 @@
 //   penumbra-bench-compare [--quick | --full] [--scenes a,b] [FILE ...] [--corpus [DIR]] [--settings a,b]
 //                          [--size N] [--samples N] [--runs N] [--light-scales 1,2,4] [--flicker-frames N]
 //                          [--out DIR]
+#include "arguments.hpp"
 #include "compare/frame.hpp"
 #include "compare/ladder.hpp"
 #include "compare/progress.hpp"
@@ -69,6 +70,9 @@ using bench::run_frame;
 
 namespace {
 
+using bench::parse_number;
+using bench::split;
+
 // One scene to run: a built-in name, a mesh file, or a corpus mesh (a file with its manifest entry).
 struct SceneInput {
     std::string name_or_path;
@@ -113,22 +117,6 @@ constexpr const char* usage_text =
     "  --flicker-frames  frames of the slowly moving light for the flicker measurement, 2 to 64\n"
     "  --out             output folder (default out/compare): results.json, images/, cache/\n"
     "flags after --quick or --full override what they set.\n";
-
-std::vector<std::string_view> split(std::string_view text) {
-    std::vector<std::string_view> parts;
-    while (!text.empty()) {
-        const std::size_t comma = text.find(',');
-        parts.push_back(text.substr(0, comma));
-        if (comma == std::string_view::npos) break;
-        text.remove_prefix(comma + 1);
-    }
-    return parts;
-}
-
-template <class T> bool parse_number(std::string_view text, T& value) {
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    return ec == std::errc() && end == text.data() + text.size();
-}
 
 // Options from argv, or an error message (one line).
 std::optional<Options> parse(int argc, char** argv, std::string& error) {

@@ -7,6 +7,7 @@
 //
 //   penumbra-bench-quality [--scenes planes,boxes] [FILE ...] [--corpus [DIR]] [--filters sat,nbuffer]
 //                          [--configs 16x512,4x128] [--size 256x256] [--samples 16] [--repeat 1]
+#include "arguments.hpp"
 #include "corpus/manifest.hpp"
 
 #include "app/headless_job.hpp"
@@ -32,6 +33,10 @@
 using namespace penumbra::playground;
 
 namespace {
+
+using penumbra::bench::parse_number;
+using penumbra::bench::split;
+
 
 struct SliceSetting {
     int slices = 16, resolution = 512;
@@ -77,25 +82,9 @@ constexpr const char* usage_text =
     "              adaptive slice placement, e.g. probabilistic,chained+clip,chained+clip+adaptive\n"
     "              (default: Config{}'s)\n";
 
-std::vector<std::string_view> split(std::string_view text) {
-    std::vector<std::string_view> parts;
-    while (!text.empty()) {
-        const std::size_t comma = text.find(',');
-        parts.push_back(text.substr(0, comma));
-        if (comma == std::string_view::npos) break;
-        text.remove_prefix(comma + 1);
-    }
-    return parts;
-}
-
-bool parse_int(std::string_view text, int& value) {
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    return ec == std::errc() && end == text.data() + text.size();
-}
-
 bool parse_pair(std::string_view text, int& a, int& b) {
     const std::size_t x = text.find('x');
-    return x != std::string_view::npos && parse_int(text.substr(0, x), a) && parse_int(text.substr(x + 1), b);
+    return x != std::string_view::npos && parse_number(text.substr(0, x), a) && parse_number(text.substr(x + 1), b);
 }
 
 // Options from argv, or an error message.
@@ -183,12 +172,12 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                 return std::nullopt;
             }
         } else if (flag == "--samples") {
-            if (!parse_int(value, o.samples) || o.samples < 1 || o.samples > 256) {
+            if (!parse_number(value, o.samples) || o.samples < 1 || o.samples > 256) {
                 error = "--samples: expected 1 to 256";
                 return std::nullopt;
             }
         } else if (flag == "--repeat") {
-            if (!parse_int(value, o.repeat) || o.repeat < 1 || o.repeat > 100) {
+            if (!parse_number(value, o.repeat) || o.repeat < 1 || o.repeat > 100) {
                 error = "--repeat: expected 1 to 100";
                 return std::nullopt;
             }

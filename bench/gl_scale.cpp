@@ -20,6 +20,7 @@
 //
 //   penumbra-bench-scale [--scenes a,b | ''] [FILE ...] [--corpus [DIR]] [--size N] [--samples N]
 //                        [--runs N] [--warmup N] [--no-truth] [--json FILE]
+#include "arguments.hpp"
 #include "compare/frame.hpp"
 #include "compare/ladder.hpp"
 #include "corpus/manifest.hpp"
@@ -54,6 +55,10 @@ using json = nlohmann::ordered_json;
 
 namespace {
 
+using penumbra::bench::parse_number;
+using penumbra::bench::split;
+
+
 struct SceneInput {
     std::string name_or_path, name;
 };
@@ -78,22 +83,6 @@ constexpr const char* usage_text =
     "  --no-truth  skip the Embree build and trace\n"
     "  --json      also write every number to FILE\n"
     "prints a table per scene, sorted by triangles, and the growth exponents between consecutive counts.\n";
-
-std::vector<std::string_view> split(std::string_view text) {
-    std::vector<std::string_view> parts;
-    while (!text.empty()) {
-        const std::size_t comma = text.find(',');
-        parts.push_back(text.substr(0, comma));
-        if (comma == std::string_view::npos) break;
-        text.remove_prefix(comma + 1);
-    }
-    return parts;
-}
-
-bool parse_int(std::string_view text, int& value) {
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    return ec == std::errc() && end == text.data() + text.size();
-}
 
 std::optional<Options> parse(int argc, char** argv, std::string& error) {
     Options o;
@@ -127,7 +116,7 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
         if (i + 1 >= argc) return fail(std::string(flag) + ": missing value (see --help)");
         const std::string_view value = argv[++i];
         auto number = [&](int& out, int lo, int hi) {
-            return parse_int(value, out) && out >= lo && out <= hi;
+            return parse_number(value, out) && out >= lo && out <= hi;
         };
         if (flag == "--scenes") {
             built_in.clear();
