@@ -21,7 +21,8 @@
 // Fetches per fragment of the shading pass (occlusion textures) are an upper bound: every slice
 // above the point looks up (one per slice: two bilinear fetches for N-buffer atlas and array levels,
 // one trilinear for mip chains and volumes, four bilinear for summed-area tables); a bilinear fetch
-// counts 4 texels, a trilinear one 8.
+// counts 4 texels, a trilinear one 8. Shadow maps: 4 texels per tap (PCF taps, PCSS blocker and filter
+// samples, the hard shadow map's one).
 #pragma once
 
 #include "layout.hpp"
@@ -66,7 +67,11 @@ inline long long texels_per_fragment(const Layout& layout, std::string_view prog
     if (program == "slice_boundaries") return 64; // the 8 x 8 cells of one depth bin (emit_slice_placement.hpp)
     if (program == "shading_deferred") {
         const long long g_buffer = clips_to_tangent_plane(c) ? 2 : 1;
-        if (c.technique != Technique::occlusion) return g_buffer; // shadow maps: counted by their taps below
+        // shadow maps: every comparison or depth tap a bilinear footprint (4 texels)
+        if (c.technique == Technique::shadowmap) return g_buffer + 4;
+        if (c.technique == Technique::pcf) return g_buffer + 4LL * pcf_taps(c.pcf);
+        if (c.technique == Technique::pcss) return g_buffer + 4LL * (c.pcss.blocker_samples + c.pcss.filter_samples);
+        if (c.technique != Technique::occlusion) return g_buffer;
         long long per_slice = 0;
         if (c.filter == Filter::sat) per_slice = 4 * 4;
         else if (c.filter == Filter::mipmap || c.packing == Packing::volume) per_slice = 8;

@@ -83,7 +83,8 @@ struct Built {
 std::unique_ptr<Built> build(const penumbra::Config& config, std::string* error) {
     auto b = std::make_unique<Built>();
     b->mesh = std::make_unique<MeshBuffers>(b->scene.mesh);
-    b->runtime = penumbra::gl::Runtime::create(config, error);
+    // the views show every filter level, not only those the light reaches (RuntimeOptions::fit_level_bound)
+    b->runtime = penumbra::gl::Runtime::create(config, error, {.fit_level_bound = false});
     if (!b->runtime) return nullptr;
     // A sun straight overhead: the planes stay parallel to the slices, one plane per slice, so
     // the expected coverage is known (the scene's tilted sun spreads each plane over several).
