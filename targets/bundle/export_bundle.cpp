@@ -51,13 +51,16 @@ struct BundleArguments {
     std::string scene;
     int width = 128, height = 128;
     std::optional<double> light_size;
+    bool reference = false; // also ray-trace the Embree ground truth (truth_*.f32)
+    int samples = 32;       // its rays per light axis
     std::string out_dir;
     Config config; // the target's; the GL run uses it (with Target::glsl450 for vulkan)
     bool help = false;
 };
 
 constexpr std::string_view usage_text =
-    "usage: penumbra-export-bundle --scene NAME|FILE.obj [configuration flags] [--size WxH] [--light-size X] --out DIR\n"
+    "usage: penumbra-export-bundle --scene NAME|FILE.obj [configuration flags] [--size WxH] [--light-size X]\n"
+    "                              [--reference [--samples N]] --out DIR\n"
     "\n"
     "Renders the scene with the desktop GL runtime (the configuration's emission; glsl450 for the vulkan\n"
     "target) and writes, for a foreign runner to reproduce: mesh.f32, uniforms.json, positions.f32,\n"
@@ -67,13 +70,16 @@ constexpr std::string_view usage_text =
     "  --scene NAME|FILE.obj  planes, boxes, tree, butterfly, terrain, crowd, or a Wavefront OBJ file\n"
     "  --size WxH             image size, each side 1 to 4096 (default 128x128)\n"
     "  --light-size X         the rectangle's longer side (scene units) or the sun's angular diameter (degrees)\n"
+    "  --reference            also ray-trace the Embree ground truth at the same pixels: truth_visibility.f32,\n"
+    "                         truth_oriented.f32 (the fair reference) and truth_irradiance.f32\n"
+    "  --samples N            ground-truth rays per light axis, N×N per pixel: 1 to 1024 (default 32)\n"
     "  --out DIR              the bundle directory (created; its emission/ is replaced)\n"
     "  configuration flags    as penumbra-gen: --slices, --resolution, --filter, --fusion, --packing, --light,\n"
     "                         --target, --no-leak-fix, --no-fade, --[no-]tangent-clip, --config FILE.json\n"
     "                         (see penumbra-gen --help)\n";
 
 constexpr std::string_view flag_list =
-    "--scene, --size, --light-size, --out, --slices, --resolution, --filter, --fusion, --packing, --light, --target, "
+    "--scene, --size, --light-size, --reference, --samples, --out, --slices, --resolution, --filter, --fusion, --packing, --light, --target, "
     "--no-leak-fix, --no-fade, --tangent-clip, --no-tangent-clip, --config, --help";
 
 std::string parse_positive_int(std::string_view text, int& value) {
@@ -101,7 +107,13 @@ penumbra_gen::Parsed<BundleArguments> parse(const std::vector<std::string>& args
             value = arg.substr(eq + 1);
             has_value = true;
         }
-        const bool ours = flag == "--scene" || flag == "--size" || flag == "--light-size" || flag == "--out";
+        if (flag == "--reference") {
+            if (has_value) return fail("--reference takes no value");
+            out.reference = true;
+            continue;
+        }
+        const bool ours =
+            flag == "--scene" || flag == "--size" || flag == "--light-size" || flag == "--samples" || flag == "--out";
         const bool configuration = flag == "--slices" || flag == "--resolution" || flag == "--filter" ||
                                    flag == "--fusion" || flag == "--packing" || flag == "--light" || flag == "--target" ||
                                    flag == "--config" || flag == "--no-leak-fix" || flag == "--no-fade" ||
@@ -120,6 +132,11 @@ penumbra_gen::Parsed<BundleArguments> parse(const std::vector<std::string>& args
             out.scene = value;
         } else if (flag == "--out") {
             out.out_dir = value;
+        } else if (flag == "--samples") {
+            const auto [ptr, ec] = std::from_chars(value.data(), value.data() + value.size(), out.samples);
+            if (value.empty() || ec != std::errc() || ptr != value.data() + value.size() || out.samples < 1 ||
+                out.samples > 1024)
+                return fail("--samples: '" + printable(value) + "' is not an integer from 1 to 1024");
         } else if (flag == "--size") {
             const std::size_t x = value.find('x');
             if (x == std::string::npos || !parse_positive_int(std::string_view(value).substr(0, x), out.width).empty() ||
@@ -255,6 +272,21 @@ int run(const std::vector<std::string>& args) {
             bound[bottom_first] = static_cast<float>(value.bound);
             model[bottom_first] = static_cast<float>(value.visibility);
         }
+    // The Embree ground truth at the same pixels (reference/ground_truth.hpp), bottom row first:
+    // the whole light's visible fraction, the fair `oriented` one (NaN where a pixel sees none of
+    // the light) and the irradiance ratio; 1 on the background.
+    std::vector<float> truth[3];
+    if (a.reference) {
+        const References references = reference_all(scene, result, a.samples, gl_config.light);
+        const std::vector<float>* sources[3] = {&references.visibility, &references.oriented, &references.irradiance};
+        for (int k = 0; k < 3; ++k) {
+            truth[k].assign(pixels, 1.0f);
+            for (int y = 0; y < a.height; ++y)
+                for (int x = 0; x < a.width; ++x)
+                    truth[k][static_cast<std::size_t>(y) * a.width + x] =
+                        (*sources[k])[static_cast<std::size_t>(a.height - 1 - y) * a.width + x];
+        }
+    }
     std::vector<glm::vec3> triangles;
     triangles.reserve(scene.mesh.indices.size());
     for (std::uint32_t index : scene.mesh.indices) triangles.push_back(scene.mesh.positions[index]);
@@ -270,7 +302,7 @@ int run(const std::vector<std::string>& args) {
     std::filesystem::remove_all(emission_dir, ec);
     if (std::string e = penumbra_gen::write_files(emission_dir.string(), files); !e.empty()) return fail(e);
 
-    const nlohmann::ordered_json uniforms = {
+    nlohmann::ordered_json uniforms = {
         {"width", a.width},
         {"height", a.height},
         {"scene", scene.name},
@@ -278,10 +310,22 @@ int run(const std::vector<std::string>& args) {
         {"gl_config", config_json(gl_config)},
         {"light", light_json(scene, a.config.light)},
         {"triangles", triangles.size() / 3},
+        // The camera of the GL run (glm::lookAt with up +y, glm::perspective at width / height).
+        {"camera",
+         {{"eye", {scene.camera.eye_position().x, scene.camera.eye_position().y, scene.camera.eye_position().z}},
+          {"target", {scene.camera.target.x, scene.camera.target.y, scene.camera.target.z}},
+          {"up", {0.0, 1.0, 0.0}},
+          {"fov_y_degrees", scene.camera.fov_y_radians * 180.0 / 3.14159265358979323846},
+          {"near", scene.camera.z_near},
+          {"far", scene.camera.z_far}}},
         {"renderer", context->renderer()},
         {"uniforms", uniforms_json(frame, gl_config.light, emitted.value->layout)},
         {"caller_textures", {{"penumbra_worldPositions", "positions.f32"}, {"penumbra_worldNormals", "normals.f32"}}},
     };
+    if (a.reference) uniforms["truth"] = {{"samples_per_axis", a.samples},
+                                          {"visibility", "truth_visibility.f32"},
+                                          {"oriented", "truth_oriented.f32"},
+                                          {"irradiance", "truth_irradiance.f32"}};
     std::ofstream json(dir / "uniforms.json", std::ios::binary);
     json << uniforms.dump(2) << '\n';
     if (!json) return fail("cannot write " + (dir / "uniforms.json").string());
@@ -289,6 +333,10 @@ int run(const std::vector<std::string>& args) {
         !write_floats(dir / "normals.f32", normals, &error) ||
         !write_floats(dir / "visibility_gl.f32", visibility_gl, &error) || !write_floats(dir / "bound.f32", bound, &error) ||
         !write_floats(dir / "oracle.f32", model, &error) || !write_floats(dir / "slices.f32", coverage, &error))
+        return fail(error);
+    if (a.reference && (!write_floats(dir / "truth_visibility.f32", truth[0], &error) ||
+                        !write_floats(dir / "truth_oriented.f32", truth[1], &error) ||
+                        !write_floats(dir / "truth_irradiance.f32", truth[2], &error)))
         return fail(error);
     std::cout << "penumbra-export-bundle: wrote " << a.out_dir << " (" << scene.name << ", " << a.width << "x"
               << a.height << ", " << triangles.size() / 3 << " triangles, emission for " << to_string(a.config.target)

@@ -1,0 +1,156 @@
+// three_test.mjs — the `three` browser test: one of Penumbra's built-in scenes rebuilt in three.js
+// (web/three/test/: the bundle's triangles, light and camera), the add-on (web/three/penumbra_shadows.js)
+// attached to its RectAreaLight (or sun), in Debian's chromium (headless, SwiftShader):
+//
+//   node targets/web/three_test.mjs --web web [--chromium PATH] BUNDLE_DIR...
+//
+// Each BUNDLE_DIR is written by penumbra-export-bundle --target essl300 (uniforms.json has the camera).
+//   1. The add-on's light frame, computed from the three.js light and the scene's bounds, is the
+//      desktop runtime's (relative 1e-5).
+//   2. Its visibility at the camera's pixels equals the desktop runtime's (visibility_gl.f32) within
+//      2·bound + q (both are within the oracle's bound of the model; q = 1/255 for the R8 result) on
+//      all but 1% of the pixels (SwiftShader rasterizes triangle edges, in the slicing pass and at
+//      the camera, unlike llvmpipe; the bound does not cover that), and no pixel is further than 0.5.
+//   3. In MeshStandardMaterial, the RectAreaLight's contribution is multiplied by that visibility:
+//      (lit with the add-on) / (lit without it) equals it within 2/255 + 1e-3 wherever the light
+//      reaches (unshadowed > 1e-3), on all but 1% of those pixels.
+//   4. Moving the light re-runs the shadow phase; update() without a change does not; dispose()
+//      frees the add-on's textures.
+// Exit 0 pass, 1 fail, 77 skip (no chromium), 2 bad arguments.
+import path from "node:path";
+import fs from "node:fs";
+import {serve, launchChromium, openPage, readFloats} from "./harness.mjs";
+
+const R8_STEP = 1 / 255;
+const UNIFORM_TOLERANCE = 1e-5;
+const PIXELS_ALLOWED = 0.01;
+const WORST_ALLOWED = 0.5;
+
+function parseArguments(argv) {
+    const out = {web: null, chromium: "/usr/bin/chromium", bundles: []};
+    for (let i = 0; i < argv.length; ++i) {
+        const flag = argv[i];
+        if (flag === "--web" || flag === "--chromium") {
+            if (i + 1 >= argv.length) usage(`${flag}: missing value`);
+            out[flag.slice(2)] = argv[++i];
+        } else if (flag.startsWith("--")) usage(`unknown flag '${flag}'; allowed: --web, --chromium`);
+        else out.bundles.push(flag);
+    }
+    if (!out.web) usage("--web: missing");
+    if (out.bundles.length === 0) usage("no bundle directories");
+    return out;
+}
+
+function usage(message) {
+    console.error(`error: ${message}\nusage: node three_test.mjs --web DIR [--chromium PATH] BUNDLE_DIR...`);
+    process.exit(2);
+}
+
+function relativeDifference(a, b) {
+    let worst = 0, scale = 0;
+    for (let i = 0; i < b.length; ++i) {
+        worst = Math.max(worst, Math.abs(Math.fround(a[i]) - b[i]));
+        scale = Math.max(scale, Math.abs(b[i]));
+    }
+    return worst / Math.max(scale, 1e-30);
+}
+
+async function checkBundle(browser, port, index, dir) {
+    const bundle = JSON.parse(fs.readFileSync(path.join(dir, "uniforms.json"), "utf8"));
+    const c = bundle.config;
+    const label = `${bundle.scene} ${c.light} ${c.filter}/${c.packing} ${c.slices}×${c.resolution}² ${bundle.width}x${bundle.height}`;
+    const started = Date.now();
+    const {page, problems} = await openPage(browser, `http://127.0.0.1:${port}/web/three/test/index.html?bundle=/bundle/${index}/`, "penumbraThree");
+    const failures = [];
+    const info = await page.evaluate(() => window.penumbraThree.info());
+
+    // 1. light frame
+    const frame = await page.evaluate(() => window.penumbraThree.frameUniforms());
+    let uniformError = 0;
+    for (const [name, value] of Object.entries(frame.bundle)) {
+        if (!(name in frame.computed)) continue;
+        const a = [].concat(frame.computed[name]), b = [].concat(value);
+        uniformError = Math.max(uniformError, relativeDifference(a, b));
+    }
+    if (uniformError > UNIFORM_TOLERANCE) failures.push(`the add-on's light frame differs from the desktop's by ${uniformError.toExponential(2)} (relative)`);
+
+    // 2. visibility against the desktop runtime
+    const gl = readFloats(path.join(dir, "visibility_gl.f32")), bound = readFloats(path.join(dir, "bound.f32"));
+    const positions = readFloats(path.join(dir, "positions.f32"));
+    const visibility = await page.evaluate(() => window.penumbraThree.visibility());
+    let outside = 0, worst = 0, geometry = 0, shadowed = 0, sumDiff = 0;
+    for (let i = 0; i < gl.length; ++i) {
+        if (positions[4 * i + 3] === 0) continue; // background: the desktop leaves 1
+        ++geometry;
+        if (gl[i] < 0.98) ++shadowed;
+        const d = Math.abs(visibility[i] - gl[i]);
+        sumDiff += d;
+        worst = Math.max(worst, d);
+        if (d > 2 * bound[i] + R8_STEP + 1e-6) ++outside;
+    }
+    if (visibility.length !== gl.length) failures.push(`${visibility.length} pixels read, expected ${gl.length}`);
+    if (outside > PIXELS_ALLOWED * geometry) failures.push(`${outside} of ${geometry} geometry pixels differ from the desktop run by more than 2·bound + q (allowed ${100 * PIXELS_ALLOWED}%)`);
+    if (worst > WORST_ALLOWED) failures.push(`a pixel differs from the desktop run by ${worst.toFixed(3)} (allowed ${WORST_ALLOWED})`);
+    if (shadowed === 0) failures.push("the desktop image has no shadowed pixel: the comparison would prove nothing");
+
+    // 3. the material hook
+    let ratioOutside = 0, lit = 0, ratioWorst = 0;
+    if (c.light === "rect") {
+        const {ratio, unshadowed} = await page.evaluate(() => window.penumbraThree.materialRatio());
+        for (let i = 0; i < ratio.length; ++i) {
+            if (!(unshadowed[i] > 1e-3)) continue;
+            ++lit;
+            const d = Math.abs(ratio[i] - visibility[i]);
+            ratioWorst = Math.max(ratioWorst, d);
+            if (!(d <= 2 * R8_STEP + 1e-3)) ++ratioOutside;
+        }
+        if (lit === 0) failures.push("the RectAreaLight lights no pixel");
+        if (ratioOutside > PIXELS_ALLOWED * lit) failures.push(`the lit image is not visibility × unshadowed at ${ratioOutside} of ${lit} lit pixels`);
+    }
+
+    // 4. updates and dispose
+    const before = await page.evaluate(() => window.penumbraThree.shadowUpdates());
+    const idle = await page.evaluate(() => window.penumbraThree.update());
+    const moved = await page.evaluate((dx) => window.penumbraThree.moveLight(dx), 0.25 * (bundle.light.width || 1));
+    const after = await page.evaluate(() => window.penumbraThree.visibility());
+    let changed = 0;
+    for (let i = 0; i < after.length; ++i) if (Math.abs(after[i] - visibility[i]) > 2 * R8_STEP) ++changed;
+    if (idle !== before) failures.push("update() without a change re-ran the shadow phase");
+    if (moved !== before + 1) failures.push("moving the light did not re-run the shadow phase once");
+    if (c.light === "rect" && changed === 0) failures.push("moving the light changed no pixel");
+    await page.evaluate(() => window.penumbraThree.dispose());
+    failures.push(...problems);
+    await page.close();
+    console.log(`${failures.length ? "FAIL" : "ok  "} three r${info.three} ${label} (${((Date.now() - started) / 1000).toFixed(1)} s)\n` +
+                `     light frame vs desktop ${uniformError.toExponential(2)} (relative); visibility vs desktop: mean |Δ| ${(sumDiff / Math.max(geometry, 1)).toExponential(2)}, ` +
+                `max ${worst.toFixed(4)}, ${outside} of ${geometry} pixels outside 2·bound + q (${shadowed} shadowed)\n` +
+                `     material: lit-with / lit-without vs visibility max |Δ| ${ratioWorst.toFixed(4)}, ${ratioOutside} of ${lit} lit pixels outside 2q + 1e-3; ` +
+                `moved light changed ${changed} pixels`);
+    for (const f of failures) console.log(`     ${f}`);
+    return {failures: failures.length, renderer: info.renderer};
+}
+
+async function main() {
+    const args = parseArguments(process.argv.slice(2));
+    const {browser, close} = await launchChromium(args.chromium);
+    const roots = {web: args.web};
+    args.bundles.forEach((dir, i) => (roots[`bundle/${i}`] = dir));
+    const server = await serve(roots);
+    let failures = 0;
+    try {
+        for (let i = 0; i < args.bundles.length; ++i) {
+            const result = await checkBundle(browser, server.address().port, i, args.bundles[i]);
+            if (i === 0) console.log(`WebGL2 renderer: ${result.renderer}`);
+            failures += result.failures;
+        }
+    } catch (e) {
+        console.log(`FAIL ${e.message}`);
+        failures += 1;
+    } finally {
+        await close();
+        server.close();
+    }
+    process.exit(failures ? 1 : 0);
+}
+
+main();
