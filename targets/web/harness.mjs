@@ -97,3 +97,27 @@ export function errorStats(estimate, reference, geometry) {
     };
     return {all: stats(all), penumbra: stats(penumbra)};
 }
+
+// A grey PNG of `values` (0..1, width × height, bottom row first), for looking at images.
+export async function writeGreyPng(file, width, height, values) {
+    const zlib = await import("node:zlib");
+    const rows = Buffer.alloc((width + 1) * height);
+    for (let y = 0; y < height; ++y)
+        for (let x = 0; x < width; ++x) {
+            const v = values[(height - 1 - y) * width + x];
+            rows[y * (width + 1) + 1 + x] = Number.isFinite(v) ? Math.round(255 * Math.min(Math.max(v, 0), 1)) : 0;
+        }
+    const chunk = (type, data) => {
+        const length = Buffer.alloc(4), crc = Buffer.alloc(4), body = Buffer.concat([Buffer.from(type), data]);
+        length.writeUInt32BE(data.length);
+        crc.writeUInt32BE(zlib.crc32(body) >>> 0);
+        return Buffer.concat([length, body, crc]);
+    };
+    const header = Buffer.alloc(13);
+    header.writeUInt32BE(width, 0);
+    header.writeUInt32BE(height, 4);
+    header[8] = 8; // bit depth
+    header[9] = 0; // grey
+    fs.writeFileSync(file, Buffer.concat([Buffer.from([137, 80, 78, 71, 13, 10, 26, 10]), chunk("IHDR", header),
+                                          chunk("IDAT", zlib.deflateSync(rows)), chunk("IEND", Buffer.alloc(0))]));
+}

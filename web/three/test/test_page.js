@@ -95,7 +95,8 @@ async function main() {
         peerLight.shadow.bias = settings.bias;
         peerLight.shadow.normalBias = settings.normalBias;
         renderer.shadowMap.enabled = true;
-        renderer.shadowMap.type = THREE[type];
+        renderer.shadowMap.type = THREE[type === "PCFSoftShadowMap" ? "PCFShadowMap" : type]; // r187: the same, without the warning
+        maskMaterial.needsUpdate = true; // three recompiles for another shadow map type only so
         scene.add(peerLight, peerLight.target);
         scene.overrideMaterial = maskMaterial;
         const light0 = light.visible;
