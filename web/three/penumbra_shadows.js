@@ -87,7 +87,8 @@ const WORLD_VERTEX = `
 	vPenumbraWorldPosition = ( modelMatrix * penumbraWorld ).xyz;`;
 
 // Visibility at this fragment: the world normal is the view-space one three lights with, turned
-// to the side the camera sees (the side whose light the tangent clip keeps).
+// to the side the camera sees (the side whose light the tangent clip keeps); an emission without
+// the tangent clip looks up the whole light.
 const SHADOW_FUNCTION = `
 in vec3 vPenumbraWorldPosition;
 uniform int penumbraLightIndex;
@@ -95,7 +96,12 @@ uniform float penumbraIntensity;
 float penumbraShadow( vec3 viewNormal ) {
 	vec3 n = normalize( ( vec4( viewNormal, 0.0 ) * viewMatrix ).xyz );
 	if ( dot( n, cameraPosition - vPenumbraWorldPosition ) < 0.0 ) n = - n;
-	return mix( 1.0, penumbraVisibility( vPenumbraWorldPosition, n ), penumbraIntensity );
+	#ifdef PENUMBRA_TANGENT_CLIP
+	float v = penumbraVisibility( vPenumbraWorldPosition, n );
+	#else
+	float v = penumbraVisibility( vPenumbraWorldPosition );
+	#endif
+	return mix( 1.0, v, penumbraIntensity );
 }
 `;
 
@@ -157,8 +163,9 @@ export class PenumbraShadows {
             fail(`the emission is for a '${layout.config.light}' light but the light is a ${this.light.type} (needs '${wanted}')`);
         this.runner = runner;
         this.config = layout.config;
-        this._snippet = snippetBody(runner.sources["penumbra_visibility.glsl"] ||
-                                    fail("the emission has no penumbra_visibility.glsl"));
+        const snippet = runner.sources["penumbra_visibility.glsl"] || fail("the emission has no penumbra_visibility.glsl");
+        const clipped = /float penumbraVisibility\(vec3 worldPos, vec3 worldNormal\)/.test(snippet);
+        this._snippet = (clipped ? "#define PENUMBRA_TANGENT_CLIP\n" : "") + snippetBody(snippet);
         // The snippet's parameters, shared by every patched material (same uniform objects).
         this.uniforms = {penumbraLightIndex: {value: -1}, penumbraIntensity: {value: this.intensity}};
         this._samplers = [];
@@ -300,6 +307,10 @@ export class PenumbraShadows {
         for (const [name, value] of Object.entries(frame.uniforms)) if (this.uniforms[name]) this.uniforms[name].value = value;
         const renderer = this.renderer, gl = renderer.getContext(), runner = this.runner;
         renderer.resetState();
+        // the runner reports any GL error after the phase: start from none (one three left behind
+        // is three's, and is passed on with a warning)
+        for (let e = gl.getError(), n = 0; e !== gl.NO_ERROR && n < 8; e = gl.getError(), ++n)
+            console.warn(`PenumbraShadows: a WebGL error 0x${e.toString(16)} was pending before the shadow phase (not the add-on's)`);
         runner.setUniforms(frame.uniforms);
         const drawn = casters.map((object) => this._geometryOf(object)).filter((g) => g !== null);
         runner.runPhase("shadow", (programId) => this._drawCasters(programId, casters, drawn), null);
