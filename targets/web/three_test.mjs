@@ -15,7 +15,10 @@
 //   3. In MeshStandardMaterial, the RectAreaLight's contribution is multiplied by that visibility:
 //      (lit with the add-on) / (lit without it) equals it within 2/255 + 1e-3 wherever the light
 //      reaches (unshadowed > 1e-3), on all but 1% of those pixels.
-//   4. Moving the light re-runs the shadow phase; update() without a change does not; dispose()
+//   4. The scene's mesh moved by a matrix M as a Mesh, an InstancedMesh (instance matrix M), a
+//      SkinnedMesh (its bone at M) and a morph target (positions × M): the same visibility within
+//      2q (all but 0.2% of the pixels), and unlike the unmoved mesh's.
+//   5. Moving the light re-runs the shadow phase; update() without a change does not; dispose()
 //      frees the add-on's textures.
 // Exit 0 pass, 1 fail, 77 skip (no chromium), 2 bad arguments.
 import path from "node:path";
@@ -25,6 +28,7 @@ import {serve, launchChromium, openPage, readFloats} from "./harness.mjs";
 const R8_STEP = 1 / 255;
 const UNIFORM_TOLERANCE = 1e-5;
 const PIXELS_ALLOWED = 0.01;
+const VARIANT_PIXELS_ALLOWED = 0.002; // float rounding of M applied on the GPU or the CPU
 
 function parseArguments(argv) {
     const out = {web: null, chromium: "/usr/bin/chromium", bundles: []};
@@ -135,7 +139,19 @@ async function checkBundle(browser, port, index, dir) {
         if (ratioOutside > PIXELS_ALLOWED * lit) failures.push(`the lit image is not visibility × unshadowed at ${ratioOutside} of ${lit} lit pixels`);
     }
 
-    // 4. updates and dispose
+    // 4. the same casters as a moved Mesh, an InstancedMesh, a SkinnedMesh and a morph target
+    const variants = await page.evaluate(() => window.penumbraThree.variants());
+    const differing = (a, b, tolerance) => a.reduce((n, v, i) => n + (Math.abs(v - b[i]) > tolerance ? 1 : 0), 0);
+    const variantText = [];
+    for (const name of ["instanced", "skinned", "morphed"]) {
+        const n = differing(variants[name], variants.mesh, 2 * R8_STEP);
+        variantText.push(`${name} ${n}`);
+        if (n > VARIANT_PIXELS_ALLOWED * gl.length) failures.push(`the ${name} casters and receivers differ from the moved Mesh at ${n} pixels`);
+    }
+    const movedPixels = differing(variants.mesh, variants.unmoved, 2 * R8_STEP);
+    if (movedPixels === 0) failures.push("moving the mesh changed no pixel: the variants prove nothing");
+
+    // 5. updates and dispose
     const before = await page.evaluate(() => window.penumbraThree.shadowUpdates());
     const idle = await page.evaluate(() => window.penumbraThree.update());
     const moved = await page.evaluate((dx) => window.penumbraThree.moveLight(dx), 0.25 * (bundle.light.width || 1));
@@ -152,7 +168,8 @@ async function checkBundle(browser, port, index, dir) {
                 `     light frame vs desktop ${uniformError.toExponential(2)} (relative); visibility vs desktop: mean |Δ| ${(sumDiff / Math.max(geometry, 1)).toExponential(2)}, ` +
                 `max ${worst.toFixed(4)}, ${outside} of ${geometry} interior pixels outside 2·bound + q (${shadowed} shadowed; ${silhouette} silhouette pixels left out)\n` +
                 `     material: lit-with / lit-without vs visibility max |Δ| ${ratioWorst.toFixed(4)}, ${ratioOutside} of ${lit} lit pixels outside 2q + 1e-3; ` +
-                `moved light changed ${changed} pixels`);
+                `moved light changed ${changed} pixels\n` +
+                `     moved mesh changed ${movedPixels} pixels; pixels differing from it: ${variantText.join(", ")}`);
     for (const f of failures) console.log(`     ${f}`);
     return {failures: failures.length, renderer: info.renderer};
 }

@@ -221,7 +221,7 @@ export class PenumbraShadows {
         const casters = [], receivers = [];
         scene.traverseVisible((object) => {
             if (!object.isMesh) return;
-            if (object.castShadow) casters.push(object);
+            if (object.castShadow && !object.isBatchedMesh) casters.push(object); // BatchedMesh: not drawn (README)
             if (object.receiveShadow) {
                 receivers.push(object);
                 for (const material of Array.isArray(object.material) ? object.material : [object.material]) this._patch(material);
@@ -271,7 +271,9 @@ export class PenumbraShadows {
 
     _bounds(casters, receivers) {
         const box = new Box3();
-        for (const object of [...casters, ...receivers]) box.expandByObject(object, object.isSkinnedMesh || object.isInstancedMesh);
+        // exact (vertex by vertex) where the geometry's box is not the drawn one: skinned, instanced, morphed
+        const exact = (o) => o.isSkinnedMesh || o.isInstancedMesh || (o.morphTargetInfluences && o.morphTargetInfluences.some((w) => w !== 0));
+        for (const object of [...casters, ...receivers]) box.expandByObject(object, exact(object));
         return box;
     }
 
