@@ -46,8 +46,8 @@ async function main() {
         const runs = [
             ["Penumbra add-on, light still", {mode: "penumbra", moving: false}],
             ["Penumbra add-on, light moving (shadow phase every frame)", {mode: "penumbra", moving: true}],
-            ["three PCFSoftShadowMap (= PCFShadowMap), SpotLight", {mode: "pcf", moving: false}],
-            ["three VSMShadowMap, SpotLight", {mode: "vsm", moving: false}],
+            [`three PCFSoftShadowMap (= PCFShadowMap), ${args.light === "sun" ? "DirectionalLight" : "SpotLight"}`, {mode: "pcf", moving: false}],
+            [`three VSMShadowMap, ${args.light === "sun" ? "DirectionalLight" : "SpotLight"}`, {mode: "vsm", moving: false}],
             ["no shadows", {mode: "none", moving: false}],
         ];
         const results = [];

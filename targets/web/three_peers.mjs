@@ -21,8 +21,8 @@ import {serve, launchChromium, openPage, readFloats, errorStats} from "./harness
 
 const ADDON_TOLERANCE = 0.01;
 const SWEEP = {
-    PCFSoftShadowMap: {radius: [1, 2, 4, 8, 16, 32, 64], bias: [0, -0.0005, -0.002, -0.005], mapSize: [1024, 2048]},
-    VSMShadowMap: {radius: [1, 4, 8, 16, 32, 64], bias: [0, -0.0005, -0.002, -0.005], mapSize: [1024, 2048]},
+    PCFSoftShadowMap: {radius: [1, 2, 4, 8, 16, 32, 64, 128], bias: [0, -0.0005, -0.002, -0.005, -0.01, -0.02], mapSize: [1024, 2048]},
+    VSMShadowMap: {radius: [1, 4, 8, 16, 32, 64, 128], bias: [0, -0.0005, -0.002, -0.005, -0.01, -0.02], mapSize: [1024, 2048]},
 };
 const QUICK = {
     PCFSoftShadowMap: {radius: [1, 8], bias: [-0.0005], mapSize: [1024]},

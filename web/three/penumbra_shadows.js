@@ -37,7 +37,8 @@ export const EMISSIONS = {
 };
 
 const DEFAULTS = {
-    emission: null,           // a key of EMISSIONS, a folder URL (ending in "/") or {layout, files}
+    emission: null,           // a key of EMISSIONS, a folder URL (ending in "/"), {layout, files}, or a configuration
+                              // object ({slices, resolution, filter, ...}: needs the WebAssembly emitter)
     angularDiameter: 0.0093,  // sun only: the DirectionalLight's angular diameter in radians (our sun: 0.53°)
     autoUpdate: true,         // re-run the shadow phase by itself when something moved (like shadowMap.autoUpdate)
     intensity: 1,             // 0: no shadow, 1: Penumbra's visibility (like LightShadow.intensity)
@@ -126,7 +127,7 @@ export class PenumbraShadows {
         const gl = renderer.getContext();
         const kind = kindOf(light);
         const emission = o.emission ?? (kind === "sun" ? "sun-nbuffer-16x512" : "rect-nbuffer-16x512");
-        const runner = await loadRunner(gl, emission);
+        const runner = await loadRunner(gl, emission, kind);
         return new PenumbraShadows(renderer, scene, light, {...o, runner});
     }
 
@@ -195,10 +196,10 @@ export class PenumbraShadows {
         this.renderer.properties.get(texture).__webglTexture = id;
     }
 
-    // Replaces the emission (a key of EMISSIONS, a folder URL or {layout, files}); the old GPU
+    // Replaces the emission (a key of EMISSIONS, a folder URL, {layout, files} or a configuration); the old GPU
     // resources are freed once the new ones work.
     async setEmission(emission) {
-        const runner = await loadRunner(this.renderer.getContext(), emission);
+        const runner = await loadRunner(this.renderer.getContext(), emission, this.kind);
         const old = this.runner;
         this._setRunner(runner);
         disposeRunner(old);
@@ -566,7 +567,7 @@ function positionVersion(geometry) {
 }
 
 // The layout runner for an emission: a key of EMISSIONS, a folder URL, or {layout, files}.
-async function loadRunner(gl, emission) {
+async function loadRunner(gl, emission, kind) {
     if (typeof emission === "string") {
         const folder = EMISSIONS[emission] ? new URL(EMISSIONS[emission], MODULE_URL).href : emission;
         if (!folder.endsWith("/")) fail(`emission '${emission}': not one of ${Object.keys(EMISSIONS).join(", ")} nor a folder URL ending in '/'`);
@@ -584,7 +585,27 @@ async function loadRunner(gl, emission) {
         runner.sources = emission.files;
         return runner;
     }
-    fail("options.emission: a key of EMISSIONS, a folder URL ending in '/', or {layout, files}");
+    if (emission && typeof emission === "object") {
+        // A configuration (penumbra-gen --config's schema): emitted here by the WebAssembly emitter.
+        const emitter = await loadEmitter();
+        const result = emitter.emit({light: kind, ...emission, target: "essl300"});
+        if (!result.ok) fail(`emission: ${result.diagnostics.map((d) => d.message).join("; ") || result.error}`);
+        return loadRunner(gl, {layout: result.layout, files: result.files}, kind);
+    }
+    fail("options.emission: a key of EMISSIONS, a folder URL ending in '/', {layout, files}, or a configuration object");
+}
+
+// The WebAssembly emitter (../penumbra_emitter.js and its .wasm beside it), loaded once.
+let emitterPromise = null;
+export function loadEmitter() {
+    if (!emitterPromise)
+        emitterPromise = import(new URL("../penumbra_emitter.js", MODULE_URL).href)
+            .then((m) => m.loadEmitter())
+            .catch((e) => {
+                emitterPromise = null;
+                fail(`a configuration needs the WebAssembly emitter (../penumbra_emitter.js and penumbra_emitter.wasm), which did not load: ${e.message}`);
+            });
+    return emitterPromise;
 }
 
 // The snippet is no program of the layout, so the runner does not fetch it: we do.

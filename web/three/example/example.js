@@ -10,7 +10,7 @@ import {OrbitControls} from "three/addons/controls/OrbitControls.js";
 import {RectAreaLightHelper} from "three/addons/helpers/RectAreaLightHelper.js";
 import {RectAreaLightUniformsLib} from "three/addons/lights/RectAreaLightUniformsLib.js";
 import GUI from "three/addons/libs/lil-gui.module.min.js";
-import {PenumbraShadows, EMISSIONS} from "../penumbra_shadows.js";
+import {PenumbraShadows, EMISSIONS, loadEmitter} from "../penumbra_shadows.js";
 
 const params = new URLSearchParams(location.search);
 const fixedSize = params.get("size") ? params.get("size").split("x").map(Number) : null;
@@ -210,6 +210,29 @@ function buildGui(keys) {
     folders.sun.add(state, "azimuth", -180, 180, 1).name("azimuth (°)").onChange(changed);
     folders.sun.add(state, "elevation", 15, 90, 1).name("elevation (°)").onChange(changed);
     folders.sun.add(state, "diameter", 0.2, 15, 0.1).name("angular diameter (°)").onChange(changed);
+    // Any configuration, emitted in the page, where the WebAssembly emitter is there.
+    loadEmitter().then(() => {
+        const custom = {slices: 16, resolution: 512, filter: "nbuffer", fusion: "chained", packing: "atlas", tangentClip: true};
+        const folder = gui.addFolder("configuration (WebAssembly emitter)");
+        folder.add(custom, "slices", 1, 16, 1);
+        folder.add(custom, "resolution", [128, 256, 512, 1024]);
+        folder.add(custom, "filter", ["mipmap", "nbuffer", "sat", "gaussian"]);
+        folder.add(custom, "fusion", ["probabilistic", "additive", "maximum", "average", "chained"]);
+        folder.add(custom, "packing", ["atlas", "array", "volume"]);
+        folder.add(custom, "tangentClip").name("tangent clip");
+        const message = {text: ""};
+        folder.add(message, "text").name("emitter").disable();
+        folder.add({emit: async () => {
+            try {
+                await shadows.setEmission({slices: custom.slices, resolution: custom.resolution, filter: custom.filter, fusion: custom.fusion,
+                                           packing: custom.packing, tangent_clip: custom.tangentClip});
+                message.text = "ok";
+            } catch (e) {
+                message.text = e.message.replace("PenumbraShadows: ", "");
+            }
+            for (const c of folder.controllers) c.updateDisplay();
+        }}, "emit").name("emit and use");
+    }).catch(() => {}); // no emitter: the shipped emissions only
     const peers = gui.addFolder("three.js shadow maps");
     peers.add(state, "pcfRadius", 1, 32, 1).name("PCF radius (texels)").onChange(changed);
     peers.add(state, "vsmRadius", 1, 32, 1).name("VSM radius (texels)").onChange(changed);
@@ -238,7 +261,11 @@ async function bench({mode, frames = 30, moving = false}) {
     applyMode();
     const gl = renderer.getContext(), pixel = new Uint8Array(4);
     const frame = (i) => {
-        if (moving) { state.x = 2 * Math.sin(0.1 * i); placeLights(); }
+        if (moving) {
+            if (state.light === "rect") state.x = 2 * Math.sin(0.1 * i);
+            else state.azimuth = saved.azimuth + 10 * Math.sin(0.1 * i);
+            placeLights();
+        }
         render();
         gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
     };
