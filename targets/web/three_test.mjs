@@ -19,7 +19,7 @@
 //      SkinnedMesh (its bone at M) and a morph target (positions × M): the same visibility within
 //      2q (all but 0.2% of the pixels), and unlike the unmoved mesh's.
 //   5. Moving the light re-runs the shadow phase; update() without a change does not; dispose()
-//      frees the add-on's textures.
+//      deletes the add-on's textures and programs and restores the materials.
 // Exit 0 pass, 1 fail, 77 skip (no chromium), 2 bad arguments.
 import path from "node:path";
 import fs from "node:fs";
@@ -161,7 +161,10 @@ async function checkBundle(browser, port, index, dir) {
     if (idle !== before) failures.push("update() without a change re-ran the shadow phase");
     if (moved !== before + 1) failures.push("moving the light did not re-run the shadow phase once");
     if (c.light === "rect" && changed === 0) failures.push("moving the light changed no pixel");
-    await page.evaluate(() => window.penumbraThree.dispose());
+    const disposed = await page.evaluate(() => window.penumbraThree.dispose());
+    if (disposed.texturesAlive || disposed.programsAlive || !disposed.restored || !disposed.textures)
+        failures.push(`dispose() left ${disposed.texturesAlive} of ${disposed.textures} textures and ${disposed.programsAlive} of ${disposed.programs} programs` +
+                      (disposed.restored ? "" : ", and did not restore the material"));
     failures.push(...problems);
     await page.close();
     console.log(`${failures.length ? "FAIL" : "ok  "} three r${info.three} ${label} (${((Date.now() - started) / 1000).toFixed(1)} s)\n` +

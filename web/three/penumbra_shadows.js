@@ -266,7 +266,7 @@ export class PenumbraShadows {
         const lights = [];
         this.scene.traverseVisible((object) => object.isLight && lights.push(object));
         lights.sort((a, b) => (b.castShadow ? 2 : 0) - (a.castShadow ? 2 : 0) + (b.map ? 1 : 0) - (a.map ? 1 : 0));
-        const same = lights.filter((l) => (this.kind === "sun" ? l.isDirectionalLight : l.isRectAreaLight));
+        const same = lights.filter((l) => (this.kind === "sun" ? l.isDirectionalLight && !l.isSunLight : l.isRectAreaLight));
         return same.indexOf(this.light);
     }
 
@@ -426,6 +426,11 @@ export class PenumbraShadows {
     // onBeforeCompile on a MeshStandardMaterial / MeshPhysicalMaterial (others are left alone).
     _patch(material) {
         if (this._materials.has(material) || !material || !material.isMeshStandardMaterial) return;
+        if (material._penumbraPrevious) { // another PenumbraShadows' (the emitted names would clash)
+            if (!this._warnedShared) console.warn("PenumbraShadows: a material is already shadowed by another PenumbraShadows; one add-on per material");
+            this._warnedShared = true;
+            return;
+        }
         this._materials.add(material);
         const previous = material.onBeforeCompile;
         const previousKey = material.customProgramCacheKey;
@@ -557,6 +562,7 @@ void main() {
 
 function kindOf(light) {
     if (light && light.isRectAreaLight) return "rect";
+    if (light && light.isSunLight) fail("a cascaded SunLight has its own light loop in three; use a THREE.DirectionalLight");
     if (light && light.isDirectionalLight) return "sun";
     fail(`the light must be a THREE.RectAreaLight or a THREE.DirectionalLight (got ${light ? light.type : light})`);
 }

@@ -193,7 +193,16 @@ async function main() {
         shadowUpdates: () => shadows.info.shadowUpdates,
         update: () => { shadows.update(); return shadows.info.shadowUpdates; },
         variants,
-        dispose: () => { shadows.dispose(); return renderer.info.memory; },
+        // dispose(): the runner's textures and programs are deleted, the materials restored
+        dispose: () => {
+            const gl = renderer.getContext();
+            const textures = Object.values(shadows.runner.textures).map((t) => t.id);
+            const programs = Object.values(shadows.runner.programs).map((p) => p.id);
+            shadows.dispose();
+            return {textures: textures.length, texturesAlive: textures.filter((t) => gl.isTexture(t)).length,
+                    programs: programs.length, programsAlive: programs.filter((p) => gl.isProgram(p)).length,
+                    restored: mesh.material.customProgramCacheKey() === THREE.Material.prototype.customProgramCacheKey.call(mesh.material)};
+        },
     };
 }
 
