@@ -63,7 +63,7 @@ const state = {
     light: params.get("light") === "sun" ? "sun" : "rect",
     mode: "penumbra", // penumbra | pcf | vsm | none
     x: 0, y: 6.5, z: 0, tiltX: 0, tiltZ: 0, width: 3, height: 2, intensity: 6,
-    azimuth: 40, elevation: 55, diameter: 5,
+    azimuth: -60, elevation: 50, diameter: 5,
     emission: null, shadowIntensity: 1, animate: false, helper: true,
     pcfRadius: 8, vsmRadius: 16, mapSize: 1024,
 };
@@ -178,7 +178,7 @@ function onResize() {
     shadows.setSize(window.innerWidth, window.innerHeight);
 }
 
-let gui = null, emissionController = null, folders = null;
+let gui = null, emissionFolder = null, emissionController = null, folders = null;
 const onEmission = async (v) => { await shadows.setEmission(v); };
 
 // The emissions of the light's kind in the GUI, and the light's own folder.
@@ -194,7 +194,8 @@ function buildGui(keys) {
     const changed = () => { placeLights(); applyMode(); };
     gui.add(state, "mode", {"Penumbra (occlusion textures)": "penumbra", "three PCFSoftShadowMap (SpotLight)": "pcf", "three VSMShadowMap (SpotLight)": "vsm", "no shadows": "none"}).onChange(changed);
     gui.add(state, "light", {"RectAreaLight": "rect", "DirectionalLight (sun)": "sun"}).onChange(async () => showLight(await attach()));
-    emissionController = gui.add(state, "emission", keys).name("emission").onChange(onEmission);
+    emissionFolder = gui.addFolder("emission (shipped)");
+    emissionController = emissionFolder.add(state, "emission", keys).name("emission").onChange(onEmission);
     gui.add(state, "shadowIntensity", 0, 1, 0.01).name("shadow intensity").onChange(changed);
     folders = {rect: gui.addFolder("RectAreaLight"), sun: gui.addFolder("Sun")};
     folders.rect.add(state, "x", -6, 6, 0.05).onChange(changed);
