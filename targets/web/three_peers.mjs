@@ -2,10 +2,10 @@
 // (web/three/test/), three's PCFSoftShadowMap (in r187 an alias of PCFShadowMap: 5 Vogel-disk
 // taps over shadow.radius texels) and VSMShadowMap from a SpotLight placed where the rectangle
 // is (a DirectionalLight along the sun), Penumbra's add-on and the desktop runtime, all against
-// the bundle's Embree ground truth (penumbra-export-bundle --reference): MAE and p95 over the
-// penumbra pixels (truth or estimate < 0.98) and over all geometry pixels, on the fair
-// reference (`oriented`: the part of the light above each receiver's tangent plane; as
-// playground/src/reference/metrics.cpp) and on the whole light's visibility.
+// the bundle's Embree ground truth (penumbra-export-bundle --reference N): MAE and p95 over the
+// penumbra pixels (truth or estimate < 0.98) and MAE over all geometry pixels, on the fair
+// reference (`oriented`: the part of the light above each receiver's tangent plane; NaN pixels
+// left out, as playground/src/reference/metrics.cpp does).
 //
 //   node targets/web/three_peers.mjs --web web [--quick] [--chromium PATH] [--json FILE] [--markdown FILE] BUNDLE_DIR...
 //
@@ -58,17 +58,18 @@ async function measureBundle(browser, port, index, dir, sweeps) {
     if (!bundle.truth) throw new Error(`${dir}: no ground truth (export it with --reference)`);
     const c = bundle.config;
     const lightText = c.light === "sun" ? `sun ${bundle.light.angular_diameter_degrees.toFixed(2)}°` : `rect ${bundle.light.width}×${bundle.light.height}`;
-    const label = `${bundle.scene}, ${lightText}, ${bundle.width}x${bundle.height}, truth ${bundle.truth.samples_per_axis}² rays`;
+    const label = `${bundle.scene}, ${lightText}, ${bundle.width}x${bundle.height}, truth ${bundle.truth.samples}² rays`;
     const positions = readFloats(path.join(dir, "positions.f32"));
     const geometry = new Uint8Array(positions.length / 4).map((_, i) => (positions[4 * i + 3] !== 0 ? 1 : 0));
-    const fair = readFloats(path.join(dir, bundle.truth.oriented)), whole = readFloats(path.join(dir, bundle.truth.visibility));
+    if (bundle.truth.kind !== "oriented") throw new Error(`${dir}: truth of kind '${bundle.truth.kind}'; this measures against 'oriented'`);
+    const fair = readFloats(path.join(dir, bundle.truth.file));
     const {page, problems} = await openPage(browser, `http://127.0.0.1:${port}/web/three/test/index.html?bundle=/bundle/${index}/`, "penumbraThree");
     const info = await page.evaluate(() => window.penumbraThree.info());
     const rows = [];
     const measure = (name, setting, estimate) => {
         let darkest = 1;
         for (let i = 0; i < estimate.length; ++i) if (geometry[i]) darkest = Math.min(darkest, estimate[i]);
-        const row = {name, setting, fair: errorStats(estimate, fair, geometry), whole: errorStats(estimate, whole, geometry), darkest};
+        const row = {name, setting, fair: errorStats(estimate, fair, geometry), darkest};
         rows.push(row);
         return row;
     };
@@ -97,18 +98,18 @@ async function measureBundle(browser, port, index, dir, sweeps) {
         failures.push(`the add-on's fair penumbra MAE ${fmt(addon.fair.penumbra.mae)} is not the desktop's ${fmt(desktop.fair.penumbra.mae)} within ${ADDON_TOLERANCE}`);
     for (const row of rows) if (row.darkest > 0.5) failures.push(`${row.name} (${row.setting}) casts no shadow (darkest pixel ${row.darkest.toFixed(3)})`);
     return {label, scene: bundle.scene, light: bundle.light, width: bundle.width, height: bundle.height,
-            samples: bundle.truth.samples_per_axis, renderer: info.renderer, three: info.three, rows, failures};
+            samples: bundle.truth.samples, renderer: info.renderer, three: info.three, rows, failures};
 }
 
 function markdown(results) {
     const lines = [];
     for (const r of results) {
         lines.push(`**${r.label}** (three r${r.three}, chromium ${r.renderer}):`, "",
-                   "| technique | setting | fair penumbra MAE | fair penumbra p95 | fair all MAE | penumbra MAE (whole light) | penumbra px |",
-                   "|---|---|---|---|---|---|---|");
+                   "| technique | setting | fair penumbra MAE | fair penumbra p95 | fair all MAE | penumbra px |",
+                   "|---|---|---|---|---|---|");
         for (const row of r.rows)
             lines.push(`| ${row.name} | ${row.setting} | ${fmt(row.fair.penumbra.mae)} | ${fmt(row.fair.penumbra.p95)} | ${fmt(row.fair.all.mae)} | ` +
-                       `${fmt(row.whole.penumbra.mae)} | ${row.fair.penumbra.count} |`);
+                       `${row.fair.penumbra.count} |`);
         lines.push("");
     }
     return lines.join("\n");
