@@ -2,7 +2,7 @@
 // (web/three/test/: the bundle's triangles, light and camera), the add-on (web/three/penumbra_shadows.js)
 // attached to its RectAreaLight (or sun), in Debian's chromium (headless, SwiftShader):
 //
-//   node targets/web/three_test.mjs --web web [--chromium PATH] BUNDLE_DIR...
+//   node targets/web/three_test.mjs --web web [--chromium PATH] [--wasm penumbra_emitter.wasm] BUNDLE_DIR...
 //
 // Each BUNDLE_DIR is written by penumbra-export-bundle --target essl300 (uniforms.json has the camera).
 //   1. The add-on's light frame, computed from the three.js light and the scene's bounds, is the
@@ -20,6 +20,9 @@
 //      2q (all but 0.2% of the pixels), and unlike the unmoved mesh's.
 //   5. Moving the light re-runs the shadow phase; update() without a change does not; dispose()
 //      deletes the add-on's textures and programs and restores the materials.
+//   6. With --wasm: the bundle's configuration emitted in the page by the WebAssembly emitter
+//      (a configuration object as `emission`) gives the same visibility as the bundle's emission
+//      folder (within 1e-6).
 // Exit 0 pass, 1 fail, 77 skip (no chromium), 2 bad arguments.
 import path from "node:path";
 import fs from "node:fs";
@@ -31,13 +34,13 @@ const PIXELS_ALLOWED = 0.01;
 const VARIANT_PIXELS_ALLOWED = 0.002; // float rounding of M applied on the GPU or the CPU
 
 function parseArguments(argv) {
-    const out = {web: null, chromium: "/usr/bin/chromium", bundles: []};
+    const out = {web: null, chromium: "/usr/bin/chromium", wasm: null, bundles: []};
     for (let i = 0; i < argv.length; ++i) {
         const flag = argv[i];
-        if (flag === "--web" || flag === "--chromium") {
+        if (flag === "--web" || flag === "--chromium" || flag === "--wasm") {
             if (i + 1 >= argv.length) usage(`${flag}: missing value`);
             out[flag.slice(2)] = argv[++i];
-        } else if (flag.startsWith("--")) usage(`unknown flag '${flag}'; allowed: --web, --chromium`);
+        } else if (flag.startsWith("--")) usage(`unknown flag '${flag}'; allowed: --web, --chromium, --wasm`);
         else out.bundles.push(flag);
     }
     if (!out.web) usage("--web: missing");
@@ -46,7 +49,7 @@ function parseArguments(argv) {
 }
 
 function usage(message) {
-    console.error(`error: ${message}\nusage: node three_test.mjs --web DIR [--chromium PATH] BUNDLE_DIR...`);
+    console.error(`error: ${message}\nusage: node three_test.mjs --web DIR [--chromium PATH] [--wasm penumbra_emitter.wasm] BUNDLE_DIR...`);
     process.exit(2);
 }
 
@@ -84,7 +87,7 @@ function relativeDifference(a, b) {
     return worst / Math.max(scale, 1e-30);
 }
 
-async function checkBundle(browser, port, index, dir) {
+async function checkBundle(browser, port, index, dir, wasm) {
     const bundle = JSON.parse(fs.readFileSync(path.join(dir, "uniforms.json"), "utf8"));
     const c = bundle.config;
     const label = `${bundle.scene} ${c.light} ${c.filter}/${c.packing} ${c.slices}×${c.resolution}² ${bundle.width}x${bundle.height}`;
@@ -167,12 +170,26 @@ async function checkBundle(browser, port, index, dir) {
                       (disposed.restored ? "" : ", and did not restore the material"));
     failures.push(...problems);
     await page.close();
+
+    // 6. the same configuration through the WebAssembly emitter
+    let emitterText = "";
+    if (wasm) {
+        const query = `bundle=/bundle/${index}/&wasm=/wasm/penumbra_emitter.wasm&config=${encodeURIComponent(JSON.stringify(c))}`;
+        const emitted = await openPage(browser, `http://127.0.0.1:${port}/web/three/test/index.html?${query}`, "penumbraThree");
+        const v = await emitted.page.evaluate(() => window.penumbraThree.visibility());
+        let worstEmitted = 0;
+        for (let i = 0; i < v.length; ++i) worstEmitted = Math.max(worstEmitted, Math.abs(v[i] - visibility[i]));
+        if (!(worstEmitted <= 1e-6)) failures.push(`through the WebAssembly emitter the visibility differs from the emission folder's by ${worstEmitted}`);
+        failures.push(...emitted.problems);
+        await emitted.page.close();
+        emitterText = `; WebAssembly emitter vs emission folder: max |Δ| ${worstEmitted.toExponential(2)}`;
+    }
     console.log(`${failures.length ? "FAIL" : "ok  "} three r${info.three} ${label} (${((Date.now() - started) / 1000).toFixed(1)} s)\n` +
                 `     light frame vs desktop ${uniformError.toExponential(2)} (relative); visibility vs desktop: mean |Δ| ${(sumDiff / Math.max(geometry, 1)).toExponential(2)}, ` +
                 `max ${worst.toFixed(4)}, ${outside} of ${geometry} interior pixels outside 2·bound + q (${shadowed} shadowed; ${silhouette} silhouette pixels left out)\n` +
                 `     material: lit-with / lit-without vs visibility max |Δ| ${ratioWorst.toFixed(4)}, ${ratioOutside} of ${lit} lit pixels outside 2q + 1e-3; ` +
                 `moved light changed ${changed} pixels\n` +
-                `     moved mesh changed ${movedPixels} pixels; pixels differing from it: ${variantText.join(", ")}`);
+                `     moved mesh changed ${movedPixels} pixels; pixels differing from it: ${variantText.join(", ")}${emitterText}`);
     for (const f of failures) console.log(`     ${f}`);
     return {failures: failures.length, renderer: info.renderer};
 }
@@ -182,11 +199,13 @@ async function main() {
     const {browser, close} = await launchChromium(args.chromium);
     const roots = {web: args.web};
     args.bundles.forEach((dir, i) => (roots[`bundle/${i}`] = dir));
+    if (args.wasm) roots.wasm = path.dirname(path.resolve(args.wasm));
+    if (args.wasm && path.basename(args.wasm) !== "penumbra_emitter.wasm") usage("--wasm: the file must be named penumbra_emitter.wasm");
     const server = await serve(roots);
     let failures = 0;
     try {
         for (let i = 0; i < args.bundles.length; ++i) {
-            const result = await checkBundle(browser, server.address().port, i, args.bundles[i]);
+            const result = await checkBundle(browser, server.address().port, i, args.bundles[i], args.wasm);
             if (i === 0) console.log(`WebGL2 renderer: ${result.renderer}`);
             failures += result.failures;
         }

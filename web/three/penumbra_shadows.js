@@ -42,6 +42,7 @@ const DEFAULTS = {
     angularDiameter: 0.0093,  // sun only: the DirectionalLight's angular diameter in radians (our sun: 0.53°)
     autoUpdate: true,         // re-run the shadow phase by itself when something moved (like shadowMap.autoUpdate)
     intensity: 1,             // 0: no shadow, 1: Penumbra's visibility (like LightShadow.intensity)
+    wasm: null,               // for a configuration object: the URL of penumbra_emitter.wasm (default: beside ../penumbra_emitter.js)
 };
 
 export class PenumbraError extends Error {}
@@ -127,7 +128,7 @@ export class PenumbraShadows {
         const gl = renderer.getContext();
         const kind = kindOf(light);
         const emission = o.emission ?? (kind === "sun" ? "sun-nbuffer-16x512" : "rect-nbuffer-16x512");
-        const runner = await loadRunner(gl, emission, kind);
+        const runner = await loadRunner(gl, emission, kind, o.wasm);
         return new PenumbraShadows(renderer, scene, light, {...o, runner});
     }
 
@@ -145,6 +146,7 @@ export class PenumbraShadows {
         this.autoUpdate = o.autoUpdate;
         this.needsUpdate = true;
         this.enabled = true;
+        this.wasm = o.wasm;
         this.intensity = o.intensity;
         this.info = {shadowUpdates: 0, lastShadowMs: 0, casters: 0, receivers: 0, contained: true};
         this._geometries = new Map(); // BufferGeometry (or SkinnedMesh) → {vao, buffers, count, version}
@@ -199,7 +201,7 @@ export class PenumbraShadows {
     // Replaces the emission (a key of EMISSIONS, a folder URL, {layout, files} or a configuration); the old GPU
     // resources are freed once the new ones work.
     async setEmission(emission) {
-        const runner = await loadRunner(this.renderer.getContext(), emission, this.kind);
+        const runner = await loadRunner(this.renderer.getContext(), emission, this.kind, this.wasm);
         const old = this.runner;
         this._setRunner(runner);
         disposeRunner(old);
@@ -573,7 +575,7 @@ function positionVersion(geometry) {
 }
 
 // The layout runner for an emission: a key of EMISSIONS, a folder URL, or {layout, files}.
-async function loadRunner(gl, emission, kind) {
+async function loadRunner(gl, emission, kind, wasm) {
     if (typeof emission === "string") {
         const folder = EMISSIONS[emission] ? new URL(EMISSIONS[emission], MODULE_URL).href : emission;
         if (!folder.endsWith("/")) fail(`emission '${emission}': not one of ${Object.keys(EMISSIONS).join(", ")} nor a folder URL ending in '/'`);
@@ -593,7 +595,7 @@ async function loadRunner(gl, emission, kind) {
     }
     if (emission && typeof emission === "object") {
         // A configuration (penumbra-gen --config's schema): emitted here by the WebAssembly emitter.
-        const emitter = await loadEmitter();
+        const emitter = await loadEmitter(wasm);
         const result = emitter.emit({light: kind, ...emission, target: "essl300"});
         if (!result.ok) fail(`emission: ${result.diagnostics.map((d) => d.message).join("; ") || result.error}`);
         return loadRunner(gl, {layout: result.layout, files: result.files}, kind);
@@ -601,12 +603,12 @@ async function loadRunner(gl, emission, kind) {
     fail("options.emission: a key of EMISSIONS, a folder URL ending in '/', {layout, files}, or a configuration object");
 }
 
-// The WebAssembly emitter (../penumbra_emitter.js and its .wasm beside it), loaded once.
+// The WebAssembly emitter (../penumbra_emitter.js; its .wasm at `wasm`, default beside it), loaded once.
 let emitterPromise = null;
-export function loadEmitter() {
+export function loadEmitter(wasm = null) {
     if (!emitterPromise)
         emitterPromise = import(new URL("../penumbra_emitter.js", MODULE_URL).href)
-            .then((m) => m.loadEmitter())
+            .then((m) => (wasm ? m.loadEmitter(wasm) : m.loadEmitter()))
             .catch((e) => {
                 emitterPromise = null;
                 fail(`a configuration needs the WebAssembly emitter (../penumbra_emitter.js and penumbra_emitter.wasm), which did not load: ${e.message}`);

@@ -3,7 +3,8 @@
 // the emission and compare with three's own PCFSoftShadowMap / VSMShadowMap from a SpotLight
 // placed where the rectangle is.
 //
-// URL parameters: ?light=rect|sun, ?size=WxH (a fixed canvas size, for screenshots and benchmarks).
+// URL parameters: ?light=rect|sun, ?size=WxH (a fixed canvas size, for screenshots and benchmarks),
+// ?wasm=URL (penumbra_emitter.wasm, for the configuration panel, e.g. /build/wasm/penumbra_emitter.wasm).
 // window.example (automation): ready, state, set(changes), render(), bench({mode, frames, moving}).
 import * as THREE from "three";
 import {OrbitControls} from "three/addons/controls/OrbitControls.js";
@@ -14,6 +15,7 @@ import {PenumbraShadows, EMISSIONS, loadEmitter} from "../penumbra_shadows.js";
 
 const params = new URLSearchParams(location.search);
 const fixedSize = params.get("size") ? params.get("size").split("x").map(Number) : null;
+const wasm = params.get("wasm"); // the WebAssembly emitter's module, where it is not beside web/penumbra_emitter.js
 
 const renderer = new THREE.WebGLRenderer({antialias: true});
 renderer.setPixelRatio(fixedSize ? 1 : Math.min(window.devicePixelRatio, 2));
@@ -150,7 +152,7 @@ async function attach() {
     const light = state.light === "rect" ? rect : sun;
     const keys = Object.keys(EMISSIONS).filter((k) => k.startsWith(state.light));
     if (!keys.includes(state.emission)) state.emission = keys[0];
-    shadows = await PenumbraShadows.load(renderer, scene, light, {emission: state.emission, angularDiameter: state.diameter * Math.PI / 180});
+    shadows = await PenumbraShadows.load(renderer, scene, light, {emission: state.emission, angularDiameter: state.diameter * Math.PI / 180, wasm});
     placeLights();
     applyMode();
     return keys;
@@ -166,7 +168,7 @@ function render() {
     shadows.update();
     renderer.render(scene, camera);
     const c = shadows.config;
-    status.textContent = `${state.mode === "penumbra" ? `Penumbra ${c.slices} slices ${c.resolution}² ${c.filter} (${state.emission})` : state.mode === "none" ? "no shadows" : `three ${state.mode.toUpperCase()} shadow map, radius ${state.mode === "vsm" ? state.vsmRadius : state.pcfRadius}`}` +
+    status.textContent = `${state.mode === "penumbra" ? `Penumbra ${c.slices} slices ${c.resolution}² ${c.filter} (${state.emitted ? "emitted in the page" : state.emission})` : state.mode === "none" ? "no shadows" : `three ${state.mode.toUpperCase()} shadow map, radius ${state.mode === "vsm" ? state.vsmRadius : state.pcfRadius}`}` +
         ` — shadow phase runs: ${shadows.info.shadowUpdates}` + (shadows.info.contained ? "" : " — the scene reaches the light's plane: move it up");
 }
 
@@ -179,7 +181,7 @@ function onResize() {
 }
 
 let gui = null, emissionFolder = null, emissionController = null, folders = null;
-const onEmission = async (v) => { await shadows.setEmission(v); };
+const onEmission = async (v) => { await shadows.setEmission(v); state.emitted = false; };
 
 // The emissions of the light's kind in the GUI, and the light's own folder.
 function showLight(keys) {
@@ -212,12 +214,12 @@ function buildGui(keys) {
     folders.sun.add(state, "elevation", 15, 90, 1).name("elevation (°)").onChange(changed);
     folders.sun.add(state, "diameter", 0.2, 15, 0.1).name("angular diameter (°)").onChange(changed);
     // Any configuration, emitted in the page, where the WebAssembly emitter is there.
-    loadEmitter().then(() => {
+    loadEmitter(wasm).then(() => {
         const custom = {slices: 16, resolution: 512, filter: "nbuffer", fusion: "chained", packing: "atlas", tangentClip: true};
-        const folder = gui.addFolder("configuration (WebAssembly emitter)");
+        const folder = gui.addFolder("configuration (emitted)");
         folder.add(custom, "slices", 1, 16, 1);
         folder.add(custom, "resolution", [128, 256, 512, 1024]);
-        folder.add(custom, "filter", ["mipmap", "nbuffer", "sat", "gaussian"]);
+        folder.add(custom, "filter", ["mipmap", "nbuffer", "gaussian"]); // sat needs float textures ES 3.00 lacks
         folder.add(custom, "fusion", ["probabilistic", "additive", "maximum", "average", "chained"]);
         folder.add(custom, "packing", ["atlas", "array", "volume"]);
         folder.add(custom, "tangentClip").name("tangent clip");
@@ -227,6 +229,7 @@ function buildGui(keys) {
             try {
                 await shadows.setEmission({slices: custom.slices, resolution: custom.resolution, filter: custom.filter, fusion: custom.fusion,
                                            packing: custom.packing, tangent_clip: custom.tangentClip});
+                state.emitted = true;
                 message.text = "ok";
             } catch (e) {
                 message.text = e.message.replace("PenumbraShadows: ", "");
@@ -291,7 +294,7 @@ window.example = {
         await ready;
         const light = state.light;
         Object.assign(state, changes);
-        if (state.light !== light) showLight(await attach());
+        if (state.light !== light) { showLight(await attach()); state.emitted = false; }
         if (changes.emission) await shadows.setEmission(state.emission);
         placeLights();
         applyMode();
@@ -299,6 +302,7 @@ window.example = {
         render();
     },
     render: () => render(),
+    emit: async (config) => { await ready; await shadows.setEmission(config); state.emitted = true; render(); return shadows.config; },
     bench,
     info: () => ({shadows: {...shadows.info}, config: shadows.config, memory: {...renderer.info.memory}, three: THREE.REVISION}),
 };

@@ -27,7 +27,11 @@ async function main() {
     const renderer = new THREE.WebGLRenderer({canvas, antialias: false});
     renderer.setPixelRatio(1);
     renderer.setSize(W, H);
-    const options = {emission: base + "emission/"};
+    // ?config=JSON (with ?wasm=URL): the same configuration emitted in the page by the
+    // WebAssembly emitter instead of the bundle's emission folder
+    const config = new URLSearchParams(location.search).get("config");
+    const options = config ? {emission: JSON.parse(config), wasm: new URLSearchParams(location.search).get("wasm")}
+                           : {emission: base + "emission/"};
     if (bundle.light.kind === "sun") options.angularDiameter = bundle.light.angular_diameter_degrees * Math.PI / 180;
     const shadows = await PenumbraShadows.load(renderer, scene, light, options);
     shadows.update();
