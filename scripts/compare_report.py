@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Builds the comparison report from penumbra-bench-compare's results.json alone.
+"""Builds the comparison report from penumbra-bench-compare's results.json alone (and, where
+targets/web/three_peers.mjs wrote DIR/three_peers.md, appends its three.js tables).
 
     compare_report.py DIR [--mae-thresholds 0.1,0.15,0.2] [--metric M]   writes DIR/report.md, DIR/figures/*.png
     compare_report.py DIR --check                  exits 1 unless report, figures and finite numbers are there

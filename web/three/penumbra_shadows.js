@@ -183,7 +183,10 @@ export class PenumbraShadows {
                 this.uniforms[name] = {value: texture};
                 this._samplers.push(texture);
             } else {
-                this.uniforms[name] = {value: null};
+                // a value of the right shape until the first update() (three cannot upload null)
+                const zeros = {float: 0, int: 0, vec2: [0, 0], vec3: [0, 0, 0], vec4: [0, 0, 0, 0],
+                               mat4: [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]};
+                this.uniforms[name] = {value: zeros[type] ?? 0};
             }
         }
         this._cacheKey = `penumbra:${this.kind}:${JSON.stringify(layout.config)}:${PenumbraShadows._generation = (PenumbraShadows._generation || 0) + 1}`;
