@@ -15,7 +15,7 @@
 // alone) and DIR/images/ (visibility and signed error of the representative settings).
 // The ground truth is cached in DIR/cache/ (it does not depend on the technique).
 //
-//   penumbra-bench-compare [--quick | --full] [--scenes a,b] [FILE.obj ...] [--size N] [--samples N]
+//   penumbra-bench-compare [--quick | --full] [--scenes a,b] [FILE ...] [--no-ground] [--size N] [--samples N]
 //                          [--runs N] [--light-scales 1,2,4] [--flicker-frames N] [--out DIR]
 #include "compare/ladder.hpp"
 #include "compare/progress.hpp"
@@ -66,10 +66,11 @@ struct Options {
     int flicker_frames = 8;
     double flicker_step = 0.005;     // light motion per frame, as a fraction of the scene's ground span
     std::string out_dir = "out/compare";
+    bool ground = true;              // --no-ground: no floor under the mesh files
 };
 
 constexpr const char* usage_text =
-    "usage: penumbra-bench-compare [--quick | --full] [--scenes a,b,...] [FILE.obj ...] [--size N|WxH]\n"
+    "usage: penumbra-bench-compare [--quick | --full] [--scenes a,b,...] [FILE ...] [--no-ground] [--size N|WxH]\n"
     "                              [--samples N] [--runs N] [--light-scales 1,2,...] [--flicker-frames N]\n"
     "                              [--out DIR]\n"
     "  (default)         every built-in scene, the standard ladder, light x1 x2 x4 x8 x16 x32, 128x128,\n"
@@ -78,7 +79,9 @@ constexpr const char* usage_text =
     "                    (a smoke test: the report states the ray count)\n"
     "  --full            the full ladder (adds 1024-texel settings), 256x256, 16 flicker frames\n"
     "  --scenes          built-in scenes, comma-separated (default all: see penumbra-playground --help)\n"
-    "  FILE.obj          Wavefront files, added to the scenes (lights and camera from their bounds)\n"
+    "  FILE              mesh files (.obj, .gltf, .glb), added to the scenes, each on a floor (lights and\n"
+    "                    camera from the bounds with it)\n"
+    "  --no-ground       no floor under the mesh files\n"
     "  --size            image size (square N or WxH, 16 to 1024)\n"
     "  --samples         ground-truth rays per light axis, 1 to 128 (the truth uses N x N stratified rays)\n"
     "  --runs            timed runs per measurement after one warm-up run, 1 to 100 (medians reported)\n"
@@ -103,12 +106,7 @@ template <class T> bool parse_number(std::string_view text, T& value) {
     return ec == std::errc() && end == text.data() + text.size();
 }
 
-bool is_obj_path(std::string_view text) {
-    if (text.size() < 4) return false;
-    std::string tail(text.substr(text.size() - 4));
-    std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return std::tolower(c); });
-    return tail == ".obj";
-}
+bool is_obj_path(std::string_view text) { return is_scene_file(std::string(text)); }
 
 // Options from argv, or an error message (one line).
 std::optional<Options> parse(int argc, char** argv, std::string& error) {
@@ -130,6 +128,10 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
             o.flicker_frames = 4;
             continue;
         }
+        if (flag == "--no-ground") {
+            o.ground = false;
+            continue;
+        }
         if (flag == "--full") {
             o.set = bench::LadderSet::full;
             o.width = o.height = 256;
@@ -137,7 +139,7 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
             continue;
         }
         if (!flag.starts_with("--")) {
-            if (!is_obj_path(flag)) return fail("unexpected argument '" + std::string(flag) + "'; scenes other than the built-in ones are Wavefront files ending in .obj");
+            if (!is_obj_path(flag)) return fail("unexpected argument '" + std::string(flag) + "'; scenes other than the built-in ones are mesh files ending in .obj, .gltf or .glb");
             obj_files.emplace_back(flag);
             continue;
         }
@@ -145,8 +147,8 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                                                "--light-scales", "--out"};
         if (std::find(std::begin(valued), std::end(valued), flag) == std::end(valued))
             return fail("unknown flag '" + std::string(flag) +
-                        "'; allowed: --quick, --full, --scenes, --size, --samples, --runs, --light-scales, "
-                        "--flicker-frames, --out, --help, FILE.obj");
+                        "'; allowed: --quick, --full, --scenes, --no-ground, --size, --samples, --runs, --light-scales, "
+                        "--flicker-frames, --out, --help, FILE.obj|.gltf|.glb");
         if (i + 1 >= argc) return fail(std::string(flag) + ": missing value (see --help)");
         const std::string_view value = argv[++i];
         if (flag == "--scenes") {
@@ -194,7 +196,7 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
         for (std::string_view n : scene_names()) built_in.emplace_back(n);
     o.scenes = built_in;
     o.scenes.insert(o.scenes.end(), obj_files.begin(), obj_files.end());
-    if (o.scenes.empty()) return fail("no scene: give --scenes or an OBJ file");
+    if (o.scenes.empty()) return fail("no scene: give --scenes or a mesh file");
     return o;
 }
 
@@ -444,7 +446,7 @@ int main(int argc, char** argv) {
     }
     std::vector<Scene> scenes;
     for (const std::string& name : options->scenes) {
-        SceneLoad loaded = load_scene(name);
+        SceneLoad loaded = load_scene(name, options->ground);
         if (!loaded.scene) return fail(loaded.error, 2);
         if (is_obj_path(name)) loaded.scene->name = std::filesystem::path(name).stem().string();
         scenes.push_back(std::move(*loaded.scene));
@@ -590,7 +592,7 @@ int main(int argc, char** argv) {
             }
             for (std::size_t e = 0; e < ladder.size(); ++e) {
                 const bench::LadderEntry& entry = ladder[e];
-                json record = {{"scene", scene.name},
+                json record = {{"scene", scene.name}, {"ground", scene.ground},
                                {"family", entry.family},
                                {"label", entry.label},
                                {"representative", entry.representative},
