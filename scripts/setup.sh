@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs Penumbra's build and test dependencies from Debian (the platform notes say what each
-# is for) and puppeteer-core for the browser test (npm, into targets/web/node_modules). Idempotent:
+# is for; clang-16 and the wasm32 libraries build the WebAssembly emitter, wasm/) and
+# puppeteer-core for the browser test (npm, into targets/web/node_modules). Idempotent:
 # does nothing when every package is installed and node_modules matches package-lock.json.
 set -euo pipefail
 
@@ -13,6 +14,7 @@ packages=(
     libvulkan-dev libvulkan-volk-dev mesa-vulkan-drivers vulkan-validationlayers
     python3 python3-jsonschema python3-matplotlib
     chromium
+    clang-16 lld-16 libc++-16-dev-wasm32 libc++abi-16-dev-wasm32 libclang-rt-16-dev-wasm32 wasi-libc
 )
 # The browser test drives chromium from Node (puppeteer-core); Debian's node where none is installed.
 if ! command -v node >/dev/null || ! command -v npm >/dev/null; then packages+=(nodejs npm); fi

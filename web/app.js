@@ -1,13 +1,18 @@
-// app.js — the page: loads a target bundle (penumbra-export-bundle --target essl300: the scene's
-// triangles, its light, its G-buffers (world positions and normals), and the essl300 emission), runs the emission
-// with LayoutRunner, shows the shadowed scene, and lets the light move. Moving the light recomputes
-// the light-frame uniforms in JavaScript (light_frame.js) from the rectangle (or the sun) and the
-// scene's bounds, then re-runs the shadow phase.
+// app.js — the browser playground: the emitter in WebAssembly (penumbra_emitter.js) re-emits on
+// every change of the panel (config_panel.js: every field of `penumbra-gen --config`), the page
+// runs the essl300 emission by its layout.json (penumbra_runner.js) over the scene, and shows the
+// shaded scene, the visibility, or its difference from the bundle's desktop run; a split view runs
+// a second configuration on the right half. Scenes: the built-in ones of scenes/index.json (small
+// bundles written at publish time by scripts/publish_web.sh) or ?bundle=DIR/ (penumbra-export-bundle
+// --target essl300). Light: sliders, or drag with the shift key; camera: drag to orbit.
 //
-// URL parameters: ?bundle=DIR/ (default "bundle/", relative to this page).
-// window.penumbra (for automation): ready (a promise), readVisibility(), setLight(), info(), ...
+// URL parameters: ?bundle=DIR/, ?scene=NAME (a built-in scene), ?wasm=URL.
+// window.penumbra (for automation): ready (a promise), readVisibility(side), setLight(), info(), ...
+import {loadEmitter} from "./penumbra_emitter.js";
 import {LayoutRunner} from "./penumbra_runner.js";
-import {rectFrame, sunFrame} from "./light_frame.js";
+import {lightUniforms} from "./light_frame.js";
+import {ConfigPanel} from "./config_panel.js";
+import {SceneGeometry, GBuffer, Composite, perspective, lookAt, multiply} from "./scene_view.js";
 
 const $ = (id) => document.getElementById(id);
 
@@ -16,274 +21,462 @@ async function fetchOk(url) {
     if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);
     return response;
 }
+const floats = async (url) => new Float32Array(await (await fetchOk(url)).arrayBuffer());
 
-function bounds(triangles) {
-    const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
-    for (let i = 0; i < triangles.length; i += 3)
-        for (let a = 0; a < 3; ++a) {
-            lo[a] = Math.min(lo[a], triangles[i + a]);
-            hi[a] = Math.max(hi[a], triangles[i + a]);
-        }
-    return {lo, hi};
-}
-
-// One normal per triangle, repeated on its three vertices (the scenes are faceted).
-function flatNormals(t) {
-    const n = new Float32Array(t.length);
-    for (let i = 0; i < t.length; i += 9) {
-        const e1 = [t[i + 3] - t[i], t[i + 4] - t[i + 1], t[i + 5] - t[i + 2]];
-        const e2 = [t[i + 6] - t[i], t[i + 7] - t[i + 1], t[i + 8] - t[i + 2]];
-        const c = [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]];
-        const l = Math.hypot(...c) || 1;
-        for (let v = 0; v < 3; ++v) for (let a = 0; a < 3; ++a) n[i + 3 * v + a] = c[a] / l;
+// Everything of a bundle the page uses (targets/bundle/README.md): triangles, light, G-buffers at
+// its camera, the desktop run's visibility and the oracle's value and bound, its slicing output.
+async function loadBundle(base) {
+    const info = await (await fetchOk(base + "uniforms.json")).json();
+    const bundle = {base, info, width: info.width, height: info.height, triangles: await floats(base + "mesh.f32"), callerTextures: {}};
+    for (const [name, file] of Object.entries(info.caller_textures || {})) bundle.callerTextures[name] = await floats(base + file);
+    for (const [key, file] of [["gl", "visibility_gl.f32"], ["oracle", "oracle.f32"], ["bound", "bound.f32"]]) {
+        try { bundle[key] = await floats(base + file); } catch { bundle[key] = null; }
     }
-    return n;
+    return bundle;
 }
 
-function perspective(fovY, aspect, near, far) {
-    const f = 1 / Math.tan(fovY / 2);
-    return [f / aspect, 0, 0, 0, 0, f, 0, 0, 0, 0, (far + near) / (near - far), -1, 0, 0, 2 * far * near / (near - far), 0];
-}
-
-function lookAt(eye, target, up) {
-    const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-    const norm = (a) => { const l = Math.hypot(...a); return a.map((x) => x / l); };
-    const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
-    const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    const f = norm(sub(target, eye)), s = norm(cross(f, up)), u = cross(s, f);
-    return [s[0], u[0], -f[0], 0, s[1], u[1], -f[1], 0, s[2], u[2], -f[2], 0, -dot(s, eye), -dot(u, eye), dot(f, eye), 1];
-}
-
-function multiply(a, b) {
-    const m = new Array(16).fill(0);
-    for (let c = 0; c < 4; ++c) for (let r = 0; r < 4; ++r) for (let k = 0; k < 4; ++k) m[c * 4 + r] += a[k * 4 + r] * b[c * 4 + k];
-    return m;
-}
-
-async function main() {
-    const params = new URLSearchParams(location.search);
-    const base = params.get("bundle") || "bundle/";
-    const canvas = $("view");
-    const gl = canvas.getContext("webgl2", {antialias: false});
-    if (!gl) throw new Error("this browser has no WebGL2");
-
-    const bundle = await (await fetchOk(base + "uniforms.json")).json();
-    const triangles = new Float32Array(await (await fetchOk(base + "mesh.f32")).arrayBuffer());
-    const runner = await LayoutRunner.load(gl, base + "emission/");
-    // The G-buffers the layout leaves to the caller (source "caller": world positions, and the
-    // normals with the tangent clip), from the bundle's files for them (uniforms.json caller_textures).
-    const callerTextures = {};
-    for (const t of runner.layout.textures) {
-        if (t.source !== "caller") continue;
-        const file = (bundle.caller_textures || {})[t.name];
-        if (!file) throw new Error(`the layout's caller texture ${t.name} has no file in the bundle's caller_textures`);
-        const texels = new Float32Array(await (await fetchOk(base + file)).arrayBuffer());
-        if (texels.length !== 4 * bundle.width * bundle.height)
-            throw new Error(`${file}: ${texels.length} floats, expected 4 × ${bundle.width} × ${bundle.height}`);
-        callerTextures[t.name] = texels;
+// The light of a bundle, or a default one of the other kind over the bounds.
+function lightFor(kind, bundle, box) {
+    const span = Math.max(box.hi[0] - box.lo[0], box.hi[2] - box.lo[2], 1e-3);
+    const centre = [0, 2].map((i) => 0.5 * (box.lo[i] + box.hi[i]));
+    const given = bundle.info.light;
+    if (kind === "sun") {
+        if (given.kind === "sun") return {kind: "sun", direction: [...given.direction], angularDiameter: given.angular_diameter_degrees * Math.PI / 180};
+        return {kind: "sun", direction: [0.3, -1, 0.2], angularDiameter: 5 * Math.PI / 180};
     }
-    const config = runner.layout.config;
-    const box = bounds(triangles);
+    if (given.kind === "rect") {
+        const m = bundle.info.uniforms.penumbra_lightFromWorld;
+        return {kind: "rect", center: [...given.center], u: [m[0], m[4], m[8]], v: [m[1], m[5], m[9]], width: given.width, height: given.height};
+    }
+    return {kind: "rect", center: [centre[0], box.hi[1] + span, centre[1]], u: [1, 0, 0], v: [0, 0, 1], width: 0.2 * span, height: 0.2 * span};
+}
 
-    // Vertex arrays: attribute 0 = world position (slicing, shading), 1 = normal (shading).
-    const attribute = (vao, location, data) => {
-        gl.bindVertexArray(vao);
-        const buffer = gl.createBuffer();
-        gl.bindBuffer(gl.ARRAY_BUFFER, buffer);
-        gl.bufferData(gl.ARRAY_BUFFER, data, gl.STATIC_DRAW);
-        gl.enableVertexAttribArray(location);
-        gl.vertexAttribPointer(location, 3, gl.FLOAT, false, 0, 0);
-        gl.bindVertexArray(null);
-    };
-    const sceneVao = gl.createVertexArray();
-    attribute(sceneVao, 0, triangles);
-    attribute(sceneVao, 1, flatNormals(triangles));
-    const vertexCount = triangles.length / 3;
-    const drawScene = () => {
-        gl.bindVertexArray(sceneVao);
-        gl.drawArrays(gl.TRIANGLES, 0, vertexCount);
-        gl.bindVertexArray(null);
-    };
+// One side of the view: its panel, its emission (as asked), the essl300 emission it runs, its runner.
+class Side {
+    constructor(app, index, title, initial) {
+        this.app = app;
+        this.index = index;
+        this.emissions = 0;
+        this.runner = null;
+        this.reason = "";
+        this.panel = new ConfigPanel($("panels"), app.emitter, {
+            id: index ? "right" : "left", title, defaults: app.defaults, initial, onChange: () => this.update(),
+        });
+    }
 
-    // The light. The rectangle's axes are the rows of the exported penumbra_lightFromWorld.
-    const exported = bundle.uniforms;
-    const m = exported.penumbra_lightFromWorld;
-    const light = bundle.light.kind === "sun"
-        ? {kind: "sun", direction: [...bundle.light.direction], angularDiameter: bundle.light.angular_diameter_degrees * Math.PI / 180}
-        : {kind: "rect", center: [...bundle.light.center], u: [m[0], m[4], m[8]], v: [m[1], m[5], m[9]],
-           width: bundle.light.width, height: bundle.light.height};
-    const state = {useBundleUniforms: false, bundleSlices: null, view: "shaded", yaw: 0.6, pitch: 0.6, frame: null};
-
-    // With the bundle's slices.f32 (the desktop run's slicing output) in place of our own slicing
-    // pass: colour attachment t of the slicing pass holds slices 4t .. 4t + 3 in its channels.
-    const R = config.resolution;
-    const replaceSlicing = (pass) => pass.outputs.forEach((out, t) => {
-        const rgba = new Float32Array(4 * R * R);
-        for (let c = 0; c < 4 && 4 * t + c < config.slices; ++c)
-            for (let i = 0; i < R * R; ++i) rgba[4 * i + c] = state.bundleSlices[(4 * t + c) * R * R + i];
-        runner.uploadTexture(out.texture, out.level, out.layer, rgba);
-    });
-
-    const frameOf = () => (light.kind === "sun" ? sunFrame(light, box.lo, box.hi, config.slices)
-                                                : rectFrame(light, box.lo, box.hi, config.slices));
-    // Shadow phase: slicing and prefilter, then the deferred visibility over the bundle's G-buffers.
-    const rebuild = () => {
-        state.frame = frameOf();
-        runner.setUniforms(state.useBundleUniforms ? exported : state.frame.uniforms);
-        const t0 = performance.now();
-        runner.runPhase("shadow", drawScene, null, state.bundleSlices ? {slicing: replaceSlicing} : {});
-        for (const [name, texels] of Object.entries(callerTextures)) runner.fillTexture(name, bundle.width, bundle.height, texels);
-        runner.runPhase("screen", null, {width: bundle.width, height: bundle.height});
-        gl.finish();
-        state.shadowMs = performance.now() - t0;
-    };
-
-    // Display: the example phase with an orbit camera, or the deferred visibility image.
-    const centre = [0, 1, 2].map((i) => 0.5 * (box.lo[i] + box.hi[i]));
-    const radius = 0.5 * Math.hypot(...[0, 1, 2].map((i) => box.hi[i] - box.lo[i]));
-    const visibilityProgram = makeBlitProgram(gl);
-    const draw = () => {
-        gl.viewport(0, 0, canvas.width, canvas.height);
-        if (state.view === "visibility") {
-            blit(gl, visibilityProgram, runner.texture(runner.layout.result).id);
-            return;
+    // Re-emits from the panel, rebuilds the runner, re-renders.
+    update(render = true) {
+        const config = this.panel.config();
+        const emission = this.app.emitter.emit(config);
+        ++this.emissions;
+        this.emission = emission;
+        this.reason = "";
+        let note = emission.ok ? `emitted ${Object.keys(emission.files).length} files in ${emission.ms.toFixed(1)} ms` : "";
+        let runnable = emission;
+        if (emission.ok && emission.layout.config.target !== "essl300") {
+            runnable = this.app.emitter.emit({...config, target: "essl300"});
+            note += runnable.ok ? "; the page runs the essl300 emission of the same configuration (WebGL2 runs ES 3.00)"
+                                : `; WebGL2 runs only essl300, where this configuration is refused: ${runnable.error}`;
         }
+        this.panel.showResult(emission, note);
+        if (this.runner) this.runner.dispose();
+        this.runner = null;
+        if (!emission.ok) this.reason = "invalid configuration: " + emission.error;
+        else if (!runnable.ok) this.reason = "cannot run on WebGL2: " + runnable.error;
+        else {
+            const baked = runnable.layout.textures.filter((t) => t.source === "bake").map((t) => t.name);
+            if (baked.length)
+                this.reason = `cannot run here: ${runnable.layout.config.technique} reads textures baked offline (${baked.join(", ")}; ` +
+                              "penumbra-playground --technique oim bakes them with Embree), and no bundle on this page carries a bake";
+            else if (runnable.layout.textures.some((t) => t.source === "caller" && !["penumbra_worldPositions", "penumbra_worldNormals"].includes(t.name)))
+                this.reason = "cannot run here: the layout reads a G-buffer this page does not draw";
+            else {
+                try {
+                    this.runner = LayoutRunner.fromEmission(this.app.gl, runnable);
+                    this.runner.enableTiming();
+                } catch (e) {
+                    this.reason = "cannot run on WebGL2: " + e.message;
+                }
+            }
+        }
+        this.app.showFiles();
+        if (render) this.app.render();
+    }
+}
+
+class App {
+    async start() {
+        const params = new URLSearchParams(location.search);
+        this.canvas = $("view");
+        this.gl = this.canvas.getContext("webgl2", {antialias: false, preserveDrawingBuffer: true});
+        if (!this.gl) throw new Error("this browser has no WebGL2");
+        // The G-buffer is RGBA32F, as the layouts declare their caller textures.
+        if (!this.gl.getExtension("EXT_color_buffer_float")) throw new Error("this browser lacks EXT_color_buffer_float (rendering the RGBA32F G-buffer)");
+        this.emitter = await loadEmitter(params.get("wasm") || undefined);
+        // The emitter's defaults (Config{}), for WebGL2: target essl300, 256² occlusion textures.
+        this.defaults = this.emitter.emit({target: "essl300"}).layout.config;
+        // With ?bundle= the page starts at the bundle's camera (its G-buffers): what the desktop ran.
+        this.state = {view: "shaded", camera: params.get("bundle") ? "bundle" : "orbit", split: false, yaw: 0.6, pitch: 0.6, useBundleUniforms: false, bundleSlices: null,
+                      renders: 0, frameMs: 0};
+        this.gbuffer = new GBuffer(this.gl);
+        this.composite = new Composite(this.gl);
+        this.timer = !!this.gl.getExtension("EXT_disjoint_timer_query_webgl2");
+
+        // Scenes: the built-in bundles (scenes/index.json), and ?bundle=.
+        let index = {scenes: []};
+        try { index = await (await fetchOk("scenes/index.json")).json(); } catch { /* none published */ }
+        this.scenes = index.scenes.map((s) => ({name: s.name, base: `scenes/${s.dir}/`}));
+        if (params.get("bundle")) this.scenes.unshift({name: `bundle ${params.get("bundle")}`, base: params.get("bundle")});
+        if (!this.scenes.length) throw new Error("no scene: publish the page with scripts/publish_web.sh (built-in scenes) or pass ?bundle=DIR/");
+        const wanted = this.scenes.find((s) => s.name === params.get("scene")) || this.scenes[0];
+        await this.loadScene(wanted);
+
+        this.sides = [new Side(this, 0, "configuration", {resolution: 256}), null];
+        this.buildControls();
+        window.penumbraShowFiles = () => this.showFiles();
+        this.sides[0].update();
+        this.installAutomation();
+    }
+
+    async loadScene(scene) {
+        this.bundle = await loadBundle(scene.base);
+        this.sceneName = scene.name;
+        if (this.geometry) this.geometry.dispose();
+        this.geometry = new SceneGeometry(this.gl, this.bundle.triangles);
+        this.lights = {};
+        this.state.bundleSlices = null;
+        // The difference view compares with the desktop run of the bundle's own configuration.
+        if (this.reference) this.gl.deleteTexture(this.reference);
+        this.reference = null;
+        if (this.bundle.gl) {
+            const gl = this.gl;
+            this.reference = gl.createTexture();
+            gl.bindTexture(gl.TEXTURE_2D, this.reference);
+            gl.texStorage2D(gl.TEXTURE_2D, 1, gl.R32F, this.bundle.width, this.bundle.height);
+            gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+            gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, this.bundle.width, this.bundle.height, gl.RED, gl.FLOAT, this.bundle.gl);
+            gl.bindTexture(gl.TEXTURE_2D, null);
+        }
+    }
+
+    light(kind) {
+        return (this.lights[kind] ??= lightFor(kind, this.bundle, this.geometry.box));
+    }
+
+    // The camera: an orbit around the bounds, or the bundle's own (its G-buffers, its size).
+    camera() {
+        const box = this.geometry.box;
+        const centre = [0, 1, 2].map((i) => 0.5 * (box.lo[i] + box.hi[i]));
+        const radius = 0.5 * Math.hypot(...[0, 1, 2].map((i) => box.hi[i] - box.lo[i]));
         const distance = 1.05 * radius / Math.sin(Math.PI / 8);
-        const eye = [centre[0] + distance * Math.cos(state.pitch) * Math.sin(state.yaw), centre[1] + distance * Math.sin(state.pitch),
-                     centre[2] + distance * Math.cos(state.pitch) * Math.cos(state.yaw)];
-        const clip = multiply(perspective(Math.PI / 4, canvas.width / canvas.height, 0.01 * distance, distance + 3 * radius),
+        const {yaw, pitch} = this.state;
+        const eye = [centre[0] + distance * Math.cos(pitch) * Math.sin(yaw), centre[1] + distance * Math.sin(pitch),
+                     centre[2] + distance * Math.cos(pitch) * Math.cos(yaw)];
+        const clip = multiply(perspective(Math.PI / 4, this.canvas.width / this.canvas.height, 0.01 * distance, distance + 3 * radius),
                               lookAt(eye, centre, [0, 1, 0]));
+        return {eye, clip};
+    }
+
+    // One side: shadow phase, G-buffer, screen phase; then its part of the canvas.
+    renderSide(side, area) {
+        const runner = side.runner;
+        const config = runner.layout.config;
+        const light = this.light(config.light);
+        const frame = lightUniforms(light, this.geometry.box.lo, this.geometry.box.hi, config.slices);
+        runner.setUniforms(this.state.useBundleUniforms && this.state.camera === "bundle" ? this.bundle.info.uniforms : frame.uniforms);
+        const {eye, clip} = this.camera();
         const toLight = light.kind === "sun" ? [-light.direction[0], -light.direction[1], -light.direction[2], 0] : [...light.center, 1];
         runner.setUniforms({penumbra_clipFromWorld: clip, penumbra_toLight: toLight});
-        runner.runPhase("example", drawScene, {width: canvas.width, height: canvas.height});
-    };
+        const replace = this.state.bundleSlices && this.state.camera === "bundle" ? {slicing: (pass) => this.injectSlices(runner, pass)} : {};
+        runner.runPhase("shadow", () => this.geometry.draw(), null, replace);
 
-    const update = () => {
-        rebuild();
-        draw();
-        $("status").textContent = `${config.slices} slices, ${config.resolution}², ${config.filter}, ${config.packing}, ${light.kind}` +
-            ` — shadow + screen phases ${state.shadowMs.toFixed(1)} ms` +
-            (state.frame.contained ? "" : " — the bounds reach the light plane: move the light up") +
-            (state.useBundleUniforms ? " — uniforms from the bundle (light controls ignored)" : " — uniforms computed in JavaScript");
-    };
-    buildControls(light, box, state, update, draw);
-    update();
-
-    // Automation.
-    window.penumbra = {
-        readVisibility: () => runner.readResult(),
-        readTexture: (name, level, layer) => runner.readTexture(name, level, layer),
-        setLight: (changes) => { Object.assign(light, changes); update(); },
-        useBundleUniforms: (on) => { state.useBundleUniforms = on; update(); },
-        // Texels where our own slicing output differs from the desktop run's (slices.f32).
-        compareSlices: async () => {
-            const desktop = new Float32Array(await (await fetchOk(base + "slices.f32")).arrayBuffer());
-            const pass = runner.layout.passes.find((p) => p.name === "slicing");
-            let differing = 0, covered = 0;
-            pass.outputs.forEach((out, t) => {
-                const ours = runner.readTexture(out.texture, out.level, out.layer);
-                for (let c = 0; c < 4 && 4 * t + c < config.slices; ++c)
-                    for (let i = 0; i < R * R; ++i) {
-                        const d = desktop[(4 * t + c) * R * R + i];
-                        covered += d > 0.5 ? 1 : 0;
-                        differing += Math.abs(ours[4 * i + c] - d) > 0.5 ? 1 : 0;
-                    }
-            });
-            return {differing, covered, texels: config.slices * R * R};
-        },
-        // The desktop run's slicing output instead of the browser's own rasterization (slices.f32).
-        useBundleSlices: async (on) => {
-            state.bundleSlices = on ? new Float32Array(await (await fetchOk(base + "slices.f32")).arrayBuffer()) : null;
-            update();
-        },
-        uniforms: () => ({computed: state.frame.uniforms, bundle: exported}),
-        render: () => { update(); return state.shadowMs; },
-        info: () => {
-            const debug = gl.getExtension("WEBGL_debug_renderer_info");
-            return {renderer: gl.getParameter(debug ? debug.UNMASKED_RENDERER_WEBGL : gl.RENDERER),
-                    version: gl.getParameter(gl.VERSION), extensions: runner.extensions, config,
-                    width: bundle.width, height: bundle.height, resultFormat: runner.texture(runner.layout.result).desc.internal_format};
-        },
-    };
-}
-
-function makeBlitProgram(gl) {
-    const vs = `#version 300 es
-void main() { vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2); gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0); }`;
-    const fs = `#version 300 es
-precision highp float;
-uniform sampler2D image;
-uniform vec2 size;
-out vec4 color;
-void main() { color = vec4(vec3(texture(image, gl_FragCoord.xy / size).r), 1.0); }`;
-    const program = gl.createProgram();
-    for (const [type, text] of [[gl.VERTEX_SHADER, vs], [gl.FRAGMENT_SHADER, fs]]) {
-        const s = gl.createShader(type);
-        gl.shaderSource(s, text);
-        gl.compileShader(s);
-        gl.attachShader(program, s);
+        const bundleCamera = this.state.camera === "bundle";
+        const width = bundleCamera ? this.bundle.width : this.canvas.width, height = bundleCamera ? this.bundle.height : this.canvas.height;
+        const positions = runner.callerTarget("penumbra_worldPositions", width, height) || this.gbuffer.ownTexture("positions", width, height);
+        const normals = runner.callerTarget("penumbra_worldNormals", width, height) || this.gbuffer.ownTexture("normals", width, height);
+        if (bundleCamera) {
+            for (const [t, name] of [[positions, "penumbra_worldPositions"], [normals, "penumbra_worldNormals"]]) {
+                const gl = this.gl;
+                gl.bindTexture(gl.TEXTURE_2D, t.id);
+                gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+                gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, width, height, gl.RGBA, gl.FLOAT, this.bundle.callerTextures[name]);
+                gl.bindTexture(gl.TEXTURE_2D, null);
+            }
+        } else {
+            this.gbuffer.render(this.geometry, clip, eye, width, height, {positions, normals});
+        }
+        runner.runPhase("screen", null, {width, height});
+        this.composite.draw({visibility: runner.texture(runner.layout.result).id, positions: positions.id, normals: normals.id,
+                             reference: bundleCamera ? this.reference : null}, [this.canvas.width, this.canvas.height], area,
+                            this.state.view, toLight);
+        return frame.contained;
     }
-    gl.linkProgram(program);
-    return {program, vao: gl.createVertexArray()};
-}
 
-function blit(gl, {program, vao}, texture) {
-    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-    gl.useProgram(program);
-    gl.uniform2f(gl.getUniformLocation(program, "size"), gl.drawingBufferWidth, gl.drawingBufferHeight);
-    gl.activeTexture(gl.TEXTURE0);
-    gl.bindTexture(gl.TEXTURE_2D, texture);
-    gl.bindVertexArray(vao);
-    gl.drawArrays(gl.TRIANGLES, 0, 3);
-    gl.bindVertexArray(null);
-    gl.useProgram(null);
-}
+    // The bundle's slicing output (slices.f32) in place of the browser's own slicing pass.
+    injectSlices(runner, pass) {
+        const R = runner.layout.config.resolution, S = runner.layout.config.slices;
+        if (R !== this.bundle.info.config.resolution || S !== this.bundle.info.config.slices)
+            throw new Error("the bundle's slices are for another slice count or resolution");
+        pass.outputs.forEach((out, t) => {
+            const rgba = new Float32Array(4 * R * R);
+            for (let c = 0; c < 4 && 4 * t + c < S; ++c)
+                for (let i = 0; i < R * R; ++i) rgba[4 * i + c] = this.state.bundleSlices[(4 * t + c) * R * R + i];
+            runner.uploadTexture(out.texture, out.level, out.layer, rgba);
+        });
+    }
 
-function buildControls(light, box, state, update, draw) {
-    const panel = $("controls");
-    const span = Math.max(box.hi[0] - box.lo[0], box.hi[2] - box.lo[2], 1e-3);
-    const slider = (label, min, max, value, onInput) => {
-        const row = document.createElement("label");
-        const input = Object.assign(document.createElement("input"), {type: "range", min, max, step: (max - min) / 200, value});
-        const shown = document.createElement("span");
-        shown.textContent = Number(value).toFixed(2);
-        input.addEventListener("input", () => { shown.textContent = Number(input.value).toFixed(2); onInput(Number(input.value)); });
-        row.append(label + " ", input, " ", shown);
-        panel.append(row);
-    };
-    if (light.kind === "rect") {
+    render() {
+        const gl = this.gl;
+        const started = performance.now();
+        gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+        gl.viewport(0, 0, this.canvas.width, this.canvas.height);
+        gl.clearColor(0.05, 0.05, 0.06, 1);
+        gl.clear(gl.COLOR_BUFFER_BIT);
+        const sides = this.state.split && this.sides[1] ? this.sides : [this.sides[0]];
+        const w = this.canvas.width, h = this.canvas.height;
+        const messages = [];
+        sides.forEach((side, i) => {
+            const area = sides.length === 1 ? [0, 0, w, h] : [i * (w >> 1), 0, w >> 1, h];
+            const label = sides.length === 1 ? "" : i ? "right: " : "left: ";
+            if (!side.runner) {
+                messages.push(label + side.reason);
+                return;
+            }
+            try {
+                if (!this.renderSide(side, area)) messages.push(label + "the bounds reach the light plane: move the light up");
+            } catch (e) {
+                messages.push(`${label}cannot run on WebGL2: ${e.message}`);
+                side.reason = e.message;
+            }
+        });
+        gl.finish();
+        this.state.frameMs = performance.now() - started;
+        ++this.state.renders;
+        this.messages = messages;
+        this.showStatus();
+        if (this.timer) setTimeout(() => this.showStatus(), 100); // timer queries arrive later
+    }
+
+    showStatus() {
+        const sides = this.state.split && this.sides[1] ? this.sides : [this.sides[0]];
+        const lines = [`${this.sceneName}: ${this.geometry.count / 3} triangles; ` +
+                       `frame ${this.state.frameMs.toFixed(1)} ms (CPU, with gl.finish)` +
+                       (this.timer ? "" : "; no EXT_disjoint_timer_query_webgl2 in this browser, so no GPU pass times")];
+        sides.forEach((side, i) => {
+            if (!side.runner) return;
+            const times = side.runner.passTimes();
+            if (!times || !Object.keys(times).length) return;
+            const total = Object.values(times).reduce((a, b) => a + b, 0);
+            lines.push(`${sides.length > 1 ? (i ? "right" : "left") + " " : ""}GPU ${total.toFixed(2)} ms: ` +
+                       Object.entries(times).map(([k, v]) => `${k.split(" ")[1]} ${v.toFixed(2)}`).join(", "));
+        });
+        if (this.state.view === "error" && this.state.camera === "bundle" && this.bundle.gl) {
+            const v = this.sides[0].runner ? this.sides[0].runner.readResult() : null;
+            if (v) {
+                let sum = 0, n = 0;
+                for (let i = 0; i < v.length; ++i) if (this.bundle.callerTextures.penumbra_worldPositions[4 * i + 3] > 0.5) { sum += Math.abs(v[i] - this.bundle.gl[i]); ++n; }
+                lines.push(`mean |browser − desktop| ${(sum / Math.max(n, 1)).toFixed(4)} over ${n} pixels (the desktop run of the bundle's configuration: ` +
+                           `${describe(this.bundle.info.config)})`);
+            }
+        }
+        for (const m of this.messages || []) lines.push(m);
+        $("status").textContent = lines.join("\n");
+    }
+
+    // The emitted files of either side: a list, the text of the chosen one, a download link.
+    showFiles() {
+        const select = $("file"), side = this.sides[Number($("file-side").value)] || this.sides[0];
+        const files = side.emission && side.emission.ok ? side.emission.files : {};
+        const current = select.value;
+        select.replaceChildren(...Object.keys(files).map((name) => Object.assign(document.createElement("option"), {value: name, textContent: name})));
+        if (files[current] !== undefined) select.value = current;
+        else if (files["layout.json"] !== undefined) select.value = "layout.json";
+        const text = files[select.value] ?? (side.emission ? side.emission.error : "");
+        $("file-text").textContent = text;
+        const link = $("download");
+        if (link.href) URL.revokeObjectURL(link.href);
+        link.href = URL.createObjectURL(new Blob([text], {type: "text/plain"}));
+        link.download = select.value || "error.txt";
+        $("download-all").onclick = (event) => {
+            event.preventDefault();
+            for (const [name, body] of Object.entries(files)) {
+                const a = Object.assign(document.createElement("a"), {href: URL.createObjectURL(new Blob([body])), download: name});
+                a.click();
+                URL.revokeObjectURL(a.href);
+            }
+        };
+    }
+
+    buildControls() {
+        const controls = $("controls");
+        const row = (...items) => {
+            const div = document.createElement("div");
+            div.className = "row";
+            div.append(...items);
+            controls.append(div);
+            return div;
+        };
+        const select = (id, options, value, onChange) => {
+            const s = Object.assign(document.createElement("select"), {id});
+            for (const [v, text] of options) s.append(Object.assign(document.createElement("option"), {value: v, textContent: text}));
+            s.value = value;
+            s.addEventListener("change", () => onChange(s.value));
+            return s;
+        };
+        row("scene ", select("scene", this.scenes.map((s) => [s.name, s.name]), this.sceneName, async (name) => {
+            await this.loadScene(this.scenes.find((s) => s.name === name));
+            this.buildLightControls();
+            this.sides.forEach((s) => s && s.update(false));
+            this.render();
+        }));
+        row("view ", select("view-mode", [["shaded", "shaded"], ["visibility", "visibility"], ["error", "difference from the bundle's desktop run"]],
+                            this.state.view, (v) => { this.state.view = v; if (v === "error") this.setCamera("bundle"); else this.render(); }));
+        row("camera ", select("camera", [["orbit", "orbit (drag the image)"], ["bundle", "the bundle's camera and G-buffers"]], this.state.camera,
+                              (v) => this.setCamera(v)));
+        const split = Object.assign(document.createElement("input"), {type: "checkbox", id: "split"});
+        split.addEventListener("change", () => this.setSplit(split.checked));
+        const label = document.createElement("label");
+        label.append(split, " split view: a second configuration on the right half");
+        row(label);
+        this.lightRow = document.createElement("div");
+        controls.append(this.lightRow);
+        this.buildLightControls();
+
+        // Orbit by dragging; with shift, the light moves over the scene.
+        let drag = null;
+        this.canvas.addEventListener("pointerdown", (e) => { drag = {x: e.clientX, y: e.clientY, shift: e.shiftKey}; this.canvas.setPointerCapture(e.pointerId); });
+        this.canvas.addEventListener("pointerup", () => { drag = null; });
+        this.canvas.addEventListener("pointermove", (e) => {
+            if (!drag) return;
+            const dx = e.clientX - drag.x, dy = e.clientY - drag.y;
+            drag.x = e.clientX;
+            drag.y = e.clientY;
+            if (drag.shift) {
+                const kind = this.sides[0].runner ? this.sides[0].runner.layout.config.light : "rect";
+                const light = this.light(kind);
+                const span = Math.max(this.geometry.box.hi[0] - this.geometry.box.lo[0], 1e-3);
+                if (kind === "rect") { light.center[0] += dx * span / 300; light.center[2] += dy * span / 300; }
+                else light.direction = [light.direction[0] + dx / 200, light.direction[1], light.direction[2] + dy / 200];
+            } else {
+                this.state.yaw -= dx / 150;
+                this.state.pitch = Math.min(1.5, Math.max(-0.2, this.state.pitch + dy / 150));
+            }
+            this.render();
+        });
+    }
+
+    buildLightControls() {
+        const panel = this.lightRow;
+        panel.replaceChildren();
+        const box = this.geometry.box;
+        const span = Math.max(box.hi[0] - box.lo[0], box.hi[2] - box.lo[2], 1e-3);
+        const slider = (label, id, min, max, value, onInput) => {
+            const row = document.createElement("label");
+            row.className = "row";
+            const input = Object.assign(document.createElement("input"), {type: "range", id, min, max, step: (max - min) / 200, value});
+            const shown = Object.assign(document.createElement("span"), {textContent: Number(value).toFixed(2)});
+            input.addEventListener("input", () => { shown.textContent = Number(input.value).toFixed(2); onInput(Number(input.value)); this.render(); });
+            row.append(label + " ", input, " ", shown);
+            panel.append(row);
+        };
+        const rect = this.light("rect");
         ["x", "y", "z"].forEach((axis, i) => {
             const lo = i === 1 ? box.hi[1] + 0.05 * span : box.lo[i] - 0.5 * span;
             const hi = i === 1 ? box.hi[1] + 2 * span : box.hi[i] + 0.5 * span;
-            slider(`light ${axis}`, lo, hi, light.center[i], (v) => { light.center[i] = v; update(); });
+            slider(`rect light ${axis}`, `light-${axis}`, lo, hi, rect.center[i], (v) => { rect.center[i] = v; });
         });
-        const aspect = light.height / light.width;
-        slider("light width", 0.01 * span, span, light.width, (v) => { light.width = v; light.height = v * aspect; update(); });
-    } else {
-        const d = light.direction;
+        const aspect = rect.height / rect.width;
+        slider("rect light width", "light-width", 0.01 * span, span, rect.width, (v) => { rect.width = v; rect.height = v * aspect; });
+        const sun = this.light("sun");
+        const d = sun.direction;
         let azimuth = Math.atan2(d[2], d[0]), elevation = Math.asin(Math.min(1, -d[1] / Math.hypot(...d)));
-        const set = () => {
-            light.direction = [Math.cos(elevation) * Math.cos(azimuth), -Math.sin(elevation), Math.cos(elevation) * Math.sin(azimuth)];
-            update();
-        };
-        slider("sun azimuth", -Math.PI, Math.PI, azimuth, (v) => { azimuth = v; set(); });
-        slider("sun elevation", 0.2, Math.PI / 2, elevation, (v) => { elevation = v; set(); });
-        slider("sun diameter (°)", 0.1, 10, light.angularDiameter * 180 / Math.PI, (v) => { light.angularDiameter = v * Math.PI / 180; update(); });
+        const set = () => { sun.direction = [Math.cos(elevation) * Math.cos(azimuth), -Math.sin(elevation), Math.cos(elevation) * Math.sin(azimuth)]; };
+        slider("sun azimuth", "sun-azimuth", -Math.PI, Math.PI, azimuth, (v) => { azimuth = v; set(); });
+        slider("sun elevation", "sun-elevation", 0.2, Math.PI / 2, elevation, (v) => { elevation = v; set(); });
+        slider("sun diameter (°)", "sun-diameter", 0.1, 20, sun.angularDiameter * 180 / Math.PI, (v) => { sun.angularDiameter = v * Math.PI / 180; });
     }
-    slider("camera yaw", -Math.PI, Math.PI, state.yaw, (v) => { state.yaw = v; draw(); });
-    slider("camera pitch", 0.05, 1.5, state.pitch, (v) => { state.pitch = v; draw(); });
-    const view = document.createElement("select");
-    for (const [value, text] of [["shaded", "shaded scene (shading_example)"], ["visibility", "visibility (shading_deferred over the bundle's G-buffer)"]])
-        view.append(Object.assign(document.createElement("option"), {value, textContent: text}));
-    view.addEventListener("change", () => { state.view = view.value; draw(); });
-    const source = Object.assign(document.createElement("input"), {type: "checkbox"});
-    source.addEventListener("change", () => { state.useBundleUniforms = source.checked; update(); });
-    const sourceLabel = document.createElement("label");
-    sourceLabel.append(source, " use the bundle's exported uniforms");
-    panel.append(view, sourceLabel);
+
+    setCamera(camera) {
+        this.state.camera = camera;
+        $("camera").value = camera;
+        this.render();
+    }
+
+    setSplit(on) {
+        this.state.split = on;
+        $("split").checked = on;
+        if (on && !this.sides[1]) {
+            // The right half starts as PCSS 16/16, as the window's split does.
+            this.sides[1] = new Side(this, 1, "right half", {resolution: 256, technique: "pcss"});
+            this.sides[1].update(false);
+        }
+        if (this.sides[1]) this.sides[1].panel.root.hidden = !on;
+        this.render();
+    }
+
+    installAutomation() {
+        const app = this;
+        window.penumbra = {
+            ready: true,
+            emissions: (side = 0) => app.sides[side].emissions,
+            renders: () => app.state.renders,
+            config: (side = 0) => app.sides[side].panel.config(),
+            emission: (side = 0) => ({ok: app.sides[side].emission.ok, error: app.sides[side].emission.error,
+                                      diagnostics: app.sides[side].emission.diagnostics, files: Object.keys(app.sides[side].emission.files),
+                                      layoutConfig: app.sides[side].emission.layout && app.sides[side].emission.layout.config}),
+            reason: (side = 0) => app.sides[side].reason,
+            running: (side = 0) => !!app.sides[side].runner,
+            readVisibility: (side = 0) => app.sides[side].runner.readResult(),
+            setCamera: (camera) => app.setCamera(camera),
+            setSplit: (on) => app.setSplit(on),
+            setLight: (kind, changes) => { Object.assign(app.light(kind), changes); app.render(); },
+            useBundleUniforms: (on) => { app.state.useBundleUniforms = on; app.render(); },
+            useBundleSlices: async (on) => {
+                app.state.bundleSlices = on ? await floats(app.bundle.base + "slices.f32") : null;
+                app.render();
+            },
+            compareSlices: async () => {
+                const desktop = await floats(app.bundle.base + "slices.f32");
+                const runner = app.sides[0].runner, {resolution: R, slices: S} = runner.layout.config;
+                const pass = runner.layout.passes.find((p) => p.name === "slicing");
+                let differing = 0, covered = 0;
+                pass.outputs.forEach((out, t) => {
+                    const ours = runner.readTexture(out.texture, out.level, out.layer);
+                    for (let c = 0; c < 4 && 4 * t + c < S; ++c)
+                        for (let i = 0; i < R * R; ++i) {
+                            const d = desktop[(4 * t + c) * R * R + i];
+                            covered += d > 0.5 ? 1 : 0;
+                            differing += Math.abs(ours[4 * i + c] - d) > 0.5 ? 1 : 0;
+                        }
+                });
+                return {differing, covered, texels: S * R * R};
+            },
+            uniforms: () => {
+                const config = app.sides[0].runner.layout.config;
+                return {computed: lightUniforms(app.light(config.light), app.geometry.box.lo, app.geometry.box.hi, config.slices).uniforms,
+                        bundle: app.bundle.info.uniforms};
+            },
+            passTimes: (side = 0) => app.sides[side].runner && app.sides[side].runner.passTimes(),
+            status: () => $("status").textContent,
+            info: () => {
+                const gl = app.gl, debug = gl.getExtension("WEBGL_debug_renderer_info");
+                const runner = app.sides[0].runner;
+                return {renderer: gl.getParameter(debug ? debug.UNMASKED_RENDERER_WEBGL : gl.RENDERER), version: gl.getParameter(gl.VERSION),
+                        timer: app.timer, bundle: app.bundle.info.config, width: app.bundle.width, height: app.bundle.height,
+                        resultFormat: runner ? runner.texture(runner.layout.result).desc.internal_format : null,
+                        emitterLoadMs: app.emitter.compileMs};
+            },
+            emitter: app.emitter,
+        };
+    }
 }
 
-main().catch((error) => {
+function describe(c) {
+    if (c.technique !== "occlusion") return c.technique;
+    return `${c.slices} slices, ${c.resolution}², ${c.filter}, ${c.fusion}, ${c.packing}, ${c.light}${c.tangent_clip ? ", tangent clip" : ""}`;
+}
+
+new App().start().catch((error) => {
     $("status").textContent = "error: " + error.message;
     window.penumbra = {error: error.message};
     console.error(error);

@@ -125,3 +125,67 @@ export function sunFrame(sun, boundsMin, boundsMax, slices) {
         contained: true,
     };
 }
+
+// Shadow-map techniques (penumbra::shadow_frame): rectangle — a perspective from the light's
+// centre along its normal whose square frustum holds the bounds; sun — the sun's slicing frame.
+export function rectShadowFrame(light, boundsMin, boundsMax) {
+    const u = normalize(light.u), v = normalize(light.v), n = normalize(cross(u, v));
+    const lfw = frameMatrix(u, v, n, light.center);
+    const corners = boxCorners(boundsMin, boundsMax).map((c) => transformPoint(lfw, c));
+    let zmin = Infinity, zmax = -Infinity;
+    for (const p of corners) {
+        zmin = Math.min(zmin, p[2]);
+        zmax = Math.max(zmax, p[2]);
+    }
+    const diagonal = [0, 1, 2].map((i) => boundsMax[i] - boundsMin[i]);
+    const extent = Math.max(Math.sqrt(dot(diagonal, diagonal)), 1e-6);
+    const near = Math.max(zmin, 1e-3 * extent), far = Math.max(zmax, near + 1e-3 * extent) + 0.01 * (zmax - zmin);
+    let tanHalf = 1e-6;
+    for (const p of corners) tanHalf = Math.max(tanHalf, Math.abs(p[0]) / Math.max(p[2], near), Math.abs(p[1]) / Math.max(p[2], near));
+    tanHalf *= 1.001;
+    const clipFromLight = new Array(16).fill(0);
+    clipFromLight[0] = 1 / tanHalf;
+    clipFromLight[5] = 1 / tanHalf;
+    clipFromLight[11] = 1;
+    return {
+        uniforms: {
+            penumbra_lightFromWorld: lfw,
+            penumbra_shadowClipFromWorld: multiply(clipFromLight, lfw),
+            penumbra_shadowDepthRange: [near, far],
+            penumbra_shadowTanHalfFov: tanHalf,
+            penumbra_lightSize: [light.width, light.height],
+            penumbra_lightSizeUV: [light.width / (2 * tanHalf * near), light.height / (2 * tanHalf * near)],
+        },
+        contained: zmin > 0,
+    };
+}
+
+export function sunShadowFrame(sun, boundsMin, boundsMax) {
+    const slices = sunFrame(sun, boundsMin, boundsMax, 1).uniforms;
+    let zmin = Infinity, zmax = -Infinity;
+    for (const corner of boxCorners(boundsMin, boundsMax)) {
+        const z = transformPoint(slices.penumbra_lightFromWorld, corner)[2];
+        zmin = Math.min(zmin, z);
+        zmax = Math.max(zmax, z);
+    }
+    const pad = 1e-4 * Math.max(zmax - zmin, 1e-6);
+    const growth = Math.fround(2 * Math.fround(slices.penumbra_tanAngularRadius) / (2 * Math.fround(slices.penumbra_windowHalfSize)));
+    return {
+        uniforms: {
+            penumbra_lightFromWorld: slices.penumbra_lightFromWorld,
+            penumbra_shadowClipFromWorld: slices.penumbra_sliceClipFromWorld,
+            penumbra_shadowDepthRange: [zmin - pad, zmax + 0.01 * (zmax - zmin) + pad],
+            penumbra_windowHalfSize: slices.penumbra_windowHalfSize,
+            penumbra_tanAngularRadius: slices.penumbra_tanAngularRadius,
+            penumbra_lightSizeUV: [growth, growth],
+        },
+        contained: true,
+    };
+}
+
+// Every light uniform any technique reads: the slicing frame's and the shadow map's.
+export function lightUniforms(light, boundsMin, boundsMax, slices) {
+    const sliced = light.kind === "sun" ? sunFrame(light, boundsMin, boundsMax, slices) : rectFrame(light, boundsMin, boundsMax, slices);
+    const shadow = light.kind === "sun" ? sunShadowFrame(light, boundsMin, boundsMax) : rectShadowFrame(light, boundsMin, boundsMax);
+    return {uniforms: {...sliced.uniforms, ...shadow.uniforms}, contained: sliced.contained && shadow.contained};
+}

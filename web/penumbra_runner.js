@@ -5,6 +5,7 @@
 // desktop runtime, include/penumbra/gl/runtime.hpp).
 //
 //   const runner = await LayoutRunner.load(gl, "emission/");           // layout.json + its files
+//   const runner = LayoutRunner.fromEmission(gl, emitter.emit(config));  // or an emission in memory
 //   runner.setUniforms({penumbra_lightFromWorld: [...16], ...});        // by GLSL name
 //   runner.runPhase("shadow", (program) => drawTriangles());            // slicing + prefilter
 //   runner.fillTexture("penumbra_worldPositions", w, h, positions);     // a "caller" texture
@@ -56,6 +57,17 @@ export class LayoutRunner {
         for (const program of layout.programs || [])
             for (const file of program.files) if (!(file in sources)) sources[file] = await fetchText(file);
         return new LayoutRunner(gl, layout, sources);
+    }
+
+    // From an emission in memory: {files: {"<name>": text, ...}, layout} as penumbra_emitter.js's
+    // emit() returns it (layout: layout.json parsed; taken from files["layout.json"] when absent).
+    static fromEmission(gl, {files, layout}) {
+        if (!files) fail("fromEmission: no files (an emission that failed? see its diagnostics)");
+        const parsed = layout ?? (files["layout.json"] !== undefined ? JSON.parse(files["layout.json"]) : null);
+        if (!parsed) fail("fromEmission: no layout and no layout.json among the files");
+        for (const program of parsed.programs || [])
+            for (const file of program.files) if (typeof files[file] !== "string") fail(`fromEmission: program ${program.name}: no file ${file}`);
+        return new LayoutRunner(gl, parsed, files);
     }
 
     constructor(gl, layout, sources) {
@@ -329,6 +341,23 @@ export class LayoutRunner {
             gl.bindTexture(t.target, null);
             return;
         }
+        if (pass.action === "copy" && FORMATS[this.texture(pass.inputs[0].texture).desc.internal_format].depth) {
+            // A depth texture: WebGL2 cannot copyTexSubImage depth, but blits it between two
+            // framebuffers of the same depth format (NEAREST, same size).
+            const source = pass.inputs[0], out = pass.outputs[0];
+            const [w, h] = pass.viewport;
+            gl.bindFramebuffer(gl.READ_FRAMEBUFFER, this.readFramebuffer);
+            this.attach(gl.READ_FRAMEBUFFER, gl.DEPTH_ATTACHMENT, {texture: source.texture, level: 0, layer: -1});
+            gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, this.framebuffer);
+            for (let i = 0; i < 8; ++i) gl.framebufferTexture2D(gl.DRAW_FRAMEBUFFER, gl.COLOR_ATTACHMENT0 + i, gl.TEXTURE_2D, null, 0);
+            this.attach(gl.DRAW_FRAMEBUFFER, gl.DEPTH_ATTACHMENT, out);
+            gl.blitFramebuffer(0, 0, w, h, 0, 0, w, h, gl.DEPTH_BUFFER_BIT, gl.NEAREST);
+            gl.framebufferTexture2D(gl.READ_FRAMEBUFFER, gl.DEPTH_ATTACHMENT, gl.TEXTURE_2D, null, 0);
+            gl.framebufferTexture2D(gl.DRAW_FRAMEBUFFER, gl.DEPTH_ATTACHMENT, gl.TEXTURE_2D, null, 0);
+            gl.bindFramebuffer(gl.READ_FRAMEBUFFER, null);
+            gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, null);
+            return;
+        }
         if (pass.action === "copy") {
             // inputs[0] level 0 into outputs[0] (same size): through a read framebuffer.
             const source = pass.inputs[0], out = pass.outputs[0];
@@ -380,15 +409,74 @@ export class LayoutRunner {
     runPhase(phase, drawScene, size, replace = {}) {
         if (phase === "screen") this.allocateOutputSized(size.width, size.height);
         let count = 0;
-        for (const pass of this.layout.passes) {
-            if (pass.phase !== phase) continue;
+        this.layout.passes.forEach((pass, index) => {
+            if (pass.phase !== phase) return;
+            const query = this.beginTiming(index);
             if (replace[pass.name]) replace[pass.name](pass);
             else this.runPass(pass, drawScene, size);
+            if (query) this.gl.endQuery(this.timer.TIME_ELAPSED_EXT);
             ++count;
-        }
+        });
         const error = this.gl.getError();
         if (error !== this.gl.NO_ERROR) fail(`phase ${phase}: WebGL error 0x${error.toString(16)}`);
         return count;
+    }
+
+    // GPU time of every pass, where the browser has EXT_disjoint_timer_query_webgl2 (false
+    // otherwise). Results arrive a few frames late: passTimes() collects them.
+    enableTiming() {
+        this.timer = this.gl.getExtension("EXT_disjoint_timer_query_webgl2");
+        this.pendingQueries = [];
+        this.times = {};
+        return !!this.timer;
+    }
+
+    beginTiming(index) {
+        if (!this.timer) return null;
+        const query = this.gl.createQuery();
+        this.gl.beginQuery(this.timer.TIME_ELAPSED_EXT, query);
+        this.pendingQueries.push({query, index});
+        return query;
+    }
+
+    // {"<index> <pass name>": milliseconds} of the latest results (null without the extension);
+    // a disjoint event (the GPU was interrupted) drops the pending ones.
+    passTimes() {
+        if (!this.timer) return null;
+        const gl = this.gl;
+        if (gl.getParameter(this.timer.GPU_DISJOINT_EXT)) {
+            for (const q of this.pendingQueries) gl.deleteQuery(q.query);
+            this.pendingQueries = [];
+            return this.times;
+        }
+        while (this.pendingQueries.length && gl.getQueryParameter(this.pendingQueries[0].query, gl.QUERY_RESULT_AVAILABLE)) {
+            const {query, index} = this.pendingQueries.shift();
+            this.times[`${index} ${this.layout.passes[index].name}`] = gl.getQueryParameter(query, gl.QUERY_RESULT) / 1e6;
+            gl.deleteQuery(query);
+        }
+        return this.times;
+    }
+
+    // A "caller" texture at the output size, for the caller to render into (a G-buffer pass):
+    // {id, target}; null when the layout has no such texture.
+    callerTarget(name, width, height) {
+        const desc = this.layout.textures.find((d) => d.name === name);
+        if (!desc || desc.source !== "caller") return null;
+        if (desc.size === "output") this.allocateOutputSized(width, height);
+        return this.texture(name);
+    }
+
+    // Every GL object this runner made (before dropping it for a new emission).
+    dispose() {
+        const gl = this.gl;
+        for (const t of Object.values(this.textures)) gl.deleteTexture(t.id);
+        for (const p of Object.values(this.programs)) gl.deleteProgram(p.id);
+        gl.deleteFramebuffer(this.framebuffer);
+        gl.deleteFramebuffer(this.readFramebuffer);
+        gl.deleteVertexArray(this.emptyVertexArray);
+        for (const q of this.pendingQueries || []) gl.deleteQuery(q.query);
+        this.textures = {};
+        this.programs = {};
     }
 
     // Writes RGBA floats (bottom row first) into one level and layer of a colour texture.

@@ -163,10 +163,23 @@ std::string read_erosion(const json& value, penumbra::ErosionParams& erosion) {
                         });
 }
 
+// The document, built by nlohmann's own DOM builder, with the parse error kept as a value instead
+// of thrown: the same messages with or without C++ exceptions (the WebAssembly emitter is built
+// with -fno-exceptions, wasm/README.md).
+struct DomOrError : nlohmann::detail::json_sax_dom_parser<json> {
+    explicit DomOrError(json& root) : json_sax_dom_parser(root, /*allow_exceptions=*/false) {}
+    int error_id = 0;  // nlohmann's exception id: 1xx parse_error, 406 a number beyond a double
+    std::string error; // its what()
+    template <class Exception> bool parse_error(std::size_t, const std::string&, const Exception& e) {
+        error_id = e.id;
+        error = e.what();
+        return false;
+    }
+};
+
 // nlohmann's what() without its "[json.exception.parse_error.101] " prefix, on one line, with
 // the raw bytes it quotes from the file ("last read: '…'") escaped.
-std::string parse_message(const json::exception& e) {
-    std::string_view text = e.what();
+std::string parse_message(std::string_view text) {
     if (text.starts_with("[json.exception."))
         if (std::size_t end = text.find("] "); end != std::string_view::npos) text.remove_prefix(end + 2);
     return printable(text, 400);
@@ -234,12 +247,10 @@ std::string overflow_message(std::string_view text) {
 Parsed<penumbra::Config> parse_config_json(std::string_view text, std::string_view source) {
     const std::string where(source);
     json document;
-    try {
-        document = json::parse(text.begin(), text.end());
-    } catch (const json::out_of_range& e) { // 406: a number beyond a double, e.g. 1e309
-        return {{}, where + ": " + overflow_message(text)};
-    } catch (const json::exception& e) {
-        return {{}, where + ": " + parse_message(e)};
+    DomOrError builder(document);
+    if (!json::sax_parse(text.begin(), text.end(), &builder)) {
+        if (builder.error_id == 406) return {{}, where + ": " + overflow_message(text)}; // e.g. 1e309
+        return {{}, where + ": " + parse_message(builder.error)};
     }
     if (!document.is_object())
         return {{},

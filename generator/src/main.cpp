@@ -84,9 +84,7 @@ int run(const std::vector<std::string>& args) {
         }
 
     // 5. Files: every shader file, then layout.json (the manifest) last.
-    std::vector<OutputFile> files;
-    for (const penumbra::ShaderFile& f : emission.files()) files.push_back({f.file_name, f.text});
-    files.push_back({"layout.json", penumbra::to_json(emission.layout)});
+    const std::vector<OutputFile> files = output_files(emission);
     if (std::string error = write_files(arguments.out_dir, files); !error.empty()) return fail(error);
 
     // 6. Summary.

@@ -2,15 +2,12 @@
 // (file_transaction.hpp).
 #pragma once
 
+#include "output_files.hpp"
+
 #include <string>
 #include <vector>
 
 namespace penumbra_gen {
-
-struct OutputFile {
-    std::string name; // relative to the output directory, no slashes
-    std::string text;
-};
 
 // Creates `dir` with its parents and writes every file into it, all or nothing: on any failure
 // the folder is as it was (previous files restored, created directories removed). Files that the

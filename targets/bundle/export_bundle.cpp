@@ -270,9 +270,7 @@ int run(const std::vector<std::string>& args) {
     // The emission of the requested target, exactly as penumbra-gen writes it, into a fresh folder.
     Result<Emission> emitted = emit(a.config);
     if (!emitted.value) return fail(emitted.errors.front().message, bad_input);
-    std::vector<penumbra_gen::OutputFile> files;
-    for (const ShaderFile& f : emitted.value->files()) files.push_back({f.file_name, f.text});
-    files.push_back({"layout.json", to_json(emitted.value->layout)});
+    const std::vector<penumbra_gen::OutputFile> files = penumbra_gen::output_files(*emitted.value);
     const std::filesystem::path dir(a.out_dir), emission_dir = dir / "emission";
     std::error_code ec;
     std::filesystem::remove_all(emission_dir, ec);

@@ -1,11 +1,17 @@
-// browser_test.mjs — the `browser` test: opens web/index.html in Debian's chromium (headless,
-// WebGL2 through SwiftShader), lets the page run each target bundle's essl300 emission with its
-// own layout runner, and compares the browser's visibility with the desktop GL runtime's.
+// browser_test.mjs — the `browser` test: opens the playground (web/index.html) in Debian's
+// chromium (headless, WebGL2 through SwiftShader) over each target bundle, reaches the bundle's
+// configuration through the page's panel only (the page starts from the emitter's defaults; every
+// field is set as a user would: selects, checkboxes, typed text), so that the WebAssembly emitter
+// re-emits and the page re-renders, and compares the browser's visibility with the desktop GL
+// runtime's run of that configuration.
 //
-//   node targets/web/browser_test.mjs --web web [--chromium PATH] [--screenshots DIR] BUNDLE_DIR...
+//   node targets/web/browser_test.mjs --web web --wasm build/wasm/penumbra_emitter.wasm
+//        [--chromium PATH] [--screenshots DIR] BUNDLE_DIR...
 //
 // Each BUNDLE_DIR is written by penumbra-export-bundle --target essl300: the desktop runtime ran
-// the same essl300 emission. q is one step of the layout's result format (essl300: R8, 1/255).
+// the essl300 emission of its configuration. q is one step of the layout's result format (essl300: R8, 1/255).
+//   0. Every panel change re-emits (the page's emission count grows), the emitted layout's config
+//      is then the bundle's, and the image changed from the page's first configuration.
 //   1. With the desktop run's slicing output (slices.f32) in place of the browser's own, every
 //      pixel must be within bound + q of the CPU oracle (oracle.f32, bound.f32: texture precision)
 //      and within 2·bound + q of the desktop run (visibility_gl.f32: both are within the bound).
@@ -14,23 +20,92 @@
 //      differ, and at most 1% of the pixels may leave 2·bound + q.
 //   3. light_frame.js reproduces the exported light-frame uniforms (relative 1e-5), and moving the
 //      light changes the image.
+// On the first bundle also: an invalid value typed in the panel shows the emitter's message
+// (penumbra-gen's line) and keeps nothing running; every shadow-map technique (shadowmap, pcf,
+// pcss, erosion) selected in the panel runs and shadows; oim says why it cannot run; the split
+// view runs a second configuration.
 // Exit 0 pass, 1 fail, 77 skip (no chromium), 2 bad arguments.
 import fs from "node:fs";
-import http from "node:http";
 import os from "node:os";
 import path from "node:path";
+import {serve, largestDifference, compare, readReference, launchChromium, R8_STEP, UNIFORM_TOLERANCE, SLICE_TEXELS_ALLOWED,
+        OWN_PIXELS_ALLOWED} from "./bundle_compare.mjs";
 
-const R8_STEP = 1 / 255;
-const UNIFORM_TOLERANCE = 1e-5; // JS light frame vs the exported one, relative to the largest entry
-// SwiftShader and llvmpipe rasterize triangle edges differently (the bound does not cover that):
-const SLICE_TEXELS_ALLOWED = 0.05; // slicing texels that may differ, of the desktop's covered texels
-const OWN_PIXELS_ALLOWED = 0.01;   // pixels of the browser's own run that may leave 2·bound + q
+// The occlusion fields a bundle fixes (its uniforms.json config), in the order the panel sets them.
+const PANEL_FIELDS = ["technique", "light", "target", "slices", "resolution", "filter", "fusion", "packing", "leak_fix",
+                      "self_shadow_fade", "tangent_clip", "slice_placement"];
+
+// One field of the panel `side` ("left", "right") set as a user would: a select picks the option,
+// a checkbox is clicked, a text field is cleared, typed into and left with Tab (its change event).
+async function setField(page, side, key, value) {
+    const selector = `#${side} [data-key="${key}"]`;
+    const kind = await page.$eval(selector, (e) => (e.tagName === "SELECT" ? "select" : e.type));
+    if (kind === "select") {
+        await page.select(selector, String(value));
+    } else if (kind === "checkbox") {
+        if ((await page.$eval(selector, (e) => e.checked)) !== value) await page.click(selector);
+    } else {
+        await page.click(selector, {clickCount: 3});
+        await page.keyboard.press("Backspace");
+        await page.type(selector, String(value));
+        await page.keyboard.press("Tab");
+    }
+}
+
+// The panel beyond the bundle's configuration: messages, the other techniques, the split view.
+async function checkPanel(page, label) {
+    const failures = [];
+    const state = () => page.evaluate(() => ({ok: window.penumbra.emission().ok, error: window.penumbra.emission().error,
+                                              shown: document.querySelector('#left [data-role="error"]').textContent,
+                                              running: window.penumbra.running(), reason: window.penumbra.reason()}));
+    const slices = await page.$eval('#left [data-key="slices"]', (e) => e.value);
+    // An invalid value: the emitter's message (penumbra-gen's error line) on the page, nothing runs.
+    await setField(page, "left", "slices", "40");
+    const refused = await state();
+    const expected = await page.evaluate(() => window.penumbra.emitter.emit(window.penumbra.config()).error);
+    if (refused.ok || refused.running) failures.push("slices 40 typed in the panel was not refused");
+    if (!refused.shown.startsWith("error: slices: 40 ") || refused.shown !== expected)
+        failures.push(`slices 40: the page shows '${refused.shown}', the emitter says '${expected}'`);
+    await setField(page, "left", "slices", slices);
+    // Every technique WebGL2 can run, selected in the panel: it runs and shadows, unlike the others.
+    const images = {};
+    for (const technique of ["shadowmap", "pcf", "pcss", "erosion", "occlusion"]) {
+        await setField(page, "left", "technique", technique);
+        const s = await state();
+        if (!s.running) {
+            failures.push(`technique ${technique} selected in the panel does not run: ${s.reason || s.error}`);
+            continue;
+        }
+        images[technique] = Float32Array.from(await page.evaluate(() => Array.from(window.penumbra.readVisibility())));
+        const shadowed = images[technique].filter((v) => v < 0.5).length;
+        if (shadowed === 0) failures.push(`technique ${technique}: no shadowed pixel`);
+    }
+    for (const [a, b] of [["shadowmap", "pcss"], ["pcf", "pcss"], ["erosion", "occlusion"], ["pcss", "occlusion"]]) {
+        if (!images[a] || !images[b]) continue;
+        let differing = 0;
+        for (let i = 0; i < images[a].length; ++i) if (Math.abs(images[a][i] - images[b][i]) > 2 * R8_STEP) ++differing;
+        if (differing === 0) failures.push(`techniques ${a} and ${b} give the same image`);
+    }
+    await setField(page, "left", "technique", "oim");
+    const oim = await state();
+    if (oim.running || !oim.reason.includes("baked offline")) failures.push(`oim: the page does not say why it cannot run (${oim.reason})`);
+    await setField(page, "left", "technique", "occlusion");
+    // The split view: a second configuration (PCSS) on the right half, with its own panel.
+    await page.click("#split");
+    const right = await page.evaluate(() => ({running: window.penumbra.running(1), technique: window.penumbra.emission(1).layoutConfig.technique,
+                                              visible: !document.getElementById("right").hidden}));
+    if (!right.running || right.technique !== "pcss" || !right.visible) failures.push(`split view: ${JSON.stringify(right)}`);
+    await page.click("#split");
+    console.log(`     panel (${label}): refused slices 40 with "${refused.shown}"; ran ${Object.keys(images).join(", ")}; ` +
+                `oim: ${oim.reason.slice(0, 60)}…; split ran ${right.technique} on the right`);
+    return failures;
+}
 
 function parseArguments(argv) {
-    const out = {web: null, chromium: "/usr/bin/chromium", screenshots: null, bundles: []};
+    const out = {web: null, wasm: null, chromium: "/usr/bin/chromium", screenshots: null, bundles: []};
     for (let i = 0; i < argv.length; ++i) {
         const flag = argv[i];
-        if (flag === "--web" || flag === "--chromium" || flag === "--screenshots") {
+        if (flag === "--web" || flag === "--wasm" || flag === "--chromium" || flag === "--screenshots") {
             if (i + 1 >= argv.length) usage(`${flag}: missing value`);
             out[flag.slice(2)] = argv[++i];
         } else if (flag.startsWith("--")) {
@@ -40,65 +115,14 @@ function parseArguments(argv) {
         }
     }
     if (!out.web) usage("--web: missing");
+    if (!out.wasm) usage("--wasm: missing (build/wasm/penumbra_emitter.wasm)");
     if (out.bundles.length === 0) usage("no bundle directories");
     return out;
 }
 
 function usage(message) {
-    console.error(`error: ${message}\nusage: node browser_test.mjs --web DIR [--chromium PATH] [--screenshots DIR] BUNDLE_DIR...`);
+    console.error(`error: ${message}\nusage: node browser_test.mjs --web DIR --wasm MODULE [--chromium PATH] [--screenshots DIR] BUNDLE_DIR...`);
     process.exit(2);
-}
-
-const CONTENT_TYPES = {".html": "text/html", ".js": "text/javascript", ".json": "application/json"};
-
-// Serves /web/... from the page folder and /bundle/<i>/... from the i-th bundle, on localhost only.
-function serve(webDir, bundles) {
-    const roots = {web: path.resolve(webDir)};
-    bundles.forEach((dir, i) => (roots[`bundle/${i}`] = path.resolve(dir)));
-    const server = http.createServer((request, response) => {
-        const url = decodeURIComponent(new URL(request.url, "http://localhost").pathname);
-        for (const [prefix, root] of Object.entries(roots)) {
-            if (!url.startsWith(`/${prefix}/`)) continue;
-            const file = path.join(root, url.slice(prefix.length + 2));
-            if (!file.startsWith(root) || !fs.existsSync(file) || !fs.statSync(file).isFile()) break;
-            response.writeHead(200, {"Content-Type": CONTENT_TYPES[path.extname(file)] || "application/octet-stream",
-                                     "Cache-Control": "no-store"});
-            fs.createReadStream(file).pipe(response);
-            return;
-        }
-        response.writeHead(404);
-        response.end();
-    });
-    return new Promise((resolve) => server.listen(0, "127.0.0.1", () => resolve(server)));
-}
-
-function readFloats(file) {
-    const bytes = fs.readFileSync(file);
-    return new Float32Array(bytes.buffer, bytes.byteOffset, bytes.length / 4);
-}
-
-function largestDifference(a, b) {
-    let worst = 0, scale = 0;
-    for (let i = 0; i < a.length; ++i) {
-        worst = Math.max(worst, Math.abs(a[i] - b[i]));
-        scale = Math.max(scale, Math.abs(b[i]));
-    }
-    return worst / Math.max(scale, 1e-30);
-}
-
-// Per-pixel agreement of `visibility` with the model (oracle.f32, within bound + q) and with the
-// desktop run (visibility_gl.f32, within 2·bound + q).
-function compare(visibility, reference, q) {
-    const {oracle, gl, bound} = reference;
-    const out = {worstGl: 0, worstOracle: 0, outsideOracle: 0, outsideGl: 0};
-    for (let i = 0; i < gl.length; ++i) {
-        const toOracle = Math.abs(visibility[i] - oracle[i]), toGl = Math.abs(visibility[i] - gl[i]);
-        out.worstGl = Math.max(out.worstGl, toGl);
-        out.worstOracle = Math.max(out.worstOracle, toOracle);
-        if (toOracle > bound[i] + q + 1e-6) ++out.outsideOracle;
-        if (toGl > 2 * bound[i] + q + 1e-6) ++out.outsideGl;
-    }
-    return out;
 }
 
 async function checkBundle(browser, port, index, dir, screenshots) {
@@ -116,6 +140,36 @@ async function checkBundle(browser, port, index, dir, screenshots) {
     await page.waitForFunction(() => window.penumbra !== undefined, {timeout: 60000});
     const error = await page.evaluate(() => window.penumbra.error);
     if (error) throw new Error(`${label}: the page failed: ${error}`);
+    const reference = readReference(dir);
+    const read = async () => {
+        const v = Float32Array.from(await page.evaluate(() => Array.from(window.penumbra.readVisibility())));
+        if (v.length !== reference.gl.length) throw new Error(`${label}: ${v.length} pixels read, expected ${reference.gl.length}`);
+        return v;
+    };
+    const failures = [];
+
+    // 0. The bundle's configuration, through the panel only.
+    const first = await read();
+    const firstConfig = await page.evaluate(() => window.penumbra.emission().layoutConfig);
+    let changes = 0;
+    for (const field of PANEL_FIELDS) {
+        if (firstConfig[field] === c[field]) continue;
+        const before = await page.evaluate(() => window.penumbra.emissions());
+        await setField(page, "left", field, c[field]);
+        const after = await page.evaluate(() => window.penumbra.emissions());
+        if (after <= before) failures.push(`setting ${field} to ${c[field]} in the panel did not re-emit`);
+        ++changes;
+    }
+    const reached = await page.evaluate(() => window.penumbra.emission());
+    if (!reached.ok) throw new Error(`${label}: the panel's configuration was refused: ${reached.error}`);
+    for (const field of PANEL_FIELDS)
+        if (reached.layoutConfig[field] !== c[field]) failures.push(`after the panel, ${field} is ${reached.layoutConfig[field]}, the bundle's is ${c[field]}`);
+    if (changes === 0) failures.push("the page started at the bundle's configuration: the panel was not exercised");
+    let rerendered = 0;
+    const reachedImage = await read();
+    for (let i = 0; i < first.length; ++i) if (Math.abs(reachedImage[i] - first[i]) > 2 * R8_STEP) ++rerendered;
+    if (rerendered === 0) failures.push(`${changes} panel changes left the image as it was`);
+
     const info = await page.evaluate(() => window.penumbra.info());
     const q = info.resultFormat === "R8" || info.resultFormat === "RGBA8" ? R8_STEP : 0;
 
@@ -128,18 +182,11 @@ async function checkBundle(browser, port, index, dir, screenshots) {
         uniformError = Math.max(uniformError, largestDifference(a.map(Math.fround), b));
     }
 
-    const reference = {gl: readFloats(path.join(dir, "visibility_gl.f32")), oracle: readFloats(path.join(dir, "oracle.f32")),
-                       bound: readFloats(path.join(dir, "bound.f32"))};
     let shadowed = 0, worstBound = 0;
     for (let i = 0; i < reference.gl.length; ++i) {
         if (reference.gl[i] < 0.98) ++shadowed;
         worstBound = Math.max(worstBound, reference.bound[i]);
     }
-    const read = async () => {
-        const v = Float32Array.from(await page.evaluate(() => Array.from(window.penumbra.readVisibility())));
-        if (v.length !== reference.gl.length) throw new Error(`${label}: ${v.length} pixels read, expected ${reference.gl.length}`);
-        return v;
-    };
 
     // 1. Everything in the browser (its own slicing), with the desktop run's exact uniforms.
     await page.evaluate(() => window.penumbra.useBundleUniforms(true));
@@ -156,10 +203,11 @@ async function checkBundle(browser, port, index, dir, screenshots) {
     const moved = bundle.light.kind === "sun"
         ? {direction: [bundle.light.direction[0] + 0.3, bundle.light.direction[1], bundle.light.direction[2]]}
         : {center: [bundle.light.center[0] + 0.25 * bundle.light.width, bundle.light.center[1], bundle.light.center[2]]};
-    await page.evaluate((m) => window.penumbra.setLight(m), moved);
+    await page.evaluate((kind, m) => window.penumbra.setLight(kind, m), bundle.light.kind, moved);
     const after = await read();
     let changed = 0;
     for (let i = 0; i < after.length; ++i) if (Math.abs(after[i] - before[i]) > 2 * R8_STEP) ++changed;
+    if (index === 0) failures.push(...await checkPanel(page, label));
     if (screenshots) {
         fs.mkdirSync(screenshots, {recursive: true});
         await page.screenshot({path: path.join(screenshots, `${index}_${c.filter}_${c.packing}${c.tangent_clip ? "_clip" : ""}.png`)});
@@ -167,7 +215,7 @@ async function checkBundle(browser, port, index, dir, screenshots) {
     await page.close();
 
     const pixels = reference.gl.length;
-    const failures = [...problems];
+    failures.push(...problems);
     if (injected.outsideOracle > 0)
         failures.push(`with the desktop slices, ${injected.outsideOracle} pixels differ from the oracle by more than bound + ${q.toFixed(4)}`);
     if (injected.outsideGl > 0)
@@ -181,6 +229,7 @@ async function checkBundle(browser, port, index, dir, screenshots) {
     if (changed === 0) failures.push("moving the light changed no pixel");
     console.log(`${failures.length ? "FAIL" : "ok  "} ${label} (${info.resultFormat} result, ${shadowed} shadowed, max bound ${worstBound.toExponential(2)}, ` +
                 `${((Date.now() - started) / 1000).toFixed(1)} s)\n` +
+                `     panel: ${changes} fields changed, each re-emitted; ${rerendered} pixels changed from the page's first configuration\n` +
                 `     desktop slices: max |browser − desktop| ${injected.worstGl.toExponential(2)}, max |browser − oracle| ${injected.worstOracle.toExponential(2)}, ` +
                 `${injected.outsideOracle} pixels outside bound + q\n` +
                 `     own slicing:    max |browser − desktop| ${own.worstGl.toExponential(2)}, ${own.outsideGl} of ${pixels} pixels outside 2·bound + q; ` +
@@ -196,23 +245,13 @@ async function main() {
         console.log(`skip: no chromium at ${args.chromium} (scripts/setup.sh installs Debian's chromium)`);
         process.exit(77);
     }
-    let puppeteer;
-    try {
-        ({default: puppeteer} = await import("puppeteer-core"));
-    } catch (e) {
-        console.log(`error: puppeteer-core is not installed next to this script (scripts/setup.sh runs npm ci in targets/web): ${e.message}`);
+    if (!fs.existsSync(args.wasm)) {
+        console.log(`error: no WebAssembly emitter at ${args.wasm} (cmake --build build --target penumbra-emitter-wasm)`);
         process.exit(1);
     }
-    const server = await serve(args.web, args.bundles);
+    const server = await serve(args.web, args.bundles, {"/web/penumbra_emitter.wasm": path.resolve(args.wasm)});
     const userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), "penumbra-chromium-"));
-    const browser = await puppeteer.launch({
-        executablePath: args.chromium,
-        headless: true,
-        userDataDir,
-        args: ["--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--disable-background-networking",
-               "--disable-component-update", "--disable-sync", "--no-first-run", "--disable-quic", "--disable-extensions",
-               "--disable-dev-shm-usage"], // containers often have a tiny /dev/shm
-    });
+    const browser = await launchChromium(args.chromium, userDataDir);
     let failures = 0;
     try {
         console.log(`chromium ${await browser.version()}`);

@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# publish_web.sh — the browser playground as one folder for any static host: web/ (the page, no
+# build step), the WebAssembly emitter (build/wasm/penumbra_emitter.wasm) and the built-in scenes
+# as small essl300 bundles (penumbra-export-bundle, 96x96 G-buffers, 128² slicing; the desktop
+# run's visibility is kept for the difference view, its slicing output is not).
+#
+#   scripts/publish_web.sh [--build DIR] [--scenes "planes boxes ..."] OUT_DIR
+#   python3 -m http.server --directory OUT_DIR 8000     # then http://localhost:8000/
+#
+# Needs a build with the targets penumbra-emitter-wasm and penumbra-export-bundle (EGL: llvmpipe
+# or a GPU). Exit 0 written, 1 a step failed, 2 bad arguments.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+build="$root/build"
+scenes="planes boxes tree butterfly terrain crowd box"
+out=""
+while [ $# -gt 0 ]; do
+    case "$1" in
+        --build) build="$2"; shift 2 ;;
+        --scenes) scenes="$2"; shift 2 ;;
+        -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
+        -*) echo "error: unknown flag '$1'; allowed: --build DIR, --scenes LIST, OUT_DIR" >&2; exit 2 ;;
+        *) out="$1"; shift ;;
+    esac
+done
+if [ -z "$out" ]; then echo "error: OUT_DIR missing; usage: scripts/publish_web.sh [--build DIR] [--scenes LIST] OUT_DIR" >&2; exit 2; fi
+wasm="$build/wasm/penumbra_emitter.wasm"
+exporter="$build/targets/bundle/penumbra-export-bundle"
+for need in "$wasm" "$exporter"; do
+    if [ ! -f "$need" ]; then
+        echo "error: $need is missing; build it: cmake --build $build --target penumbra-emitter-wasm penumbra-export-bundle" >&2
+        exit 1
+    fi
+done
+
+mkdir -p "$out/scenes"
+cp "$root"/web/*.html "$root"/web/*.js "$out/"
+cp "$wasm" "$out/penumbra_emitter.wasm"
+index="{\"scenes\": ["
+first=1
+for scene in $scenes; do
+    dir="$out/scenes/$scene"
+    "$exporter" --scene "$scene" --target essl300 --resolution 128 --size 96x96 --out "$dir" >/dev/null
+    rm -f "$dir/slices.f32"
+    [ $first -eq 1 ] || index+=", "
+    index+="{\"name\": \"$scene\", \"dir\": \"$scene\"}"
+    first=0
+done
+index+="]}"
+echo "$index" > "$out/scenes/index.json"
+echo "publish_web: wrote $out ($(du -sh "$out" | cut -f1); the page, penumbra_emitter.wasm ($(stat -c %s "$wasm") bytes), scenes: $scenes)"
