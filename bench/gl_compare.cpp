@@ -14,12 +14,18 @@
 // It writes DIR/results.json (every number; scripts/compare_report.py builds the report from it
 // alone) and DIR/images/ (visibility and signed error of the representative settings).
 // The ground truth is cached in DIR/cache/ (it does not depend on the technique).
+// Scenes: the built-in ones, mesh files, and with --corpus the real meshes of the corpus
+// (scripts/get_corpus.sh), whose names, sources and licences results.json carries.
 //
-//   penumbra-bench-compare [--quick | --full] [--scenes a,b] [FILE ...] [--no-ground] [--size N] [--samples N]
-//                          [--runs N] [--light-scales 1,2,4] [--flicker-frames N] [--out DIR]
+//   penumbra-bench-compare [--quick | --full] [--scenes a,b] [FILE ...] [--corpus [DIR]] [--settings a,b]
+//                          [--size N] [--samples N] [--runs N] [--light-scales 1,2,4] [--flicker-frames N]
+//                          [--out DIR]
+#include "arguments.hpp"
+#include "compare/frame.hpp"
 #include "compare/ladder.hpp"
 #include "compare/progress.hpp"
 #include "compare/truth_cache.hpp"
+#include "corpus/manifest.hpp"
 
 #include "app/headless_job.hpp"
 #include "app/image_io.hpp"
@@ -53,12 +59,31 @@
 using namespace penumbra;
 using namespace penumbra::playground;
 using json = nlohmann::ordered_json;
+using bench::FrameTimes;
+using bench::median;
+using bench::milliseconds_since;
+using bench::pass_totals;
+using bench::Pixels;
+using bench::read_visibility;
+using bench::render_pixels;
+using bench::run_frame;
 
 namespace {
 
+using bench::parse_number;
+using bench::split;
+
+// One scene to run: a built-in name, a mesh file, or a corpus mesh (a file with its manifest entry).
+struct SceneInput {
+    std::string name_or_path;
+    std::string kind; // "built-in", "file" or "corpus"
+    std::optional<bench::CorpusMesh> corpus;
+};
+
 struct Options {
     bench::LadderSet set = bench::LadderSet::standard;
-    std::vector<std::string> scenes; // built-in names and OBJ paths, in order
+    std::vector<SceneInput> scenes;  // built-in scenes, then files, then the corpus, in order
+    std::vector<std::string> settings; // ladder labels to keep (empty: the whole ladder)
     int width = 128, height = 128;
     int samples = 32;                // ground-truth rays per light axis
     int runs = 7;                    // timed runs per measurement, after one warm-up run
@@ -70,18 +95,24 @@ struct Options {
 };
 
 constexpr const char* usage_text =
-    "usage: penumbra-bench-compare [--quick | --full] [--scenes a,b,...] [FILE ...] [--no-ground] [--size N|WxH]\n"
-    "                              [--samples N] [--runs N] [--light-scales 1,2,...] [--flicker-frames N]\n"
-    "                              [--out DIR]\n"
+    "usage: penumbra-bench-compare [--quick | --full] [--scenes a,b,...] [FILE ...] [--corpus [DIR]] [--no-ground]\n"
+    "                              [--settings a,b,...] [--size N|WxH] [--samples N] [--runs N]\n"
+    "                              [--light-scales 1,2,...] [--flicker-frames N] [--out DIR]\n"
     "  (default)         every built-in scene, the standard ladder, light x1 x2 x4 x8 x16 x32, 128x128,\n"
     "                    32x32 rays, 7 runs, 8 flicker frames (about 30 minutes on 2 llvmpipe cores)\n"
     "  --quick           boxes only, two settings, light x1 and x4, 64x64, 8x8 rays, 4 flicker frames\n"
     "                    (a smoke test: the report states the ray count)\n"
     "  --full            the full ladder (adds 1024-texel settings), 256x256, 16 flicker frames\n"
-    "  --scenes          built-in scenes, comma-separated (default all: see penumbra-playground --help)\n"
-    "  FILE              mesh files (.obj, .gltf, .glb), added to the scenes, each on a floor (lights and\n"
-    "                    camera from the bounds with it)\n"
-    "  --no-ground       no floor under the mesh files\n"
+    "  --scenes          built-in scenes, comma-separated (default all: see penumbra-playground --help;\n"
+    "                    --scenes '' for none, e.g. to run only files or the corpus)\n"
+    "  FILE              mesh files (what penumbra-playground --scene loads), added to the scenes: light\n"
+    "                    and camera from their bounds\n"
+    "  --no-ground       no floor under the mesh files and the corpus (default: each stands on one, as in\n"
+    "                    penumbra-playground)\n"
+    "  --corpus [DIR]    adds every mesh of the corpus in DIR (default ~/.cache/penumbra/corpus, or\n"
+    "                    $XDG_CACHE_HOME/penumbra/corpus), fetched by scripts/get_corpus.sh\n"
+    "  --settings        only these ladder settings, by label, comma-separated (e.g. 'OT nbuffer 16/512,\n"
+    "                    PCSS 16/16'; default the whole ladder of the set)\n"
     "  --size            image size (square N or WxH, 16 to 1024)\n"
     "  --samples         ground-truth rays per light axis, 1 to 128 (the truth uses N x N stratified rays)\n"
     "  --runs            timed runs per measurement after one warm-up run, 1 to 100 (medians reported)\n"
@@ -90,28 +121,12 @@ constexpr const char* usage_text =
     "  --out             output folder (default out/compare): results.json, images/, cache/\n"
     "flags after --quick or --full override what they set.\n";
 
-std::vector<std::string_view> split(std::string_view text) {
-    std::vector<std::string_view> parts;
-    while (!text.empty()) {
-        const std::size_t comma = text.find(',');
-        parts.push_back(text.substr(0, comma));
-        if (comma == std::string_view::npos) break;
-        text.remove_prefix(comma + 1);
-    }
-    return parts;
-}
-
-template <class T> bool parse_number(std::string_view text, T& value) {
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    return ec == std::errc() && end == text.data() + text.size();
-}
-
-bool is_obj_path(std::string_view text) { return is_scene_file(std::string(text)); }
-
 // Options from argv, or an error message (one line).
 std::optional<Options> parse(int argc, char** argv, std::string& error) {
     Options o;
-    std::vector<std::string> built_in, obj_files;
+    std::vector<std::string> built_in;
+    std::vector<SceneInput> files, corpus;
+    std::vector<std::string> settings;
     bool scenes_given = false;
     auto fail = [&](std::string message) {
         error = std::move(message);
@@ -138,17 +153,23 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
             o.flicker_frames = 16;
             continue;
         }
-        if (!flag.starts_with("--")) {
-            if (!is_obj_path(flag)) return fail("unexpected argument '" + std::string(flag) + "'; scenes other than the built-in ones are mesh files ending in .obj, .gltf or .glb");
-            obj_files.emplace_back(flag);
+        if (!flag.starts_with("--")) { // a mesh file: load_scene says whether it can read it
+            files.push_back({std::string(flag), "file", std::nullopt});
+            continue;
+        }
+        if (flag == "--corpus") {
+            const std::string dir = bench::corpus_dir_argument(argc, argv, i);
+            std::optional<std::vector<bench::CorpusMesh>> meshes = bench::read_corpus(dir, &error);
+            if (!meshes) return std::nullopt;
+            for (bench::CorpusMesh& m : *meshes) corpus.push_back({m.path, "corpus", std::move(m)});
             continue;
         }
         constexpr std::string_view valued[] = {"--scenes", "--size", "--samples", "--runs", "--flicker-frames",
-                                               "--light-scales", "--out"};
+                                               "--light-scales", "--out", "--settings"};
         if (std::find(std::begin(valued), std::end(valued), flag) == std::end(valued))
             return fail("unknown flag '" + std::string(flag) +
-                        "'; allowed: --quick, --full, --scenes, --no-ground, --size, --samples, --runs, --light-scales, "
-                        "--flicker-frames, --out, --help, FILE.obj|.gltf|.glb");
+                        "'; allowed: --quick, --full, --scenes, --corpus, --no-ground, --settings, --size, --samples, --runs, "
+                        "--light-scales, --flicker-frames, --out, --help, FILE");
         if (i + 1 >= argc) return fail(std::string(flag) + ": missing value (see --help)");
         const std::string_view value = argv[++i];
         if (flag == "--scenes") {
@@ -162,6 +183,14 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                 }
                 built_in.emplace_back(name);
             }
+        } else if (flag == "--settings") {
+            settings.clear();
+            for (std::string_view label : split(value)) {
+                while (label.starts_with(' ')) label.remove_prefix(1);
+                while (label.ends_with(' ')) label.remove_suffix(1);
+                if (!label.empty()) settings.emplace_back(label);
+            }
+            if (settings.empty()) return fail("--settings: empty; allowed: labels of the ladder, e.g. 'OT nbuffer 16/512,PCSS 16/16'");
         } else if (flag == "--size") {
             const std::size_t x = value.find('x');
             const bool ok = x == std::string_view::npos
@@ -194,20 +223,20 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
     }
     if (built_in.empty() && !scenes_given && o.set != bench::LadderSet::quick)
         for (std::string_view n : scene_names()) built_in.emplace_back(n);
-    o.scenes = built_in;
-    o.scenes.insert(o.scenes.end(), obj_files.begin(), obj_files.end());
-    if (o.scenes.empty()) return fail("no scene: give --scenes or a mesh file");
+    for (const std::string& name : built_in) o.scenes.push_back({name, "built-in", std::nullopt});
+    o.scenes.insert(o.scenes.end(), files.begin(), files.end());
+    o.scenes.insert(o.scenes.end(), corpus.begin(), corpus.end());
+    if (o.scenes.empty()) return fail("no scene: give --scenes, a mesh file or --corpus");
+    // The ladder's labels are known only with the set, after every flag.
+    const std::vector<bench::LadderEntry> ladder = bench::technique_ladder(o.set);
+    for (const std::string& label : settings)
+        if (std::none_of(ladder.begin(), ladder.end(), [&](const bench::LadderEntry& e) { return e.label == label; })) {
+            std::string allowed;
+            for (const bench::LadderEntry& e : ladder) allowed += (allowed.empty() ? "" : ", ") + e.label;
+            return fail("--settings: '" + label + "' is not a setting of this set's ladder; allowed: " + allowed);
+        }
+    o.settings = settings;
     return o;
-}
-
-double median(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    const std::size_t n = values.size();
-    return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-double milliseconds_since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 // A file-name-safe form of a label: "OT nbuffer 16/512" → "ot-nbuffer-16-512".
@@ -225,99 +254,6 @@ std::string scale_text(double scale) {
     char text[32];
     std::snprintf(text, sizeof text, "%g", scale);
     return text;
-}
-
-// The scene's pixels, shared by every technique: the G-buffer on the GPU and its read-back.
-struct Pixels {
-    std::unique_ptr<GBuffer> gbuffer;
-    HeadlessResult frame; // size, positions, normals and geometry mask, top row first (no visibility)
-};
-
-std::optional<Pixels> render_pixels(const Scene& scene, const MeshBuffers& mesh, int width, int height,
-                                    std::string* error) {
-    Pixels p;
-    p.gbuffer = GBuffer::create(width, height, error);
-    if (!p.gbuffer) return std::nullopt;
-    p.gbuffer->render(mesh, scene.camera.projection_matrix(static_cast<float>(width) / height) * scene.camera.view_matrix());
-    const std::size_t n = static_cast<std::size_t>(width) * height;
-    std::vector<glm::vec4> pos(n), nrm(n);
-    glGetTextureImage(p.gbuffer->positions(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(n * sizeof(glm::vec4)), pos.data());
-    glGetTextureImage(p.gbuffer->normals(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(n * sizeof(glm::vec4)), nrm.data());
-    p.frame.width = width;
-    p.frame.height = height;
-    p.frame.positions.assign(n, glm::vec3(std::numeric_limits<float>::quiet_NaN()));
-    p.frame.normals.assign(n, glm::vec3(0.0f));
-    p.frame.geometry.assign(n, 0);
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            const std::size_t src = static_cast<std::size_t>(y) * width + x;
-            const std::size_t dst = static_cast<std::size_t>(height - 1 - y) * width + x;
-            if (pos[src].w < 0.5f) continue;
-            p.frame.geometry[dst] = 1;
-            p.frame.positions[dst] = glm::vec3(pos[src]);
-            p.frame.normals[dst] = glm::vec3(nrm[src]);
-        }
-    if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
-        if (error) *error = "GL error " + std::to_string(e) + " while reading the G-buffer";
-        return std::nullopt;
-    }
-    return p;
-}
-
-// One frame of a technique: every pass of its layout, then the deferred shading pass.
-struct FrameTimes {
-    std::vector<gl::PassTiming> passes; // GL_TIME_ELAPSED of each pass, shading last
-    double wall_build_ms = 0, wall_shading_ms = 0;
-};
-
-bool run_frame(gl::Runtime& runtime, const MeshBuffers& mesh, const Pixels& pixels, FrameTimes& out,
-               std::string* error) {
-    out.passes.clear();
-    const auto start = std::chrono::steady_clock::now();
-    if (std::string d = runtime.build([&](GLuint) { mesh.draw(); }, &out.passes); !d.empty()) {
-        if (error) *error = d;
-        return false;
-    }
-    glFinish();
-    out.wall_build_ms = milliseconds_since(start);
-    const auto shading_start = std::chrono::steady_clock::now();
-    gl::PassTiming shading;
-    if (!runtime.shade_deferred(pixels.gbuffer->positions(), pixels.gbuffer->width(), pixels.gbuffer->height(), error,
-                                &shading, pixels.gbuffer->normals()))
-        return false;
-    glFinish();
-    out.wall_shading_ms = milliseconds_since(shading_start);
-    out.passes.push_back(shading);
-    return true;
-}
-
-// The visibility of the last frame, top row first, 1 on background.
-std::vector<float> read_visibility(const gl::Runtime& runtime, const Pixels& pixels) {
-    const std::vector<float> bottom_up = runtime.read_visibility();
-    const int w = pixels.gbuffer->width(), h = pixels.gbuffer->height();
-    std::vector<float> out(bottom_up.size(), 1.0f);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            const std::size_t dst = static_cast<std::size_t>(y) * w + x;
-            if (pixels.frame.geometry[dst]) out[dst] = bottom_up[static_cast<std::size_t>(h - 1 - y) * w + x];
-        }
-    return out;
-}
-
-// Pass names in order, instances of one pass (N-buffer levels, SAT steps) summed.
-std::vector<std::pair<std::string, double>> pass_totals(const std::vector<gl::PassTiming>& timings,
-                                                        std::vector<int>* instances = nullptr) {
-    std::vector<std::pair<std::string, double>> totals;
-    if (instances) instances->clear();
-    for (const gl::PassTiming& t : timings) {
-        if (totals.empty() || totals.back().first != t.name) {
-            totals.push_back({t.name, 0.0});
-            if (instances) instances->push_back(0);
-        }
-        totals.back().second += t.milliseconds;
-        if (instances) ++instances->back();
-    }
-    return totals;
 }
 
 json stats_json(const ErrorStats& s) {
@@ -445,16 +381,24 @@ int main(int argc, char** argv) {
         return 2;
     }
     std::vector<Scene> scenes;
-    for (const std::string& name : options->scenes) {
-        SceneLoad loaded = load_scene(name, options->ground);
+    std::vector<double> load_ms;
+    for (const SceneInput& input : options->scenes) {
+        const auto load_start = std::chrono::steady_clock::now();
+        SceneLoad loaded = load_scene(input.name_or_path, options->ground);
         if (!loaded.scene) return fail(loaded.error, 2);
-        if (is_obj_path(name)) loaded.scene->name = std::filesystem::path(name).stem().string();
+        load_ms.push_back(milliseconds_since(load_start));
+        if (input.corpus) loaded.scene->name = input.corpus->name;
+        else if (input.kind == "file") loaded.scene->name = std::filesystem::path(input.name_or_path).stem().string();
         scenes.push_back(std::move(*loaded.scene));
     }
     std::optional<HeadlessContext> context = HeadlessContext::create(&error);
     if (!context) return fail("no OpenGL 4.5 context: " + error);
 
-    const std::vector<bench::LadderEntry> ladder = bench::technique_ladder(options->set);
+    std::vector<bench::LadderEntry> ladder = bench::technique_ladder(options->set);
+    if (!options->settings.empty())
+        std::erase_if(ladder, [&](const bench::LadderEntry& e) {
+            return std::find(options->settings.begin(), options->settings.end(), e.label) == options->settings.end();
+        });
     const std::string out_dir = options->out_dir, cache_dir = out_dir + "/cache", image_dir = out_dir + "/images";
     std::error_code ec;
     std::filesystem::create_directories(out_dir, ec);
@@ -488,6 +432,7 @@ int main(int argc, char** argv) {
           {"timed_runs", options->runs},
           {"warmup_runs", 1},
           {"light_scales", light_scales},
+          {"settings", options->settings.empty() ? json("all") : json(options->settings)},
           {"penumbra_threshold", 0.98},
           {"flicker_frames", options->flicker_frames},
           {"flicker_step_of_ground_span", options->flicker_step},
@@ -497,7 +442,9 @@ int main(int argc, char** argv) {
         {"flicker", json::array()},
     };
 
-    for (const Scene& scene : scenes) {
+    for (std::size_t scene_index = 0; scene_index < scenes.size(); ++scene_index) {
+        const Scene& scene = scenes[scene_index];
+        const SceneInput& input = options->scenes[scene_index];
         const MeshBuffers mesh(scene.mesh);
         std::optional<Pixels> pixels = render_pixels(scene, mesh, options->width, options->height, &error);
         if (!pixels) return fail(scene.name + ": " + error);
@@ -535,13 +482,21 @@ int main(int argc, char** argv) {
         progress.finish();
         const double truth_delta = mean_frame_delta(truth_frames, pixels->frame.geometry);
 
-        results["scenes"].push_back({{"name", scene.name},
-                                     {"triangles", scene.mesh.triangle_count()},
+        json scene_record = {{"name", scene.name},
+                             {"kind", input.kind},
+                             {"triangles", scene.mesh.triangle_count()},
+                             {"load_ms", load_ms[scene_index]},
                                      {"default_light", {{"width", scene.light.width}, {"height", scene.light.height}}},
                                      {"geometry_pixels", geometry_pixels},
                                      {"flicker_step", step},
                                      {"truth_flicker", truth_delta},
-                                     {"truth", truth_files}});
+                             {"truth", truth_files}};
+        if (input.kind != "built-in") scene_record["file"] = input.name_or_path;
+        if (input.corpus)
+            scene_record["corpus"] = {{"triangles_in_file", input.corpus->triangles},
+                                      {"source", input.corpus->source},
+                                      {"licence", input.corpus->licence}};
+        results["scenes"].push_back(std::move(scene_record));
 
         // One runtime per setting, alive together, so that the timed runs can be interleaved.
         std::vector<std::unique_ptr<gl::Runtime>> runtimes;
@@ -562,7 +517,7 @@ int main(int argc, char** argv) {
             const double scale = options->light_scales[s];
             const std::string where = scene.name + ", light x" + scale_text(scale);
             std::vector<QualityMetrics> quality(ladder.size());
-            std::vector<double> bias(ladder.size());
+            std::vector<double> bias(ladder.size()), bias_oriented(ladder.size());
             std::vector<std::vector<FrameTimes>> timed(ladder.size());
             for (std::size_t e = 0; e < ladder.size(); ++e) {
                 const bench::LadderEntry& entry = ladder[e];
@@ -574,6 +529,7 @@ int main(int argc, char** argv) {
                 quality[e] = compare_quality(visibility, pixels->frame.geometry, truths[s].visibility,
                                              truths[s].oriented, truths[s].irradiance);
                 bias[e] = penumbra_bias(visibility, pixels->frame.geometry, truths[s].visibility);
+                bias_oriented[e] = penumbra_bias(visibility, pixels->frame.geometry, truths[s].oriented);
                 if (entry.representative &&
                     !write_visibility_images(image_dir + "/" + scene.name + "/x" + scale_text(scale), slug(entry.label),
                                              *pixels, visibility, &truths[s].visibility, &error))
@@ -607,7 +563,8 @@ int main(int argc, char** argv) {
                 record["quality"] = {{"all", stats_json(q.visibility.all)},
                                      {"penumbra", stats_json(q.visibility.penumbra)},
                                      {"penumbra_bias", bias[e]},
-                                     {"oriented", {{"all", stats_json(q.oriented.all)}, {"penumbra", stats_json(q.oriented.penumbra)}}},
+                                     {"oriented", {{"all", stats_json(q.oriented.all)}, {"penumbra", stats_json(q.oriented.penumbra)},
+                                                   {"penumbra_bias", bias_oriented[e]}}},
                                      {"irradiance", {{"all", stats_json(q.irradiance.all)}, {"penumbra", stats_json(q.irradiance.penumbra)}}}};
                 if (entry.representative) {
                     const std::string dir = "images/" + scene.name + "/x" + scale_text(scale);

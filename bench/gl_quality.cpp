@@ -5,8 +5,12 @@
 // time of each pass (timer queries; on llvmpipe the CPU
 // time of the software rasteriser, so compare ratios, not absolute values).
 //
-//   penumbra-bench-quality [--scenes planes,boxes] [--filters sat,nbuffer] [--configs 16x512,4x128]
-//                          [--size 256x256] [--samples 16] [--repeat 1]
+//   penumbra-bench-quality [--scenes planes,boxes] [FILE ...] [--corpus [DIR]] [--filters sat,nbuffer]
+//                          [--configs 16x512,4x128] [--size 256x256] [--samples 16] [--repeat 1]
+#include "arguments.hpp"
+#include "corpus/manifest.hpp"
+
+#include "app/headless_job.hpp"
 #include "rendering/egl_context.hpp"
 #include "rendering/headless_render.hpp"
 #include "scenes/scenes.hpp"
@@ -15,6 +19,7 @@
 #include <penumbra/validate.hpp>
 
 #include <charconv>
+#include <filesystem>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -28,6 +33,10 @@
 using namespace penumbra::playground;
 
 namespace {
+
+using penumbra::bench::parse_number;
+using penumbra::bench::split;
+
 
 struct SliceSetting {
     int slices = 16, resolution = 512;
@@ -45,18 +54,25 @@ std::string variant_name(const Variant& v) {
            (v.placement == penumbra::SlicePlacement::adaptive ? "+adaptive" : "");
 }
 
+// A scene to measure: a built-in name or a mesh file, and the name its rows carry.
+struct SceneInput {
+    std::string name_or_path, name;
+};
+
 struct Options {
     std::vector<Variant> variants{Variant{}};
-    std::vector<std::string> scenes;
+    std::vector<SceneInput> scenes;
     std::vector<penumbra::Filter> filters{penumbra::Filter::mipmap, penumbra::Filter::nbuffer, penumbra::Filter::sat};
     std::vector<SliceSetting> settings{{16, 512}, {4, 128}};
     int width = 256, height = 256, samples = 16, repeat = 3;
 };
 
 constexpr const char* usage_text =
-    "usage: penumbra-bench-quality [--scenes a,b,...] [--filters f,g,...] [--configs SxR,...] [--size WxH]\n"
-    "                              [--samples N] [--repeat N] [--variants v,w,...]\n"
-    "  --scenes    built-in scenes (default all: planes, boxes, tree, butterfly, terrain, crowd, box)\n"
+    "usage: penumbra-bench-quality [--scenes a,b,...] [FILE ...] [--corpus [DIR]] [--filters f,g,...]\n"
+    "                              [--configs SxR,...] [--size WxH] [--samples N] [--repeat N] [--variants v,w,...]\n"
+    "  --scenes    built-in scenes (default all: planes, boxes, tree, butterfly, terrain, crowd, box; '' for none)\n"
+    "  FILE        mesh files (what penumbra-playground --scene loads), measured after the built-in scenes\n"
+    "  --corpus    every mesh of the corpus in DIR (default ~/.cache/penumbra/corpus; scripts/get_corpus.sh)\n"
     "  --filters   mipmap, nbuffer, sat (default all three; the light is each scene's rectangle)\n"
     "  --configs   slices x occlusion-texture resolution (default 16x512,4x128)\n"
     "  --size      image size (default 256x256)\n"
@@ -66,33 +82,29 @@ constexpr const char* usage_text =
     "              adaptive slice placement, e.g. probabilistic,chained+clip,chained+clip+adaptive\n"
     "              (default: Config{}'s)\n";
 
-std::vector<std::string_view> split(std::string_view text) {
-    std::vector<std::string_view> parts;
-    while (!text.empty()) {
-        const std::size_t comma = text.find(',');
-        parts.push_back(text.substr(0, comma));
-        if (comma == std::string_view::npos) break;
-        text.remove_prefix(comma + 1);
-    }
-    return parts;
-}
-
-bool parse_int(std::string_view text, int& value) {
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    return ec == std::errc() && end == text.data() + text.size();
-}
-
 bool parse_pair(std::string_view text, int& a, int& b) {
     const std::size_t x = text.find('x');
-    return x != std::string_view::npos && parse_int(text.substr(0, x), a) && parse_int(text.substr(x + 1), b);
+    return x != std::string_view::npos && parse_number(text.substr(0, x), a) && parse_number(text.substr(x + 1), b);
 }
 
 // Options from argv, or an error message.
 std::optional<Options> parse(int argc, char** argv, std::string& error) {
     Options o;
-    for (std::string_view name : scene_names()) o.scenes.emplace_back(name);
+    for (std::string_view name : scene_names()) o.scenes.push_back({std::string(name), std::string(name)});
+    std::vector<SceneInput> files;
     for (int i = 1; i < argc; ++i) {
         const std::string_view flag = argv[i];
+        if (!flag.starts_with("--")) { // a mesh file, named after its stem
+            files.push_back({std::string(flag), std::filesystem::path(flag).stem().string()});
+            continue;
+        }
+        if (flag == "--corpus") {
+            const std::optional<std::vector<penumbra::bench::CorpusMesh>> corpus =
+                penumbra::bench::read_corpus(penumbra::bench::corpus_dir_argument(argc, argv, i), &error);
+            if (!corpus) return std::nullopt;
+            for (const penumbra::bench::CorpusMesh& m : *corpus) files.push_back({m.path, m.name});
+            continue;
+        }
         if (i + 1 >= argc) {
             error = std::string(flag) + ": missing value";
             return std::nullopt;
@@ -105,7 +117,7 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                     error = "--scenes: unknown scene '" + std::string(name) + "'";
                     return std::nullopt;
                 }
-                o.scenes.emplace_back(name);
+                o.scenes.push_back({std::string(name), std::string(name)});
             }
         } else if (flag == "--filters") {
             o.filters.clear();
@@ -160,19 +172,25 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                 return std::nullopt;
             }
         } else if (flag == "--samples") {
-            if (!parse_int(value, o.samples) || o.samples < 1 || o.samples > 256) {
+            if (!parse_number(value, o.samples) || o.samples < 1 || o.samples > 256) {
                 error = "--samples: expected 1 to 256";
                 return std::nullopt;
             }
         } else if (flag == "--repeat") {
-            if (!parse_int(value, o.repeat) || o.repeat < 1 || o.repeat > 100) {
+            if (!parse_number(value, o.repeat) || o.repeat < 1 || o.repeat > 100) {
                 error = "--repeat: expected 1 to 100";
                 return std::nullopt;
             }
         } else {
-            error = "unknown flag '" + std::string(flag) + "'";
+            error = "unknown flag '" + std::string(flag) + "'; allowed: --scenes, --corpus, --filters, --configs, --size, "
+                    "--samples, --repeat, --variants, --help, FILE";
             return std::nullopt;
         }
+    }
+    o.scenes.insert(o.scenes.end(), files.begin(), files.end());
+    if (o.scenes.empty()) {
+        error = "no scene: give --scenes, a mesh file or --corpus";
+        return std::nullopt;
     }
     return o;
 }
@@ -217,6 +235,16 @@ int main(int argc, char** argv) {
         std::cerr << "error: " << error << "\n" << usage_text;
         return 2;
     }
+    std::vector<Scene> scenes; // every scene loaded before the first row, so a bad file stops the run at once
+    for (const SceneInput& input : options->scenes) {
+        SceneLoad loaded = load_scene(input.name_or_path);
+        if (!loaded.scene) {
+            std::cerr << "error: " << loaded.error << "\n";
+            return 2;
+        }
+        scenes.push_back(std::move(*loaded.scene));
+        scenes.back().name = input.name;
+    }
     std::optional<HeadlessContext> context = HeadlessContext::create(&error);
     if (!context) {
         std::cerr << "error: no OpenGL 4.5 context: " << error << "\n";
@@ -233,8 +261,8 @@ int main(int argc, char** argv) {
                 "| slicing ms | prefilter ms | shading ms |\n");
     std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     std::vector<std::string> pass_lines;
-    for (const std::string& scene_name : options->scenes) {
-        const Scene scene = *make_scene(scene_name);
+    for (const Scene& scene : scenes) {
+        const std::string& scene_name = scene.name;
         std::optional<HeadlessResult> reference_gbuffer;
         References truth;
         double truth_ms = 0;

@@ -4,16 +4,21 @@
 # (report.md, figures/) with Debian's matplotlib.
 #   scripts/compare.sh [--quick | --full] [penumbra-bench-compare flags] [--out DIR]   (default out/compare)
 #   scripts/compare.sh --report-only [--out DIR]     rebuild report.md and figures from DIR/results.json
-#   (either form) [--metric visibility|oriented|irradiance] [--mae-thresholds 0.1,0.15,0.2]: report options
+#   scripts/compare.sh --corpus [DIR] ...            also the corpus of real meshes: fetched first into DIR
+#                                                    (scripts/get_corpus.sh; default ~/.cache/penumbra/corpus)
+#   (either form) [--metric oriented|irradiance|visibility] [--mae-thresholds 0.1,0.15,0.2]: report options
+#   (the conclusions use the fair `oriented` reference unless --metric says otherwise)
 #   scripts/compare.sh ... --check                   then check report, figures and finite numbers (CI)
 # The default set takes about 30 minutes on 2 llvmpipe cores; --quick a few seconds.
-# PENUMBRA_BENCH_COMPARE=path/to/penumbra-bench-compare skips setup and build (the ctest test sets it).
+# PENUMBRA_BENCH_COMPARE=path/to/penumbra-bench-compare skips setup and build (the ctest test sets it);
+# PENUMBRA_CORPUS_READY=1 skips fetching the corpus (the test makes a small one of its own).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 out=out/compare
 report_only=0
 check=0
+corpus=""
 bench_args=()
 report_args=()
 while [ $# -gt 0 ]; do
@@ -24,6 +29,10 @@ while [ $# -gt 0 ]; do
             [ $# -ge 2 ] || { echo "error: --out: missing value (a folder)" >&2; exit 2; }
             out="$2"; bench_args+=(--out "$2"); shift ;;
         --out=*) out="${1#--out=}"; bench_args+=("$1") ;;
+        --corpus) # an optional folder: the next argument unless it is a flag or a mesh file
+            corpus="${XDG_CACHE_HOME:-$HOME/.cache}/penumbra/corpus"
+            if [ $# -ge 2 ] && [[ "$2" != -* ]] && [[ ! "${2,,}" =~ \.(obj|gltf|glb)$ ]]; then corpus="$2"; shift; fi
+            bench_args+=(--corpus "$corpus") ;;
         --metric|--mae-thresholds)
             [ $# -ge 2 ] || { echo "error: $1: missing value (see scripts/compare_report.py --help)" >&2; exit 2; }
             report_args+=("$1" "$2"); shift ;;
@@ -41,6 +50,7 @@ if [ "$report_only" -eq 0 ]; then
         cmake --build build --parallel "$(nproc)" --target penumbra-bench-compare
         bench=build/penumbra-bench-compare
     fi
+    if [ -n "$corpus" ] && [ -z "${PENUMBRA_CORPUS_READY:-}" ]; then scripts/get_corpus.sh "$corpus"; fi
     start=$(date +%s)
     "$bench" "${bench_args[@]}"
     echo "compare: penumbra-bench-compare took $(( $(date +%s) - start )) s"

@@ -5,8 +5,10 @@
     compare_report.py DIR --check                  exits 1 unless report, figures and finite numbers are there
 
 Every conclusion in the report is computed here from the raw numbers: the Pareto fronts, the
-equal-time table, the light-size tables and the excess flicker. Figures use Debian's matplotlib
-(python3-matplotlib), without a display (Agg backend).
+equal-time table, the light-size tables, the per-scene and per-mesh tables and the excess flicker.
+The conclusions use the fair reference (`oriented`, the part of the light above the receiver's
+tangent plane) unless --metric says otherwise; the other references follow, named for what they
+are. Figures use Debian's matplotlib (python3-matplotlib), without a display (Agg backend).
 """
 import argparse
 import json
@@ -19,6 +21,8 @@ COST = "gpu_ms"  # the cost of a frame: median over the timed runs of the summed
 REFERENCE = "PCSS 16/16"  # ratios are given against this setting at the same scene and light size
 FALLBACK_REFERENCE = "OT nbuffer 16/512"  # when the run has no PCSS 16/16 (and says so)
 EQUAL_TIME_BUDGETS = ["PCSS 16/16", "PCSS 32/64"]
+DEFAULT_SETTING = "OT nbuffer 16/512"  # Config{}: the default occlusion-texture configuration
+KEY_SETTINGS = [DEFAULT_SETTING, "PCSS 16/16", "PCSS 32/64"]  # the per-scene and per-mesh tables
 FAMILY_NAMES = {"occlusion": "occlusion textures", "paper": "occlusion textures, the paper's model", "shadowmap": "hard shadow map", "pcf": "PCF", "pcss": "PCSS"}
 
 
@@ -34,13 +38,20 @@ def fmt_scale(scale):
     return f"x{scale:g}"
 
 
-# The reference the conclusions use (--metric); the others are shown beside it.
+# The reference the conclusions use (--metric, default the fair `oriented`); the others are shown
+# beside it, in this order, each under the name that says what it measures.
 METRICS = {
-    "visibility": "visibility of the whole light (rays behind the receiver's tangent plane count as blocked)",
     "oriented": "visibility of the part of the light above the receiver's tangent plane (fair)",
     "irradiance": "irradiance relative to the unoccluded irradiance from that part (fair)",
+    "visibility": "visibility of the whole light (rays behind the receiver's tangent plane count as blocked: "
+                  "unfair to a model that clips to the tangent plane, which the default does)",
 }
-METRIC = "visibility"
+METRIC_NAMES = {"oriented": "oriented (fair)", "irradiance": "irradiance (fair)", "visibility": "whole-light visibility"}
+METRIC = "oriented"
+
+
+def metric_name(metric=None):
+    return METRIC_NAMES[metric or METRIC]
 
 
 def quality(m, metric=None):
@@ -59,7 +70,17 @@ def fair_text(m):
 
 
 def other_metrics():
-    return " / ".join(k for k in METRICS if k != METRIC)
+    return " / ".join(metric_name(k) for k in METRICS if k != METRIC)
+
+
+def bias(m):
+    """Mean signed penumbra error against the chosen reference (older results: only whole-light visibility)."""
+    q = quality(m)
+    return q["penumbra_bias"] if "penumbra_bias" in q else m["quality"]["penumbra_bias"]
+
+
+def has_bias(measurements):
+    return all("penumbra_bias" in quality(m) for m in measurements)
 
 
 def load(directory):
@@ -103,7 +124,7 @@ def ratio_text(m, cell, reference):
     return f"x{m[COST] / ref[COST]:.2f}"
 
 
-def equal_time_rows(cells, budget_label):
+def equal_time_rows(cells, budget_label, metric=None):
     """Per scene and light size: the budget's cost and MAE, and the lowest MAE of any occlusion-texture
     setting whose cost is within that budget."""
     rows = []
@@ -112,10 +133,23 @@ def equal_time_rows(cells, budget_label):
         if budget is None:
             continue
         within = [m for m in cell.values() if m["family"] == "occlusion" and m[COST] <= budget[COST]]
-        best = min(within, key=pen) if within else None
+        best = min(within, key=lambda m: pen(m, metric)) if within else None
         cheapest = min((m for m in cell.values() if m["family"] == "occlusion"), key=lambda m: m[COST], default=None)
         rows.append((scene, scale, budget, best, cheapest))
     return rows
+
+
+def equal_time_wins(cells, budget_label, metric):
+    """(wins, losses, cells without an occlusion-texture setting in the budget) on that reference."""
+    wins = losses = none = 0
+    for _, _, budget, best, _ in equal_time_rows(cells, budget_label, metric):
+        if best is None:
+            none += 1
+        elif pen(best, metric) < pen(budget, metric):
+            wins += 1
+        else:
+            losses += 1
+    return wins, losses, none
 
 
 def mean(values):
@@ -172,13 +206,13 @@ def make_figures(results, directory):
             ax.set_xscale("log")
             ax.set_title(f"{scene}, light {fmt_scale(scale)}", fontsize=9)
             ax.set_xlabel("frame shadow cost, ms (log)", fontsize=8)
-            ax.set_ylabel(f"penumbra MAE ({METRIC})", fontsize=8)
+            ax.set_ylabel(f"penumbra MAE ({metric_name()})", fontsize=8)
             ax.tick_params(labelsize=7)
             ax.grid(True, which="both", alpha=0.3)
         for j in range(len(scales), rows * cols):
             axes[j // cols][j % cols].axis("off")
         axes[0][0].legend(fontsize=7)
-        fig.suptitle(f"Pareto front (dashed), {scene}: time against penumbra MAE ({METRIC} reference)", fontsize=10)
+        fig.suptitle(f"Pareto front (dashed), {scene}: time against penumbra MAE ({metric_name()} reference)", fontsize=10)
         fig.tight_layout(rect=(0, 0, 1, 0.96))
         path = os.path.join(fig_dir, f"pareto_{scene}.png")
         fig.savefig(path, dpi=110)
@@ -198,7 +232,7 @@ def make_figures(results, directory):
         ax_cost.plot(xs, [v[0] for _, v in pts], **style)
         ax_mae.plot(xs, [v[1] for _, v in pts], **style)
     for ax, title, ylabel in ((ax_cost, "cost against light size", "frame shadow cost, ms (mean over scenes)"),
-                              (ax_mae, "penumbra MAE against light size", f"penumbra MAE ({METRIC}, mean over scenes)")):
+                              (ax_mae, "penumbra MAE against light size", f"penumbra MAE ({metric_name()}, mean over scenes)")):
         ax.set_xscale("log", base=2)
         ax.set_xticks(scales, [fmt_scale(x) for x in scales])
         ax.set_xlabel("light size, multiple of the scene's default", fontsize=8)
@@ -290,13 +324,38 @@ def write_report(results, directory, thresholds, figures):
       "full table. *Penumbra pixels*: geometry pixels where the truth or the estimate is below "
       f"{meta['penumbra_threshold']}. *MAE/RMSE/p95*: of |estimate − truth|. Light sizes: multiples of each "
       "scene's default rectangle (2×2 for the built-in scenes).\n")
-    w(f"Reference of the conclusions (*MAE* below): **{METRIC}**, the {METRICS[METRIC]}. Beside it, the "
+    w(f"Reference of the conclusions (*MAE* below): **{metric_name()}**, the {METRICS[METRIC]}. Beside it, the "
       f"penumbra MAE against the other references ({other_metrics()}); pixels that see none of the light are "
-      "left out of the fair ones. `compare_report.py DIR --metric oriented` rebuilds the report on another "
-      "reference.\n")
+      "left out of the fair ones. `compare_report.py DIR --metric visibility` (or `irradiance`) rebuilds the "
+      "report on another reference.\n")
     w("Techniques in this run: " + ", ".join(
         f"{family_name(f)} ({sum(1 for l in {m['label'] for m in measurements if m['family'] == f})} settings)"
         for f in sorted({m["family"] for m in measurements})) + ".\n")
+
+    # The conclusions in one place: the chosen (fair) reference first, the others after it.
+    w("## Summary\n")
+    for budget_label in EQUAL_TIME_BUDGETS:
+        if not equal_time_rows(cells, budget_label):
+            continue
+        counts = {k: equal_time_wins(cells, budget_label, k) for k in METRICS}
+        total = sum(counts[METRIC])
+        wins, losses, none = counts[METRIC]
+        w(f"- At the cost of {budget_label}, on the **{metric_name()}** reference, an occlusion-texture setting has "
+          f"the lower penumbra MAE in **{wins} of {total}** scene × light cells (higher in {losses}, none within "
+          f"the cost in {none}). On the other references: " + "; ".join(
+              f"{metric_name(k)} {counts[k][0]} of {sum(counts[k])}" for k in METRICS if k != METRIC) + ".")
+    key = [label for label in KEY_SETTINGS if any(m["label"] == label for m in measurements)]
+    for label in key:
+        at_default = [m for m in measurements if m["label"] == label and m["light_scale"] == min(scales)]
+        if at_default:
+            w(f"- {label}{' (the default configuration)' if label == DEFAULT_SETTING else ''} at light "
+              f"{fmt_scale(min(scales))}: mean penumbra MAE **{mean(pen(m) for m in at_default):.4f}** "
+              f"({metric_name()}) over {len(at_default)} scenes; " + "; ".join(
+                  f"{metric_name(k)} {mean(pen(m, k) for m in at_default):.4f}" for k in METRICS if k != METRIC) + ".")
+    w("")
+
+    # Per scene and per mesh, at the default light.
+    write_scene_tables(results, w)
 
     # Equal time.
     w("## Equal time\n")
@@ -422,16 +481,17 @@ def write_report(results, directory, thresholds, figures):
 
     # Signed error.
     w("## Too bright or too dark\n")
-    w("Mean signed error over penumbra pixels (estimate − truth, against the visibility reference), mean over "
+    bias_metric = metric_name() if has_bias(measurements) else metric_name("visibility")
+    w(f"Mean signed error over penumbra pixels (estimate − truth, against the {bias_metric} reference), mean over "
       "scenes: positive where a setting is too bright (light leaking through or around occluders), negative "
       "where it is too dark (occlusion counted twice, penumbrae too wide). The montages show where.\n")
     w("| setting | " + " | ".join(fmt_scale(s) for s in scales) + " |")
     w("|---|" + "---|" * len(scales))
-    bias = defaultdict(lambda: defaultdict(list))
+    biases = defaultdict(lambda: defaultdict(list))
     for m in measurements:
-        bias[m["label"]][m["light_scale"]].append(m["quality"]["penumbra_bias"])
-    for label in sorted(bias, key=lambda l: (family[l], l)):
-        w(f"| {label} | " + " | ".join(f"{mean(bias[label][s]):+.3f}" if bias[label][s] else "–" for s in scales) + " |")
+        biases[m["label"]][m["light_scale"]].append(bias(m))
+    for label in sorted(biases, key=lambda l: (family[l], l)):
+        w(f"| {label} | " + " | ".join(f"{mean(biases[label][s]):+.3f}" if biases[label][s] else "–" for s in scales) + " |")
     w("")
 
     # Pareto fronts.
@@ -471,7 +531,7 @@ def write_report(results, directory, thresholds, figures):
               f"{m['texture_bytes'] / 2**20:.1f} | {q['penumbra']['mae']:.4f} / {q['penumbra']['rmse']:.4f} / "
               f"{q['penumbra']['p95']:.3f} ({q['penumbra']['pixels']}) | {q['all']['mae']:.4f} / "
               f"{q['all']['rmse']:.4f} / {q['all']['p95']:.3f} ({q['all']['pixels']}) | {fair_text(m)} | "
-              f"{m['quality']['penumbra_bias']:+.3f} | {passes} |")
+              f"{bias(m):+.3f} | {passes} |")
     w("")
     w("Ground truth per scene (computed or read from the cache): " + "; ".join(
         f"{s['name']}: {sum(t['ms'] for t in s['truth']) / 1000:.1f} s for {len(s['truth'])} images "
@@ -479,6 +539,62 @@ def write_report(results, directory, thresholds, figures):
 
     with open(os.path.join(directory, "report.md"), "w") as f:
         f.write("\n".join(out))
+
+
+def write_scene_tables(results, w):
+    """Per built-in scene and per mesh (files and the corpus): the key settings at the smallest light
+    size — penumbra MAE and p95, all-pixel MAE (chosen reference), cost and its ratio to PCSS 16/16."""
+    measurements = results["measurements"]
+    scale = min(results["meta"]["light_scales"])
+    cells = by_cell(measurements)
+    labels = [label for label in KEY_SETTINGS if any(m["label"] == label for m in measurements)]
+    if DEFAULT_SETTING not in labels:  # e.g. --quick: its occlusion-texture settings stand in for the default
+        labels = list(dict.fromkeys(m["label"] for m in measurements if m["family"] == "occlusion")) + labels
+    if not labels:
+        labels = list(dict.fromkeys(m["label"] for m in measurements))
+    reference, _ = reference_label(measurements)
+    built_in = [s for s in results["scenes"] if s.get("kind", "built-in") == "built-in"]
+    meshes = [s for s in results["scenes"] if s.get("kind", "built-in") != "built-in"]
+    w("## Per scene and mesh\n")
+    w(f"At each scene's default light ({fmt_scale(scale)}), the default configuration ({DEFAULT_SETTING}) and "
+      f"the PCSS settings shipping engines use: penumbra MAE and p95 and all-pixel MAE against the "
+      f"{metric_name()} reference; cost: the GPU time of every pass of the frame (light passes and the screen "
+      f"pass), and its ratio to {reference or 'the reference'} on the same scene (on llvmpipe only the ratio "
+      "means something). Mean rows: over the scenes of the table.\n")
+    for title, scenes in (("Built-in scenes", built_in), ("Meshes (files and the corpus)", meshes)):
+        if not scenes:
+            continue
+        w(f"### {title}\n")
+        w("| scene | triangles | setting | penumbra MAE | penumbra p95 | all-pixel MAE | cost ms | ratio | "
+          f"penumbra MAE {other_metrics()} |")
+        w("|---|---|---|---|---|---|---|---|---|")
+        per_label = defaultdict(list)
+        for s in scenes:
+            cell = cells.get((s["name"], scale), {})
+            for label in labels:
+                m = cell.get(label)
+                if not m:
+                    continue
+                per_label[label].append(m)
+                q = quality(m)
+                w(f"| {s['name']} | {s['triangles']} | {label} | {q['penumbra']['mae']:.4f} | {q['penumbra']['p95']:.3f} | "
+                  f"{q['all']['mae']:.4f} | {fmt_ms(m[COST])} | {ratio_text(m, cell, reference)} | {fair_text(m)} |")
+        for label in labels:
+            ms = per_label[label]
+            if not ms:
+                continue
+            ratios = [m[COST] / cells[(m["scene"], scale)][reference][COST] for m in ms
+                      if reference in cells[(m["scene"], scale)] and cells[(m["scene"], scale)][reference][COST] > 0]
+            w(f"| **mean** ({len(ms)}) | | {label} | **{mean(pen(m) for m in ms):.4f}** | "
+              f"{mean(quality(m)['penumbra']['p95'] for m in ms):.3f} | {mean(quality(m)['all']['mae'] for m in ms):.4f} | "
+              f"{fmt_ms(mean(m[COST] for m in ms))} | {'x%.2f' % mean(ratios) if ratios else '–'} | "
+              f"{' / '.join(f'{mean(pen(m, k) for m in ms):.3f}' for k in METRICS if k != METRIC)} |")
+        w("")
+    corpus = [s for s in meshes if s.get("corpus")]
+    if corpus:
+        w("Corpus meshes (scripts/get_corpus.sh): " + "; ".join(
+            f"{s['name']}: {s['triangles']} triangles, {s['corpus']['source']}, licence: {s['corpus']['licence']}"
+            for s in corpus) + ".\n")
 
 
 # ---- the CI check -------------------------------------------------------------------------------
@@ -513,7 +629,7 @@ def check(directory):
         problems.append("report.md is missing or empty")
     else:
         text = open(report).read()
-        for heading in ("## Equal time", "## Light size", "## Temporal stability", "## Too bright or too dark",
+        for heading in ("## Summary", "## Per scene and mesh", "## Equal time", "## Light size", "## Temporal stability", "## Too bright or too dark",
                         "## Pareto fronts"):
             if heading not in text:
                 problems.append(f"report.md has no '{heading}' section")
@@ -542,8 +658,9 @@ def main():
     parser.add_argument("directory", help="the folder holding results.json (penumbra-bench-compare --out)")
     parser.add_argument("--mae-thresholds", default="0.1,0.15,0.2",
                         help="penumbra MAEs the light-size table keeps each technique under (default 0.1,0.15,0.2)")
-    parser.add_argument("--metric", choices=list(METRICS), default="visibility",
-                        help="the reference the conclusions use (default visibility; the others are shown beside it)")
+    parser.add_argument("--metric", choices=list(METRICS), default="oriented",
+                        help="the reference the conclusions use (default oriented, the fair one; the others are "
+                             "shown beside it: irradiance, and visibility of the whole light)")
     parser.add_argument("--check", action="store_true", help="check an existing report instead of writing one")
     args = parser.parse_args()
     global METRIC

@@ -347,6 +347,9 @@ export class LayoutRunner {
             const source = pass.inputs[0], out = pass.outputs[0];
             const [w, h] = pass.viewport;
             gl.bindFramebuffer(gl.READ_FRAMEBUFFER, this.readFramebuffer);
+            // only the depth attachments: a colour texture left from a read-back would make the
+            // framebuffer incomplete (attachments of different sizes)
+            gl.framebufferTexture2D(gl.READ_FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, null, 0);
             this.attach(gl.READ_FRAMEBUFFER, gl.DEPTH_ATTACHMENT, {texture: source.texture, level: 0, layer: -1});
             gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, this.framebuffer);
             for (let i = 0; i < 8; ++i) gl.framebufferTexture2D(gl.DRAW_FRAMEBUFFER, gl.COLOR_ATTACHMENT0 + i, gl.TEXTURE_2D, null, 0);
