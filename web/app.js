@@ -305,8 +305,13 @@ class App {
             const times = side.runner.passTimes();
             if (!times || !Object.keys(times).length) return;
             const total = Object.values(times).reduce((a, b) => a + b, 0);
-            lines.push(`${sides.length > 1 ? (i ? "right" : "left") + " " : ""}GPU ${total.toFixed(2)} ms: ` +
-                       Object.entries(times).map(([k, v]) => `${k.split(" ")[1]} ${v.toFixed(2)}`).join(", "));
+            const byName = new Map(); // passes of one name (nbuffer_level, erosion_reduce, ...) summed
+            for (const [key, ms] of Object.entries(times)) {
+                const name = key.split(" ")[1], entry = byName.get(name) || {ms: 0, count: 0};
+                byName.set(name, {ms: entry.ms + ms, count: entry.count + 1});
+            }
+            lines.push(`${sides.length > 1 ? (i ? "right" : "left") + " " : ""}GPU ${total.toFixed(2)} ms (timer queries): ` +
+                       [...byName].map(([name, e]) => `${name}${e.count > 1 ? " ×" + e.count : ""} ${e.ms.toFixed(2)}`).join(", "));
         });
         const against = {difference: this.bundle.gl, error: this.bundle.truth}[this.state.view];
         if (this.state.view === "error" && !this.bundle.truth)

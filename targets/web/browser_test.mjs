@@ -83,6 +83,33 @@ async function checkPanel(page, label) {
     if (!refused.shown.startsWith("error: slices: 40 ") || refused.shown !== expected)
         failures.push(`slices 40: the page shows '${refused.shown}', the emitter says '${expected}'`);
     await setField(page, "left", "slices", slices);
+    // Every filter × packing × light (and adaptive placement) through the panel: what the emitter
+    // accepts for essl300 runs and shadows; what it refuses shows its message.
+    let ran = 0, refusedCount = 0;
+    const resolution = await page.$eval('#left [data-key="resolution"]', (e) => e.value);
+    await setField(page, "left", "resolution", "64"); // test time: the sweep is about running, not precision
+    for (const light of ["rect", "sun"])
+        for (const filter of ["mipmap", "nbuffer", "sat", "gaussian"])
+            for (const packing of ["atlas", "array", "volume"])
+                for (const placement of ["uniform", "adaptive"]) {
+                    if (placement === "adaptive" && packing !== "atlas") continue;
+                    for (const [key, value] of [["light", light], ["filter", filter], ["packing", packing], ["slice_placement", placement]])
+                        if ((await page.$eval(`#left [data-key="${key}"]`, (e) => e.value)) !== value) await setField(page, "left", key, value);
+                    const s = await state();
+                    const name = `${light}/${filter}/${packing}/${placement}`;
+                    if (!s.ok) {
+                        ++refusedCount;
+                        if (!s.shown.startsWith("error: ")) failures.push(`${name}: refused without the emitter's message`);
+                        continue;
+                    }
+                    const v = await page.evaluate(() => { try { return Array.from(window.penumbra.readVisibility()); } catch (e) { return e.message; } });
+                    if (typeof v === "string") failures.push(`${name}: emitted but does not run: ${v}`);
+                    else if (!v.some((x) => x < 0.5)) failures.push(`${name}: no shadowed pixel`);
+                    else ++ran;
+                }
+    for (const [key, value] of [["light", "rect"], ["filter", "nbuffer"], ["packing", "atlas"], ["slice_placement", "uniform"],
+                                ["resolution", resolution]])
+        await setField(page, "left", key, value);
     // Every technique WebGL2 can run, selected in the panel: it runs and shadows, unlike the others.
     const images = {};
     for (const technique of ["shadowmap", "pcf", "pcss", "erosion", "occlusion"]) {
@@ -112,7 +139,8 @@ async function checkPanel(page, label) {
                                               visible: !document.getElementById("right").hidden}));
     if (!right.running || right.technique !== "pcss" || !right.visible) failures.push(`split view: ${JSON.stringify(right)}`);
     await page.click("#split");
-    console.log(`     panel (${label}): refused slices 40 with "${refused.shown}"; ran ${Object.keys(images).join(", ")}; ` +
+    console.log(`     panel (${label}): refused slices 40 with "${refused.shown}"; filter × packing × light × placement: ` +
+                `${ran} ran and shadowed, ${refusedCount} refused for essl300 with the emitter's message; ran ${Object.keys(images).join(", ")}; ` +
                 `oim: ${oim.reason.slice(0, 60)}…; split ran ${right.technique} on the right`);
     return failures;
 }
