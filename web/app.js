@@ -287,6 +287,13 @@ class App {
                 side.failed = true;
             }
         });
+        if (sides.length > 1) { // the split line
+            gl.enable(gl.SCISSOR_TEST);
+            gl.scissor((w >> 1) - 1, 0, 2, h);
+            gl.clearColor(0.9, 0.75, 0.2, 1);
+            gl.clear(gl.COLOR_BUFFER_BIT);
+            gl.disable(gl.SCISSOR_TEST);
+        }
         gl.finish();
         this.state.frameMs = performance.now() - started;
         ++this.state.renders;
