@@ -45,6 +45,9 @@ function imageTexture(gl, width, height, values) {
     const id = gl.createTexture();
     gl.bindTexture(gl.TEXTURE_2D, id);
     gl.texStorage2D(gl.TEXTURE_2D, 1, gl.R32F, width, height);
+    // one level: NEAREST, or the texture is incomplete and texelFetch reads 0
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
     gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
     gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, width, height, gl.RED, gl.FLOAT, values);
     gl.bindTexture(gl.TEXTURE_2D, null);
@@ -518,6 +521,13 @@ class App {
                 const config = app.sides[0].runner.layout.config;
                 return {computed: lightUniforms(app.light(config.light), app.geometry.box.lo, app.geometry.box.hi, config.slices).uniforms,
                         bundle: app.bundle.info.uniforms};
+            },
+            // The canvas as RGBA bytes, bottom row first (what the views show).
+            readCanvas: () => {
+                const gl = app.gl, out = new Uint8Array(4 * app.canvas.width * app.canvas.height);
+                gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+                gl.readPixels(0, 0, app.canvas.width, app.canvas.height, gl.RGBA, gl.UNSIGNED_BYTE, out);
+                return {width: app.canvas.width, height: app.canvas.height, rgba: Array.from(out)};
             },
             passTimes: (side = 0) => app.sides[side].runner && app.sides[side].runner.passTimes(),
             status: () => $("status").textContent,

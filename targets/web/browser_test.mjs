@@ -306,7 +306,24 @@ async function checkBundle(browser, port, index, dir, screenshots) {
             if (geometry[4 * i + 3] > 0.5 && Number.isFinite(reference.truth[i])) { sum += Math.abs(v[i] - reference.truth[i]); ++n; }
         if (!shown || Math.abs(Number(shown[1]) - sum / n) > 1e-4 || Number(shown[2]) !== n)
             failures.push(`error view: the page shows '${shown ? shown[0] : status}', the test computes MAE ${(sum / n).toFixed(4)} over ${n} pixels`);
-        truthLine = shown ? `\n     error view: ${shown[0]}` : "";
+        // What the view draws: white where the page agrees with the truth, red or blue where it is
+        // 0.25 or more off, at each bundle pixel's place on the canvas.
+        const canvas = await page.evaluate(() => window.penumbra.readCanvas());
+        let checked = 0, wrong = 0;
+        for (let y = 0; y < bundle.height; ++y)
+            for (let x = 0; x < bundle.width; ++x) {
+                const i = y * bundle.width + x;
+                if (geometry[4 * i + 3] < 0.5 || !Number.isFinite(reference.truth[i])) continue;
+                const d = Math.abs(v[i] - reference.truth[i]);
+                if (d > 0.01 && d < 0.25) continue;
+                const cx = Math.floor((x + 0.5) * canvas.width / bundle.width), cy = Math.floor((y + 0.5) * canvas.height / bundle.height);
+                const [r, g, b] = canvas.rgba.slice(4 * (cy * canvas.width + cx), 4 * (cy * canvas.width + cx) + 3);
+                const white = r > 230 && g > 230 && b > 230, saturated = (r > 230 && g < 30 && b < 30) || (b > 230 && r < 30 && g < 30);
+                ++checked;
+                if (d <= 0.01 ? !white : !saturated) ++wrong;
+            }
+        if (checked === 0 || wrong > 0.01 * checked) failures.push(`error view: ${wrong} of ${checked} checked pixels drawn in the wrong colour`);
+        truthLine = shown ? `\n     error view: ${shown[0]}; ${checked - wrong} of ${checked} checked pixels drawn as their error` : "";
         await page.select("#view-mode", "shaded");
     }
     if (index === 0) failures.push(...await checkPanel(page, label));
