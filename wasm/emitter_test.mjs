@@ -1,5 +1,5 @@
 // emitter_test.mjs — the WebAssembly emitter against penumbra-gen, byte for byte (label "browser";
-// node only, through web/penumbra_emitter.js and its few-line WASI shim, as the page loads it).
+// node only, through web/penumbra_emitter.js, as the page loads it; the module must import nothing).
 //
 //   node wasm/emitter_test.mjs --gen build/generator/penumbra-gen --wasm build/wasm/penumbra_emitter.wasm
 //
@@ -120,7 +120,13 @@ function filesIn(dir) {
 
 async function main() {
     const args = parseArguments(process.argv.slice(2));
-    const emitter = await loadEmitter(fs.readFileSync(args.wasm), {log: (t) => process.stderr.write(t)});
+    const bytes = fs.readFileSync(args.wasm);
+    const imports = WebAssembly.Module.imports(new WebAssembly.Module(bytes));
+    if (imports.length) {
+        console.log(`FAIL the module imports ${imports.map((i) => `${i.module}.${i.name}`).join(", ")}; it must import nothing`);
+        process.exit(1);
+    }
+    const emitter = await loadEmitter(bytes);
     const cases = configurations(Number(args.seed));
     // A whole layout.json as the configuration (penumbra-gen reads its "config" object).
     const sample = emitter.emit({slices: 8, filter: "mipmap", target: "essl300"});
