@@ -18,6 +18,7 @@ import {fileURLToPath, pathToFileURL} from "node:url";
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const {loadEmitter} = await import(pathToFileURL(path.join(here, "../web/penumbra_emitter.js")));
+const {FIELDS} = await import(pathToFileURL(path.join(here, "../web/config_panel.js")));
 
 function parseArguments(argv) {
     const out = {gen: null, wasm: null, seed: 19};
@@ -164,6 +165,25 @@ async function main() {
         }
     });
     fs.rmSync(root, {recursive: true, force: true});
+
+    // The page's panel (web/config_panel.js): a field for every key of layout.json's config, each
+    // with penumbra-gen's flag and its --help text word for word.
+    const help = spawnSync(path.resolve(args.gen), ["--help"], {encoding: "utf8"}).stdout.replace(/\s+/g, " ");
+    const keys = [];
+    const walk = (object, prefix) => {
+        for (const [k, v] of Object.entries(object))
+            if (v && typeof v === "object") walk(v, `${prefix}${k}.`);
+            else keys.push(prefix + k);
+    };
+    walk(sample.layout.config, "");
+    for (const key of keys)
+        if (!FIELDS.some((f) => f.key === key)) failures.push(`panel: no field for layout.json config key ${key}`);
+    for (const f of FIELDS) {
+        if (!keys.includes(f.key)) failures.push(`panel: field ${f.key} is no key of layout.json's config`);
+        if (!help.includes(f.flag)) failures.push(`panel: ${f.key}: flag ${f.flag} is not in penumbra-gen --help`);
+        if (!help.includes(f.help)) failures.push(`panel: ${f.key}: '${f.help}' is not what penumbra-gen --help says`);
+    }
+    console.log(`panel: ${FIELDS.length} fields for the ${keys.length} keys of layout.json's config, flags and help text as --help`);
     console.log(`${cases.length} configurations: ${valid} valid (files equal byte for byte), ${invalid} invalid (same error line); ` +
                 `${failures.length} failures`);
     for (const f of failures) console.log(`FAIL ${f}`);
