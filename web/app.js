@@ -130,7 +130,10 @@ class App {
         if (!this.gl) throw new Error("this browser has no WebGL2");
         // The G-buffer is RGBA32F, as the layouts declare their caller textures.
         if (!this.gl.getExtension("EXT_color_buffer_float")) throw new Error("this browser lacks EXT_color_buffer_float (rendering the RGBA32F G-buffer)");
-        this.emitter = await loadEmitter(params.get("wasm") || undefined);
+        // The module beside the page (published), else the build folder's when the repository's
+        // root is served (python3 -m http.server, then /web/).
+        this.emitter = await loadEmitter(params.get("wasm") || undefined)
+            .catch((first) => loadEmitter("../build/wasm/penumbra_emitter.wasm").catch(() => { throw first; }));
         // The emitter's defaults (Config{}), for WebGL2: target essl300, 256² occlusion textures.
         this.defaults = this.emitter.emit({target: "essl300"}).layout.config;
         // With ?bundle= the page starts at the bundle's camera (its G-buffers): what the desktop ran.
