@@ -9,7 +9,8 @@ packages=(
     cmake g++ make pkg-config
     libglm-dev glslang-dev glslang-tools spirv-tools doctest-dev nlohmann-json3-dev
     libglfw3-dev libepoxy-dev libgl1-mesa-dri libegl1-mesa-dev mesa-utils xvfb xauth
-    libimgui-dev libstb-dev libtinyobjloader-dev libembree-dev
+    libimgui-dev libstb-dev libtinyobjloader-dev libtinygltf-dev libembree-dev
+    assimp-testmodels
     libvulkan-dev libvulkan-volk-dev mesa-vulkan-drivers vulkan-validationlayers
     python3 python3-jsonschema python3-matplotlib
     chromium
@@ -37,4 +38,10 @@ web="$(cd "$(dirname "$0")/.." && pwd)/targets/web"
 if [ ! -f "$web/node_modules/.package-lock.json" ] || [ "$web/package-lock.json" -nt "$web/node_modules/.package-lock.json" ]; then
     echo "setup: npm ci in targets/web"
     npm ci --prefix "$web" --no-audit --no-fund --loglevel=error
+fi
+# three (the three.js add-on's peer dependency, for its example and tests), pinned by web/three/package-lock.json.
+three="$(cd "$(dirname "$0")/.." && pwd)/web/three"
+if [ ! -f "$three/node_modules/.package-lock.json" ] || [ "$three/package-lock.json" -nt "$three/node_modules/.package-lock.json" ]; then
+    echo "setup: npm ci in web/three"
+    npm ci --prefix "$three" --no-audit --no-fund --loglevel=error
 fi

@@ -4,7 +4,7 @@
 // output, the CPU oracle's per-pixel value and bound, and the emission of the requested target.
 // README.md in this folder documents the files.
 //
-//   penumbra-export-bundle --scene NAME|FILE.obj [configuration flags] [--size WxH] [--light-size X] --out DIR
+//   penumbra-export-bundle --scene NAME|FILE [--no-ground] [configuration flags] [--size WxH] [--light-size X] --out DIR
 //
 // The configuration flags are penumbra-gen's (the same parser); the GL run uses the same
 // configuration (with target glsl450 when the target is vulkan). Exit status: 0 written,
@@ -54,6 +54,7 @@ struct BundleArguments {
     std::optional<double> light_size;
     std::string out_dir;
     Config config; // the target's; the GL run uses it (with Target::glsl450 for vulkan)
+    bool ground = true;        // --no-ground: no floor under a mesh file
     int reference_samples = 0; // --reference N: truth.f32, N×N rays per pixel (0: none)
     double sun_time = 0.5;     // --sun-time (oim)
     std::string bake_cache;    // --bake-cache DIR (oim)
@@ -61,7 +62,7 @@ struct BundleArguments {
 };
 
 constexpr std::string_view usage_text =
-    "usage: penumbra-export-bundle --scene NAME|FILE.obj [configuration flags] [--size WxH] [--light-size X]\n"
+    "usage: penumbra-export-bundle --scene NAME|FILE [--no-ground] [configuration flags] [--size WxH] [--light-size X]\n"
     "                              [--reference N] [--sun-time T] [--bake-cache DIR] --out DIR\n"
     "\n"
     "Renders the scene with the desktop GL runtime (the configuration's emission; glsl450 for the vulkan\n"
@@ -70,7 +71,9 @@ constexpr std::string_view usage_text =
     "and emission/ (penumbra-gen's files for --target); with --reference truth.f32, with --technique oim\n"
     "texcoords.f32 and the bake's textures. See targets/bundle/README.md.\n"
     "\n"
-    "  --scene NAME|FILE.obj  planes, boxes, tree, butterfly, terrain, crowd, or a Wavefront OBJ file\n"
+    "  --scene NAME|FILE      planes, boxes, tree, butterfly, terrain, crowd, or a mesh file: Wavefront OBJ\n"
+    "                         (.obj) or glTF 2.0 (.gltf, .glb)\n"
+    "  --no-ground            no floor under a mesh file (default: one, as penumbra-playground)\n"
     "  --size WxH             image size, each side 1 to 4096 (default 128x128)\n"
     "  --light-size X         the rectangle's longer side (scene units) or the sun's angular diameter (degrees)\n"
     "  --out DIR              the bundle directory (created; its emission/ is replaced)\n"
@@ -82,8 +85,8 @@ constexpr std::string_view usage_text =
     "                         --[no-]tangent-clip, --slice-placement, --config FILE.json (see penumbra-gen --help)\n";
 
 constexpr std::string_view flag_list =
-    "--scene, --size, --light-size, --out, --reference, --sun-time, --bake-cache, --slices, --resolution, --filter, "
-    "--fusion, --packing, --light, --target, --no-leak-fix, --no-fade, --tangent-clip, --no-tangent-clip, "
+    "--scene, --no-ground, --size, --light-size, --out, --reference, --sun-time, --bake-cache, --slices, --resolution, "
+    "--filter, --fusion, --packing, --light, --target, --no-leak-fix, --no-fade, --tangent-clip, --no-tangent-clip, "
     "--slice-placement, --config, --help, and the technique flags of penumbra-gen";
 
 std::string parse_positive_int(std::string_view text, int& value) {
@@ -103,6 +106,10 @@ penumbra_gen::Parsed<BundleArguments> parse(const std::vector<std::string>& args
         if (arg == "--help" || arg == "-h") {
             out.help = true;
             return {out, {}};
+        }
+        if (arg == "--no-ground") {
+            out.ground = false;
+            continue;
         }
         std::string flag = arg, value;
         bool has_value = false;
@@ -157,7 +164,7 @@ penumbra_gen::Parsed<BundleArguments> parse(const std::vector<std::string>& args
             out.light_size = size;
         }
     }
-    if (out.scene.empty()) return fail("--scene: missing; allowed: a scene name or a .obj path");
+    if (out.scene.empty()) return fail("--scene: missing; allowed: a scene name or a .obj, .gltf or .glb path");
     if (out.out_dir.empty()) return fail("--out: missing; the bundle directory is required (--out DIR)");
     config_args.push_back("--out");
     config_args.push_back(out.out_dir);
@@ -232,7 +239,7 @@ int run(const std::vector<std::string>& args) {
         std::cout << usage_text;
         return ok;
     }
-    SceneLoad loaded = load_scene(a.scene);
+    SceneLoad loaded = load_scene(a.scene, a.ground);
     if (!loaded.scene) return fail(loaded.error, bad_input);
     Scene& scene = *loaded.scene;
     if (a.light_size) apply_light_size(scene, shading_light(a.config), *a.light_size);
@@ -317,10 +324,19 @@ int run(const std::vector<std::string>& args) {
         {"width", a.width},
         {"height", a.height},
         {"scene", scene.name},
+        {"ground", scene.ground},
         {"config", config_json(a.config)},
         {"gl_config", config_json(gl_config)},
         {"light", light_json(scene, shading_light(gl_config))},
         {"triangles", triangles.size() / 3},
+        // The camera of the GL run (glm::lookAt with up +y, glm::perspective at width / height).
+        {"camera",
+         {{"eye", {scene.camera.eye_position().x, scene.camera.eye_position().y, scene.camera.eye_position().z}},
+          {"target", {scene.camera.target.x, scene.camera.target.y, scene.camera.target.z}},
+          {"up", {0.0, 1.0, 0.0}},
+          {"fov_y_degrees", scene.camera.fov_y_radians * 180.0 / 3.14159265358979323846},
+          {"near", scene.camera.z_near},
+          {"far", scene.camera.z_far}}},
         {"renderer", context->renderer()},
         {"uniforms", uniforms_json(inputs, emitted.value->layout)},
         {"caller_textures", {{"penumbra_worldPositions", "positions.f32"}, {"penumbra_worldNormals", "normals.f32"}}},
@@ -334,6 +350,9 @@ int run(const std::vector<std::string>& args) {
         }
         uniforms["bake_textures"] = bake;
         uniforms["sun_time"] = a.sun_time;
+        nlohmann::ordered_json path = nlohmann::ordered_json::array(); // the path the bake traced
+        for (const SunPathPoint& p : SunPath{}.points) path.push_back({p.azimuth_degrees, p.elevation_degrees});
+        uniforms["sun_path"] = path;
     }
     if (!truth.empty()) uniforms["truth"] = {{"file", "truth.f32"}, {"kind", "oriented"}, {"samples", a.reference_samples}};
     // Files of an earlier bundle in this folder that this one does not write would mislead a runner.
