@@ -473,12 +473,9 @@ int main(int argc, char** argv) {
         std::printf("\n|---|---|---|");
         for (std::size_t i = 0; i < measures.size(); ++i) std::printf("---|");
         std::printf("\n");
-        for (const auto& [prefix, steps] : series)
-        for (std::size_t i = 1; i < steps.size(); ++i) {
-            const json& a = *steps[i - 1];
-            const json& b = *steps[i];
+        auto row = [&](const json& a, const json& b) {
             const double n = b["triangles"].get<double>() / a["triangles"].get<double>();
-            json row = {{"from", a["name"]}, {"to", b["name"]}, {"triangle_ratio", n}, {"exponents", json::object()}};
+            json r = {{"from", a["name"]}, {"to", b["name"]}, {"triangle_ratio", n}, {"exponents", json::object()}};
             std::printf("| %s | %s | %.1f |", a["name"].get<std::string>().c_str(), b["name"].get<std::string>().c_str(), n);
             for (const Measure& m : measures) {
                 const double t1 = m.value(a), t2 = m.value(b);
@@ -487,11 +484,16 @@ int main(int argc, char** argv) {
                     continue;
                 }
                 const double e = std::log(t2 / t1) / std::log(n);
-                row["exponents"][m.name] = e;
+                r["exponents"][m.name] = e;
                 std::printf(" %.2f%s |", e, e > 1.15 ? "*" : "");
             }
             std::printf("\n");
-            growth.push_back(std::move(row));
+            growth.push_back(std::move(r));
+        };
+        // each step, then the whole series (first to last: the steadiest estimate)
+        for (const auto& [prefix, steps] : series) {
+            for (std::size_t i = 1; i < steps.size(); ++i) row(*steps[i - 1], *steps[i]);
+            if (steps.size() > 2) row(*steps.front(), *steps.back());
         }
     }
     results["growth"] = growth;
