@@ -91,10 +91,11 @@ struct Options {
     int flicker_frames = 8;
     double flicker_step = 0.005;     // light motion per frame, as a fraction of the scene's ground span
     std::string out_dir = "out/compare";
+    bool ground = true;              // --no-ground: no floor under the mesh files
 };
 
 constexpr const char* usage_text =
-    "usage: penumbra-bench-compare [--quick | --full] [--scenes a,b,...] [FILE ...] [--corpus [DIR]]\n"
+    "usage: penumbra-bench-compare [--quick | --full] [--scenes a,b,...] [FILE ...] [--corpus [DIR]] [--no-ground]\n"
     "                              [--settings a,b,...] [--size N|WxH] [--samples N] [--runs N]\n"
     "                              [--light-scales 1,2,...] [--flicker-frames N] [--out DIR]\n"
     "  (default)         every built-in scene, the standard ladder, light x1 x2 x4 x8 x16 x32, 128x128,\n"
@@ -106,6 +107,8 @@ constexpr const char* usage_text =
     "                    --scenes '' for none, e.g. to run only files or the corpus)\n"
     "  FILE              mesh files (what penumbra-playground --scene loads), added to the scenes: light\n"
     "                    and camera from their bounds\n"
+    "  --no-ground       no floor under the mesh files and the corpus (default: each stands on one, as in\n"
+    "                    penumbra-playground)\n"
     "  --corpus [DIR]    adds every mesh of the corpus in DIR (default ~/.cache/penumbra/corpus, or\n"
     "                    $XDG_CACHE_HOME/penumbra/corpus), fetched by scripts/get_corpus.sh\n"
     "  --settings        only these ladder settings, by label, comma-separated (e.g. 'OT nbuffer 16/512,\n"
@@ -140,6 +143,10 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
             o.flicker_frames = 4;
             continue;
         }
+        if (flag == "--no-ground") {
+            o.ground = false;
+            continue;
+        }
         if (flag == "--full") {
             o.set = bench::LadderSet::full;
             o.width = o.height = 256;
@@ -161,7 +168,7 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                                                "--light-scales", "--out", "--settings"};
         if (std::find(std::begin(valued), std::end(valued), flag) == std::end(valued))
             return fail("unknown flag '" + std::string(flag) +
-                        "'; allowed: --quick, --full, --scenes, --corpus, --settings, --size, --samples, --runs, "
+                        "'; allowed: --quick, --full, --scenes, --corpus, --no-ground, --settings, --size, --samples, --runs, "
                         "--light-scales, --flicker-frames, --out, --help, FILE");
         if (i + 1 >= argc) return fail(std::string(flag) + ": missing value (see --help)");
         const std::string_view value = argv[++i];
@@ -377,7 +384,7 @@ int main(int argc, char** argv) {
     std::vector<double> load_ms;
     for (const SceneInput& input : options->scenes) {
         const auto load_start = std::chrono::steady_clock::now();
-        SceneLoad loaded = load_scene(input.name_or_path);
+        SceneLoad loaded = load_scene(input.name_or_path, options->ground);
         if (!loaded.scene) return fail(loaded.error, 2);
         load_ms.push_back(milliseconds_since(load_start));
         if (input.corpus) loaded.scene->name = input.corpus->name;
@@ -541,7 +548,7 @@ int main(int argc, char** argv) {
             }
             for (std::size_t e = 0; e < ladder.size(); ++e) {
                 const bench::LadderEntry& entry = ladder[e];
-                json record = {{"scene", scene.name},
+                json record = {{"scene", scene.name}, {"ground", scene.ground},
                                {"family", entry.family},
                                {"label", entry.label},
                                {"representative", entry.representative},

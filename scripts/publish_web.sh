@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # publish_web.sh — the browser playground as one folder for any static host: web/ (the page, no
 # build step), the WebAssembly emitter (build/wasm/penumbra_emitter.wasm) and the built-in scenes
-# as small essl300 bundles (penumbra-export-bundle, 96x96 G-buffers, 128² slicing; the desktop
-# run's visibility is kept for the difference view, its slicing output is not).
+# as small essl300 bundles (penumbra-export-bundle, 96x96 G-buffers, 128² slicing, an 8x8-ray
+# Embree truth for the error view; the desktop run's visibility is kept for the difference view,
+# its slicing output is not), plus boxes-oim: boxes with its occlusion interval maps baked.
 #
 #   scripts/publish_web.sh [--build DIR] [--scenes "planes boxes ..."] OUT_DIR
 #   python3 -m http.server --directory OUT_DIR 8000     # then http://localhost:8000/
@@ -40,12 +41,16 @@ index="{\"scenes\": ["
 first=1
 for scene in $scenes; do
     dir="$out/scenes/$scene"
-    "$exporter" --scene "$scene" --target essl300 --resolution 128 --size 96x96 --out "$dir" >/dev/null
-    rm -f "$dir/slices.f32"
+    "$exporter" --scene "$scene" --target essl300 --resolution 128 --size 96x96 --reference 8 --out "$dir" >/dev/null
+    rm -rf "$dir/slices.f32" "$dir/emission" # the page emits its own
     [ $first -eq 1 ] || index+=", "
     index+="{\"name\": \"$scene\", \"dir\": \"$scene\"}"
     first=0
 done
+# Occlusion interval maps need a bake: boxes with the default oim parameters (the panel's).
+"$exporter" --scene boxes --technique oim --target essl300 --size 96x96 --reference 8 --out "$out/scenes/boxes-oim" >/dev/null
+rm -rf "$out/scenes/boxes-oim/emission"
+index+=", {\"name\": \"boxes-oim (with its bake)\", \"dir\": \"boxes-oim\"}"
 index+="]}"
 echo "$index" > "$out/scenes/index.json"
 echo "publish_web: wrote $out ($(du -sh "$out" | cut -f1); the page, penumbra_emitter.wasm ($(stat -c %s "$wasm") bytes), scenes: $scenes)"

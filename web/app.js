@@ -24,15 +24,31 @@ async function fetchOk(url) {
 const floats = async (url) => new Float32Array(await (await fetchOk(url)).arrayBuffer());
 
 // Everything of a bundle the page uses (targets/bundle/README.md): triangles, light, G-buffers at
-// its camera, the desktop run's visibility and the oracle's value and bound, its slicing output.
+// its camera, the desktop run's visibility; the oracle's value and bound (occlusion textures), the
+// ray-traced truth (--reference), the bake (oim) where it has them.
 async function loadBundle(base) {
     const info = await (await fetchOk(base + "uniforms.json")).json();
-    const bundle = {base, info, width: info.width, height: info.height, triangles: await floats(base + "mesh.f32"), callerTextures: {}};
+    const bundle = {base, info, width: info.width, height: info.height, triangles: await floats(base + "mesh.f32"), callerTextures: {},
+                    bake: {}, gl: await floats(base + "visibility_gl.f32"), oracle: null, bound: null, truth: null};
     for (const [name, file] of Object.entries(info.caller_textures || {})) bundle.callerTextures[name] = await floats(base + file);
-    for (const [key, file] of [["gl", "visibility_gl.f32"], ["oracle", "oracle.f32"], ["bound", "bound.f32"]]) {
-        try { bundle[key] = await floats(base + file); } catch { bundle[key] = null; }
+    for (const [name, file] of Object.entries(info.bake_textures || {})) bundle.bake[name] = await floats(base + file);
+    if (info.config.technique === "occlusion") {
+        bundle.oracle = await floats(base + "oracle.f32");
+        bundle.bound = await floats(base + "bound.f32");
     }
+    if (info.truth) bundle.truth = await floats(base + info.truth.file);
     return bundle;
+}
+
+// An R32F texture of a bundle image (bottom row first), for the difference and error views.
+function imageTexture(gl, width, height, values) {
+    const id = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D, id);
+    gl.texStorage2D(gl.TEXTURE_2D, 1, gl.R32F, width, height);
+    gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+    gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, width, height, gl.RED, gl.FLOAT, values);
+    gl.bindTexture(gl.TEXTURE_2D, null);
+    return id;
 }
 
 // The light of a bundle, or a default one of the other kind over the bounds.
@@ -84,16 +100,14 @@ class Side {
         if (!emission.ok) this.reason = "invalid configuration: " + emission.error;
         else if (!runnable.ok) this.reason = "cannot run on WebGL2: " + runnable.error;
         else {
-            const baked = runnable.layout.textures.filter((t) => t.source === "bake").map((t) => t.name);
-            if (baked.length)
-                this.reason = `cannot run here: ${runnable.layout.config.technique} reads textures baked offline (${baked.join(", ")}; ` +
-                              "penumbra-playground --technique oim bakes them with Embree), and no bundle on this page carries a bake";
-            else if (runnable.layout.textures.some((t) => t.source === "caller" && !["penumbra_worldPositions", "penumbra_worldNormals"].includes(t.name)))
-                this.reason = "cannot run here: the layout reads a G-buffer this page does not draw";
-            else {
+            this.reason = this.app.cannotRun(runnable.layout);
+            if (!this.reason) {
                 try {
                     this.runner = LayoutRunner.fromEmission(this.app.gl, runnable);
                     this.runner.enableTiming();
+                    // Baked textures (oim) from the bundle, once per runner.
+                    for (const t of runnable.layout.textures)
+                        if (t.source === "bake") this.runner.uploadTexture(t.name, 0, -1, this.app.bundle.bake[t.name]);
                 } catch (e) {
                     this.reason = "cannot run on WebGL2: " + e.message;
                 }
@@ -145,18 +159,34 @@ class App {
         this.geometry = new SceneGeometry(this.gl, this.bundle.triangles);
         this.lights = {};
         this.state.bundleSlices = null;
-        // The difference view compares with the desktop run of the bundle's own configuration.
-        if (this.reference) this.gl.deleteTexture(this.reference);
-        this.reference = null;
-        if (this.bundle.gl) {
-            const gl = this.gl;
-            this.reference = gl.createTexture();
-            gl.bindTexture(gl.TEXTURE_2D, this.reference);
-            gl.texStorage2D(gl.TEXTURE_2D, 1, gl.R32F, this.bundle.width, this.bundle.height);
-            gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
-            gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, this.bundle.width, this.bundle.height, gl.RED, gl.FLOAT, this.bundle.gl);
-            gl.bindTexture(gl.TEXTURE_2D, null);
+        // The difference view compares with the desktop run of the bundle's own configuration, the
+        // error view with the ray-traced truth where the bundle carries one.
+        for (const id of Object.values(this.references || {})) this.gl.deleteTexture(id);
+        const {width, height} = this.bundle;
+        this.references = {difference: imageTexture(this.gl, width, height, this.bundle.gl)};
+        if (this.bundle.truth) this.references.error = imageTexture(this.gl, width, height, this.bundle.truth);
+    }
+
+    // Why a layout cannot run on this page with this scene ("" when it can).
+    cannotRun(layout) {
+        const baked = layout.textures.filter((t) => t.source === "bake");
+        if (baked.length) {
+            const c = layout.config, b = this.bundle.info.config;
+            const missing = baked.filter((t) => !this.bundle.bake[t.name]).map((t) => t.name);
+            if (missing.length)
+                return `cannot run here: ${c.technique} reads textures baked offline (${missing.join(", ")}), which this scene's bundle does not ` +
+                       "carry (penumbra-export-bundle --technique oim writes a bundle with its bake)";
+            if (b.oim.resolution !== c.oim.resolution || b.oim.intervals !== c.oim.intervals || b.oim.samples !== c.oim.samples)
+                return `cannot run here: the bundle's bake is for oim.resolution ${b.oim.resolution}, oim.intervals ${b.oim.intervals}, ` +
+                       `oim.samples ${b.oim.samples}`;
         }
+        for (const t of layout.textures) {
+            if (t.source !== "caller" || ["penumbra_worldPositions", "penumbra_worldNormals"].includes(t.name)) continue;
+            if (!this.bundle.callerTextures[t.name]) return `cannot run here: the layout reads a G-buffer (${t.name}) that this page does not draw`;
+            if (this.state.camera !== "bundle")
+                return `runs only at the bundle's camera here: the layout reads ${t.name}, which the bundle carries for its camera (camera: the bundle's)`;
+        }
+        return "";
     }
 
     light(kind) {
@@ -181,12 +211,14 @@ class App {
     renderSide(side, area) {
         const runner = side.runner;
         const config = runner.layout.config;
-        const light = this.light(config.light);
+        const light = this.light(config.technique === "oim" ? "sun" : config.light); // oim follows the sun of its bake
         const frame = lightUniforms(light, this.geometry.box.lo, this.geometry.box.hi, config.slices);
         runner.setUniforms(this.state.useBundleUniforms && this.state.camera === "bundle" ? this.bundle.info.uniforms : frame.uniforms);
         const {eye, clip} = this.camera();
         const toLight = light.kind === "sun" ? [-light.direction[0], -light.direction[1], -light.direction[2], 0] : [...light.center, 1];
         runner.setUniforms({penumbra_clipFromWorld: clip, penumbra_toLight: toLight});
+        // oim: the sun's window along its path at the bundle's instant (its bake's path).
+        if (this.bundle.info.uniforms.penumbra_timeWindow) runner.setUniforms({penumbra_timeWindow: this.bundle.info.uniforms.penumbra_timeWindow});
         const replace = this.state.bundleSlices && this.state.camera === "bundle" ? {slicing: (pass) => this.injectSlices(runner, pass)} : {};
         runner.runPhase("shadow", () => this.geometry.draw(), null, replace);
 
@@ -195,19 +227,23 @@ class App {
         const positions = runner.callerTarget("penumbra_worldPositions", width, height) || this.gbuffer.ownTexture("positions", width, height);
         const normals = runner.callerTarget("penumbra_worldNormals", width, height) || this.gbuffer.ownTexture("normals", width, height);
         if (bundleCamera) {
-            for (const [t, name] of [[positions, "penumbra_worldPositions"], [normals, "penumbra_worldNormals"]]) {
-                const gl = this.gl;
+            const gl = this.gl;
+            const upload = (t, texels) => {
                 gl.bindTexture(gl.TEXTURE_2D, t.id);
                 gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
-                gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, width, height, gl.RGBA, gl.FLOAT, this.bundle.callerTextures[name]);
+                gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, width, height, gl.RGBA, gl.FLOAT, texels);
                 gl.bindTexture(gl.TEXTURE_2D, null);
-            }
+            };
+            upload(positions, this.bundle.callerTextures.penumbra_worldPositions);
+            upload(normals, this.bundle.callerTextures.penumbra_worldNormals);
+            for (const [name, texels] of Object.entries(this.bundle.callerTextures))
+                if (!name.startsWith("penumbra_world") && runner.callerTarget(name, width, height)) upload(runner.callerTarget(name, width, height), texels);
         } else {
             this.gbuffer.render(this.geometry, clip, eye, width, height, {positions, normals});
         }
         runner.runPhase("screen", null, {width, height});
         this.composite.draw({visibility: runner.texture(runner.layout.result).id, positions: positions.id, normals: normals.id,
-                             reference: bundleCamera ? this.reference : null}, [this.canvas.width, this.canvas.height], area,
+                             reference: bundleCamera ? this.references[this.state.view] : null}, [this.canvas.width, this.canvas.height], area,
                             this.state.view, toLight);
         return frame.contained;
     }
@@ -242,11 +278,13 @@ class App {
                 messages.push(label + side.reason);
                 return;
             }
+            side.failed = false;
             try {
                 if (!this.renderSide(side, area)) messages.push(label + "the bounds reach the light plane: move the light up");
             } catch (e) {
                 messages.push(`${label}cannot run on WebGL2: ${e.message}`);
                 side.reason = e.message;
+                side.failed = true;
             }
         });
         gl.finish();
@@ -267,17 +305,26 @@ class App {
             const times = side.runner.passTimes();
             if (!times || !Object.keys(times).length) return;
             const total = Object.values(times).reduce((a, b) => a + b, 0);
-            lines.push(`${sides.length > 1 ? (i ? "right" : "left") + " " : ""}GPU ${total.toFixed(2)} ms: ` +
-                       Object.entries(times).map(([k, v]) => `${k.split(" ")[1]} ${v.toFixed(2)}`).join(", "));
-        });
-        if (this.state.view === "error" && this.state.camera === "bundle" && this.bundle.gl) {
-            const v = this.sides[0].runner ? this.sides[0].runner.readResult() : null;
-            if (v) {
-                let sum = 0, n = 0;
-                for (let i = 0; i < v.length; ++i) if (this.bundle.callerTextures.penumbra_worldPositions[4 * i + 3] > 0.5) { sum += Math.abs(v[i] - this.bundle.gl[i]); ++n; }
-                lines.push(`mean |browser − desktop| ${(sum / Math.max(n, 1)).toFixed(4)} over ${n} pixels (the desktop run of the bundle's configuration: ` +
-                           `${describe(this.bundle.info.config)})`);
+            const byName = new Map(); // passes of one name (nbuffer_level, erosion_reduce, ...) summed
+            for (const [key, ms] of Object.entries(times)) {
+                const name = key.split(" ")[1], entry = byName.get(name) || {ms: 0, count: 0};
+                byName.set(name, {ms: entry.ms + ms, count: entry.count + 1});
             }
+            lines.push(`${sides.length > 1 ? (i ? "right" : "left") + " " : ""}GPU ${total.toFixed(2)} ms (timer queries): ` +
+                       [...byName].map(([name, e]) => `${name}${e.count > 1 ? " ×" + e.count : ""} ${e.ms.toFixed(2)}`).join(", "));
+        });
+        const against = {difference: this.bundle.gl, error: this.bundle.truth}[this.state.view];
+        if (this.state.view === "error" && !this.bundle.truth)
+            lines.push("this bundle carries no ray-traced truth (penumbra-export-bundle --reference N writes one)");
+        if (against && this.state.camera === "bundle" && this.sides[0].runner) {
+            const v = this.sides[0].runner.readResult(), geometry = this.bundle.callerTextures.penumbra_worldPositions;
+            let sum = 0, n = 0;
+            for (let i = 0; i < v.length; ++i)
+                if (geometry[4 * i + 3] > 0.5 && Number.isFinite(against[i])) { sum += Math.abs(v[i] - against[i]); ++n; }
+            lines.push(this.state.view === "error"
+                ? `MAE against the truth (${this.bundle.info.truth.kind}, ${this.bundle.info.truth.samples}² rays) ${(sum / Math.max(n, 1)).toFixed(4)} over ${n} pixels`
+                : `mean |browser − desktop| ${(sum / Math.max(n, 1)).toFixed(4)} over ${n} pixels (the desktop ran the bundle's configuration: ` +
+                  `${describe(this.bundle.info.config)})`);
         }
         for (const m of this.messages || []) lines.push(m);
         $("status").textContent = lines.join("\n");
@@ -329,8 +376,12 @@ class App {
             this.sides.forEach((s) => s && s.update(false));
             this.render();
         }));
-        row("view ", select("view-mode", [["shaded", "shaded"], ["visibility", "visibility"], ["error", "difference from the bundle's desktop run"]],
-                            this.state.view, (v) => { this.state.view = v; if (v === "error") this.setCamera("bundle"); else this.render(); }));
+        row("view ", select("view-mode", [["shaded", "shaded"], ["visibility", "visibility"], ["difference", "difference from the bundle's desktop run"],
+                                           ["error", "error against the bundle's ray-traced truth"]],
+                            this.state.view, (v) => {
+                                this.state.view = v;
+                                if (v === "difference" || v === "error") this.setCamera("bundle"); else this.render();
+                            }));
         row("camera ", select("camera", [["orbit", "orbit (drag the image)"], ["bundle", "the bundle's camera and G-buffers"]], this.state.camera,
                               (v) => this.setCamera(v)));
         const split = Object.assign(document.createElement("input"), {type: "checkbox", id: "split"});
@@ -399,6 +450,7 @@ class App {
     setCamera(camera) {
         this.state.camera = camera;
         $("camera").value = camera;
+        this.sides.forEach((s) => s && s.update(false)); // what runs may depend on the camera (oim)
         this.render();
     }
 
@@ -426,7 +478,11 @@ class App {
                                       layoutConfig: app.sides[side].emission.layout && app.sides[side].emission.layout.config}),
             reason: (side = 0) => app.sides[side].reason,
             running: (side = 0) => !!app.sides[side].runner,
-            readVisibility: (side = 0) => app.sides[side].runner.readResult(),
+            // The side's result; an error when its last render failed (the texture would be stale).
+            readVisibility: (side = 0) => {
+                if (!app.sides[side].runner || app.sides[side].failed) throw new Error(`side ${side} did not render: ${app.sides[side].reason}`);
+                return app.sides[side].runner.readResult();
+            },
             setCamera: (camera) => app.setCamera(camera),
             setSplit: (on) => app.setSplit(on),
             setLight: (kind, changes) => { Object.assign(app.light(kind), changes); app.render(); },

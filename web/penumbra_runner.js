@@ -25,6 +25,7 @@ const FORMATS = {
     RGBA32F: {format: "RGBA", type: "FLOAT", float: true, filterable: false},
     R32F: {format: "RED", type: "FLOAT", float: true, filterable: false},
     RG32F: {format: "RG", type: "FLOAT", float: true, filterable: false},
+    R32UI: {format: "RED_INTEGER", type: "UNSIGNED_INT", float: false, integer: true}, // adaptive slice boundaries
     DEPTH_COMPONENT24: {format: "DEPTH_COMPONENT", type: "UNSIGNED_INT", float: false, depth: true},
     DEPTH_COMPONENT32F: {format: "DEPTH_COMPONENT", type: "FLOAT", float: false, depth: true},
 };
@@ -256,7 +257,13 @@ export class LayoutRunner {
         on(gl.POLYGON_OFFSET_FILL, offset);
         if (offset) gl.polygonOffset(state.polygon_offset_factor, state.polygon_offset_units);
         let mask = 0;
-        if (state.clear_color) {
+        if (state.clear_color && (this.integerOutputs || []).some((x) => x)) {
+            // an integer target clears with clearBufferuiv (gl.clear would be an error)
+            this.integerOutputs.forEach((integer, i) => {
+                if (integer) gl.clearBufferuiv(gl.COLOR, i, Uint32Array.from(state.clear_color));
+                else gl.clearBufferfv(gl.COLOR, i, state.clear_color);
+            });
+        } else if (state.clear_color) {
             gl.clearColor(...state.clear_color);
             mask |= gl.COLOR_BUFFER_BIT;
         }
@@ -279,6 +286,7 @@ export class LayoutRunner {
     // Binds the pass's outputs to our framebuffer, or the default one when it has none.
     bindOutputs(pass) {
         const gl = this.gl;
+        this.integerOutputs = pass.outputs.filter((o) => o.kind !== "depth").map((o) => !!FORMATS[this.texture(o.texture).desc.internal_format].integer);
         if (pass.outputs.length === 0) {
             gl.bindFramebuffer(gl.FRAMEBUFFER, null);
             return;
@@ -347,6 +355,9 @@ export class LayoutRunner {
             const source = pass.inputs[0], out = pass.outputs[0];
             const [w, h] = pass.viewport;
             gl.bindFramebuffer(gl.READ_FRAMEBUFFER, this.readFramebuffer);
+            // only the depth attachments: a colour texture left from a read-back would make the
+            // framebuffer incomplete (attachments of different sizes)
+            gl.framebufferTexture2D(gl.READ_FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, null, 0);
             this.attach(gl.READ_FRAMEBUFFER, gl.DEPTH_ATTACHMENT, {texture: source.texture, level: 0, layer: -1});
             gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, this.framebuffer);
             for (let i = 0; i < 8; ++i) gl.framebufferTexture2D(gl.DRAW_FRAMEBUFFER, gl.COLOR_ATTACHMENT0 + i, gl.TEXTURE_2D, null, 0);

@@ -168,7 +168,8 @@ export class GBuffer {
 
 const FULLSCREEN_VS = `#version 300 es
 void main() { vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2); gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0); }`;
-// mode 0 shaded, 1 visibility, 2 |visibility − reference| (red: brighter, blue: darker)
+// mode 0 shaded, 1 visibility, 2 |visibility − reference| (red: brighter, blue: darker; grey where
+// the reference is NaN: a truth that sees none of the light)
 const COMPOSITE_FS = `#version 300 es
 precision highp float;
 uniform highp sampler2D visibility;
@@ -187,7 +188,9 @@ void main() {
     vec4 p = texelFetch(positions, texel, 0);
     if (mode == 1) { color = vec4(vec3(p.w > 0.5 ? v : 0.0), 1.0); return; }
     if (mode == 2) {
-        float d = v - texelFetch(reference, texel, 0).r;
+        float r = texelFetch(reference, texel, 0).r;
+        if (isnan(r)) { color = vec4(0.3, 0.3, 0.3, 1.0); return; } // the truth is undefined there
+        float d = v - r;
         float e = clamp(abs(d) * 4.0, 0.0, 1.0);
         color = p.w > 0.5 ? vec4(d > 0.0 ? vec3(1.0, 1.0 - e, 1.0 - e) : vec3(1.0 - e, 1.0 - e, 1.0), 1.0) : vec4(0.1, 0.1, 0.1, 1.0);
         return;
@@ -213,7 +216,7 @@ export class Composite {
 
     // textures: {visibility, positions, normals, reference (optional)} GL texture ids, images of
     // the whole canvas; canvas: [width, height]; area: the rectangle [x, y, w, h] of the canvas to
-    // draw (a split view's half); mode "shaded" | "visibility" | "error".
+    // draw (a split view's half); mode "shaded" | "visibility" | "difference" | "error".
     draw(textures, canvas, area, mode, toLight) {
         const gl = this.gl;
         gl.bindFramebuffer(gl.FRAMEBUFFER, null);
@@ -232,7 +235,7 @@ export class Composite {
         });
         gl.uniform4fv(gl.getUniformLocation(this.program, "area"), [0, 0, canvas[0], canvas[1]]);
         gl.uniform4fv(gl.getUniformLocation(this.program, "toLight"), toLight);
-        gl.uniform1i(gl.getUniformLocation(this.program, "mode"), {shaded: 0, visibility: 1, error: 2}[mode]);
+        gl.uniform1i(gl.getUniformLocation(this.program, "mode"), {shaded: 0, visibility: 1, difference: 2, error: 2}[mode]);
         gl.bindVertexArray(this.vao);
         gl.drawArrays(gl.TRIANGLES, 0, 3);
         gl.bindVertexArray(null);

@@ -4,7 +4,7 @@
 // output, the CPU oracle's per-pixel value and bound, and the emission of the requested target.
 // README.md in this folder documents the files.
 //
-//   penumbra-export-bundle --scene NAME|FILE.obj [configuration flags] [--size WxH] [--light-size X] --out DIR
+//   penumbra-export-bundle --scene NAME|FILE [--no-ground] [configuration flags] [--size WxH] [--light-size X] --out DIR
 //
 // The configuration flags are penumbra-gen's (the same parser); the GL run uses the same
 // configuration (with target glsl450 when the target is vulkan). Exit status: 0 written,
@@ -14,6 +14,7 @@
 #include "../../generator/src/write_files.hpp"
 
 #include "app/headless_job.hpp"
+#include "bake/oim_scene.hpp"
 #include "reference/oracle.hpp"
 #include "rendering/egl_context.hpp"
 #include "rendering/headless_render.hpp"
@@ -53,28 +54,40 @@ struct BundleArguments {
     std::optional<double> light_size;
     std::string out_dir;
     Config config; // the target's; the GL run uses it (with Target::glsl450 for vulkan)
+    bool ground = true;        // --no-ground: no floor under a mesh file
+    int reference_samples = 0; // --reference N: truth.f32, N×N rays per pixel (0: none)
+    double sun_time = 0.5;     // --sun-time (oim)
+    std::string bake_cache;    // --bake-cache DIR (oim)
     bool help = false;
 };
 
 constexpr std::string_view usage_text =
-    "usage: penumbra-export-bundle --scene NAME|FILE.obj [configuration flags] [--size WxH] [--light-size X] --out DIR\n"
+    "usage: penumbra-export-bundle --scene NAME|FILE [--no-ground] [configuration flags] [--size WxH] [--light-size X]\n"
+    "                              [--reference N] [--sun-time T] [--bake-cache DIR] --out DIR\n"
     "\n"
     "Renders the scene with the desktop GL runtime (the configuration's emission; glsl450 for the vulkan\n"
     "target) and writes, for a foreign runner to reproduce: mesh.f32, uniforms.json, positions.f32,\n"
-    "normals.f32, visibility_gl.f32, slices.f32, oracle.f32, bound.f32 and emission/ (penumbra-gen's files\n"
-    "for --target). See targets/bundle/README.md.\n"
+    "normals.f32, visibility_gl.f32, slices.f32, oracle.f32, bound.f32 (occlusion textures: the CPU oracle)\n"
+    "and emission/ (penumbra-gen's files for --target); with --reference truth.f32, with --technique oim\n"
+    "texcoords.f32 and the bake's textures. See targets/bundle/README.md.\n"
     "\n"
-    "  --scene NAME|FILE.obj  planes, boxes, tree, butterfly, terrain, crowd, or a Wavefront OBJ file\n"
+    "  --scene NAME|FILE      planes, boxes, tree, butterfly, terrain, crowd, or a mesh file: Wavefront OBJ\n"
+    "                         (.obj) or glTF 2.0 (.gltf, .glb)\n"
+    "  --no-ground            no floor under a mesh file (default: one, as penumbra-playground)\n"
     "  --size WxH             image size, each side 1 to 4096 (default 128x128)\n"
     "  --light-size X         the rectangle's longer side (scene units) or the sun's angular diameter (degrees)\n"
     "  --out DIR              the bundle directory (created; its emission/ is replaced)\n"
-    "  configuration flags    as penumbra-gen: --slices, --resolution, --filter, --fusion, --packing, --light,\n"
-    "                         --target, --no-leak-fix, --no-fade, --[no-]tangent-clip, --config FILE.json\n"
-    "                         (see penumbra-gen --help)\n";
+    "  --reference N          also truth.f32: the Embree ground truth (oriented), N x N rays per pixel, 1 to 64\n"
+    "  --sun-time T           --technique oim: the instant of the sun's path, 0 to 1 (default 0.5)\n"
+    "  --bake-cache DIR       --technique oim: where bakes are cached (default as penumbra-playground)\n"
+    "  configuration flags    as penumbra-gen: --technique and its flags, --slices, --resolution, --filter,\n"
+    "                         --fusion, --packing, --light, --target, --no-leak-fix, --no-fade,\n"
+    "                         --[no-]tangent-clip, --slice-placement, --config FILE.json (see penumbra-gen --help)\n";
 
 constexpr std::string_view flag_list =
-    "--scene, --size, --light-size, --out, --slices, --resolution, --filter, --fusion, --packing, --light, --target, "
-    "--no-leak-fix, --no-fade, --tangent-clip, --no-tangent-clip, --config, --help";
+    "--scene, --no-ground, --size, --light-size, --out, --reference, --sun-time, --bake-cache, --slices, --resolution, "
+    "--filter, --fusion, --packing, --light, --target, --no-leak-fix, --no-fade, --tangent-clip, --no-tangent-clip, "
+    "--slice-placement, --config, --help, and the technique flags of penumbra-gen";
 
 std::string parse_positive_int(std::string_view text, int& value) {
     const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
@@ -94,6 +107,10 @@ penumbra_gen::Parsed<BundleArguments> parse(const std::vector<std::string>& args
             out.help = true;
             return {out, {}};
         }
+        if (arg == "--no-ground") {
+            out.ground = false;
+            continue;
+        }
         std::string flag = arg, value;
         bool has_value = false;
         if (const std::size_t eq = arg.find('='); arg.starts_with("--") && eq != std::string::npos) {
@@ -101,11 +118,14 @@ penumbra_gen::Parsed<BundleArguments> parse(const std::vector<std::string>& args
             value = arg.substr(eq + 1);
             has_value = true;
         }
-        const bool ours = flag == "--scene" || flag == "--size" || flag == "--light-size" || flag == "--out";
+        const bool ours = flag == "--scene" || flag == "--size" || flag == "--light-size" || flag == "--out" ||
+                          flag == "--reference" || flag == "--sun-time" || flag == "--bake-cache";
         const bool configuration = flag == "--slices" || flag == "--resolution" || flag == "--filter" ||
                                    flag == "--fusion" || flag == "--packing" || flag == "--light" || flag == "--target" ||
                                    flag == "--config" || flag == "--no-leak-fix" || flag == "--no-fade" ||
-                                   flag == "--tangent-clip" || flag == "--no-tangent-clip";
+                                   flag == "--tangent-clip" || flag == "--no-tangent-clip" ||
+                                   flag == "--slice-placement" || penumbra_gen::is_technique_flag(flag) ||
+                                   penumbra_gen::is_technique_switch(flag);
         if (!ours && !configuration && flag.starts_with("-"))
             return fail("unknown flag '" + printable(flag) + "'; allowed: " + std::string(flag_list));
         if (!ours) {
@@ -120,6 +140,17 @@ penumbra_gen::Parsed<BundleArguments> parse(const std::vector<std::string>& args
             out.scene = value;
         } else if (flag == "--out") {
             out.out_dir = value;
+        } else if (flag == "--bake-cache") {
+            out.bake_cache = value;
+        } else if (flag == "--reference") {
+            if (!parse_positive_int(value, out.reference_samples).empty() || out.reference_samples > 64)
+                return fail("--reference: '" + printable(value) + "' is not allowed; allowed: rays per axis, 1 to 64");
+        } else if (flag == "--sun-time") {
+            double t = 0;
+            const auto [ptr, ec] = std::from_chars(value.data(), value.data() + value.size(), t);
+            if (ec != std::errc() || ptr != value.data() + value.size() || !(t >= 0.0 && t <= 1.0))
+                return fail("--sun-time: '" + printable(value) + "' is not allowed; allowed: a number from 0 to 1");
+            out.sun_time = t;
         } else if (flag == "--size") {
             const std::size_t x = value.find('x');
             if (x == std::string::npos || !parse_positive_int(std::string_view(value).substr(0, x), out.width).empty() ||
@@ -133,7 +164,7 @@ penumbra_gen::Parsed<BundleArguments> parse(const std::vector<std::string>& args
             out.light_size = size;
         }
     }
-    if (out.scene.empty()) return fail("--scene: missing; allowed: a scene name or a .obj path");
+    if (out.scene.empty()) return fail("--scene: missing; allowed: a scene name or a .obj, .gltf or .glb path");
     if (out.out_dir.empty()) return fail("--out: missing; the bundle directory is required (--out DIR)");
     config_args.push_back("--out");
     config_args.push_back(out.out_dir);
@@ -172,8 +203,7 @@ nlohmann::ordered_json floats(const float* values, int count) {
 // Every "light" uniform the emission's programs declare, by its GLSL name (penumbra/uniform_values.hpp's
 // table; matrices column-major), from the frame the GL run used. Uniforms the table cannot compute
 // without a camera are left out.
-nlohmann::ordered_json uniforms_json(const SliceFrame& frame, Light light, const Layout& layout) {
-    const UniformInputs inputs{.frame = frame, .light = light, .clip_from_world = std::nullopt};
+nlohmann::ordered_json uniforms_json(const UniformInputs& inputs, const Layout& layout) {
     auto declared = [&](std::string_view name) {
         for (const ProgramDesc& program : layout.programs)
             for (const ParamDesc& p : program.parameters)
@@ -209,10 +239,10 @@ int run(const std::vector<std::string>& args) {
         std::cout << usage_text;
         return ok;
     }
-    SceneLoad loaded = load_scene(a.scene);
+    SceneLoad loaded = load_scene(a.scene, a.ground);
     if (!loaded.scene) return fail(loaded.error, bad_input);
     Scene& scene = *loaded.scene;
-    if (a.light_size) apply_light_size(scene, a.config.light, *a.light_size);
+    if (a.light_size) apply_light_size(scene, shading_light(a.config), *a.light_size);
     // The GL run emits the same configuration: the desktop runtime runs every GL dialect (glsl330
     // and essl300 text inside its 4.5 context); the vulkan text it cannot, so that one runs glsl450.
     Config gl_config = a.config;
@@ -225,33 +255,55 @@ int run(const std::vector<std::string>& args) {
     HeadlessResult result;
     SliceTextures slices;
     SliceFrame frame;
+    UniformInputs inputs;
     std::vector<float> visibility_gl; // bottom row first, as the runtime wrote it
-    bool read = false;
+    // The CPU oracle models occlusion textures only: the other techniques' bundles have no
+    // slices.f32, oracle.f32 or bound.f32 (a runner compares them with visibility_gl.f32).
+    const bool occlusion = gl_config.technique == Technique::occlusion;
+    bool read = !occlusion;
     std::string read_error;
-    RenderOptions options{.inspect = [&](const gl::Runtime& runtime) {
-        read = read_slice_textures(runtime, slices, &read_error);
+    RenderOptions options;
+    options.inspect = [&](const gl::Runtime& runtime) {
+        if (occlusion) read = read_slice_textures(runtime, slices, &read_error);
         frame = runtime.frame();
+        inputs = runtime.uniform_inputs();
         visibility_gl = runtime.read_visibility();
-    }};
+    };
+    // Occlusion interval maps: the scene's charts, the sun at --sun-time, the bake (or its cache).
+    std::optional<OimSetup> oim;
+    if (gl_config.technique == Technique::oim) {
+        const std::filesystem::path cache = a.bake_cache.empty() ? default_oim_cache_dir() : std::filesystem::path(a.bake_cache);
+        oim = prepare_oim(scene, gl_config, SunPath{}, a.sun_time, cache, &error);
+        if (!oim) return fail(error, bad_input);
+        options.bake_textures = oim->textures;
+        options.time_window = oim->time_window;
+    }
     if (!render_headless(scene, gl_config, a.width, a.height, result, &error, options)) return fail(error);
     if (!read) return fail(read_error);
     const std::vector<float> coverage = slices.coverage; // slices.f32: what a runner can rasterize differently
-    const Oracle oracle(gl_config, frame, std::move(slices));
+    std::optional<Oracle> oracle;
+    if (occlusion) oracle.emplace(gl_config, frame, std::move(slices));
+    std::vector<float> truth;
+    if (a.reference_samples > 0) truth = reference_all(scene, result, a.reference_samples, shading_light(gl_config)).oriented;
 
     // Bottom row first: the G-buffers the GL run shaded (background (0, 0, 0, 0)) and the bound.
     // The normal is the one of the side the camera sees, as the runtime's G-buffer holds it; the
     // oracle clips the kernels to its tangent plane where the configuration does (tangent_clip).
     const std::size_t pixels = static_cast<std::size_t>(a.width) * a.height;
-    std::vector<glm::vec4> positions(pixels, glm::vec4(0.0f)), normals(pixels, glm::vec4(0.0f));
-    std::vector<float> bound(pixels, 0.0f), model(pixels, 1.0f);
+    std::vector<glm::vec4> positions(pixels, glm::vec4(0.0f)), normals(pixels, glm::vec4(0.0f)),
+        tex_coords(pixels, glm::vec4(0.0f));
+    std::vector<float> bound(pixels, 0.0f), model(pixels, 1.0f), truth_bottom_first(truth.empty() ? 0 : pixels, 1.0f);
     for (int y = 0; y < a.height; ++y)
         for (int x = 0; x < a.width; ++x) {
             const std::size_t top_first = static_cast<std::size_t>(a.height - 1 - y) * a.width + x;
             const std::size_t bottom_first = static_cast<std::size_t>(y) * a.width + x;
+            if (!truth.empty()) truth_bottom_first[bottom_first] = truth[top_first];
             if (!result.geometry[top_first]) continue;
             positions[bottom_first] = glm::vec4(result.positions[top_first], 1.0f);
             normals[bottom_first] = glm::vec4(result.normals[top_first], 0.0f);
-            const OracleValue value = oracle.visibility(result.positions[top_first], result.normals[top_first], gl_config.fusion);
+            if (!result.tex_coords.empty()) tex_coords[bottom_first] = glm::vec4(result.tex_coords[top_first], 0.0f, 1.0f);
+            if (!oracle) continue;
+            const OracleValue value = oracle->visibility(result.positions[top_first], result.normals[top_first], gl_config.fusion);
             bound[bottom_first] = static_cast<float>(value.bound);
             model[bottom_first] = static_cast<float>(value.visibility);
         }
@@ -268,26 +320,44 @@ int run(const std::vector<std::string>& args) {
     std::filesystem::remove_all(emission_dir, ec);
     if (std::string e = penumbra_gen::write_files(emission_dir.string(), files); !e.empty()) return fail(e);
 
-    const nlohmann::ordered_json uniforms = {
+    nlohmann::ordered_json uniforms = {
         {"width", a.width},
         {"height", a.height},
         {"scene", scene.name},
+        {"ground", scene.ground},
         {"config", config_json(a.config)},
         {"gl_config", config_json(gl_config)},
-        {"light", light_json(scene, a.config.light)},
+        {"light", light_json(scene, shading_light(gl_config))},
         {"triangles", triangles.size() / 3},
         {"renderer", context->renderer()},
-        {"uniforms", uniforms_json(frame, gl_config.light, emitted.value->layout)},
+        {"uniforms", uniforms_json(inputs, emitted.value->layout)},
         {"caller_textures", {{"penumbra_worldPositions", "positions.f32"}, {"penumbra_worldNormals", "normals.f32"}}},
     };
+    nlohmann::ordered_json bake = nlohmann::ordered_json::object();
+    if (oim) {
+        uniforms["caller_textures"]["penumbra_texCoords"] = "texcoords.f32";
+        for (const auto& [name, texels] : oim->textures) {
+            bake[name] = name + ".f32";
+            if (!write_floats(dir / (name + ".f32"), texels, &error)) return fail(error);
+        }
+        uniforms["bake_textures"] = bake;
+        uniforms["sun_time"] = a.sun_time;
+    }
+    if (!truth.empty()) uniforms["truth"] = {{"file", "truth.f32"}, {"kind", "oriented"}, {"samples", a.reference_samples}};
+    // Files of an earlier bundle in this folder that this one does not write would mislead a runner.
+    for (const char* optional_file : {"slices.f32", "oracle.f32", "bound.f32", "truth.f32", "texcoords.f32"})
+        std::filesystem::remove(dir / optional_file, ec);
     std::ofstream json(dir / "uniforms.json", std::ios::binary);
     json << uniforms.dump(2) << '\n';
     if (!json) return fail("cannot write " + (dir / "uniforms.json").string());
     if (!write_floats(dir / "mesh.f32", triangles, &error) || !write_floats(dir / "positions.f32", positions, &error) ||
-        !write_floats(dir / "normals.f32", normals, &error) ||
-        !write_floats(dir / "visibility_gl.f32", visibility_gl, &error) || !write_floats(dir / "bound.f32", bound, &error) ||
-        !write_floats(dir / "oracle.f32", model, &error) || !write_floats(dir / "slices.f32", coverage, &error))
+        !write_floats(dir / "normals.f32", normals, &error) || !write_floats(dir / "visibility_gl.f32", visibility_gl, &error))
         return fail(error);
+    if (occlusion && (!write_floats(dir / "bound.f32", bound, &error) || !write_floats(dir / "oracle.f32", model, &error) ||
+                      !write_floats(dir / "slices.f32", coverage, &error)))
+        return fail(error);
+    if (oim && !write_floats(dir / "texcoords.f32", tex_coords, &error)) return fail(error);
+    if (!truth.empty() && !write_floats(dir / "truth.f32", truth_bottom_first, &error)) return fail(error);
     std::cout << "penumbra-export-bundle: wrote " << a.out_dir << " (" << scene.name << ", " << a.width << "x"
               << a.height << ", " << triangles.size() / 3 << " triangles, emission for " << to_string(a.config.target)
               << ", GL on " << context->renderer() << ")\n";

@@ -20,6 +20,9 @@
 //      differ, and at most 1% of the pixels may leave 2·bound + q.
 //   3. light_frame.js reproduces the exported light-frame uniforms (relative 1e-5), and moving the
 //      light changes the image.
+// A bundle of another technique (shadowmap, pcf, pcss, erosion, oim with its bake) has no oracle:
+// its image is compared with the desktop run's (TECHNIQUE_* in bundle_compare.mjs). A bundle with a
+// ray-traced truth (--reference) checks the error view's MAE.
 // On the first bundle also: an invalid value typed in the panel shows the emitter's message
 // (penumbra-gen's line) and keeps nothing running; every shadow-map technique (shadowmap, pcf,
 // pcss, erosion) selected in the panel runs and shadows; oim says why it cannot run; the split
@@ -28,12 +31,25 @@
 import fs from "node:fs";
 import os from "node:os";
 import path from "node:path";
-import {serve, largestDifference, compare, readReference, launchChromium, R8_STEP, UNIFORM_TOLERANCE, SLICE_TEXELS_ALLOWED,
-        OWN_PIXELS_ALLOWED} from "./bundle_compare.mjs";
+import {serve, readFloats, largestDifference, compare, difference, readReference, launchChromium, R8_STEP, UNIFORM_TOLERANCE,
+        SLICE_TEXELS_ALLOWED, OWN_PIXELS_ALLOWED, TECHNIQUE_PIXEL_STEP, TECHNIQUE_PIXELS_ALLOWED,
+        TECHNIQUE_MEAN_ALLOWED} from "./bundle_compare.mjs";
 
 // The occlusion fields a bundle fixes (its uniforms.json config), in the order the panel sets them.
-const PANEL_FIELDS = ["technique", "light", "target", "slices", "resolution", "filter", "fusion", "packing", "leak_fix",
-                      "self_shadow_fade", "tangent_clip", "slice_placement"];
+// The panel shows (and the test sets) only the fields the selected technique reads.
+const PANEL_FIELDS = ["technique", "light", "target"];
+const TECHNIQUE_FIELDS = {
+    occlusion: ["slices", "resolution", "filter", "fusion", "packing", "leak_fix", "self_shadow_fade", "tangent_clip", "slice_placement"],
+    shadowmap: ["shadow_map.resolution", "shadow_map.constant_bias", "shadow_map.slope_bias"],
+    pcf: ["shadow_map.resolution", "shadow_map.constant_bias", "shadow_map.slope_bias", "pcf.pattern", "pcf.grid_size",
+          "pcf.poisson_taps", "pcf.radius", "pcf.rotate"],
+    pcss: ["shadow_map.resolution", "shadow_map.constant_bias", "shadow_map.slope_bias", "pcss.blocker_samples",
+           "pcss.filter_samples", "pcss.max_filter_texels", "pcss.rotate"],
+    erosion: ["shadow_map.resolution", "shadow_map.constant_bias", "shadow_map.slope_bias", "erosion.max_search_radius",
+              "erosion.edge_threshold", "erosion.search_taps", "erosion.blur_taps"],
+    oim: ["oim.resolution", "oim.intervals", "oim.samples"],
+};
+const valueAt = (object, key) => key.split(".").reduce((o, k) => (o === undefined ? undefined : o[k]), object);
 
 // One field of the panel `side` ("left", "right") set as a user would: a select picks the option,
 // a checkbox is clicked, a text field is cleared, typed into and left with Tab (its change event).
@@ -67,6 +83,33 @@ async function checkPanel(page, label) {
     if (!refused.shown.startsWith("error: slices: 40 ") || refused.shown !== expected)
         failures.push(`slices 40: the page shows '${refused.shown}', the emitter says '${expected}'`);
     await setField(page, "left", "slices", slices);
+    // Every filter × packing × light (and adaptive placement) through the panel: what the emitter
+    // accepts for essl300 runs and shadows; what it refuses shows its message.
+    let ran = 0, refusedCount = 0;
+    const resolution = await page.$eval('#left [data-key="resolution"]', (e) => e.value);
+    await setField(page, "left", "resolution", "64"); // test time: the sweep is about running, not precision
+    for (const light of ["rect", "sun"])
+        for (const filter of ["mipmap", "nbuffer", "sat", "gaussian"])
+            for (const packing of ["atlas", "array", "volume"])
+                for (const placement of ["uniform", "adaptive"]) {
+                    if (placement === "adaptive" && packing !== "atlas") continue;
+                    for (const [key, value] of [["light", light], ["filter", filter], ["packing", packing], ["slice_placement", placement]])
+                        if ((await page.$eval(`#left [data-key="${key}"]`, (e) => e.value)) !== value) await setField(page, "left", key, value);
+                    const s = await state();
+                    const name = `${light}/${filter}/${packing}/${placement}`;
+                    if (!s.ok) {
+                        ++refusedCount;
+                        if (!s.shown.startsWith("error: ")) failures.push(`${name}: refused without the emitter's message`);
+                        continue;
+                    }
+                    const v = await page.evaluate(() => { try { return Array.from(window.penumbra.readVisibility()); } catch (e) { return e.message; } });
+                    if (typeof v === "string") failures.push(`${name}: emitted but does not run: ${v}`);
+                    else if (!v.some((x) => x < 0.5)) failures.push(`${name}: no shadowed pixel`);
+                    else ++ran;
+                }
+    for (const [key, value] of [["light", "rect"], ["filter", "nbuffer"], ["packing", "atlas"], ["slice_placement", "uniform"],
+                                ["resolution", resolution]])
+        await setField(page, "left", key, value);
     // Every technique WebGL2 can run, selected in the panel: it runs and shadows, unlike the others.
     const images = {};
     for (const technique of ["shadowmap", "pcf", "pcss", "erosion", "occlusion"]) {
@@ -96,7 +139,8 @@ async function checkPanel(page, label) {
                                               visible: !document.getElementById("right").hidden}));
     if (!right.running || right.technique !== "pcss" || !right.visible) failures.push(`split view: ${JSON.stringify(right)}`);
     await page.click("#split");
-    console.log(`     panel (${label}): refused slices 40 with "${refused.shown}"; ran ${Object.keys(images).join(", ")}; ` +
+    console.log(`     panel (${label}): refused slices 40 with "${refused.shown}"; filter × packing × light × placement: ` +
+                `${ran} ran and shadowed, ${refusedCount} refused for essl300 with the emitter's message; ran ${Object.keys(images).join(", ")}; ` +
                 `oim: ${oim.reason.slice(0, 60)}…; split ran ${right.technique} on the right`);
     return failures;
 }
@@ -125,11 +169,45 @@ function usage(message) {
     process.exit(2);
 }
 
+// A bundle of a technique the oracle does not model: the browser's run against the desktop run's
+// image (TECHNIQUE_* in bundle_compare.mjs), the light frame, and moving the light.
+async function finishTechnique({page, bundle, label, reference, read, failures, problems, changes, rerendered, uniformError, shadowed, started, info}) {
+    await page.evaluate(() => window.penumbra.useBundleUniforms(false));
+    const d = difference(await read(), reference.gl);
+    const pixels = reference.gl.length;
+    if (d.over > TECHNIQUE_PIXELS_ALLOWED * pixels)
+        failures.push(`${d.over} of ${pixels} pixels differ from the desktop run by more than ${TECHNIQUE_PIXEL_STEP} (allowed ${100 * TECHNIQUE_PIXELS_ALLOWED}%)`);
+    if (d.mean > TECHNIQUE_MEAN_ALLOWED) failures.push(`mean |browser − desktop| ${d.mean.toFixed(4)} (allowed ${TECHNIQUE_MEAN_ALLOWED})`);
+    if (uniformError > UNIFORM_TOLERANCE) failures.push(`light_frame.js differs from the exported uniforms by ${uniformError.toExponential(2)} (relative)`);
+    if (shadowed === 0) failures.push("the desktop image has no shadowed pixel: the comparison would prove nothing");
+    let changed = 0;
+    if (bundle.config.technique !== "oim") { // oim's sun is the bake's: its shadows do not follow a moved light
+        const before = await read();
+        const moved = bundle.light.kind === "sun"
+            ? {direction: [bundle.light.direction[0] + 0.3, bundle.light.direction[1], bundle.light.direction[2]]}
+            : {center: [bundle.light.center[0] + 0.25 * bundle.light.width, bundle.light.center[1], bundle.light.center[2]]};
+        await page.evaluate((kind, m) => window.penumbra.setLight(kind, m), bundle.light.kind, moved);
+        const after = await read();
+        for (let i = 0; i < after.length; ++i) if (Math.abs(after[i] - before[i]) > 2 * R8_STEP) ++changed;
+        if (changed === 0) failures.push("moving the light changed no pixel");
+    }
+    await page.close();
+    failures.push(...problems);
+    console.log(`${failures.length ? "FAIL" : "ok  "} ${label} (${info.resultFormat} result, ${shadowed} shadowed, ${((Date.now() - started) / 1000).toFixed(1)} s)\n` +
+                `     panel: ${changes} fields changed, each re-emitted; ${rerendered} pixels changed from the page's first configuration\n` +
+                `     max |browser − desktop| ${d.worst.toExponential(2)}, mean ${d.mean.toExponential(2)}, ${d.over} of ${pixels} pixels more than ` +
+                `${TECHNIQUE_PIXEL_STEP} apart (no oracle for ${bundle.config.technique})\n` +
+                `     light_frame.js vs exported uniforms ${uniformError.toExponential(2)} (relative); moved light changed ${changed} pixels`);
+    for (const f of failures) console.log(`     ${f}`);
+    return {failures: failures.length, renderer: info.renderer};
+}
+
 async function checkBundle(browser, port, index, dir, screenshots) {
     const bundle = JSON.parse(fs.readFileSync(path.join(dir, "uniforms.json"), "utf8"));
     const c = bundle.config;
-    const label = `${bundle.scene} ${c.filter}/${c.packing}/${c.light}/${c.fusion}${c.tangent_clip ? " tangent-clip" : ""} ` +
-                  `${c.slices}×${c.resolution}² ${bundle.width}x${bundle.height}`;
+    const label = c.technique !== "occlusion" ? `${bundle.scene} ${c.technique}/${c.light} ${bundle.width}x${bundle.height}`
+        : `${bundle.scene} ${c.filter}/${c.packing}/${c.light}/${c.fusion}${c.tangent_clip ? " tangent-clip" : ""} ` +
+          `${c.slices}×${c.resolution}² ${bundle.width}x${bundle.height}`;
     const page = await browser.newPage();
     await page.setViewport({width: 1000, height: 700});
     const problems = [];
@@ -152,18 +230,21 @@ async function checkBundle(browser, port, index, dir, screenshots) {
     const first = await read();
     const firstConfig = await page.evaluate(() => window.penumbra.emission().layoutConfig);
     let changes = 0;
-    for (const field of PANEL_FIELDS) {
-        if (firstConfig[field] === c[field]) continue;
+    const fields = [...PANEL_FIELDS, ...TECHNIQUE_FIELDS[c.technique]];
+    for (const field of fields) {
+        if (valueAt(firstConfig, field) === valueAt(c, field)) continue;
         const before = await page.evaluate(() => window.penumbra.emissions());
-        await setField(page, "left", field, c[field]);
+        await setField(page, "left", field, valueAt(c, field));
         const after = await page.evaluate(() => window.penumbra.emissions());
-        if (after <= before) failures.push(`setting ${field} to ${c[field]} in the panel did not re-emit`);
+        if (after <= before) failures.push(`setting ${field} to ${valueAt(c, field)} in the panel did not re-emit`);
         ++changes;
     }
     const reached = await page.evaluate(() => window.penumbra.emission());
     if (!reached.ok) throw new Error(`${label}: the panel's configuration was refused: ${reached.error}`);
-    for (const field of PANEL_FIELDS)
-        if (reached.layoutConfig[field] !== c[field]) failures.push(`after the panel, ${field} is ${reached.layoutConfig[field]}, the bundle's is ${c[field]}`);
+    for (const field of fields)
+        if (valueAt(reached.layoutConfig, field) !== valueAt(c, field))
+            failures.push(`after the panel, ${field} is ${valueAt(reached.layoutConfig, field)}, the bundle's is ${valueAt(c, field)}`);
+    if (!(await page.evaluate(() => window.penumbra.running()))) throw new Error(`${label}: does not run: ${await page.evaluate(() => window.penumbra.reason())}`);
     if (changes === 0) failures.push("the page started at the bundle's configuration: the panel was not exercised");
     let rerendered = 0;
     const reachedImage = await read();
@@ -178,6 +259,9 @@ async function checkBundle(browser, port, index, dir, screenshots) {
     let uniformError = 0;
     for (const [name, value] of Object.entries(uniforms.bundle)) {
         const computed = uniforms.computed[name];
+        if (computed === undefined && name === "penumbra_timeWindow") continue; // the bake's path: the page takes the bundle's
+        // oim shades by the bake's sun; its layout's toLight (read by shading_example only) follows config.light
+        if (c.technique === "oim" && name === "penumbra_toLight") continue;
         const a = typeof computed === "number" ? [computed] : computed, b = typeof value === "number" ? [value] : value;
         uniformError = Math.max(uniformError, largestDifference(a.map(Math.fround), b));
     }
@@ -185,8 +269,10 @@ async function checkBundle(browser, port, index, dir, screenshots) {
     let shadowed = 0, worstBound = 0;
     for (let i = 0; i < reference.gl.length; ++i) {
         if (reference.gl[i] < 0.98) ++shadowed;
-        worstBound = Math.max(worstBound, reference.bound[i]);
+        if (reference.bound) worstBound = Math.max(worstBound, reference.bound[i]);
     }
+    if (c.technique !== "occlusion")
+        return finishTechnique({page, bundle, label, reference, read, failures, problems, changes, rerendered, uniformError, shadowed, started, info});
 
     // 1. Everything in the browser (its own slicing), with the desktop run's exact uniforms.
     await page.evaluate(() => window.penumbra.useBundleUniforms(true));
@@ -207,6 +293,22 @@ async function checkBundle(browser, port, index, dir, screenshots) {
     const after = await read();
     let changed = 0;
     for (let i = 0; i < after.length; ++i) if (Math.abs(after[i] - before[i]) > 2 * R8_STEP) ++changed;
+    // The error view against the bundle's ray-traced truth (--reference): the page's MAE is the
+    // one of its own visibility over the pixels where the truth is defined.
+    let truthLine = "";
+    if (reference.truth) {
+        await page.select("#view-mode", "error");
+        const status = await page.evaluate(() => window.penumbra.status());
+        const shown = status.match(/MAE against the truth \([^)]*\) ([0-9.]+) over (\d+) pixels/);
+        const v = await read(), geometry = readFloats(path.join(dir, "positions.f32"));
+        let sum = 0, n = 0;
+        for (let i = 0; i < v.length; ++i)
+            if (geometry[4 * i + 3] > 0.5 && Number.isFinite(reference.truth[i])) { sum += Math.abs(v[i] - reference.truth[i]); ++n; }
+        if (!shown || Math.abs(Number(shown[1]) - sum / n) > 1e-4 || Number(shown[2]) !== n)
+            failures.push(`error view: the page shows '${shown ? shown[0] : status}', the test computes MAE ${(sum / n).toFixed(4)} over ${n} pixels`);
+        truthLine = shown ? `\n     error view: ${shown[0]}` : "";
+        await page.select("#view-mode", "shaded");
+    }
     if (index === 0) failures.push(...await checkPanel(page, label));
     if (screenshots) {
         fs.mkdirSync(screenshots, {recursive: true});
@@ -234,7 +336,8 @@ async function checkBundle(browser, port, index, dir, screenshots) {
                 `${injected.outsideOracle} pixels outside bound + q\n` +
                 `     own slicing:    max |browser − desktop| ${own.worstGl.toExponential(2)}, ${own.outsideGl} of ${pixels} pixels outside 2·bound + q; ` +
                 `slicing texels differing ${slices.differing} of ${slices.covered} covered\n` +
-                `     light_frame.js vs exported uniforms ${uniformError.toExponential(2)} (relative); moved light changed ${changed} pixels`);
+                `     light_frame.js vs exported uniforms ${uniformError.toExponential(2)} (relative); moved light changed ${changed} pixels` +
+                truthLine);
     for (const f of failures) console.log(`     ${f}`);
     return {failures: failures.length, renderer: info.renderer};
 }

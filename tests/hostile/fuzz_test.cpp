@@ -1,5 +1,5 @@
 // A seeded random-input driver over everything a user can hand the two tools: penumbra-gen's
-// arguments and config files, penumbra-playground's arguments, OBJ files and window scripts
+// arguments and config files, penumbra-playground's arguments, OBJ and glTF files and window scripts
 // (label "fuzz"). Each case asserts the promise: exit 0 or 2 only, exactly one `error:` line on 2,
 // nothing written on 2, no sanitizer report (when built with PENUMBRA_SANITIZE), never a signal or
 // a hang. Parsers that the tools run in-process (config JSON, OBJ, scripts, the playground's
@@ -12,6 +12,9 @@
 
 #include "../../generator/src/config_file.hpp"
 #include "app/options.hpp"
+#include "../runtime/gltf_test_file.hpp"
+#include "scenes/gltf_loader.hpp"
+#include "scenes/mesh_builder.hpp"
 #include "scenes/obj_loader.hpp"
 #include "script.hpp"
 
@@ -370,6 +373,84 @@ TEST_CASE("fuzz: OBJ files") {
         fs::remove(obj);
     }
     MESSAGE("obj: " << children << " rejected files also run through the tool");
+}
+
+// glTF: mutations of a small valid asset (tests/runtime/gltf_test_file.hpp) as .glb (bytes of the
+// container, the JSON or the buffer changed) and as .gltf + .bin (the JSON's text or a number in it).
+TEST_CASE("fuzz: glTF files") {
+    namespace t = penumbra::playground::testing;
+    Tally tally{"gltf"};
+    Tally through{"gltf-through-tool"};
+    Random r(7);
+    const std::string bin = t::gltf_test_buffer();
+    const std::string glb = t::make_glb(t::gltf_test_json(""), bin);
+    const std::vector<std::string> numbers{"-1", "4294967295", "4294967296", "1e309", "-0", "99", "3.5", "1e20",
+                                           "5120", "5130", "null", "\"x\"", "[]", "{}", "2147483648", "NaN"};
+    int children = 0;
+    for (int i = 0; i < scaled(600); ++i) {
+        const bool binary = r.chance(0.5);
+        const int kind = r.below(4);
+        const std::string buffer = kind == 2 ? r.mutate(bin, std::string("\0\x7f\x80\xff\x01", 5)) : bin;
+        const fs::path bin_path = scratch().write("fuzz.bin", buffer); // the .gltf's external buffer
+        const std::string json = t::gltf_test_json(binary ? "" : bin_path.filename().string());
+        std::string text;
+        switch (kind) {
+        case 0: // bytes anywhere (the header, chunk lengths, JSON, buffer)
+            text = binary ? r.mutate(glb, std::string("\0\x01\x02\x04\xff{}[]\":,0123456789", 23))
+                          : r.mutate(json, "{}[]\":,0123456789.e-");
+            break;
+        case 1: { // one number of the JSON replaced by a hostile one
+            std::string j = json;
+            std::vector<std::size_t> digits;
+            for (std::size_t k = 0; k < j.size(); ++k)
+                if (std::isdigit(static_cast<unsigned char>(j[k])) &&
+                    (k == 0 || !std::isalnum(static_cast<unsigned char>(j[k - 1])) ))
+                    digits.push_back(k);
+            const std::size_t at = digits[std::size_t(r.below(int(digits.size())))];
+            std::size_t end = at;
+            while (end < j.size() && (std::isdigit(static_cast<unsigned char>(j[end])) || j[end] == '.')) ++end;
+            j.replace(at, end - at, r.pick(numbers));
+            text = binary ? t::make_glb(j, bin) : j;
+            break;
+        }
+        case 2: // the buffer's bytes
+            text = binary ? t::make_glb(json, buffer) : json;
+            break;
+        default: // cut short
+            text = binary ? glb.substr(0, std::size_t(r.below(int(glb.size()))))
+                          : json.substr(0, std::size_t(r.below(int(json.size()))));
+            break;
+        }
+        const fs::path file = scratch().write("fuzz", text);
+        fs::path path = file;
+        path += binary ? ".glb" : ".gltf";
+        fs::rename(file, path);
+        const penumbra::playground::LoadResult loaded = penumbra::playground::load_gltf_scene(path.string());
+        CAPTURE(binary);
+        CAPTURE(penumbra_gen::printable(text, 300));
+        if (loaded.scene) {
+            tally.add("accepted");
+            const auto& s = *loaded.scene;
+            CHECK(penumbra::playground::validate_mesh(s.mesh).empty());
+            for (const glm::vec3& p : s.mesh.positions) CHECK((std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)));
+            CHECK((std::isfinite(s.light.width) && std::isfinite(s.light.center.y) && std::isfinite(s.camera.distance)));
+        } else {
+            tally.add("rejected");
+            CHECK(loaded.error.find('\n') == std::string::npos);
+            CHECK(loaded.error.find(path.string()) != std::string::npos);
+            if (i % 6 == 0) { // and through the tool
+                ++children;
+                const fs::path png = scratch().fresh("gltf.png");
+                const std::vector<std::string> args{"--headless", "--scene", path.string(), "--out", png.string()};
+                const ChildRun run = run_child(playground, args);
+                check_promise(through, run, args, {png});
+                CHECK(run.exit_code == 2);
+            }
+        }
+        fs::remove(path);
+        fs::remove(bin_path);
+    }
+    MESSAGE("gltf: " << children << " rejected files also run through the tool");
 }
 
 TEST_CASE("fuzz: window scripts") {

@@ -169,6 +169,33 @@ TEST_CASE("hostile: bad meshes are errors with the file and the line") {
     }
 }
 
+// Debian's assimp-testmodels ships glTF files written to break importers (scripts/setup.sh
+// installs it; without it this case says so). Through the tool: exit 2, one line, no image.
+TEST_CASE("hostile: glTF files written to break importers are one error line") {
+    const fs::path root = "/usr/share/assimp/models/glTF2";
+    if (!fs::is_directory(root)) {
+        MESSAGE("assimp-testmodels is not installed (scripts/setup.sh installs it): skipped");
+        return;
+    }
+    const fs::path png = scratch().fresh("never.png");
+    const std::vector<std::pair<std::string, std::string>> cases{
+        {"IndexOutOfRange/IndexOutOfRange.gltf", "mesh 0 primitive 0's index 0 is 255 but it has 24 vertices"},
+        {"BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb", "position 0 is not a finite number"},
+        {"RecursiveNodes/RecursiveNodes.gltf", "node 0 is its own ancestor"},
+        {"MissingBin/BoxTextured.gltf", "BoxTextured0.bin' does not exist"},
+        {"draco/2CylinderEngine.gltf", "Draco compression"},
+        {"IncorrectVertexArrays/Cube.gltf", "not a multiple of 3"},
+    };
+    for (const auto& [file, expected] : cases) {
+        CAPTURE(file);
+        const fs::path path = root / file;
+        const ChildRun run = run_child(playground, {"--headless", "--scene", path.string(), "--out", png.string()});
+        check_rejected(run, expected);
+        CHECK(run.first_error_line().find(path.string()) != std::string::npos);
+        CHECK_FALSE(fs::exists(png));
+    }
+}
+
 TEST_CASE("hostile: window scripts that could never end are parse errors") {
     const std::vector<std::pair<std::string, std::string>> cases{
         {"wait 2147483648", "wait: 2147483648 is out of range; allowed: a whole number of frames from 0 to 1000000"},

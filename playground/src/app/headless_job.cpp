@@ -4,6 +4,8 @@
 #include "rendering/egl_context.hpp"
 #include "app/image_io.hpp"
 #include "bake/oim_scene.hpp"
+#include "scenes/gltf_loader.hpp"
+#include "scenes/ground_plane.hpp"
 #include "scenes/obj_loader.hpp"
 #include "scenes/scenes.hpp"
 
@@ -27,11 +29,10 @@ namespace {
 // Differences beyond this saturate the false-colour error image.
 constexpr float error_image_range = 0.25f;
 
-bool ends_with_obj(const std::string& text) {
-    if (text.size() < 4) return false;
-    std::string tail = text.substr(text.size() - 4);
-    std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return std::tolower(c); });
-    return tail == ".obj";
+std::string lower_extension(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+    return extension;
 }
 
 // `out` with its extension replaced by `suffix`: image.png → image.reference.pfm.
@@ -77,16 +78,25 @@ nlohmann::ordered_json light_json(const Scene& scene, Light light) {
             {"center", {scene.light.center.x, scene.light.center.y, scene.light.center.z}}};
 }
 
-SceneLoad load_scene(const std::string& name_or_path) {
-    if (ends_with_obj(name_or_path)) {
-        LoadResult loaded = load_obj_scene(name_or_path);
-        return {std::move(loaded.scene), std::move(loaded.error)};
+bool is_scene_file(const std::string& name_or_path) {
+    const std::string extension = lower_extension(name_or_path);
+    return extension == ".obj" || extension == ".gltf" || extension == ".glb";
+}
+
+SceneLoad load_scene(const std::string& name_or_path, bool ground) {
+    if (is_scene_file(name_or_path)) {
+        LoadResult loaded = lower_extension(name_or_path) == ".obj" ? load_obj_scene(name_or_path)
+                                                                    : load_gltf_scene(name_or_path);
+        for (const std::string& warning : loaded.warnings) std::cerr << "warning: " << warning << "\n";
+        if (loaded.scene && ground) add_ground_plane(*loaded.scene);
+        return {std::move(loaded.scene), std::move(loaded.error), std::move(loaded.warnings)};
     }
-    if (std::optional<Scene> scene = make_scene(name_or_path)) return {std::move(scene), {}};
+    if (std::optional<Scene> scene = make_scene(name_or_path)) return {std::move(scene), {}, {}};
     std::string allowed;
     for (std::string_view name : scene_names()) allowed += std::string(name) + ", ";
     return {std::nullopt, "--scene: unknown scene '" + penumbra_gen::printable(name_or_path) + "'; allowed: " + allowed +
-                              "or a Wavefront file ending in .obj"};
+                              "or a mesh file ending in .obj (Wavefront), .gltf or .glb (glTF 2.0)",
+            {}};
 }
 
 void apply_light_size(Scene& scene, Light light, double size) {
@@ -110,7 +120,7 @@ double shadowed_fraction(const HeadlessResult& result) {
 }
 
 int run_headless(const PlaygroundOptions& options) {
-    SceneLoad loaded = load_scene(options.scene);
+    SceneLoad loaded = load_scene(options.scene, options.ground);
     if (!loaded.scene) return fail(loaded.error, 2);
     Scene& scene = *loaded.scene;
     if (options.light_size) apply_light_size(scene, shading_light(options.config), *options.light_size);
@@ -155,6 +165,7 @@ int run_headless(const PlaygroundOptions& options) {
 
     nlohmann::ordered_json metrics = {
         {"scene", scene.name},
+        {"ground", scene.ground},
         {"renderer", context->renderer()},
         {"width", width},
         {"height", height},

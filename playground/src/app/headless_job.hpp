@@ -10,12 +10,14 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace penumbra::playground {
 
 struct SceneLoad {
     std::optional<Scene> scene; // set on success
-    std::string error;          // otherwise one line: the unknown name and the allowed ones, or the OBJ problem
+    std::string error;          // otherwise one line: the unknown name and the allowed ones, or the file's problem
+    std::vector<std::string> warnings; // parts of the file that were skipped (printed as "warning:" lines)
 };
 
 // The configuration with the keys of layout.json's "config" object, so that --config FILE.json
@@ -26,8 +28,14 @@ nlohmann::ordered_json config_json(const Config& c);
 // angular diameter in degrees.
 nlohmann::ordered_json light_json(const Scene& scene, Light light);
 
-// A built-in scene by name, or a Wavefront OBJ file when the argument ends in ".obj" (any case).
-SceneLoad load_scene(const std::string& name_or_path);
+// True for a path this loads as a file: it ends in ".obj", ".gltf" or ".glb" (any case).
+bool is_scene_file(const std::string& name_or_path);
+
+// A built-in scene by name, or a mesh file (is_scene_file): Wavefront OBJ (scenes/obj_loader.hpp)
+// or glTF 2.0 (scenes/gltf_loader.hpp). A file gets a floor under it (scenes/ground_plane.hpp)
+// unless `ground` is false; the built-in scenes have their own. Warnings (skipped parts of a glTF
+// file) are printed on stderr as "warning: " lines and kept in the result.
+SceneLoad load_scene(const std::string& name_or_path, bool ground = true);
 
 // --light-size: for the rectangle, its longer side becomes `size` scene units and the aspect is
 // kept (the procedural scenes' 2×2 light becomes size×size); for the sun, `size` is the angular

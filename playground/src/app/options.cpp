@@ -24,7 +24,7 @@ using penumbra_gen::allowed_names;
 using penumbra_gen::printable;
 
 constexpr std::string_view flag_list =
-    "--headless, --scene, --size, --light-size, --out, --visibility, --reference, --samples, --metrics, "
+    "--headless, --scene, --no-ground, --size, --light-size, --out, --visibility, --reference, --samples, --metrics, "
     "--reference-out, --error-out, --slices, --resolution, --filter, --fusion, --packing, --light, --target, "
     "--no-leak-fix, --no-fade, --tangent-clip, --no-tangent-clip, --slice-placement, --config, --watch, --frames, --screenshot, "
     "--script, --help, --technique, --shadow-resolution, --shadow-bias, --shadow-slope-bias, --pcf-pattern, "
@@ -32,7 +32,7 @@ constexpr std::string_view flag_list =
     "--oim-resolution, --oim-intervals, --oim-samples, --sun-time, --sun-path, --bake-cache";
 
 bool is_switch(std::string_view flag) {
-    return flag == "--headless" || flag == "--reference" || flag == "--no-leak-fix" || flag == "--no-fade" ||
+    return flag == "--headless" || flag == "--reference" || flag == "--no-ground" || flag == "--no-leak-fix" || flag == "--no-fade" ||
            flag == "--tangent-clip" || flag == "--no-tangent-clip" || penumbra_gen::is_technique_switch(flag);
 }
 
@@ -155,6 +155,7 @@ ParsedOptions parse_options(const std::vector<std::string>& args) {
             if (inline_value) return fail(std::string(flag) + ": takes no value (got '" + printable(*inline_value) + "')");
             if (flag == "--headless") options.headless = true;
             if (flag == "--reference") options.reference = true;
+            if (flag == "--no-ground") options.ground = false;
             if (flag == "--no-leak-fix") flags.no_leak_fix = true;
             if (flag == "--no-fade") flags.no_fade = true;
             if (flag == "--tangent-clip") flags.tangent_clip = true;
@@ -205,7 +206,7 @@ ParsedOptions parse_options(const std::vector<std::string>& args) {
             error = parse_light_size(value, size);
             if (error.empty()) options.light_size = size;
         } else if (value.empty())
-            error = std::string(flag) + ": empty; allowed: a " + (flag == "--scene" ? "scene name or .obj path" : "path");
+            error = std::string(flag) + ": empty; allowed: a " + (flag == "--scene" ? "scene name or .obj, .gltf or .glb path" : "path");
         else if (flag == "--scene") options.scene = std::string(value);
         else if (flag == "--config") config_file = std::string(value);
         else if (flag == "--out") options.out_path = std::string(value);
@@ -238,11 +239,11 @@ std::string usage() {
         return out + std::string(text) + "\n";
     };
     std::string out =
-        "usage: penumbra-playground --headless --scene NAME|FILE.obj [configuration flags] [--size WxH]\n"
+        "usage: penumbra-playground --headless --scene NAME|FILE [--no-ground] [configuration flags] [--size WxH]\n"
         "           [--light-size X] --out image.png [--visibility vis.pfm] [--reference] [--samples N]\n"
         "           [--metrics metrics.json] [--reference-out truth.pfm] [--error-out error.png]\n"
         "           [--sun-time T] [--sun-path AZ:EL,...] [--bake-cache DIR]  (--technique oim)\n"
-        "       penumbra-playground [--scene NAME|FILE.obj] [configuration flags] [--size WxH] [--light-size X]\n"
+        "       penumbra-playground [--scene NAME|FILE] [--no-ground] [configuration flags] [--size WxH] [--light-size X]\n"
         "           [--watch DIR] [--frames N] [--screenshot FILE] [--script FILE]\n"
         "\n"
         "With --headless: renders the scene without a display (EGL; Mesa llvmpipe or a GPU) with the shaders\n"
@@ -250,10 +251,19 @@ std::string usage() {
         "visibility with an Embree ray-traced ground truth. Without --headless: the interactive window.\n"
         "\n"
         "scene and light:\n";
-    out += line("--scene NAME|FILE.obj", "planes, boxes, tree, butterfly, terrain, crowd, box, or a Wavefront OBJ file "
-                                         "(default boxes):\n"
-                                         "                        a regular file of at most 256 MiB, coordinates "
-                                         "finite and within ±1e9");
+    out += line("--scene NAME|FILE", "planes, boxes, tree, butterfly, terrain, crowd, box (default boxes), or a mesh\n"
+                                     "                        file: Wavefront OBJ (.obj) or glTF 2.0 (.gltf with its "
+                                     "buffers, .glb); a regular\n"
+                                     "                        file of at most 256 MiB, coordinates finite and within "
+                                     "±1e9. glTF: every triangle\n"
+                                     "                        primitive of the default scene, node transforms applied; "
+                                     "points, lines, sparse\n"
+                                     "                        and Draco-compressed primitives are skipped with a "
+                                     "warning");
+    out += line("--no-ground", "no floor under a mesh file (default: a square receiver twice the footprint,\n"
+                               "                        just below the lowest point; the light and camera are "
+                               "framed from the bounds\n"
+                               "                        with it; metrics.json says \"ground\")");
     out += line("--size WxH", "image size, 1 to 8192 per side (default 512x512 headless, 1280x720 window)");
     out += line("--light-size X", "rect: the rectangle's longer side in scene units, aspect kept (default: the\n"
                                   "                        scene's, 2 for the procedural scenes); sun: angular "
@@ -316,7 +326,7 @@ std::string usage() {
            "write leaves no partial file and prints no \"wrote\"); shader files the window watches are read up\n"
            "to 1 MiB.\n"
            "exit status: 0 done; 1 rendering or writing failed (no OpenGL 4.5, GL error, unwritable file);\n"
-           "2 bad arguments, configuration, scene name, OBJ file or script\n";
+           "2 bad arguments, configuration, scene name, mesh file (OBJ, glTF) or script\n";
     return out;
 }
 

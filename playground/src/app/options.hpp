@@ -12,7 +12,8 @@ namespace penumbra::playground {
 
 struct PlaygroundOptions {
     bool headless = false;
-    std::string scene = "boxes";   // a built-in scene name or a path ending in .obj
+    std::string scene = "boxes";   // a built-in scene name or a path ending in .obj, .gltf or .glb
+    bool ground = true;             // a mesh file gets a floor under it (--no-ground: not)
     penumbra::Config config;
     int width = 0, height = 0;      // 0: mode default (headless 512x512, window 1280x720)
     std::optional<double> light_size; // --light-size: rectangle side / sun angular diameter (degrees)

@@ -23,7 +23,7 @@ namespace penumbra::playground {
 namespace {
 
 LoadResult failure(const std::string& path, const std::string& problem) {
-    return {std::nullopt, "cannot load OBJ file '" + penumbra_gen::printable(path, 200) + "': " + problem};
+    return {std::nullopt, "cannot load OBJ file '" + penumbra_gen::printable(path, 200) + "': " + problem, {}};
 }
 
 // tinyobjloader's messages end in newlines and may hold several lines; keep the first line.
@@ -279,7 +279,7 @@ LoadResult load_obj_scene(const std::string& path) {
     scene.mesh = std::move(mesh);
     finish_scene(scene);
     if (const std::string problem = validate_mesh(scene.mesh); !problem.empty()) return failure(path, problem);
-    return {std::move(scene), {}};
+    return {std::move(scene), {}, {}};
 }
 
 } // namespace penumbra::playground

@@ -5,12 +5,14 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace penumbra::playground {
 
 struct LoadResult {
     std::optional<Scene> scene; // set on success
     std::string error;          // on failure: one line naming the file and the problem
+    std::vector<std::string> warnings; // on success: parts of the file that were skipped, one line each
 };
 
 // Loads every polygon of every object/group into one mesh (polygons are fan-triangulated; lines,

@@ -63,6 +63,8 @@ struct Scene {
     // True for the procedural scenes: their texture coordinates may be generated (one chart per
     // connected planar piece, scenes/charts.hpp). A loaded file keeps its own or has none.
     bool generated_charts = false;
+    // True when a floor was added under a loaded mesh (scenes/ground_plane.hpp).
+    bool ground = false;
 };
 
 } // namespace penumbra::playground

@@ -98,7 +98,7 @@ int run_window(const PlaygroundOptions& options) {
         script.emplace(std::move(parsed.actions));
     }
     // A bad scene is bad input (exit 2) with or without a display: checked before the window opens.
-    if (SceneLoad loaded = load_scene(options.scene); !loaded.scene) {
+    if (SceneLoad loaded = load_scene(options.scene, options.ground); !loaded.scene) {
         std::cerr << "error: " << loaded.error << "\n";
         return 2;
     }

@@ -137,7 +137,7 @@ void scene_section(WindowApp& app) {
         ImGui::EndCombo();
     }
     static char obj_path[512] = "";
-    ImGui::InputText("OBJ file", obj_path, sizeof obj_path);
+    ImGui::InputText("mesh file (.obj, .gltf, .glb)", obj_path, sizeof obj_path);
     ImGui::SameLine();
     if (ImGui::Button("load")) app.load_scene(obj_path);
 }

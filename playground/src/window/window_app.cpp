@@ -120,7 +120,7 @@ void WindowApp::problem(const std::string& line) {
 }
 
 void WindowApp::load_scene(const std::string& name_or_path) {
-    SceneLoad loaded = penumbra::playground::load_scene(name_or_path);
+    SceneLoad loaded = penumbra::playground::load_scene(name_or_path, options_.ground);
     if (!loaded.scene) {
         problem("error: " + loaded.error);
         return;

@@ -3,6 +3,7 @@
 // the built executable.
 #ifdef PENUMBRA_PLAYGROUND_PATH
 
+#include "../gltf_test_file.hpp"
 #include "../temp_dir.hpp"
 #include "app/image_io.hpp"
 
@@ -220,6 +221,28 @@ TEST_CASE("playground cli: an OBJ file written by the test loads and casts a sha
     const Run missing = run_playground(dir, {"--headless", "--scene", "absent.obj", "--out", "absent.png"});
     CHECK(missing.exit_code == 2);
     CHECK_MESSAGE(missing.err.find("absent.obj") != std::string::npos, missing.err);
+}
+
+TEST_CASE("playground cli: a .glb written by the test stands on a floor; --no-ground takes it away") {
+    TempDir dir;
+    dir.write("t.glb", penumbra::playground::testing::make_glb(penumbra::playground::testing::gltf_test_json(""),
+                                                              penumbra::playground::testing::gltf_test_buffer()));
+    double shadowed[2] = {0, 0};
+    for (const bool ground : {true, false}) {
+        CAPTURE(ground);
+        std::vector<std::string> args{"--headless", "--scene", "t.glb", "--size", "48x48", "--slices", "4",
+                                      "--resolution", "64", "--out", "t.png", "--metrics", "t.json"};
+        if (!ground) args.push_back("--no-ground");
+        const Run run = run_playground(dir, args);
+        REQUIRE_MESSAGE(run.exit_code == 0, run.err);
+        const nlohmann::json m = read_json(dir.file("t.json"));
+        CHECK(m["scene"] == "t");
+        CHECK(m["ground"] == ground);
+        shadowed[ground] = m["shadowed_fraction"].get<double>();
+    }
+    // The triangles alone cast no shadow on anything the camera sees; on the floor their shadows are.
+    CHECK(shadowed[0] == 0.0);
+    CHECK(shadowed[1] > 0.002);
 }
 
 TEST_CASE("playground cli: --technique renders any technique; metrics.json has one schema, warm pass times") {

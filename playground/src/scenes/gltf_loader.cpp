@@ -1,0 +1,587 @@
+// playground/src/scenes/gltf_loader.cpp
+// The parser is Debian's libtinygltf (linked, built there with its own JSON and image code); this
+// file checks what it leaves unchecked and turns the node tree's triangle primitives into one mesh.
+#include <tiny_gltf.h>
+
+#include "scenes/gltf_loader.hpp"
+
+#include "scenes/mesh_builder.hpp"
+#include "scenes/scene_defaults.hpp"
+
+#include "../../../generator/src/bounded_read.hpp"
+#include "../../../generator/src/printable.hpp"
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <limits>
+#include <sstream>
+
+namespace penumbra::playground {
+
+namespace {
+
+// Coordinates beyond this make the scene's bounds, light and camera overflow single precision
+// (the OBJ loader's limit).
+constexpr double coordinate_limit = 1e9;
+// A node may be reached along several paths (instancing); this bounds what a small file can expand to.
+constexpr std::size_t vertex_budget = std::size_t(64) << 20;
+constexpr std::size_t node_visit_budget = std::size_t(1) << 20;
+
+// A failure inside the loader: the problem, without the file name.
+struct Problem {
+    std::string text;
+};
+
+std::string first_line(const std::string& text) {
+    std::string line = text.substr(0, text.find('\n'));
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '.')) line.pop_back();
+    return penumbra_gen::printable(line, 200);
+}
+
+std::uint32_t read_u32(const std::string& bytes, std::size_t at) {
+    std::uint32_t v = 0;
+    std::memcpy(&v, bytes.data() + at, 4); // glTF is little-endian, as is every target we build for
+    return v;
+}
+
+// The .glb container (glTF 2.0 §4.4) checked before tinygltf reads it: tinygltf accepts a file
+// longer than its header says and chunks that are not where the header puts them.
+std::string check_glb(const std::string& bytes) {
+    const std::size_t size = bytes.size();
+    if (size < 12) return "a .glb file starts with a 12-byte header; the file has " + std::to_string(size) + " bytes";
+    if (bytes.compare(0, 4, "glTF") != 0) return "not a binary glTF file: it does not start with 'glTF'";
+    const std::uint32_t version = read_u32(bytes, 4), length = read_u32(bytes, 8);
+    if (version != 2) return "binary glTF version " + std::to_string(version) + " is not supported; allowed: 2";
+    if (length != size)
+        return "the header says the file has " + std::to_string(length) + " bytes but it has " + std::to_string(size) +
+               " (truncated or padded?)";
+    std::size_t at = 12;
+    for (int chunk = 0; at < size; ++chunk) {
+        if (size - at < 8) return "chunk " + std::to_string(chunk) + "'s 8-byte header is cut off at the end of the file";
+        const std::uint64_t chunk_length = read_u32(bytes, at), type = read_u32(bytes, at + 4);
+        if (chunk_length > size - at - 8)
+            return "chunk " + std::to_string(chunk) + " says it has " + std::to_string(chunk_length) +
+                   " bytes but only " + std::to_string(size - at - 8) + " follow";
+        if (chunk_length % 4 != 0)
+            return "chunk " + std::to_string(chunk) + "'s length " + std::to_string(chunk_length) +
+                   " is not a multiple of 4";
+        if (chunk == 0 && type != 0x4E4F534Au) return "the first chunk is not JSON";
+        if (chunk == 0 && chunk_length == 0) return "the JSON chunk is empty";
+        if (chunk == 1 && type != 0x004E4942u) return "the second chunk is not BIN";
+        at += 8 + chunk_length;
+    }
+    return {};
+}
+
+// What tinygltf reads through: regular files only, each at most the scene limit, no path expansion
+// (its default expands `~` and `$VARS` with wordexp). Remembers files that are missing.
+struct FileAccess {
+    std::vector<std::string> missing;
+};
+
+bool file_exists(const std::string& path, void* user) {
+    std::error_code ec;
+    const bool exists = std::filesystem::exists(path, ec);
+    if (!exists) static_cast<FileAccess*>(user)->missing.push_back(path);
+    return exists;
+}
+
+std::string expand_nothing(const std::string& path, void*) { return path; }
+
+bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+    const penumbra_gen::BoundedRead file = penumbra_gen::read_bounded_file(path, penumbra_gen::obj_file_limit);
+    if (!file.text) {
+        if (err) *err += file.problem;
+        return false;
+    }
+    out->assign(file.text->begin(), file.text->end());
+    return true;
+}
+
+bool write_nothing(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+    if (err) *err += "writing is not supported";
+    return false;
+}
+
+// Images only matter for materials; they are neither decoded nor required.
+bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+    return true;
+}
+
+std::string component_name(int type) {
+    switch (type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return "byte";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "unsigned byte";
+    case TINYGLTF_COMPONENT_TYPE_SHORT: return "short";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "unsigned short";
+    case TINYGLTF_COMPONENT_TYPE_INT: return "int";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "unsigned int";
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return "float";
+    case TINYGLTF_COMPONENT_TYPE_DOUBLE: return "double";
+    default: return "component type " + std::to_string(type);
+    }
+}
+
+std::string mode_name(int mode) {
+    switch (mode) {
+    case TINYGLTF_MODE_POINTS: return "points";
+    case TINYGLTF_MODE_LINE: return "lines";
+    case TINYGLTF_MODE_LINE_LOOP: return "a line loop";
+    case TINYGLTF_MODE_LINE_STRIP: return "a line strip";
+    default: return "mode " + std::to_string(mode);
+    }
+}
+
+// One accessor, validated: where its elements are and how to read one component as a number.
+struct View {
+    const unsigned char* data = nullptr; // first element
+    std::size_t stride = 0;
+    std::size_t count = 0;
+    int components = 0;
+    int component_type = 0;
+    bool normalized = false;
+
+    double component(std::size_t element, int c) const {
+        const unsigned char* p = data + element * stride;
+        switch (component_type) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE: {
+            std::int8_t v;
+            std::memcpy(&v, p + c, 1);
+            return normalized ? std::max(v / 127.0, -1.0) : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+            std::uint8_t v;
+            std::memcpy(&v, p + c, 1);
+            return normalized ? v / 255.0 : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_SHORT: {
+            std::int16_t v;
+            std::memcpy(&v, p + 2 * c, 2);
+            return normalized ? std::max(v / 32767.0, -1.0) : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+            std::uint16_t v;
+            std::memcpy(&v, p + 2 * c, 2);
+            return normalized ? v / 65535.0 : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+            std::uint32_t v;
+            std::memcpy(&v, p + 4 * c, 4);
+            return v;
+        }
+        default: {
+            float v;
+            std::memcpy(&v, p + 4 * c, 4);
+            return v;
+        }
+        }
+    }
+    glm::dvec3 vec3(std::size_t i) const { return {component(i, 0), component(i, 1), component(i, 2)}; }
+};
+
+// Why a primitive cannot be read although the file is valid (it is skipped), or empty.
+struct ViewResult {
+    View view;
+    std::string skip;
+};
+
+// Checks accessor `index` for the attribute `what`: its type (`components`), its component type
+// (one of `allowed`), its buffer view and buffer, and that every element lies inside them.
+// Throws Problem for an invalid file; returns `skip` for valid data this loader does not read.
+ViewResult accessor_view(const tinygltf::Model& model, int index, const std::string& what, int type,
+                         std::initializer_list<int> allowed, const std::string& allowed_text) {
+    const int components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(type));
+    if (index < 0 || static_cast<std::size_t>(index) >= model.accessors.size())
+        throw Problem{what + " refers to accessor " + std::to_string(index) + " but the file has " +
+                      std::to_string(model.accessors.size())};
+    const tinygltf::Accessor& a = model.accessors[static_cast<std::size_t>(index)];
+    const std::string name = what + " (accessor " + std::to_string(index) + ")";
+    auto type_name = [](int t) {
+        switch (t) {
+        case TINYGLTF_TYPE_SCALAR: return std::string("SCALAR");
+        case TINYGLTF_TYPE_VEC2: return std::string("VEC2");
+        case TINYGLTF_TYPE_VEC3: return std::string("VEC3");
+        case TINYGLTF_TYPE_VEC4: return std::string("VEC4");
+        case TINYGLTF_TYPE_MAT2: return std::string("MAT2");
+        case TINYGLTF_TYPE_MAT3: return std::string("MAT3");
+        case TINYGLTF_TYPE_MAT4: return std::string("MAT4");
+        default: return "type " + std::to_string(t);
+        }
+    };
+    if (a.type != type) throw Problem{name + " is " + type_name(a.type) + "; allowed: " + type_name(type)};
+    bool type_ok = false;
+    for (int t : allowed) type_ok = type_ok || a.componentType == t;
+    if (!type_ok) throw Problem{name + " has " + component_name(a.componentType) + " components; allowed: " + allowed_text};
+    if (a.sparse.isSparse) return {{}, name + " is a sparse accessor"};
+    if (a.count == 0) return {{}, name + " is empty"};
+    if (a.bufferView < 0) return {{}, name + " has no buffer view (no data)"};
+    if (static_cast<std::size_t>(a.bufferView) >= model.bufferViews.size())
+        throw Problem{name + " refers to buffer view " + std::to_string(a.bufferView) + " but the file has " +
+                      std::to_string(model.bufferViews.size())};
+    const tinygltf::BufferView& bv = model.bufferViews[static_cast<std::size_t>(a.bufferView)];
+    const std::string view_name = "buffer view " + std::to_string(a.bufferView);
+    if (bv.buffer < 0 || static_cast<std::size_t>(bv.buffer) >= model.buffers.size())
+        throw Problem{view_name + " refers to buffer " + std::to_string(bv.buffer) + " but the file has " +
+                      std::to_string(model.buffers.size())};
+    const std::vector<unsigned char>& buffer = model.buffers[static_cast<std::size_t>(bv.buffer)].data;
+    if (bv.byteOffset > buffer.size() || bv.byteLength > buffer.size() - bv.byteOffset)
+        throw Problem{view_name + " (bytes " + std::to_string(bv.byteOffset) + " + " + std::to_string(bv.byteLength) +
+                      ") goes past the end of buffer " + std::to_string(bv.buffer) + " (" +
+                      std::to_string(buffer.size()) + " bytes)"};
+    const std::size_t component_size = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(
+        static_cast<std::uint32_t>(a.componentType)));
+    const std::size_t element = component_size * static_cast<std::size_t>(components);
+    const std::size_t stride = bv.byteStride ? bv.byteStride : element;
+    if (stride < element || stride % component_size != 0)
+        throw Problem{view_name + "'s byte stride " + std::to_string(bv.byteStride) + " does not fit " + name +
+                      "'s " + std::to_string(element) + "-byte elements"};
+    if (a.byteOffset % component_size != 0)
+        throw Problem{name + "'s byte offset " + std::to_string(a.byteOffset) + " is not a multiple of its " +
+                      std::to_string(component_size) + "-byte components"};
+    // a.byteOffset + stride·(count − 1) + element ≤ byteLength, without overflow.
+    const std::size_t length = bv.byteLength;
+    if (a.byteOffset > length || element > length - a.byteOffset ||
+        (a.count - 1) > (length - a.byteOffset - element) / stride)
+        throw Problem{name + " (" + std::to_string(a.count) + " elements of " + std::to_string(element) +
+                      " bytes from byte " + std::to_string(a.byteOffset) + ", stride " + std::to_string(stride) +
+                      ") goes past the end of " + view_name + " (" + std::to_string(length) + " bytes)"};
+    View v;
+    v.data = buffer.data() + bv.byteOffset + a.byteOffset;
+    v.stride = stride;
+    v.count = a.count;
+    v.components = components;
+    v.component_type = a.componentType;
+    v.normalized = a.normalized;
+    return {v, {}};
+}
+
+// The node's local transform: its matrix, or translation × rotation × scale.
+glm::dmat4 local_transform(const tinygltf::Node& node, int index) {
+    const std::string name = "node " + std::to_string(index);
+    auto finite = [&](const std::vector<double>& values, const char* what) {
+        for (double v : values)
+            if (!std::isfinite(v)) throw Problem{name + "'s " + what + " has a value that is not a finite number"};
+    };
+    if (!node.matrix.empty()) {
+        if (node.matrix.size() != 16)
+            throw Problem{name + "'s matrix has " + std::to_string(node.matrix.size()) + " numbers; allowed: 16"};
+        finite(node.matrix, "matrix");
+        return glm::make_mat4(node.matrix.data()); // column-major, as glTF stores it
+    }
+    glm::dmat4 m(1.0);
+    if (!node.translation.empty()) {
+        if (node.translation.size() != 3)
+            throw Problem{name + "'s translation has " + std::to_string(node.translation.size()) + " numbers; allowed: 3"};
+        finite(node.translation, "translation");
+        m = glm::translate(m, glm::dvec3(node.translation[0], node.translation[1], node.translation[2]));
+    }
+    if (!node.rotation.empty()) {
+        if (node.rotation.size() != 4)
+            throw Problem{name + "'s rotation has " + std::to_string(node.rotation.size()) + " numbers; allowed: 4"};
+        finite(node.rotation, "rotation");
+        glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]); // stored x, y, z, w
+        const double len = glm::length(q);
+        if (!(len > 1e-12)) throw Problem{name + "'s rotation is not a unit quaternion (its length is 0)"};
+        m = m * glm::mat4_cast(q / len);
+    }
+    if (!node.scale.empty()) {
+        if (node.scale.size() != 3)
+            throw Problem{name + "'s scale has " + std::to_string(node.scale.size()) + " numbers; allowed: 3"};
+        finite(node.scale, "scale");
+        m = glm::scale(m, glm::dvec3(node.scale[0], node.scale[1], node.scale[2]));
+    }
+    return m;
+}
+
+struct Loader {
+    const tinygltf::Model& model;
+    Mesh mesh;
+    std::vector<std::string> warnings;
+    bool all_have_uvs = true;
+    std::size_t triangles_skipped_primitives = 0;
+
+    void skip(const std::string& where, const std::string& why) {
+        warnings.push_back(where + " skipped: " + why);
+        ++triangles_skipped_primitives;
+    }
+
+    // Triangle list corners from the primitive's indices (or 0..n−1), strips and fans unrolled.
+    std::vector<std::uint32_t> corners(const tinygltf::Primitive& p, const std::string& where, std::size_t vertices,
+                                       std::string* skipped) {
+        std::vector<std::uint32_t> order;
+        if (p.indices >= 0) {
+            const ViewResult r = accessor_view(model, p.indices, where + "'s indices", TINYGLTF_TYPE_SCALAR,
+                                               {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                                                TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
+                                               "unsigned byte, unsigned short, unsigned int");
+            if (!r.skip.empty()) {
+                *skipped = r.skip;
+                return {};
+            }
+            order.resize(r.view.count);
+            for (std::size_t i = 0; i < r.view.count; ++i) {
+                const double value = r.view.component(i, 0);
+                if (value >= static_cast<double>(vertices))
+                    throw Problem{where + "'s index " + std::to_string(i) + " is " +
+                                  std::to_string(static_cast<unsigned long long>(value)) + " but it has " +
+                                  std::to_string(vertices) + " vertices; allowed: 0 to " + std::to_string(vertices - 1)};
+                order[i] = static_cast<std::uint32_t>(value);
+            }
+        } else {
+            order.resize(vertices);
+            for (std::size_t i = 0; i < vertices; ++i) order[i] = static_cast<std::uint32_t>(i);
+        }
+        const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+        std::vector<std::uint32_t> list;
+        if (mode == TINYGLTF_MODE_TRIANGLES) {
+            if (order.size() % 3 != 0)
+                throw Problem{where + " has " + std::to_string(order.size()) + " " +
+                              (p.indices >= 0 ? "indices" : "vertices") + ", not a multiple of 3 (triangles)"};
+            return order;
+        }
+        if (order.size() < 3) {
+            *skipped = "a triangle " + std::string(mode == TINYGLTF_MODE_TRIANGLE_STRIP ? "strip" : "fan") +
+                       " with fewer than 3 vertices";
+            return {};
+        }
+        for (std::size_t i = 2; i < order.size(); ++i) {
+            if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+                if (i % 2 == 0) list.insert(list.end(), {order[i - 2], order[i - 1], order[i]});
+                else list.insert(list.end(), {order[i - 1], order[i - 2], order[i]}); // keep the winding
+            } else {
+                list.insert(list.end(), {order[0], order[i - 1], order[i]});
+            }
+        }
+        return list;
+    }
+
+    void add_primitive(const tinygltf::Primitive& p, const std::string& where, const glm::dmat4& world) {
+        const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+        if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+            mode != TINYGLTF_MODE_TRIANGLE_FAN)
+            return skip(where, mode_name(mode) + ", not triangles");
+        if (p.extensions.count("KHR_draco_mesh_compression"))
+            return skip(where, "Draco-compressed (KHR_draco_mesh_compression is not supported)");
+        const auto position_at = p.attributes.find("POSITION");
+        if (position_at == p.attributes.end()) return skip(where, "no POSITION attribute");
+        const ViewResult positions = accessor_view(model, position_at->second, where + "'s POSITION", TINYGLTF_TYPE_VEC3,
+                                                   {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
+                                                    TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT,
+                                                    TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
+                                                   "float, or (KHR_mesh_quantization) byte and short types");
+        if (!positions.skip.empty()) return skip(where, positions.skip);
+        const std::size_t count = positions.view.count;
+        std::optional<View> normals, uvs;
+        if (const auto at = p.attributes.find("NORMAL"); at != p.attributes.end()) {
+            const ViewResult r = accessor_view(model, at->second, where + "'s NORMAL", TINYGLTF_TYPE_VEC3,
+                                               {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
+                                                TINYGLTF_COMPONENT_TYPE_SHORT},
+                                               "float, or (KHR_mesh_quantization) normalized byte and short");
+            if (r.skip.empty()) normals = r.view;
+        }
+        if (const auto at = p.attributes.find("TEXCOORD_0"); at != p.attributes.end()) {
+            const ViewResult r = accessor_view(model, at->second, where + "'s TEXCOORD_0", TINYGLTF_TYPE_VEC2,
+                                               {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                                TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_COMPONENT_TYPE_BYTE,
+                                                TINYGLTF_COMPONENT_TYPE_SHORT},
+                                               "float, unsigned byte or unsigned short (normalized)");
+            if (r.skip.empty()) uvs = r.view;
+        }
+        for (const auto& [view, name] : {std::pair{&normals, "NORMAL"}, std::pair{&uvs, "TEXCOORD_0"}})
+            if (*view && (*view)->count != count)
+                throw Problem{where + "'s " + name + " has " + std::to_string((*view)->count) +
+                              " elements but POSITION has " + std::to_string(count) + "; they must be equal"};
+
+        std::string skipped;
+        std::vector<std::uint32_t> list = corners(p, where, count, &skipped);
+        if (!skipped.empty()) return skip(where, skipped);
+        if (mesh.positions.size() + count > vertex_budget || mesh.indices.size() + list.size() > 3 * vertex_budget)
+            throw Problem{"more than " + std::to_string(vertex_budget) +
+                          " vertices or triangles after placing every node's mesh; allowed: up to that many"};
+
+        // Positions in world space, checked; a mirroring transform flips the winding (glTF §3.7.4).
+        Mesh part;
+        part.positions.resize(count);
+        for (std::size_t i = 0; i < count; ++i) {
+            const glm::dvec3 local = positions.view.vec3(i);
+            const glm::dvec3 w = glm::dvec3(world * glm::dvec4(local, 1.0));
+            const bool file_finite = std::isfinite(local.x) && std::isfinite(local.y) && std::isfinite(local.z);
+            for (int axis = 0; axis < 3; ++axis)
+                if (!file_finite || !std::isfinite(w[axis]) || std::abs(w[axis]) > coordinate_limit)
+                    throw Problem{where + "'s position " + std::to_string(i) + " is " +
+                                  (file_finite ? "out of range after its node's transform" : "not a finite number") +
+                                  "; allowed: finite coordinates within ±1e9"};
+            part.positions[i] = glm::vec3(w);
+        }
+        const glm::dmat3 linear(world);
+        const double det = glm::determinant(linear);
+        if (det < 0.0)
+            for (std::size_t t = 0; t + 2 < list.size(); t += 3) std::swap(list[t + 1], list[t + 2]);
+        part.indices = std::move(list);
+
+        // Normals: the file's, through the inverse transpose, when all are usable; else computed.
+        bool usable = normals.has_value() && std::abs(det) > 1e-30;
+        if (usable) {
+            const glm::dmat3 normal_matrix = glm::inverseTranspose(linear);
+            part.normals.resize(count);
+            for (std::size_t i = 0; i < count && usable; ++i) {
+                const glm::dvec3 n = normal_matrix * normals->vec3(i);
+                const double len = glm::length(n);
+                usable = std::isfinite(len) && len > 1e-12;
+                if (usable) part.normals[i] = glm::vec3(n / len);
+            }
+            if (!usable) warnings.push_back(where + ": a normal is zero or not a finite number; normals computed instead");
+        }
+        if (!usable) compute_vertex_normals(part);
+        if (uvs) {
+            part.uvs.resize(count);
+            for (std::size_t i = 0; i < count; ++i) {
+                const glm::dvec2 t(uvs->component(i, 0), uvs->component(i, 1));
+                if (!std::isfinite(t.x) || !std::isfinite(t.y))
+                    throw Problem{where + "'s TEXCOORD_0 " + std::to_string(i) + " is not a finite number"};
+                part.uvs[i] = glm::vec2(t);
+            }
+        } else {
+            all_have_uvs = false;
+        }
+        // Append.
+        const std::uint32_t base = static_cast<std::uint32_t>(mesh.positions.size());
+        if (!all_have_uvs) mesh.uvs.clear();
+        mesh.positions.insert(mesh.positions.end(), part.positions.begin(), part.positions.end());
+        mesh.normals.insert(mesh.normals.end(), part.normals.begin(), part.normals.end());
+        if (all_have_uvs) mesh.uvs.insert(mesh.uvs.end(), part.uvs.begin(), part.uvs.end());
+        for (std::uint32_t i : part.indices) mesh.indices.push_back(base + i);
+    }
+
+    void add_mesh(int index, int node, const glm::dmat4& world) {
+        if (index < 0 || static_cast<std::size_t>(index) >= model.meshes.size())
+            throw Problem{"node " + std::to_string(node) + " refers to mesh " + std::to_string(index) +
+                          " but the file has " + std::to_string(model.meshes.size())};
+        const tinygltf::Mesh& m = model.meshes[static_cast<std::size_t>(index)];
+        for (std::size_t p = 0; p < m.primitives.size(); ++p)
+            add_primitive(m.primitives[p], "mesh " + std::to_string(index) + " primitive " + std::to_string(p), world);
+    }
+
+    // Depth first from the roots; a node met again on its own path is a cycle (invalid glTF).
+    void add_nodes(const std::vector<int>& roots, const std::string& roots_name) {
+        struct Entry {
+            int node;
+            glm::dmat4 parent;
+            std::size_t depth;
+        };
+        std::vector<Entry> stack;
+        std::vector<int> path; // the nodes from the root to the current one
+        for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::dmat4(1.0), 0});
+        std::size_t visits = 0;
+        while (!stack.empty()) {
+            const Entry e = stack.back();
+            stack.pop_back();
+            const std::string parent_name = e.depth == 0 ? roots_name : "node " + std::to_string(path[e.depth - 1]);
+            if (e.node < 0 || static_cast<std::size_t>(e.node) >= model.nodes.size())
+                throw Problem{parent_name + " refers to node " + std::to_string(e.node) + " but the file has " +
+                              std::to_string(model.nodes.size())};
+            path.resize(e.depth);
+            for (int ancestor : path)
+                if (ancestor == e.node)
+                    throw Problem{"node " + std::to_string(e.node) + " is its own ancestor (a cycle in the nodes' "
+                                  "children); a node tree must not loop"};
+            if (++visits > node_visit_budget)
+                throw Problem{"the node tree reaches more than " + std::to_string(node_visit_budget) +
+                              " nodes (a node listed as the child of many others?)"};
+            path.push_back(e.node);
+            const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(e.node)];
+            const glm::dmat4 world = e.parent * local_transform(node, e.node);
+            if (node.mesh >= 0) add_mesh(node.mesh, e.node, world);
+            for (auto c = node.children.rbegin(); c != node.children.rend(); ++c)
+                stack.push_back({*c, world, e.depth + 1});
+        }
+    }
+};
+
+} // namespace
+
+LoadResult load_gltf_scene(const std::string& path) {
+    auto failure = [&](const std::string& problem) {
+        return LoadResult{std::nullopt, "cannot load glTF file '" + penumbra_gen::printable(path, 200) + "': " + problem, {}};
+    };
+    const penumbra_gen::BoundedRead file = penumbra_gen::read_bounded_file(path, penumbra_gen::obj_file_limit);
+    if (!file.text) return failure(file.problem == "no such file" ? "file does not exist" : file.problem);
+    const std::string& bytes = *file.text;
+    const std::filesystem::path fs_path(path);
+    std::string extension = fs_path.extension().string();
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const bool binary = bytes.compare(0, 4, "glTF") == 0;
+    if (extension == ".glb" && !binary) return failure("not a binary glTF file: it does not start with 'glTF'");
+    if (binary)
+        if (std::string problem = check_glb(bytes); !problem.empty()) return failure(problem);
+
+    tinygltf::TinyGLTF parser;
+    FileAccess access;
+    parser.SetFsCallbacks({&file_exists, &expand_nothing, &read_whole_file, &write_nothing, &access});
+    parser.SetImageLoader(&skip_image, nullptr);
+    tinygltf::Model model;
+    std::string err, warn;
+    std::string base_dir = fs_path.parent_path().string();
+    if (base_dir.empty()) base_dir = ".";
+    bool ok = false;
+    try {
+        ok = binary ? parser.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                                  static_cast<unsigned int>(bytes.size()), base_dir)
+                    : parser.LoadASCIIFromString(&model, &err, &warn, bytes.data(),
+                                                 static_cast<unsigned int>(bytes.size()), base_dir);
+    } catch (const std::exception& e) {
+        return failure(std::string("parser failed: ") + first_line(e.what()));
+    }
+    if (!ok) {
+        for (const std::string& missing : access.missing)
+            if (err.find(std::filesystem::path(missing).filename().string()) != std::string::npos)
+                return failure("its buffer file '" + penumbra_gen::printable(missing, 200) + "' does not exist");
+        // tinygltf refuses accessors without a buffer view, which is how Draco-compressed primitives look.
+        if (bytes.find("\"KHR_draco_mesh_compression\"") != std::string::npos)
+            return failure("it uses Draco compression (KHR_draco_mesh_compression), which is not supported (" +
+                           (err.empty() ? std::string("parse error") : first_line(err)) + ")");
+        return failure(err.empty() ? "parse error" : first_line(err));
+    }
+    if (!model.asset.version.starts_with("2"))
+        return failure("glTF version '" + penumbra_gen::printable(model.asset.version, 20) +
+                       "' is not supported; allowed: 2.0");
+    for (const std::string& ext : model.extensionsRequired)
+        if (ext == "EXT_meshopt_compression" || ext == "KHR_meshopt_compression")
+            return failure("it requires " + penumbra_gen::printable(ext, 60) + ", which is not supported");
+
+    Loader loader{model, {}, {}};
+    try {
+        if (model.defaultScene >= 0 && static_cast<std::size_t>(model.defaultScene) >= model.scenes.size())
+            return failure("the default scene is " + std::to_string(model.defaultScene) + " but the file has " +
+                           std::to_string(model.scenes.size()) + " scenes");
+        if (model.scenes.empty()) return failure("no scenes (nothing to show)");
+        const std::size_t scene = model.defaultScene >= 0 ? static_cast<std::size_t>(model.defaultScene) : 0;
+        loader.add_nodes(model.scenes[scene].nodes, "scene " + std::to_string(scene));
+    } catch (const Problem& p) {
+        return failure(p.text);
+    } catch (const std::exception& e) { // std::bad_alloc
+        return failure(std::string("out of memory or internal error: ") + e.what());
+    }
+    if (loader.mesh.indices.empty()) {
+        std::string why = "no triangles in the scene's meshes";
+        if (!loader.warnings.empty())
+            why += " (" + std::to_string(loader.triangles_skipped_primitives) + " primitive" +
+                   (loader.triangles_skipped_primitives == 1 ? "" : "s") + " skipped, e.g. " + loader.warnings.front() + ")";
+        return failure(why);
+    }
+    Scene result;
+    result.name = fs_path.stem().string();
+    result.mesh = std::move(loader.mesh);
+    finish_scene(result);
+    if (const std::string problem = validate_mesh(result.mesh); !problem.empty()) return failure(problem);
+    LoadResult out{std::move(result), {}, {}};
+    for (const std::string& w : loader.warnings) out.warnings.push_back(penumbra_gen::printable(path, 200) + ": " + w);
+    return out;
+}
+
+} // namespace penumbra::playground

@@ -1,0 +1,25 @@
+// playground/src/scenes/gltf_loader.hpp — any glTF 2.0 file (.gltf with its buffers, or .glb) as a Scene.
+#pragma once
+
+#include "scenes/obj_loader.hpp" // LoadResult
+
+#include <string>
+
+namespace penumbra::playground {
+
+// Loads every triangle primitive (TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN; indexed with unsigned
+// byte, short or int indices, or not indexed) of every mesh reached from the default scene's nodes
+// (scene 0 when the file names none), each placed by its node's world transform (matrix or
+// translation × rotation × scale, composed down the node tree). Positions, normals and TEXCOORD_0
+// are read (normals transformed by the inverse transpose; computed, smooth, when a primitive has
+// none or has unusable ones; texture coordinates kept in mesh.uvs when every primitive has them).
+// The parser is Debian's libtinygltf; everything it does not check is validated here before any
+// data is read: the .glb header and chunk lengths against the file size, every accessor and buffer
+// view against its buffer, component types and accessor types, index values against the vertex
+// count, finite positions within ±1e9, node cycles, the total size after instancing.
+// Primitives that are points or lines, use sparse accessors, are Draco-compressed or have no
+// buffer data are skipped, each with a line in `warnings`; a file with nothing left is an error.
+// Never throws on bad input; every failure is one line in `error` naming the file and the problem.
+LoadResult load_gltf_scene(const std::string& path);
+
+} // namespace penumbra::playground
