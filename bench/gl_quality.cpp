@@ -5,7 +5,7 @@
 // time of each pass (timer queries; on llvmpipe the CPU
 // time of the software rasteriser, so compare ratios, not absolute values).
 //
-//   penumbra-bench-quality [--scenes planes,boxes] [FILE ...] [--corpus [DIR]] [--filters sat,nbuffer]
+//   penumbra-bench-quality [--scenes planes,boxes] [FILE ...] [--corpus [DIR]] [--no-ground] [--filters sat,nbuffer]
 //                          [--configs 16x512,4x128] [--size 256x256] [--samples 16] [--repeat 1]
 #include "arguments.hpp"
 #include "corpus/manifest.hpp"
@@ -65,14 +65,16 @@ struct Options {
     std::vector<penumbra::Filter> filters{penumbra::Filter::mipmap, penumbra::Filter::nbuffer, penumbra::Filter::sat};
     std::vector<SliceSetting> settings{{16, 512}, {4, 128}};
     int width = 256, height = 256, samples = 16, repeat = 3;
+    bool ground = true; // --no-ground: no floor under the mesh files
 };
 
 constexpr const char* usage_text =
-    "usage: penumbra-bench-quality [--scenes a,b,...] [FILE ...] [--corpus [DIR]] [--filters f,g,...]\n"
+    "usage: penumbra-bench-quality [--scenes a,b,...] [FILE ...] [--corpus [DIR]] [--no-ground] [--filters f,g,...]\n"
     "                              [--configs SxR,...] [--size WxH] [--samples N] [--repeat N] [--variants v,w,...]\n"
     "  --scenes    built-in scenes (default all: planes, boxes, tree, butterfly, terrain, crowd, box; '' for none)\n"
     "  FILE        mesh files (what penumbra-playground --scene loads), measured after the built-in scenes\n"
     "  --corpus    every mesh of the corpus in DIR (default ~/.cache/penumbra/corpus; scripts/get_corpus.sh)\n"
+    "  --no-ground no floor under the mesh files (default: each stands on one, as in penumbra-playground)\n"
     "  --filters   mipmap, nbuffer, sat (default all three; the light is each scene's rectangle)\n"
     "  --configs   slices x occlusion-texture resolution (default 16x512,4x128)\n"
     "  --size      image size (default 256x256)\n"
@@ -96,6 +98,10 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
         const std::string_view flag = argv[i];
         if (!flag.starts_with("--")) { // a mesh file, named after its stem
             files.push_back({std::string(flag), std::filesystem::path(flag).stem().string()});
+            continue;
+        }
+        if (flag == "--no-ground") {
+            o.ground = false;
             continue;
         }
         if (flag == "--corpus") {
@@ -182,7 +188,7 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                 return std::nullopt;
             }
         } else {
-            error = "unknown flag '" + std::string(flag) + "'; allowed: --scenes, --corpus, --filters, --configs, --size, "
+            error = "unknown flag '" + std::string(flag) + "'; allowed: --scenes, --corpus, --no-ground, --filters, --configs, --size, "
                     "--samples, --repeat, --variants, --help, FILE";
             return std::nullopt;
         }
@@ -237,7 +243,7 @@ int main(int argc, char** argv) {
     }
     std::vector<Scene> scenes; // every scene loaded before the first row, so a bad file stops the run at once
     for (const SceneInput& input : options->scenes) {
-        SceneLoad loaded = load_scene(input.name_or_path);
+        SceneLoad loaded = load_scene(input.name_or_path, options->ground);
         if (!loaded.scene) {
             std::cerr << "error: " << loaded.error << "\n";
             return 2;

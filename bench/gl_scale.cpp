@@ -20,7 +20,7 @@
 // (log(t2/t1) / log(n2/n1): 1 is linear), flagged where it exceeds 1.15.
 // On llvmpipe the milliseconds are CPU time on a shared machine: read ratios and exponents.
 //
-//   penumbra-bench-scale [--scenes a,b | ''] [FILE ...] [--corpus [DIR]] [--size N] [--samples N]
+//   penumbra-bench-scale [--scenes a,b | ''] [FILE ...] [--corpus [DIR]] [--no-ground] [--size N] [--samples N]
 //                        [--runs N] [--warmup N] [--no-truth] [--json FILE]
 #include "arguments.hpp"
 #include "compare/frame.hpp"
@@ -69,15 +69,17 @@ struct Options {
     std::vector<SceneInput> scenes;
     int size = 256, samples = 32, runs = 5, warmup = 2;
     bool truth = true;
+    bool ground = true; // --no-ground: no floor under the mesh files
     std::string json_path;
 };
 
 constexpr const char* usage_text =
-    "usage: penumbra-bench-scale [--scenes a,b,...] [FILE ...] [--corpus [DIR]] [--size N] [--samples N]\n"
+    "usage: penumbra-bench-scale [--scenes a,b,...] [FILE ...] [--corpus [DIR]] [--no-ground] [--size N] [--samples N]\n"
     "                            [--runs N] [--warmup N] [--no-truth] [--json FILE]\n"
     "  --scenes    built-in scenes, comma-separated (default all; '' for none)\n"
     "  FILE        mesh files (what penumbra-playground --scene loads), named after their stem\n"
     "  --corpus    every mesh of the corpus in DIR (default ~/.cache/penumbra/corpus; scripts/get_corpus.sh)\n"
+    "  --no-ground no floor under the mesh files (default: each stands on one, +2 triangles)\n"
     "  --size      image side in pixels, 16 to 1024 (default 256): the screen pass and the truth's pixels\n"
     "  --samples   ground-truth rays per light axis, 1 to 128 (default 32: 32x32 rays per pixel)\n"
     "  --runs      rounds of every measure, 1 to 100 (default 5; medians reported)\n"
@@ -108,14 +110,18 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
             for (const bench::CorpusMesh& m : *corpus) files.push_back({m.path, m.name});
             continue;
         }
+        if (flag == "--no-ground") {
+            o.ground = false;
+            continue;
+        }
         if (flag == "--no-truth") {
             o.truth = false;
             continue;
         }
         constexpr std::string_view valued[] = {"--scenes", "--size", "--samples", "--runs", "--warmup", "--json"};
         if (std::find(std::begin(valued), std::end(valued), flag) == std::end(valued))
-            return fail("unknown flag '" + std::string(flag) + "'; allowed: --scenes, --corpus, --size, --samples, "
-                        "--runs, --warmup, --no-truth, --json, --help, FILE");
+            return fail("unknown flag '" + std::string(flag) + "'; allowed: --scenes, --corpus, --no-ground, --size, "
+                        "--samples, --runs, --warmup, --no-truth, --json, --help, FILE");
         if (i + 1 >= argc) return fail(std::string(flag) + ": missing value (see --help)");
         const std::string_view value = argv[++i];
         auto number = [&](int& out, int lo, int hi) {
@@ -246,7 +252,7 @@ int main(int argc, char** argv) {
     std::vector<Item> items;
     for (const SceneInput& input : options->scenes) {
         const auto start = std::chrono::steady_clock::now();
-        SceneLoad loaded = load_scene(input.name_or_path);
+        SceneLoad loaded = load_scene(input.name_or_path, options->ground);
         if (!loaded.scene) return fail(loaded.error, 2);
         Item item;
         item.load_ms.push_back(bench::milliseconds_since(start));
@@ -261,7 +267,7 @@ int main(int argc, char** argv) {
     for (int r = 1; r < options->runs; ++r)
         for (Item& item : items) {
             const auto start = std::chrono::steady_clock::now();
-            const SceneLoad again = load_scene(item.input.name_or_path);
+            const SceneLoad again = load_scene(item.input.name_or_path, options->ground);
             item.load_ms.push_back(bench::milliseconds_since(start));
         }
 
@@ -327,6 +333,7 @@ int main(int argc, char** argv) {
                                 1048576.0;
         json record = {{"name", item.scene.name},
                        {"file", item.file},
+                       {"ground", item.scene.ground},
                        {"triangles", m.triangle_count()},
                        {"vertices", m.positions.size()},
                        {"load_ms", bench::median(item.load_ms)},
