@@ -566,7 +566,8 @@ def write_scene_tables(results, w):
             continue
         w(f"### {title}\n")
         if scenes is meshes:
-            grounded = sum(1 for s in scenes if s.get("ground"))
+            grounded = sum(1 for s in scenes if s.get("ground", any(m.get("ground") for m in measurements
+                                                                  if m["scene"] == s["name"])))
             w(f"{grounded} of {len(scenes)} on a floor under their bounds (+2 triangles; `--no-ground` drops it).\n")
         w("| scene | triangles | setting | penumbra MAE | penumbra p95 | all-pixel MAE | cost ms | ratio | "
           f"penumbra MAE {other_metrics()} |")
