@@ -9,8 +9,8 @@
 //            (slicing, and adaptive placement's depth bins; the shadow map's depth pass), the
 //            prefilter (full-screen passes of the shadow phase) and the screen pass; plus the
 //            G-buffer (the camera's own draw of the scene, the engine's cost, for scale);
-//   memory:  the mesh's GPU buffers, each layout's textures, the resident memory the Embree BVH
-//            adds, and the process's peak;
+//   memory:  the mesh's GPU buffers, each layout's textures, the heap the Embree BVH holds (and the
+//            resident memory it adds), and the process's peak;
 //   truth:   Embree's BVH build and the trace of the visibility and the oriented references at
 //            --size with --samples² rays per pixel (what penumbra-bench-compare traces per light).
 // Every measure is interleaved over the scenes (round r of every scene, then round r + 1) and the
@@ -45,6 +45,7 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <malloc.h>
 #include <map>
 #include <optional>
 #include <string>
@@ -170,6 +171,14 @@ Resident resident_memory() {
         else if (key == "VmHWM:" && status >> kib) r.peak_mib = kib / 1024.0;
     }
     return r;
+}
+
+// Bytes allocated through malloc and in use now (glibc's mallinfo2: arena and mmapped chunks), so
+// that memory a new object takes is counted even where freed memory is reused (the resident size
+// then does not grow).
+double heap_in_use_mib() {
+    const struct mallinfo2 info = mallinfo2();
+    return static_cast<double>(info.uordblks + info.hblkhd) / 1048576.0;
 }
 
 // The passes of one frame grouped by what they are: scene draws from the light, the prefilter,
@@ -368,11 +377,14 @@ int main(int argc, char** argv) {
             for (int r = 0; r < options->runs; ++r)
                 for (std::size_t i = 0; i < items.size(); ++i) {
                     std::fprintf(stderr, "scale: Embree build round %d, %s\n", r + 1, items[i].scene.name.c_str());
-                    const double before = resident_memory().now_mib;
+                    const double before = resident_memory().now_mib, heap_before = heap_in_use_mib();
                     const auto start = std::chrono::steady_clock::now();
                     const GroundTruth truth(items[i].scene.mesh);
                     items[i].build_ms.push_back(bench::milliseconds_since(start));
-                    if (r == 0) records[i]["truth"]["rss_growth_mib"] = resident_memory().now_mib - before;
+                    if (r == 0) {
+                        records[i]["truth"]["rss_growth_mib"] = resident_memory().now_mib - before;
+                        records[i]["truth"]["heap_mib"] = heap_in_use_mib() - heap_before;
+                    }
                 }
             for (std::size_t i = 0; i < items.size(); ++i) {
                 const Item& item = items[i];
@@ -417,7 +429,7 @@ int main(int argc, char** argv) {
                 results["meta"]["peak_rss_mib"].get<double>());
     std::printf("| scene | triangles | load ms | upload ms | G-buffer ms | OT scene passes ms (draws) | OT prefilter ms | "
                 "OT screen ms | PCSS depth ms (draws) | PCSS screen ms | OT scene / PCSS depth | mesh MiB | OT tex MiB | "
-                "PCSS tex MiB | Embree build ms | Embree +MiB | trace ms (vis + oriented) | Mrays/s |\n");
+                "PCSS tex MiB | Embree build ms | Embree heap MiB (RSS +MiB) | trace ms (vis + oriented) | Mrays/s |\n");
     std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const json& r : records) {
         const json& ot = r["techniques"]["OT default"];
@@ -431,7 +443,7 @@ int main(int argc, char** argv) {
                     fmt(pcss_scene).c_str(), pcss["scene_draws"].get<int>(), fmt(pcss["screen_ms"]).c_str(),
                     pcss_scene > 0 ? ot_scene / pcss_scene : 0.0, r["mesh_mib"].get<double>(), ot["texture_mib"].get<double>(),
                     pcss["texture_mib"].get<double>(), truth ? fmt(r["truth"]["build_ms"]).c_str() : "–",
-                    truth ? fmt(r["truth"]["rss_growth_mib"]).c_str() : "–",
+                    truth ? (fmt(r["truth"]["heap_mib"]) + " (" + fmt(r["truth"]["rss_growth_mib"]) + ")").c_str() : "–",
                     truth ? fmt(r["truth"]["visibility_trace_ms"].get<double>() + r["truth"]["oriented_trace_ms"].get<double>()).c_str() : "–",
                     truth ? fmt(r["truth"]["visibility_mrays_per_s"]).c_str() : "–");
         results["scenes"].push_back(r);
