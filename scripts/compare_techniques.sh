@@ -2,7 +2,7 @@
 # Compares the techniques on equal terms: same scene, light, G-buffer and Embree truth, one run.
 #   scripts/compare_techniques.sh [BUILD_DIR] [SCENES] [SIZE] [SAMPLES]
 # defaults: build "boxes tree" 256x256 32. Prints, per scene and technique, the penumbra MAE and
-# p95 against the ground truth, the warm GPU time of the shading pass and of all passes relative
+# p95 against the ground truth (the headline reference of metrics.json: oriented), the warm GPU time of the shading pass and of all passes relative
 # to the default occlusion-texture configuration, and the texture memory. On llvmpipe only the
 # ratios mean anything.
 set -euo pipefail

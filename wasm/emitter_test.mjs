@@ -1,5 +1,5 @@
 // emitter_test.mjs — the WebAssembly emitter against penumbra-gen, byte for byte (label "browser";
-// node only, through web/penumbra_emitter.js and its few-line WASI shim, as the page loads it).
+// node only, through web/penumbra_emitter.js, as the page loads it; the module must import nothing).
 //
 //   node wasm/emitter_test.mjs --gen build/generator/penumbra-gen --wasm build/wasm/penumbra_emitter.wasm
 //
@@ -18,6 +18,7 @@ import {fileURLToPath, pathToFileURL} from "node:url";
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const {loadEmitter} = await import(pathToFileURL(path.join(here, "../web/penumbra_emitter.js")));
+const {FIELDS} = await import(pathToFileURL(path.join(here, "../web/config_panel.js")));
 
 function parseArguments(argv) {
     const out = {gen: null, wasm: null, seed: 19};
@@ -120,7 +121,13 @@ function filesIn(dir) {
 
 async function main() {
     const args = parseArguments(process.argv.slice(2));
-    const emitter = await loadEmitter(fs.readFileSync(args.wasm), {log: (t) => process.stderr.write(t)});
+    const bytes = fs.readFileSync(args.wasm);
+    const imports = WebAssembly.Module.imports(new WebAssembly.Module(bytes));
+    if (imports.length) {
+        console.log(`FAIL the module imports ${imports.map((i) => `${i.module}.${i.name}`).join(", ")}; it must import nothing`);
+        process.exit(1);
+    }
+    const emitter = await loadEmitter(bytes);
     const cases = configurations(Number(args.seed));
     // A whole layout.json as the configuration (penumbra-gen reads its "config" object).
     const sample = emitter.emit({slices: 8, filter: "mipmap", target: "essl300"});
@@ -158,6 +165,25 @@ async function main() {
         }
     });
     fs.rmSync(root, {recursive: true, force: true});
+
+    // The page's panel (web/config_panel.js): a field for every key of layout.json's config, each
+    // with penumbra-gen's flag and its --help text word for word.
+    const help = spawnSync(path.resolve(args.gen), ["--help"], {encoding: "utf8"}).stdout.replace(/\s+/g, " ");
+    const keys = [];
+    const walk = (object, prefix) => {
+        for (const [k, v] of Object.entries(object))
+            if (v && typeof v === "object") walk(v, `${prefix}${k}.`);
+            else keys.push(prefix + k);
+    };
+    walk(sample.layout.config, "");
+    for (const key of keys)
+        if (!FIELDS.some((f) => f.key === key)) failures.push(`panel: no field for layout.json config key ${key}`);
+    for (const f of FIELDS) {
+        if (!keys.includes(f.key)) failures.push(`panel: field ${f.key} is no key of layout.json's config`);
+        if (!help.includes(f.flag)) failures.push(`panel: ${f.key}: flag ${f.flag} is not in penumbra-gen --help`);
+        if (!help.includes(f.help)) failures.push(`panel: ${f.key}: '${f.help}' is not what penumbra-gen --help says`);
+    }
+    console.log(`panel: ${FIELDS.length} fields for the ${keys.length} keys of layout.json's config, flags and help text as --help`);
     console.log(`${cases.length} configurations: ${valid} valid (files equal byte for byte), ${invalid} invalid (same error line); ` +
                 `${failures.length} failures`);
     for (const f of failures) console.log(`FAIL ${f}`);

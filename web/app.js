@@ -11,6 +11,7 @@
 import {loadEmitter} from "./penumbra_emitter.js";
 import {LayoutRunner} from "./penumbra_runner.js";
 import {lightUniforms} from "./light_frame.js";
+import {sunDirection, timeWindow} from "./sun_path.js";
 import {ConfigPanel} from "./config_panel.js";
 import {SceneGeometry, GBuffer, Composite, perspective, lookAt, multiply} from "./scene_view.js";
 
@@ -45,6 +46,9 @@ function imageTexture(gl, width, height, values) {
     const id = gl.createTexture();
     gl.bindTexture(gl.TEXTURE_2D, id);
     gl.texStorage2D(gl.TEXTURE_2D, 1, gl.R32F, width, height);
+    // one level: NEAREST, or the texture is incomplete and texelFetch reads 0
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
     gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
     gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, width, height, gl.RED, gl.FLOAT, values);
     gl.bindTexture(gl.TEXTURE_2D, null);
@@ -126,7 +130,10 @@ class App {
         if (!this.gl) throw new Error("this browser has no WebGL2");
         // The G-buffer is RGBA32F, as the layouts declare their caller textures.
         if (!this.gl.getExtension("EXT_color_buffer_float")) throw new Error("this browser lacks EXT_color_buffer_float (rendering the RGBA32F G-buffer)");
-        this.emitter = await loadEmitter(params.get("wasm") || undefined);
+        // The module beside the page (published), else the build folder's when the repository's
+        // root is served (python3 -m http.server, then /web/).
+        this.emitter = await loadEmitter(params.get("wasm") || undefined)
+            .catch((first) => loadEmitter("../build/wasm/penumbra_emitter.wasm").catch(() => { throw first; }));
         // The emitter's defaults (Config{}), for WebGL2: target essl300, 256² occlusion textures.
         this.defaults = this.emitter.emit({target: "essl300"}).layout.config;
         // With ?bundle= the page starts at the bundle's camera (its G-buffers): what the desktop ran.
@@ -159,6 +166,7 @@ class App {
         this.geometry = new SceneGeometry(this.gl, this.bundle.triangles);
         this.lights = {};
         this.state.bundleSlices = null;
+        this.state.sunTime = this.bundle.info.sun_time ?? null; // oim: the instant on the bake's path
         // The difference view compares with the desktop run of the bundle's own configuration, the
         // error view with the ray-traced truth where the bundle carries one.
         for (const id of Object.values(this.references || {})) this.gl.deleteTexture(id);
@@ -189,6 +197,19 @@ class App {
         return "";
     }
 
+    // penumbra_timeWindow of the bake's path at the page's sun time (sun_path.js).
+    oimUniforms(light) {
+        return {penumbra_timeWindow: timeWindow(this.bundle.info.sun_path, this.state.sunTime, light.angularDiameter)};
+    }
+
+    // Moves the sun along the bake's path (oim): the window and the direction the page shades with.
+    setSunTime(t) {
+        this.state.sunTime = t;
+        const towards = sunDirection(this.bundle.info.sun_path, t);
+        this.light("sun").direction = towards.map((x) => -x);
+        this.render();
+    }
+
     light(kind) {
         return (this.lights[kind] ??= lightFor(kind, this.bundle, this.geometry.box));
     }
@@ -217,8 +238,8 @@ class App {
         const {eye, clip} = this.camera();
         const toLight = light.kind === "sun" ? [-light.direction[0], -light.direction[1], -light.direction[2], 0] : [...light.center, 1];
         runner.setUniforms({penumbra_clipFromWorld: clip, penumbra_toLight: toLight});
-        // oim: the sun's window along its path at the bundle's instant (its bake's path).
-        if (this.bundle.info.uniforms.penumbra_timeWindow) runner.setUniforms({penumbra_timeWindow: this.bundle.info.uniforms.penumbra_timeWindow});
+        // oim: the sun's window along the path the bake traced, at the page's instant.
+        if (config.technique === "oim" && this.bundle.info.sun_path) runner.setUniforms(this.oimUniforms(light));
         const replace = this.state.bundleSlices && this.state.camera === "bundle" ? {slicing: (pass) => this.injectSlices(runner, pass)} : {};
         runner.runPhase("shadow", () => this.geometry.draw(), null, replace);
 
@@ -287,6 +308,13 @@ class App {
                 side.failed = true;
             }
         });
+        if (sides.length > 1) { // the split line
+            gl.enable(gl.SCISSOR_TEST);
+            gl.scissor((w >> 1) - 1, 0, 2, h);
+            gl.clearColor(0.9, 0.75, 0.2, 1);
+            gl.clear(gl.COLOR_BUFFER_BIT);
+            gl.disable(gl.SCISSOR_TEST);
+        }
         gl.finish();
         this.state.frameMs = performance.now() - started;
         ++this.state.renders;
@@ -445,6 +473,8 @@ class App {
         slider("sun azimuth", "sun-azimuth", -Math.PI, Math.PI, azimuth, (v) => { azimuth = v; set(); });
         slider("sun elevation", "sun-elevation", 0.2, Math.PI / 2, elevation, (v) => { elevation = v; set(); });
         slider("sun diameter (°)", "sun-diameter", 0.1, 20, sun.angularDiameter * 180 / Math.PI, (v) => { sun.angularDiameter = v * Math.PI / 180; });
+        if (this.bundle.info.sun_path) // oim: the sun can only move along the path its bake traced
+            slider("oim sun time t (the bake's path)", "sun-time", 0, 1, this.state.sunTime, (v) => this.setSunTime(v));
     }
 
     setCamera(camera) {
@@ -486,6 +516,7 @@ class App {
             setCamera: (camera) => app.setCamera(camera),
             setSplit: (on) => app.setSplit(on),
             setLight: (kind, changes) => { Object.assign(app.light(kind), changes); app.render(); },
+            setSunTime: (t) => app.setSunTime(t),
             useBundleUniforms: (on) => { app.state.useBundleUniforms = on; app.render(); },
             useBundleSlices: async (on) => {
                 app.state.bundleSlices = on ? await floats(app.bundle.base + "slices.f32") : null;
@@ -509,8 +540,17 @@ class App {
             },
             uniforms: () => {
                 const config = app.sides[0].runner.layout.config;
-                return {computed: lightUniforms(app.light(config.light), app.geometry.box.lo, app.geometry.box.hi, config.slices).uniforms,
-                        bundle: app.bundle.info.uniforms};
+                const light = app.light(config.technique === "oim" ? "sun" : config.light);
+                const computed = lightUniforms(light, app.geometry.box.lo, app.geometry.box.hi, config.slices).uniforms;
+                if (config.technique === "oim" && app.bundle.info.sun_path) Object.assign(computed, app.oimUniforms(light));
+                return {computed, bundle: app.bundle.info.uniforms};
+            },
+            // The canvas as RGBA bytes, bottom row first (what the views show).
+            readCanvas: () => {
+                const gl = app.gl, out = new Uint8Array(4 * app.canvas.width * app.canvas.height);
+                gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+                gl.readPixels(0, 0, app.canvas.width, app.canvas.height, gl.RGBA, gl.UNSIGNED_BYTE, out);
+                return {width: app.canvas.width, height: app.canvas.height, rgba: Array.from(out)};
             },
             passTimes: (side = 0) => app.sides[side].runner && app.sides[side].runner.passTimes(),
             status: () => $("status").textContent,

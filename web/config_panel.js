@@ -8,13 +8,15 @@
 //   panel.config();               // {technique, slices, ..., shadow_map: {...}, pcf: {...}, ...}
 //   panel.showResult(emission);   // the diagnostics next to their fields, the error line on top
 
-// key (the JSON path), flag, kind, what --help says; `techniques`: where the field is read.
+// key (the JSON path), flag, kind, what --help says (word for word: wasm/emitter_test.mjs checks it
+// against penumbra-gen --help, and that every key of layout.json's config has a field here);
+// `note`: what the page adds; `techniques`: where the field is read.
 const OCCLUSION = ["occlusion"];
 const SHADOW_MAP = ["shadowmap", "pcf", "pcss", "erosion"];
 export const FIELDS = [
     {key: "technique", flag: "--technique", kind: "enum", help: "shadowing technique"},
     {key: "light", flag: "--light", kind: "enum", help: "area light"},
-    {key: "target", flag: "--target", kind: "enum", help: "shading language (the page runs essl300)"},
+    {key: "target", flag: "--target", kind: "enum", help: "shading language", note: "the page runs essl300"},
     {key: "slices", flag: "--slices", kind: "int", help: "slices along the light normal: 1 to 32, 64 or 128", techniques: OCCLUSION},
     {key: "resolution", flag: "--resolution", kind: "int", help: "occlusion texture side in texels: a power of two, 32 to 4096", techniques: OCCLUSION},
     {key: "filter", flag: "--filter", kind: "enum", help: "prefilter", techniques: OCCLUSION},
@@ -23,10 +25,10 @@ export const FIELDS = [
     {key: "leak_fix", flag: "--no-leak-fix", kind: "bool", help: "the leak fix", techniques: OCCLUSION},
     {key: "self_shadow_fade", flag: "--no-fade", kind: "bool", help: "the self-shadow fade", techniques: OCCLUSION},
     {key: "tangent_clip", flag: "--[no-]tangent-clip", kind: "bool", help: "kernels cover only the light above the receiver's tangent plane", techniques: OCCLUSION},
-    {key: "slice_placement", flag: "--slice-placement", kind: "enum", help: "slice boundaries: uniform, or adaptive (at the depths the geometry occupies; paper §5)", techniques: OCCLUSION},
+    {key: "slice_placement", flag: "--slice-placement", kind: "enum", help: "slice boundaries: uniform (equal slices over the bounds) or adaptive (at the depths the geometry occupies, computed on the GPU; paper §5)", techniques: OCCLUSION},
     {key: "shadow_map.resolution", flag: "--shadow-resolution", kind: "int", help: "shadow map side in texels, a power of two 32 to 8192", techniques: SHADOW_MAP},
     {key: "shadow_map.constant_bias", flag: "--shadow-bias", kind: "real", help: "constant depth bias in scene units along the light axis, 0 to 10", techniques: SHADOW_MAP},
-    {key: "shadow_map.slope_bias", flag: "--shadow-slope-bias", kind: "real", help: "slope bias: times the depth change across one texel, 0 to 16", techniques: SHADOW_MAP},
+    {key: "shadow_map.slope_bias", flag: "--shadow-slope-bias", kind: "real", help: "slope bias: S times the depth change across one texel, 0 to 16", techniques: SHADOW_MAP},
     {key: "pcf.pattern", flag: "--pcf-pattern", kind: "enum", help: "tap pattern", techniques: ["pcf"]},
     {key: "pcf.grid_size", flag: "--pcf-grid", kind: "int", help: "N x N grid taps, 1 to 16", techniques: ["pcf"]},
     {key: "pcf.poisson_taps", flag: "--pcf-taps", kind: "int", help: "Poisson taps, 1 to 64", techniques: ["pcf"]},
@@ -106,7 +108,8 @@ export class ConfigPanel {
             input.dataset.key = field.key;
             input.addEventListener("change", () => this.changed());
             const note = Object.assign(document.createElement("span"), {className: "message"});
-            const help = Object.assign(document.createElement("span"), {className: "help", textContent: field.help});
+            const help = Object.assign(document.createElement("span"), {className: "help",
+                                                                         textContent: field.help + (field.note ? ` (${field.note})` : "")});
             row.append(name, input, help, note);
             root.append(row);
             this.inputs[field.key] = input;

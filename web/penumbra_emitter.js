@@ -4,37 +4,15 @@
 //
 //   import {loadEmitter} from "./penumbra_emitter.js";
 //   const emitter = await loadEmitter();              // or loadEmitter(url | bytes | WebAssembly.Module)
-//   const r = emitter.emit({slices: 8, filter: "sat", target: "essl300"});   // or JSON text
+//   const r = emitter.emit({slices: 8, filter: "mipmap", target: "essl300"}); // or JSON text
 //   r.ok, r.files {"<name>": text, ..., "layout.json": text}, r.layout (parsed), r.diagnostics
 //   [{severity, field, message}], r.error ("error: …", the line penumbra-gen prints; "" when ok)
 //
-// The module imports three WASI calls (fd_write, fd_seek, fd_close: libc's stdio, reached only
-// when the C++ code aborts); the few lines of `wasiShim` below provide them, so no WASI runtime
-// is needed, in a browser or in node.
+// The module imports nothing (wasm/wasi_stubs.cpp defines the three WASI calls libc's stdio would
+// import): no WASI runtime and no import object, in a browser or in node.
 
 const encoder = new TextEncoder();
 const decoder = new TextDecoder();
-
-// fd_write to the console (abort messages); no file is ever opened, so seek and close fail or
-// succeed trivially. WASI errno 8 = EBADF, 70 = ESPIPE.
-function wasiShim(memory, log) {
-    return {
-        fd_write(fd, iovs, count, written) {
-            const view = new DataView(memory().buffer);
-            let text = "", total = 0;
-            for (let i = 0; i < count; ++i) {
-                const pointer = view.getUint32(iovs + 8 * i, true), length = view.getUint32(iovs + 8 * i + 4, true);
-                text += decoder.decode(new Uint8Array(memory().buffer, pointer, length));
-                total += length;
-            }
-            view.setUint32(written, total, true);
-            if (fd === 1 || fd === 2) log(text);
-            return fd === 1 || fd === 2 ? 0 : 8;
-        },
-        fd_seek: () => 70,
-        fd_close: () => 0,
-    };
-}
 
 async function moduleFrom(source) {
     if (source instanceof WebAssembly.Module) return source;
@@ -66,7 +44,13 @@ export class Emitter {
         const memory = new Uint8Array(e.memory.buffer, input, configBytes.length + sourceBytes.length);
         memory.set(configBytes);
         memory.set(sourceBytes, configBytes.length);
-        e.penumbra_emit(configBytes.length, sourceBytes.length);
+        try {
+            e.penumbra_emit(configBytes.length, sourceBytes.length);
+        } catch (trap) { // an abort in the C++ code (a bug: what would have been an exception); load a new emitter after it
+            const error = `error: internal: the emitter trapped (${trap.message}); please report the configuration`;
+            return {ok: false, files: {}, layout: null, error, diagnostics: [{severity: "error", field: "config", message: error}],
+                    ms: performance.now() - started};
+        }
         const output = new Uint8Array(e.memory.buffer, e.penumbra_output() >>> 0, e.penumbra_output_size() >>> 0);
         const result = JSON.parse(decoder.decode(output));
         result.layout = result.ok ? JSON.parse(result.files["layout.json"]) : null;
@@ -76,14 +60,11 @@ export class Emitter {
 }
 
 // Loads the module: `source` is its URL (default: penumbra_emitter.wasm beside this file), its
-// bytes, or a compiled WebAssembly.Module. options.log receives what the module writes to
-// stdout/stderr (default console.error).
-export async function loadEmitter(source, {log = (text) => console.error(text)} = {}) {
+// bytes, or a compiled WebAssembly.Module.
+export async function loadEmitter(source) {
     const started = performance.now();
     const module = await moduleFrom(source);
-    let memory = null;
-    const instance = await WebAssembly.instantiate(module, {wasi_snapshot_preview1: wasiShim(() => memory, log)});
-    memory = instance.exports.memory;
+    const instance = await WebAssembly.instantiate(module, {});
     instance.exports._initialize(); // reactor: the static constructors, once
     return new Emitter(instance, performance.now() - started);
 }

@@ -210,6 +210,8 @@ export class Composite {
         this.white = gl.createTexture();
         gl.bindTexture(gl.TEXTURE_2D, this.white);
         gl.texStorage2D(gl.TEXTURE_2D, 1, gl.R32F, 1, 1);
+        gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+        gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
         gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, 1, 1, gl.RED, gl.FLOAT, new Float32Array([1]));
         gl.bindTexture(gl.TEXTURE_2D, null);
     }

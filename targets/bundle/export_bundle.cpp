@@ -342,6 +342,9 @@ int run(const std::vector<std::string>& args) {
         }
         uniforms["bake_textures"] = bake;
         uniforms["sun_time"] = a.sun_time;
+        nlohmann::ordered_json path = nlohmann::ordered_json::array(); // the path the bake traced
+        for (const SunPathPoint& p : SunPath{}.points) path.push_back({p.azimuth_degrees, p.elevation_degrees});
+        uniforms["sun_path"] = path;
     }
     if (!truth.empty()) uniforms["truth"] = {{"file", "truth.f32"}, {"kind", "oriented"}, {"samples", a.reference_samples}};
     // Files of an earlier bundle in this folder that this one does not write would mislead a runner.

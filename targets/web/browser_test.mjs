@@ -181,7 +181,13 @@ async function finishTechnique({page, bundle, label, reference, read, failures, 
     if (uniformError > UNIFORM_TOLERANCE) failures.push(`light_frame.js differs from the exported uniforms by ${uniformError.toExponential(2)} (relative)`);
     if (shadowed === 0) failures.push("the desktop image has no shadowed pixel: the comparison would prove nothing");
     let changed = 0;
-    if (bundle.config.technique !== "oim") { // oim's sun is the bake's: its shadows do not follow a moved light
+    if (bundle.config.technique === "oim") { // oim's sun moves only along the bake's path
+        const before = await read();
+        await page.evaluate((t) => window.penumbra.setSunTime(t), bundle.sun_time + 0.15);
+        const after = await read();
+        for (let i = 0; i < after.length; ++i) if (Math.abs(after[i] - before[i]) > 2 * R8_STEP) ++changed;
+        if (changed === 0) failures.push("moving the sun along its path changed no pixel");
+    } else {
         const before = await read();
         const moved = bundle.light.kind === "sun"
             ? {direction: [bundle.light.direction[0] + 0.3, bundle.light.direction[1], bundle.light.direction[2]]}
@@ -259,7 +265,6 @@ async function checkBundle(browser, port, index, dir, screenshots) {
     let uniformError = 0;
     for (const [name, value] of Object.entries(uniforms.bundle)) {
         const computed = uniforms.computed[name];
-        if (computed === undefined && name === "penumbra_timeWindow") continue; // the bake's path: the page takes the bundle's
         // oim shades by the bake's sun; its layout's toLight (read by shading_example only) follows config.light
         if (c.technique === "oim" && name === "penumbra_toLight") continue;
         const a = typeof computed === "number" ? [computed] : computed, b = typeof value === "number" ? [value] : value;
@@ -306,7 +311,24 @@ async function checkBundle(browser, port, index, dir, screenshots) {
             if (geometry[4 * i + 3] > 0.5 && Number.isFinite(reference.truth[i])) { sum += Math.abs(v[i] - reference.truth[i]); ++n; }
         if (!shown || Math.abs(Number(shown[1]) - sum / n) > 1e-4 || Number(shown[2]) !== n)
             failures.push(`error view: the page shows '${shown ? shown[0] : status}', the test computes MAE ${(sum / n).toFixed(4)} over ${n} pixels`);
-        truthLine = shown ? `\n     error view: ${shown[0]}` : "";
+        // What the view draws: white where the page agrees with the truth, red or blue where it is
+        // 0.25 or more off, at each bundle pixel's place on the canvas.
+        const canvas = await page.evaluate(() => window.penumbra.readCanvas());
+        let checked = 0, wrong = 0;
+        for (let y = 0; y < bundle.height; ++y)
+            for (let x = 0; x < bundle.width; ++x) {
+                const i = y * bundle.width + x;
+                if (geometry[4 * i + 3] < 0.5 || !Number.isFinite(reference.truth[i])) continue;
+                const d = Math.abs(v[i] - reference.truth[i]);
+                if (d > 0.01 && d < 0.25) continue;
+                const cx = Math.floor((x + 0.5) * canvas.width / bundle.width), cy = Math.floor((y + 0.5) * canvas.height / bundle.height);
+                const [r, g, b] = canvas.rgba.slice(4 * (cy * canvas.width + cx), 4 * (cy * canvas.width + cx) + 3);
+                const white = r > 230 && g > 230 && b > 230, saturated = (r > 230 && g < 30 && b < 30) || (b > 230 && r < 30 && g < 30);
+                ++checked;
+                if (d <= 0.01 ? !white : !saturated) ++wrong;
+            }
+        if (checked === 0 || wrong > 0.01 * checked) failures.push(`error view: ${wrong} of ${checked} checked pixels drawn in the wrong colour`);
+        truthLine = shown ? `\n     error view: ${shown[0]}; ${checked - wrong} of ${checked} checked pixels drawn as their error` : "";
         await page.select("#view-mode", "shaded");
     }
     if (index === 0) failures.push(...await checkPanel(page, label));

@@ -338,7 +338,7 @@ TEST_CASE("hostile: playground files are whole or absent, and 'wrote' only for w
         CHECK(run.out.find("wrote") == std::string::npos);
         CHECK(fs::is_empty(dir));
     }
-    SUBCASE("metrics and visibility that cannot be written leave no empty files") {
+    SUBCASE("a run is one transaction: metrics that cannot be written leave no image, PFM or temporary") {
         std::vector<std::string> args = small;
         args.insert(args.end(), {"--out", (dir / "ok.png").string(), "--visibility", (dir / "vis.pfm").string(),
                                  "--metrics", (dir / "metrics.json").string()});
@@ -348,11 +348,29 @@ TEST_CASE("hostile: playground files are whole or absent, and 'wrote' only for w
         CHECK(run.exit_code == 1);
         CHECK(run.error_lines() == 1);
         CHECK(run.first_error_line().find("metrics.json': it is a directory") != std::string::npos);
-        CHECK(run.out.find("wrote " + (dir / "metrics.json").string()) == std::string::npos);
-        CHECK(fs::file_size(dir / "ok.png") > 0);
-        CHECK(fs::file_size(dir / "vis.pfm") == 96 * 96 * 4 + std::string("Pf\n96 96\n-1.0\n").size());
-        // No temporary is left next to them.
-        for (const fs::directory_entry& e : fs::directory_iterator(dir)) CHECK(e.path().filename().string()[0] != '.');
+        CHECK(run.out.find("wrote") == std::string::npos);
+        CHECK_FALSE(fs::exists(dir / "ok.png"));
+        CHECK_FALSE(fs::exists(dir / "vis.pfm"));
+        // Only the directory that was in the way is left; no temporary.
+        for (const fs::directory_entry& e : fs::directory_iterator(dir)) CHECK(e.path().filename() == "metrics.json");
+    }
+    SUBCASE("a run that fails keeps the previous run's files as they were") {
+        std::vector<std::string> args = small;
+        args.insert(args.end(), {"--out", (dir / "keep.png").string(), "--reference", "--samples", "1", "--metrics",
+                                 (dir / "keep.json").string()});
+        REQUIRE(run_child(playground, args).exit_code == 0);
+        const std::map<std::string, std::string> before = contents(dir);
+        CHECK(before.size() == 5); // keep.png, keep.reference.pfm, keep.reference.oriented.pfm, keep.error.png, keep.json
+        // The same run with the error image in the way (a directory): nothing changes.
+        args.insert(args.end(), {"--slices", "4", "--error-out", (dir / "blocked").string()});
+        fs::create_directories(dir / "blocked");
+        const ChildRun run = run_child(playground, args);
+        CAPTURE(run.err);
+        CHECK(run.exit_code == 1);
+        CHECK(run.first_error_line().find("blocked': it is a directory") != std::string::npos);
+        std::map<std::string, std::string> after = contents(dir);
+        after.erase("blocked");
+        CHECK(after == before);
     }
     SUBCASE("a device is never replaced") {
         std::vector<std::string> args = small;

@@ -115,6 +115,32 @@ TEST_CASE("truth worker: progress rises monotonically to 1 and the result equals
                 last.seconds, worker.threads());
 }
 
+TEST_CASE("truth worker: the oriented job (the window's error view) equals one GroundTruth::oriented call") {
+    Fixture f;
+    Pixels pixels = ground_grid(16);
+    // A tilted receiver normal so that part of the light lies below the tangent plane: the two
+    // references differ there.
+    for (glm::vec3& n : pixels.normals)
+        if (n != glm::vec3(0.0f)) n = glm::normalize(glm::vec3(1.0f, 0.3f, 0.0f));
+    TruthWorker worker;
+    TruthJob job = job_for(f, pixels, f.scene.light, 8);
+    job.oriented = true;
+    REQUIRE(worker.start(std::move(job)).empty());
+    const std::vector<TruthSnapshot> seen = follow(worker, 60s);
+    REQUIRE(!seen.empty());
+    REQUIRE(seen.back().state == TruthState::finished);
+    const GroundTruth truth(f.scene.mesh);
+    const std::vector<float> oriented = truth.oriented(pixels.positions, pixels.normals, f.scene.light, 8).oriented;
+    const std::vector<float> whole = truth.visibility(pixels.positions, pixels.normals, f.scene.light, 8);
+    int differ = 0;
+    for (std::size_t i = 0; i < oriented.size(); ++i) {
+        const float got = seen.back().visibility[i];
+        CHECK((got == oriented[i] || (std::isnan(got) && std::isnan(oriented[i]))));
+        differ += std::abs(oriented[i] - whole[i]) > 0.05f;
+    }
+    CHECK(differ > 20);
+}
+
 TEST_CASE("truth worker: an intermediate pass is a coarser estimate of the same image") {
     Fixture f;
     const Pixels pixels = ground_grid(24);

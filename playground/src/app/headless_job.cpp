@@ -50,11 +50,6 @@ nlohmann::ordered_json stats_json(const ErrorStats& s) {
     return {{"mae", s.mae}, {"rmse", s.rmse}, {"p95", s.p95}, {"pixels", s.count}};
 }
 
-bool write_text(const std::string& path, const std::string& text, std::string* error) {
-    *error = penumbra_gen::write_file_atomically(path, text); // all or nothing
-    return error->empty();
-}
-
 int fail(const std::string& message, int code = 1) {
     std::cerr << "error: " << message << "\n";
     return code;
@@ -155,12 +150,21 @@ int run_headless(const PlaygroundOptions& options) {
     render_options.warm_up = true; // timings of a second run: the first compiles the shaders on llvmpipe
     if (!render_headless(scene, options.config, width, height, result, &error, render_options)) return fail(error);
     const double render_ms = milliseconds_since(render_start);
-    if (!write_png_rgb(options.out_path, width, height, result.rgb, RowOrder::top_down, &error)) return fail(error);
-    std::cout << "wrote " << options.out_path << " (" << scene.name << ", " << width << "x" << height << ", "
-              << context->renderer() << ")\n";
+    // Every output file of the run is one transaction (generator/src/file_transaction.hpp): all
+    // written, or none and the directory as it was; "wrote" is printed only after it succeeded.
+    penumbra_gen::FileChanges files;
+    std::vector<std::string> wrote;
+    auto add_file = [&](const std::string& path, std::optional<std::string> bytes) {
+        if (!bytes) return false;
+        files.writes.push_back({path, std::move(*bytes)});
+        return true;
+    };
+    if (!add_file(options.out_path, encode_png_rgb(width, height, result.rgb, RowOrder::top_down, &error))) return fail(error);
+    wrote.push_back(options.out_path + " (" + scene.name + ", " + std::to_string(width) + "x" + std::to_string(height) +
+                    ", " + context->renderer() + ")");
     if (!options.visibility_path.empty()) {
-        if (!write_pfm(options.visibility_path, {width, height, 1, result.visibility}, &error)) return fail(error);
-        std::cout << "wrote " << options.visibility_path << "\n";
+        if (!add_file(options.visibility_path, encode_pfm({width, height, 1, result.visibility}, &error))) return fail(error);
+        wrote.push_back(options.visibility_path);
     }
 
     nlohmann::ordered_json metrics = {
@@ -193,47 +197,58 @@ int run_headless(const PlaygroundOptions& options) {
     if (options.reference) {
         const auto reference_start = std::chrono::steady_clock::now();
         const References references = reference_all(scene, result, options.samples, shading_light(options.config));
-        const std::vector<float>& truth = references.visibility;
         const double reference_ms = milliseconds_since(reference_start);
         const QualityMetrics q = compare_quality(result, references);
-        const Metrics& m = q.visibility;
+        // The headline is the fair reference, `oriented`: the visibility of the part of the light
+        // above each surface's tangent plane, which is what the default model (tangent clip)
+        // estimates and what a viewer sees. The whole light's visibility (the paper's kernels)
+        // follows under its own name: against it, correct pixels on faces turned away from part
+        // of the light count as errors.
+        const Metrics& headline = q.oriented;
+        const Metrics& whole = q.visibility;
         const std::string truth_path =
             options.reference_path.empty() ? sibling_path(options.out_path, ".reference.pfm") : options.reference_path;
         const std::string error_path =
             options.error_image_path.empty() ? sibling_path(options.out_path, ".error.png") : options.error_image_path;
-        std::vector<float> signed_error(truth.size());
-        for (std::size_t i = 0; i < truth.size(); ++i) signed_error[i] = result.visibility[i] - truth[i];
-        if (!write_pfm(truth_path, {width, height, 1, truth}, &error)) return fail(error);
-        // The fair truth beside it; NaN where a pixel sees none of the light.
+        // estimate − oriented truth; NaN (green) where a pixel sees none of the light.
+        std::vector<float> signed_error(references.oriented.size());
+        for (std::size_t i = 0; i < signed_error.size(); ++i)
+            signed_error[i] = result.geometry[i] ? result.visibility[i] - references.oriented[i] : 0.0f;
+        // The whole-light truth at --reference-out, the fair one beside it.
         const std::string oriented_path = sibling_path(truth_path, ".oriented.pfm");
-        if (!write_pfm(oriented_path, {width, height, 1, references.oriented}, &error)) return fail(error);
-        if (!write_png_rgb(error_path, width, height, signed_error_colors(signed_error, error_image_range),
-                           RowOrder::top_down, &error))
+        if (!add_file(truth_path, encode_pfm({width, height, 1, references.visibility}, &error)) ||
+            !add_file(oriented_path, encode_pfm({width, height, 1, references.oriented}, &error)) ||
+            !add_file(error_path, encode_png_rgb(width, height, signed_error_colors(signed_error, error_image_range),
+                                                 RowOrder::top_down, &error)))
             return fail(error);
-        std::cout << "wrote " << truth_path << ", " << oriented_path << " and " << error_path << " (red: estimate too bright, blue: too dark, "
-                  << "saturating at ±" << error_image_range << ")\n";
-        std::printf("ground truth %dx%d rays/pixel, %.0f ms\n"
+        wrote.push_back(truth_path + " (whole-light visibility), " + oriented_path + " (oriented) and " + error_path +
+                        " (against oriented; red: estimate too bright, blue: too dark, saturating at ±" +
+                        std::to_string(error_image_range).substr(0, 4) + ", green: sees none of the light)");
+        std::printf("ground truth %dx%d rays/pixel, %.0f ms; oriented (the part of the light above each surface's "
+                    "tangent plane):\n"
                     "  all:      MAE %.4f  RMSE %.4f  p95 %.4f  (%zu px)\n"
                     "  penumbra: MAE %.4f  RMSE %.4f  p95 %.4f  (%zu px)\n",
-                    options.samples, options.samples, reference_ms, m.all.mae, m.all.rmse, m.all.p95, m.all.count,
-                    m.penumbra.mae, m.penumbra.rmse, m.penumbra.p95, m.penumbra.count);
-        // The fair references: the part of the light above each surface's tangent plane.
-        auto print_fair = [](const char* name, const Metrics& f) {
-            std::printf("  %-10s all MAE %.4f  p95 %.4f  (%zu px); penumbra MAE %.4f  RMSE %.4f  p95 %.4f  (%zu px)\n",
+                    options.samples, options.samples, reference_ms, headline.all.mae, headline.all.rmse,
+                    headline.all.p95, headline.all.count, headline.penumbra.mae, headline.penumbra.rmse,
+                    headline.penumbra.p95, headline.penumbra.count);
+        auto print_other = [](const char* name, const Metrics& f) {
+            std::printf("  %-24s all MAE %.4f  p95 %.4f  (%zu px); penumbra MAE %.4f  RMSE %.4f  p95 %.4f  (%zu px)\n",
                         name, f.all.mae, f.all.p95, f.all.count, f.penumbra.mae, f.penumbra.rmse, f.penumbra.p95,
                         f.penumbra.count);
         };
-        print_fair("oriented:", q.oriented);
-        print_fair("irradiance:", q.irradiance);
+        print_other("irradiance:", q.irradiance);
+        print_other("whole-light visibility:", whole);
         auto metrics_json = [](const Metrics& f) {
             return nlohmann::ordered_json{{"all", stats_json(f.all)}, {"penumbra", stats_json(f.penumbra)}};
         };
         metrics["reference"] = {{"samples_per_axis", options.samples},
                                 {"ms", reference_ms},
-                                {"all", stats_json(m.all)},
-                                {"penumbra", stats_json(m.penumbra)},
+                                {"headline", "oriented"},
+                                {"all", stats_json(headline.all)},
+                                {"penumbra", stats_json(headline.penumbra)},
                                 {"oriented", metrics_json(q.oriented)},
-                                {"irradiance", metrics_json(q.irradiance)}};
+                                {"irradiance", metrics_json(q.irradiance)},
+                                {"whole_light_visibility", metrics_json(whole)}};
     }
     std::printf("passes (GPU ms, %s):", result.warm ? "warm" : "cold");
     for (const penumbra::gl::PassTiming& t : result.timings) std::printf(" %s %.2f", t.name.c_str(), t.milliseconds);
@@ -241,9 +256,11 @@ int run_headless(const PlaygroundOptions& options) {
                 static_cast<double>(result.texture_bytes) / (1024.0 * 1024.0));
     std::fflush(stdout);
     if (!options.metrics_path.empty()) {
-        if (!write_text(options.metrics_path, metrics.dump(2) + "\n", &error)) return fail(error);
-        std::cout << "wrote " << options.metrics_path << "\n";
+        files.writes.push_back({options.metrics_path, metrics.dump(2) + "\n"});
+        wrote.push_back(options.metrics_path);
     }
+    if (std::string e = penumbra_gen::commit(files); !e.empty()) return fail(e);
+    for (const std::string& line : wrote) std::cout << "wrote " << line << "\n";
     return 0;
 }
 

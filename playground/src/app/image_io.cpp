@@ -32,14 +32,19 @@ std::uint8_t to_byte(float v) {
     return static_cast<std::uint8_t>(std::lround(v * 255.0f));
 }
 
-bool write_png(const std::string& path, int width, int height, int channels, std::span<const float> data,
-               RowOrder order, std::string* error) {
-    if (width <= 0 || height <= 0)
-        return set_error(error, "write_png '" + path + "': invalid size");
+// The PNG's bytes; `what` names it in errors.
+std::optional<std::string> encode_png(const std::string& what, int width, int height, int channels,
+                                      std::span<const float> data, RowOrder order, std::string* error) {
+    if (width <= 0 || height <= 0) {
+        set_error(error, "write_png '" + what + "': invalid size");
+        return std::nullopt;
+    }
     const std::size_t expected = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * channels;
-    if (data.size() != expected)
-        return set_error(error, "write_png '" + path + "': buffer has " + std::to_string(data.size()) +
-                                    " floats, expected " + std::to_string(expected));
+    if (data.size() != expected) {
+        set_error(error, "write_png '" + what + "': buffer has " + std::to_string(data.size()) + " floats, expected " +
+                             std::to_string(expected));
+        return std::nullopt;
+    }
     std::vector<std::uint8_t> bytes(expected);
     const std::size_t row = static_cast<std::size_t>(width) * channels;
     for (int y = 0; y < height; ++y) {
@@ -51,11 +56,41 @@ bool write_png(const std::string& path, int width, int height, int channels, std
     auto append = [](void* context, void* data, int size) {
         static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
     };
-    if (!stbi_write_png_to_func(append, &encoded, width, height, channels, bytes.data(), static_cast<int>(row)))
-        return set_error(error, "write_png '" + path + "': cannot encode the image");
-    if (std::string e = penumbra_gen::write_file_atomically(path, std::move(encoded)); !e.empty())
+    if (!stbi_write_png_to_func(append, &encoded, width, height, channels, bytes.data(), static_cast<int>(row))) {
+        set_error(error, "write_png '" + what + "': cannot encode the image");
+        return std::nullopt;
+    }
+    return encoded;
+}
+
+bool write_png(const std::string& path, int width, int height, int channels, std::span<const float> data,
+               RowOrder order, std::string* error) {
+    std::optional<std::string> encoded = encode_png(path, width, height, channels, data, order, error);
+    if (!encoded) return false;
+    if (std::string e = penumbra_gen::write_file_atomically(path, std::move(*encoded)); !e.empty())
         return set_error(error, e);
     return true;
+}
+
+std::optional<std::string> encode_pfm_named(const std::string& what, const FloatImage& image, std::string* error) {
+    auto fail = [&](const std::string& why) -> std::optional<std::string> {
+        set_error(error, "write_pfm '" + what + "': " + why);
+        return std::nullopt;
+    };
+    if (image.channels != 1 && image.channels != 3) return fail("channels must be 1 or 3");
+    if (image.width <= 0 || image.height <= 0) return fail("invalid size");
+    const std::size_t row = static_cast<std::size_t>(image.width) * image.channels;
+    if (image.pixels.size() != row * static_cast<std::size_t>(image.height)) return fail("pixel count does not match the size");
+    std::ostringstream out;
+    // Negative scale = little-endian samples; we write the host's floats, so say what they are.
+    const bool little = std::endian::native == std::endian::little;
+    out << (image.channels == 3 ? "PF" : "Pf") << '\n'
+        << image.width << ' ' << image.height << '\n'
+        << (little ? "-1.0" : "1.0") << '\n';
+    for (int y = image.height - 1; y >= 0; --y) // PFM stores the bottom row first
+        out.write(reinterpret_cast<const char*>(image.pixels.data() + static_cast<std::size_t>(y) * row),
+                  static_cast<std::streamsize>(row * sizeof(float)));
+    return std::move(out).str();
 }
 
 // Piecewise-linear colour ramp through evenly spaced stops.
@@ -81,25 +116,20 @@ bool write_png_gray(const std::string& path, int width, int height, std::span<co
 }
 
 bool write_pfm(const std::string& path, const FloatImage& image, std::string* error) {
-    if (image.channels != 1 && image.channels != 3)
-        return set_error(error, "write_pfm '" + path + "': channels must be 1 or 3");
-    if (image.width <= 0 || image.height <= 0)
-        return set_error(error, "write_pfm '" + path + "': invalid size");
-    const std::size_t row = static_cast<std::size_t>(image.width) * image.channels;
-    if (image.pixels.size() != row * static_cast<std::size_t>(image.height))
-        return set_error(error, "write_pfm '" + path + "': pixel count does not match the size");
-    std::ostringstream out;
-    // Negative scale = little-endian samples; we write the host's floats, so say what they are.
-    const bool little = std::endian::native == std::endian::little;
-    out << (image.channels == 3 ? "PF" : "Pf") << '\n'
-        << image.width << ' ' << image.height << '\n'
-        << (little ? "-1.0" : "1.0") << '\n';
-    for (int y = image.height - 1; y >= 0; --y) // PFM stores the bottom row first
-        out.write(reinterpret_cast<const char*>(image.pixels.data() + static_cast<std::size_t>(y) * row),
-                  static_cast<std::streamsize>(row * sizeof(float)));
-    if (std::string e = penumbra_gen::write_file_atomically(path, std::move(out).str()); !e.empty())
+    std::optional<std::string> encoded = encode_pfm_named(path, image, error);
+    if (!encoded) return false;
+    if (std::string e = penumbra_gen::write_file_atomically(path, std::move(*encoded)); !e.empty())
         return set_error(error, e);
     return true;
+}
+
+std::optional<std::string> encode_png_rgb(int width, int height, std::span<const float> rgb, RowOrder order,
+                                          std::string* error) {
+    return encode_png("PNG", width, height, 3, rgb, order, error);
+}
+
+std::optional<std::string> encode_pfm(const FloatImage& image, std::string* error) {
+    return encode_pfm_named("PFM", image, error);
 }
 
 std::optional<FloatImage> read_pfm(const std::string& path, std::string* error) {

@@ -303,11 +303,20 @@ std::string usage() {
     out += line("--visibility FILE.pfm", "the estimated visibility, one float per pixel (1 on background)");
     out += line("--reference", "also ray-trace the ground truth (Embree) and report MAE, RMSE and p95 |error|\n"
                                "                        over all geometry pixels and over penumbra pixels "
-                               "(truth or estimate < 0.98);\n"
-                               "                        writes the truth as PFM and a false-colour error PNG "
-                               "(red: too bright, blue: too dark)");
+                               "(truth or estimate < 0.98). The\n"
+                               "                        headline (printed first, metrics.json reference.all and "
+                               ".penumbra, the error\n"
+                               "                        PNG) is the fair reference, oriented: the part of the "
+                               "light above each surface's\n"
+                               "                        tangent plane; irradiance and whole-light visibility "
+                               "(the paper's kernels) follow.\n"
+                               "                        Writes both truths as PFM and a false-colour error PNG "
+                               "(red: too bright, blue:\n"
+                               "                        too dark, green: sees none of the light)");
     out += line("--samples N", "ground-truth rays per light axis, N×N per pixel: 1 to 1024 (default 32)");
-    out += line("--reference-out FILE", "where the truth goes (default <out stem>.reference.pfm next to --out)");
+    out += line("--reference-out FILE", "where the whole-light truth goes (default <out stem>.reference.pfm next to\n"
+                                        "                        --out); the oriented one beside it, "
+                                        "<stem>.oriented.pfm");
     out += line("--error-out FILE", "where the error image goes (default <out stem>.error.png next to --out)");
     out += line("--metrics FILE.json", "scene, renderer, configuration, sizes, the GPU time of each pass in ms and,\n"
                                        "                        with --reference, the error statistics");
@@ -322,9 +331,10 @@ std::string usage() {
                                  "                        wait N: 0 to 1000000 frames, wait_reload S: 0 to 600 "
                                  "seconds");
     out += line("--help, -h", "print this help and exit");
-    out += "\nA value may also be given as --flag=value. Every file is written whole or not at all (a failed\n"
-           "write leaves no partial file and prints no \"wrote\"); shader files the window watches are read up\n"
-           "to 1 MiB.\n"
+    out += "\nA value may also be given as --flag=value. A headless run's files (image, PFMs, error image,\n"
+           "metrics) are one transaction: all are written or none, and an existing file keeps its old contents\n"
+           "(a failed write leaves no partial file and prints no \"wrote\"); shader files the window watches are\n"
+           "read up to 1 MiB.\n"
            "exit status: 0 done; 1 rendering or writing failed (no OpenGL 4.5, GL error, unwritable file);\n"
            "2 bad arguments, configuration, scene name, mesh file (OBJ, glTF) or script\n";
     return out;

@@ -22,9 +22,14 @@ std::vector<int> pass_sizes(int first, int max) {
 }
 
 std::vector<float> trace(const GroundTruth& truth, std::span<const glm::vec3> positions,
-                         std::span<const glm::vec3> normals, const TruthLight& light, int samples_per_axis) {
+                         std::span<const glm::vec3> normals, const TruthLight& light, int samples_per_axis,
+                         bool oriented) {
     return std::visit(
-        [&](const auto& l) { return truth.visibility(positions, normals, l, samples_per_axis); }, light);
+        [&](const auto& l) {
+            return oriented ? truth.oriented(positions, normals, l, samples_per_axis).oriented
+                            : truth.visibility(positions, normals, l, samples_per_axis);
+        },
+        light);
 }
 
 } // namespace
@@ -207,7 +212,7 @@ void TruthWorker::compute(const TruthJob& job, std::uint64_t job_id) {
             std::vector<float> result;
             try {
                 result = trace(*truth_, std::span(masked.data(), end), std::span(job.normals.data(), end),
-                               job.light, n);
+                               job.light, n, job.oriented);
             } catch (const std::exception& e) {
                 fail(e.what());
                 return;

@@ -48,6 +48,10 @@ struct TruthJob {
     std::vector<glm::vec3> normals; // as many as positions; zero = no ray offset
     int first_samples_per_axis = 2; // rays per axis of the first pass; 1 to max_samples_per_axis
     int max_samples_per_axis = 32;  // rays per axis of the last pass; 1 to 4096
+    // The fair reference (GroundTruth::oriented: the part of the light above each point's tangent
+    // plane, `normals` pointing to the side seen) instead of the whole light's visibility; NaN
+    // where a point sees none of the light.
+    bool oriented = false;
 };
 
 enum class TruthState { idle, running, finished, cancelled, failed };

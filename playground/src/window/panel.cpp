@@ -169,7 +169,7 @@ void view_section(WindowApp& app) {
     int view = static_cast<int>(c.view);
     static const char* views[view_count] = {"shaded",
                                             "visibility only",
-                                            "ground truth (Embree)",
+                                            "ground truth (Embree, oriented)",
                                             "error heatmap",
                                             "slice occlusion texture",
                                             "slice per pixel",
@@ -216,14 +216,17 @@ void view_section(WindowApp& app) {
     if (c.view == View::truth || c.view == View::error) {
         const TruthSnapshot& t = app.truth();
         ImGui::ProgressBar(static_cast<float>(t.progress), ImVec2(-1, 0));
-        ImGui::Text("truth: %s, %dx%d rays/pixel done, %.1f s", to_string(t.state), t.samples_per_axis,
+        ImGui::Text("truth (oriented: the light above each surface's tangent plane): %s, %dx%d rays/pixel done, "
+                    "%.1f s",
+                    to_string(t.state), t.samples_per_axis,
                     t.samples_per_axis, t.seconds);
         for (int side = 0; side < (c.split ? 2 : 1); ++side)
             ImGui::Text("%sMAE %.4f  p95 %.4f  over %zu px", c.split ? (side ? "right: " : "left: ") : "",
                         app.error_numbers(side).mae, app.error_numbers(side).p95,
                         app.error_numbers(side).count);
         if (c.view == View::error)
-            ImGui::TextUnformatted("|error| 0 black to 0.25 yellow-white; green: not traced yet");
+            ImGui::TextUnformatted("|error| 0 black to 0.25 yellow-white; green: not traced yet, or the pixel sees "
+                                   "none of the light");
     }
     ImGui::Checkbox("split screen (right: second configuration)", &c.split);
     if (c.split && ImGui::TreeNode("right configuration")) {

@@ -340,10 +340,13 @@ void WindowApp::update_truth(int width, int height, const FrameSettings& s) {
             truth_geometry_[i] = positions[i].w >= 0.5f;
             job.positions[i] = positions[i].w < 0.5f ? glm::vec3(std::numeric_limits<float>::quiet_NaN())
                                                      : glm::vec3(positions[i]);
-            job.normals[i] = glm::vec3(normals[i]);
+            // Turned to the side the camera sees, as the headless reference does (reference_all).
+            const glm::vec3 n(normals[i]);
+            job.normals[i] = glm::dot(n, eye - glm::vec3(positions[i])) < 0.0f ? -n : n;
         }
         job.first_samples_per_axis = 2;
         job.max_samples_per_axis = 16;
+        job.oriented = true; // the fair reference, as the headless run's headline (G-buffer normals: the side seen)
         if (std::string e = truth_worker_->start(std::move(job)); !e.empty()) problem("truth: " + e);
         if (!truth_texture_ || truth_width_ != width || truth_height_ != height) {
             if (truth_texture_) glDeleteTextures(1, &truth_texture_);
@@ -383,7 +386,7 @@ void WindowApp::update_truth(int width, int height, const FrameSettings& s) {
             if (truth_snapshot_.state == TruthState::finished && previous_state != TruthState::finished) {
                 char line[200];
                 std::snprintf(line, sizeof line,
-                              "truth: %dx%d rays per pixel in %.1f s; MAE %.4f, p95 %.4f over %zu px",
+                              "truth (oriented): %dx%d rays per pixel in %.1f s; MAE %.4f, p95 %.4f over %zu px",
                               truth_snapshot_.samples_per_axis, truth_snapshot_.samples_per_axis,
                               truth_snapshot_.seconds, error_numbers_[0].mae, error_numbers_[0].p95,
                               error_numbers_[0].count);

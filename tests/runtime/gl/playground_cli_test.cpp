@@ -155,6 +155,13 @@ TEST_CASE("playground cli: --reference writes the image, the visibility, the tru
     CHECK(m["config"]["filter"] == "sat");
     CHECK(m["config"]["slices"] == 8);
     CHECK(m["reference"]["samples_per_axis"] == 4);
+    // The headline is the fair reference; the whole light's numbers follow under their own name.
+    CHECK(m["reference"]["headline"] == "oriented");
+    CHECK(m["reference"]["all"] == m["reference"]["oriented"]["all"]);
+    CHECK(m["reference"]["penumbra"] == m["reference"]["oriented"]["penumbra"]);
+    CHECK(m["reference"]["whole_light_visibility"]["penumbra"]["pixels"].get<int>() > 0);
+    CHECK(run.out.find("whole-light visibility:") != std::string::npos);
+    CHECK(run.out.find("oriented (the part of the light above") < run.out.find("  penumbra: MAE"));
     for (const char* set : {"all", "penumbra"}) {
         CAPTURE(set);
         const nlohmann::json& s = m["reference"][set];
