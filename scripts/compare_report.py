@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Builds the comparison report from penumbra-bench-compare's results.json alone.
+"""Builds the comparison report from penumbra-bench-compare's results.json alone (and, where
+targets/web/three_peers.mjs wrote DIR/three_peers.md, appends its three.js tables).
 
     compare_report.py DIR [--mae-thresholds 0.1,0.15,0.2] [--metric M]   writes DIR/report.md, DIR/figures/*.png
     compare_report.py DIR --check                  exits 1 unless report, figures and finite numbers are there
@@ -536,6 +537,17 @@ def write_report(results, directory, thresholds, figures):
     w("Ground truth per scene (computed or read from the cache): " + "; ".join(
         f"{s['name']}: {sum(t['ms'] for t in s['truth']) / 1000:.1f} s for {len(s['truth'])} images "
         f"({sum(1 for t in s['truth'] if t['cached'])} cached)" for s in results["scenes"]) + ".\n")
+
+    # three.js's own shadows against the same kind of truth, when targets/web/three_peers.mjs
+    # --markdown DIR/three_peers.md wrote its tables here (web/three/README.md says how).
+    three = os.path.join(directory, "three_peers.md")
+    if os.path.isfile(three):
+        w("## three.js's shadow maps and the three.js add-on against the truth\n")
+        w("From `targets/web/three_peers.mjs` (headless chromium): the scene rebuilt in three.js, "
+          "three's PCFSoftShadowMap and VSMShadowMap from a SpotLight where the rectangle is, "
+          "Penumbra's add-on and the desktop runtime, against the bundle's Embree truth.\n")
+        with open(three) as f:
+            w(f.read())
 
     with open(os.path.join(directory, "report.md"), "w") as f:
         f.write("\n".join(out))

@@ -3,7 +3,9 @@
 # build step), the WebAssembly emitter (build/wasm/penumbra_emitter.wasm) and the built-in scenes
 # as small essl300 bundles (penumbra-export-bundle, 96x96 G-buffers, 128² slicing, an 8x8-ray
 # Embree truth for the error view; the desktop run's visibility is kept for the difference view,
-# its slicing output is not), plus boxes-oim: boxes with its occlusion interval maps baked.
+# its slicing output is not), plus boxes-oim: boxes with its occlusion interval maps baked, and
+# the three.js add-on (three/: penumbra_shadows.js, its shipped emissions, its example at
+# three/example/) with the few three modules the example's import map names (npm ci in web/three).
 #
 #   scripts/publish_web.sh [--build DIR] [--scenes "planes boxes ..."] OUT_DIR
 #   python3 -m http.server --directory OUT_DIR 8000     # then http://localhost:8000/
@@ -37,6 +39,21 @@ done
 mkdir -p "$out/scenes"
 cp "$root"/web/*.html "$root"/web/*.js "$out/"
 cp "$wasm" "$out/penumbra_emitter.wasm"
+# The three.js add-on beside the page (it imports ../penumbra_runner.js), and of three only the files
+# the example loads: its import map points at three/node_modules/three.
+three="$root/web/three/node_modules/three"
+if [ ! -f "$three/build/three.module.js" ]; then
+    echo "error: $three is missing; install it: npm ci --prefix $root/web/three" >&2
+    exit 1
+fi
+mkdir -p "$out/three/node_modules/three/build" "$out/three/node_modules/three/examples/jsm"/{controls,helpers,lights,libs}
+cp -r "$root"/web/three/penumbra_shadows.js "$root"/web/three/README.md "$root"/web/three/emissions "$root"/web/three/example "$out/three/"
+cp "$three"/LICENSE "$three"/package.json "$out/three/node_modules/three/"
+cp "$three"/build/three.module.js "$three"/build/three.core.js "$out/three/node_modules/three/build/"
+for module in controls/OrbitControls.js helpers/RectAreaLightHelper.js lights/RectAreaLightUniformsLib.js \
+              lights/RectAreaLightTexturesLib.js libs/lil-gui.module.min.js; do
+    cp "$three/examples/jsm/$module" "$out/three/node_modules/three/examples/jsm/$module"
+done
 index="{\"scenes\": ["
 first=1
 for scene in $scenes; do
@@ -53,4 +70,4 @@ rm -rf "$out/scenes/boxes-oim/emission"
 index+=", {\"name\": \"boxes-oim (with its bake)\", \"dir\": \"boxes-oim\"}"
 index+="]}"
 echo "$index" > "$out/scenes/index.json"
-echo "publish_web: wrote $out ($(du -sh "$out" | cut -f1); the page, penumbra_emitter.wasm ($(stat -c %s "$wasm") bytes), scenes: $scenes)"
+echo "publish_web: wrote $out ($(du -sh "$out" | cut -f1); the page, penumbra_emitter.wasm ($(stat -c %s "$wasm") bytes), scenes: $scenes; the three.js example at three/example/)"

@@ -39,3 +39,9 @@ if [ ! -f "$web/node_modules/.package-lock.json" ] || [ "$web/package-lock.json"
     echo "setup: npm ci in targets/web"
     npm ci --prefix "$web" --no-audit --no-fund --loglevel=error
 fi
+# three (the three.js add-on's peer dependency, for its example and tests), pinned by web/three/package-lock.json.
+three="$(cd "$(dirname "$0")/.." && pwd)/web/three"
+if [ ! -f "$three/node_modules/.package-lock.json" ] || [ "$three/package-lock.json" -nt "$three/node_modules/.package-lock.json" ]; then
+    echo "setup: npm ci in web/three"
+    npm ci --prefix "$three" --no-audit --no-fund --loglevel=error
+fi

@@ -1,0 +1,43 @@
+# three.cmake (included by CMakeLists.txt here, after it found node and the essl300 bundles):
+# the three.js add-on's tests.
+find_program(PENUMBRA_CHROMIUM chromium)
+if(NOT PENUMBRA_CHROMIUM)
+    set(PENUMBRA_CHROMIUM /usr/bin/chromium) # absent: the tests report the skip
+endif()
+get_property(three_emitter_wasm GLOBAL PROPERTY PENUMBRA_EMITTER_WASM)
+set(three_wasm "")
+if(three_emitter_wasm)
+    set(three_wasm --wasm ${three_emitter_wasm})
+endif()
+# The three.js add-on (web/three/, three from npm: scripts/setup.sh runs `npm ci` in web/three):
+# "three" rebuilds each essl300 bundle's scene in three.js and checks the add-on against the
+# desktop runtime (and, with the WebAssembly emitter built, the same configuration emitted in the
+# page); "three-peers" measures three's PCF/VSM shadow maps and the add-on against the Embree
+# truth of a small bundle (--quick: two settings of each); "three-emissions" checks that the
+# emissions shipped in web/three/emissions are what today's penumbra-gen writes.
+add_test(NAME three
+         COMMAND ${PENUMBRA_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/three_test.mjs --web ${PROJECT_SOURCE_DIR}/web
+                 ${three_wasm} --chromium ${PENUMBRA_CHROMIUM} ${bundles})
+set_tests_properties(three PROPERTIES LABELS browser SKIP_RETURN_CODE 77 TIMEOUT 180
+                     FIXTURES_REQUIRED penumbra_essl300_bundles)
+if(TARGET penumbra-export-bundle)
+    set(peers_bundle ${PROJECT_BINARY_DIR}/target_bundles/three-peers-boxes)
+    add_test(NAME penumbra-bundle-three-peers
+             COMMAND $<TARGET_FILE:penumbra-export-bundle> --scene boxes --target essl300 --resolution 256
+                     --size 96x96 --reference 8 --out ${peers_bundle})
+    set_tests_properties(penumbra-bundle-three-peers PROPERTIES FIXTURES_SETUP penumbra_three_peers_bundle
+                         LABELS browser TIMEOUT 120)
+    add_test(NAME three-peers
+             COMMAND ${PENUMBRA_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/three_peers.mjs --quick --web ${PROJECT_SOURCE_DIR}/web
+                     --chromium ${PENUMBRA_CHROMIUM} ${peers_bundle})
+    set_tests_properties(three-peers PROPERTIES LABELS browser SKIP_RETURN_CODE 77 TIMEOUT 180
+                         FIXTURES_REQUIRED penumbra_three_peers_bundle)
+endif()
+if(TARGET penumbra-gen)
+    add_test(NAME three-emissions
+             COMMAND sh -c "rm -rf \"$1\" && \"$2\" --check \"$1\" \"$3\" && diff -r \"$1\" \"$4\" --exclude=regenerate.sh"
+                     three-emissions ${CMAKE_CURRENT_BINARY_DIR}/three-emissions
+                     ${PROJECT_SOURCE_DIR}/web/three/emissions/regenerate.sh $<TARGET_FILE:penumbra-gen>
+                     ${PROJECT_SOURCE_DIR}/web/three/emissions)
+    set_tests_properties(three-emissions PROPERTIES LABELS browser TIMEOUT 60)
+endif()

@@ -1,0 +1,222 @@
+// three_test.mjs — the `three` browser test: one of Penumbra's built-in scenes rebuilt in three.js
+// (web/three/test/: the bundle's triangles, light and camera), the add-on (web/three/penumbra_shadows.js)
+// attached to its RectAreaLight (or sun), in Debian's chromium (headless, SwiftShader):
+//
+//   node targets/web/three_test.mjs --web web [--chromium PATH] [--wasm penumbra_emitter.wasm] BUNDLE_DIR...
+//
+// Each BUNDLE_DIR is written by penumbra-export-bundle --target essl300 (uniforms.json has the camera).
+//   1. The add-on's light frame, computed from the three.js light and the scene's bounds, is the
+//      desktop runtime's (relative 1e-5).
+//   2. Its visibility at the camera's pixels equals the desktop runtime's (visibility_gl.f32) within
+//      2·bound + q (both are within the oracle's bound of the model; q = 1/255 for the R8 result) on
+//      all interior pixels but 1% of the image's (as browser_test.mjs allows its own slicing; SwiftShader rasterizes triangle edges in the slicing pass
+//      unlike llvmpipe, which the bound does not cover; silhouette pixels, where the two cameras
+//      may see different surfaces, are counted and left out).
+//   3. In MeshStandardMaterial, the RectAreaLight's contribution is multiplied by that visibility:
+//      (lit with the add-on) / (lit without it) equals it within 2/255 + 1e-3 wherever the light
+//      reaches (unshadowed > 1e-3), on all but 1% of those pixels.
+//   4. The scene's mesh moved by a matrix M as a Mesh, an InstancedMesh (instance matrix M), a
+//      SkinnedMesh (its bone at M) and a morph target (positions × M): the same visibility within
+//      2q (all but 0.2% of the pixels), and unlike the unmoved mesh's.
+//   5. Moving the light re-runs the shadow phase; update() without a change does not; dispose()
+//      deletes the add-on's textures and programs and restores the materials.
+//   6. With --wasm: the bundle's configuration emitted in the page by the WebAssembly emitter
+//      (a configuration object as `emission`) gives the same visibility as the bundle's emission
+//      folder (within 1e-6).
+// Exit 0 pass, 1 fail, 77 skip (no chromium), 2 bad arguments.
+import path from "node:path";
+import fs from "node:fs";
+import {serve, launchChromium, openPage, readFloats} from "./harness.mjs";
+
+const R8_STEP = 1 / 255;
+const UNIFORM_TOLERANCE = 1e-5;
+const PIXELS_ALLOWED = 0.01;
+const VARIANT_PIXELS_ALLOWED = 0.002; // float rounding of M applied on the GPU or the CPU
+
+function parseArguments(argv) {
+    const out = {web: null, chromium: "/usr/bin/chromium", wasm: null, bundles: []};
+    for (let i = 0; i < argv.length; ++i) {
+        const flag = argv[i];
+        if (flag === "--web" || flag === "--chromium" || flag === "--wasm") {
+            if (i + 1 >= argv.length) usage(`${flag}: missing value`);
+            out[flag.slice(2)] = argv[++i];
+        } else if (flag.startsWith("--")) usage(`unknown flag '${flag}'; allowed: --web, --chromium, --wasm`);
+        else out.bundles.push(flag);
+    }
+    if (!out.web) usage("--web: missing");
+    if (out.bundles.length === 0) usage("no bundle directories");
+    return out;
+}
+
+function usage(message) {
+    console.error(`error: ${message}\nusage: node three_test.mjs --web DIR [--chromium PATH] [--wasm penumbra_emitter.wasm] BUNDLE_DIR...`);
+    process.exit(2);
+}
+
+// Pixels whose 8 neighbours are geometry within 8 pixel footprints of its world position and
+// with its normal (the desktop G-buffers): at the others (silhouettes and creases), three's
+// rasterization may see another surface than llvmpipe's.
+function interiorPixels(positions, normals, bundle) {
+    const W = bundle.width, H = bundle.height, eye = bundle.camera.eye;
+    const scale = 2 * Math.tan(bundle.camera.fov_y_degrees * Math.PI / 360) / H;
+    const out = new Uint8Array(W * H);
+    const p = (i, a) => positions[4 * i + a];
+    for (let y = 1; y < H - 1; ++y)
+        for (let x = 1; x < W - 1; ++x) {
+            const i = y * W + x;
+            if (p(i, 3) === 0) continue;
+            const footprint = Math.hypot(p(i, 0) - eye[0], p(i, 1) - eye[1], p(i, 2) - eye[2]) * scale;
+            let ok = true;
+            for (let dy = -1; dy <= 1 && ok; ++dy)
+                for (let dx = -1; dx <= 1 && ok; ++dx) {
+                    const j = i + dy * W + dx;
+                    ok = p(j, 3) !== 0 && Math.hypot(p(j, 0) - p(i, 0), p(j, 1) - p(i, 1), p(j, 2) - p(i, 2)) < 8 * footprint &&
+                         normals[4 * j] * normals[4 * i] + normals[4 * j + 1] * normals[4 * i + 1] + normals[4 * j + 2] * normals[4 * i + 2] > 0.99;
+                }
+            out[i] = ok ? 1 : 0;
+        }
+    return out;
+}
+
+function relativeDifference(a, b) {
+    let worst = 0, scale = 0;
+    for (let i = 0; i < b.length; ++i) {
+        worst = Math.max(worst, Math.abs(Math.fround(a[i]) - b[i]));
+        scale = Math.max(scale, Math.abs(b[i]));
+    }
+    return worst / Math.max(scale, 1e-30);
+}
+
+async function checkBundle(browser, port, index, dir, wasm) {
+    const bundle = JSON.parse(fs.readFileSync(path.join(dir, "uniforms.json"), "utf8"));
+    const c = bundle.config;
+    const label = `${bundle.scene} ${c.light} ${c.filter}/${c.packing} ${c.slices}×${c.resolution}² ${bundle.width}x${bundle.height}`;
+    const started = Date.now();
+    const {page, problems} = await openPage(browser, `http://127.0.0.1:${port}/web/three/test/index.html?bundle=/bundle/${index}/`, "penumbraThree");
+    const failures = [];
+    const info = await page.evaluate(() => window.penumbraThree.info());
+
+    // 1. light frame
+    const frame = await page.evaluate(() => window.penumbraThree.frameUniforms());
+    let uniformError = 0;
+    for (const [name, value] of Object.entries(frame.bundle)) {
+        if (!(name in frame.computed)) continue;
+        const a = [].concat(frame.computed[name]), b = [].concat(value);
+        uniformError = Math.max(uniformError, relativeDifference(a, b));
+    }
+    if (uniformError > UNIFORM_TOLERANCE) failures.push(`the add-on's light frame differs from the desktop's by ${uniformError.toExponential(2)} (relative)`);
+
+    // 2. visibility against the desktop runtime
+    const gl = readFloats(path.join(dir, "visibility_gl.f32")), bound = readFloats(path.join(dir, "bound.f32"));
+    const positions = readFloats(path.join(dir, "positions.f32"));
+    const visibility = await page.evaluate(() => window.penumbraThree.visibility());
+    const interior = interiorPixels(positions, readFloats(path.join(dir, "normals.f32")), bundle);
+    let outside = 0, worst = 0, geometry = 0, shadowed = 0, sumDiff = 0, silhouette = 0;
+    for (let i = 0; i < gl.length; ++i) {
+        if (positions[4 * i + 3] === 0) continue; // background: the desktop leaves 1
+        if (!interior[i]) { ++silhouette; continue; }
+        ++geometry;
+        if (gl[i] < 0.98) ++shadowed;
+        const d = Math.abs(visibility[i] - gl[i]);
+        sumDiff += d;
+        worst = Math.max(worst, d);
+        if (d > 2 * bound[i] + R8_STEP + 1e-6) ++outside;
+    }
+    if (visibility.length !== gl.length) failures.push(`${visibility.length} pixels read, expected ${gl.length}`);
+    if (outside > PIXELS_ALLOWED * gl.length)
+        failures.push(`${outside} of ${geometry} interior pixels differ from the desktop run by more than 2·bound + q (allowed: ${100 * PIXELS_ALLOWED}% of the ${gl.length} pixels)`);
+    if (shadowed === 0) failures.push("the desktop image has no shadowed pixel: the comparison would prove nothing");
+
+    // 3. the material hook
+    let ratioOutside = 0, lit = 0, ratioWorst = 0;
+    if (c.light === "rect") {
+        const {ratio, unshadowed} = await page.evaluate(() => window.penumbraThree.materialRatio());
+        for (let i = 0; i < ratio.length; ++i) {
+            if (!(unshadowed[i] > 1e-3)) continue;
+            ++lit;
+            const d = Math.abs(ratio[i] - visibility[i]);
+            ratioWorst = Math.max(ratioWorst, d);
+            if (!(d <= 2 * R8_STEP + 1e-3)) ++ratioOutside;
+        }
+        if (lit === 0) failures.push("the RectAreaLight lights no pixel");
+        if (ratioOutside > PIXELS_ALLOWED * lit) failures.push(`the lit image is not visibility × unshadowed at ${ratioOutside} of ${lit} lit pixels`);
+    }
+
+    // 4. the same casters as a moved Mesh, an InstancedMesh, a SkinnedMesh and a morph target
+    const variants = await page.evaluate(() => window.penumbraThree.variants());
+    const differing = (a, b, tolerance) => a.reduce((n, v, i) => n + (Math.abs(v - b[i]) > tolerance ? 1 : 0), 0);
+    const variantText = [];
+    for (const name of ["instanced", "skinned", "morphed"]) {
+        const n = differing(variants[name], variants.mesh, 2 * R8_STEP);
+        variantText.push(`${name} ${n}`);
+        if (n > VARIANT_PIXELS_ALLOWED * gl.length) failures.push(`the ${name} casters and receivers differ from the moved Mesh at ${n} pixels`);
+    }
+    const movedPixels = differing(variants.mesh, variants.unmoved, 2 * R8_STEP);
+    if (movedPixels === 0) failures.push("moving the mesh changed no pixel: the variants prove nothing");
+
+    // 5. updates and dispose
+    const before = await page.evaluate(() => window.penumbraThree.shadowUpdates());
+    const idle = await page.evaluate(() => window.penumbraThree.update());
+    const moved = await page.evaluate((dx) => window.penumbraThree.moveLight(dx), 0.25 * (bundle.light.width || 1));
+    const after = await page.evaluate(() => window.penumbraThree.visibility());
+    let changed = 0;
+    for (let i = 0; i < after.length; ++i) if (Math.abs(after[i] - visibility[i]) > 2 * R8_STEP) ++changed;
+    if (idle !== before) failures.push("update() without a change re-ran the shadow phase");
+    if (moved !== before + 1) failures.push("moving the light did not re-run the shadow phase once");
+    if (c.light === "rect" && changed === 0) failures.push("moving the light changed no pixel");
+    const disposed = await page.evaluate(() => window.penumbraThree.dispose());
+    if (disposed.texturesAlive || disposed.programsAlive || !disposed.restored || !disposed.textures)
+        failures.push(`dispose() left ${disposed.texturesAlive} of ${disposed.textures} textures and ${disposed.programsAlive} of ${disposed.programs} programs` +
+                      (disposed.restored ? "" : ", and did not restore the material"));
+    failures.push(...problems);
+    await page.close();
+
+    // 6. the same configuration through the WebAssembly emitter
+    let emitterText = "";
+    if (wasm) {
+        const query = `bundle=/bundle/${index}/&wasm=/wasm/penumbra_emitter.wasm&config=${encodeURIComponent(JSON.stringify(c))}`;
+        const emitted = await openPage(browser, `http://127.0.0.1:${port}/web/three/test/index.html?${query}`, "penumbraThree");
+        const v = await emitted.page.evaluate(() => window.penumbraThree.visibility());
+        let worstEmitted = 0;
+        for (let i = 0; i < v.length; ++i) worstEmitted = Math.max(worstEmitted, Math.abs(v[i] - visibility[i]));
+        if (!(worstEmitted <= 1e-6)) failures.push(`through the WebAssembly emitter the visibility differs from the emission folder's by ${worstEmitted}`);
+        failures.push(...emitted.problems);
+        await emitted.page.close();
+        emitterText = `; WebAssembly emitter vs emission folder: max |Δ| ${worstEmitted.toExponential(2)}`;
+    }
+    console.log(`${failures.length ? "FAIL" : "ok  "} three r${info.three} ${label} (${((Date.now() - started) / 1000).toFixed(1)} s)\n` +
+                `     light frame vs desktop ${uniformError.toExponential(2)} (relative); visibility vs desktop: mean |Δ| ${(sumDiff / Math.max(geometry, 1)).toExponential(2)}, ` +
+                `max ${worst.toFixed(4)}, ${outside} of ${geometry} interior pixels outside 2·bound + q (${shadowed} shadowed; ${silhouette} silhouette pixels left out)\n` +
+                `     material: lit-with / lit-without vs visibility max |Δ| ${ratioWorst.toFixed(4)}, ${ratioOutside} of ${lit} lit pixels outside 2q + 1e-3; ` +
+                `moved light changed ${changed} pixels\n` +
+                `     moved mesh changed ${movedPixels} pixels; pixels differing from it: ${variantText.join(", ")}${emitterText}`);
+    for (const f of failures) console.log(`     ${f}`);
+    return {failures: failures.length, renderer: info.renderer};
+}
+
+async function main() {
+    const args = parseArguments(process.argv.slice(2));
+    const {browser, close} = await launchChromium(args.chromium);
+    const roots = {web: args.web};
+    args.bundles.forEach((dir, i) => (roots[`bundle/${i}`] = dir));
+    if (args.wasm) roots.wasm = path.dirname(path.resolve(args.wasm));
+    if (args.wasm && path.basename(args.wasm) !== "penumbra_emitter.wasm") usage("--wasm: the file must be named penumbra_emitter.wasm");
+    const server = await serve(roots);
+    let failures = 0;
+    try {
+        for (let i = 0; i < args.bundles.length; ++i) {
+            const result = await checkBundle(browser, server.address().port, i, args.bundles[i], args.wasm);
+            if (i === 0) console.log(`WebGL2 renderer: ${result.renderer}`);
+            failures += result.failures;
+        }
+    } catch (e) {
+        console.log(`FAIL ${e.message}`);
+        failures += 1;
+    } finally {
+        await close();
+        server.close();
+    }
+    process.exit(failures ? 1 : 0);
+}
+
+main();

@@ -1,0 +1,37 @@
+#version 300 es
+// Penumbra 0.1.0 - N-buffer level l from level l-1, fragment stage
+// slices 16 | resolution 512x512 | filter nbuffer | fusion chained | packing atlas | light rect | leak fix on | fade on | tangent clip on | target essl300
+// 4 RGBA occlusion texture(s), filter levels 0 to 9. Generated: edit the configuration, not this file.
+// @penumbra:precision
+precision highp float;
+precision highp int;
+precision highp sampler2D;
+precision highp sampler2DArray;
+precision highp sampler3D;
+
+// @penumbra:parameters
+uniform int penumbra_step; // offset between the windows combined by this pass (texels)
+uniform sampler2D penumbra_source; // previous filter level (atlas), texture unit 0
+
+layout(location = 0) out vec4 penumbra_result;
+
+// @penumbra:level_source
+// texel of the previous level at base + offset, 0 outside the tile
+vec4 penumbra_source_texel(ivec2 base, ivec2 offset)
+{
+    ivec2 local = ivec2(base.x % 512, base.y) + offset;
+    ivec2 texel = base + offset;
+    bool inside = all(greaterThanEqual(local, ivec2(0))) && all(lessThan(local, ivec2(512)));
+    texel = clamp(texel, ivec2(0), ivec2(2047, 511));
+    vec4 value = texelFetch(penumbra_source, texel, 0);
+    return inside ? value : vec4(0.0);
+}
+
+// @penumbra:nbuffer_level_main
+void main()
+{
+    ivec2 base = ivec2(gl_FragCoord.xy);
+    int s = penumbra_step; // 2^(l-1)
+    penumbra_result = 0.25 * (penumbra_source_texel(base, ivec2(0, 0)) + penumbra_source_texel(base, ivec2(s, 0))
+    + penumbra_source_texel(base, ivec2(0, s)) + penumbra_source_texel(base, ivec2(s, s)));
+}

@@ -1,0 +1,22 @@
+#version 300 es
+// Penumbra 0.1.0 - atlas packing of the slicing output (paper §3.6), fragment stage
+// slices 8 | resolution 256x256 | filter nbuffer | fusion chained | packing atlas | light rect | leak fix on | fade on | tangent clip on | target essl300
+// 2 RGBA occlusion texture(s), filter levels 0 to 8. Generated: edit the configuration, not this file.
+// @penumbra:precision
+precision highp float;
+precision highp int;
+precision highp sampler2D;
+precision highp sampler2DArray;
+precision highp sampler3D;
+
+// @penumbra:parameters
+uniform sampler2DArray penumbra_slices; // slicing output, one layer per RGBA texture, texture unit 0
+
+layout(location = 0) out vec4 penumbra_result;
+
+// @penumbra:pack_atlas_main
+void main()
+{
+    ivec2 texel = ivec2(gl_FragCoord.xy);
+    penumbra_result = texelFetch(penumbra_slices, ivec3(texel.x % 256, texel.y, texel.x / 256), 0);
+}

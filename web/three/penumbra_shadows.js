@@ -1,0 +1,641 @@
+// penumbra_shadows.js — soft shadows for a three.js RectAreaLight (or a DirectionalLight used as a
+// sun with an angular size) from Penumbra's occlusion textures. An ES module add-on, no build step:
+//
+//   import {PenumbraShadows} from "penumbra-three";          // or "./web/three/penumbra_shadows.js"
+//   const shadows = await PenumbraShadows.load(renderer, scene, rectLight);
+//   // each frame:
+//   shadows.update();
+//   renderer.render(scene, camera);
+//
+// What it does:
+//   - the emission (essl300 GLSL + layout.json; a folder shipped in emissions/, one you emitted
+//     with `penumbra-gen --target essl300`, or an in-memory one) runs on the renderer's own WebGL2
+//     context through the page's layout runner (../penumbra_runner.js), which follows layout.json;
+//   - its "shadow" phase (slicing + prefilter) draws the casters (meshes with castShadow, their
+//     BufferGeometry positions placed by matrixWorld, InstancedMesh instances, skinned and morphed
+//     meshes skinned on the CPU) whenever the light, a caster or a receiver moved;
+//   - every MeshStandardMaterial / MeshPhysicalMaterial of a mesh with receiveShadow gets, through
+//     onBeforeCompile, the emitted visibility function (penumbra_visibility.glsl) and multiplies
+//     the light's contribution by it (RE_Direct_RectArea for the rectangle, directLight.color for
+//     the sun), leaving every other light alone;
+//   - raw GL is bracketed by renderer.resetState(), so three's state cache stays right.
+import {Box3, Color, DoubleSide, ExternalTexture, FloatType, GLSL3, Matrix4, NoBlending, RGBAFormat, ShaderChunk,
+        ShaderMaterial, Vector3, WebGLRenderTarget} from "three";
+import {LayoutRunner} from "../penumbra_runner.js";
+import {rectFrame, sunFrame} from "../light_frame.js";
+
+const MODULE_URL = import.meta.url;
+
+// The emissions shipped beside this module (penumbra-gen --target essl300 output; emissions/README.md).
+export const EMISSIONS = {
+    "rect-nbuffer-16x512": "emissions/rect-nbuffer-16x512/",
+    "rect-mipmap-16x512": "emissions/rect-mipmap-16x512/",
+    "rect-nbuffer-16x256": "emissions/rect-nbuffer-16x256/",
+    "rect-nbuffer-8x256": "emissions/rect-nbuffer-8x256/",
+    "sun-nbuffer-16x512": "emissions/sun-nbuffer-16x512/",
+    "sun-mipmap-16x512": "emissions/sun-mipmap-16x512/",
+};
+
+const DEFAULTS = {
+    emission: null,           // a key of EMISSIONS, a folder URL (ending in "/"), {layout, files}, or a configuration
+                              // object ({slices, resolution, filter, ...}: needs the WebAssembly emitter)
+    angularDiameter: 0.0093,  // sun only: the DirectionalLight's angular diameter in radians (our sun: 0.53°)
+    autoUpdate: true,         // re-run the shadow phase by itself when something moved (like shadowMap.autoUpdate)
+    intensity: 1,             // 0: no shadow, 1: Penumbra's visibility (like LightShadow.intensity)
+    wasm: null,               // for a configuration object: the URL of penumbra_emitter.wasm (default: beside ../penumbra_emitter.js)
+};
+
+export class PenumbraError extends Error {}
+
+function fail(message) {
+    throw new PenumbraError(`PenumbraShadows: ${message}`);
+}
+
+// ---- shader patches -------------------------------------------------------------------------
+
+// The RectAreaLight's contribution: only the loop iteration of our light is scaled, diffuse,
+// specular and clearcoat alike, by lerping from the value before it to the value after it.
+const RECT_CALL = "RE_Direct_RectArea( rectAreaLight, geometryPosition, geometryNormal, geometryViewDir, geometryClearcoatNormal, material, reflectedLight );";
+const RECT_PATCH = `if ( UNROLLED_LOOP_INDEX == penumbraLightIndex ) {
+			ReflectedLight penumbraBefore = reflectedLight;
+			#ifdef USE_CLEARCOAT
+			vec3 penumbraClearcoatBefore = clearcoatSpecularDirect;
+			#endif
+			${RECT_CALL}
+			float penumbraV = penumbraShadow( geometryNormal );
+			reflectedLight.directDiffuse = mix( penumbraBefore.directDiffuse, reflectedLight.directDiffuse, penumbraV );
+			reflectedLight.directSpecular = mix( penumbraBefore.directSpecular, reflectedLight.directSpecular, penumbraV );
+			#ifdef USE_CLEARCOAT
+			clearcoatSpecularDirect = mix( penumbraClearcoatBefore, clearcoatSpecularDirect, penumbraV );
+			#endif
+		} else {
+			${RECT_CALL}
+		}`;
+// The sun: the DirectionalLight's colour, as three's own shadow maps scale it.
+const DIR_CALL = "getDirectionalLightInfo( directionalLight, directLight );";
+const DIR_PATCH = `${DIR_CALL}
+		if ( UNROLLED_LOOP_INDEX == penumbraLightIndex ) directLight.color *= penumbraShadow( geometryNormal );`;
+
+// World position of the fragment, as three's worldpos_vertex computes it (batching, instancing),
+// after skinning and morphing (`transformed`).
+const WORLD_VERTEX = `
+	vec4 penumbraWorld = vec4( transformed, 1.0 );
+	#ifdef USE_BATCHING
+		penumbraWorld = batchingMatrix * penumbraWorld;
+	#endif
+	#ifdef USE_INSTANCING
+		penumbraWorld = instanceMatrix * penumbraWorld;
+	#endif
+	vPenumbraWorldPosition = ( modelMatrix * penumbraWorld ).xyz;`;
+
+// Visibility at this fragment: the world normal is the view-space one three lights with, turned
+// to the side the camera sees (the side whose light the tangent clip keeps); an emission without
+// the tangent clip looks up the whole light.
+const SHADOW_FUNCTION = `
+in vec3 vPenumbraWorldPosition;
+uniform int penumbraLightIndex;
+uniform float penumbraIntensity;
+float penumbraShadow( vec3 viewNormal ) {
+	vec3 n = normalize( ( vec4( viewNormal, 0.0 ) * viewMatrix ).xyz );
+	if ( dot( n, cameraPosition - vPenumbraWorldPosition ) < 0.0 ) n = - n;
+	#ifdef PENUMBRA_TANGENT_CLIP
+	float v = penumbraVisibility( vPenumbraWorldPosition, n );
+	#else
+	float v = penumbraVisibility( vPenumbraWorldPosition );
+	#endif
+	return mix( 1.0, v, penumbraIntensity );
+}
+`;
+
+function patchChunk(chunk, call, patch, what) {
+    if (!chunk.includes(call))
+        fail(`three.js's lights_fragment_begin has no '${call}' (${what}); this add-on supports three r187`);
+    return chunk.replace(call, patch);
+}
+
+// The snippet without its header comment lines; the precision lines stay (ES 3.00 wants them).
+function snippetBody(text) {
+    return text.replace(/^#version[^\n]*\n/, "");
+}
+
+// ---- the add-on -----------------------------------------------------------------------------
+
+export class PenumbraShadows {
+    // Loads the emission (options.emission: a key of EMISSIONS, a folder URL, or {layout, files})
+    // and returns the add-on attached to `renderer`, `scene` and `light`.
+    static async load(renderer, scene, light, options = {}) {
+        const o = {...DEFAULTS, ...options};
+        const gl = renderer.getContext();
+        const kind = kindOf(light);
+        const emission = o.emission ?? (kind === "sun" ? "sun-nbuffer-16x512" : "rect-nbuffer-16x512");
+        const runner = await loadRunner(gl, emission, kind, o.wasm);
+        return new PenumbraShadows(renderer, scene, light, {...o, runner});
+    }
+
+    constructor(renderer, scene, light, options = {}) {
+        if (!renderer || !renderer.isWebGLRenderer) fail("the first argument must be a THREE.WebGLRenderer");
+        if (!renderer.capabilities.isWebGL2) fail("needs a WebGL2 context");
+        if (!scene || !scene.isScene) fail("the second argument must be a THREE.Scene");
+        const o = {...DEFAULTS, ...options};
+        if (!o.runner) fail("no emission: use `await PenumbraShadows.load(renderer, scene, light, options)`");
+        this.renderer = renderer;
+        this.scene = scene;
+        this.light = light;
+        this.kind = kindOf(light);
+        this.angularDiameter = o.angularDiameter;
+        this.autoUpdate = o.autoUpdate;
+        this.needsUpdate = true;
+        this.enabled = true;
+        this.wasm = o.wasm;
+        this.intensity = o.intensity;
+        this.info = {shadowUpdates: 0, lastShadowMs: 0, casters: 0, receivers: 0, contained: true};
+        this._geometries = new Map(); // BufferGeometry (or SkinnedMesh) → {vao, buffers, count, version}
+        this._materials = new Set();  // materials we patched
+        this._signature = null;
+        this._frame = null;
+        this._visibilityTarget = null;
+        this._visibilityMaterial = null;
+        this._setRunner(o.runner);
+    }
+
+    // The layout runner of the current emission; the materials recompile with its snippet.
+    _setRunner(runner) {
+        const layout = runner.layout;
+        const wanted = this.kind === "sun" ? "sun" : "rect";
+        if (layout.config.light !== wanted)
+            fail(`the emission is for a '${layout.config.light}' light but the light is a ${this.light.type} (needs '${wanted}')`);
+        this.runner = runner;
+        this.config = layout.config;
+        const snippet = runner.sources["penumbra_visibility.glsl"] || fail("the emission has no penumbra_visibility.glsl");
+        const clipped = /float penumbraVisibility\(vec3 worldPos, vec3 worldNormal\)/.test(snippet);
+        this._snippet = (clipped ? "#define PENUMBRA_TANGENT_CLIP\n" : "") + snippetBody(snippet);
+        // The snippet's parameters, shared by every patched material (same uniform objects).
+        this.uniforms = {penumbraLightIndex: {value: -1}, penumbraIntensity: {value: this.intensity}};
+        this._samplers = [];
+        for (const line of this._snippet.split("\n")) {
+            const m = /^uniform\s+(\w+)\s+(\w+)\s*;/.exec(line);
+            if (!m) continue;
+            const [, type, name] = m;
+            if (type.startsWith("sampler")) {
+                const id = runner.texture(name).id;
+                const texture = new ExternalTexture(id);
+                this._bindExternal(texture, id);
+                this.uniforms[name] = {value: texture};
+                this._samplers.push(texture);
+            } else {
+                // a value of the right shape until the first update() (three cannot upload null)
+                const zeros = {float: 0, int: 0, vec2: [0, 0], vec3: [0, 0, 0], vec4: [0, 0, 0, 0],
+                               mat4: [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]};
+                this.uniforms[name] = {value: zeros[type] ?? 0};
+            }
+        }
+        this._cacheKey = `penumbra:${this.kind}:${JSON.stringify(layout.config)}:${PenumbraShadows._generation = (PenumbraShadows._generation || 0) + 1}`;
+        this.needsUpdate = true;
+        for (const material of this._materials) material.needsUpdate = true;
+    }
+
+    // three binds an ExternalTexture's sourceTexture for 2D and 2D-array samplers, and
+    // properties.__webglTexture of a never-uploaded texture (version 0) for 3D ones.
+    _bindExternal(texture, id) {
+        if (texture.isExternalTexture) texture.sourceTexture = id;
+        this.renderer.properties.get(texture).__webglTexture = id;
+    }
+
+    // Replaces the emission (a key of EMISSIONS, a folder URL, {layout, files} or a configuration); the old GPU
+    // resources are freed once the new ones work.
+    async setEmission(emission) {
+        const runner = await loadRunner(this.renderer.getContext(), emission, this.kind, this.wasm);
+        const old = this.runner;
+        this._setRunner(runner);
+        disposeRunner(old);
+        this.renderer.resetState();
+    }
+
+    // Kept for three.js conventions: the visibility is computed in the materials, so nothing
+    // depends on the output size but the debug target of renderVisibility().
+    setSize(width, height) {
+        if (this._visibilityTarget) this._visibilityTarget.setSize(width, height);
+    }
+
+    // Call once per frame before renderer.render(): patches new receivers' materials, re-runs the
+    // shadow phase when the light or a caster or receiver changed, and sets the light's index.
+    update() {
+        const scene = this.scene;
+        scene.updateMatrixWorld();
+        this.light.updateMatrixWorld();
+        if (this.light.target) this.light.target.updateMatrixWorld();
+        const casters = [], receivers = [];
+        scene.traverseVisible((object) => {
+            if (!object.isMesh) return;
+            if (object.castShadow && !object.isBatchedMesh) casters.push(object); // BatchedMesh: not drawn (README)
+            if (object.receiveShadow) {
+                receivers.push(object);
+                for (const material of Array.isArray(object.material) ? object.material : [object.material]) this._patch(material);
+            }
+        });
+        this.info.casters = casters.length;
+        this.info.receivers = receivers.length;
+        this.uniforms.penumbraLightIndex.value = this.enabled ? this._lightIndex() : -1;
+        this.uniforms.penumbraIntensity.value = this.intensity;
+        const signature = this._signatureOf(casters, receivers);
+        const changed = !this._signature || signature.length !== this._signature.length || signature.some((v, i) => v !== this._signature[i]);
+        if (this.needsUpdate || (this.autoUpdate && changed)) {
+            this._signature = signature;
+            this.needsUpdate = false;
+            this._renderShadow(casters, receivers);
+        }
+    }
+
+    // Everything the shadow phase depends on, as numbers.
+    _signatureOf(casters, receivers) {
+        const out = [];
+        const light = this.light;
+        out.push(...light.matrixWorld.elements);
+        if (this.kind === "rect") out.push(light.width, light.height);
+        else out.push(...light.target.matrixWorld.elements, this.angularDiameter);
+        for (const list of [casters, receivers]) {
+            out.push(list.length);
+            for (const object of list) {
+                out.push(object.id, ...object.matrixWorld.elements, object.geometry.id, positionVersion(object.geometry));
+                if (object.isInstancedMesh) out.push(object.count, object.instanceMatrix.version);
+                if (object.isSkinnedMesh) for (const bone of object.skeleton.bones) out.push(...bone.matrixWorld.elements);
+                if (object.morphTargetInfluences) out.push(...object.morphTargetInfluences);
+            }
+        }
+        return out;
+    }
+
+    // three's light order: lights in traversal order, shadow-casting (then textured) ones first
+    // (WebGLLights.setup); our light's index among the lights of its kind.
+    _lightIndex() {
+        const lights = [];
+        this.scene.traverseVisible((object) => object.isLight && lights.push(object));
+        lights.sort((a, b) => (b.castShadow ? 2 : 0) - (a.castShadow ? 2 : 0) + (b.map ? 1 : 0) - (a.map ? 1 : 0));
+        const same = lights.filter((l) => (this.kind === "sun" ? l.isDirectionalLight && !l.isSunLight : l.isRectAreaLight));
+        return same.indexOf(this.light);
+    }
+
+    _bounds(casters, receivers) {
+        const box = new Box3();
+        // exact (vertex by vertex) where the geometry's box is not the drawn one: skinned, instanced, morphed
+        const exact = (o) => o.isSkinnedMesh || o.isInstancedMesh || (o.morphTargetInfluences && o.morphTargetInfluences.some((w) => w !== 0));
+        for (const object of [...casters, ...receivers]) box.expandByObject(object, exact(object));
+        return box;
+    }
+
+    // The light-frame uniforms (light_frame.js) from the three.js light and the scene's bounds.
+    _lightFrame(box) {
+        const light = this.light;
+        const lo = box.min.toArray(), hi = box.max.toArray();
+        const slices = this.config.slices;
+        if (this.kind === "sun") {
+            const from = new Vector3().setFromMatrixPosition(light.matrixWorld);
+            const to = new Vector3().setFromMatrixPosition(light.target.matrixWorld);
+            const direction = to.sub(from).normalize().toArray();
+            return sunFrame({direction, angularDiameter: this.angularDiameter}, lo, hi, slices);
+        }
+        // RectAreaLight: width along local x, height along local y, emitting towards local -z; like
+        // three's own lighting (WebGLLights), the object's scale is ignored.
+        // Penumbra's frame wants n = u × v towards the scene: u = x, v = -y.
+        const e = light.matrixWorld.elements;
+        const x = new Vector3(e[0], e[1], e[2]).normalize(), y = new Vector3(e[4], e[5], e[6]).normalize();
+        const center = new Vector3().setFromMatrixPosition(light.matrixWorld).toArray();
+        return rectFrame({center, u: x.toArray(), v: y.negate().toArray(), width: light.width, height: light.height},
+                         lo, hi, slices);
+    }
+
+    _renderShadow(casters, receivers) {
+        const t0 = performance.now();
+        const box = this._bounds(casters, receivers);
+        if (box.isEmpty()) box.set(new Vector3(-1, -1, -1), new Vector3(1, 1, 1));
+        const frame = this._lightFrame(box);
+        if (!frame.contained && this.info.contained) console.warn("PenumbraShadows: the scene's bounds reach the light's plane; shadows above it are wrong (move the light up)");
+        this.info.contained = frame.contained;
+        this._frame = frame;
+        for (const [name, value] of Object.entries(frame.uniforms)) if (this.uniforms[name]) this.uniforms[name].value = value;
+        const renderer = this.renderer, gl = renderer.getContext(), runner = this.runner;
+        renderer.resetState();
+        // the runner reports any GL error after the phase: start from none (one three left behind
+        // is three's, and is passed on with a warning)
+        for (let e = gl.getError(), n = 0; e !== gl.NO_ERROR && n < 8; e = gl.getError(), ++n)
+            console.warn(`PenumbraShadows: a WebGL error 0x${e.toString(16)} was pending before the shadow phase (not the add-on's)`);
+        runner.setUniforms(frame.uniforms);
+        const drawn = casters.map((object) => this._geometryOf(object)).filter((g) => g !== null);
+        runner.runPhase("shadow", (programId) => this._drawCasters(programId, casters, drawn), null);
+        gl.bindVertexArray(null);
+        renderer.resetState();
+        this.info.shadowUpdates++;
+        this.info.lastShadowMs = performance.now() - t0;
+    }
+
+    // Draws every caster with each "...FromWorld" matrix of the program times its model matrix
+    // (and instance matrix), so that attribute 0 can stay in object space.
+    _drawCasters(programId, casters, drawn) {
+        const gl = this.renderer.getContext();
+        const program = Object.values(this.runner.programs).find((p) => p.id === programId);
+        const matrices = program.desc.parameters.filter((p) => p.type === "mat4" && /FromWorld$/.test(p.name));
+        const locations = matrices.map((p) => program.locations[p.name] || gl.getUniformLocation(programId, p.name));
+        const base = matrices.map((p) => new Matrix4().fromArray(this.runner.uniformValues[p.name]));
+        const instance = new Matrix4(), world = new Matrix4(), m = new Matrix4();
+        const draw = (g, objectMatrix) => {
+            matrices.forEach((p, k) => {
+                if (!locations[k]) return;
+                m.multiplyMatrices(base[k], objectMatrix);
+                gl.uniformMatrix4fv(locations[k], false, m.elements);
+            });
+            gl.bindVertexArray(g.vao);
+            if (g.indexType) gl.drawElements(gl.TRIANGLES, g.count, g.indexType, g.first * g.indexBytes);
+            else gl.drawArrays(gl.TRIANGLES, g.first, g.count);
+        };
+        casters.forEach((object, i) => {
+            const g = drawn[i];
+            if (!g) return;
+            // skinned and morphed positions come in the mesh's own space (getVertexPosition)
+            if (object.isInstancedMesh) {
+                for (let k = 0; k < object.count; ++k) {
+                    object.getMatrixAt(k, instance);
+                    draw(g, world.multiplyMatrices(object.matrixWorld, instance));
+                }
+            } else {
+                draw(g, object.matrixWorld);
+            }
+        });
+        gl.bindVertexArray(null);
+    }
+
+    // Our vertex array for a caster: its geometry's positions (attribute 0) and index, uploaded
+    // once per geometry and again when the position attribute's version changes; skinned and
+    // morphed meshes get their positions from mesh.getVertexPosition() at every shadow update.
+    _geometryOf(object) {
+        const geometry = object.geometry;
+        const position = geometry.attributes.position;
+        if (!position) return null;
+        const deformed = object.isSkinnedMesh || (object.morphTargetInfluences && object.morphTargetInfluences.some((w) => w !== 0));
+        const key = deformed ? object : geometry;
+        const gl = this.renderer.getContext();
+        let g = this._geometries.get(key);
+        const version = positionVersion(geometry);
+        if (g && !deformed && g.version === version) return g;
+        if (!g) {
+            g = {vao: gl.createVertexArray(), position: gl.createBuffer(), index: null, version: -1, key};
+            this._geometries.set(key, g);
+            if (!deformed) geometry.addEventListener("dispose", () => this._dropGeometry(key));
+        }
+        const n = position.count;
+        const data = new Float32Array(3 * n);
+        const v = new Vector3();
+        for (let i = 0; i < n; ++i) {
+            if (deformed) object.getVertexPosition(i, v);
+            else v.fromBufferAttribute(position, i);
+            data[3 * i] = v.x;
+            data[3 * i + 1] = v.y;
+            data[3 * i + 2] = v.z;
+        }
+        gl.bindVertexArray(g.vao);
+        gl.bindBuffer(gl.ARRAY_BUFFER, g.position);
+        gl.bufferData(gl.ARRAY_BUFFER, data, deformed ? gl.DYNAMIC_DRAW : gl.STATIC_DRAW);
+        gl.enableVertexAttribArray(0);
+        gl.vertexAttribPointer(0, 3, gl.FLOAT, false, 0, 0);
+        const range = geometry.drawRange;
+        if (geometry.index) {
+            if (!g.index) g.index = gl.createBuffer();
+            const big = geometry.index.array instanceof Uint32Array || n > 65535;
+            const indices = big ? Uint32Array.from(geometry.index.array) : Uint16Array.from(geometry.index.array);
+            gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, g.index);
+            gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, indices, gl.STATIC_DRAW);
+            g.indexType = big ? gl.UNSIGNED_INT : gl.UNSIGNED_SHORT;
+            g.indexBytes = big ? 4 : 2;
+            g.first = range.start;
+            g.count = Math.min(range.count, geometry.index.count - range.start);
+        } else {
+            g.indexType = 0;
+            g.first = range.start;
+            g.count = Math.min(range.count, n - range.start);
+        }
+        gl.bindVertexArray(null);
+        gl.bindBuffer(gl.ARRAY_BUFFER, null);
+        g.version = version;
+        return g;
+    }
+
+    _dropGeometry(key) {
+        const g = this._geometries.get(key);
+        if (!g) return;
+        const gl = this.renderer.getContext();
+        gl.deleteVertexArray(g.vao);
+        gl.deleteBuffer(g.position);
+        if (g.index) gl.deleteBuffer(g.index);
+        this._geometries.delete(key);
+    }
+
+    // onBeforeCompile on a MeshStandardMaterial / MeshPhysicalMaterial (others are left alone).
+    _patch(material) {
+        if (this._materials.has(material) || !material || !material.isMeshStandardMaterial) return;
+        if (material._penumbraPrevious) { // another PenumbraShadows' (the emitted names would clash)
+            if (!this._warnedShared) console.warn("PenumbraShadows: a material is already shadowed by another PenumbraShadows; one add-on per material");
+            this._warnedShared = true;
+            return;
+        }
+        this._materials.add(material);
+        const previous = material.onBeforeCompile;
+        const previousKey = material.customProgramCacheKey;
+        const self = this;
+        material._penumbraPrevious = {onBeforeCompile: previous, customProgramCacheKey: previousKey};
+        material.onBeforeCompile = function (shader, renderer) {
+            previous.call(this, shader, renderer);
+            self._patchShader(shader);
+        };
+        material.customProgramCacheKey = function () {
+            return previousKey.call(this) + self._cacheKey;
+        };
+        material.needsUpdate = true;
+    }
+
+    _patchShader(shader) {
+        Object.assign(shader.uniforms, this.uniforms);
+        shader.vertexShader = shader.vertexShader
+            .replace("#include <common>", "#include <common>\nout vec3 vPenumbraWorldPosition;")
+            .replace("#include <project_vertex>", `#include <project_vertex>${WORLD_VERTEX}`);
+        let lights = ShaderChunk.lights_fragment_begin;
+        lights = this.kind === "sun" ? patchChunk(lights, DIR_CALL, DIR_PATCH, "the directional light loop")
+                                     : patchChunk(lights, RECT_CALL, RECT_PATCH, "the rect-area light loop");
+        shader.fragmentShader = shader.fragmentShader
+            .replace("#include <common>", `#include <common>\n${this._snippet}\n${SHADOW_FUNCTION}`)
+            .replace("#include <lights_fragment_begin>", lights);
+    }
+
+    // The add-on's visibility (0 shadowed … 1 lit) as the camera sees the receivers, for debugging
+    // and tests: Float32Array of width × height, bottom row first; 1 where no receiver is.
+    renderVisibility(camera, width, height) {
+        const renderer = this.renderer;
+        if (!this._visibilityTarget) this._visibilityTarget = new WebGLRenderTarget(width, height, {type: FloatType, format: RGBAFormat, depthBuffer: true});
+        const target = this._visibilityTarget;
+        if (target.width !== width || target.height !== height) target.setSize(width, height);
+        if (!this._visibilityMaterial || this._visibilityMaterial.userData.key !== this._cacheKey) {
+            if (this._visibilityMaterial) this._visibilityMaterial.dispose();
+            this._visibilityMaterial = this._makeVisibilityMaterial();
+        }
+        const hidden = [];
+        this.scene.traverse((o) => { if (o.isMesh && o.visible && !o.receiveShadow) { hidden.push(o); o.visible = false; } });
+        const previous = {target: renderer.getRenderTarget(), override: this.scene.overrideMaterial, background: this.scene.background};
+        this.scene.overrideMaterial = this._visibilityMaterial;
+        this.scene.background = null;
+        const clear = renderer.getClearColor(new Color()), alpha = renderer.getClearAlpha();
+        renderer.setRenderTarget(target);
+        renderer.setClearColor(0xffffff, 1);
+        renderer.clear();
+        renderer.render(this.scene, camera);
+        const rgba = new Float32Array(4 * width * height);
+        renderer.readRenderTargetPixels(target, 0, 0, width, height, rgba);
+        renderer.setRenderTarget(previous.target);
+        renderer.setClearColor(clear, alpha);
+        this.scene.overrideMaterial = previous.override;
+        this.scene.background = previous.background;
+        for (const o of hidden) o.visible = true;
+        const out = new Float32Array(width * height);
+        for (let i = 0; i < out.length; ++i) out[i] = rgba[4 * i];
+        return out;
+    }
+
+    _makeVisibilityMaterial() {
+        const material = new ShaderMaterial({
+            glslVersion: GLSL3,
+            uniforms: this.uniforms,
+            side: DoubleSide,
+            blending: NoBlending,
+            vertexShader: `#include <common>
+#include <batching_pars_vertex>
+#include <morphtarget_pars_vertex>
+#include <skinning_pars_vertex>
+out vec3 vPenumbraWorldPosition;
+out vec3 vPenumbraViewNormal;
+void main() {
+	#include <batching_vertex>
+	#include <beginnormal_vertex>
+	#include <morphinstance_vertex>
+	#include <morphnormal_vertex>
+	#include <skinbase_vertex>
+	#include <skinnormal_vertex>
+	#include <defaultnormal_vertex>
+	#include <begin_vertex>
+	#include <morphtarget_vertex>
+	#include <skinning_vertex>
+	#include <project_vertex>
+	${WORLD_VERTEX}
+	vPenumbraViewNormal = transformedNormal;
+}`,
+            fragmentShader: `${this._snippet}
+#include <common>
+${SHADOW_FUNCTION}
+in vec3 vPenumbraViewNormal;
+layout(location = 0) out vec4 penumbraOut;
+void main() {
+	float v = penumbraLightIndex >= 0 ? penumbraShadow( normalize( vPenumbraViewNormal ) ) : 1.0;
+	penumbraOut = vec4( v, v, v, 1.0 );
+}`,
+        });
+        material.userData.key = this._cacheKey;
+        return material;
+    }
+
+    // Frees every GPU resource of the add-on and restores the patched materials.
+    dispose() {
+        for (const key of [...this._geometries.keys()]) this._dropGeometry(key);
+        for (const material of this._materials) {
+            const p = material._penumbraPrevious;
+            if (p) {
+                material.onBeforeCompile = p.onBeforeCompile;
+                material.customProgramCacheKey = p.customProgramCacheKey;
+                delete material._penumbraPrevious;
+            }
+            material.needsUpdate = true;
+        }
+        this._materials.clear();
+        for (const t of this._samplers) {
+            this.renderer.properties.get(t).__webglTexture = undefined;
+            if (t.isExternalTexture) t.sourceTexture = null;
+            t.dispose();
+        }
+        this._samplers = [];
+        if (this._visibilityTarget) this._visibilityTarget.dispose();
+        if (this._visibilityMaterial) this._visibilityMaterial.dispose();
+        disposeRunner(this.runner);
+        this.runner = null;
+        this.renderer.resetState();
+    }
+}
+
+function kindOf(light) {
+    if (light && light.isRectAreaLight) return "rect";
+    if (light && light.isSunLight) fail("a cascaded SunLight has its own light loop in three; use a THREE.DirectionalLight");
+    if (light && light.isDirectionalLight) return "sun";
+    fail(`the light must be a THREE.RectAreaLight or a THREE.DirectionalLight (got ${light ? light.type : light})`);
+}
+
+function positionVersion(geometry) {
+    const p = geometry.attributes.position;
+    return p ? (p.isInterleavedBufferAttribute ? p.data.version : p.version) : -1;
+}
+
+// The layout runner for an emission: a key of EMISSIONS, a folder URL, or {layout, files}.
+async function loadRunner(gl, emission, kind, wasm) {
+    if (typeof emission === "string") {
+        const folder = EMISSIONS[emission] ? new URL(EMISSIONS[emission], MODULE_URL).href : emission;
+        if (!folder.endsWith("/")) fail(`emission '${emission}': not one of ${Object.keys(EMISSIONS).join(", ")} nor a folder URL ending in '/'`);
+        const runner = await LayoutRunner.load(gl, folder);
+        runner.sources = runner.sources || (await fetchSources(folder, runner.layout));
+        return runner;
+    }
+    if (emission && emission.layout && emission.files) {
+        if (typeof LayoutRunner.fromEmission === "function") {
+            const runner = await LayoutRunner.fromEmission(gl, emission);
+            runner.sources = runner.sources || emission.files;
+            return runner;
+        }
+        const runner = new LayoutRunner(gl, emission.layout, emission.files);
+        runner.sources = emission.files;
+        return runner;
+    }
+    if (emission && typeof emission === "object") {
+        // A configuration (penumbra-gen --config's schema): emitted here by the WebAssembly emitter.
+        const emitter = await loadEmitter(wasm);
+        const result = emitter.emit({light: kind, ...emission, target: "essl300"});
+        if (!result.ok) fail(`emission: ${result.diagnostics.map((d) => d.message).join("; ") || result.error}`);
+        return loadRunner(gl, {layout: result.layout, files: result.files}, kind);
+    }
+    fail("options.emission: a key of EMISSIONS, a folder URL ending in '/', {layout, files}, or a configuration object");
+}
+
+// The WebAssembly emitter (../penumbra_emitter.js; its .wasm at `wasm`, default beside it), loaded once.
+let emitterPromise = null;
+export function loadEmitter(wasm = null) {
+    if (!emitterPromise)
+        emitterPromise = import(new URL("../penumbra_emitter.js", MODULE_URL).href)
+            .then((m) => (wasm ? m.loadEmitter(wasm) : m.loadEmitter()))
+            .catch((e) => {
+                emitterPromise = null;
+                fail(`a configuration needs the WebAssembly emitter (../penumbra_emitter.js and penumbra_emitter.wasm), which did not load: ${e.message}`);
+            });
+    return emitterPromise;
+}
+
+// The snippet is no program of the layout, so the runner does not fetch it: we do.
+async function fetchSources(folder, layout) {
+    const sources = {};
+    const response = await fetch(folder + "penumbra_visibility.glsl");
+    if (!response.ok) fail(`${folder}penumbra_visibility.glsl: HTTP ${response.status}`);
+    sources["penumbra_visibility.glsl"] = await response.text();
+    return sources;
+}
+
+function disposeRunner(runner) {
+    if (!runner) return;
+    const gl = runner.gl;
+    for (const t of Object.values(runner.textures)) gl.deleteTexture(t.id);
+    for (const p of Object.values(runner.programs)) gl.deleteProgram(p.id);
+    gl.deleteFramebuffer(runner.framebuffer);
+    gl.deleteFramebuffer(runner.readFramebuffer);
+    gl.deleteVertexArray(runner.emptyVertexArray);
+    runner.textures = {};
+    runner.programs = {};
+}

@@ -1,0 +1,54 @@
+// bundle_scene.js — one of Penumbra's built-in scenes rebuilt in three.js from a target bundle
+// (penumbra-export-bundle --target essl300): the same triangles (mesh.f32, flat normals, one
+// MeshStandardMaterial), the same light (a RectAreaLight whose axes are the rows of the exported
+// penumbra_lightFromWorld, or a DirectionalLight for the sun) and the same camera (uniforms.json's
+// camera: glm::lookAt / glm::perspective are three's lookAt / PerspectiveCamera).
+import * as THREE from "three";
+
+async function fetchOk(url) {
+    const response = await fetch(url);
+    if (!response.ok) throw new Error(`${url}: HTTP ${response.status}`);
+    return response;
+}
+
+export async function loadBundleScene(base) {
+    const bundle = await (await fetchOk(base + "uniforms.json")).json();
+    if (!bundle.camera) throw new Error(`${base}uniforms.json has no camera (re-export the bundle)`);
+    const triangles = new Float32Array(await (await fetchOk(base + "mesh.f32")).arrayBuffer());
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute("position", new THREE.BufferAttribute(triangles, 3));
+    geometry.computeVertexNormals(); // non-indexed: the face normal on each vertex
+    const material = new THREE.MeshStandardMaterial({color: 0xffffff, roughness: 1, metalness: 0, side: THREE.DoubleSide});
+    const mesh = new THREE.Mesh(geometry, material);
+    mesh.castShadow = true;
+    mesh.receiveShadow = true;
+    const scene = new THREE.Scene();
+    scene.add(mesh);
+
+    const c = bundle.camera;
+    const camera = new THREE.PerspectiveCamera(c.fov_y_degrees, bundle.width / bundle.height, c.near, c.far);
+    camera.position.fromArray(c.eye);
+    camera.up.fromArray(c.up);
+    camera.lookAt(new THREE.Vector3().fromArray(c.target));
+    camera.updateMatrixWorld();
+
+    let light;
+    if (bundle.light.kind === "sun") {
+        light = new THREE.DirectionalLight(0xffffff, 1);
+        const d = new THREE.Vector3().fromArray(bundle.light.direction).normalize();
+        light.position.copy(d).multiplyScalar(-10);
+        light.target.position.set(0, 0, 0);
+        scene.add(light.target);
+    } else {
+        // Penumbra's u, v (rows 0 and 1 of lightFromWorld) are three's local x and -y.
+        const m = bundle.uniforms.penumbra_lightFromWorld;
+        const u = new THREE.Vector3(m[0], m[4], m[8]), v = new THREE.Vector3(m[1], m[5], m[9]);
+        const x = u.clone(), y = v.clone().negate(), z = new THREE.Vector3().crossVectors(x, y);
+        light = new THREE.RectAreaLight(0xffffff, 1, bundle.light.width, bundle.light.height);
+        light.position.fromArray(bundle.light.center);
+        light.quaternion.setFromRotationMatrix(new THREE.Matrix4().makeBasis(x, y, z));
+    }
+    scene.add(light);
+    scene.updateMatrixWorld();
+    return {bundle, scene, camera, light, mesh, triangles};
+}
