@@ -498,6 +498,7 @@ int main(int argc, char** argv) {
 
         json scene_record = {{"name", scene.name},
                              {"kind", input.kind},
+                             {"ground", scene.ground},
                              {"triangles", scene.mesh.triangle_count()},
                              {"load_ms", load_ms[scene_index]},
                                      {"default_light", {{"width", scene.light.width}, {"height", scene.light.height}}},

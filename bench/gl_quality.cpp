@@ -5,7 +5,7 @@
 // time of each pass (timer queries; on llvmpipe the CPU
 // time of the software rasteriser, so compare ratios, not absolute values).
 //
-//   penumbra-bench-quality [--scenes planes,boxes] [FILE ...] [--corpus [DIR]] [--filters sat,nbuffer]
+//   penumbra-bench-quality [--scenes planes,boxes] [FILE ...] [--corpus [DIR]] [--no-ground] [--filters sat,nbuffer]
 //                          [--configs 16x512,4x128] [--size 256x256] [--samples 16] [--repeat 1]
 #include "arguments.hpp"
 #include "corpus/manifest.hpp"
@@ -188,7 +188,7 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                 return std::nullopt;
             }
         } else {
-            error = "unknown flag '" + std::string(flag) + "'; allowed: --scenes, --corpus, --filters, --configs, --size, "
+            error = "unknown flag '" + std::string(flag) + "'; allowed: --scenes, --corpus, --no-ground, --filters, --configs, --size, "
                     "--samples, --repeat, --variants, --help, FILE";
             return std::nullopt;
         }

@@ -1,24 +1,26 @@
 // penumbra-bench-scale — how the cost grows with the scene. Per scene (the built-in ones, mesh
 // files, and with --corpus the real meshes of scripts/get_corpus.sh, e.g. the Stanford dragon at
 // 48k, 200k and 871k triangles), by triangle count:
-//   load:    load_scene's wall time (file parse or generation, normals, framing) and the upload to
-//            the GPU (MeshBuffers, to glFinish);
-//   passes:  GL_TIME_ELAPSED of every pass, medians of --runs frames after --warmup frames (llvmpipe
-//            compiles a shader variant at its first draw), for the default occlusion-texture
-//            configuration (Config{}) and PCSS 16/16, grouped as the layout says: passes that draw
-//            the scene from the light (slicing and adaptive placement's depth bins; the shadow map's
-//            depth pass), the prefilter (full-screen passes of the shadow phase) and the screen pass;
-//            plus the G-buffer (the camera's own draw of the scene, the engine's cost, for scale);
-//   memory:  the mesh's GPU buffers, each layout's textures, and the process's resident memory
-//            after the upload and after the Embree build;
+//   load:    load_scene's wall time (file parse or generation, normals, framing, the floor under a
+//            file) and the upload to the GPU (MeshBuffers, to glFinish);
+//   passes:  GL_TIME_ELAPSED of every pass after --warmup frames (llvmpipe compiles a shader variant
+//            at its first draw), for the default occlusion-texture configuration (Config{}) and
+//            PCSS 16/16, grouped as the layout says: passes that draw the scene from the light
+//            (slicing, and adaptive placement's depth bins; the shadow map's depth pass), the
+//            prefilter (full-screen passes of the shadow phase) and the screen pass; plus the
+//            G-buffer (the camera's own draw of the scene, the engine's cost, for scale);
+//   memory:  the mesh's GPU buffers, each layout's textures, the heap the Embree BVH holds (and the
+//            resident memory it adds), and the process's peak;
 //   truth:   Embree's BVH build and the trace of the visibility and the oriented references at
 //            --size with --samples² rays per pixel (what penumbra-bench-compare traces per light).
+// Every measure is interleaved over the scenes (round r of every scene, then round r + 1) and the
+// median of --runs rounds, so that load from other processes slows every triangle count alike.
 // Then, within each series of one model at several triangle counts (scenes NAME-SUFFIX: dragon-48k,
 // dragon-200k, dragon-871k), the growth exponent of each measure between consecutive counts
 // (log(t2/t1) / log(n2/n1): 1 is linear), flagged where it exceeds 1.15.
 // On llvmpipe the milliseconds are CPU time on a shared machine: read ratios and exponents.
 //
-//   penumbra-bench-scale [--scenes a,b | ''] [FILE ...] [--corpus [DIR]] [--size N] [--samples N]
+//   penumbra-bench-scale [--scenes a,b | ''] [FILE ...] [--corpus [DIR]] [--no-ground] [--size N] [--samples N]
 //                        [--runs N] [--warmup N] [--no-truth] [--json FILE]
 #include "arguments.hpp"
 #include "compare/frame.hpp"
@@ -43,6 +45,7 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <malloc.h>
 #include <map>
 #include <optional>
 #include <string>
@@ -67,22 +70,25 @@ struct Options {
     std::vector<SceneInput> scenes;
     int size = 256, samples = 32, runs = 5, warmup = 2;
     bool truth = true;
+    bool ground = true; // --no-ground: no floor under the mesh files
     std::string json_path;
 };
 
 constexpr const char* usage_text =
-    "usage: penumbra-bench-scale [--scenes a,b,...] [FILE ...] [--corpus [DIR]] [--size N] [--samples N]\n"
+    "usage: penumbra-bench-scale [--scenes a,b,...] [FILE ...] [--corpus [DIR]] [--no-ground] [--size N] [--samples N]\n"
     "                            [--runs N] [--warmup N] [--no-truth] [--json FILE]\n"
     "  --scenes    built-in scenes, comma-separated (default all; '' for none)\n"
     "  FILE        mesh files (what penumbra-playground --scene loads), named after their stem\n"
     "  --corpus    every mesh of the corpus in DIR (default ~/.cache/penumbra/corpus; scripts/get_corpus.sh)\n"
+    "  --no-ground no floor under the mesh files (default: each stands on one, +2 triangles)\n"
     "  --size      image side in pixels, 16 to 1024 (default 256): the screen pass and the truth's pixels\n"
     "  --samples   ground-truth rays per light axis, 1 to 128 (default 32: 32x32 rays per pixel)\n"
-    "  --runs      timed frames per configuration, 1 to 100 (default 5; medians reported)\n"
+    "  --runs      rounds of every measure, 1 to 100 (default 5; medians reported)\n"
     "  --warmup    untimed frames first, 1 to 10 (default 2: llvmpipe compiles at the first draw)\n"
     "  --no-truth  skip the Embree build and trace\n"
     "  --json      also write every number to FILE\n"
-    "prints a table per scene, sorted by triangles, and the growth exponents between consecutive counts.\n";
+    "prints a row per scene, sorted by triangles, and the growth exponents within each series of one\n"
+    "model at several triangle counts (scenes named NAME-SUFFIX, e.g. dragon-48k, dragon-200k).\n";
 
 std::optional<Options> parse(int argc, char** argv, std::string& error) {
     Options o;
@@ -105,14 +111,18 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
             for (const bench::CorpusMesh& m : *corpus) files.push_back({m.path, m.name});
             continue;
         }
+        if (flag == "--no-ground") {
+            o.ground = false;
+            continue;
+        }
         if (flag == "--no-truth") {
             o.truth = false;
             continue;
         }
         constexpr std::string_view valued[] = {"--scenes", "--size", "--samples", "--runs", "--warmup", "--json"};
         if (std::find(std::begin(valued), std::end(valued), flag) == std::end(valued))
-            return fail("unknown flag '" + std::string(flag) + "'; allowed: --scenes, --corpus, --size, --samples, "
-                        "--runs, --warmup, --no-truth, --json, --help, FILE");
+            return fail("unknown flag '" + std::string(flag) + "'; allowed: --scenes, --corpus, --no-ground, --size, "
+                        "--samples, --runs, --warmup, --no-truth, --json, --help, FILE");
         if (i + 1 >= argc) return fail(std::string(flag) + ": missing value (see --help)");
         const std::string_view value = argv[++i];
         auto number = [&](int& out, int lo, int hi) {
@@ -163,6 +173,14 @@ Resident resident_memory() {
     return r;
 }
 
+// Bytes allocated through malloc and in use now (glibc's mallinfo2: arena and mmapped chunks), so
+// that memory a new object takes is counted even where freed memory is reused (the resident size
+// then does not grow).
+double heap_in_use_mib() {
+    const struct mallinfo2 info = mallinfo2();
+    return static_cast<double>(info.uordblks + info.hblkhd) / 1048576.0;
+}
+
 // The passes of one frame grouped by what they are: scene draws from the light, the prefilter,
 // the screen pass; each pass's median over the runs, and the scene draws per frame.
 struct PassGroups {
@@ -199,7 +217,7 @@ struct Setting {
     Config config;
 };
 
-std::string fmt(double v) {
+std::string fmt(double v) { // 3 significant digits or so
     char text[32];
     std::snprintf(text, sizeof text, v >= 100 ? "%.0f" : v >= 10 ? "%.1f" : "%.2f", v);
     return text;
@@ -224,26 +242,44 @@ int main(int argc, char** argv) {
         std::cerr << "error: " << error << "\n" << usage_text;
         return 2;
     }
-    // Every scene is loaded (and timed) before any rendering: a bad file stops the run at once.
-    struct Loaded {
+    // Every measurement is interleaved over the scenes (round r of every scene, then round r + 1),
+    // so that load from other processes on a shared machine slows every triangle count alike and
+    // the ratios and exponents survive it. Medians of the rounds.
+    // Loading: the first round keeps the scenes (a bad file stops the run before any rendering).
+    struct Item {
+        SceneInput input;
         Scene scene;
-        double load_ms;
-        bool file;
+        bool file = false;
+        std::vector<double> load_ms, upload_ms, gbuffer_ms, build_ms;
+        std::unique_ptr<MeshBuffers> mesh;
+        std::optional<bench::Pixels> pixels;
+        std::vector<std::vector<bench::FrameTimes>> runs; // per technique
     };
-    std::vector<Loaded> scenes;
-    for (const SceneInput& input : options->scenes) {
-        const auto start = std::chrono::steady_clock::now();
-        SceneLoad loaded = load_scene(input.name_or_path);
-        if (!loaded.scene) return fail(loaded.error, 2);
-        const double ms = bench::milliseconds_since(start);
-        loaded.scene->name = input.name;
-        scenes.push_back({std::move(*loaded.scene), ms, !make_scene(input.name_or_path).has_value()});
-    }
-    std::stable_sort(scenes.begin(), scenes.end(),
-                     [](const Loaded& a, const Loaded& b) { return a.scene.mesh.triangle_count() < b.scene.mesh.triangle_count(); });
-
+    // The context first: it must outlive every GL object the items hold.
     std::optional<HeadlessContext> context = HeadlessContext::create(&error);
     if (!context) return fail("no OpenGL 4.5 context: " + error);
+    std::vector<Item> items;
+    for (const SceneInput& input : options->scenes) {
+        const auto start = std::chrono::steady_clock::now();
+        SceneLoad loaded = load_scene(input.name_or_path, options->ground);
+        if (!loaded.scene) return fail(loaded.error, 2);
+        Item item;
+        item.load_ms.push_back(bench::milliseconds_since(start));
+        item.input = input;
+        item.scene = std::move(*loaded.scene);
+        item.scene.name = input.name;
+        item.file = !make_scene(input.name_or_path).has_value();
+        items.push_back(std::move(item));
+    }
+    std::stable_sort(items.begin(), items.end(),
+                     [](const Item& a, const Item& b) { return a.scene.mesh.triangle_count() < b.scene.mesh.triangle_count(); });
+    for (int r = 1; r < options->runs; ++r)
+        for (Item& item : items) {
+            const auto start = std::chrono::steady_clock::now();
+            const SceneLoad again = load_scene(item.input.name_or_path, options->ground);
+            item.load_ms.push_back(bench::milliseconds_since(start));
+        }
+
     const std::vector<Setting> techniques{{"OT default", Config{}}, {"PCSS 16/16", bench::pcss_entry(16, 16).config}};
     std::vector<std::unique_ptr<gl::Runtime>> runtimes;
     for (const Setting& t : techniques) {
@@ -251,15 +287,44 @@ int main(int argc, char** argv) {
         if (!runtimes.back()) return fail(t.label + ": " + error);
     }
     const int size = options->size;
-    std::printf("penumbra-bench-scale: %s; image %dx%d; %d timed frames after %d warm-up; truth %s\n"
-                "ms: GPU time (GL_TIME_ELAPSED) medians; on llvmpipe CPU time of a shared machine, read the ratios\n\n",
-                context->renderer().c_str(), size, size, options->runs, options->warmup,
-                options->truth ? (std::to_string(options->samples) + "x" + std::to_string(options->samples) + " rays per pixel").c_str()
-                               : "skipped");
-    std::printf("| scene | triangles | load ms | upload ms | G-buffer ms | OT scene passes ms (draws) | OT prefilter ms | "
-                "OT screen ms | PCSS depth ms (draws) | PCSS screen ms | OT scene / PCSS depth | mesh MiB | OT tex MiB | "
-                "PCSS tex MiB | RSS MiB | Embree build ms | trace ms (vis + oriented) | Mrays/s | Embree RSS +MiB |\n");
-    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    std::fprintf(stderr, "scale: %zu scenes, %d rounds of loads, uploads and frames%s\n", items.size(), options->runs,
+                 options->truth ? ", then the Embree builds and one trace each" : "");
+
+    // Uploads: the first keeps the buffers; the later rounds make and free a copy.
+    for (Item& item : items) {
+        const auto start = std::chrono::steady_clock::now();
+        item.mesh = std::make_unique<MeshBuffers>(item.scene.mesh);
+        glFinish();
+        item.upload_ms.push_back(bench::milliseconds_since(start));
+        item.pixels = bench::render_pixels(item.scene, *item.mesh, size, size, &error);
+        if (!item.pixels) return fail(item.scene.name + ": " + error);
+        item.runs.resize(techniques.size());
+    }
+    for (int r = 1; r < options->runs; ++r)
+        for (Item& item : items) {
+            const auto start = std::chrono::steady_clock::now();
+            { const MeshBuffers copy(item.scene.mesh); glFinish(); }
+            item.upload_ms.push_back(bench::milliseconds_since(start));
+        }
+    // Frames: warm-up rounds, then timed rounds of every scene × technique, and the G-buffer draw.
+    for (int r = 0; r < options->warmup + options->runs; ++r) {
+        std::fprintf(stderr, "scale: %s round %d\n", r < options->warmup ? "warm-up" : "timed", r + 1);
+        for (Item& item : items) {
+            const Scene& scene = item.scene;
+            glFinish();
+            const auto start = std::chrono::steady_clock::now();
+            item.pixels->gbuffer->render(*item.mesh, scene.camera.projection_matrix(1.0f) * scene.camera.view_matrix());
+            glFinish();
+            if (r >= options->warmup) item.gbuffer_ms.push_back(bench::milliseconds_since(start));
+            for (std::size_t t = 0; t < techniques.size(); ++t) {
+                runtimes[t]->set_light(scene.light, glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
+                bench::FrameTimes times;
+                if (!bench::run_frame(*runtimes[t], *item.mesh, *item.pixels, times, &error))
+                    return fail(scene.name + ", " + techniques[t].label + ": " + error);
+                if (r >= options->warmup) item.runs[t].push_back(std::move(times));
+            }
+        }
+    }
 
     json results = {{"meta",
                      {{"tool", "penumbra-bench-scale"},
@@ -269,112 +334,119 @@ int main(int argc, char** argv) {
                       {"warmup", options->warmup},
                       {"truth_rays_per_axis", options->truth ? options->samples : 0}}},
                     {"scenes", json::array()}};
-    for (const Loaded& item : scenes) {
-        const Scene& scene = item.scene;
-        const Mesh& m = scene.mesh;
-        const auto upload_start = std::chrono::steady_clock::now();
-        const MeshBuffers mesh(m);
-        glFinish();
-        const double upload_ms = bench::milliseconds_since(upload_start);
-        const double mesh_mib = (m.positions.size() * sizeof(glm::vec3) * 2 + m.indices.size() * sizeof(std::uint32_t) +
-                                 m.uvs.size() * sizeof(glm::vec2)) / 1048576.0;
-        // The G-buffer: rendered for the pixels, then timed alone (warm) as the engine's own draw.
-        std::optional<bench::Pixels> pixels = bench::render_pixels(scene, mesh, size, size, &error);
-        if (!pixels) return fail(scene.name + ": " + error);
-        const glm::mat4 clip = scene.camera.projection_matrix(1.0f) * scene.camera.view_matrix();
-        std::vector<double> gbuffer_ms;
-        for (int r = 0; r < options->warmup + options->runs; ++r) {
-            glFinish();
-            const auto start = std::chrono::steady_clock::now();
-            pixels->gbuffer->render(mesh, clip);
-            glFinish();
-            if (r >= options->warmup) gbuffer_ms.push_back(bench::milliseconds_since(start));
-        }
-
-        json record = {{"name", scene.name},
+    std::vector<json> records;
+    for (Item& item : items) {
+        const Mesh& m = item.scene.mesh;
+        const double mesh_mib = static_cast<double>(m.positions.size() * sizeof(glm::vec3) * 2 +
+                                                    m.indices.size() * sizeof(std::uint32_t) + m.uvs.size() * sizeof(glm::vec2)) /
+                                1048576.0;
+        json record = {{"name", item.scene.name},
                        {"file", item.file},
+                       {"ground", item.scene.ground},
                        {"triangles", m.triangle_count()},
                        {"vertices", m.positions.size()},
-                       {"load_ms", item.load_ms},
-                       {"upload_ms", upload_ms},
-                       {"gbuffer_wall_ms", bench::median(gbuffer_ms)},
+                       {"load_ms", bench::median(item.load_ms)},
+                       {"upload_ms", bench::median(item.upload_ms)},
+                       {"upload_first_ms", item.upload_ms.front()},
+                       {"gbuffer_wall_ms", bench::median(item.gbuffer_ms)},
                        {"mesh_mib", mesh_mib},
                        {"techniques", json::object()}};
-        std::vector<PassGroups> groups;
         for (std::size_t t = 0; t < techniques.size(); ++t) {
-            gl::Runtime& runtime = *runtimes[t];
-            runtime.set_light(scene.light, glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
-            std::vector<bench::FrameTimes> runs;
-            for (int r = 0; r < options->warmup + options->runs; ++r) {
-                bench::FrameTimes times;
-                if (!bench::run_frame(runtime, mesh, *pixels, times, &error)) return fail(scene.name + ", " + techniques[t].label + ": " + error);
-                if (r >= options->warmup) runs.push_back(std::move(times));
-            }
-            groups.push_back(group_passes(runtime.layout(), runs));
+            const PassGroups g = group_passes(runtimes[t]->layout(), item.runs[t]);
             std::vector<double> wall_build, wall_shading;
-            for (const bench::FrameTimes& r : runs) {
-                wall_build.push_back(r.wall_build_ms);
-                wall_shading.push_back(r.wall_shading_ms);
+            for (const bench::FrameTimes& f : item.runs[t]) {
+                wall_build.push_back(f.wall_build_ms);
+                wall_shading.push_back(f.wall_shading_ms);
             }
-            const double tex_mib = static_cast<double>(penumbra::texture_bytes(runtime.layout(), size, size)) / 1048576.0;
-            record["techniques"][techniques[t].label] = {{"scene_passes_ms", groups[t].scene_ms},
-                                                         {"scene_draws", groups[t].scene_draws},
-                                                         {"prefilter_ms", groups[t].prefilter_ms},
-                                                         {"screen_ms", groups[t].screen_ms},
-                                                         {"wall_light_passes_ms", bench::median(wall_build)},
-                                                         {"wall_screen_ms", bench::median(wall_shading)},
-                                                         {"texture_mib", tex_mib},
-                                                         {"passes", groups[t].passes}};
+            record["techniques"][techniques[t].label] = {
+                {"scene_passes_ms", g.scene_ms},
+                {"scene_draws", g.scene_draws},
+                {"prefilter_ms", g.prefilter_ms},
+                {"screen_ms", g.screen_ms},
+                {"wall_light_passes_ms", bench::median(wall_build)},
+                {"wall_screen_ms", bench::median(wall_shading)},
+                {"texture_mib", static_cast<double>(penumbra::texture_bytes(runtimes[t]->layout(), size, size)) / 1048576.0},
+                {"passes", g.passes}};
         }
-        const Resident before_truth = resident_memory();
-        record["rss_mib"] = before_truth.now_mib;
-        double build_ms = 0, trace_ms = 0, mrays = 0, truth_mib = 0;
-        if (options->truth) {
-            try {
-                const auto build_start = std::chrono::steady_clock::now();
-                const GroundTruth truth(m);
-                build_ms = bench::milliseconds_since(build_start);
-                truth_mib = resident_memory().now_mib - before_truth.now_mib;
-                const HeadlessResult& f = pixels->frame;
-                const glm::vec3 eye = scene.camera.eye_position();
+        records.push_back(std::move(record));
+    }
+    // The truth: rounds of Embree builds (each freed before the next; the first round also measures
+    // the resident memory the BVH adds), then one trace per scene of both references.
+    if (options->truth) {
+        try {
+            for (int r = 0; r < options->runs; ++r)
+                for (std::size_t i = 0; i < items.size(); ++i) {
+                    std::fprintf(stderr, "scale: Embree build round %d, %s\n", r + 1, items[i].scene.name.c_str());
+                    const double before = resident_memory().now_mib, heap_before = heap_in_use_mib();
+                    const auto start = std::chrono::steady_clock::now();
+                    const GroundTruth truth(items[i].scene.mesh);
+                    items[i].build_ms.push_back(bench::milliseconds_since(start));
+                    if (r == 0) {
+                        records[i]["truth"]["rss_growth_mib"] = resident_memory().now_mib - before;
+                        records[i]["truth"]["heap_mib"] = heap_in_use_mib() - heap_before;
+                    }
+                }
+            for (std::size_t i = 0; i < items.size(); ++i) {
+                const Item& item = items[i];
+                std::fprintf(stderr, "scale: trace, %s\n", item.scene.name.c_str());
+                const GroundTruth truth(item.scene.mesh);
+                const HeadlessResult& f = item.pixels->frame;
+                const glm::vec3 eye = item.scene.camera.eye_position();
                 std::vector<glm::vec3> facing(f.normals.size(), glm::vec3(0.0f));
                 std::size_t points = 0;
-                for (std::size_t i = 0; i < facing.size(); ++i)
-                    if (f.geometry[i]) {
+                for (std::size_t k = 0; k < facing.size(); ++k)
+                    if (f.geometry[k]) {
                         ++points;
-                        facing[i] = glm::dot(f.normals[i], eye - f.positions[i]) < 0.0f ? -f.normals[i] : f.normals[i];
+                        facing[k] = glm::dot(f.normals[k], eye - f.positions[k]) < 0.0f ? -f.normals[k] : f.normals[k];
                     }
                 const auto trace_start = std::chrono::steady_clock::now();
-                const std::vector<float> visibility = truth.visibility(f.positions, f.normals, scene.light, options->samples);
+                const std::vector<float> visibility = truth.visibility(f.positions, f.normals, item.scene.light, options->samples);
                 const double visibility_ms = bench::milliseconds_since(trace_start);
                 const auto oriented_start = std::chrono::steady_clock::now();
-                const GroundTruth::Oriented fair = truth.oriented(f.positions, facing, scene.light, options->samples);
+                const GroundTruth::Oriented fair = truth.oriented(f.positions, facing, item.scene.light, options->samples);
                 const double oriented_ms = bench::milliseconds_since(oriented_start);
-                trace_ms = visibility_ms + oriented_ms;
                 const double rays = static_cast<double>(points) * options->samples * options->samples;
-                mrays = visibility_ms > 0 ? rays / (visibility_ms * 1000.0) : 0;
-                record["truth"] = {{"build_ms", build_ms},     {"visibility_trace_ms", visibility_ms},
-                                   {"oriented_trace_ms", oriented_ms}, {"geometry_pixels", points},
-                                   {"visibility_rays", rays},  {"visibility_mrays_per_s", mrays},
-                                   {"rss_growth_mib", truth_mib}};
-            } catch (const GroundTruthError& e) {
-                return fail(scene.name + ": ground truth: " + e.what());
+                json& t = records[i]["truth"];
+                t["build_ms"] = bench::median(item.build_ms);
+                t["visibility_trace_ms"] = visibility_ms;
+                t["oriented_trace_ms"] = oriented_ms;
+                t["geometry_pixels"] = points;
+                t["visibility_rays"] = rays;
+                t["visibility_mrays_per_s"] = visibility_ms > 0 ? rays / (visibility_ms * 1000.0) : 0.0;
             }
+        } catch (const GroundTruthError& e) {
+            return fail("ground truth: " + std::string(e.what()));
         }
-        record["peak_rss_mib"] = resident_memory().peak_mib;
-        const PassGroups& ot = groups[0];
-        const PassGroups& pcss = groups[1];
-        std::printf("| %s | %zu | %s | %s | %s | %s (%d) | %s | %s | %s (%d) | %s | %.2f | %.1f | %.1f | %.1f | %.0f | %s | %s | %s | %s |\n",
-                    scene.name.c_str(), m.triangle_count(), fmt(item.load_ms).c_str(), fmt(upload_ms).c_str(),
-                    fmt(bench::median(gbuffer_ms)).c_str(), fmt(ot.scene_ms).c_str(), ot.scene_draws,
-                    fmt(ot.prefilter_ms).c_str(), fmt(ot.screen_ms).c_str(), fmt(pcss.scene_ms).c_str(), pcss.scene_draws,
-                    fmt(pcss.screen_ms).c_str(), pcss.scene_ms > 0 ? ot.scene_ms / pcss.scene_ms : 0.0, mesh_mib,
-                    record["techniques"]["OT default"]["texture_mib"].get<double>(),
-                    record["techniques"]["PCSS 16/16"]["texture_mib"].get<double>(), before_truth.now_mib,
-                    options->truth ? fmt(build_ms).c_str() : "–", options->truth ? fmt(trace_ms).c_str() : "–",
-                    options->truth ? fmt(mrays).c_str() : "–", options->truth ? fmt(truth_mib).c_str() : "–");
-        std::fflush(stdout);
-        results["scenes"].push_back(std::move(record));
+    }
+    results["meta"]["peak_rss_mib"] = resident_memory().peak_mib;
+
+    std::printf("penumbra-bench-scale: %s; image %dx%d; medians of %d interleaved rounds after %d warm-up; truth %s\n"
+                "ms: GPU time (GL_TIME_ELAPSED) of the passes, wall clock of load, upload, G-buffer and Embree; on\n"
+                "llvmpipe CPU time of a shared machine: read the ratios; peak resident memory %.0f MiB\n\n",
+                context->renderer().c_str(), size, size, options->runs, options->warmup,
+                options->truth ? (std::to_string(options->samples) + "x" + std::to_string(options->samples) + " rays per pixel").c_str()
+                               : "skipped",
+                results["meta"]["peak_rss_mib"].get<double>());
+    std::printf("| scene | triangles | load ms | upload ms | G-buffer ms | OT scene passes ms (draws) | OT prefilter ms | "
+                "OT screen ms | PCSS depth ms (draws) | PCSS screen ms | OT scene / PCSS depth | mesh MiB | OT tex MiB | "
+                "PCSS tex MiB | Embree build ms | Embree heap MiB (RSS +MiB) | trace ms (vis + oriented) | Mrays/s |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    for (const json& r : records) {
+        const json& ot = r["techniques"]["OT default"];
+        const json& pcss = r["techniques"]["PCSS 16/16"];
+        const bool truth = r.contains("truth");
+        const double ot_scene = ot["scene_passes_ms"], pcss_scene = pcss["scene_passes_ms"];
+        std::printf("| %s | %zu | %s | %s | %s | %s (%d) | %s | %s | %s (%d) | %s | %.2f | %.1f | %.1f | %.1f | %s | %s | %s | %s |\n",
+                    r["name"].get<std::string>().c_str(), r["triangles"].get<std::size_t>(), fmt(r["load_ms"]).c_str(),
+                    fmt(r["upload_ms"]).c_str(), fmt(r["gbuffer_wall_ms"]).c_str(), fmt(ot_scene).c_str(),
+                    ot["scene_draws"].get<int>(), fmt(ot["prefilter_ms"]).c_str(), fmt(ot["screen_ms"]).c_str(),
+                    fmt(pcss_scene).c_str(), pcss["scene_draws"].get<int>(), fmt(pcss["screen_ms"]).c_str(),
+                    pcss_scene > 0 ? ot_scene / pcss_scene : 0.0, r["mesh_mib"].get<double>(), ot["texture_mib"].get<double>(),
+                    pcss["texture_mib"].get<double>(), truth ? fmt(r["truth"]["build_ms"]).c_str() : "–",
+                    truth ? (fmt(r["truth"]["heap_mib"]) + " (" + fmt(r["truth"]["rss_growth_mib"]) + ")").c_str() : "–",
+                    truth ? fmt(r["truth"]["visibility_trace_ms"].get<double>() + r["truth"]["oriented_trace_ms"].get<double>()).c_str() : "–",
+                    truth ? fmt(r["truth"]["visibility_mrays_per_s"]).c_str() : "–");
+        results["scenes"].push_back(r);
     }
 
     // Growth within a series: scenes named NAME-SUFFIX with the same NAME (the corpus's dragon-48k,
@@ -420,12 +492,9 @@ int main(int argc, char** argv) {
         std::printf("\n|---|---|---|");
         for (std::size_t i = 0; i < measures.size(); ++i) std::printf("---|");
         std::printf("\n");
-        for (const auto& [prefix, steps] : series)
-        for (std::size_t i = 1; i < steps.size(); ++i) {
-            const json& a = *steps[i - 1];
-            const json& b = *steps[i];
+        auto row = [&](const json& a, const json& b) {
             const double n = b["triangles"].get<double>() / a["triangles"].get<double>();
-            json row = {{"from", a["name"]}, {"to", b["name"]}, {"triangle_ratio", n}, {"exponents", json::object()}};
+            json r = {{"from", a["name"]}, {"to", b["name"]}, {"triangle_ratio", n}, {"exponents", json::object()}};
             std::printf("| %s | %s | %.1f |", a["name"].get<std::string>().c_str(), b["name"].get<std::string>().c_str(), n);
             for (const Measure& m : measures) {
                 const double t1 = m.value(a), t2 = m.value(b);
@@ -434,11 +503,16 @@ int main(int argc, char** argv) {
                     continue;
                 }
                 const double e = std::log(t2 / t1) / std::log(n);
-                row["exponents"][m.name] = e;
+                r["exponents"][m.name] = e;
                 std::printf(" %.2f%s |", e, e > 1.15 ? "*" : "");
             }
             std::printf("\n");
-            growth.push_back(std::move(row));
+            growth.push_back(std::move(r));
+        };
+        // each step, then the whole series (first to last: the steadiest estimate)
+        for (const auto& [prefix, steps] : series) {
+            for (std::size_t i = 1; i < steps.size(); ++i) row(*steps[i - 1], *steps[i]);
+            if (steps.size() > 2) row(*steps.front(), *steps.back());
         }
     }
     results["growth"] = growth;

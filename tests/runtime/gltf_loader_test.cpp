@@ -133,6 +133,22 @@ TEST_CASE("glTF: skipped primitives are warnings; nothing left is an error") {
     }
 }
 
+TEST_CASE("glTF: primitives in a buffer whose file is missing are skipped, the others load") {
+    TempDir dir;
+    const std::string bin = testing::gltf_test_buffer();
+    // A second buffer (absent.bin, not written) holds mesh 1's normals: node 2's primitive is skipped.
+    std::string json = replaced(testing::gltf_test_json("t.bin"), R"("buffers": [{"uri": "t.bin", "byteLength": 96}])",
+                                R"("buffers": [{"uri": "t.bin", "byteLength": 96}, {"uri": "absent.bin", "byteLength": 36}])");
+    json = replaced(json, R"({"buffer": 0, "byteOffset": 36, "byteLength": 36})", R"({"buffer": 1, "byteOffset": 0, "byteLength": 36})");
+    json = replaced(json, R"({"attributes": {"POSITION": 0, "NORMAL": 1}})", R"({"attributes": {"POSITION": 1, "NORMAL": 1}})");
+    const LoadResult r = load_gltf_scene(write_gltf(dir, json, bin));
+    REQUIRE_MESSAGE(r.scene.has_value(), r.error);
+    CHECK(r.scene->mesh.triangle_count() == 8);
+    REQUIRE(r.warnings.size() == 1);
+    CHECK(r.warnings[0].find("mesh 1 primitive 0 skipped: mesh 1 primitive 0's POSITION (accessor 1) is in buffer 1, "
+                             "whose file '" + dir.file("absent.bin") + "' does not exist") != std::string::npos);
+}
+
 TEST_CASE("glTF: bad files are one line naming the file and the problem") {
     TempDir dir;
     const std::string bin = testing::gltf_test_buffer();
@@ -182,7 +198,7 @@ TEST_CASE("glTF: bad files are one line naming the file and the problem") {
     SUBCASE("missing .bin") {
         TempDir empty;
         const std::string path = empty.write("alone.gltf", json);
-        check_error(load_gltf_scene(path), path, "its buffer file '" + empty.file("t.bin") + "' does not exist");
+        check_error(load_gltf_scene(path), path, "whose file '" + empty.file("t.bin") + "' does not exist");
     }
     SUBCASE("missing file") {
         check_error(load_gltf_scene(dir.file("none.glb")), dir.file("none.glb"), "file does not exist");

@@ -258,8 +258,8 @@ std::string usage() {
                                      "±1e9. glTF: every triangle\n"
                                      "                        primitive of the default scene, node transforms applied; "
                                      "points, lines, sparse\n"
-                                     "                        and Draco-compressed primitives are skipped with a "
-                                     "warning");
+                                     "                        accessors and primitives whose .bin is missing are "
+                                     "skipped with a warning");
     out += line("--no-ground", "no floor under a mesh file (default: a square receiver twice the footprint,\n"
                                "                        just below the lowest point; the light and camera are "
                                "framed from the bounds\n"

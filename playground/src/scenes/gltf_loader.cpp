@@ -14,11 +14,13 @@
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <sstream>
 
 namespace penumbra::playground {
@@ -78,22 +80,81 @@ std::string check_glb(const std::string& bytes) {
     return {};
 }
 
-// What tinygltf reads through: regular files only, each at most the scene limit, no path expansion
-// (its default expands `~` and `$VARS` with wordexp). Remembers files that are missing.
-struct FileAccess {
-    std::vector<std::string> missing;
+// A buffer whose external file does not exist. tinygltf refuses the whole file then; instead it
+// reads zeros of the declared length, and the primitives that use the buffer are skipped.
+struct MissingBuffer {
+    int buffer;
+    std::string uri;
+    std::size_t bytes;
 };
 
+// What tinygltf reads through: regular files only, each at most the scene limit, no path expansion
+// (its default expands `~` and `$VARS` with wordexp); missing buffer files stand in as zeros.
+struct FileAccess {
+    std::map<std::string, MissingBuffer> missing_buffers; // by the path tinygltf will ask for
+    std::vector<std::string> missing;                     // other files asked for that do not exist
+};
+
+// tinygltf's own decoding of a buffer's uri into a file name (dlib::urldecode) and joining
+// (JoinPath), so that the paths it asks for are recognised.
+std::string decoded_uri(const std::string& uri) {
+    std::string out;
+    auto hex = [](char c) {
+        return c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : c >= 'A' && c <= 'F' ? c - 'A' + 10 : 0;
+    };
+    for (std::size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '+') out += ' ';
+        else if (uri[i] == '%' && uri.size() > i + 2) {
+            out += static_cast<char>((hex(uri[i + 1]) << 4) | hex(uri[i + 2]));
+            i += 2;
+        } else out += uri[i];
+    }
+    return out;
+}
+
+std::string joined(const std::string& dir, const std::string& name) {
+    if (dir.empty()) return name;
+    return dir.back() == '/' ? dir + name : dir + "/" + name;
+}
+
+// The buffers of the JSON whose external file is missing (a JSON tinygltf will refuse anyway: none).
+std::map<std::string, MissingBuffer> missing_buffer_files(const std::string& json, const std::string& base_dir) {
+    std::map<std::string, MissingBuffer> out;
+    const nlohmann::json j = nlohmann::json::parse(json, nullptr, /*allow_exceptions=*/false);
+    if (!j.is_object() || !j.contains("buffers") || !j["buffers"].is_array()) return out;
+    for (std::size_t i = 0; i < j["buffers"].size(); ++i) {
+        const nlohmann::json& b = j["buffers"][i];
+        if (!b.is_object() || !b.contains("uri") || !b["uri"].is_string() || !b.contains("byteLength") ||
+            !b["byteLength"].is_number_unsigned())
+            continue;
+        const std::string uri = b["uri"].get<std::string>();
+        if (uri.empty() || uri.starts_with("data:")) continue;
+        const std::string path = joined(base_dir, decoded_uri(uri));
+        std::error_code ec;
+        const std::uint64_t bytes = b["byteLength"].get<std::uint64_t>();
+        if (!std::filesystem::exists(path, ec) && bytes > 0 && bytes <= penumbra_gen::obj_file_limit)
+            out[path] = {static_cast<int>(i), uri, static_cast<std::size_t>(bytes)};
+    }
+    return out;
+}
+
 bool file_exists(const std::string& path, void* user) {
+    FileAccess& access = *static_cast<FileAccess*>(user);
+    if (access.missing_buffers.count(path)) return true;
     std::error_code ec;
     const bool exists = std::filesystem::exists(path, ec);
-    if (!exists) static_cast<FileAccess*>(user)->missing.push_back(path);
+    if (!exists) access.missing.push_back(path);
     return exists;
 }
 
 std::string expand_nothing(const std::string& path, void*) { return path; }
 
-bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+    const FileAccess& access = *static_cast<const FileAccess*>(user);
+    if (const auto it = access.missing_buffers.find(path); it != access.missing_buffers.end()) {
+        out->assign(it->second.bytes, 0);
+        return true;
+    }
     const penumbra_gen::BoundedRead file = penumbra_gen::read_bounded_file(path, penumbra_gen::obj_file_limit);
     if (!file.text) {
         if (err) *err += file.problem;
@@ -193,8 +254,9 @@ struct ViewResult {
 // Checks accessor `index` for the attribute `what`: its type (`components`), its component type
 // (one of `allowed`), its buffer view and buffer, and that every element lies inside them.
 // Throws Problem for an invalid file; returns `skip` for valid data this loader does not read.
-ViewResult accessor_view(const tinygltf::Model& model, int index, const std::string& what, int type,
-                         std::initializer_list<int> allowed, const std::string& allowed_text) {
+ViewResult accessor_view(const tinygltf::Model& model, const std::map<int, std::string>& missing, int index,
+                         const std::string& what, int type, std::initializer_list<int> allowed,
+                         const std::string& allowed_text) {
     const int components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(type));
     if (index < 0 || static_cast<std::size_t>(index) >= model.accessors.size())
         throw Problem{what + " refers to accessor " + std::to_string(index) + " but the file has " +
@@ -228,6 +290,9 @@ ViewResult accessor_view(const tinygltf::Model& model, int index, const std::str
     if (bv.buffer < 0 || static_cast<std::size_t>(bv.buffer) >= model.buffers.size())
         throw Problem{view_name + " refers to buffer " + std::to_string(bv.buffer) + " but the file has " +
                       std::to_string(model.buffers.size())};
+    if (const auto it = missing.find(bv.buffer); it != missing.end())
+        return {{}, name + " is in buffer " + std::to_string(bv.buffer) + ", whose file '" + it->second +
+                        "' does not exist"};
     const std::vector<unsigned char>& buffer = model.buffers[static_cast<std::size_t>(bv.buffer)].data;
     if (bv.byteOffset > buffer.size() || bv.byteLength > buffer.size() - bv.byteOffset)
         throw Problem{view_name + " (bytes " + std::to_string(bv.byteOffset) + " + " + std::to_string(bv.byteLength) +
@@ -300,6 +365,7 @@ glm::dmat4 local_transform(const tinygltf::Node& node, int index) {
 
 struct Loader {
     const tinygltf::Model& model;
+    std::map<int, std::string> missing; // buffers whose file does not exist: their uri
     Mesh mesh;
     std::vector<std::string> warnings;
     bool all_have_uvs = true;
@@ -315,7 +381,7 @@ struct Loader {
                                        std::string* skipped) {
         std::vector<std::uint32_t> order;
         if (p.indices >= 0) {
-            const ViewResult r = accessor_view(model, p.indices, where + "'s indices", TINYGLTF_TYPE_SCALAR,
+            const ViewResult r = accessor_view(model, missing, p.indices, where + "'s indices", TINYGLTF_TYPE_SCALAR,
                                                {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
                                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
                                                "unsigned byte, unsigned short, unsigned int");
@@ -369,7 +435,7 @@ struct Loader {
             return skip(where, "Draco-compressed (KHR_draco_mesh_compression is not supported)");
         const auto position_at = p.attributes.find("POSITION");
         if (position_at == p.attributes.end()) return skip(where, "no POSITION attribute");
-        const ViewResult positions = accessor_view(model, position_at->second, where + "'s POSITION", TINYGLTF_TYPE_VEC3,
+        const ViewResult positions = accessor_view(model, missing, position_at->second, where + "'s POSITION", TINYGLTF_TYPE_VEC3,
                                                    {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
                                                     TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT,
                                                     TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT},
@@ -378,14 +444,14 @@ struct Loader {
         const std::size_t count = positions.view.count;
         std::optional<View> normals, uvs;
         if (const auto at = p.attributes.find("NORMAL"); at != p.attributes.end()) {
-            const ViewResult r = accessor_view(model, at->second, where + "'s NORMAL", TINYGLTF_TYPE_VEC3,
+            const ViewResult r = accessor_view(model, missing, at->second, where + "'s NORMAL", TINYGLTF_TYPE_VEC3,
                                                {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
                                                 TINYGLTF_COMPONENT_TYPE_SHORT},
                                                "float, or (KHR_mesh_quantization) normalized byte and short");
             if (r.skip.empty()) normals = r.view;
         }
         if (const auto at = p.attributes.find("TEXCOORD_0"); at != p.attributes.end()) {
-            const ViewResult r = accessor_view(model, at->second, where + "'s TEXCOORD_0", TINYGLTF_TYPE_VEC2,
+            const ViewResult r = accessor_view(model, missing, at->second, where + "'s TEXCOORD_0", TINYGLTF_TYPE_VEC2,
                                                {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
                                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_COMPONENT_TYPE_BYTE,
                                                 TINYGLTF_COMPONENT_TYPE_SHORT},
@@ -520,14 +586,15 @@ LoadResult load_gltf_scene(const std::string& path) {
     if (binary)
         if (std::string problem = check_glb(bytes); !problem.empty()) return failure(problem);
 
+    std::string base_dir = fs_path.parent_path().string();
+    if (base_dir.empty()) base_dir = ".";
     tinygltf::TinyGLTF parser;
     FileAccess access;
+    access.missing_buffers = missing_buffer_files(binary ? bytes.substr(20, read_u32(bytes, 12)) : bytes, base_dir);
     parser.SetFsCallbacks({&file_exists, &expand_nothing, &read_whole_file, &write_nothing, &access});
     parser.SetImageLoader(&skip_image, nullptr);
     tinygltf::Model model;
     std::string err, warn;
-    std::string base_dir = fs_path.parent_path().string();
-    if (base_dir.empty()) base_dir = ".";
     bool ok = false;
     try {
         ok = binary ? parser.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
@@ -554,7 +621,10 @@ LoadResult load_gltf_scene(const std::string& path) {
         if (ext == "EXT_meshopt_compression" || ext == "KHR_meshopt_compression")
             return failure("it requires " + penumbra_gen::printable(ext, 60) + ", which is not supported");
 
-    Loader loader{model, {}, {}};
+    std::map<int, std::string> missing;
+    for (const auto& [file, buffer] : access.missing_buffers)
+        missing[buffer.buffer] = penumbra_gen::printable(file, 200);
+    Loader loader{model, missing, {}, {}};
     try {
         if (model.defaultScene >= 0 && static_cast<std::size_t>(model.defaultScene) >= model.scenes.size())
             return failure("the default scene is " + std::to_string(model.defaultScene) + " but the file has " +

@@ -98,7 +98,8 @@ int run_window(const PlaygroundOptions& options) {
         script.emplace(std::move(parsed.actions));
     }
     // A bad scene is bad input (exit 2) with or without a display: checked before the window opens.
-    if (SceneLoad loaded = load_scene(options.scene, options.ground); !loaded.scene) {
+    SceneLoad loaded = load_scene(options.scene, options.ground);
+    if (!loaded.scene) {
         std::cerr << "error: " << loaded.error << "\n";
         return 2;
     }
@@ -134,7 +135,7 @@ int run_window(const PlaygroundOptions& options) {
 
     int exit_code = 0;
     std::string error;
-    std::unique_ptr<WindowApp> app = WindowApp::create(options, &error);
+    std::unique_ptr<WindowApp> app = WindowApp::create(options, std::move(*loaded.scene), &error);
     int fb_width = width, fb_height = height;
     if (!app) {
         if (!error.empty()) std::cerr << "error: " << error << "\n"; // empty: already printed

@@ -86,11 +86,10 @@ WindowApp::~WindowApp() {
     if (truth_texture_) glDeleteTextures(1, &truth_texture_);
 }
 
-std::unique_ptr<WindowApp> WindowApp::create(const PlaygroundOptions& options, std::string* error) {
+std::unique_ptr<WindowApp> WindowApp::create(const PlaygroundOptions& options, Scene first, std::string* error) {
     std::unique_ptr<WindowApp> app(new WindowApp(options));
-    app->load_scene(options.scene);
-    if (!app->renderer_) {
-        // load_scene has printed its "error: …" line already; an empty error says so.
+    if (!app->show_scene(std::move(first), options.scene)) {
+        // show_scene has printed its "error: …" line already; an empty error says so.
         if (error) *error = app->log_.empty() ? "cannot load the scene" : "";
         return nullptr;
     }
@@ -125,16 +124,20 @@ void WindowApp::load_scene(const std::string& name_or_path) {
         problem("error: " + loaded.error);
         return;
     }
+    show_scene(std::move(*loaded.scene), name_or_path);
+}
+
+bool WindowApp::show_scene(Scene scene, const std::string& name_or_path) {
     std::string error;
-    if (options_.light_size) apply_light_size(*loaded.scene, options_.config.light, *options_.light_size);
+    if (options_.light_size) apply_light_size(scene, options_.config.light, *options_.light_size);
     // The renderer keeps a pointer to the scene: build the new one before replacing the old.
     Scene previous = std::move(scene_);
-    scene_ = std::move(*loaded.scene);
+    scene_ = std::move(scene);
     std::unique_ptr<FrameRenderer> renderer = FrameRenderer::create(scene_, &error);
     if (!renderer) {
         scene_ = std::move(previous);
         problem("error: " + error);
-        return;
+        return false;
     }
     renderer_ = std::move(renderer);
     scene_name_ = name_or_path;
@@ -151,6 +154,7 @@ void WindowApp::load_scene(const std::string& name_or_path) {
     controls_.sun_diameter_degrees = static_cast<float>(scene_.sun.angular_diameter * degrees_per_radian);
     truth_key_.clear();
     info("scene: " + scene_.name + " (" + std::to_string(scene_.mesh.triangle_count()) + " triangles)");
+    return true;
 }
 
 void WindowApp::set_light_size(double size) {

@@ -43,7 +43,9 @@ class WindowApp {
 public:
     // nullptr with *error when the scene or the first configuration cannot be set up (*error empty:
     // the problem was printed already, as an "error: …" line).
-    static std::unique_ptr<WindowApp> create(const PlaygroundOptions& options, std::string* error);
+    // `first` is options.scene already loaded (run_window checks it before a window opens, so a
+    // large mesh file is read once and its warnings are printed once).
+    static std::unique_ptr<WindowApp> create(const PlaygroundOptions& options, Scene first, std::string* error);
 
     // --- configuration (side 0: main, 1: split screen's right half)
     const Config& config(int side = 0) const { return side == 0 ? session_.config() : right_config_; }
@@ -61,6 +63,8 @@ public:
     Controls& controls() { return controls_; }
     const std::string& scene_name() const { return scene_name_; }
     void load_scene(const std::string& name_or_path);
+    // Makes a loaded scene the current one (false, with the problem logged, when it cannot be drawn).
+    bool show_scene(Scene scene, const std::string& name_or_path);
     void reset_camera() { controls_.camera = scene_.camera; }
     void set_light_size(double size); // rectangle side (scene units) or sun diameter (degrees)
 
