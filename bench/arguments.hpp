@@ -9,10 +9,10 @@
 namespace penumbra::bench {
 
 // "a,b,c" → {"a", "b", "c"}; "" → {} (an empty list, e.g. --scenes '' for no built-in scene).
-inline std::vector<std::string_view> split(std::string_view text) {
+inline std::vector<std::string_view> split(std::string_view text, char separator = ',') {
     std::vector<std::string_view> parts;
     while (!text.empty()) {
-        const std::size_t comma = text.find(',');
+        const std::size_t comma = text.find(separator);
         parts.push_back(text.substr(0, comma));
         if (comma == std::string_view::npos) break;
         text.remove_prefix(comma + 1);

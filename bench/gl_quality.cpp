@@ -42,15 +42,28 @@ struct SliceSetting {
     int slices = 16, resolution = 512;
 };
 
-// A model variant: fusion rule, tangent clip and slice placement ("chained+clip+adaptive").
+// A model variant: fusion rule, tangent clip and its offset, fade ramp and slice placement
+// ("chained+clip+offset1+ramp0.5+adaptive").
 struct Variant {
     penumbra::Fusion fusion = penumbra::Config{}.fusion;
     bool tangent_clip = penumbra::Config{}.tangent_clip;
     penumbra::SlicePlacement placement = penumbra::Config{}.slice_placement;
+    double tangent_clip_offset = penumbra::Config{}.tangent_clip_offset;
+    double fade_ramp = penumbra::Config{}.fade_ramp;
+    bool clip_footprint = penumbra::Config{}.clip_footprint;
 };
 
 std::string variant_name(const Variant& v) {
+    auto number = [](double x) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", x);
+        return std::string(text);
+    };
+    const penumbra::Config d{};
     return std::string(penumbra::to_string(v.fusion)) + (v.tangent_clip ? "+clip" : "") +
+           (v.tangent_clip && v.tangent_clip_offset != d.tangent_clip_offset ? "+offset" + number(v.tangent_clip_offset) : "") +
+           (v.tangent_clip && v.clip_footprint != d.clip_footprint ? (v.clip_footprint ? "+footprint" : "+nofootprint") : "") +
+           (v.fade_ramp != d.fade_ramp ? "+ramp" + number(v.fade_ramp) : "") +
            (v.placement == penumbra::SlicePlacement::adaptive ? "+adaptive" : "");
 }
 
@@ -80,8 +93,10 @@ constexpr const char* usage_text =
     "  --size      image size (default 256x256)\n"
     "  --samples   ground-truth rays per light axis (default 16: 256 rays per pixel)\n"
     "  --repeat    render each configuration N times and keep each pass's fastest time (default 3)\n"
-    "  --variants  model variants: a fusion rule, optionally +clip for the tangent clip and +adaptive for\n"
-    "              adaptive slice placement, e.g. probabilistic,chained+clip,chained+clip+adaptive\n"
+    "  --variants  model variants: a fusion rule, optionally +clip for the tangent clip, +offsetT for its offset,\n"
+    "              +footprint / +nofootprint for its footprint move,\n"
+    "              (slicing texels), +rampF for the fade's ramp (fraction of a slice) and +adaptive for adaptive\n"
+    "              slice placement, e.g. probabilistic,chained+clip,chained+clip+offset3+ramp1,chained+clip+adaptive\n"
     "              (default: Config{}'s)\n";
 
 bool parse_pair(std::string_view text, int& a, int& b) {
@@ -151,25 +166,30 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                 Variant v;
                 v.tangent_clip = false;
                 v.placement = penumbra::SlicePlacement::uniform;
-                for (bool more = true; more;) { // the suffixes, in any order
-                    more = false;
-                    if (name.ends_with("+clip")) {
-                        v.tangent_clip = more = true;
-                        name.remove_suffix(5);
-                    }
-                    if (name.ends_with("+adaptive")) {
-                        v.placement = penumbra::SlicePlacement::adaptive;
-                        more = true;
-                        name.remove_suffix(9);
-                    }
-                }
-                const std::optional<penumbra::Fusion> fusion = penumbra::parse_enum<penumbra::Fusion>(name);
+                const std::vector<std::string_view> parts = split(name, '+');
+                const std::optional<penumbra::Fusion> fusion =
+                    parts.empty() ? std::nullopt : penumbra::parse_enum<penumbra::Fusion>(parts.front());
                 if (!fusion) {
-                    error = "--variants: '" + std::string(name) + "' is not a fusion rule; allowed: probabilistic, "
-                            "additive, maximum, average, chained, each optionally followed by +clip and +adaptive";
+                    error = "--variants: '" + std::string(name) + "' does not start with a fusion rule; allowed: "
+                            "probabilistic, additive, maximum, average, chained";
                     return std::nullopt;
                 }
                 v.fusion = *fusion;
+                for (std::size_t k = 1; k < parts.size(); ++k) { // the suffixes, in any order
+                    const std::string_view part = parts[k];
+                    double number = 0;
+                    if (part == "clip") v.tangent_clip = true;
+                    else if (part == "adaptive") v.placement = penumbra::SlicePlacement::adaptive;
+                    else if (part == "footprint" || part == "nofootprint") v.clip_footprint = part == "footprint";
+                    else if (part.starts_with("offset") && parse_number(part.substr(6), number)) v.tangent_clip_offset = number;
+                    else if (part.starts_with("ramp") && parse_number(part.substr(4), number)) v.fade_ramp = number;
+                    else {
+                        error = "--variants: '" + std::string(part) + "' in '" + std::string(name) +
+                                "' is not allowed; allowed after the fusion rule: +clip, +adaptive, +[no]footprint, +offsetT "
+                                "(tangent clip offset, texels), +rampF (fade ramp, fraction of a slice)";
+                        return std::nullopt;
+                    }
+                }
                 o.variants.push_back(v);
             }
         } else if (flag == "--size") {
@@ -277,7 +297,10 @@ int main(int argc, char** argv) {
             for (const Variant& variant : options->variants) {
                 const penumbra::Config config{.slices = setting.slices, .resolution = setting.resolution, .filter = filter,
                                               .fusion = variant.fusion, .tangent_clip = variant.tangent_clip,
-                                              .slice_placement = variant.placement};
+                                              .slice_placement = variant.placement,
+                                              .tangent_clip_offset = variant.tangent_clip_offset,
+                                              .clip_footprint = variant.clip_footprint,
+                                              .fade_ramp = variant.fade_ramp};
                 const std::string label = scene_name + " | " + std::string(penumbra::to_string(filter)) + " " +
                                           variant_name(variant) + " | " + std::to_string(setting.slices) + "/" +
                                           std::to_string(setting.resolution);

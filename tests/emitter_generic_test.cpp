@@ -214,7 +214,7 @@ TEST_CASE("generic: the tangent clip is part of the program text, and reads the 
     CHECK(text.find("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)") != std::string::npos);
     CHECK(text.find("vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);") != std::string::npos);
     CHECK(text.find("uniform sampler2D penumbra_worldNormals;") != std::string::npos);
-    CHECK(text.find("3.0 / penumbra_resolution") != std::string::npos); // the offset follows the resolution uniform
+    CHECK(text.find("penumbra_tangentClipOffset / penumbra_resolution") != std::string::npos); // the offset is a value, over the resolution uniform
     CHECK(generic_fragment(whole).find("penumbra_worldNormals") == std::string::npos);
 }
 

@@ -91,7 +91,7 @@ TEST_CASE("layout v2: version, technique, the screen pass and its result") {
         CHECK(screen_reads.count("penumbra_worldPositions") == 1);
         example_reads.insert("penumbra_worldPositions");
         // the tangent clip's normals: a vertex attribute of the example pass, a G-buffer of the screen pass
-        if (clips_to_tangent_plane(config)) example_reads.insert("penumbra_worldNormals");
+        if (reads_receiver_normal(config)) example_reads.insert("penumbra_worldNormals");
         CHECK(screen_reads == example_reads);
         CHECK(example->program == "shading_example");
         CHECK(example->state.depth_test);

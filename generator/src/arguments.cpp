@@ -10,7 +10,7 @@ namespace {
 
 constexpr std::string_view flag_list =
     "--slices, --resolution, --filter, --fusion, --packing, --light, --target, --no-leak-fix, --no-fade, "
-    "--tangent-clip, --no-tangent-clip, --slice-placement, --level-bound, --level-format, --config, --validate, --out, --help, --technique, --shadow-resolution, "
+    "--tangent-clip, --no-tangent-clip, --tangent-clip-offset, --no-clip-footprint, --fade-ramp, --slice-placement, --level-bound, --level-format, --config, --validate, --out, --help, --technique, --shadow-resolution, "
     "--shadow-bias, --shadow-slope-bias, --pcf-pattern, --pcf-grid, --pcf-taps, --pcf-radius, --pcss-blockers, "
     "--pcss-filter, --pcss-max-texels, --no-rotation";
 
@@ -66,7 +66,8 @@ Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
 
         // Flags without a value.
         const bool is_switch = flag == "--no-leak-fix" || flag == "--no-fade" || flag == "--validate" ||
-                               flag == "--tangent-clip" || flag == "--no-tangent-clip" || is_technique_switch(flag);
+                               flag == "--tangent-clip" || flag == "--no-tangent-clip" || flag == "--no-clip-footprint" ||
+                               is_technique_switch(flag);
         if (is_switch) {
             if (inline_value)
                 return {{}, std::string(flag) + ": takes no value (got '" + printable(*inline_value) + "')"};
@@ -74,6 +75,7 @@ Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
             if (flag == "--no-fade") out.flags.no_fade = true;
             if (flag == "--tangent-clip") out.flags.tangent_clip = true;
             if (flag == "--no-tangent-clip") out.flags.tangent_clip = false;
+            if (flag == "--no-clip-footprint") out.flags.no_clip_footprint = true;
             if (flag == "--validate") out.validate = true;
             set_technique_switch(flag, out.flags.technique);
             continue;
@@ -81,6 +83,7 @@ Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
         const bool takes_value = flag == "--slices" || flag == "--resolution" || flag == "--filter" ||
                                  flag == "--fusion" || flag == "--packing" || flag == "--light" ||
                                  flag == "--target" || flag == "--slice-placement" || flag == "--level-bound" || flag == "--level-format" || flag == "--config" ||
+                                 flag == "--tangent-clip-offset" || flag == "--fade-ramp" ||
                                  flag == "--out" ||
                                  is_technique_flag(flag);
         if (!takes_value) {
@@ -119,6 +122,10 @@ Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
             error = store(parse_name<penumbra::LevelFormat>(flag, value), out.flags.level_format);
         else if (flag == "--level-bound")
             error = store(parse_int(flag, value, "-1 (every level) or 0 to log2(resolution)"), out.flags.level_bound);
+        else if (flag == "--tangent-clip-offset")
+            error = parse_real(flag, value, out.flags.tangent_clip_offset, "0 to 8 slicing texels");
+        else if (flag == "--fade-ramp")
+            error = parse_real(flag, value, out.flags.fade_ramp, "more than 0 to 4 (fraction of a slice's thickness)");
         else if (is_technique_flag(flag))
             error = parse_technique_flag(flag, value, out.flags.technique);
         else if (value.empty())
@@ -147,12 +154,16 @@ penumbra::Config apply(const ConfigFlags& flags, penumbra::Config config) {
     if (flags.slice_placement) config.slice_placement = *flags.slice_placement;
     if (flags.level_bound) config.level_bound = *flags.level_bound;
     if (flags.level_format) config.level_format = *flags.level_format;
+    if (flags.tangent_clip_offset) config.tangent_clip_offset = *flags.tangent_clip_offset;
+    if (flags.fade_ramp) config.fade_ramp = *flags.fade_ramp;
+    if (flags.no_clip_footprint) config.clip_footprint = false;
     return apply(flags.technique, config);
 }
 
 std::string usage() {
     using namespace penumbra;
     const Config d{};
+    auto real = [](double v) { return penumbra::detail::format_float(v).str(); };
     auto line = [](std::string_view flag, std::string_view text) {
         std::string out = "  " + std::string(flag);
         out.resize(std::max<std::size_t>(out.size() + 1, 22), ' ');
@@ -164,7 +175,8 @@ std::string usage() {
     std::string out = "usage: penumbra-gen [--technique T] [--slices N] [--resolution R] [--filter F] [--fusion U] "
                       "[--packing P] [--light L]\n"
                       "                    [--target T] [--no-leak-fix] [--no-fade] [--[no-]tangent-clip] [--slice-placement P]\n"
-                      "                    [--level-bound N] [--level-format F]\n"
+                      "                    [--level-bound N] [--level-format F] [--tangent-clip-offset T]\n"
+                      "                    [--no-clip-footprint] [--fade-ramp F]\n"
                       "                    [technique flags] [--config FILE.json] [--validate] --out DIR\n"
                       "\n"
                       "Writes the GLSL of one Penumbra configuration and its layout.json into DIR.\n"
@@ -186,6 +198,14 @@ std::string usage() {
     out += line("--tangent-clip", std::string("kernels cover only the light above the receiver's tangent plane;\n"
                                               "                      penumbraVisibility takes the normal (default ") +
                                       (d.tangent_clip ? "on" : "off") + "; --no-tangent-clip turns it off)");
+    out += line("--tangent-clip-offset T",
+                "slicing texels by which the tangent clip moves a receiver sideways along its\n"
+                "                      normal, off its own texels; 0 to 8 (default " + real(d.tangent_clip_offset) + ")");
+    out += line("--no-clip-footprint", std::string("the tangent clip does not move receivers off their own footprint in the\n"
+                                                   "                      slice above them (default ") +
+                                           (d.clip_footprint ? "on" : "off") + ")");
+    out += line("--fade-ramp F", "the self-shadow fade ramps over F of a slice's thickness; more than 0 to 4\n"
+                                 "                      (default " + real(d.fade_ramp) + ")");
     out += line("--slice-placement P",
                 names("slice boundaries: uniform (equal slices over the bounds) or adaptive (at the\n"
                       "                      depths the geometry occupies, computed on the GPU; paper §5)",
@@ -203,7 +223,8 @@ std::string usage() {
         line("--config FILE.json",
              "read the configuration from JSON: an object with the keys technique, slices, resolution,\n"
              "                      filter, fusion, packing, light, leak_fix, self_shadow_fade, tangent_clip,\n"
-             "                      slice_placement, level_format, level_bound, target, and the objects shadow_map, pcf, pcss (all optional), or a\n"
+             "                      tangent_clip_offset, clip_footprint, fade_ramp, slice_placement, level_format, level_bound, target, and the\n"
+             "                      objects shadow_map, pcf, pcss (all optional), or a\n"
              "                      layout.json, whose \"config\" object is read; a regular file of at most 1 MiB");
     out += "\noutput:\n";
     out += line("--out DIR", "directory to write into, created with its parents (required); all files or\n"

@@ -26,6 +26,9 @@ struct ConfigFlags {
     std::optional<penumbra::SlicePlacement> slice_placement; // --slice-placement
     std::optional<int> level_bound;                           // --level-bound
     std::optional<penumbra::LevelFormat> level_format;        // --level-format
+    std::optional<double> tangent_clip_offset;                // --tangent-clip-offset
+    bool no_clip_footprint = false;                           // --no-clip-footprint
+    std::optional<double> fade_ramp;                          // --fade-ramp
     TechniqueFlags technique; // --technique and each technique's flags (technique_flags.hpp)
 };
 

@@ -15,7 +15,7 @@ using nlohmann::json;
 
 constexpr std::string_view key_list =
     "slices, resolution, filter, fusion, packing, light, leak_fix, self_shadow_fade, tangent_clip, slice_placement, "
-    "level_format, level_bound, target, "
+    "level_format, level_bound, tangent_clip_offset, clip_footprint, fade_ramp, target, "
     "technique, shadow_map, pcf, pcss, oim, erosion";
 
 std::string type_of(const json& value) {
@@ -101,12 +101,13 @@ std::string read_section(std::string_view section, const json& value, std::strin
 }
 
 std::string read_shadow_map(const json& value, penumbra::ShadowMapParams& sm) {
-    return read_section("shadow_map", value, "resolution, constant_bias, slope_bias",
+    return read_section("shadow_map", value, "resolution, constant_bias, slope_bias, normal_offset",
                         [&](const std::string& key, const std::string& name, const json& item) -> std::string {
                             if (key == "resolution")
                                 return store(read_int(name, item, "a power of two from 32 to 8192"), sm.resolution);
                             if (key == "constant_bias") return store(read_real(name, item, "0 to 10"), sm.constant_bias);
                             if (key == "slope_bias") return store(read_real(name, item, "0 to 16"), sm.slope_bias);
+                            if (key == "normal_offset") return store(read_real(name, item, "0 to 8"), sm.normal_offset);
                             return "unknown";
                         });
 }
@@ -194,8 +195,10 @@ std::string allowed_for(const std::string& key) {
     if (key == "packing") return "one of " + allowed_names<penumbra::Packing>();
     if (key == "light") return "one of " + allowed_names<penumbra::Light>();
     if (key == "target") return "one of " + allowed_names<penumbra::Target>();
-    if (key == "leak_fix" || key == "self_shadow_fade") return "true or false";
+    if (key == "leak_fix" || key == "self_shadow_fade" || key == "clip_footprint") return "true or false";
     if (key == "level_bound") return "-1 (every level) or 0 to log2(resolution)";
+    if (key == "tangent_clip_offset") return "0 to 8 slicing texels";
+    if (key == "fade_ramp") return "more than 0 to 4 (fraction of a slice's thickness)";
     return {};
 }
 
@@ -307,6 +310,12 @@ Parsed<penumbra::Config> parse_config_json(std::string_view text, std::string_vi
             error = store(read_enum<penumbra::LevelFormat>(key, value), config.level_format);
         else if (key == "level_bound")
             error = store(read_int(key, value, allowed_for(key)), config.level_bound);
+        else if (key == "tangent_clip_offset")
+            error = store(read_real(key, value, allowed_for(key)), config.tangent_clip_offset);
+        else if (key == "clip_footprint")
+            error = store(read_bool(key, value), config.clip_footprint);
+        else if (key == "fade_ramp")
+            error = store(read_real(key, value, allowed_for(key)), config.fade_ramp);
         else
             error = "unknown key '" + printable(key) + "'; allowed keys: " + std::string(key_list);
         if (!error.empty()) return {{}, where + ": " + error};

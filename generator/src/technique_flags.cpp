@@ -8,7 +8,7 @@
 namespace penumbra_gen {
 
 const std::string_view technique_flag_list =
-    "--technique, --shadow-resolution, --shadow-bias, --shadow-slope-bias, --pcf-pattern, --pcf-grid, --pcf-taps, "
+    "--technique, --shadow-resolution, --shadow-bias, --shadow-slope-bias, --shadow-normal-offset, --pcf-pattern, --pcf-grid, --pcf-taps, "
     "--pcf-radius, --pcss-blockers, --pcss-filter, --pcss-max-texels, --no-rotation, --oim-resolution, "
     "--oim-intervals, --oim-samples, --erosion-radius, --erosion-edge-threshold, --erosion-search-taps, "
     "--erosion-blur-taps";
@@ -16,7 +16,7 @@ const std::string_view technique_flag_list =
 namespace {
 
 constexpr std::string_view value_flags[] = {"--technique",   "--shadow-resolution", "--shadow-bias",
-                                            "--shadow-slope-bias", "--pcf-pattern", "--pcf-grid",
+                                            "--shadow-slope-bias", "--shadow-normal-offset", "--pcf-pattern", "--pcf-grid",
                                             "--pcf-taps",    "--pcf-radius",        "--pcss-blockers",
                                             "--pcss-filter", "--pcss-max-texels", "--oim-resolution",
                                             "--oim-intervals", "--oim-samples",
@@ -36,6 +36,16 @@ std::string parse_int(std::string_view flag, std::string_view text, std::optiona
     return {};
 }
 
+template <class Enum> std::string parse_name(std::string_view flag, std::string_view text, std::optional<Enum>& slot) {
+    if (std::optional<Enum> value = penumbra::parse_enum<Enum>(text)) {
+        slot = *value;
+        return {};
+    }
+    return std::string(flag) + ": '" + printable(text) + "' is not allowed; allowed: " + allowed_names<Enum>();
+}
+
+} // namespace
+
 std::string parse_real(std::string_view flag, std::string_view text, std::optional<double>& slot,
                        std::string_view allowed) {
     double value = 0.0;
@@ -46,16 +56,6 @@ std::string parse_real(std::string_view flag, std::string_view text, std::option
     slot = value;
     return {};
 }
-
-template <class Enum> std::string parse_name(std::string_view flag, std::string_view text, std::optional<Enum>& slot) {
-    if (std::optional<Enum> value = penumbra::parse_enum<Enum>(text)) {
-        slot = *value;
-        return {};
-    }
-    return std::string(flag) + ": '" + printable(text) + "' is not allowed; allowed: " + allowed_names<Enum>();
-}
-
-} // namespace
 
 bool is_technique_switch(std::string_view flag) { return flag == "--no-rotation"; }
 
@@ -75,6 +75,8 @@ std::string parse_technique_flag(std::string_view flag, std::string_view value, 
         return parse_int(flag, value, flags.shadow_resolution, "a power of two from 32 to 8192");
     if (flag == "--shadow-bias") return parse_real(flag, value, flags.shadow_bias, "0 to 10 scene units");
     if (flag == "--shadow-slope-bias") return parse_real(flag, value, flags.shadow_slope_bias, "0 to 16");
+    if (flag == "--shadow-normal-offset")
+        return parse_real(flag, value, flags.shadow_normal_offset, "0 to 8 shadow-map texels");
     if (flag == "--pcf-pattern") return parse_name(flag, value, flags.pcf_pattern);
     if (flag == "--pcf-grid") return parse_int(flag, value, flags.pcf_grid, "1 to 16");
     if (flag == "--pcf-taps") return parse_int(flag, value, flags.pcf_taps, "1 to 64");
@@ -98,6 +100,7 @@ penumbra::Config apply(const TechniqueFlags& flags, penumbra::Config config) {
     if (flags.shadow_resolution) config.shadow_map.resolution = *flags.shadow_resolution;
     if (flags.shadow_bias) config.shadow_map.constant_bias = *flags.shadow_bias;
     if (flags.shadow_slope_bias) config.shadow_map.slope_bias = *flags.shadow_slope_bias;
+    if (flags.shadow_normal_offset) config.shadow_map.normal_offset = *flags.shadow_normal_offset;
     if (flags.pcf_pattern) config.pcf.pattern = *flags.pcf_pattern;
     if (flags.pcf_grid) {
         config.pcf.grid_size = *flags.pcf_grid;
@@ -145,6 +148,9 @@ std::string technique_usage(std::size_t column) {
                                        real(d.shadow_map.constant_bias) + ")");
     out += line("--shadow-slope-bias S", "slope bias: S times the depth change across one texel, 0 to 16 "
                                          "(default " + real(d.shadow_map.slope_bias) + ")");
+    out += line("--shadow-normal-offset K", "shadowmap, pcf, pcss: receivers move along their normal by K texels times\n" +
+                                                std::string(column, ' ') + "sin(angle to the light) before the lookup, 0 to 8 (default " +
+                                                real(d.shadow_map.normal_offset) + ")");
     out += line("--pcf-pattern P", "pcf: tap pattern, " + allowed_names<TapPattern>() + " (default " +
                                        std::string(to_string(d.pcf.pattern)) + ")");
     out += line("--pcf-grid N", "pcf: N x N grid taps, 1 to 16 (implies --pcf-pattern grid; default " +

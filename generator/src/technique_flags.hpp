@@ -14,7 +14,7 @@ namespace penumbra_gen {
 struct TechniqueFlags {
     std::optional<penumbra::Technique> technique;
     std::optional<int> shadow_resolution;
-    std::optional<double> shadow_bias, shadow_slope_bias;
+    std::optional<double> shadow_bias, shadow_slope_bias, shadow_normal_offset;
     std::optional<penumbra::TapPattern> pcf_pattern;
     std::optional<int> pcf_grid, pcf_taps;
     std::optional<double> pcf_radius;
@@ -37,6 +37,11 @@ std::string parse_technique_flag(std::string_view flag, std::string_view value, 
 void set_technique_switch(std::string_view flag, TechniqueFlags& flags);
 
 penumbra::Config apply(const TechniqueFlags& flags, penumbra::Config config);
+
+// Stores the finite number `text` into `slot`; else returns one line naming the flag, the text and
+// what is allowed (ranges are penumbra::validate's).
+std::string parse_real(std::string_view flag, std::string_view text, std::optional<double>& slot,
+                       std::string_view allowed);
 
 // The --help lines of these flags, the flag column padded to `column` characters.
 std::string technique_usage(std::size_t column);

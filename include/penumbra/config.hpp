@@ -98,6 +98,10 @@ struct ShadowMapParams {
     double constant_bias = 0.02;   // added to every occluder depth (scene units along the light axis); 0 to 10
     double slope_bias = 1.5;       // times the occluder's depth change across one shadow-map texel
                                    // (scene units per texel, from screen-space derivatives); 0 to 16
+    double normal_offset = 1.0;    // receivers move along their normal by this many shadow-map texels (the
+                                   // texel's size at the receiver) times sin(angle to the light) before the
+                                   // lookup, as Filament and Unity do; 0 to 8. Needs the normal: the deferred
+                                   // pass then reads penumbra_worldNormals (shadowmap, pcf, pcss)
 
     friend constexpr bool operator==(const ShadowMapParams&, const ShadowMapParams&) = default;
 };
@@ -175,6 +179,12 @@ struct Config {
                                             // penumbra::kernel_level_bound (level_bound.hpp) gives the one a light
                                             // and bounds need; the GL runtime fits it at set_light (grows it as
                                             // the light grows)
+    double tangent_clip_offset = 1.0;       // slicing texels by which the tangent clip moves a receiver sideways along
+                                            // its normal, off its own texels in the slices; 0 to 8
+    bool clip_footprint = true;             // the tangent clip also moves a receiver off its own tangent plane's
+                                            // footprint in the slice above it (0 on faces that face the light)
+    double fade_ramp = 0.25;                // the self-shadow fade ramps over this fraction of a slice's thickness
+                                            // above the plane; more than 0 to 4
     Target target = Target::glsl450;        // shading language of the output
     ShadowMapParams shadow_map{};           // shadowmap, pcf, pcss: the depth map from the light
     PcfParams pcf{};                        // pcf: the fixed kernel
@@ -242,10 +252,24 @@ constexpr bool uses_shadow_map(const Config& config) {
            config.technique == Technique::pcss || config.technique == Technique::erosion;
 }
 
+// True when the shadow-map techniques move the receiver along its normal before the lookup (the
+// normal-offset bias): penumbraVisibility then uses the normal, and the deferred pass reads it.
+constexpr bool offsets_along_normal(const Config& config) {
+    return (config.technique == Technique::shadowmap || config.technique == Technique::pcf ||
+            config.technique == Technique::pcss) &&
+           config.shadow_map.normal_offset > 0.0;
+}
+
 // True when the occlusion-texture kernels are clipped to the receiver's tangent plane: the snippet
 // then takes the normal, and the deferred pass reads the caller's penumbra_worldNormals.
 constexpr bool clips_to_tangent_plane(const Config& config) {
     return config.technique == Technique::occlusion && config.tangent_clip;
+}
+
+// True when penumbraVisibility uses the receiver's normal (the tangent clip or the normal-offset bias):
+// the deferred pass then reads the caller's penumbra_worldNormals.
+constexpr bool reads_receiver_normal(const Config& config) {
+    return clips_to_tangent_plane(config) || offsets_along_normal(config);
 }
 
 // Number of comparison taps of the PCF kernel.

@@ -66,7 +66,7 @@ inline long long texels_per_fragment(const Layout& layout, std::string_view prog
     if (program == "sat_pass") return 2;
     if (program == "slice_boundaries") return 64; // the 8 x 8 cells of one depth bin (emit_slice_placement.hpp)
     if (program == "shading_deferred") {
-        const long long g_buffer = clips_to_tangent_plane(c) ? 2 : 1;
+        const long long g_buffer = reads_receiver_normal(c) ? 2 : 1;
         // shadow maps: every comparison or depth tap a bilinear footprint (4 texels)
         if (c.technique == Technique::shadowmap) return g_buffer + 4;
         if (c.technique == Technique::pcf) return g_buffer + 4LL * pcf_taps(c.pcf);

@@ -60,7 +60,8 @@ inline std::vector<GenericValue> generic_values(const Config& config) {
     const int T = texture_count(config);
     const double in_param_order[] = { // the order of detail::generic_value_params()
         double(config.slices), double(config.resolution), double(max_level(config)), double(T), 1.0 / T,
-        double(static_cast<int>(config.fusion)), config.self_shadow_fade ? 1.0 : 0.0,
+        double(static_cast<int>(config.fusion)), config.self_shadow_fade ? 1.0 : 0.0, config.fade_ramp,
+        config.tangent_clip_offset, config.clip_footprint ? double(1 + leak_fix_reach(config)) : 0.0,
     };
     std::vector<GenericValue> values;
     const std::vector<detail::Param> params = detail::generic_value_params();

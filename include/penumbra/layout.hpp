@@ -570,10 +570,11 @@ inline Layout describe_layout(const Config& config) {
     world.wrap = "CLAMP_TO_EDGE";
     world.size = "output";
     world.source = "caller";
-    if (clips_to_tangent_plane(config)) {
+    if (reads_receiver_normal(config)) {
         TextureDesc& normals = build.texture("penumbra_worldNormals", "2D", "RGBA32F", 0, 0, 1, 1, "NEAREST", "NEAREST",
                                              "G-buffer filled by the engine every frame: xyz the unit normal of the "
-                                             "side the viewer sees (tangent clip); read with texelFetch (no filtering)");
+                                             "side the viewer sees (tangent clip, normal offset); read with texelFetch "
+                                             "(no filtering)");
         normals.wrap = "CLAMP_TO_EDGE";
         normals.size = "output";
         normals.source = "caller";
@@ -688,12 +689,16 @@ inline std::string to_json(const Layout& layout) {
     field("    ", "slice_placement", json_string(to_string(c.slice_placement)));
     field("    ", "level_format", json_string(to_string(c.level_format)));
     field("    ", "level_bound", std::to_string(c.level_bound));
-    field("    ", "target", json_string(to_string(c.target)));
     auto real = [](double v) { return detail::format_float(v).str(); };
+    field("    ", "tangent_clip_offset", real(c.tangent_clip_offset));
+    field("    ", "clip_footprint", c.clip_footprint ? "true" : "false");
+    field("    ", "fade_ramp", real(c.fade_ramp));
+    field("    ", "target", json_string(to_string(c.target)));
     auto flag = [](bool v) { return std::string(v ? "true" : "false"); };
     field("    ", "shadow_map",
           "{\"resolution\": " + std::to_string(c.shadow_map.resolution) + ", \"constant_bias\": " +
-              real(c.shadow_map.constant_bias) + ", \"slope_bias\": " + real(c.shadow_map.slope_bias) + "}");
+              real(c.shadow_map.constant_bias) + ", \"slope_bias\": " + real(c.shadow_map.slope_bias) +
+              ", \"normal_offset\": " + real(c.shadow_map.normal_offset) + "}");
     field("    ", "pcf",
           "{\"pattern\": " + json_string(to_string(c.pcf.pattern)) + ", \"grid_size\": " +
               std::to_string(c.pcf.grid_size) + ", \"poisson_taps\": " + std::to_string(c.pcf.poisson_taps) +

@@ -119,6 +119,7 @@ constexpr std::vector<Problem> shadow_map_problems(const Config& config) {
                 format_int(max_size)));
     real_range("shadow_map.constant_bias", sm.constant_bias, 0.0, 10.0, false, "scene units");
     real_range("shadow_map.slope_bias", sm.slope_bias, 0.0, 16.0, false, "(times the depth change per texel)");
+    real_range("shadow_map.normal_offset", sm.normal_offset, 0.0, 8.0, false, "shadow-map texels");
 
     if (config.technique == Technique::pcf) {
         const PcfParams& pcf = config.pcf;
@@ -188,6 +189,11 @@ constexpr std::vector<Problem> find_problems(const Config& config) {
         add("level_bound", format_int(config.level_bound),
             cat("is out of range; allowed: -1 (every level) or 0 to ", format_int(resolution_levels(config)),
                 " (log2 of resolution ", format_int(config.resolution), ")"));
+    if (!(config.tangent_clip_offset >= 0.0 && config.tangent_clip_offset <= 8.0))
+        add("tangent_clip_offset", format_value(config.tangent_clip_offset), "is out of range; allowed: 0 to 8 slicing texels");
+    if (!(config.fade_ramp > 0.0 && config.fade_ramp <= 4.0))
+        add("fade_ramp", format_value(config.fade_ramp),
+            "is out of range; allowed: more than 0 to 4 (fraction of a slice's thickness)");
     if (!problems.empty()) return problems; // the rules below need valid fields
 
     const std::string_view filter = to_string(config.filter);

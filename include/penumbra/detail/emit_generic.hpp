@@ -44,6 +44,10 @@ constexpr std::vector<Param> generic_value_params() {
         {"penumbra_invTileCount", "float", "1 / T: width of one tile in an atlas", "uv"},
         {"penumbra_fusion", "int", "fusion rule: 0 probabilistic, 1 additive, 2 maximum, 3 average, 4 chained", ""},
         {"penumbra_fade", "int", "paper §3.4.2 self-shadow fade: 1 on, 0 off", ""},
+        {"penumbra_fadeRamp", "float", "the fade's ramp, as a fraction of a slice's thickness", ""},
+        {"penumbra_tangentClipOffset", "float", "the tangent clip's sideways offset along the normal", "slicing texels"},
+        {"penumbra_clipFootprint", "float",
+         "slice thicknesses the receiver's own footprint spans (1 + leak-fix reach) with clip_footprint on, 0 off", ""},
     };
 }
 
@@ -128,7 +132,7 @@ constexpr void write_generic_kernel(LineWriter& out, const Config& config) {
     out.comment("paper §3.4.2 when penumbra_fade is 1; otherwise planes strictly above the point count fully");
     out.line("float penumbra_weight(float zPoint, float zeta)");
     out.line("{");
-    out.line("if (penumbra_fade != 0) return clamp((zPoint - zeta) / penumbra_sliceDepths.y, 0.0, 1.0);");
+    out.line("if (penumbra_fade != 0) return clamp((zPoint - zeta) / (penumbra_sliceDepths.y * penumbra_fadeRamp), 0.0, 1.0);");
     out.line("return 1.0 - step(zPoint, zeta);");
     out.line("}");
     out.blank();
@@ -310,7 +314,10 @@ constexpr Text generic_fragment(const Config& config) {
     }
     out.line("{");
     write_light_frame_point(out);
-    if (clip) write_tangent_clip_setup(out, config, cat(format_float(tangent_clip_offset_texels), " / penumbra_resolution"));
+    if (clip) write_tangent_clip_setup(out, config,
+                                       {Text("penumbra_tangentClipOffset / penumbra_resolution"),
+                                        Text("penumbra_tangentClipOffset"), Text("penumbra_clipFootprint"),
+                                        cat(format_float(clip_footprint_cap_texels), " / penumbra_resolution")});
     out.line("float penumbra_lit = 1.0;");
     out.line("float penumbra_sum = 0.0;");
     out.line("float penumbra_max = 0.0;");

@@ -18,9 +18,9 @@ constexpr std::vector<Param> deferred_params(const Config& config) {
     std::vector<Param> params{{"penumbra_worldPositions", "sampler2D",
                                "G-buffer: xyz world position, w = 1 where there is geometry and 0 for the background",
                                "scene units", "penumbra_worldPositions"}};
-    if (clips_to_tangent_plane(config))
+    if (reads_receiver_normal(config))
         params.push_back({"penumbra_worldNormals", "sampler2D",
-                          "G-buffer: xyz world normal of the side the viewer sees (for the tangent clip)", "",
+                          "G-buffer: xyz world normal of the side the viewer sees (tangent clip, normal offset)", "",
                           "penumbra_worldNormals"});
     return params;
 }
@@ -44,8 +44,8 @@ void main()
     vec3 toLight = normalize(penumbra_toLight.xyz - penumbra_worldPos * penumbra_toLight.w);
     float lambert = max(dot(normalize(penumbra_worldNormal), toLight), 0.0);
 )");
-    if (clips_to_tangent_plane(config)) {
-        out.comment("the tangent clip needs the normal of the side the viewer sees");
+    if (reads_receiver_normal(config)) {
+        out.comment("the tangent clip and the normal offset need the normal of the side the viewer sees");
         out.line("float visibility = penumbraVisibility(penumbra_worldPos, "
                  "gl_FrontFacing ? penumbra_worldNormal : -penumbra_worldNormal);");
     } else {
@@ -102,7 +102,7 @@ constexpr Text deferred_fragment(const Config& config) {
     write_technique_visibility(out, config, binding);
     out.blank();
     write_params(out, config, deferred_params(config), "PenumbraDeferred", binding);
-    write_deferred_main(out, clips_to_tangent_plane(config));
+    write_deferred_main(out, reads_receiver_normal(config));
     return out.take();
 }
 

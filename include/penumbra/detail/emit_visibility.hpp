@@ -74,12 +74,12 @@ constexpr Text kernel_call(const Config& config) {
     return choose(config.tangent_clip, "penumbra_kernel(p, zeta, penumbra_clip)", "penumbra_kernel(p, zeta)");
 }
 
-// Slicing-grid texels by which the tangent clip moves a point sideways along its normal.
-// Three: a wall's own footprint in a slice is up to two texels wide (one of perspective spread over
-// the slice and its leak-fix copy, one of rasterisation), and a level-0 lookup blends the texels
-// within one texel of the kernel's centre; measured on the box scene (1 and 2 texels leave walls
-// self-shadowed, 3 and more do not).
-inline constexpr double tangent_clip_offset_texels = 3.0;
+// Config::tangent_clip_offset: slicing-grid texels by which the tangent clip moves a point sideways
+// along its normal. A wall's own footprint in a slice is up to two texels wide (perspective spread over
+// the slice and its leak-fix copy, and rasterisation), and a level-0 lookup blends the texels within one
+// texel of the kernel's centre; but every texel of offset also moves the kernels off the occluders that
+// lie within a slice or two of the receiver, which real meshes are full of (a lid's rim, legs under a
+// body, creases). docs/model.md §1.9 gives the measurements behind the default.
 
 // Orientation-aware lookup: a surface receives only the part of the light above its tangent
 // plane (the cosine term removes the rest), so each kernel is restricted to that part.
@@ -118,27 +118,67 @@ constexpr void write_light_frame_point(LineWriter& out) {
     out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
 }
 
+// GLSL float expressions of the tangent clip's offsets: baked literals in the specialized code,
+// uniform expressions in the generic reference (emit_generic.hpp).
+struct TangentClipOffsets {
+    Text offset_uv;       // Config::tangent_clip_offset in uv of the slicing grid
+    Text offset_words;    // the same in texels, for the comment
+    Text footprint_reach; // slice thicknesses a slice's content spans (own slice and leak-fix copies); empty: off
+    Text footprint_cap_uv; // the footprint's cap in uv of the slicing grid
+};
+
+// Slicing texels the footprint move is capped at: surfaces turned nearly edge-on away from the light
+// would otherwise move without bound.
+inline constexpr double clip_footprint_cap_texels = 4.0;
+
+constexpr TangentClipOffsets tangent_clip_offsets(const Config& config) {
+    return {format_float(config.tangent_clip_offset / config.resolution), format_float(config.tangent_clip_offset),
+            choose(config.clip_footprint, format_float(1 + leak_fix_reach(config)), Text()),
+            format_float(clip_footprint_cap_texels / config.resolution)};
+}
+
 // The tangent clip's set-up in penumbraVisibility: the normal in the light frame, the clip, and
-// the sideways offset (every surface is rasterised into the slices it crosses, so without it a
-// wall's kernels would sit on the wall's own texels).
-// `offset` is the GLSL float expression of that offset in uv of the slicing grid: a baked literal
-// in the specialized code, a uniform expression in the generic reference (emit_generic.hpp).
-constexpr void write_tangent_clip_setup(LineWriter& out, const Config& config, std::string_view offset) {
+// the sideways moves. Every surface is rasterised into the slices it crosses, so without them a
+// wall's kernels would sit on the wall's own texels: a fixed one of tangent_clip_offset texels
+// (rasterisation and the level-0 blend), and with clip_footprint the footprint of the receiver's own
+// tangent plane in the slice above it, whose content spans `reach` slice thicknesses flattened onto
+// one plane (docs/model.md §1.9): per unit of depth the plane moves n.z / |n.xy| sideways, and the
+// perspective of the slicing projection adds dot(p.xy, n.xy) / (|n.xy| (d + z)). Surfaces facing the
+// light have no footprint there (the fade takes their own slice); it is capped for the others.
+constexpr void write_tangent_clip_setup(LineWriter& out, const Config& config, const TangentClipOffsets& k) {
     out.line("vec3 n = mat3(penumbra_lightFromWorld) * worldNormal;");
     out.line("n *= inversesqrt(max(dot(n, n), 1e-20));");
     out.line("vec3 penumbra_clip = penumbra_tangentClip(p, n);");
-    const Text texels(offset);
-    out.comment(cat("move the point ", format_float(tangent_clip_offset_texels),
-                    " slicing texels sideways along its normal, off its own texels"));
-    if (config.light == Light::rect)
-        out.line("p.xy += n.xy * penumbra_lightSize * ((penumbra_copDistance + p.z) / penumbra_copDistance * ", texels,
-                 ");");
+    const bool rect = config.light == Light::rect;
+    if (!k.footprint_reach.empty()) {
+        out.comment("footprint of the receiver's own tangent plane in the slice above it, along its normal (scene units)");
+        out.line("float penumbra_across = max(length(n.xy), 1e-6);");
+        if (rect)
+            out.line("float penumbra_spread = max(n.z / penumbra_across + dot(p.xy, n.xy) / (penumbra_across * "
+                     "(penumbra_copDistance + p.z)), 0.0);");
+        else
+            out.line("float penumbra_spread = max(n.z / penumbra_across, 0.0);");
+        out.line("float penumbra_footprint = penumbra_spread * ", k.footprint_reach, " * penumbra_sliceDepths.y;");
+        if (rect)
+            out.line("float penumbra_cap = max(penumbra_lightSize.x, penumbra_lightSize.y) * (penumbra_copDistance + p.z) "
+                     "/ penumbra_copDistance * ", k.footprint_cap_uv, ";");
+        else
+            out.line("float penumbra_cap = 2.0 * penumbra_windowHalfSize * ", k.footprint_cap_uv, ";");
+    }
+    out.comment(cat("move the point ", k.offset_words, " slicing texels sideways along its normal, off its own texels"));
+    if (rect)
+        out.line("p.xy += n.xy * penumbra_lightSize * ((penumbra_copDistance + p.z) / penumbra_copDistance * ",
+                 k.offset_uv, ");");
     else
-        out.line("p.xy += n.xy * (2.0 * penumbra_windowHalfSize * ", texels, ");");
+        out.line("p.xy += n.xy * (2.0 * penumbra_windowHalfSize * ", k.offset_uv, ");");
+    if (!k.footprint_reach.empty()) {
+        out.comment("and off its own footprint");
+        out.line("p.xy += n.xy / penumbra_across * min(penumbra_footprint, penumbra_cap);");
+    }
 }
 
 constexpr void write_tangent_clip_setup(LineWriter& out, const Config& config) {
-    write_tangent_clip_setup(out, config, format_float(tangent_clip_offset_texels / config.resolution).view());
+    write_tangent_clip_setup(out, config, tangent_clip_offsets(config));
 }
 
 // Adaptive placement with the fade: each plane's ramp runs over the slice below it (the one a point
@@ -149,18 +189,33 @@ constexpr bool fades_over_own_thickness(const Config& config) {
     return config.self_shadow_fade && places_slices_adaptively(config);
 }
 
+// The fade's ramp (Config::fade_ramp of a slice's thickness) as a factor of the thickness in the GLSL:
+// empty for the paper's ramp over the whole slice.
+constexpr Text fade_ramp_factor(const Config& config) {
+    return choose(config.fade_ramp == 1.0, Text(), cat(" * ", format_float(config.fade_ramp)));
+}
+
+constexpr Text fade_ramp_words(const Config& config) {
+    return choose(config.fade_ramp == 1.0, Text("the slice"), cat(format_float(config.fade_ramp), " of the slice"));
+}
+
 constexpr void write_weight_function(LineWriter& out, const Config& config) {
     out.chunk("fade");
     if (fades_over_own_thickness(config)) {
-        out.comment("paper §3.4.2: 0 for planes at or below the point, a ramp over the slice below the plane, then 1");
+        out.comment(cat("paper §3.4.2: 0 for planes at or below the point, a ramp over ", fade_ramp_words(config),
+                        " below the plane, then 1"));
         out.line("float penumbra_weight(float zPoint, float zeta, float thickness)");
         out.line("{");
-        out.line("return clamp((zPoint - zeta) / thickness, 0.0, 1.0);");
+        out.line("return clamp((zPoint - zeta) / (thickness", fade_ramp_factor(config), "), 0.0, 1.0);");
     } else if (config.self_shadow_fade) {
-        out.comment("paper §3.4.2: 0 for planes at or below the point, a ramp over the nearest plane above, then 1");
+        out.comment(cat("paper §3.4.2: 0 for planes at or below the point, a ramp over ", fade_ramp_words(config),
+                        " above the point, then 1"));
         out.line("float penumbra_weight(float zPoint, float zeta)");
         out.line("{");
-        out.line("return clamp((zPoint - zeta) / penumbra_sliceDepths.y, 0.0, 1.0);");
+        if (config.fade_ramp == 1.0)
+            out.line("return clamp((zPoint - zeta) / penumbra_sliceDepths.y, 0.0, 1.0);");
+        else
+            out.line("return clamp((zPoint - zeta) / (penumbra_sliceDepths.y", fade_ramp_factor(config), "), 0.0, 1.0);");
     } else {
         out.comment("fade off: planes strictly above the point count fully, the others not at all");
         out.line("float penumbra_weight(float zPoint, float zeta)");

@@ -46,6 +46,7 @@ constexpr Text describe_shadow_map(const Config& config) {
     Text out = cat("technique ", to_string(config.technique), " | shadow map ", format_int(sm.resolution), "x",
                    format_int(sm.resolution), " | bias ", format_float(sm.constant_bias), " scene units + ",
                    format_float(sm.slope_bias), " x slope");
+    if (offsets_along_normal(config)) out += cat(" | normal offset ", format_float(sm.normal_offset), " texels");
     if (config.technique == Technique::pcf)
         out += cat(" | pcf ", to_string(config.pcf.pattern), " ", format_int(pcf_taps(config.pcf)), " taps, radius ",
                    format_float(config.pcf.radius), ", rotation ", on_off(config.pcf.rotate));
@@ -75,7 +76,13 @@ constexpr Text describe(const Config& config) {
                format_int(config.resolution), " | filter ", to_string(config.filter), " | fusion ",
                to_string(config.fusion), " | packing ", to_string(config.packing), " | light ",
                to_string(config.light), " | leak fix ", on_off(config.leak_fix), " | fade ",
-               on_off(config.self_shadow_fade), choose(clips_to_tangent_plane(config), " | tangent clip on", ""),
+               on_off(config.self_shadow_fade),
+               choose(config.self_shadow_fade && config.fade_ramp != 1.0, cat(" over ", format_float(config.fade_ramp), " slice"),
+                      Text()),
+               choose(clips_to_tangent_plane(config),
+                      cat(" | tangent clip on, offset ", format_float(config.tangent_clip_offset), " texels",
+                          choose(config.clip_footprint, " + footprint", "")),
+                      Text()),
                choose(places_slices_adaptively(config), " | slice placement adaptive", ""), " | target ",
                to_string(config.target));
 }

@@ -544,7 +544,8 @@ public:
     // (owned by the runtime), or 0 with *error set. With `timing`, the GPU time of the screen passes
     // (named after the pass when there is one; GL_TIME_ELAPSED, waits for the result).
     // `world_normals`: the G-buffer's normals (RGBA32F, xyz = the normal of the side the viewer
-    // sees), the caller texture penumbra_worldNormals of configurations with tangent_clip on.
+    // sees), the caller texture penumbra_worldNormals of configurations that read the receiver's normal
+    // (reads_receiver_normal: the tangent clip, the shadow maps' normal offset).
     GLuint shade_deferred(GLuint world_positions, int width, int height, std::string* error = nullptr,
                           PassTiming* timing = nullptr, GLuint world_normals = 0) {
         detail::DebugCapture capture(options_.debug_output);

@@ -123,6 +123,7 @@ Oracle::Oracle(const Config& config, const SliceFrame& frame, SliceTextures slic
     // boundaries, each plane's fade over the slice below it, down to a virtual plane a last slice's
     // thickness below the last one, in fp32 as the GLSL computes them (emit_visibility.hpp)
     const double z0 = frame.slice_depths.x, thickness = frame.slice_depths.y;
+    thickness_ = thickness;
     for (int k = 0; k <= S; ++k) planes_.push_back(boundaries.empty() ? z0 + k * thickness : double(boundaries[k]));
     for (int s = 0; s < S; ++s) {
         if (boundaries.empty()) {
@@ -320,11 +321,12 @@ Oracle::Sample Oracle::filtered_at(int slice, glm::dvec2 centre, double level, i
     return mix_levels(at_level(lo), at_level(std::min(lo + 1, L)), t, false);
 }
 
-// paper §3.4.2 fade: 0 at or below the point, a ramp over the nearest plane above, then 1
+// paper §3.4.2 fade: 0 at or below the point, a ramp over fade_ramp of the nearest slice above, then 1
 // (without the fade: 1 above the point, else 0).
 double Oracle::fade_weight(double z, int slice) const {
     const double plane = zeta(slice);
-    return config_.self_shadow_fade ? std::clamp((z - plane) / fade_thickness_[slice], 0.0, 1.0) : (plane < z ? 1.0 : 0.0);
+    return config_.self_shadow_fade ? std::clamp((z - plane) / (fade_thickness_[slice] * config_.fade_ramp), 0.0, 1.0)
+                                     : (plane < z ? 1.0 : 0.0);
 }
 
 Oracle::Kernel Oracle::kernel(glm::dvec3 p, double zeta) const {
@@ -358,7 +360,7 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
     bool beyond = false;
     // Tangent clip (emit_visibility.hpp): the part of the light above the tangent plane, in the
     // light's unit square, cut along the axis the plane crosses most steeply; then the point
-    // moves tangent_clip_offset_texels slicing texels sideways along its normal.
+    // moves config.tangent_clip_offset slicing texels sideways along its normal.
     glm::dvec3 clip(0.0, 0.0, 1.0);
     bool clip_ambiguous = false;
     if (config_.tangent_clip) {
@@ -380,9 +382,22 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
         // where the two cuts differ
         clip_ambiguous = std::abs(std::abs(slopes.x) - std::abs(slopes.y)) <= 1e-5 * std::abs(slopes.x) &&
                          glm::length(clip_along(true) - clip_along(false)) > 1e-9;
-        const double texels = detail::tangent_clip_offset_texels / config_.resolution;
+        // clip_footprint: the receiver's own tangent plane in the slice above it, capped
+        const double across = std::max(glm::length(glm::dvec2(n)), 1e-6);
+        double footprint = 0.0;
+        if (config_.clip_footprint) {
+            const double spread =
+                std::max(n.z / across + (rect ? glm::dot(glm::dvec2(p), glm::dvec2(n)) / (across * (cop_distance_ + p.z)) : 0.0),
+                         0.0);
+            const double cap_uv = detail::clip_footprint_cap_texels / config_.resolution;
+            const double cap = rect ? std::max(light_size_.x, light_size_.y) * (cop_distance_ + p.z) / cop_distance_ * cap_uv
+                                    : 2.0 * window_half_size_ * cap_uv;
+            footprint = std::min(spread * (1 + leak_fix_reach(config_)) * thickness_, cap);
+        }
+        const double texels = config_.tangent_clip_offset / config_.resolution;
         if (rect) p += glm::dvec3(glm::dvec2(n) * light_size_ * ((cop_distance_ + p.z) / cop_distance_ * texels), 0.0);
         else p += glm::dvec3(glm::dvec2(n) * (2.0 * window_half_size_ * texels), 0.0);
+        p += glm::dvec3(glm::dvec2(n) / across * footprint, 0.0);
     }
     for (int s = config_.slices - 1; s >= 0; --s) {
         const double weight = fade_weight(p.z, s);

@@ -123,6 +123,7 @@ private:
     glm::dvec2 light_size_{0.0};
     std::vector<double> planes_;         // the S + 1 slice boundaries: slice s holds depths (planes_[s], planes_[s + 1]]
     std::vector<double> fade_thickness_; // [slice]: the depth over which its plane's fade ramps
+    double thickness_ = 0;               // penumbra_sliceDepths.y: the uniform slices' thickness
     int levels_top_ = 0;                      // L: log2(R), or config.level_bound when set
     std::vector<std::vector<Plane>> levels_;  // [slice][level]: mip chain, N-buffer or Gaussian levels
     std::vector<Plane> prefix_;               // [slice]: (R+1)² table, texel (X, Y) = sum over x < X, y < Y

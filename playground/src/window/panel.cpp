@@ -52,6 +52,12 @@ bool shadow_map_editor(Config& config) {
         config.shadow_map.slope_bias = bias[1];
         changed = true;
     }
+    float normal_offset = float(config.shadow_map.normal_offset);
+    if (config.technique != Technique::erosion &&
+        ImGui::DragFloat("normal offset (texels x sin)", &normal_offset, 0.05f, 0.0f, 8.0f, "%.2f")) {
+        config.shadow_map.normal_offset = normal_offset;
+        changed = true;
+    }
     if (config.technique == Technique::pcf) {
         changed |= enum_combo("pattern", config.pcf.pattern);
         if (config.pcf.pattern == TapPattern::grid)
@@ -124,6 +130,13 @@ bool config_editor(const char* id, Config& config) {
     ImGui::SameLine();
     changed |= ImGui::Checkbox("fade (§3.4.2)", &config.self_shadow_fade);
     changed |= ImGui::Checkbox("tangent clip", &config.tangent_clip);
+    changed |= ImGui::Checkbox("clip footprint", &config.clip_footprint);
+    float offsets[2] = {float(config.tangent_clip_offset), float(config.fade_ramp)};
+    if (ImGui::DragFloat2("clip offset (texels), fade ramp (slice)", offsets, 0.05f, 0.0f, 8.0f, "%.2f")) {
+        config.tangent_clip_offset = offsets[0];
+        config.fade_ramp = std::max(offsets[1], 0.01f);
+        changed = true;
+    }
     changed |= enum_combo("slice placement (§5)", config.slice_placement);
     ImGui::PopID();
     return changed;

@@ -140,6 +140,37 @@ constexpr void write_pcss_body(LineWriter& out, const Config& config) {
     write_comparison_taps(out, config, poisson_disk(pcss.filter_samples), 4, "filter taps", "filterUV");
 }
 
+// Normal-offset bias (ShadowMapParams::normal_offset; Filament, Unity, Holbert 2011): the receiver
+// moves along its normal by k shadow-map texels, measured at the receiver, times the sine of its angle
+// to the light. A curved receiver then looks up the map a texel's worth outside its own surface, where
+// the depth bias alone would have to grow with the slope (and detach the shadows of near occluders).
+// A surface facing the light moves not at all; one edge-on to it by the whole offset.
+constexpr void write_normal_offset_visibility(LineWriter& out, const Config& config) {
+    out.comment(cat("With the receiver's normal (the side being lit): the normal-offset bias of ",
+                    format_float(config.shadow_map.normal_offset), " shadow-map texels, then the lookup above."));
+    out.line("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)");
+    out.line("{");
+    out.line("vec3 n = worldNormal * inversesqrt(max(dot(worldNormal, worldNormal), 1e-20));");
+    out.line("vec3 p = (penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz;");
+    out.line("vec3 nLight = mat3(penumbra_lightFromWorld) * n;");
+    if (config.light == Light::rect) {
+        out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
+        out.comment("cosine to the direction towards the light centre; a texel spans 2 tan(fov/2) z / R at depth z");
+        out.line("float cosine = dot(nLight, -normalize(p));");
+        out.line("float texel = 2.0 * penumbra_shadowTanHalfFov * p.z * ",
+                 format_float(1.0 / config.shadow_map.resolution), ";");
+    } else {
+        out.comment("cosine to the direction towards the sun; a texel spans 2 h / R of the orthographic window");
+        out.line("float cosine = -nLight.z;");
+        out.line("float texel = 2.0 * penumbra_windowHalfSize * ", format_float(1.0 / config.shadow_map.resolution),
+                 ";");
+    }
+    out.line("float sine = sqrt(max(1.0 - cosine * cosine, 0.0));");
+    out.line("return penumbraVisibility(worldPos + n * (", format_float(config.shadow_map.normal_offset),
+             " * texel * sine));");
+    out.line("}");
+}
+
 // Declarations and functions of penumbraVisibility for a shadow map technique.
 constexpr void write_shadow_visibility(LineWriter& out, const Config& config, int& next_binding) {
     write_params(out, config, shadow_visibility_params(config), "PenumbraVisibility", next_binding);
@@ -171,8 +202,12 @@ constexpr void write_shadow_visibility(LineWriter& out, const Config& config, in
     }
     out.line("}");
     out.blank();
+    if (offsets_along_normal(config)) {
+        write_normal_offset_visibility(out, config);
+        return;
+    }
     out.comment("The same with the receiver's normal, so that shaders written for the occlusion technique's");
-    out.comment("tangent clip compile unchanged; a depth map has no use for it.");
+    out.comment("tangent clip compile unchanged; without the normal offset a depth map has no use for it.");
     out.line("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)");
     out.line("{");
     out.line("return penumbraVisibility(worldPos);");
