@@ -64,6 +64,7 @@ struct Options {
     std::vector<SceneInput> scenes;
     std::vector<penumbra::Filter> filters{penumbra::Filter::mipmap, penumbra::Filter::nbuffer, penumbra::Filter::sat};
     std::vector<SliceSetting> settings{{16, 512}, {4, 128}};
+    std::vector<int> level_reductions{penumbra::Config{}.level_reduction}; // --level-reductions
     int width = 256, height = 256, samples = 16, repeat = 3;
     bool ground = true; // --no-ground: no floor under the mesh files
 };
@@ -71,6 +72,7 @@ struct Options {
 constexpr const char* usage_text =
     "usage: penumbra-bench-quality [--scenes a,b,...] [FILE ...] [--corpus [DIR]] [--no-ground] [--filters f,g,...]\n"
     "                              [--configs SxR,...] [--size WxH] [--samples N] [--repeat N] [--variants v,w,...]\n"
+    "                              [--level-reductions N,M,...]\n"
     "  --scenes    built-in scenes (default all: planes, boxes, tree, butterfly, terrain, crowd, box; '' for none)\n"
     "  FILE        mesh files (what penumbra-playground --scene loads), measured after the built-in scenes\n"
     "  --corpus    every mesh of the corpus in DIR (default ~/.cache/penumbra/corpus; scripts/get_corpus.sh)\n"
@@ -82,7 +84,9 @@ constexpr const char* usage_text =
     "  --repeat    render each configuration N times and keep each pass's fastest time (default 3)\n"
     "  --variants  model variants: a fusion rule, optionally +clip for the tangent clip and +adaptive for\n"
     "              adaptive slice placement, e.g. probabilistic,chained+clip,chained+clip+adaptive\n"
-    "              (default: Config{}'s)\n";
+    "              (default: Config{}'s)\n"
+    "  --level-reductions  level_reduction values to measure, each a row (-1: every level at full\n"
+    "              resolution; default: Config{}'s); rows of another value than the default say 'rN'\n";
 
 bool parse_pair(std::string_view text, int& a, int& b) {
     const std::size_t x = text.find('x');
@@ -172,6 +176,18 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                 v.fusion = *fusion;
                 o.variants.push_back(v);
             }
+        } else if (flag == "--level-reductions") {
+            o.level_reductions.clear();
+            for (std::string_view item : split(value)) {
+                int n = 0;
+                const bool negative = item.starts_with("-");
+                if (negative) item.remove_prefix(1);
+                if (!parse_number(item, n) || (negative && n != 1) || n > 12) {
+                    error = "--level-reductions: expected -1 or 0 to 12, e.g. -1,2,3";
+                    return std::nullopt;
+                }
+                o.level_reductions.push_back(negative ? -1 : n);
+            }
         } else if (flag == "--size") {
             if (!parse_pair(value, o.width, o.height) || o.width < 1 || o.height < 1 || o.width > 4096 || o.height > 4096) {
                 error = "--size: expected WxH, 1 to 4096 each";
@@ -189,7 +205,7 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
             }
         } else {
             error = "unknown flag '" + std::string(flag) + "'; allowed: --scenes, --corpus, --no-ground, --filters, --configs, --size, "
-                    "--samples, --repeat, --variants, --help, FILE";
+                    "--samples, --repeat, --variants, --level-reductions, --help, FILE";
             return std::nullopt;
         }
     }
@@ -274,12 +290,16 @@ int main(int argc, char** argv) {
         double truth_ms = 0;
         for (const SliceSetting& setting : options->settings)
             for (penumbra::Filter filter : options->filters)
-            for (const Variant& variant : options->variants) {
-                const penumbra::Config config{.slices = setting.slices, .resolution = setting.resolution, .filter = filter,
-                                              .fusion = variant.fusion, .tangent_clip = variant.tangent_clip,
-                                              .slice_placement = variant.placement};
+            for (const Variant& variant : options->variants)
+            for (int reduction : options->level_reductions) {
+                penumbra::Config config{.slices = setting.slices, .resolution = setting.resolution, .filter = filter,
+                                        .fusion = variant.fusion, .tangent_clip = variant.tangent_clip,
+                                        .slice_placement = variant.placement};
+                config.level_reduction = reduction;
+                const std::string reduced =
+                    reduction == penumbra::Config{}.level_reduction ? "" : " r" + std::to_string(reduction);
                 const std::string label = scene_name + " | " + std::string(penumbra::to_string(filter)) + " " +
-                                          variant_name(variant) + " | " + std::to_string(setting.slices) + "/" +
+                                          variant_name(variant) + reduced + " | " + std::to_string(setting.slices) + "/" +
                                           std::to_string(setting.resolution);
                 if (const auto problems = penumbra::validate(config); !problems.empty()) {
                     std::printf("| %s | invalid: %s |\n", label.c_str(), problems.front().message.c_str());

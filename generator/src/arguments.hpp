@@ -26,6 +26,7 @@ struct ConfigFlags {
     std::optional<penumbra::SlicePlacement> slice_placement; // --slice-placement
     std::optional<int> level_bound;                           // --level-bound
     std::optional<penumbra::LevelFormat> level_format;        // --level-format
+    std::optional<int> level_reduction;                       // --level-reduction
     TechniqueFlags technique; // --technique and each technique's flags (technique_flags.hpp)
 };
 

@@ -15,7 +15,7 @@ using nlohmann::json;
 
 constexpr std::string_view key_list =
     "slices, resolution, filter, fusion, packing, light, leak_fix, self_shadow_fade, tangent_clip, slice_placement, "
-    "level_format, level_bound, target, "
+    "level_format, level_bound, level_reduction, target, "
     "technique, shadow_map, pcf, pcss, oim, erosion";
 
 std::string type_of(const json& value) {
@@ -196,6 +196,7 @@ std::string allowed_for(const std::string& key) {
     if (key == "target") return "one of " + allowed_names<penumbra::Target>();
     if (key == "leak_fix" || key == "self_shadow_fade") return "true or false";
     if (key == "level_bound") return "-1 (every level) or 0 to log2(resolution)";
+    if (key == "level_reduction") return "-1 (every level at full resolution) or 0 to log2(resolution)";
     return {};
 }
 
@@ -307,6 +308,8 @@ Parsed<penumbra::Config> parse_config_json(std::string_view text, std::string_vi
             error = store(read_enum<penumbra::LevelFormat>(key, value), config.level_format);
         else if (key == "level_bound")
             error = store(read_int(key, value, allowed_for(key)), config.level_bound);
+        else if (key == "level_reduction")
+            error = store(read_int(key, value, allowed_for(key)), config.level_reduction);
         else
             error = "unknown key '" + printable(key) + "'; allowed keys: " + std::string(key_list);
         if (!error.empty()) return {{}, where + ": " + error};

@@ -61,6 +61,7 @@ inline std::vector<GenericValue> generic_values(const Config& config) {
     const double in_param_order[] = { // the order of detail::generic_value_params()
         double(config.slices), double(config.resolution), double(max_level(config)), double(T), 1.0 / T,
         double(static_cast<int>(config.fusion)), config.self_shadow_fade ? 1.0 : 0.0,
+        reduces_levels(config) ? double(config.level_reduction) : 99.0,
     };
     std::vector<GenericValue> values;
     const std::vector<detail::Param> params = detail::generic_value_params();

@@ -125,6 +125,9 @@ bool config_editor(const char* id, Config& config) {
     changed |= ImGui::Checkbox("fade (§3.4.2)", &config.self_shadow_fade);
     changed |= ImGui::Checkbox("tangent clip", &config.tangent_clip);
     changed |= enum_combo("slice placement (§5)", config.slice_placement);
+    if (config.packing == Packing::atlas && (config.filter == Filter::nbuffer || config.filter == Filter::gaussian))
+        changed |= ImGui::SliderInt("level reduction", &config.level_reduction, -1, resolution_levels(config),
+                                    config.level_reduction < 0 ? "off" : "above %d");
     ImGui::PopID();
     return changed;
 }
