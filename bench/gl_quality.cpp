@@ -77,6 +77,7 @@ struct Options {
     std::vector<SceneInput> scenes;
     std::vector<penumbra::Filter> filters{penumbra::Filter::mipmap, penumbra::Filter::nbuffer, penumbra::Filter::sat};
     std::vector<SliceSetting> settings{{16, 512}, {4, 128}};
+    std::vector<int> level_reductions{penumbra::Config{}.level_reduction}; // --level-reductions
     int width = 256, height = 256, samples = 16, repeat = 3;
     bool ground = true; // --no-ground: no floor under the mesh files
 };
@@ -84,6 +85,7 @@ struct Options {
 constexpr const char* usage_text =
     "usage: penumbra-bench-quality [--scenes a,b,...] [FILE ...] [--corpus [DIR]] [--no-ground] [--filters f,g,...]\n"
     "                              [--configs SxR,...] [--size WxH] [--samples N] [--repeat N] [--variants v,w,...]\n"
+    "                              [--level-reductions N,M,...]\n"
     "  --scenes    built-in scenes (default all: planes, boxes, tree, butterfly, terrain, crowd, box; '' for none)\n"
     "  FILE        mesh files (what penumbra-playground --scene loads), measured after the built-in scenes\n"
     "  --corpus    every mesh of the corpus in DIR (default ~/.cache/penumbra/corpus; scripts/get_corpus.sh)\n"
@@ -93,11 +95,13 @@ constexpr const char* usage_text =
     "  --size      image size (default 256x256)\n"
     "  --samples   ground-truth rays per light axis (default 16: 256 rays per pixel)\n"
     "  --repeat    render each configuration N times and keep each pass's fastest time (default 3)\n"
-    "  --variants  model variants: a fusion rule, optionally +clip for the tangent clip, +offsetT for its offset,\n"
-    "              +footprint / +nofootprint for its footprint move,\n"
-    "              (slicing texels), +rampF for the fade's ramp (fraction of a slice) and +adaptive for adaptive\n"
-    "              slice placement, e.g. probabilistic,chained+clip,chained+clip+offset3+ramp1,chained+clip+adaptive\n"
-    "              (default: Config{}'s)\n";
+    "  --variants  model variants: a fusion rule, optionally +clip for the tangent clip, +offsetT for its offset\n"
+    "              (slicing texels), +nofootprint / +footprint for its footprint move, +rampF for the fade's ramp\n"
+    "              (fraction of a slice) and +adaptive for adaptive slice placement, e.g.\n"
+    "              probabilistic,chained+clip,chained+clip+offset3+nofootprint+ramp1,chained+clip+adaptive\n"
+    "              (default: Config{}'s)\n"
+    "  --level-reductions  level_reduction values to measure, each a row (-1: every level at full\n"
+    "              resolution; default: Config{}'s); rows of another value than the default say 'rN'\n";
 
 bool parse_pair(std::string_view text, int& a, int& b) {
     const std::size_t x = text.find('x');
@@ -192,6 +196,18 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                 }
                 o.variants.push_back(v);
             }
+        } else if (flag == "--level-reductions") {
+            o.level_reductions.clear();
+            for (std::string_view item : split(value)) {
+                int n = 0;
+                const bool negative = item.starts_with("-");
+                if (negative) item.remove_prefix(1);
+                if (!parse_number(item, n) || (negative && n != 1) || n > 12) {
+                    error = "--level-reductions: expected -1 or 0 to 12, e.g. -1,2,3";
+                    return std::nullopt;
+                }
+                o.level_reductions.push_back(negative ? -1 : n);
+            }
         } else if (flag == "--size") {
             if (!parse_pair(value, o.width, o.height) || o.width < 1 || o.height < 1 || o.width > 4096 || o.height > 4096) {
                 error = "--size: expected WxH, 1 to 4096 each";
@@ -209,7 +225,7 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
             }
         } else {
             error = "unknown flag '" + std::string(flag) + "'; allowed: --scenes, --corpus, --no-ground, --filters, --configs, --size, "
-                    "--samples, --repeat, --variants, --help, FILE";
+                    "--samples, --repeat, --variants, --level-reductions, --help, FILE";
             return std::nullopt;
         }
     }
@@ -294,15 +310,19 @@ int main(int argc, char** argv) {
         double truth_ms = 0;
         for (const SliceSetting& setting : options->settings)
             for (penumbra::Filter filter : options->filters)
-            for (const Variant& variant : options->variants) {
-                const penumbra::Config config{.slices = setting.slices, .resolution = setting.resolution, .filter = filter,
-                                              .fusion = variant.fusion, .tangent_clip = variant.tangent_clip,
-                                              .slice_placement = variant.placement,
-                                              .tangent_clip_offset = variant.tangent_clip_offset,
-                                              .clip_footprint = variant.clip_footprint,
-                                              .fade_ramp = variant.fade_ramp};
+            for (const Variant& variant : options->variants)
+            for (int reduction : options->level_reductions) {
+                penumbra::Config config{.slices = setting.slices, .resolution = setting.resolution, .filter = filter,
+                                        .fusion = variant.fusion, .tangent_clip = variant.tangent_clip,
+                                        .slice_placement = variant.placement};
+                config.level_reduction = reduction;
+                config.tangent_clip_offset = variant.tangent_clip_offset;
+                config.clip_footprint = variant.clip_footprint;
+                config.fade_ramp = variant.fade_ramp;
+                const std::string reduced =
+                    reduction == penumbra::Config{}.level_reduction ? "" : " r" + std::to_string(reduction);
                 const std::string label = scene_name + " | " + std::string(penumbra::to_string(filter)) + " " +
-                                          variant_name(variant) + " | " + std::to_string(setting.slices) + "/" +
+                                          variant_name(variant) + reduced + " | " + std::to_string(setting.slices) + "/" +
                                           std::to_string(setting.resolution);
                 if (const auto problems = penumbra::validate(config); !problems.empty()) {
                     std::printf("| %s | invalid: %s |\n", label.c_str(), problems.front().message.c_str());

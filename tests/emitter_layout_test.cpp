@@ -6,6 +6,7 @@
 
 #include <doctest/doctest.h>
 
+#include <map>
 #include <set>
 
 using namespace penumbra;
@@ -301,7 +302,8 @@ TEST_CASE("layout: adaptive slice placement runs the depth bins and the boundary
 // Only the levels the kernels reach (penumbra/level_bound.hpp): level_bound caps what is built,
 // allocated and read; the summed-area table keeps every doubling step.
 TEST_CASE("layout: level_bound builds, allocates and reads only levels 0 to the bound") {
-    const Config all{.slices = 16, .resolution = 512};
+    Config all{.slices = 16, .resolution = 512};
+    all.level_reduction = -1; // every level at full resolution (reduced levels: the next test case)
     Config bounded = all;
     bounded.level_bound = 5;
     const Layout full = describe_layout(all), cut = describe_layout(bounded);
@@ -344,6 +346,64 @@ TEST_CASE("layout: level_bound builds, allocates and reads only levels 0 to the 
     CHECK(!is_valid(bad));
 }
 
+// Reduced levels (config.level_reduction): the atlas's levels above it halve per level, their
+// passes render at that size and read the previous level at the texels their own stand for.
+TEST_CASE("layout: levels above level_reduction at half the resolution of the one below") {
+    Config config{.slices = 16, .resolution = 512, .level_bound = 6};
+    REQUIRE(config.level_reduction == 2); // the default
+    const Layout layout = describe_layout(config);
+    const int sides[] = {512, 512, 512, 256, 128, 64, 32};
+    for (int l = 0; l <= 6; ++l) {
+        const TextureDesc* t = find_texture(layout, "penumbra_level" + std::to_string(l));
+        REQUIRE(t != nullptr);
+        CHECK(t->width == 4 * sides[l]);
+        CHECK(t->height == sides[l]);
+    }
+    std::vector<const PassDesc*> levels;
+    for (const PassDesc& p : layout.passes)
+        if (p.name == "nbuffer_level") levels.push_back(&p);
+    REQUIRE(levels.size() == 6);
+    auto ints = [](const PassDesc& p) {
+        std::map<std::string, int> m(p.int_uniforms.begin(), p.int_uniforms.end());
+        return m;
+    };
+    // level 2 from level 1: full resolution, offsets of 2 texels
+    CHECK(ints(*levels[1]) == std::map<std::string, int>{{"penumbra_step", 2}, {"penumbra_sourceTile", 512}, {"penumbra_scale", 1}});
+    CHECK(levels[1]->viewport_width == 2048);
+    // level 3 from level 2 (full): half the size, offsets of 4 level-0 texels = 4 of level 2
+    CHECK(ints(*levels[2]) == std::map<std::string, int>{{"penumbra_step", 4}, {"penumbra_sourceTile", 512}, {"penumbra_scale", 2}});
+    CHECK(levels[2]->viewport_width == 1024);
+    CHECK(levels[2]->viewport_height == 256);
+    // level 5 from level 4 (spacing 4): 16 level-0 texels = 4 of level 4
+    CHECK(ints(*levels[4]) == std::map<std::string, int>{{"penumbra_step", 4}, {"penumbra_sourceTile", 128}, {"penumbra_scale", 2}});
+    CHECK(to_json(layout).find("\"level_reduction\": 2") != std::string::npos);
+    // slices (4 MiB) + levels 0 to 2 (4 MiB each) + levels 3 to 6 (a quarter less each time)
+    const long long full_level = 2048LL * 512 * 4;
+    CHECK(texture_bytes(layout) == full_level * 4 + full_level / 4 + full_level / 16 + full_level / 64 + full_level / 256);
+    Config full = config;
+    full.level_reduction = -1;
+    CHECK(texture_bytes(describe_layout(full)) == full_level * 8);
+    // the shading pass reads level 3 at c - (2^2 - 2/2) / 512 = c - 3/512, level 2 at c - 1.5/512
+    const std::string shading = std::string(emit(config).value->snippet.text);
+    CHECK(shading.find("kernel.y - 0.005859375") != std::string::npos);
+    CHECK(shading.find("kernel.y - 0.0029296875") != std::string::npos);
+    std::string level_pass;
+    const Result<Emission> emission = emit(config);
+    for (const Program& program : emission.value->programs)
+        if (program.name == "nbuffer_level") level_pass = std::string(program.stages.back().text);
+    CHECK(level_pass.find("penumbra_sourceTile") != std::string::npos);
+    // the array and the volume keep every level at R² (one size per texture)
+    Config array = config;
+    array.packing = Packing::array;
+    CHECK(find_texture(describe_layout(array), "penumbra_levels")->width == 512);
+    Config bad = config;
+    bad.level_reduction = 10;
+    REQUIRE(!is_valid(bad));
+    CHECK(validate(bad).front().field == "level_reduction");
+    bad.level_reduction = -2;
+    CHECK(!is_valid(bad));
+}
+
 TEST_CASE("kernel_level_bound: the widest kernel of a receiver on the bounds' bottom through the top plane") {
     const RectLight light{.center = {0, 5, 0}, .u_axis = {1, 0, 0}, .v_axis = {0, 0, 1}, .width = 1, .height = 1};
     const Config config{.slices = 16, .resolution = 512};
@@ -364,6 +424,7 @@ TEST_CASE("kernel_level_bound: the widest kernel of a receiver on the bounds' bo
 TEST_CASE("cost_model: fragments, fetches and bytes per pass, from the layout") {
     Config config{.slices = 16, .resolution = 512};
     config.level_bound = 5;
+    config.level_reduction = -1; // every level at full resolution
     const Layout layout = describe_layout(config);
     const CostModel cost = cost_model(layout, 256, 256);
     int levels = 0;

@@ -31,6 +31,7 @@ export const FIELDS = [
     {key: "slice_placement", flag: "--slice-placement", kind: "enum", help: "slice boundaries: uniform (equal slices over the bounds) or adaptive (at the depths the geometry occupies, computed on the GPU; paper §5)", techniques: OCCLUSION},
     {key: "level_format", flag: "--level-format", kind: "enum", help: "storage of the filtered levels", note: "essl300 (the page) stores rgba8", techniques: OCCLUSION},
     {key: "level_bound", flag: "--level-bound", kind: "int", help: "highest filter level built and read", techniques: OCCLUSION},
+    {key: "level_reduction", flag: "--level-reduction", kind: "int", help: "the levels above N are stored at half the resolution of the one below", techniques: OCCLUSION},
     {key: "shadow_map.resolution", flag: "--shadow-resolution", kind: "int", help: "shadow map side in texels, a power of two 32 to 8192", techniques: SHADOW_MAP},
     {key: "shadow_map.constant_bias", flag: "--shadow-bias", kind: "real", help: "constant depth bias in scene units along the light axis, 0 to 10", techniques: SHADOW_MAP},
     {key: "shadow_map.slope_bias", flag: "--shadow-slope-bias", kind: "real", help: "slope bias: S times the depth change across one texel, 0 to 16", techniques: SHADOW_MAP},

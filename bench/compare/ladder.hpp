@@ -39,14 +39,26 @@ inline LadderEntry paper_entry(int slices, int resolution) {
     return {"paper", "paper nbuffer " + std::to_string(slices) + "/" + std::to_string(resolution), config, false};
 }
 
-// The default before it built only the levels its kernels reach, in RGBA8: every level, RGBA16F
-// (85 MiB at 16/512). Its own family, so that the tables show it beside the default and never pick it.
+// The default before it built only the levels its kernels reach, in RGBA8, at reduced resolution:
+// every level, RGBA16F, at full resolution (85 MiB at 16/512). Its own family, so that the tables show it beside the default and never pick it.
 inline LadderEntry every_level_entry(int slices, int resolution) {
     Config config{.slices = slices, .resolution = resolution, .filter = Filter::nbuffer};
     config.level_format = LevelFormat::rgba16f;
     config.level_bound = resolution_levels(config); // set: the runtime does not fit it
+    config.level_reduction = -1;                    // every level at full resolution
     return {"every-level",
             "OT nbuffer " + std::to_string(slices) + "/" + std::to_string(resolution) + " every level RGBA16F", config,
+            false};
+}
+
+// The default before it stored the atlas's levels above level_reduction at reduced resolution:
+// every level it builds at R² (28 to 40 MiB at 16/512, with the levels the light needs). Its own
+// family, like every-level.
+inline LadderEntry full_levels_entry(int slices, int resolution) {
+    Config config{.slices = slices, .resolution = resolution, .filter = Filter::nbuffer};
+    config.level_reduction = -1;
+    return {"full-levels",
+            "OT nbuffer " + std::to_string(slices) + "/" + std::to_string(resolution) + " full-resolution levels", config,
             false};
 }
 
@@ -86,6 +98,7 @@ inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
         occlusion_entry(Filter::nbuffer, 16, 256),
         occlusion_entry(Filter::nbuffer, 16, 512, true), // the default configuration
         every_level_entry(16, 512),
+        full_levels_entry(16, 512),
         paper_entry(16, 512),
         occlusion_entry(Filter::nbuffer, 32, 512),
         occlusion_entry(Filter::sat, 8, 256),

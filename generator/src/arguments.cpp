@@ -10,7 +10,7 @@ namespace {
 
 constexpr std::string_view flag_list =
     "--slices, --resolution, --filter, --fusion, --packing, --light, --target, --no-leak-fix, --no-fade, "
-    "--tangent-clip, --no-tangent-clip, --tangent-clip-offset, --no-clip-footprint, --fade-ramp, --slice-placement, --level-bound, --level-format, --config, --validate, --out, --help, --technique, --shadow-resolution, "
+    "--tangent-clip, --no-tangent-clip, --slice-placement, --level-bound, --level-format, --level-reduction, --tangent-clip-offset, --no-clip-footprint, --fade-ramp, --config, --validate, --out, --help, --technique, --shadow-resolution, "
     "--shadow-bias, --shadow-slope-bias, --pcf-pattern, --pcf-grid, --pcf-taps, --pcf-radius, --pcss-blockers, "
     "--pcss-filter, --pcss-max-texels, --no-rotation";
 
@@ -82,7 +82,7 @@ Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
         }
         const bool takes_value = flag == "--slices" || flag == "--resolution" || flag == "--filter" ||
                                  flag == "--fusion" || flag == "--packing" || flag == "--light" ||
-                                 flag == "--target" || flag == "--slice-placement" || flag == "--level-bound" || flag == "--level-format" || flag == "--config" ||
+                                 flag == "--target" || flag == "--slice-placement" || flag == "--level-bound" || flag == "--level-format" || flag == "--level-reduction" || flag == "--config" ||
                                  flag == "--tangent-clip-offset" || flag == "--fade-ramp" ||
                                  flag == "--out" ||
                                  is_technique_flag(flag);
@@ -126,6 +126,9 @@ Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
             error = parse_real(flag, value, out.flags.tangent_clip_offset, "0 to 8 slicing texels");
         else if (flag == "--fade-ramp")
             error = parse_real(flag, value, out.flags.fade_ramp, "more than 0 to 4 (fraction of a slice's thickness)");
+        else if (flag == "--level-reduction")
+            error = store(parse_int(flag, value, "-1 (every level at full resolution) or 0 to log2(resolution)"),
+                          out.flags.level_reduction);
         else if (is_technique_flag(flag))
             error = parse_technique_flag(flag, value, out.flags.technique);
         else if (value.empty())
@@ -157,6 +160,7 @@ penumbra::Config apply(const ConfigFlags& flags, penumbra::Config config) {
     if (flags.tangent_clip_offset) config.tangent_clip_offset = *flags.tangent_clip_offset;
     if (flags.fade_ramp) config.fade_ramp = *flags.fade_ramp;
     if (flags.no_clip_footprint) config.clip_footprint = false;
+    if (flags.level_reduction) config.level_reduction = *flags.level_reduction;
     return apply(flags.technique, config);
 }
 
@@ -175,8 +179,8 @@ std::string usage() {
     std::string out = "usage: penumbra-gen [--technique T] [--slices N] [--resolution R] [--filter F] [--fusion U] "
                       "[--packing P] [--light L]\n"
                       "                    [--target T] [--no-leak-fix] [--no-fade] [--[no-]tangent-clip] [--slice-placement P]\n"
-                      "                    [--level-bound N] [--level-format F] [--tangent-clip-offset T]\n"
-                      "                    [--no-clip-footprint] [--fade-ramp F]\n"
+                      "                    [--level-bound N] [--level-format F] [--level-reduction N]\n"
+                      "                    [--tangent-clip-offset T] [--no-clip-footprint] [--fade-ramp F]\n"
                       "                    [technique flags] [--config FILE.json] [--validate] --out DIR\n"
                       "\n"
                       "Writes the GLSL of one Penumbra configuration and its layout.json into DIR.\n"
@@ -217,14 +221,20 @@ std::string usage() {
     out += line("--level-format F", names("storage of the filtered levels: " + allowed_names<LevelFormat>() +
                                               "\n                      (essl300: always rgba8)",
                                           to_string(d.level_format)));
+    out += line("--level-reduction N",
+                "atlas of N-buffer or Gaussian levels: the levels above N are stored at half\n"
+                "                      the resolution of the one below (level l at resolution / 2^(l - N));\n"
+                "                      -1: every level at full resolution; 0 to log2(resolution)\n"
+                "                      (default " + std::to_string(d.level_reduction) + ")");
     out += "\ntechnique (occlusion: the flags above; shadowmap, pcf, pcss, erosion, oim: these, plus --light and --target):\n";
     out += technique_usage(25);
     out +=
         line("--config FILE.json",
              "read the configuration from JSON: an object with the keys technique, slices, resolution,\n"
              "                      filter, fusion, packing, light, leak_fix, self_shadow_fade, tangent_clip,\n"
-             "                      tangent_clip_offset, clip_footprint, fade_ramp, slice_placement, level_format, level_bound, target, and the\n"
-             "                      objects shadow_map, pcf, pcss (all optional), or a\n"
+             "                      slice_placement, level_format, level_bound, level_reduction,\n"
+             "                      tangent_clip_offset, clip_footprint, fade_ramp, target, and the objects shadow_map, pcf,\n"
+             "                      pcss (all optional), or a\n"
              "                      layout.json, whose \"config\" object is read; a regular file of at most 1 MiB");
     out += "\noutput:\n";
     out += line("--out DIR", "directory to write into, created with its parents (required); all files or\n"

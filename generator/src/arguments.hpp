@@ -29,6 +29,7 @@ struct ConfigFlags {
     std::optional<double> tangent_clip_offset;                // --tangent-clip-offset
     bool no_clip_footprint = false;                           // --no-clip-footprint
     std::optional<double> fade_ramp;                          // --fade-ramp
+    std::optional<int> level_reduction;                       // --level-reduction
     TechniqueFlags technique; // --technique and each technique's flags (technique_flags.hpp)
 };
 

@@ -15,7 +15,7 @@ using nlohmann::json;
 
 constexpr std::string_view key_list =
     "slices, resolution, filter, fusion, packing, light, leak_fix, self_shadow_fade, tangent_clip, slice_placement, "
-    "level_format, level_bound, tangent_clip_offset, clip_footprint, fade_ramp, target, "
+    "level_format, level_bound, level_reduction, tangent_clip_offset, clip_footprint, fade_ramp, target, "
     "technique, shadow_map, pcf, pcss, oim, erosion";
 
 std::string type_of(const json& value) {
@@ -199,6 +199,7 @@ std::string allowed_for(const std::string& key) {
     if (key == "level_bound") return "-1 (every level) or 0 to log2(resolution)";
     if (key == "tangent_clip_offset") return "0 to 8 slicing texels";
     if (key == "fade_ramp") return "more than 0 to 4 (fraction of a slice's thickness)";
+    if (key == "level_reduction") return "-1 (every level at full resolution) or 0 to log2(resolution)";
     return {};
 }
 
@@ -316,6 +317,8 @@ Parsed<penumbra::Config> parse_config_json(std::string_view text, std::string_vi
             error = store(read_bool(key, value), config.clip_footprint);
         else if (key == "fade_ramp")
             error = store(read_real(key, value, allowed_for(key)), config.fade_ramp);
+        else if (key == "level_reduction")
+            error = store(read_int(key, value, allowed_for(key)), config.level_reduction);
         else
             error = "unknown key '" + printable(key) + "'; allowed keys: " + std::string(key_list);
         if (!error.empty()) return {{}, where + ": " + error};

@@ -185,6 +185,10 @@ struct Config {
                                             // footprint in the slice above it (0 on faces that face the light)
     double fade_ramp = 0.25;                // the self-shadow fade ramps over this fraction of a slice's thickness
                                             // above the plane; more than 0 to 4
+    int level_reduction = 2;                // atlas of N-buffer or Gaussian levels: the levels above this one are
+                                            // stored at half the resolution of the one below, level l at
+                                            // R / 2^(l - level_reduction) (a window of 2^l texels is smooth at
+                                            // that scale); -1: every level at R (array and volume: always)
     Target target = Target::glsl450;        // shading language of the output
     ShadowMapParams shadow_map{};           // shadowmap, pcf, pcss: the depth map from the light
     PcfParams pcf{};                        // pcf: the fixed kernel
@@ -319,6 +323,21 @@ constexpr int resolution_levels(const Config& config) {
 constexpr int max_level(const Config& config) {
     const int all = resolution_levels(config);
     return config.level_bound >= 0 && config.level_bound < all ? config.level_bound : all;
+}
+
+// True when the atlas's filter levels above config.level_reduction are stored at reduced
+// resolution (N-buffer and Gaussian levels in the atlas packing; the array's layers and the
+// volume's depth slices share one size).
+constexpr bool reduces_levels(const Config& config) {
+    return config.technique == Technique::occlusion && config.packing == Packing::atlas &&
+           (config.filter == Filter::nbuffer || config.filter == Filter::gaussian) && config.level_reduction >= 0;
+}
+
+// Texels of level 0 between two neighbouring texels of filter level `level`: 1 at full resolution,
+// 2^(level - level_reduction) above level_reduction (reduces_levels).
+constexpr int level_spacing(const Config& config, int level) {
+    if (!reduces_levels(config) || level <= config.level_reduction) return 1;
+    return 1 << (level - config.level_reduction);
 }
 
 } // namespace penumbra

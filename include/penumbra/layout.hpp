@@ -352,9 +352,14 @@ inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
                                                                    : "exclusive summed-area tables, (R+1)-texel tiles");
         }
     } else if (config.packing == Packing::atlas) {
-        for (int l = 0; l <= L; ++l)
-            b.texture(atlas_level_name(l).str(), "2D", level_fmt, T * R, R, 1, 1, "LINEAR", "LINEAR",
-                    "filter level " + std::to_string(l) + ", tiles side by side");
+        for (int l = 0; l <= L; ++l) {
+            const int side = R / level_spacing(config, l); // reduced levels: R / 2^(l - level_reduction)
+            b.texture(atlas_level_name(l).str(), "2D", level_fmt, T * side, side, 1, 1, "LINEAR", "LINEAR",
+                    "filter level " + std::to_string(l) + ", tiles side by side" +
+                        (side < R ? ", " + std::to_string(side) + " texels per tile (texel j: level-0 texel " +
+                                        std::to_string(R / side) + " * j)"
+                                  : std::string()));
+        }
     } else if (config.packing == Packing::array) {
         b.texture("penumbra_levels", "2D_ARRAY", level_fmt, R, R, (L + 1) * T, 1, "LINEAR", "LINEAR",
                 "filter levels, layer = level * T + texture");
@@ -435,8 +440,14 @@ inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
         for (int l = 1; l <= L; ++l) {
             const std::pair<std::string, int> step{"penumbra_step", 1 << (l - 1)};
             if (config.packing == Packing::atlas) {
+                const int spacing = level_spacing(config, l), source_spacing = level_spacing(config, l - 1);
+                std::vector<std::pair<std::string, int>> ints{step};
+                if (reduces_levels(config)) // offsets in texels of the previous level, and its tile side
+                    ints = {{"penumbra_step", (1 << (l - 1)) / source_spacing},
+                            {"penumbra_sourceTile", R / source_spacing},
+                            {"penumbra_scale", spacing / source_spacing}};
                 b.fullscreen(level_program, level_program, {{"penumbra_source", atlas_level_name(l - 1).str()}},
-                           {atlas_level_name(l).str(), 0, -1}, {step}, T * R, R);
+                           {atlas_level_name(l).str(), 0, -1}, ints, T * R / spacing, R / spacing);
                 continue;
             }
             for (int t = 0; t < T; ++t) {
@@ -689,6 +700,7 @@ inline std::string to_json(const Layout& layout) {
     field("    ", "slice_placement", json_string(to_string(c.slice_placement)));
     field("    ", "level_format", json_string(to_string(c.level_format)));
     field("    ", "level_bound", std::to_string(c.level_bound));
+    field("    ", "level_reduction", std::to_string(c.level_reduction));
     auto real = [](double v) { return detail::format_float(v).str(); };
     field("    ", "tangent_clip_offset", real(c.tangent_clip_offset));
     field("    ", "clip_footprint", c.clip_footprint ? "true" : "false");

@@ -194,6 +194,10 @@ constexpr std::vector<Problem> find_problems(const Config& config) {
     if (!(config.fade_ramp > 0.0 && config.fade_ramp <= 4.0))
         add("fade_ramp", format_value(config.fade_ramp),
             "is out of range; allowed: more than 0 to 4 (fraction of a slice's thickness)");
+    if (problems.empty() && (config.level_reduction < -1 || config.level_reduction > resolution_levels(config)))
+        add("level_reduction", format_int(config.level_reduction),
+            cat("is out of range; allowed: -1 (every level at full resolution) or 0 to ",
+                format_int(resolution_levels(config)), " (log2 of resolution ", format_int(config.resolution), ")"));
     if (!problems.empty()) return problems; // the rules below need valid fields
 
     const std::string_view filter = to_string(config.filter);

@@ -48,6 +48,8 @@ constexpr std::vector<Param> generic_value_params() {
         {"penumbra_tangentClipOffset", "float", "the tangent clip's sideways offset along the normal", "slicing texels"},
         {"penumbra_clipFootprint", "float",
          "slice thicknesses the receiver's own footprint spans (1 + leak-fix reach) with clip_footprint on, 0 off", ""},
+        {"penumbra_levelReduction", "int",
+         "atlas levels above this one at half the resolution of the one below (level_reduction); 99: none", ""},
     };
 }
 
@@ -225,11 +227,15 @@ constexpr void write_generic_level_read(LineWriter& out, const Config& config) {
     write_array_read(out, config, "penumbra_levelTexel", "vec2", "penumbra_levelAtlases", generic_level_textures);
     out.line("vec4 penumbra_atlasLevel(int level, vec4 kernel, int tile)");
     out.line("{");
+    out.comment("level-0 texels between two texels of this level (reduced levels: level_reduction)");
+    out.line("float spacing = float(1 << max(level - penumbra_levelReduction, 0));");
     if (config.filter == Filter::nbuffer) {
-        out.comment("the 2^level-texel window centred at the kernel is anchored 2^(level-1) texels lower");
-        out.line("float shift = (0.5 * float(1 << level) - 0.5) / penumbra_resolution;");
+        out.comment("the 2^level-texel window centred at the kernel is anchored 2^(level-1) texels lower;");
+        out.comment("a texel's centre lies spacing/2 texels past its anchor");
+        out.line("float shift = (0.5 * float(1 << level) - 0.5 * spacing) / penumbra_resolution;");
     } else {
-        out.line("float shift = 0.0;");
+        out.comment("a reduced level's texel j holds the blur at level-0 texel spacing * j");
+        out.line("float shift = (0.5 - 0.5 * spacing) / penumbra_resolution;");
     }
     out.line("vec2 uv = vec2(float(tile) * penumbra_invTileCount + (kernel.x - shift) * penumbra_invTileCount, "
              "kernel.y - shift);");

@@ -26,13 +26,25 @@ constexpr Text fullscreen_vertex(const Config& config) {
 }
 
 constexpr Param step_param() {
-    return {"penumbra_step", "int", "offset between the windows combined by this pass", "texels", {}, "pass"};
+    return {"penumbra_step", "int", "offset between the windows combined by this pass, in texels of the texture it reads", "texels", {}, "pass"};
+}
+// Reduced levels (reduces_levels): the previous level's tile side and how many of its texels one
+// texel of the level being built steps over (2 where this level halves the resolution, else 1).
+constexpr Param source_tile_param() {
+    return {"penumbra_sourceTile", "int", "side of one tile of the previous level", "texels", {}, "pass"};
+}
+constexpr Param scale_param() {
+    return {"penumbra_scale", "int", "texels of the previous level per texel of this one, per axis (1 or 2)", "", {}, "pass"};
 }
 constexpr Param layer_param(std::string_view meaning) { return {"penumbra_sourceLayer", "int", meaning, "", {}, "pass"}; }
 
 // Parameters of a level-building pass (N-buffer or Gaussian): the window step and the source.
 constexpr std::vector<Param> level_params(const Config& config) {
     std::vector<Param> params{step_param()};
+    if (reduces_levels(config)) {
+        params.push_back(source_tile_param());
+        params.push_back(scale_param());
+    }
     if (config.packing == Packing::atlas)
         params.push_back({"penumbra_source", "sampler2D", "previous filter level (atlas)", ""});
     else if (config.packing == Packing::array) {
@@ -58,6 +70,19 @@ constexpr void write_level_source(LineWriter& out, const Config& config) {
     out.comment("texel of the previous level at base + offset, 0 outside the tile");
     out.line("vec4 penumbra_source_texel(ivec2 base, ivec2 offset)");
     out.line("{");
+    if (reduces_levels(config)) {
+        // the previous level's tiles are penumbra_sourceTile texels wide (reduced levels)
+        out.line("ivec2 local = ivec2(base.x % penumbra_sourceTile, base.y) + offset;");
+        out.line("ivec2 texel = base + offset;");
+        out.line("bool inside = all(greaterThanEqual(local, ivec2(0))) && all(lessThan(local, ivec2(penumbra_sourceTile)));");
+        out.line("texel = clamp(texel, ivec2(0), ivec2(", format_int(texture_count(config)),
+                 " * penumbra_sourceTile - 1, penumbra_sourceTile - 1));");
+        out.line("vec4 value = texelFetch(penumbra_source, texel, 0);");
+        out.line("return inside ? value : vec4(0.0);");
+        out.line("}");
+        out.blank();
+        return;
+    }
     if (config.packing == Packing::atlas) {
         out.line("ivec2 local = ivec2(base.x % ", R, ", base.y) + offset;");
         out.line("ivec2 texel = base + offset;");
@@ -79,6 +104,21 @@ constexpr void write_level_source(LineWriter& out, const Config& config) {
     out.blank();
 }
 
+// The texel of the previous level under this fragment's texel. Reduced levels (reduces_levels): a
+// texel of a level at spacing s (texels of level 0) stands for level-0 texel s·j of its tile, so
+// with penumbra_scale = s / s' it is texel scale·j of the previous level's tile (offsets in the
+// previous level's texels: penumbra_step = 2^(l-1) / s').
+constexpr void write_level_base(LineWriter& out, const Config& config) {
+    if (!reduces_levels(config)) {
+        out.line("ivec2 base = ivec2(gl_FragCoord.xy);");
+        return;
+    }
+    out.line("ivec2 fragment = ivec2(gl_FragCoord.xy);");
+    out.line("int tile = penumbra_sourceTile / penumbra_scale; // this level's tile side");
+    out.line("ivec2 base = ivec2((fragment.x / tile) * penumbra_sourceTile + (fragment.x % tile) * penumbra_scale,");
+    out.line("    fragment.y * penumbra_scale);");
+}
+
 // Décoret 2005: level l at a texel is the mean of the 2^l window anchored there, i.e. of four
 // level l-1 windows at offsets 0 and 2^(l-1).
 constexpr Text nbuffer_level_fragment(const Config& config) {
@@ -86,11 +126,11 @@ constexpr Text nbuffer_level_fragment(const Config& config) {
     write_preamble(out, config, "N-buffer level l from level l-1, fragment stage");
     write_level_source(out, config);
     out.chunk("nbuffer_level_main");
+    out.line("void main()");
+    out.line("{");
+    write_level_base(out, config);
     out.block(R"(
-void main()
-{
-    ivec2 base = ivec2(gl_FragCoord.xy);
-    int s = penumbra_step; // 2^(l-1)
+    int s = penumbra_step; // 2^(l-1) texels of level 0, in texels of the previous level
     penumbra_result = 0.25 * (penumbra_source_texel(base, ivec2(0, 0)) + penumbra_source_texel(base, ivec2(s, 0))
         + penumbra_source_texel(base, ivec2(0, s)) + penumbra_source_texel(base, ivec2(s, s)));
 }
@@ -106,11 +146,11 @@ constexpr Text gaussian_level_fragment(const Config& config) {
     write_preamble(out, config, "Gaussian level l from level l-1, fragment stage");
     write_level_source(out, config);
     out.chunk("gaussian_level_main");
+    out.line("void main()");
+    out.line("{");
+    write_level_base(out, config);
     out.block(R"(
-void main()
-{
-    ivec2 base = ivec2(gl_FragCoord.xy);
-    int s = penumbra_step; // 2^(l-1)
+    int s = penumbra_step; // 2^(l-1) texels of level 0, in texels of the previous level
     vec4 sum = vec4(0.0);
     // 3 x 3 taps, weights (1 2 1) x (1 2 1) / 16
     sum += 1.0 * penumbra_source_texel(base, ivec2(-s, -s));

@@ -240,9 +240,21 @@ constexpr Text weight_call(const Config& config) {
 }
 
 // N-buffer level l stores at a texel the mean of the 2^l-texel window anchored there, so a window
-// centred at c is read at c - 2^(l-1) texels, plus half a texel to land on the texel centre.
+// centred at c is read at c - 2^(l-1) texels, plus half a texel to land on the texel centre. A
+// reduced level (level_spacing s > 1) has texel j anchored at level-0 texel s·j, its centre s/2
+// texels further: the read moves by 2^(l-1) - s/2.
 constexpr Text nbuffer_shift(const Config& config, int level) {
-    return format_float((0.5 * (1 << level) - 0.5) / config.resolution);
+    return format_float((0.5 * (1 << level) - 0.5 * level_spacing(config, level)) / config.resolution);
+}
+
+// Where the atlas's level loop reads level `level` for the kernel's centre coordinate `axis`
+// ("kernel.x"): N-buffer levels at their window anchor; Gaussian levels at the centre, where a
+// reduced level's texel j (the blur at level-0 texel s·j) is read (s - 1)/2 texels further.
+constexpr Text level_read_coordinate(const Config& config, int level, std::string_view axis) {
+    if (config.filter == Filter::nbuffer) return cat(axis, " - ", nbuffer_shift(config, level));
+    const int spacing = level_spacing(config, level);
+    if (spacing == 1) return cat(axis, " - 0.0");
+    return cat(axis, " + ", format_float(0.5 * (spacing - 1) / config.resolution));
 }
 
 // Reads the filtered occlusion of all four channels for a kernel; one function per storage so the
@@ -454,9 +466,8 @@ constexpr void write_level_loop(LineWriter& out, const Config& config) {
         }
         out.line("vec4 kernel = ", kernel_call(config), ";");
         auto read = [&](int l) {
-            const Text shift = choose(config.filter == Filter::nbuffer, nbuffer_shift(config, l), Text("0.0"));
-            return cat("textureLod(", atlas_level_name(l), ", vec2(penumbra_delta + (kernel.x - ", shift, ") * ", k.inv_T,
-                       ", kernel.y - ", shift, "), 0.0)");
+            return cat("textureLod(", atlas_level_name(l), ", vec2(penumbra_delta + (", level_read_coordinate(config, l, "kernel.x"),
+                       ") * ", k.inv_T, ", ", level_read_coordinate(config, l, "kernel.y"), "), 0.0)");
         };
         if (last) {
             out.line("vec4 texel = ", read(level), ";");

@@ -197,6 +197,20 @@ void Oracle::build_levels(const SliceTextures& slices) {
             }
             chain.push_back(std::move(next));
         }
+        // Reduced levels (level_reduction, atlas): a level at spacing s keeps texel s·j of the
+        // full-resolution one as its texel j. The GPU builds it from the previous (kept) level's
+        // texels at the same level-0 positions, so it is exactly that subsample, rounding included.
+        for (int l = 1; l <= L && config_.filter != Filter::mipmap; ++l) {
+            const int spacing = level_spacing(config_, l);
+            if (spacing == 1) continue;
+            const Plane& full = chain[l];
+            Plane kept{R / spacing, R / spacing, {}};
+            kept.texels.resize(static_cast<std::size_t>(kept.width) * kept.height);
+            for (int y = 0; y < kept.height; ++y)
+                for (int x = 0; x < kept.width; ++x)
+                    kept.texels[static_cast<std::size_t>(y) * kept.width + x] = full.at(spacing * x, spacing * y);
+            chain[l] = std::move(kept);
+        }
     }
 }
 
@@ -316,8 +330,13 @@ Oracle::Sample Oracle::filtered_at(int slice, glm::dvec2 centre, double level, i
         const Sample hi = lo < L ? bilinear(slice, lo + 1, coords) : Sample{};
         return mix_levels(bilinear(slice, lo, coords), hi, t, true);
     }
-    // atlas and array: each level at its own anchor, then a lerp in the shader
-    auto at_level = [&](int l) { return bilinear(slice, l, centre * static_cast<double>(R) - anchor_shift(l)); };
+    // atlas and array: each level at its own anchor, then a lerp in the shader; a reduced level
+    // (spacing s) has texel j at level-0 texel s·j: its centre, level-0 coordinate s·j + s/2, stands
+    // for the window (N-buffer) or blur (Gaussian) of texel s·j, centred at s·j + 1/2 + anchor
+    auto at_level = [&](int l) {
+        const double s = level_spacing(config_, l);
+        return bilinear(slice, l, (centre * static_cast<double>(R) - anchor_shift(l) + 0.5 * (s - 1.0)) / s);
+    };
     return mix_levels(at_level(lo), at_level(std::min(lo + 1, L)), t, false);
 }
 

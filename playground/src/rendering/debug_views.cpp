@@ -286,10 +286,13 @@ SliceSource locate_slice(const penumbra::Config& config, int slice, int level) {
         s.layer = atlas ? 0 : t;
         s.sat_side = 1 << level;
     } else {
-        if (config.filter == penumbra::Filter::nbuffer && level > 0) s.shift = 1 << (level - 1);
+        // reduced atlas levels (level_reduction): R / spacing texels per tile, the shift in those texels
+        const int spacing = penumbra::level_spacing(config, level);
+        if (config.filter == penumbra::Filter::nbuffer && level > 0) s.shift = (1 << (level - 1)) / spacing;
         if (atlas) {
             s.texture = "penumbra_level" + std::to_string(level);
-            s.tile_x = t * R;
+            s.size = R / spacing;
+            s.tile_x = t * s.size;
         } else if (config.packing == penumbra::Packing::array) {
             s.texture = "penumbra_levels";
             s.storage = 1;

@@ -138,6 +138,9 @@ bool config_editor(const char* id, Config& config) {
         changed = true;
     }
     changed |= enum_combo("slice placement (§5)", config.slice_placement);
+    if (config.packing == Packing::atlas && (config.filter == Filter::nbuffer || config.filter == Filter::gaussian))
+        changed |= ImGui::SliderInt("level reduction", &config.level_reduction, -1, resolution_levels(config),
+                                    config.level_reduction < 0 ? "off" : "above %d");
     ImGui::PopID();
     return changed;
 }

@@ -43,7 +43,8 @@ std::string describe_config(const Config& c) {
            std::string(to_string(c.fusion)) + " " + std::string(to_string(c.packing)) + " S=" + std::to_string(c.slices) +
            " R=" + std::to_string(c.resolution) + (c.leak_fix ? "" : " leak-fix-off") +
            (c.self_shadow_fade ? "" : " fade-off") + (c.tangent_clip ? " tangent-clip" : "") +
-           (c.slice_placement == SlicePlacement::adaptive ? " adaptive" : "");
+           (c.slice_placement == SlicePlacement::adaptive ? " adaptive" : "") +
+           (c.level_reduction == Config{}.level_reduction ? "" : " level-reduction " + std::to_string(c.level_reduction));
 }
 
 // The GPU run of one configuration: visibility at the shaded world positions, and what the
@@ -139,6 +140,17 @@ std::vector<Config> oracle_matrix() {
                        .tangent_clip = false, .slice_placement = adaptive});
     configs.push_back({.slices = 16, .resolution = 256, .filter = Filter::gaussian, .packing = Packing::volume,
                        .light = Light::sun, .tangent_clip = true, .slice_placement = adaptive});
+    // reduced atlas levels (level_reduction): the matrix runs the default; every level halved
+    // (0, the most offsets and scales), one halving from level 1, and every level at full resolution
+    for (int reduction : {0, 1, -1}) {
+        Config c{.slices = 16, .resolution = 256, .filter = Filter::nbuffer, .packing = Packing::atlas};
+        c.level_reduction = reduction;
+        configs.push_back(c);
+    }
+    Config reduced_sun{.slices = 16, .resolution = 256, .filter = Filter::gaussian, .packing = Packing::atlas,
+                       .light = Light::sun};
+    reduced_sun.level_reduction = 0;
+    configs.push_back(reduced_sun);
     return configs;
 }
 

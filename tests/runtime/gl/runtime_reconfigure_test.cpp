@@ -137,8 +137,10 @@ TEST_CASE("reconfigure: changing resolution reallocates every fixed-size texture
     for (const penumbra::TextureDesc& t : rt->emission().layout.textures) fixed += t.size == "fixed";
     CHECK(fixed >= 2);
     CHECK(rt->last_reconfigure().textures_reallocated == fixed);
-    // The resolution is baked into the prefilter and shading code, not into slicing.
-    CHECK(rt->last_reconfigure().programs_rebuilt == static_cast<int>(rt->emission().programs.size()) - 1);
+    // The resolution is baked into the prefilter and shading code, not into slicing, nor into the
+    // level pass of reduced levels (level_reduction: its tile sizes are pass uniforms).
+    REQUIRE(penumbra::reduces_levels(kSmall));
+    CHECK(rt->last_reconfigure().programs_rebuilt == static_cast<int>(rt->emission().programs.size()) - 2);
     CHECK(rt->program("slicing") == slicing);
     for (const penumbra::TextureDesc& t : rt->emission().layout.textures) {
         if (t.size != "fixed") continue;
@@ -146,7 +148,10 @@ TEST_CASE("reconfigure: changing resolution reallocates every fixed-size texture
         glGetTextureLevelParameteriv(rt->texture(t.name), 0, GL_TEXTURE_WIDTH, &width);
         glGetTextureLevelParameteriv(rt->texture(t.name), 0, GL_TEXTURE_HEIGHT, &height);
         CHECK_MESSAGE(width == t.width, t.name);
-        CHECK_MESSAGE(height == 64, t.name);
+        CHECK_MESSAGE(height == t.height, t.name);
+        // reduced levels (level_reduction 2): level l at 64 / 2^(l - 2)
+        const int level = t.name.starts_with("penumbra_level") && t.name.size() > 14 && t.name[14] >= '0' && t.name[14] <= '9' ? std::stoi(t.name.substr(14)) : 0;
+        CHECK_MESSAGE(height == 64 / penumbra::level_spacing(coarser, level), t.name);
     }
     const std::vector<float> reconfigured = planes.render(*rt);
     REQUIRE_MESSAGE(!reconfigured.empty(), planes.error);
@@ -169,6 +174,7 @@ TEST_CASE("reconfigure: packing array -> atlas renders the same scene") {
 
     Config atlas = kSmall;
     atlas.packing = penumbra::Packing::atlas;
+    atlas.level_reduction = -1; // every level at full resolution, like the array's
     REQUIRE(rt->reconfigure(atlas) == "");
     CHECK(rt->texture("penumbra_levels") == 0);
     CHECK(!glIsTexture(array_levels)); // released, not leaked

@@ -121,7 +121,7 @@ float penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 3.0) break;
         vec4 texel = mix(textureLod(penumbra_level2, vec2(penumbra_delta + (kernel.x - 0.005859375) * 0.25, kernel.y - 0.005859375), 0.0),
-            textureLod(penumbra_level3, vec2(penumbra_delta + (kernel.x - 0.013671875) * 0.25, kernel.y - 0.013671875), 0.0), kernel.w - 2.0);
+            textureLod(penumbra_level3, vec2(penumbra_delta + (kernel.x - 0.01171875) * 0.25, kernel.y - 0.01171875), 0.0), kernel.w - 2.0);
         float q = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
         penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
         penumbra_prev = q;
@@ -135,8 +135,8 @@ float penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)
         float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 4.0) break;
-        vec4 texel = mix(textureLod(penumbra_level3, vec2(penumbra_delta + (kernel.x - 0.013671875) * 0.25, kernel.y - 0.013671875), 0.0),
-            textureLod(penumbra_level4, vec2(penumbra_delta + (kernel.x - 0.029296875) * 0.25, kernel.y - 0.029296875), 0.0), kernel.w - 3.0);
+        vec4 texel = mix(textureLod(penumbra_level3, vec2(penumbra_delta + (kernel.x - 0.01171875) * 0.25, kernel.y - 0.01171875), 0.0),
+            textureLod(penumbra_level4, vec2(penumbra_delta + (kernel.x - 0.0234375) * 0.25, kernel.y - 0.0234375), 0.0), kernel.w - 3.0);
         float q = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
         penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
         penumbra_prev = q;
@@ -150,8 +150,8 @@ float penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)
         float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 5.0) break;
-        vec4 texel = mix(textureLod(penumbra_level4, vec2(penumbra_delta + (kernel.x - 0.029296875) * 0.25, kernel.y - 0.029296875), 0.0),
-            textureLod(penumbra_level5, vec2(penumbra_delta + (kernel.x - 0.060546875) * 0.25, kernel.y - 0.060546875), 0.0), kernel.w - 4.0);
+        vec4 texel = mix(textureLod(penumbra_level4, vec2(penumbra_delta + (kernel.x - 0.0234375) * 0.25, kernel.y - 0.0234375), 0.0),
+            textureLod(penumbra_level5, vec2(penumbra_delta + (kernel.x - 0.046875) * 0.25, kernel.y - 0.046875), 0.0), kernel.w - 4.0);
         float q = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
         penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
         penumbra_prev = q;
@@ -165,8 +165,8 @@ float penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)
         float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 6.0) break;
-        vec4 texel = mix(textureLod(penumbra_level5, vec2(penumbra_delta + (kernel.x - 0.060546875) * 0.25, kernel.y - 0.060546875), 0.0),
-            textureLod(penumbra_level6, vec2(penumbra_delta + (kernel.x - 0.123046875) * 0.25, kernel.y - 0.123046875), 0.0), kernel.w - 5.0);
+        vec4 texel = mix(textureLod(penumbra_level5, vec2(penumbra_delta + (kernel.x - 0.046875) * 0.25, kernel.y - 0.046875), 0.0),
+            textureLod(penumbra_level6, vec2(penumbra_delta + (kernel.x - 0.09375) * 0.25, kernel.y - 0.09375), 0.0), kernel.w - 5.0);
         float q = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
         penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
         penumbra_prev = q;
@@ -180,8 +180,8 @@ float penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)
         float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 7.0) break;
-        vec4 texel = mix(textureLod(penumbra_level6, vec2(penumbra_delta + (kernel.x - 0.123046875) * 0.25, kernel.y - 0.123046875), 0.0),
-            textureLod(penumbra_level7, vec2(penumbra_delta + (kernel.x - 0.248046875) * 0.25, kernel.y - 0.248046875), 0.0), kernel.w - 6.0);
+        vec4 texel = mix(textureLod(penumbra_level6, vec2(penumbra_delta + (kernel.x - 0.09375) * 0.25, kernel.y - 0.09375), 0.0),
+            textureLod(penumbra_level7, vec2(penumbra_delta + (kernel.x - 0.1875) * 0.25, kernel.y - 0.1875), 0.0), kernel.w - 6.0);
         float q = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
         penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
         penumbra_prev = q;
@@ -195,8 +195,8 @@ float penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)
         float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 8.0) break;
-        vec4 texel = mix(textureLod(penumbra_level7, vec2(penumbra_delta + (kernel.x - 0.248046875) * 0.25, kernel.y - 0.248046875), 0.0),
-            textureLod(penumbra_level8, vec2(penumbra_delta + (kernel.x - 0.498046875) * 0.25, kernel.y - 0.498046875), 0.0), kernel.w - 7.0);
+        vec4 texel = mix(textureLod(penumbra_level7, vec2(penumbra_delta + (kernel.x - 0.1875) * 0.25, kernel.y - 0.1875), 0.0),
+            textureLod(penumbra_level8, vec2(penumbra_delta + (kernel.x - 0.375) * 0.25, kernel.y - 0.375), 0.0), kernel.w - 7.0);
         float q = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
         penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
         penumbra_prev = q;
@@ -209,7 +209,7 @@ float penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)
     while (penumbra_k >= 0.0) {
         float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
-        vec4 texel = textureLod(penumbra_level8, vec2(penumbra_delta + (kernel.x - 0.498046875) * 0.25, kernel.y - 0.498046875), 0.0);
+        vec4 texel = textureLod(penumbra_level8, vec2(penumbra_delta + (kernel.x - 0.375) * 0.25, kernel.y - 0.375), 0.0);
         float q = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
         penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
         penumbra_prev = q;

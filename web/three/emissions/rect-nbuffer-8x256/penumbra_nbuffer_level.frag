@@ -10,7 +10,9 @@ precision highp sampler2DArray;
 precision highp sampler3D;
 
 // @penumbra:parameters
-uniform int penumbra_step; // offset between the windows combined by this pass (texels)
+uniform int penumbra_step; // offset between the windows combined by this pass, in texels of the texture it reads (texels)
+uniform int penumbra_sourceTile; // side of one tile of the previous level (texels)
+uniform int penumbra_scale; // texels of the previous level per texel of this one, per axis (1 or 2)
 uniform sampler2D penumbra_source; // previous filter level (atlas), texture unit 0
 
 layout(location = 0) out vec4 penumbra_result;
@@ -19,10 +21,10 @@ layout(location = 0) out vec4 penumbra_result;
 // texel of the previous level at base + offset, 0 outside the tile
 vec4 penumbra_source_texel(ivec2 base, ivec2 offset)
 {
-    ivec2 local = ivec2(base.x % 256, base.y) + offset;
+    ivec2 local = ivec2(base.x % penumbra_sourceTile, base.y) + offset;
     ivec2 texel = base + offset;
-    bool inside = all(greaterThanEqual(local, ivec2(0))) && all(lessThan(local, ivec2(256)));
-    texel = clamp(texel, ivec2(0), ivec2(511, 255));
+    bool inside = all(greaterThanEqual(local, ivec2(0))) && all(lessThan(local, ivec2(penumbra_sourceTile)));
+    texel = clamp(texel, ivec2(0), ivec2(2 * penumbra_sourceTile - 1, penumbra_sourceTile - 1));
     vec4 value = texelFetch(penumbra_source, texel, 0);
     return inside ? value : vec4(0.0);
 }
@@ -30,8 +32,11 @@ vec4 penumbra_source_texel(ivec2 base, ivec2 offset)
 // @penumbra:nbuffer_level_main
 void main()
 {
-    ivec2 base = ivec2(gl_FragCoord.xy);
-    int s = penumbra_step; // 2^(l-1)
+    ivec2 fragment = ivec2(gl_FragCoord.xy);
+    int tile = penumbra_sourceTile / penumbra_scale; // this level's tile side
+    ivec2 base = ivec2((fragment.x / tile) * penumbra_sourceTile + (fragment.x % tile) * penumbra_scale,
+        fragment.y * penumbra_scale);
+    int s = penumbra_step; // 2^(l-1) texels of level 0, in texels of the previous level
     penumbra_result = 0.25 * (penumbra_source_texel(base, ivec2(0, 0)) + penumbra_source_texel(base, ivec2(s, 0))
     + penumbra_source_texel(base, ivec2(0, s)) + penumbra_source_texel(base, ivec2(s, s)));
 }
