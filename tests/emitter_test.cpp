@@ -124,7 +124,7 @@ TEST_CASE("tangent clip: the normal is an input, each kernel is restricted, the 
     CHECK(snippet.find("vec3 penumbra_tangentClip(vec3 p, vec3 n)") != std::string::npos);
     CHECK(snippet.find("vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);") != std::string::npos);
     CHECK(snippet.find("side *= clip.z;") != std::string::npos);
-    CHECK(snippet.find("// move the point 3.0 slicing texels sideways along its normal") != std::string::npos);
+    CHECK(snippet.find("// move the point 1.0 slicing texels sideways along its normal") != std::string::npos);
     CHECK(snippet.find(detail::describe(config).str()) != std::string::npos);
     for (const ShaderFile& file : emission.files())
         if (file.file_name.find("shading_deferred") != std::string::npos && file.file_name.ends_with(".frag"))

@@ -47,7 +47,7 @@ constexpr std::vector<Param> generic_value_params() {
         {"penumbra_fadeRamp", "float", "the fade's ramp, as a fraction of a slice's thickness", ""},
         {"penumbra_tangentClipOffset", "float", "the tangent clip's sideways offset along the normal", "slicing texels"},
         {"penumbra_clipFootprint", "float",
-         "slice thicknesses the receiver's own footprint spans (1 + leak-fix reach) with clip_footprint on, 0 off", ""},
+         "how many slice thicknesses the receiver's own footprint spans (1 + leak-fix reach) with clip_footprint on, 0 off", ""},
         {"penumbra_levelReduction", "int",
          "atlas levels above this one at half the resolution of the one below (level_reduction); 99: none", ""},
     };
