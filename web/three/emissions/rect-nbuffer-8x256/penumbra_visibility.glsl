@@ -1,5 +1,5 @@
 // Penumbra 0.1.0 - penumbra_visibility.glsl: float penumbraVisibility(vec3 worldPos, vec3 worldNormal) (clipped to the tangent plane) and (vec3 worldPos)
-// slices 8 | resolution 256x256 | filter nbuffer | fusion chained | packing atlas | light rect | leak fix on | fade on | tangent clip on | target essl300
+// slices 8 | resolution 256x256 | filter nbuffer | fusion chained | packing atlas | light rect | leak fix on | fade on over 0.25 slice | tangent clip on, offset 1.0 texels + footprint | target essl300
 // Include after the #version line of a stage for this target. Bindings start at 0.
 
 // @penumbra:precision
@@ -43,10 +43,10 @@ vec4 penumbra_kernel(vec3 p, float zeta, vec3 clip)
 }
 
 // @penumbra:fade
-// paper §3.4.2: 0 for planes at or below the point, a ramp over the nearest plane above, then 1
+// paper §3.4.2: 0 for planes at or below the point, a ramp over 0.25 of the slice above the point, then 1
 float penumbra_weight(float zPoint, float zeta)
 {
-    return clamp((zPoint - zeta) / penumbra_sliceDepths.y, 0.0, 1.0);
+    return clamp((zPoint - zeta) / (penumbra_sliceDepths.y * 0.25), 0.0, 1.0);
 }
 
 // @penumbra:tangent_clip
@@ -232,8 +232,15 @@ float penumbraVisibility(vec3 worldPos, vec3 worldNormal)
     vec3 n = mat3(penumbra_lightFromWorld) * worldNormal;
     n *= inversesqrt(max(dot(n, n), 1e-20));
     vec3 penumbra_clip = penumbra_tangentClip(p, n);
-    // move the point 3.0 slicing texels sideways along its normal, off its own texels
-    p.xy += n.xy * penumbra_lightSize * ((penumbra_copDistance + p.z) / penumbra_copDistance * 0.01171875);
+    // footprint of the receiver's own tangent plane in the slice above it, along its normal (scene units)
+    float penumbra_across = max(length(n.xy), 1e-6);
+    float penumbra_spread = max(n.z / penumbra_across + dot(p.xy, n.xy) / (penumbra_across * (penumbra_copDistance + p.z)), 0.0);
+    float penumbra_footprint = penumbra_spread * 2.0 * penumbra_sliceDepths.y;
+    float penumbra_cap = max(penumbra_lightSize.x, penumbra_lightSize.y) * (penumbra_copDistance + p.z) / penumbra_copDistance * 0.015625;
+    // move the point 1.0 slicing texels sideways along its normal, off its own texels
+    p.xy += n.xy * penumbra_lightSize * ((penumbra_copDistance + p.z) / penumbra_copDistance * 0.00390625);
+    // and off its own footprint
+    p.xy += n.xy / penumbra_across * min(penumbra_footprint, penumbra_cap);
     return penumbra_clippedVisibility(p, penumbra_clip);
 }
 

@@ -1,6 +1,6 @@
 #version 300 es
 // Penumbra 0.1.0 - deferred visibility pass: penumbraVisibility of a G-buffer, fragment stage
-// slices 16 | resolution 512x512 | filter mipmap | fusion chained | packing atlas | light sun | leak fix on | fade on | tangent clip on | target essl300
+// slices 16 | resolution 512x512 | filter mipmap | fusion chained | packing atlas | light sun | leak fix on | fade on over 0.25 slice | tangent clip on, offset 1.0 texels + footprint | target essl300
 // 4 RGBA occlusion texture(s), filter levels 0 to 9. Generated: edit the configuration, not this file.
 // @penumbra:precision
 precision highp float;
@@ -37,10 +37,10 @@ vec4 penumbra_kernel(vec3 p, float zeta, vec3 clip)
 }
 
 // @penumbra:fade
-// paper §3.4.2: 0 for planes at or below the point, a ramp over the nearest plane above, then 1
+// paper §3.4.2: 0 for planes at or below the point, a ramp over 0.25 of the slice above the point, then 1
 float penumbra_weight(float zPoint, float zeta)
 {
-    return clamp((zPoint - zeta) / penumbra_sliceDepths.y, 0.0, 1.0);
+    return clamp((zPoint - zeta) / (penumbra_sliceDepths.y * 0.25), 0.0, 1.0);
 }
 
 // @penumbra:lookup
@@ -241,8 +241,15 @@ float penumbraVisibility(vec3 worldPos, vec3 worldNormal)
     vec3 n = mat3(penumbra_lightFromWorld) * worldNormal;
     n *= inversesqrt(max(dot(n, n), 1e-20));
     vec3 penumbra_clip = penumbra_tangentClip(p, n);
-    // move the point 3.0 slicing texels sideways along its normal, off its own texels
-    p.xy += n.xy * (2.0 * penumbra_windowHalfSize * 0.005859375);
+    // footprint of the receiver's own tangent plane in the slice above it, along its normal (scene units)
+    float penumbra_across = max(length(n.xy), 1e-6);
+    float penumbra_spread = max(n.z / penumbra_across, 0.0);
+    float penumbra_footprint = penumbra_spread * 2.0 * penumbra_sliceDepths.y;
+    float penumbra_cap = 2.0 * penumbra_windowHalfSize * 0.0078125;
+    // move the point 1.0 slicing texels sideways along its normal, off its own texels
+    p.xy += n.xy * (2.0 * penumbra_windowHalfSize * 0.001953125);
+    // and off its own footprint
+    p.xy += n.xy / penumbra_across * min(penumbra_footprint, penumbra_cap);
     return penumbra_clippedVisibility(p, penumbra_clip);
 }
 
@@ -257,7 +264,7 @@ float penumbraVisibility(vec3 worldPos)
 
 // @penumbra:parameters
 uniform sampler2D penumbra_worldPositions; // G-buffer: xyz world position, w = 1 where there is geometry and 0 for the background (scene units), texture unit 1
-uniform sampler2D penumbra_worldNormals; // G-buffer: xyz world normal of the side the viewer sees (for the tangent clip), texture unit 2
+uniform sampler2D penumbra_worldNormals; // G-buffer: xyz world normal of the side the viewer sees (tangent clip, normal offset), texture unit 2
 
 // @penumbra:deferred_main
 void main()
