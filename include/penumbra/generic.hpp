@@ -62,7 +62,6 @@ inline std::vector<GenericValue> generic_values(const Config& config) {
         double(config.slices), double(config.resolution), double(max_level(config)), double(T), 1.0 / T,
         double(static_cast<int>(config.fusion)), config.self_shadow_fade ? 1.0 : 0.0, config.fade_ramp,
         config.tangent_clip_offset, config.clip_footprint ? double(1 + leak_fix_reach(config)) : 0.0,
-        double(static_cast<int>(config.fusion)), config.self_shadow_fade ? 1.0 : 0.0,
         reduces_levels(config) ? double(config.level_reduction) : 99.0,
     };
     std::vector<GenericValue> values;
