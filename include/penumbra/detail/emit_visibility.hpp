@@ -189,10 +189,10 @@ constexpr bool fades_over_own_thickness(const Config& config) {
     return config.self_shadow_fade && places_slices_adaptively(config);
 }
 
-// The fade's ramp (Config::fade_ramp of a slice's thickness) as a factor of the thickness in the GLSL:
-// empty for the paper's ramp over the whole slice.
-constexpr Text fade_ramp_factor(const Config& config) {
-    return choose(config.fade_ramp == 1.0, Text(), cat(" * ", format_float(config.fade_ramp)));
+// The depth the fade ramps over, Config::fade_ramp of `thickness` (a GLSL expression): `thickness`
+// itself for the paper's ramp over the whole slice.
+constexpr Text fade_ramp_depth(const Config& config, std::string_view thickness) {
+    return choose(config.fade_ramp == 1.0, Text(thickness), cat("(", thickness, " * ", format_float(config.fade_ramp), ")"));
 }
 
 constexpr Text fade_ramp_words(const Config& config) {
@@ -206,16 +206,13 @@ constexpr void write_weight_function(LineWriter& out, const Config& config) {
                         " below the plane, then 1"));
         out.line("float penumbra_weight(float zPoint, float zeta, float thickness)");
         out.line("{");
-        out.line("return clamp((zPoint - zeta) / (thickness", fade_ramp_factor(config), "), 0.0, 1.0);");
+        out.line("return clamp((zPoint - zeta) / ", fade_ramp_depth(config, "thickness"), ", 0.0, 1.0);");
     } else if (config.self_shadow_fade) {
         out.comment(cat("paper §3.4.2: 0 for planes at or below the point, a ramp over ", fade_ramp_words(config),
                         " above the point, then 1"));
         out.line("float penumbra_weight(float zPoint, float zeta)");
         out.line("{");
-        if (config.fade_ramp == 1.0)
-            out.line("return clamp((zPoint - zeta) / penumbra_sliceDepths.y, 0.0, 1.0);");
-        else
-            out.line("return clamp((zPoint - zeta) / (penumbra_sliceDepths.y", fade_ramp_factor(config), "), 0.0, 1.0);");
+        out.line("return clamp((zPoint - zeta) / ", fade_ramp_depth(config, "penumbra_sliceDepths.y"), ", 0.0, 1.0);");
     } else {
         out.comment("fade off: planes strictly above the point count fully, the others not at all");
         out.line("float penumbra_weight(float zPoint, float zeta)");
