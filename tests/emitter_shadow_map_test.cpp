@@ -104,6 +104,29 @@ TEST_CASE("shadow map techniques bake their constants: bias, radius, clamp") {
     CHECK(snippet_of(pcss).find("vec2(0.015625));") != std::string::npos); // 32 / 2048
 }
 
+TEST_CASE("receiver-plane depth bias: every pcf and pcss tap compares against the tangent plane, only with it on") {
+    for (Config config : shadow_configs()) {
+        for (bool tilt : {true, false}) {
+            config.shadow_map.receiver_plane_bias = tilt;
+            CAPTURE(std::string(detail::describe(config).view()));
+            const std::string snippet = snippet_of(config);
+            const bool tilts = tilt && config.technique != Technique::shadowmap;
+            CHECK(tilts_taps_to_receiver_plane(config) == tilts);
+            // each comparison tap and each blocker tap adds the plane's rise over its literal offset
+            const int taps = tilts ? expected_comparison_taps(config) : 0;
+            const int blockers = tilts && config.technique == Technique::pcss ? config.pcss.blocker_samples : 0;
+            CHECK(count(snippet, ", coord.z + dot(vec2(") == taps);
+            CHECK(count(snippet, "float(d < coord.z + dot(vec2(") == blockers);
+            CHECK(count(snippet, "vec2 depthSlope = ") == (tilts ? 1 : 0));
+            CHECK(count(snippet, "penumbra_filteredVisibility(worldPos, vec2(0.0))") == (tilts ? 1 : 0));
+            // the normal is then read: the deferred pass samples penumbra_worldNormals
+            CHECK(reads_receiver_normal(config) == tilts);
+            const std::string deferred = emit_file(config, Artifact::deferred_frag).text;
+            CHECK((deferred.find("penumbra_worldNormals") != std::string::npos) == tilts);
+        }
+    }
+}
+
 TEST_CASE("Poisson patterns: deterministic, in the unit disk, spread out, the same prefix for every count") {
     const std::vector<detail::Tap> taps = detail::poisson_disk(64);
     REQUIRE(taps.size() == 64);

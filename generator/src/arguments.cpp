@@ -12,7 +12,7 @@ constexpr std::string_view flag_list =
     "--slices, --resolution, --filter, --fusion, --packing, --light, --target, --no-leak-fix, --no-fade, "
     "--tangent-clip, --no-tangent-clip, --slice-placement, --level-bound, --level-format, --level-reduction, --tangent-clip-offset, --no-clip-footprint, --fade-ramp, --config, --validate, --out, --help, --technique, --shadow-resolution, "
     "--shadow-bias, --shadow-slope-bias, --pcf-pattern, --pcf-grid, --pcf-taps, --pcf-radius, --pcss-blockers, "
-    "--pcss-filter, --pcss-max-texels, --no-rotation";
+    "--pcss-filter, --pcss-max-texels, --no-rotation, --no-receiver-plane-bias";
 
 // "16" → 16; anything else (empty, sign only, trailing text, outside int) is an error.
 Parsed<int> parse_int(std::string_view flag, std::string_view text, std::string_view allowed) {

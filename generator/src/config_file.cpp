@@ -101,13 +101,14 @@ std::string read_section(std::string_view section, const json& value, std::strin
 }
 
 std::string read_shadow_map(const json& value, penumbra::ShadowMapParams& sm) {
-    return read_section("shadow_map", value, "resolution, constant_bias, slope_bias, normal_offset",
+    return read_section("shadow_map", value, "resolution, constant_bias, slope_bias, normal_offset, receiver_plane_bias",
                         [&](const std::string& key, const std::string& name, const json& item) -> std::string {
                             if (key == "resolution")
                                 return store(read_int(name, item, "a power of two from 32 to 8192"), sm.resolution);
                             if (key == "constant_bias") return store(read_real(name, item, "0 to 10"), sm.constant_bias);
                             if (key == "slope_bias") return store(read_real(name, item, "0 to 16"), sm.slope_bias);
                             if (key == "normal_offset") return store(read_real(name, item, "0 to 8"), sm.normal_offset);
+                            if (key == "receiver_plane_bias") return store(read_bool(name, item), sm.receiver_plane_bias);
                             return "unknown";
                         });
 }

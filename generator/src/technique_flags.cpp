@@ -9,7 +9,8 @@ namespace penumbra_gen {
 
 const std::string_view technique_flag_list =
     "--technique, --shadow-resolution, --shadow-bias, --shadow-slope-bias, --shadow-normal-offset, --pcf-pattern, --pcf-grid, --pcf-taps, "
-    "--pcf-radius, --pcss-blockers, --pcss-filter, --pcss-max-texels, --no-rotation, --oim-resolution, "
+    "--pcf-radius, --pcss-blockers, --pcss-filter, --pcss-max-texels, --no-rotation, --no-receiver-plane-bias, "
+    "--oim-resolution, "
     "--oim-intervals, --oim-samples, --erosion-radius, --erosion-edge-threshold, --erosion-search-taps, "
     "--erosion-blur-taps";
 
@@ -57,7 +58,9 @@ std::string parse_real(std::string_view flag, std::string_view text, std::option
     return {};
 }
 
-bool is_technique_switch(std::string_view flag) { return flag == "--no-rotation"; }
+bool is_technique_switch(std::string_view flag) {
+    return flag == "--no-rotation" || flag == "--no-receiver-plane-bias";
+}
 
 bool is_technique_flag(std::string_view flag) {
     for (std::string_view f : value_flags)
@@ -67,6 +70,7 @@ bool is_technique_flag(std::string_view flag) {
 
 void set_technique_switch(std::string_view flag, TechniqueFlags& flags) {
     if (flag == "--no-rotation") flags.no_rotation = true;
+    if (flag == "--no-receiver-plane-bias") flags.no_receiver_plane_bias = true;
 }
 
 std::string parse_technique_flag(std::string_view flag, std::string_view value, TechniqueFlags& flags) {
@@ -115,6 +119,7 @@ penumbra::Config apply(const TechniqueFlags& flags, penumbra::Config config) {
     if (flags.pcss_filter) config.pcss.filter_samples = *flags.pcss_filter;
     if (flags.pcss_max_texels) config.pcss.max_filter_texels = *flags.pcss_max_texels;
     if (flags.no_rotation) config.pcf.rotate = config.pcss.rotate = false;
+    if (flags.no_receiver_plane_bias) config.shadow_map.receiver_plane_bias = false;
     if (flags.oim_resolution) config.oim.resolution = *flags.oim_resolution;
     if (flags.oim_intervals) config.oim.intervals = *flags.oim_intervals;
     if (flags.oim_samples) config.oim.samples = *flags.oim_samples;
@@ -166,6 +171,8 @@ std::string technique_usage(std::size_t column) {
     out += line("--pcss-max-texels N", "pcss: largest filter half-width in texels, 1 to resolution / 2 (default " +
                                            std::to_string(d.pcss.max_filter_texels) + ")");
     out += line("--no-rotation", "pcf, pcss: no per-pixel rotation of the tap pattern (default on)");
+    out += line("--no-receiver-plane-bias", "pcf, pcss: taps compare against the receiver's own depth, not its tangent\n" +
+                                                std::string(column, ' ') + "plane's depth under the tap (default on)");
     out += line("--oim-resolution R", "oim: interval-map side in texels, a power of two 32 to 4096 (default " +
                                           std::to_string(d.oim.resolution) + ")");
     out += line("--oim-intervals N", "oim: visibility intervals per texel, 4, 8, 12 or 16 (default " +

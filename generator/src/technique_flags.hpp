@@ -22,6 +22,7 @@ struct TechniqueFlags {
     std::optional<int> erosion_radius, erosion_search_taps, erosion_blur_taps; // erosion
     std::optional<double> erosion_edge_threshold;
     bool no_rotation = false;
+    bool no_receiver_plane_bias = false;
     std::optional<int> oim_resolution, oim_intervals, oim_samples;
 };
 

@@ -102,6 +102,11 @@ struct ShadowMapParams {
                                    // texel's size at the receiver) times sin(angle to the light) before the
                                    // lookup, as Filament and Unity do; 0 to 8. Needs the normal: the deferred
                                    // pass then reads penumbra_worldNormals (shadowmap, pcf, pcss)
+    bool receiver_plane_bias = true; // pcf, pcss: every tap compares against the depth of the receiver's
+                                   // tangent plane under that tap, not the receiver's own depth (Isidoro
+                                   // 2006), so a wide kernel on a sloped or curved receiver does not shadow
+                                   // the receiver itself. Needs the normal: the deferred pass then reads
+                                   // penumbra_worldNormals
 
     friend constexpr bool operator==(const ShadowMapParams&, const ShadowMapParams&) = default;
 };
@@ -264,16 +269,23 @@ constexpr bool offsets_along_normal(const Config& config) {
            config.shadow_map.normal_offset > 0.0;
 }
 
+// True when PCF's and PCSS's taps compare against the receiver's tangent plane (the receiver-plane
+// depth bias): penumbraVisibility then uses the normal, and the deferred pass reads it.
+constexpr bool tilts_taps_to_receiver_plane(const Config& config) {
+    return (config.technique == Technique::pcf || config.technique == Technique::pcss) &&
+           config.shadow_map.receiver_plane_bias;
+}
+
 // True when the occlusion-texture kernels are clipped to the receiver's tangent plane: the snippet
 // then takes the normal, and the deferred pass reads the caller's penumbra_worldNormals.
 constexpr bool clips_to_tangent_plane(const Config& config) {
     return config.technique == Technique::occlusion && config.tangent_clip;
 }
 
-// True when penumbraVisibility uses the receiver's normal (the tangent clip or the normal-offset bias):
-// the deferred pass then reads the caller's penumbra_worldNormals.
+// True when penumbraVisibility uses the receiver's normal (the tangent clip, the normal-offset bias or
+// the receiver-plane depth bias): the deferred pass then reads the caller's penumbra_worldNormals.
 constexpr bool reads_receiver_normal(const Config& config) {
-    return clips_to_tangent_plane(config) || offsets_along_normal(config);
+    return clips_to_tangent_plane(config) || offsets_along_normal(config) || tilts_taps_to_receiver_plane(config);
 }
 
 // Number of comparison taps of the PCF kernel.

@@ -710,7 +710,8 @@ inline std::string to_json(const Layout& layout) {
     field("    ", "shadow_map",
           "{\"resolution\": " + std::to_string(c.shadow_map.resolution) + ", \"constant_bias\": " +
               real(c.shadow_map.constant_bias) + ", \"slope_bias\": " + real(c.shadow_map.slope_bias) +
-              ", \"normal_offset\": " + real(c.shadow_map.normal_offset) + "}");
+              ", \"normal_offset\": " + real(c.shadow_map.normal_offset) +
+              ", \"receiver_plane_bias\": " + flag(c.shadow_map.receiver_plane_bias) + "}");
     field("    ", "pcf",
           "{\"pattern\": " + json_string(to_string(c.pcf.pattern)) + ", \"grid_size\": " +
               std::to_string(c.pcf.grid_size) + ", \"poisson_taps\": " + std::to_string(c.pcf.poisson_taps) +

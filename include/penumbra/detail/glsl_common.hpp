@@ -47,6 +47,7 @@ constexpr Text describe_shadow_map(const Config& config) {
                    format_int(sm.resolution), " | bias ", format_float(sm.constant_bias), " scene units + ",
                    format_float(sm.slope_bias), " x slope");
     if (offsets_along_normal(config)) out += cat(" | normal offset ", format_float(sm.normal_offset), " texels");
+    if (tilts_taps_to_receiver_plane(config)) out += " | receiver-plane depth bias";
     if (config.technique == Technique::pcf)
         out += cat(" | pcf ", to_string(config.pcf.pattern), " ", format_int(pcf_taps(config.pcf)), " taps, radius ",
                    format_float(config.pcf.radius), ", rotation ", on_off(config.pcf.rotate));

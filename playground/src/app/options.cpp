@@ -28,7 +28,7 @@ constexpr std::string_view flag_list =
     "--reference-out, --error-out, --slices, --resolution, --filter, --fusion, --packing, --light, --target, "
     "--no-leak-fix, --no-fade, --tangent-clip, --no-tangent-clip, --slice-placement, --config, --watch, --frames, --screenshot, "
     "--script, --help, --technique, --shadow-resolution, --shadow-bias, --shadow-slope-bias, --pcf-pattern, "
-    "--pcf-grid, --pcf-taps, --pcf-radius, --pcss-blockers, --pcss-filter, --pcss-max-texels, --no-rotation, "
+    "--pcf-grid, --pcf-taps, --pcf-radius, --pcss-blockers, --pcss-filter, --pcss-max-texels, --no-rotation, --no-receiver-plane-bias, "
     "--oim-resolution, --oim-intervals, --oim-samples, --sun-time, --sun-path, --bake-cache";
 
 bool is_switch(std::string_view flag) {

@@ -58,6 +58,8 @@ bool shadow_map_editor(Config& config) {
         config.shadow_map.normal_offset = normal_offset;
         changed = true;
     }
+    if (config.technique == Technique::pcf || config.technique == Technique::pcss)
+        changed |= ImGui::Checkbox("receiver-plane depth bias", &config.shadow_map.receiver_plane_bias);
     if (config.technique == Technique::pcf) {
         changed |= enum_combo("pattern", config.pcf.pattern);
         if (config.pcf.pattern == TapPattern::grid)

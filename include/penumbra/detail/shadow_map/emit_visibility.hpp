@@ -98,12 +98,29 @@ constexpr void write_taps(LineWriter& out, const std::vector<Tap>& taps, int gro
     }
 }
 
+// With the receiver-plane depth bias, the depth a tap compares against: the receiver's, plus the
+// tangent plane's rise over the tap's offset. The offset is linear in the literal tap, so the plane's
+// slope is turned into the pattern's frame once per pixel (`tilt`) and each tap adds one dot product.
+constexpr Text tap_depth(const Config& config, const Tap& tap, std::string_view tilt) {
+    if (!tilts_taps_to_receiver_plane(config)) return Text("coord.z");
+    return cat("coord.z + dot(vec2(", format_float(tap.x), ", ", format_float(tap.y), "), ", tilt, ")");
+}
+
+// tilt = the stored depth's change per unit of the literal tap offset: rot^T (slope * scale).
+constexpr void write_tilt(LineWriter& out, const Config& config, std::string_view tilt, std::string_view scale) {
+    if (!tilts_taps_to_receiver_plane(config)) return;
+    out.line("vec2 ", tilt, " = ", choose(rotates(config), cat("(depthSlope * ", scale, ") * penumbra_rot"),
+                                             cat("depthSlope * ", scale)),
+             "; // depth change per unit of tap offset");
+}
+
 constexpr void write_comparison_taps(LineWriter& out, const Config& config, const std::vector<Tap>& taps, int group,
                                      std::string_view what, std::string_view scale) {
+    write_tilt(out, config, "tilt", scale);
     out.line("float penumbra_lit = 0.0;");
     write_taps(out, taps, group, what, [&](const Tap& tap) {
         out.line("penumbra_lit += textureLod(", shadow_map_texture, ", vec3(coord.xy + ", tap_offset(config, tap, scale),
-                 ", coord.z), 0.0);");
+                 ", ", tap_depth(config, tap, "tilt"), "), 0.0);");
     });
     out.line("return penumbra_lit * ", format_float(1.0 / static_cast<double>(taps.size())), ";");
 }
@@ -120,9 +137,10 @@ constexpr void write_pcss_body(LineWriter& out, const Config& config) {
     out.comment("the map clamps to 1, is not its own blocker");
     out.line("vec2 penumbra_blocker = vec2(0.0); // x: sum of blocker depths (as stored), y: blocker count");
     out.line("float d;");
+    write_tilt(out, config, "searchTilt", "search");
     write_taps(out, poisson_disk(pcss.blocker_samples, blocker_seed), 4, "blocker taps", [&](const Tap& tap) {
         out.line("d = textureLod(penumbra_shadowDepth, coord.xy + ", tap_offset(config, tap, "search"), ", 0.0).r;");
-        out.line("penumbra_blocker += float(d < coord.z) * vec2(d, 1.0);");
+        out.line("penumbra_blocker += float(d < ", tap_depth(config, tap, "searchTilt"), ") * vec2(d, 1.0);");
     });
     out.comment("no blocker: fully lit (a real branch: the filter is skipped)");
     out.line("if (penumbra_blocker.y == 0.0) return 1.0;");
@@ -145,16 +163,8 @@ constexpr void write_pcss_body(LineWriter& out, const Config& config) {
 // to the light. A curved receiver then looks up the map a texel's worth outside its own surface, where
 // the depth bias alone would have to grow with the slope (and detach the shadows of near occluders).
 // A surface facing the light moves not at all; one edge-on to it by the whole offset.
-constexpr void write_normal_offset_visibility(LineWriter& out, const Config& config) {
-    out.comment(cat("With the receiver's normal (the side being lit): the normal-offset bias of ",
-                    format_float(config.shadow_map.normal_offset), " shadow-map texels, then the lookup above."));
-    out.line("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)");
-    out.line("{");
-    out.line("vec3 n = worldNormal * inversesqrt(max(dot(worldNormal, worldNormal), 1e-20));");
-    out.line("vec3 p = (penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz;");
-    out.line("vec3 nLight = mat3(penumbra_lightFromWorld) * n;");
+constexpr void write_normal_offset(LineWriter& out, const Config& config) {
     if (config.light == Light::rect) {
-        out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
         out.comment("cosine to the direction towards the light centre; a texel spans 2 tan(fov/2) z / R at depth z");
         out.line("float cosine = dot(nLight, -normalize(p));");
         out.line("float texel = 2.0 * penumbra_shadowTanHalfFov * p.z * ",
@@ -166,8 +176,66 @@ constexpr void write_normal_offset_visibility(LineWriter& out, const Config& con
                  ";");
     }
     out.line("float sine = sqrt(max(1.0 - cosine * cosine, 0.0));");
-    out.line("return penumbraVisibility(worldPos + n * (", format_float(config.shadow_map.normal_offset),
-             " * texel * sine));");
+}
+
+// Receiver-plane depth bias (ShadowMapParams::receiver_plane_bias; Isidoro 2006, as in Filament's and
+// Unity's wide filters): depthSlope is the stored depth's change per unit of shadow-map uv along the
+// receiver's tangent plane. It comes from the normal rather than from screen-space derivatives, so it
+// holds at silhouettes, where neighbouring pixels lie on other surfaces. Near edge-on to the light the
+// slope grows without bound; it is capped at a rise of 10 per lateral unit (84 degrees), and a
+// receiver facing away from the light gets none.
+constexpr void write_receiver_plane_slope(LineWriter& out, const Config& config) {
+    if (config.light == Light::rect) {
+        out.comment("the tangent plane's depth along the ray through uv: z(uv) = dot(n, p) / dot(n, dir(uv)),");
+        out.comment("dir = p / p.z at the receiver; its change per lateral scene unit is n.xy / -dot(n, dir)");
+        out.line("float facing = -dot(nLight, p / p.z);");
+    } else {
+        out.comment("the tangent plane's depth across the orthographic window changes by n.xy / -n.z per scene unit");
+        out.line("float facing = -nLight.z;");
+    }
+    out.line("vec2 rise = facing > 0.0 ? nLight.xy / max(facing, 0.1) : vec2(0.0);");
+    out.line("vec2 depthRange = penumbra_shadowDepthRange;");
+    out.comment("scene units per uv on the receiver, then depth as stored: (z - near) / (far - near)");
+    if (config.light == Light::rect)
+        out.line("vec2 depthSlope = rise * (2.0 * penumbra_shadowTanHalfFov * p.z) / (depthRange.y - depthRange.x);");
+    else
+        out.line("vec2 depthSlope = rise * (2.0 * penumbra_windowHalfSize) / (depthRange.y - depthRange.x);");
+}
+
+// penumbraVisibility(worldPos, worldNormal) with what the normal is for: the normal offset, the
+// receiver-plane depth bias, both, or (neither) nothing.
+constexpr void write_normal_visibility(LineWriter& out, const Config& config) {
+    const bool offset = offsets_along_normal(config);
+    const bool tilt = tilts_taps_to_receiver_plane(config);
+    if (!offset && !tilt) {
+        out.comment("The same with the receiver's normal, so that shaders written for the occlusion technique's");
+        out.comment("tangent clip compile unchanged; without the normal offset a depth map has no use for it.");
+        out.line("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)");
+        out.line("{");
+        out.line("return penumbraVisibility(worldPos);");
+        out.line("}");
+        return;
+    }
+    Text uses;
+    if (offset) uses = cat("the normal-offset bias of ", format_float(config.shadow_map.normal_offset), " shadow-map texels");
+    if (offset && tilt) uses += " and ";
+    if (tilt) uses += "the receiver-plane depth bias";
+    out.comment(cat("With the receiver's normal (the side being lit): ", uses, ", then the lookup above."));
+    out.line("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)");
+    out.line("{");
+    out.line("vec3 n = worldNormal * inversesqrt(max(dot(worldNormal, worldNormal), 1e-20));");
+    out.line("vec3 p = (penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz;");
+    out.line("vec3 nLight = mat3(penumbra_lightFromWorld) * n;");
+    if (config.light == Light::rect) out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
+    if (offset) write_normal_offset(out, config);
+    if (tilt) write_receiver_plane_slope(out, config);
+    const Text moved = choose(offset, cat("worldPos + n * (", format_float(config.shadow_map.normal_offset),
+                                          " * texel * sine)"),
+                              Text("worldPos"));
+    if (tilt)
+        out.line("return penumbra_filteredVisibility(", moved, ", depthSlope);");
+    else
+        out.line("return penumbraVisibility(", moved, ");");
     out.line("}");
 }
 
@@ -179,7 +247,14 @@ constexpr void write_shadow_visibility(LineWriter& out, const Config& config, in
     out.chunk("visibility");
     out.comment(cat("Fraction of the light visible from worldPos: 1 lit, 0 in shadow (", to_string(config.technique),
                     ": ", shadow_taps_label(config), ")."));
-    out.line("float penumbraVisibility(vec3 worldPos)");
+    const bool tilt = tilts_taps_to_receiver_plane(config);
+    if (tilt) {
+        out.comment("depthSlope: the receiver's tangent plane, stored depth per unit of shadow-map uv (the");
+        out.comment("receiver-plane depth bias); each tap compares against the plane's depth under it");
+        out.line("float penumbra_filteredVisibility(vec3 worldPos, vec2 depthSlope)");
+    } else {
+        out.line("float penumbraVisibility(vec3 worldPos)");
+    }
     out.line("{");
     out.line("vec4 coord = penumbra_shadowCoord(worldPos);");
     if (rotates(config)) out.line("mat2 penumbra_rot = penumbra_rotation(worldPos);");
@@ -202,16 +277,15 @@ constexpr void write_shadow_visibility(LineWriter& out, const Config& config, in
     }
     out.line("}");
     out.blank();
-    if (offsets_along_normal(config)) {
-        write_normal_offset_visibility(out, config);
-        return;
+    if (tilt) {
+        out.comment("Without a normal there is no tangent plane: every tap compares against the receiver's depth.");
+        out.line("float penumbraVisibility(vec3 worldPos)");
+        out.line("{");
+        out.line("return penumbra_filteredVisibility(worldPos, vec2(0.0));");
+        out.line("}");
+        out.blank();
     }
-    out.comment("The same with the receiver's normal, so that shaders written for the occlusion technique's");
-    out.comment("tangent clip compile unchanged; without the normal offset a depth map has no use for it.");
-    out.line("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)");
-    out.line("{");
-    out.line("return penumbraVisibility(worldPos);");
-    out.line("}");
+    write_normal_visibility(out, config);
 }
 
 } // namespace penumbra::detail
