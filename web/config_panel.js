@@ -36,7 +36,7 @@ export const FIELDS = [
     {key: "shadow_map.constant_bias", flag: "--shadow-bias", kind: "real", help: "constant depth bias in scene units along the light axis, 0 to 10", techniques: SHADOW_MAP},
     {key: "shadow_map.slope_bias", flag: "--shadow-slope-bias", kind: "real", help: "slope bias: S times the depth change across one texel, 0 to 16", techniques: SHADOW_MAP},
     {key: "shadow_map.normal_offset", flag: "--shadow-normal-offset", kind: "real", help: "receivers move along their normal by K texels times sin(angle to the light) before the lookup, 0 to 8", techniques: ["shadowmap", "pcf", "pcss"]},
-    {key: "shadow_map.receiver_plane_bias", flag: "--no-receiver-plane-bias", kind: "bool", help: "every tap compares against the receiver's tangent plane under it (receiver-plane depth bias)", techniques: ["pcf", "pcss"]},
+    {key: "shadow_map.receiver_plane_bias", flag: "--no-receiver-plane-bias", kind: "bool", help: "taps compare against the receiver's own depth, not its tangent plane's depth under the tap", techniques: ["pcf", "pcss"]},
     {key: "pcf.pattern", flag: "--pcf-pattern", kind: "enum", help: "tap pattern", techniques: ["pcf"]},
     {key: "pcf.grid_size", flag: "--pcf-grid", kind: "int", help: "N x N grid taps, 1 to 16", techniques: ["pcf"]},
     {key: "pcf.poisson_taps", flag: "--pcf-taps", kind: "int", help: "Poisson taps, 1 to 64", techniques: ["pcf"]},
