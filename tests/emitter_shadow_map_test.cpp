@@ -119,10 +119,15 @@ TEST_CASE("receiver-plane depth bias: every pcf and pcss tap compares against th
             CHECK(count(snippet, "float(d < coord.z + dot(vec2(") == blockers);
             CHECK(count(snippet, "vec2 depthSlope = ") == (tilts ? 1 : 0));
             CHECK(count(snippet, "penumbra_filteredVisibility(worldPos, vec2(0.0))") == (tilts ? 1 : 0));
-            // the normal is then read: the deferred pass samples penumbra_worldNormals
-            CHECK(reads_receiver_normal(config) == tilts);
-            const std::string deferred = emit_file(config, Artifact::deferred_frag).text;
-            CHECK((deferred.find("penumbra_worldNormals") != std::string::npos) == tilts);
+            // the normal is then read (as for the normal offset): the deferred pass samples penumbra_worldNormals
+            for (double offset : {0.0, 1.0}) {
+                Config c = config;
+                c.shadow_map.normal_offset = offset;
+                const bool normal = tilts || offset > 0.0;
+                CHECK(reads_receiver_normal(c) == normal);
+                const std::string deferred = emit_file(c, Artifact::deferred_frag).text;
+                CHECK((deferred.find("penumbra_worldNormals") != std::string::npos) == normal);
+            }
         }
     }
 }

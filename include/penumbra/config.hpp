@@ -98,7 +98,7 @@ struct ShadowMapParams {
     double constant_bias = 0.02;   // added to every occluder depth (scene units along the light axis); 0 to 10
     double slope_bias = 1.5;       // times the occluder's depth change across one shadow-map texel
                                    // (scene units per texel, from screen-space derivatives); 0 to 16
-    double normal_offset = 0.0;    // receivers move along their normal by this many shadow-map texels (the
+    double normal_offset = 1.0;    // receivers move along their normal by this many shadow-map texels (the
                                    // texel's size at the receiver) times sin(angle to the light) before the
                                    // lookup, as Filament and Unity do; 0 to 8. Needs the normal: the deferred
                                    // pass then reads penumbra_worldNormals (shadowmap, pcf, pcss)

@@ -7,7 +7,7 @@
 //   - a wide PCF kernel on a ground the sun reaches at a slant: with the receiver-plane depth bias the
 //     open ground is lit, without it half the kernel falls below the ground's own depth in the map;
 //   - every technique renders every built-in scene without a GL error, shadowing about as much of
-//     the image as the Embree ground truth.
+//     the image as the Embree ground truths (between the whole-light and the fair one).
 #include "rendering/egl_context.hpp"
 #include "app/headless_job.hpp"
 #include "rendering/headless_render.hpp"
@@ -182,7 +182,7 @@ TEST_CASE("every shadow map technique renders every scene without a GL error and
     for (std::string_view name : scene_names()) {
         const std::optional<Scene> scene = make_scene(name);
         REQUIRE(scene);
-        std::vector<float> truth;
+        std::vector<float> truth, fair;
         for (penumbra::Technique technique : techniques) {
             const penumbra::Config config{.technique = technique, .shadow_map = {.resolution = 512}};
             const std::string label = std::string(name) + " " + std::string(penumbra::to_string(technique));
@@ -190,13 +190,25 @@ TEST_CASE("every shadow map technique renders every scene without a GL error and
             HeadlessResult result;
             REQUIRE_MESSAGE(render_headless(*scene, config, 64, 64, result, &error), error);
             CHECK(glGetError() == GL_NO_ERROR);
-            if (truth.empty()) truth = reference_visibility(*scene, result, 4);
+            if (truth.empty()) {
+                const References references = reference_all(*scene, result, 4);
+                truth = references.visibility;
+                fair = references.oriented;
+            }
             HeadlessResult reference = result;
             reference.visibility = truth;
             const double shadowed = shadowed_fraction(result), expected = shadowed_fraction(reference);
-            std::printf("%-24s shadowed %.3f (truth %.3f)\n", label.c_str(), shadowed, expected);
+            reference.visibility = fair;
+            const double expected_fair = shadowed_fraction(reference);
+            std::printf("%-24s shadowed %.3f (truth %.3f, fair %.3f)\n", label.c_str(), shadowed, expected, expected_fair);
             CHECK(shadowed > 0.01);
-            CHECK(std::abs(shadowed - expected) < 0.1);
+            // Between the two truths, give or take 0.1: the whole-light one counts a surface turned
+            // from part of the light as shadowed by its own horizon, the fair one (the light above
+            // the tangent plane) does not, and the normal offset (on by default, as in engines) moves
+            // such surfaces from the first towards the second. Where the truths agree (planes,
+            // butterfly, tree) this is the old bound of 0.1 around the truth.
+            CHECK(shadowed > std::min(expected, expected_fair) - 0.1);
+            CHECK(shadowed < std::max(expected, expected_fair) + 0.1);
         }
     }
 }
