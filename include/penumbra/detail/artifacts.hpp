@@ -2,11 +2,11 @@
 #pragma once
 
 #include "../program.hpp"
-#include "emit_prefilter.hpp"
+#include "occlusion/emit_prefilter.hpp"
 #include "emit_shading.hpp"
-#include "emit_slice_placement.hpp"
-#include "emit_slicing.hpp"
-#include "emit_unpack.hpp"
+#include "occlusion/emit_slice_placement.hpp"
+#include "occlusion/emit_slicing.hpp"
+#include "occlusion/emit_unpack.hpp"
 #include "oim/emit_oim.hpp"
 #include "shadow_map/emit_depth.hpp"
 #include "erosion/emit_passes.hpp"
@@ -37,8 +37,8 @@ enum class Artifact : std::uint8_t {
     erosion_reduce_frag,
     erosion_erode_frag,
     erosion_blur_frag,
-    unpack_slices_frag, // more than 32 slices: the sliced bits into RGBA occlusion textures (emit_unpack.hpp)
-    depth_bins_vert,       // adaptive slice placement: the depth-bin pre-pass (emit_slice_placement.hpp)
+    unpack_slices_frag, // more than 32 slices: the sliced bits into RGBA occlusion textures (occlusion/emit_unpack.hpp)
+    depth_bins_vert,       // adaptive slice placement: the depth-bin pre-pass (occlusion/emit_slice_placement.hpp)
     depth_bins_frag,
     slice_boundaries_frag, // adaptive slice placement: boundaries from the depth bins
 };
