@@ -125,10 +125,15 @@ export GEN DIR
 
 list=$(mktemp)
 trap 'rm -f "$list"' EXIT
-list_configurations >"$list"
+# No trailing blanks: xargs -L would join such a line with the next one.
+list_configurations | sed 's/[[:space:]]*$//' >"$list"
 count=$(wc -l <"$list")
 xargs -P "$JOBS" -L 1 bash -c 'emit_one "$@"' _ <"$list"
 valid=$(find "$DIR" -name layout.json | wc -l)
 rejected=$(find "$DIR" -name '*.rejected' | wc -l)
 files=$(find "$DIR" -type f | wc -l)
 echo "emission snapshot in $DIR: $count configurations, $valid emitted, $rejected rejected, $files files"
+if ((valid + rejected != count)); then
+    echo "error: $((count - valid - rejected)) configurations left no result" >&2
+    exit 1
+fi
