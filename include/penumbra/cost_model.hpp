@@ -64,7 +64,7 @@ inline long long texels_per_fragment(const Layout& layout, std::string_view prog
     if (program == "gaussian_level") return 9;
     if (program == "pack_atlas" || program == "sat_shift" || program == "unpack_slices") return 1;
     if (program == "sat_pass") return 2;
-    if (program == "slice_boundaries") return 64; // the 8 x 8 cells of one depth bin (emit_slice_placement.hpp)
+    if (program == "slice_boundaries") return 64; // the 8 x 8 cells of one depth bin (detail/occlusion/emit_slice_placement.hpp)
     if (program == "shading_deferred") {
         const long long g_buffer = reads_receiver_normal(c) ? 2 : 1;
         // shadow maps: every comparison or depth tap a bilinear footprint (4 texels)

@@ -14,7 +14,7 @@
 // also reads the caller's world-normal G-buffer.
 #pragma once
 
-#include "detail/emit_generic.hpp"
+#include "detail/occlusion/emit_generic.hpp"
 #include "emit.hpp"
 
 #include <cassert>

@@ -47,7 +47,7 @@ inline double widest_kernel(const SliceFrame& frame, const Config& config) {
 inline int kernel_level_bound(const SliceFrame& frame, const Config& config) {
     if (config.technique != Technique::occlusion || config.filter == Filter::sat) return -1;
     const double texels = widest_kernel(frame, config) * config.resolution;
-    // log2(√6/4): the Gaussian levels' bias (emit_visibility.hpp)
+    // log2(√6/4): the Gaussian levels' bias (detail/occlusion/emit_visibility.hpp)
     const double bias = config.filter == Filter::gaussian ? -0.70751874963942190927 : 0.0;
     const double level = std::log2(std::max(texels, 1.0)) + bias;
     const int all = resolution_levels(config);

@@ -14,7 +14,7 @@
 //   penumbra::SliceFrame f = penumbra::slice_frame(light, bounds_min, bounds_max, config.slices); // light_frame.hpp
 //   penumbra::uniform_value("penumbra_sliceDepths", {f, config.light});  // by name: uniform_values.hpp
 // The derivation: docs/model.md; layout.json's schema: docs/layout.schema.json.
-// Techniques (config.technique): occlusion textures (the default; detail/emit_*.hpp) and the
+// Techniques (config.technique): occlusion textures (the default; detail/occlusion/) and the
 // shadow map family, shadowmap / pcf / pcss (detail/shadow_map/); every one emits the same
 // float penumbraVisibility(vec3 worldPos). Texture memory of a layout: penumbra/texture_memory.hpp.
 // Only the filter levels a light's kernels reach: config.level_bound = penumbra::kernel_level_bound(f, config)

@@ -1,19 +1,20 @@
-// penumbra/detail/artifacts.hpp — which files a configuration emits, and which programs they form.
+// penumbra/detail/artifacts.hpp — every file Penumbra can emit: its name, its stage and its text.
+// Which files and programs a configuration emits: detail/techniques.hpp.
 #pragma once
 
 #include "../program.hpp"
-#include "emit_prefilter.hpp"
+#include "occlusion/emit_prefilter.hpp"
 #include "emit_shading.hpp"
-#include "emit_slice_placement.hpp"
-#include "emit_slicing.hpp"
-#include "emit_unpack.hpp"
+#include "occlusion/emit_slice_placement.hpp"
+#include "occlusion/emit_slicing.hpp"
+#include "occlusion/emit_unpack.hpp"
 #include "oim/emit_oim.hpp"
 #include "shadow_map/emit_depth.hpp"
 #include "erosion/emit_passes.hpp"
 
 namespace penumbra {
 
-// Every file Penumbra can emit. Which ones a configuration needs: artifacts_for().
+// Every file Penumbra can emit. Which ones a configuration needs: detail::artifacts() (techniques.hpp).
 enum class Artifact : std::uint8_t {
     slicing_vert,
     slicing_frag,
@@ -37,8 +38,8 @@ enum class Artifact : std::uint8_t {
     erosion_reduce_frag,
     erosion_erode_frag,
     erosion_blur_frag,
-    unpack_slices_frag, // more than 32 slices: the sliced bits into RGBA occlusion textures (emit_unpack.hpp)
-    depth_bins_vert,       // adaptive slice placement: the depth-bin pre-pass (emit_slice_placement.hpp)
+    unpack_slices_frag, // more than 32 slices: the sliced bits into RGBA occlusion textures (occlusion/emit_unpack.hpp)
+    depth_bins_vert,       // adaptive slice placement: the depth-bin pre-pass (occlusion/emit_slice_placement.hpp)
     depth_bins_frag,
     slice_boundaries_frag, // adaptive slice placement: boundaries from the depth bins
 };
@@ -122,64 +123,11 @@ constexpr Text artifact_text(const Config& config, Artifact artifact) {
     return {};
 }
 
+// A program of a configuration: its name (as layout.json and the passes call it) and stage files.
 struct ProgramPlan {
     std::string_view name;
     std::vector<Artifact> stages;
 };
-
-// Programs in the order their passes run: [slice placement,] slicing, prefilter, shading (occlusion); depth, shading
-// (shadow map techniques); shading only (occlusion interval maps: the maps come from a bake).
-constexpr std::vector<ProgramPlan> program_plan(const Config& config) {
-    if (config.technique == Technique::oim)
-        return {{"shading_example", {Artifact::oim_shading_vert, Artifact::oim_shading_frag}},
-                {"shading_deferred", {Artifact::fullscreen_vert, Artifact::oim_deferred_frag}}};
-    if (config.technique == Technique::erosion) // screen passes instead of shading_deferred
-        return {{"shadow_depth", {Artifact::shadow_depth_vert, Artifact::shadow_depth_frag}},
-                {"erosion_hard", {Artifact::fullscreen_vert, Artifact::erosion_hard_frag}},
-                {"erosion_edges", {Artifact::fullscreen_vert, Artifact::erosion_edges_frag}},
-                {"erosion_reduce", {Artifact::fullscreen_vert, Artifact::erosion_reduce_frag}},
-                {"erosion_erode", {Artifact::fullscreen_vert, Artifact::erosion_erode_frag}},
-                {"erosion_blur", {Artifact::fullscreen_vert, Artifact::erosion_blur_frag}},
-                {"shading_example", {Artifact::shading_vert, Artifact::shading_frag}}};
-    if (uses_shadow_map(config))
-        return {{"shadow_depth", {Artifact::shadow_depth_vert, Artifact::shadow_depth_frag}},
-                {"shading_example", {Artifact::shading_vert, Artifact::shading_frag}},
-                {"shading_deferred", {Artifact::fullscreen_vert, Artifact::deferred_frag}}};
-    std::vector<ProgramPlan> plan;
-    if (places_slices_adaptively(config)) { // paper §5: slice boundaries from the scene's depths, before slicing
-        plan.push_back({"depth_bins", {Artifact::depth_bins_vert, Artifact::depth_bins_frag}});
-        plan.push_back({"slice_boundaries", {Artifact::fullscreen_vert, Artifact::slice_boundaries_frag}});
-    }
-    plan.push_back({"slicing", {Artifact::slicing_vert, Artifact::slicing_frag}});
-    if (slices_as_bits(config))
-        plan.push_back({"unpack_slices", {Artifact::fullscreen_vert, Artifact::unpack_slices_frag}});
-    if (config.packing == Packing::atlas && config.filter != Filter::sat)
-        plan.push_back({"pack_atlas", {Artifact::fullscreen_vert, Artifact::pack_atlas_frag}});
-    if (config.filter == Filter::nbuffer)
-        plan.push_back({"nbuffer_level", {Artifact::fullscreen_vert, Artifact::nbuffer_level_frag}});
-    if (config.filter == Filter::gaussian)
-        plan.push_back({"gaussian_level", {Artifact::fullscreen_vert, Artifact::gaussian_level_frag}});
-    if (config.filter == Filter::sat) {
-        plan.push_back({"sat_shift", {Artifact::fullscreen_vert, Artifact::sat_shift_frag}});
-        plan.push_back({"sat_pass", {Artifact::fullscreen_vert, Artifact::sat_pass_frag}});
-    }
-    plan.push_back({"shading_example", {Artifact::shading_vert, Artifact::shading_frag}});
-    plan.push_back({"shading_deferred", {Artifact::fullscreen_vert, Artifact::deferred_frag}});
-    return plan;
-}
-
-// Every file of the configuration, each once, snippet last.
-constexpr std::vector<Artifact> artifacts(const Config& config) {
-    std::vector<Artifact> files;
-    for (const ProgramPlan& program : program_plan(config))
-        for (Artifact stage : program.stages) {
-            bool seen = false;
-            for (Artifact f : files) seen = seen || f == stage;
-            if (!seen) files.push_back(stage);
-        }
-    files.push_back(Artifact::visibility_snippet);
-    return files;
-}
 
 } // namespace detail
 } // namespace penumbra

@@ -1,12 +1,12 @@
 // penumbra/detail/technique_visibility.hpp — penumbraVisibility() of the configured technique: the
 // one function every shading program and penumbra_visibility.glsl are built around, so an engine
 // switches techniques without changing its own shaders.
-//   occlusion                emit_visibility.hpp
+//   occlusion                occlusion/emit_visibility.hpp
 //   shadowmap, pcf, pcss     shadow_map/emit_visibility.hpp
 //   oim                      oim/emit_oim.hpp (penumbraVisibility(vec2 texCoord): the maps are per surface)
 #pragma once
 
-#include "emit_visibility.hpp"
+#include "occlusion/emit_visibility.hpp"
 #include "oim/emit_oim.hpp"
 #include "shadow_map/emit_visibility.hpp"
 

@@ -1,6 +1,13 @@
 // penumbra/gl/runtime.hpp — runs an emission on OpenGL 4.5 core: compiles the programs, allocates
 // the layout's textures, runs its passes from the layout's data alone (phase "shadow" in build,
 // phase "screen" in run_screen / shade_deferred), and shades a G-buffer of world positions.
+// The include for users; its parts, each readable alone:
+//   resources.hpp      textures from their layout description, the passes' framebuffer
+//   passes.hpp         running a layout's passes (draws, copies, mipmaps, timings)
+//   state.hpp          fixed-function state, samplers and computed uniforms of a pass
+//   debug_capture.hpp  GL errors of one call as a diagnostic
+//   layout_enums.hpp   GL enums of layout.json's words
+// This file holds the Runtime: what runs (emission, configuration, light) and its lifecycle.
 //
 //   // with a current GL 4.5 core context (libepoxy resolves the entry points)
 //   std::string error;
@@ -21,7 +28,11 @@
 #include "../level_bound.hpp"
 #include "../light_frame.hpp"
 #include "../uniform_values.hpp"
+#include "debug_capture.hpp"
 #include "link_program.hpp"
+#include "passes.hpp"
+#include "resources.hpp"
+#include "state.hpp"
 
 #include <epoxy/gl.h>
 #include <glm/gtc/type_ptr.hpp>
@@ -43,11 +54,6 @@
 
 namespace penumbra::gl {
 
-struct PassTiming {
-    std::string name;
-    double milliseconds = 0.0;
-};
-
 struct RuntimeOptions {
     // Collect KHR_debug messages of high and medium severity during every runtime call and return
     // them as that call's diagnostic. Default: on in debug builds (NDEBUG not defined).
@@ -64,103 +70,6 @@ struct RuntimeOptions {
 };
 
 namespace detail {
-
-inline std::string gl_error_name(GLenum error) {
-    switch (error) {
-    case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
-    case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
-    case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
-    case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
-    case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
-    case GL_STACK_OVERFLOW: return "GL_STACK_OVERFLOW";
-    case GL_STACK_UNDERFLOW: return "GL_STACK_UNDERFLOW";
-    default: {
-        char hex[16];
-        std::snprintf(hex, sizeof hex, "0x%04X", error);
-        return std::string("GL error ") + hex;
-    }
-    }
-}
-
-// Collects the GL debug messages that one runtime call produces. The callback is installed for the
-// lifetime of this object only, and the previous callback, user pointer and enables are restored
-// afterwards: no GL state ever points at a dead Runtime, and an engine's own callback keeps
-// receiving every message (we forward them while installed).
-class DebugCapture {
-public:
-    // Without `enabled` or without KHR_debug (GL < 4.3 and no extension) only glGetError is used.
-    explicit DebugCapture(bool enabled) : active_(enabled && available()) {
-        if (!active_) return;
-        glGetPointerv(GL_DEBUG_CALLBACK_FUNCTION, &previous_callback_);
-        glGetPointerv(GL_DEBUG_CALLBACK_USER_PARAM, &previous_user_param_);
-        output_was_enabled_ = glIsEnabled(GL_DEBUG_OUTPUT);
-        synchronous_was_enabled_ = glIsEnabled(GL_DEBUG_OUTPUT_SYNCHRONOUS);
-        glDebugMessageCallback(&DebugCapture::receive, this);
-        // Without a debug context GL_DEBUG_OUTPUT starts disabled; Mesa then still reports API
-        // errors once it is enabled (other drivers may report less: glGetError stays as a backstop).
-        glEnable(GL_DEBUG_OUTPUT);
-        // Synchronous: messages arrive on this thread before the call that caused them returns,
-        // so they all arrive while this object lives.
-        glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
-    }
-    ~DebugCapture() {
-        if (!active_) return;
-        glDebugMessageCallback(reinterpret_cast<GLDEBUGPROC>(previous_callback_), previous_user_param_);
-        if (!output_was_enabled_) glDisable(GL_DEBUG_OUTPUT);
-        if (!synchronous_was_enabled_) glDisable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
-    }
-    DebugCapture(const DebugCapture&) = delete;
-    DebugCapture& operator=(const DebugCapture&) = delete;
-
-    // KHR_debug is core since GL 4.3.
-    static bool available() { return epoxy_gl_version() >= 43 || epoxy_has_gl_extension("GL_KHR_debug"); }
-
-    // The messages collected so far and the pending glGetError codes (always drained, so they do
-    // not leak into the caller's next check), as one diagnostic naming `where`; empty when none.
-    std::string take_diagnostic(const std::string& where) {
-        std::vector<std::string> codes;
-        for (GLenum e = glGetError(); e != GL_NO_ERROR && codes.size() < 16; e = glGetError())
-            codes.push_back(gl_error_name(e));
-        std::string out;
-        if (!messages_.empty()) {
-            out = "GL error in " + where + ": ";
-            for (std::size_t i = 0; i < messages_.size(); ++i) out += (i ? "; " : "") + messages_[i];
-            if (dropped_) out += "; and " + std::to_string(dropped_) + " more";
-        } else if (!codes.empty()) {
-            out = "GL error in " + where + ": ";
-            for (std::size_t i = 0; i < codes.size(); ++i) out += (i ? ", " : "") + codes[i];
-        }
-        messages_.clear();
-        dropped_ = 0;
-        return out;
-    }
-
-private:
-    static void GLAPIENTRY receive(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei length,
-                                   const GLchar* message, const void* user) {
-        auto* self = static_cast<DebugCapture*>(const_cast<void*>(user));
-        // Compiler messages (Mesa reports even warnings at high severity) reach the caller through
-        // the compile log, with file and line; performance hints (NVIDIA: medium) are not errors.
-        const bool counts = (severity == GL_DEBUG_SEVERITY_HIGH || severity == GL_DEBUG_SEVERITY_MEDIUM) &&
-                            source != GL_DEBUG_SOURCE_SHADER_COMPILER && type != GL_DEBUG_TYPE_PERFORMANCE;
-        if (counts) {
-            if (self->messages_.size() < 8)
-                self->messages_.emplace_back(message);
-            else
-                ++self->dropped_;
-        }
-        if (self->previous_callback_ && self->output_was_enabled_)
-            reinterpret_cast<GLDEBUGPROC>(self->previous_callback_)(source, type, id, severity, length,
-                                                                    message, self->previous_user_param_);
-    }
-
-    bool active_ = false;
-    void* previous_callback_ = nullptr;
-    void* previous_user_param_ = nullptr;
-    bool output_was_enabled_ = false, synchronous_was_enabled_ = false;
-    std::vector<std::string> messages_;
-    std::size_t dropped_ = 0;
-};
 
 // Shader text without comments and blank lines. Every emitted file opens with a comment that
 // names the whole configuration, so comparing raw text would rebuild every program on any change;
@@ -186,35 +95,6 @@ inline bool same_code(const Program& a, const Program& b) {
             return false;
     return true;
 }
-// Same GL storage and sampling: a texture with this description can be kept as it is.
-inline bool same_storage(const TextureDesc& a, const TextureDesc& b) {
-    return a.target == b.target && a.internal_format == b.internal_format && a.width == b.width &&
-           a.height == b.height && a.depth == b.depth && a.mip_levels == b.mip_levels &&
-           a.min_filter == b.min_filter && a.mag_filter == b.mag_filter && a.wrap == b.wrap &&
-           a.border_color == b.border_color && a.size == b.size && a.source == b.source && a.compare == b.compare;
-}
-
-// The GL enum of a layout.json word (targets, formats, filters, wraps, state); 0 when unknown.
-inline GLenum gl_enum(const std::string& name) {
-    static const std::map<std::string, GLenum> names{
-        {"2D", GL_TEXTURE_2D}, {"2D_ARRAY", GL_TEXTURE_2D_ARRAY}, {"3D", GL_TEXTURE_3D},
-        {"RGBA8", GL_RGBA8}, {"RGBA16F", GL_RGBA16F}, {"RGBA32F", GL_RGBA32F}, {"R8", GL_R8},
-        {"R16F", GL_R16F}, {"R32F", GL_R32F}, {"RG16F", GL_RG16F}, {"RG32F", GL_RG32F},
-        {"RGBA32UI", GL_RGBA32UI}, {"R32UI", GL_R32UI}, {"DEPTH_COMPONENT24", GL_DEPTH_COMPONENT24},
-        {"DEPTH_COMPONENT32F", GL_DEPTH_COMPONENT32F},
-        {"NEAREST", GL_NEAREST}, {"LINEAR", GL_LINEAR}, {"LINEAR_MIPMAP_LINEAR", GL_LINEAR_MIPMAP_LINEAR},
-        {"NEAREST_MIPMAP_NEAREST", GL_NEAREST_MIPMAP_NEAREST}, {"LINEAR_MIPMAP_NEAREST", GL_LINEAR_MIPMAP_NEAREST},
-        {"NEAREST_MIPMAP_LINEAR", GL_NEAREST_MIPMAP_LINEAR},
-        {"CLAMP_TO_BORDER", GL_CLAMP_TO_BORDER}, {"CLAMP_TO_EDGE", GL_CLAMP_TO_EDGE},
-        {"ADD", GL_FUNC_ADD}, {"MAX", GL_MAX}, {"MIN", GL_MIN},
-        {"ZERO", GL_ZERO}, {"ONE", GL_ONE}, {"SRC_ALPHA", GL_SRC_ALPHA}, {"ONE_MINUS_SRC_ALPHA", GL_ONE_MINUS_SRC_ALPHA},
-        {"DST_COLOR", GL_DST_COLOR},
-        {"NEVER", GL_NEVER}, {"LESS", GL_LESS}, {"EQUAL", GL_EQUAL}, {"LEQUAL", GL_LEQUAL}, {"GREATER", GL_GREATER},
-        {"NOTEQUAL", GL_NOTEQUAL}, {"GEQUAL", GL_GEQUAL}, {"ALWAYS", GL_ALWAYS},
-        {"BACK", GL_BACK}, {"FRONT", GL_FRONT}, {"OR", GL_OR}};
-    auto it = names.find(name);
-    return it == names.end() ? 0 : it->second;
-}
 
 // Two frames give the same uniforms (and so the same shadow phase output).
 inline bool same_frame(const SliceFrame& a, const SliceFrame& b) {
@@ -222,78 +102,6 @@ inline bool same_frame(const SliceFrame& a, const SliceFrame& b) {
            a.light_size == b.light_size && a.cop_distance == b.cop_distance && a.slice_depths == b.slice_depths &&
            a.window_half_size == b.window_half_size && a.tan_angular_radius == b.tan_angular_radius &&
            a.contained == b.contained;
-}
-
-inline bool is_depth_format(const std::string& format) { return format.starts_with("DEPTH_COMPONENT"); }
-inline bool is_integer_format(const std::string& format) { return format.ends_with("UI"); }
-// Components of a colour format: R → 1, RG → 2, RGBA → 4.
-inline int format_channels(const std::string& format) {
-    if (format.starts_with("RGBA")) return 4;
-    if (format.starts_with("RG")) return 2;
-    return 1;
-}
-inline GLenum pixel_format(int channels, bool integer) {
-    if (integer) return channels == 4 ? GL_RGBA_INTEGER : channels == 2 ? GL_RG_INTEGER : GL_RED_INTEGER;
-    return channels == 4 ? GL_RGBA : channels == 2 ? GL_RG : GL_RED;
-}
-
-// Sets a uniform of `program` from a uniform_values.hpp value; no-op when the program lacks it.
-inline void set_uniform(GLuint program, GLint location, const UniformValue& value) {
-    if (location < 0) return;
-    std::visit(
-        [&](const auto& v) {
-            using V = std::decay_t<decltype(v)>;
-            if constexpr (std::is_same_v<V, int>) glProgramUniform1i(program, location, v);
-            else if constexpr (std::is_same_v<V, float>) glProgramUniform1f(program, location, v);
-            else if constexpr (std::is_same_v<V, glm::vec2>) glProgramUniform2fv(program, location, 1, glm::value_ptr(v));
-            else if constexpr (std::is_same_v<V, glm::vec4>) glProgramUniform4fv(program, location, 1, glm::value_ptr(v));
-            else glProgramUniformMatrix4fv(program, location, 1, GL_FALSE, glm::value_ptr(v));
-        },
-        value);
-}
-
-// Applies a pass's fixed-function state (everything RenderState names; the rest is left alone).
-inline void apply_state(const RenderState& s) {
-    if (s.blend) {
-        glEnable(GL_BLEND);
-        glBlendEquation(gl_enum(s.blend_equation));
-        glBlendFunc(gl_enum(s.blend_src), gl_enum(s.blend_dst));
-    } else {
-        glDisable(GL_BLEND);
-    }
-    if (s.depth_test) {
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(gl_enum(s.depth_func));
-    } else {
-        glDisable(GL_DEPTH_TEST);
-    }
-    glDepthMask(s.depth_write ? GL_TRUE : GL_FALSE);
-    glColorMask(s.color_mask[0], s.color_mask[1], s.color_mask[2], s.color_mask[3]);
-    if (s.cull == "NONE") {
-        glDisable(GL_CULL_FACE);
-    } else {
-        glEnable(GL_CULL_FACE);
-        glCullFace(gl_enum(s.cull));
-    }
-    if (s.logic_op != "NONE") { // integer targets: each fragment OR-ed into the texel (no blending)
-        glEnable(GL_COLOR_LOGIC_OP);
-        glLogicOp(gl_enum(s.logic_op));
-    } else {
-        glDisable(GL_COLOR_LOGIC_OP);
-    }
-    if (s.polygon_offset_factor != 0.0f || s.polygon_offset_units != 0.0f) {
-        glEnable(GL_POLYGON_OFFSET_FILL);
-        glPolygonOffset(s.polygon_offset_factor, s.polygon_offset_units);
-    } else {
-        glDisable(GL_POLYGON_OFFSET_FILL);
-    }
-}
-
-// GL's defaults for what apply_state touches, restored after the runtime's passes.
-inline void reset_state() {
-    RenderState defaults;
-    defaults.depth_write = true;
-    apply_state(defaults);
 }
 
 } // namespace detail
@@ -574,7 +382,7 @@ public:
     void bind_visibility(GLuint program, const std::optional<glm::mat4>& clip_from_world = std::nullopt) const {
         for (const PassDesc& pass : emission_.layout.passes)
             if (pass.phase == "example")
-                for (const BindingDesc& in : pass.inputs) bind_sampler(program, in.sampler, in.binding, texture(in.texture));
+                for (const BindingDesc& in : pass.inputs) detail::bind_sampler(program, in.sampler, in.binding, texture(in.texture));
         UniformInputs inputs = uniform_inputs();
         inputs.clip_from_world = clip_from_world;
         for (const UniformRule& rule : uniform_rules())
@@ -653,7 +461,7 @@ private:
                 continue;
             }
             std::string log;
-            const GLuint id = allocate(t, t.width, t.height, &log);
+            const GLuint id = detail::allocate_texture(t, t.width, t.height, &log);
             if (!id) return discard("texture " + t.name + ": " + log);
             next_textures[t.name] = id;
             new_textures.push_back(id);
@@ -700,11 +508,7 @@ private:
             if (p.name == name) return &p;
         return nullptr;
     }
-    const TextureDesc* find_texture(const std::string& name) const {
-        for (const TextureDesc& t : emission_.layout.textures)
-            if (t.name == name) return &t;
-        return nullptr;
-    }
+    const TextureDesc* find_texture(const std::string& name) const { return detail::find_texture(emission_.layout, name); }
 
     std::string check_bake(const std::string& name) const {
         const TextureDesc* t = find_texture(name);
@@ -749,50 +553,6 @@ private:
         return capture.take_diagnostic("supply_texture " + name);
     }
 
-    static GLuint allocate(const TextureDesc& t, int width, int height, std::string* log) {
-        const GLenum target = detail::gl_enum(t.target), format = detail::gl_enum(t.internal_format);
-        if (!target || !format) {
-            *log = "unknown target or format " + t.target + " " + t.internal_format;
-            return 0;
-        }
-        if (width < 1 || height < 1) {
-            *log = "size " + std::to_string(width) + "x" + std::to_string(height) + " is empty";
-            return 0;
-        }
-        GLuint id = 0;
-        glCreateTextures(target, 1, &id);
-        if (target == GL_TEXTURE_2D)
-            glTextureStorage2D(id, t.mip_levels, format, width, height);
-        else
-            glTextureStorage3D(id, t.mip_levels, format, width, height, t.depth);
-        glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(detail::gl_enum(t.min_filter)));
-        glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, static_cast<GLint>(detail::gl_enum(t.mag_filter)));
-        const GLint wrap = static_cast<GLint>(detail::gl_enum(t.wrap));
-        glTextureParameteri(id, GL_TEXTURE_WRAP_S, wrap);
-        glTextureParameteri(id, GL_TEXTURE_WRAP_T, wrap);
-        glTextureParameteri(id, GL_TEXTURE_WRAP_R, wrap);
-        glTextureParameterfv(id, GL_TEXTURE_BORDER_COLOR, t.border_color.data());
-        glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, t.mip_levels - 1);
-        if (!t.compare.empty()) {
-            glTextureParameteri(id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-            glTextureParameteri(id, GL_TEXTURE_COMPARE_FUNC, static_cast<GLint>(detail::gl_enum(t.compare)));
-        }
-        const bool depth = detail::is_depth_format(t.internal_format);
-        const bool integer = detail::is_integer_format(t.internal_format);
-        const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-        const GLuint zero_u[4] = {0, 0, 0, 0};
-        for (int level = 0; level < t.mip_levels; ++level) {
-            if (depth) glClearTexImage(id, level, GL_DEPTH_COMPONENT, GL_FLOAT, zero);
-            else if (integer) glClearTexImage(id, level, GL_RGBA_INTEGER, GL_UNSIGNED_INT, zero_u);
-            else glClearTexImage(id, level, GL_RGBA, GL_FLOAT, zero);
-        }
-        if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
-            *log = "GL error " + std::to_string(e);
-            glDeleteTextures(1, &id);
-            return 0;
-        }
-        return id;
-    }
 
     // Output-sized textures at width × height, reallocated when the size changed.
     std::string ensure_output_textures(int width, int height) {
@@ -802,7 +562,7 @@ private:
         for (const TextureDesc& t : emission_.layout.textures) {
             if (t.size != "output" || t.source == "caller") continue;
             std::string log;
-            const GLuint id = allocate(t, width, height, &log);
+            const GLuint id = detail::allocate_texture(t, width, height, &log);
             if (!id) return "texture " + t.name + ": " + log;
             output_textures_[t.name] = id;
         }
@@ -811,40 +571,28 @@ private:
         return {};
     }
 
-    static void bind_sampler(GLuint program, const std::string& name, int unit, GLuint texture_id) {
-        glBindTextureUnit(static_cast<GLuint>(unit), texture_id);
-        const GLint location = glGetUniformLocation(program, name.c_str());
-        if (location >= 0) glProgramUniform1i(program, location, unit); // glsl330: no layout(binding)
-    }
 
-    // The uniforms of `program` that the table computes ("light" and "camera" sources).
-    std::string set_computed_uniforms(const PassDesc& pass, GLuint program) const {
-        const UniformInputs inputs = uniform_inputs();
-        for (const ProgramDesc& p : emission_.layout.programs) {
-            if (p.name != pass.program) continue;
-            for (const ParamDesc& param : p.parameters) {
-                if (param.source != "light" && param.source != "camera") continue;
-                const std::optional<UniformValue> v = uniform_value(param.name, inputs);
-                if (!v) {
-                    if (param.source == "camera") continue; // no camera in the runtime's own passes
-                    return "pass " + pass.name + ": no value for uniform " + param.name +
-                           " (penumbra/uniform_values.hpp has no rule for it)";
-                }
-                detail::set_uniform(program, glGetUniformLocation(program, param.name.c_str()), *v);
-            }
-        }
-        return {};
-    }
 
-    void detach_all() {
-        for (int i = 0; i < 8; ++i) glNamedFramebufferTexture(fbo_, GL_COLOR_ATTACHMENT0 + i, 0, 0);
-        glNamedFramebufferTexture(fbo_, GL_DEPTH_ATTACHMENT, 0, 0);
-    }
 
     // The layout texture `name`: the caller's (screen runs), a supplied bake, or the runtime's own.
     GLuint resolve(const std::string& name) const {
         if (auto it = caller_.find(name); it != caller_.end()) return it->second;
         return texture(name);
+    }
+
+    // The passes run with the runtime's framebuffer, programs and textures (the caller's first).
+    detail::PassContext pass_context() const {
+        return {emission_.layout,
+                fbo_,
+                empty_vao_,
+                [this](const std::string& name) { return program(name); },
+                [this](const std::string& name) { return resolve(name); },
+                output_width_,
+                output_height_,
+                uniform_inputs()};
+    }
+    std::string run_phase(const std::string& phase, const DrawScene& draw, std::vector<PassTiming>* timings) {
+        return detail::run_phase(pass_context(), phase, draw, timings);
     }
 
     std::string screen(const std::string& where, const TextureMap& caller_textures, int width, int height,
@@ -862,152 +610,8 @@ private:
         return diagnostic;
     }
 
-    // Runs every pass of `phase` in layout order, restoring the caller's framebuffer and viewport.
-    std::string run_phase(const std::string& phase, const DrawScene& draw, std::vector<PassTiming>* timings) {
-        GLint previous_fbo = 0, previous_viewport[4];
-        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous_fbo);
-        glGetIntegerv(GL_VIEWPORT, previous_viewport);
-        std::vector<std::pair<std::string, GLuint>> pending;
-        std::string diagnostic;
-        for (const PassDesc& pass : emission_.layout.passes) {
-            if (pass.phase != phase) continue;
-            GLuint query = 0;
-            if (timings) {
-                glGenQueries(1, &query);
-                glBeginQuery(GL_TIME_ELAPSED, query);
-            }
-            diagnostic = run_pass(pass, draw);
-            if (timings) {
-                glEndQuery(GL_TIME_ELAPSED);
-                pending.push_back({pass.name, query});
-            }
-            if (!diagnostic.empty()) break;
-        }
-        for (auto& [name, query] : pending) {
-            GLuint64 ns = 0;
-            glGetQueryObjectui64v(query, GL_QUERY_RESULT, &ns);
-            timings->push_back({name, ns * 1e-6});
-            glDeleteQueries(1, &query);
-        }
-        glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previous_fbo));
-        glViewport(previous_viewport[0], previous_viewport[1], previous_viewport[2], previous_viewport[3]);
-        detail::reset_state();
-        return diagnostic;
-    }
 
-    // Size of level `level` of the texture an attachment names (output-sized: the output size).
-    std::pair<int, int> attachment_size(const AttachmentDesc& out) const {
-        const TextureDesc* t = find_texture(out.texture);
-        if (!t) return {0, 0};
-        const int w = t->size == "output" ? output_width_ : t->width, h = t->size == "output" ? output_height_ : t->height;
-        return {std::max(w >> out.level, 1), std::max(h >> out.level, 1)};
-    }
 
-    std::string run_pass(const PassDesc& pass, const DrawScene& draw) {
-        if (pass.action == "generate_mipmap") {
-            glGenerateTextureMipmap(resolve(pass.outputs.at(0).texture));
-            return {};
-        }
-        if (pass.action == "copy") {
-            const GLuint src = resolve(pass.inputs.at(0).texture), dst = resolve(pass.outputs.at(0).texture);
-            const AttachmentDesc& out = pass.outputs.at(0);
-            const TextureDesc* dst_desc = find_texture(out.texture);
-            const GLenum dst_target = dst_desc ? detail::gl_enum(dst_desc->target) : GL_TEXTURE_2D;
-            glCopyImageSubData(src, GL_TEXTURE_2D, 0, 0, 0, 0, dst, dst_target, out.level, 0, 0,
-                               std::max(out.layer, 0), pass.viewport_width, pass.viewport_height, 1);
-            return {};
-        }
-        if (pass.action != "draw_scene" && pass.action != "fullscreen")
-            return "pass " + pass.name + ": unknown action '" + pass.action +
-                   "'; allowed: draw_scene, fullscreen, generate_mipmap, copy";
-        const GLuint program = this->program(pass.program);
-        if (!program) return "pass " + pass.name + ": no program " + pass.program;
-        glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-        detach_all();
-        std::vector<GLenum> buffers;
-        std::vector<bool> integer_buffers; // cleared with glClearBufferuiv
-        bool has_depth = false;
-        for (const AttachmentDesc& out : pass.outputs) {
-            const bool depth = out.kind == "depth";
-            const GLenum attachment = depth ? GL_DEPTH_ATTACHMENT : GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(buffers.size());
-            if (out.layer >= 0)
-                glNamedFramebufferTextureLayer(fbo_, attachment, resolve(out.texture), out.level, out.layer);
-            else
-                glNamedFramebufferTexture(fbo_, attachment, resolve(out.texture), out.level);
-            if (depth) {
-                has_depth = true;
-            } else {
-                buffers.push_back(attachment);
-                const TextureDesc* desc = find_texture(out.texture);
-                integer_buffers.push_back(desc && detail::is_integer_format(desc->internal_format));
-            }
-        }
-        if (buffers.empty()) glNamedFramebufferDrawBuffer(fbo_, GL_NONE);
-        else glNamedFramebufferDrawBuffers(fbo_, static_cast<GLsizei>(buffers.size()), buffers.data());
-        if (glCheckNamedFramebufferStatus(fbo_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-            return "pass " + pass.name + ": framebuffer incomplete";
-        int width = pass.viewport_width, height = pass.viewport_height;
-        if ((width == 0 || height == 0) && !pass.outputs.empty())
-            std::tie(width, height) = attachment_size(pass.outputs.front());
-        glViewport(0, 0, width, height);
-
-        // Clear with full write masks, then the pass's state.
-        const RenderState& state = pass.state;
-        if (state.clear_color) {
-            glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-            for (std::size_t i = 0; i < buffers.size(); ++i) {
-                if (integer_buffers[i]) {
-                    std::array<GLuint, 4> value{};
-                    for (int c = 0; c < 4; ++c) value[c] = static_cast<GLuint>((*state.clear_color)[c]);
-                    glClearBufferuiv(GL_COLOR, static_cast<GLint>(i), value.data());
-                } else {
-                    glClearBufferfv(GL_COLOR, static_cast<GLint>(i), state.clear_color->data());
-                }
-            }
-        }
-        if (state.clear_depth && has_depth) {
-            glDepthMask(GL_TRUE);
-            glClearBufferfv(GL_DEPTH, 0, &*state.clear_depth);
-        }
-        detail::apply_state(state);
-
-        glUseProgram(program);
-        std::vector<GLuint> restricted;
-        for (const BindingDesc& in : pass.inputs) {
-            const GLuint id = resolve(in.texture);
-            if (!id) {
-                glUseProgram(0);
-                return "pass " + pass.name + ": no texture " + in.texture + " for " + in.sampler;
-            }
-            if (in.level >= 0) { // read one level only; the pass may render another level of it
-                glTextureParameteri(id, GL_TEXTURE_BASE_LEVEL, in.level);
-                glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, in.level);
-                restricted.push_back(id);
-            }
-            bind_sampler(program, in.sampler, in.binding, id);
-        }
-        for (const auto& [name, value] : pass.int_uniforms)
-            glProgramUniform1i(program, glGetUniformLocation(program, name.c_str()), value);
-        std::string diagnostic = set_computed_uniforms(pass, program);
-        if (diagnostic.empty()) {
-            if (pass.action == "draw_scene") {
-                draw(program);
-            } else {
-                glBindVertexArray(empty_vao_);
-                glDrawArrays(GL_TRIANGLES, 0, 3);
-                glBindVertexArray(0);
-            }
-        }
-        for (GLuint id : restricted) {
-            const TextureDesc* t = nullptr;
-            for (const BindingDesc& in : pass.inputs)
-                if (resolve(in.texture) == id) t = find_texture(in.texture);
-            glTextureParameteri(id, GL_TEXTURE_BASE_LEVEL, 0);
-            glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, t ? t->mip_levels - 1 : 1000);
-        }
-        glUseProgram(0);
-        return diagnostic;
-    }
 
     Config config_;    // what runs (level_bound fitted)
     Config requested_; // what create / reconfigure were given

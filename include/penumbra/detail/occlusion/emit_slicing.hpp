@@ -1,4 +1,4 @@
-// penumbra/detail/emit_slicing.hpp — the slicing pass (paper §3.4): the scene seen from the
+// penumbra/detail/occlusion/emit_slicing.hpp — the slicing pass (paper §3.4): the scene seen from the
 // slicing camera, each fragment marking the channel of its slice in one of T render targets.
 // Blending is MAX, so a texel is 1 where anything in that slice covers it. Beyond 32 slices
 // (paper §3.7) each fragment sets the bit of its slice in one RGBA32UI target instead, combined by

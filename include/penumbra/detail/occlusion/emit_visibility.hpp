@@ -1,4 +1,4 @@
-// penumbra/detail/emit_visibility.hpp — float penumbraVisibility(vec3 worldPos), specialized.
+// penumbra/detail/occlusion/emit_visibility.hpp — float penumbraVisibility(vec3 worldPos), specialized.
 //
 // Everything the configuration fixes is baked in as literals: slice count, resolution, levels,
 // slice plane indices, tile offsets. The static loop is written out iteration by iteration

@@ -1,4 +1,4 @@
-// penumbra/detail/emit_generic.hpp — the generic deferred visibility pass: the same model as
+// penumbra/detail/occlusion/emit_generic.hpp — the generic deferred visibility pass: the same model as
 // emit_visibility.hpp with nothing specialized (issue 3, §7).
 //
 // Slice count, resolution, level count, tile count, fusion rule and fade are uniforms; the slice
@@ -15,7 +15,7 @@
 #pragma once
 
 #include "emit_prefilter.hpp"
-#include "emit_shading.hpp"
+#include "../emit_shading.hpp"
 
 namespace penumbra::detail {
 

@@ -1,7 +1,7 @@
-// penumbra/detail/parameters.hpp — the uniforms and samplers of each emitted program.
+// penumbra/detail/occlusion/parameters.hpp — the uniforms and samplers of the occlusion-texture programs.
 #pragma once
 
-#include "glsl_common.hpp"
+#include "../glsl_common.hpp"
 
 namespace penumbra::detail {
 

@@ -1,4 +1,4 @@
-// penumbra/detail/emit_slice_placement.hpp — adaptive slice placement (paper §5, future work:
+// penumbra/detail/occlusion/emit_slice_placement.hpp — adaptive slice placement (paper §5, future work:
 // "slice placement"): where the slice boundaries lie along the light normal, computed on the GPU
 // from the scene itself, with no read-back to the CPU.
 //

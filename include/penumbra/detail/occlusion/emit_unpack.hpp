@@ -1,4 +1,4 @@
-// penumbra/detail/emit_unpack.hpp — the unpack pass of more than 32 slices (paper §3.7): the
+// penumbra/detail/occlusion/emit_unpack.hpp — the unpack pass of more than 32 slices (paper §3.7): the
 // slicing pass wrote slice k as bit k % 32 of component k / 32 of one RGBA32UI texel; this
 // full-screen pass turns the bits back into the RGBA occlusion textures (four slices each) that the
 // prefilter passes read. One draw writes as many textures as the target has colour attachments,
@@ -6,7 +6,7 @@
 #pragma once
 
 #include "parameters.hpp"
-#include "target_limits.hpp"
+#include "../target_limits.hpp"
 
 namespace penumbra::detail {
 

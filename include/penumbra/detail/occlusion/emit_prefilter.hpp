@@ -1,4 +1,4 @@
-// penumbra/detail/emit_prefilter.hpp — full-screen passes that turn the slicing output into the
+// penumbra/detail/occlusion/emit_prefilter.hpp — full-screen passes that turn the slicing output into the
 // filtered storage the shading pass reads (paper §3.2). Mipmaps need no shader of ours: the
 // layout description asks for glGenerateMipmap.
 #pragma once

@@ -1,0 +1,111 @@
+// penumbra/detail/occlusion/validate.hpp — the occlusion textures' fields, and what the target
+// allows of them (render targets, texture sizes, array layers, logic op).
+#pragma once
+
+#include "../problem.hpp"
+#include "../target_limits.hpp"
+
+#include <string_view>
+
+namespace penumbra {
+
+// The slice counts a configuration may have, as diagnostics and --help texts say it (public:
+// penumbra/validate.hpp).
+inline constexpr std::string_view allowed_slices = "1 to 32, 64 or 128";
+
+namespace detail {
+
+// Texel extent of the widest 2D texture a packing needs (the atlas puts the T tiles side by side;
+// summed-area tables store R+1 exclusive prefix sums per side).
+constexpr long long widest_2d_texture(const Config& config) {
+    const long long tile = config.resolution + (config.filter == Filter::sat ? 1 : 0);
+    return config.packing == Packing::atlas ? tile * texture_count(config) : tile;
+}
+
+constexpr std::vector<Problem> occlusion_problems(const Config& config) {
+    std::vector<Problem> problems;
+    auto add = [&](std::string_view field, Text value, Text message) { add_problem(problems, field, value, message); };
+    if (config.slices < 1 || (config.slices > max_channel_slices && config.slices != 64 && config.slices != 128))
+        add("slices", format_int(config.slices), cat("is out of range; allowed: ", allowed_slices));
+    if (config.resolution < 32 || config.resolution > 4096 || !is_power_of_two(config.resolution))
+        add("resolution", format_int(config.resolution),
+            "is not allowed; allowed: a power of two from 32 to 4096 (32, 64, 128, 256, 512, 1024, 2048, 4096)");
+    check_known(problems, "filter", config.filter);
+    check_known(problems, "fusion", config.fusion);
+    check_known(problems, "packing", config.packing);
+    check_known(problems, "light", config.light);
+    check_known(problems, "target", config.target);
+    check_known(problems, "slice_placement", config.slice_placement);
+    check_known(problems, "level_format", config.level_format);
+    if (problems.empty() && (config.level_bound < -1 || config.level_bound > resolution_levels(config)))
+        add("level_bound", format_int(config.level_bound),
+            cat("is out of range; allowed: -1 (every level) or 0 to ", format_int(resolution_levels(config)),
+                " (log2 of resolution ", format_int(config.resolution), ")"));
+    if (!(config.tangent_clip_offset >= 0.0 && config.tangent_clip_offset <= 8.0))
+        add("tangent_clip_offset", format_value(config.tangent_clip_offset), "is out of range; allowed: 0 to 8 slicing texels");
+    if (!(config.fade_ramp > 0.0 && config.fade_ramp <= 4.0))
+        add("fade_ramp", format_value(config.fade_ramp),
+            "is out of range; allowed: more than 0 to 4 (fraction of a slice's thickness)");
+    if (problems.empty() && (config.level_reduction < -1 || config.level_reduction > resolution_levels(config)))
+        add("level_reduction", format_int(config.level_reduction),
+            cat("is out of range; allowed: -1 (every level at full resolution) or 0 to ",
+                format_int(resolution_levels(config)), " (log2 of resolution ", format_int(config.resolution), ")"));
+    if (!problems.empty()) return problems; // the rules below need valid fields
+
+    const std::string_view filter = to_string(config.filter);
+    const std::string_view target = to_string(config.target);
+    const TargetLimits limit = limits(config.target);
+    if (config.filter == Filter::gaussian && config.light != Light::sun)
+        add("filter", Text(filter),
+            cat("needs light 'sun' (the Gaussian stands for the sun's disk, journal §3.5); allowed with light '",
+                to_string(config.light), "': mipmap, nbuffer, sat"));
+    if (config.packing == Packing::volume && (config.filter == Filter::mipmap || config.filter == Filter::sat))
+        add("packing", Text("volume"),
+            cat("cannot hold filter '", filter,
+                "' (a volume stores equal-size filter levels as depth; mipmap levels shrink and a summed-area table "
+                "has one level); allowed with this filter: atlas, array"));
+    if (config.filter == Filter::sat && !limit.float32_render_filter)
+        add("filter", Text("sat"),
+            cat("needs renderable, filterable 32-bit float textures, which target '", target,
+                "' does not guarantee; allowed filters for ", target, ": mipmap, nbuffer, gaussian"));
+    const Text allowed_for_target = cat("1 to ", format_int(4 * limit.max_draw_buffers), limit.logic_op ? ", 64 or 128" : "");
+    if (slices_as_bits(config) && !limit.logic_op)
+        add("slices", format_int(config.slices),
+            cat("needs a logical OR on the slicing target (more than 32 slices are written as bits, paper §3.7), "
+                "which target '", target, "' does not have; allowed for ", target, ": ", allowed_for_target));
+    else if (!slices_as_bits(config) && texture_count(config) > limit.max_draw_buffers)
+        add("slices", format_int(config.slices),
+            cat("needs ", format_int(texture_count(config)), " render targets (four slices each) but target '", target,
+                "' guarantees ", format_int(limit.max_draw_buffers), "; allowed for ", target, ": ", allowed_for_target));
+    if (slices_as_bits(config) && config.packing == Packing::volume)
+        add("packing", Text("volume"),
+            cat("needs ", format_int(texture_count(config)), " 3D textures for ", format_int(config.slices),
+                " slices, more samplers than a shading pass is guaranteed (16); allowed with more than 32 slices: atlas, "
+                "array"));
+    if (widest_2d_texture(config) > limit.max_texture_size) {
+        Config smaller = config;
+        while (smaller.resolution > 32 && widest_2d_texture(smaller) > limit.max_texture_size) smaller.resolution /= 2;
+        const bool fits = widest_2d_texture(smaller) <= limit.max_texture_size;
+        add("resolution", format_int(config.resolution),
+            cat("needs a ", format_int(widest_2d_texture(config)), "-texel wide ",
+                config.packing == Packing::atlas ? "atlas" : "texture", " but target '", target,
+                "' guarantees only ", format_int(limit.max_texture_size), " texels; allowed with ",
+                format_int(config.slices), " slices and packing ", to_string(config.packing), ": ",
+                fits ? cat("up to ", format_int(smaller.resolution)) : Text("none"),
+                ", or fewer slices, another packing or another target"));
+    }
+    const int level_count = config.filter == Filter::mipmap || config.filter == Filter::sat ? 1 : max_level(config) + 1;
+    if (config.packing == Packing::array && level_count * texture_count(config) > limit.max_array_layers)
+        add("packing", Text("array"),
+            cat("needs ", format_int(level_count * texture_count(config)), " layers but target '", target,
+                "' guarantees ", format_int(limit.max_array_layers), "; allowed: atlas, or fewer slices"));
+    if (config.packing == Packing::volume && config.resolution > limit.max_3d_texture_size)
+        add("resolution", format_int(config.resolution),
+            cat("is too large for packing 'volume': target '", target, "' guarantees 3D textures of ",
+                format_int(limit.max_3d_texture_size), " texels; allowed: up to ",
+                format_int(limit.max_3d_texture_size), ", or packing atlas or array"));
+    return problems;
+}
+
+} // namespace detail
+} // namespace penumbra

@@ -1,0 +1,55 @@
+// penumbra/detail/shadow_map/layout.hpp — the shadow map techniques (shadowmap, pcf, pcss) in the
+// layout: the depth pass from the light, then the deferred shading. Erosion starts from the same
+// depth pass (erosion/layout.hpp).
+#pragma once
+
+#include "../artifacts.hpp"
+#include "../layout_builder.hpp"
+
+namespace penumbra::detail {
+
+// Depth, shading.
+constexpr std::vector<ProgramPlan> shadow_map_programs(const Config&) {
+    return {{"shadow_depth", {Artifact::shadow_depth_vert, Artifact::shadow_depth_frag}},
+            {"shading_example", {Artifact::shading_vert, Artifact::shading_frag}},
+            {"shading_deferred", {Artifact::fullscreen_vert, Artifact::deferred_frag}}};
+}
+
+inline std::vector<ParamGroup> shadow_map_param_groups(const Config& config, std::string_view program) {
+    if (program == "shadow_depth") return {{"PenumbraShadowDepth", shadow_depth_params()}};
+    return shading_param_groups(program, shadow_visibility_params(config), deferred_params(config),
+                                example_fragment_params(), example_vertex_params());
+}
+
+// Shadow map techniques, phase "shadow": the depth pass from the light (shadow_frame in
+// light_frame.hpp), and for PCSS a copy of the depth that the blocker search reads without
+// comparison (a texture has one compare mode).
+inline void describe_shadow_map_passes(LayoutBuilder& b, const Config& config) {
+    const int R = config.shadow_map.resolution;
+    TextureDesc& map = b.texture(std::string(shadow_map_texture), "2D", "DEPTH_COMPONENT32F", R, R, 1, 1, "LINEAR",
+                                 "LINEAR", "shadow map: (z - near) / (far - near) along the light axis, biased; "
+                                           "read with hardware comparison, bilinear");
+    map.wrap = "CLAMP_TO_EDGE"; // kernels reaching past the map read its edge, not a shadowing border
+    map.compare = "LEQUAL";     // lit where the receiver's depth <= the stored (biased) occluder depth
+    RenderState depth_only;
+    depth_only.depth_test = depth_only.depth_write = true;
+    depth_only.depth_func = "LESS";
+    depth_only.clear_depth = 1.0f;
+    b.pass("shadow_depth", "draw_scene", "shadow_depth", {}, {{std::string(shadow_map_texture), 0, -1, "depth"}}, {},
+           R, R, depth_only);
+    if (config.technique == Technique::pcss || config.technique == Technique::erosion) {
+        TextureDesc& plain = b.texture("penumbra_shadowDepth", "2D", "DEPTH_COMPONENT32F", R, R, 1, 1, "NEAREST",
+                                       "NEAREST", "copy of the shadow map, read as depth for the blocker search");
+        plain.wrap = "CLAMP_TO_EDGE";
+        b.pass("copy_shadow_depth", "copy", "", {{"", std::string(shadow_map_texture), 0}},
+               {{"penumbra_shadowDepth", 0, -1, "depth"}}, {}, R, R);
+    }
+}
+
+inline void describe_shadow_map_layout(LayoutBuilder& b, const Config& config) {
+    describe_shadow_map_passes(b, config);
+    describe_screen_textures(b, config);
+    describe_deferred_pass(b);
+}
+
+} // namespace penumbra::detail

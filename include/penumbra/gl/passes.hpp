@@ -1,0 +1,196 @@
+// penumbra/gl/passes.hpp — runs the passes of a layout from its data alone: every texture, binding,
+// state and uniform a pass needs comes from layout.json (penumbra/layout.hpp); nothing here knows a
+// pass, program or technique by name.
+//
+// Header-only; includes <epoxy/gl.h>.
+#pragma once
+
+#include "../layout.hpp"
+#include "../uniform_values.hpp"
+#include "resources.hpp"
+#include "state.hpp"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <array>
+#include <functional>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+namespace penumbra::gl {
+
+struct PassTiming {
+    std::string name;
+    double milliseconds = 0.0;
+};
+
+namespace detail {
+
+using DrawScene = std::function<void(GLuint program)>;
+
+// What the passes of a layout run with: the runtime's framebuffer and empty vertex array, its
+// programs and textures by layout name, the output size and the inputs of computed uniforms.
+struct PassContext {
+    const Layout& layout;
+    GLuint framebuffer = 0;
+    GLuint empty_vertex_array = 0;
+    std::function<GLuint(const std::string&)> program; // 0 when there is none of that name
+    std::function<GLuint(const std::string&)> texture; // the GL texture of a layout texture name
+    int output_width = 0, output_height = 0;           // of the textures whose size is "output"
+    UniformInputs uniforms;                             // for the "light" and "camera" uniforms
+};
+
+// Size of level `level` of the texture an attachment names (output-sized: the output size).
+inline std::pair<int, int> attachment_size(const PassContext& c, const AttachmentDesc& out) {
+    const TextureDesc* t = find_texture(c.layout, out.texture);
+    if (!t) return {0, 0};
+    const int w = t->size == "output" ? c.output_width : t->width, h = t->size == "output" ? c.output_height : t->height;
+    return {std::max(w >> out.level, 1), std::max(h >> out.level, 1)};
+}
+
+// Runs one pass: a copy, a mipmap generation, or a draw of `program` into the pass's outputs.
+inline std::string run_pass(const PassContext& c, const PassDesc& pass, const DrawScene& draw) {
+    if (pass.action == "generate_mipmap") {
+        glGenerateTextureMipmap(c.texture(pass.outputs.at(0).texture));
+        return {};
+    }
+    if (pass.action == "copy") {
+        const GLuint src = c.texture(pass.inputs.at(0).texture), dst = c.texture(pass.outputs.at(0).texture);
+        const AttachmentDesc& out = pass.outputs.at(0);
+        const TextureDesc* dst_desc = find_texture(c.layout, out.texture);
+        const GLenum dst_target = dst_desc ? detail::gl_enum(dst_desc->target) : GL_TEXTURE_2D;
+        glCopyImageSubData(src, GL_TEXTURE_2D, 0, 0, 0, 0, dst, dst_target, out.level, 0, 0,
+                           std::max(out.layer, 0), pass.viewport_width, pass.viewport_height, 1);
+        return {};
+    }
+    if (pass.action != "draw_scene" && pass.action != "fullscreen")
+        return "pass " + pass.name + ": unknown action '" + pass.action +
+               "'; allowed: draw_scene, fullscreen, generate_mipmap, copy";
+    const GLuint program = c.program(pass.program);
+    if (!program) return "pass " + pass.name + ": no program " + pass.program;
+    glBindFramebuffer(GL_FRAMEBUFFER, c.framebuffer);
+    detach_all(c.framebuffer);
+    std::vector<GLenum> buffers;
+    std::vector<bool> integer_buffers; // cleared with glClearBufferuiv
+    bool has_depth = false;
+    for (const AttachmentDesc& out : pass.outputs) {
+        const bool depth = out.kind == "depth";
+        const GLenum attachment = depth ? GL_DEPTH_ATTACHMENT : GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(buffers.size());
+        if (out.layer >= 0)
+            glNamedFramebufferTextureLayer(c.framebuffer, attachment, c.texture(out.texture), out.level, out.layer);
+        else
+            glNamedFramebufferTexture(c.framebuffer, attachment, c.texture(out.texture), out.level);
+        if (depth) {
+            has_depth = true;
+        } else {
+            buffers.push_back(attachment);
+            const TextureDesc* desc = find_texture(c.layout, out.texture);
+            integer_buffers.push_back(desc && detail::is_integer_format(desc->internal_format));
+        }
+    }
+    if (buffers.empty()) glNamedFramebufferDrawBuffer(c.framebuffer, GL_NONE);
+    else glNamedFramebufferDrawBuffers(c.framebuffer, static_cast<GLsizei>(buffers.size()), buffers.data());
+    if (glCheckNamedFramebufferStatus(c.framebuffer, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return "pass " + pass.name + ": framebuffer incomplete";
+    int width = pass.viewport_width, height = pass.viewport_height;
+    if ((width == 0 || height == 0) && !pass.outputs.empty())
+        std::tie(width, height) = attachment_size(c, pass.outputs.front());
+    glViewport(0, 0, width, height);
+
+    // Clear with full write masks, then the pass's state.
+    const RenderState& state = pass.state;
+    if (state.clear_color) {
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        for (std::size_t i = 0; i < buffers.size(); ++i) {
+            if (integer_buffers[i]) {
+                std::array<GLuint, 4> value{};
+                for (int c = 0; c < 4; ++c) value[c] = static_cast<GLuint>((*state.clear_color)[c]);
+                glClearBufferuiv(GL_COLOR, static_cast<GLint>(i), value.data());
+            } else {
+                glClearBufferfv(GL_COLOR, static_cast<GLint>(i), state.clear_color->data());
+            }
+        }
+    }
+    if (state.clear_depth && has_depth) {
+        glDepthMask(GL_TRUE);
+        glClearBufferfv(GL_DEPTH, 0, &*state.clear_depth);
+    }
+    detail::apply_state(state);
+
+    glUseProgram(program);
+    std::vector<GLuint> restricted;
+    for (const BindingDesc& in : pass.inputs) {
+        const GLuint id = c.texture(in.texture);
+        if (!id) {
+            glUseProgram(0);
+            return "pass " + pass.name + ": no texture " + in.texture + " for " + in.sampler;
+        }
+        if (in.level >= 0) { // read one level only; the pass may render another level of it
+            glTextureParameteri(id, GL_TEXTURE_BASE_LEVEL, in.level);
+            glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, in.level);
+            restricted.push_back(id);
+        }
+        bind_sampler(program, in.sampler, in.binding, id);
+    }
+    for (const auto& [name, value] : pass.int_uniforms)
+        glProgramUniform1i(program, glGetUniformLocation(program, name.c_str()), value);
+    std::string diagnostic = set_computed_uniforms(c.layout, pass, program, c.uniforms);
+    if (diagnostic.empty()) {
+        if (pass.action == "draw_scene") {
+            draw(program);
+        } else {
+            glBindVertexArray(c.empty_vertex_array);
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+            glBindVertexArray(0);
+        }
+    }
+    for (GLuint id : restricted) {
+        const TextureDesc* t = nullptr;
+        for (const BindingDesc& in : pass.inputs)
+            if (c.texture(in.texture) == id) t = find_texture(c.layout, in.texture);
+        glTextureParameteri(id, GL_TEXTURE_BASE_LEVEL, 0);
+        glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, t ? t->mip_levels - 1 : 1000);
+    }
+    glUseProgram(0);
+    return diagnostic;
+}
+
+// Runs every pass of `phase` in layout order, restoring the caller's framebuffer and viewport.
+inline std::string run_phase(const PassContext& c, const std::string& phase, const DrawScene& draw,
+                             std::vector<PassTiming>* timings) {
+    GLint previous_fbo = 0, previous_viewport[4];
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous_fbo);
+    glGetIntegerv(GL_VIEWPORT, previous_viewport);
+    std::vector<std::pair<std::string, GLuint>> pending;
+    std::string diagnostic;
+    for (const PassDesc& pass : c.layout.passes) {
+        if (pass.phase != phase) continue;
+        GLuint query = 0;
+        if (timings) {
+            glGenQueries(1, &query);
+            glBeginQuery(GL_TIME_ELAPSED, query);
+        }
+        diagnostic = run_pass(c, pass, draw);
+        if (timings) {
+            glEndQuery(GL_TIME_ELAPSED);
+            pending.push_back({pass.name, query});
+        }
+        if (!diagnostic.empty()) break;
+    }
+    for (auto& [name, query] : pending) {
+        GLuint64 ns = 0;
+        glGetQueryObjectui64v(query, GL_QUERY_RESULT, &ns);
+        timings->push_back({name, ns * 1e-6});
+        glDeleteQueries(1, &query);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previous_fbo));
+    glViewport(previous_viewport[0], previous_viewport[1], previous_viewport[2], previous_viewport[3]);
+    detail::reset_state();
+    return diagnostic;
+}
+
+} // namespace detail
+} // namespace penumbra::gl

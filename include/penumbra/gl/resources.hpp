@@ -1,0 +1,98 @@
+// penumbra/gl/resources.hpp — the GL objects a layout's textures and passes need: textures allocated
+// from their layout description (format, levels, sampling, initial zeros), and the framebuffer the
+// passes render through.
+//
+// Header-only; includes <epoxy/gl.h>.
+#pragma once
+
+#include "../layout.hpp"
+#include "layout_enums.hpp"
+
+#include <epoxy/gl.h>
+
+#include <string>
+
+namespace penumbra::gl::detail {
+
+// The description of layout texture `name`; nullptr when the layout has none.
+inline const TextureDesc* find_texture(const Layout& layout, const std::string& name) {
+    for (const TextureDesc& t : layout.textures)
+        if (t.name == name) return &t;
+    return nullptr;
+}
+
+// Same GL storage and sampling: a texture with this description can be kept as it is.
+inline bool same_storage(const TextureDesc& a, const TextureDesc& b) {
+    return a.target == b.target && a.internal_format == b.internal_format && a.width == b.width &&
+           a.height == b.height && a.depth == b.depth && a.mip_levels == b.mip_levels &&
+           a.min_filter == b.min_filter && a.mag_filter == b.mag_filter && a.wrap == b.wrap &&
+           a.border_color == b.border_color && a.size == b.size && a.source == b.source && a.compare == b.compare;
+}
+
+inline bool is_depth_format(const std::string& format) { return format.starts_with("DEPTH_COMPONENT"); }
+inline bool is_integer_format(const std::string& format) { return format.ends_with("UI"); }
+// Components of a colour format: R → 1, RG → 2, RGBA → 4.
+inline int format_channels(const std::string& format) {
+    if (format.starts_with("RGBA")) return 4;
+    if (format.starts_with("RG")) return 2;
+    return 1;
+}
+inline GLenum pixel_format(int channels, bool integer) {
+    if (integer) return channels == 4 ? GL_RGBA_INTEGER : channels == 2 ? GL_RG_INTEGER : GL_RED_INTEGER;
+    return channels == 4 ? GL_RGBA : channels == 2 ? GL_RG : GL_RED;
+}
+
+// A texture of description `t` at width × height (a fixed size or the output size), its levels
+// cleared to zero. 0 with *log set on failure.
+inline GLuint allocate_texture(const TextureDesc& t, int width, int height, std::string* log) {
+    const GLenum target = detail::gl_enum(t.target), format = detail::gl_enum(t.internal_format);
+    if (!target || !format) {
+        *log = "unknown target or format " + t.target + " " + t.internal_format;
+        return 0;
+    }
+    if (width < 1 || height < 1) {
+        *log = "size " + std::to_string(width) + "x" + std::to_string(height) + " is empty";
+        return 0;
+    }
+    GLuint id = 0;
+    glCreateTextures(target, 1, &id);
+    if (target == GL_TEXTURE_2D)
+        glTextureStorage2D(id, t.mip_levels, format, width, height);
+    else
+        glTextureStorage3D(id, t.mip_levels, format, width, height, t.depth);
+    glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(detail::gl_enum(t.min_filter)));
+    glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, static_cast<GLint>(detail::gl_enum(t.mag_filter)));
+    const GLint wrap = static_cast<GLint>(detail::gl_enum(t.wrap));
+    glTextureParameteri(id, GL_TEXTURE_WRAP_S, wrap);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_T, wrap);
+    glTextureParameteri(id, GL_TEXTURE_WRAP_R, wrap);
+    glTextureParameterfv(id, GL_TEXTURE_BORDER_COLOR, t.border_color.data());
+    glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, t.mip_levels - 1);
+    if (!t.compare.empty()) {
+        glTextureParameteri(id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+        glTextureParameteri(id, GL_TEXTURE_COMPARE_FUNC, static_cast<GLint>(detail::gl_enum(t.compare)));
+    }
+    const bool depth = detail::is_depth_format(t.internal_format);
+    const bool integer = detail::is_integer_format(t.internal_format);
+    const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    const GLuint zero_u[4] = {0, 0, 0, 0};
+    for (int level = 0; level < t.mip_levels; ++level) {
+        if (depth) glClearTexImage(id, level, GL_DEPTH_COMPONENT, GL_FLOAT, zero);
+        else if (integer) glClearTexImage(id, level, GL_RGBA_INTEGER, GL_UNSIGNED_INT, zero_u);
+        else glClearTexImage(id, level, GL_RGBA, GL_FLOAT, zero);
+    }
+    if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
+        *log = "GL error " + std::to_string(e);
+        glDeleteTextures(1, &id);
+        return 0;
+    }
+    return id;
+}
+
+// Detaches every attachment a pass may have used from `framebuffer`.
+inline void detach_all(GLuint framebuffer) {
+    for (int i = 0; i < 8; ++i) glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0 + i, 0, 0);
+    glNamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, 0, 0);
+}
+
+} // namespace penumbra::gl::detail

@@ -1,0 +1,106 @@
+// penumbra/gl/state.hpp — the GL state a pass runs with: its fixed-function state (RenderState),
+// its samplers, and the uniforms computed from the light and camera (penumbra/uniform_values.hpp).
+//
+// Header-only; includes <epoxy/gl.h>.
+#pragma once
+
+#include "../layout.hpp"
+#include "../uniform_values.hpp"
+#include "layout_enums.hpp"
+
+#include <epoxy/gl.h>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <variant>
+
+namespace penumbra::gl::detail {
+
+// Sets a uniform of `program` from a uniform_values.hpp value; no-op when the program lacks it.
+inline void set_uniform(GLuint program, GLint location, const UniformValue& value) {
+    if (location < 0) return;
+    std::visit(
+        [&](const auto& v) {
+            using V = std::decay_t<decltype(v)>;
+            if constexpr (std::is_same_v<V, int>) glProgramUniform1i(program, location, v);
+            else if constexpr (std::is_same_v<V, float>) glProgramUniform1f(program, location, v);
+            else if constexpr (std::is_same_v<V, glm::vec2>) glProgramUniform2fv(program, location, 1, glm::value_ptr(v));
+            else if constexpr (std::is_same_v<V, glm::vec4>) glProgramUniform4fv(program, location, 1, glm::value_ptr(v));
+            else glProgramUniformMatrix4fv(program, location, 1, GL_FALSE, glm::value_ptr(v));
+        },
+        value);
+}
+
+// Binds `texture_id` to texture unit `unit` and points sampler `name` of `program` at it.
+inline void bind_sampler(GLuint program, const std::string& name, int unit, GLuint texture_id) {
+    glBindTextureUnit(static_cast<GLuint>(unit), texture_id);
+    const GLint location = glGetUniformLocation(program, name.c_str());
+    if (location >= 0) glProgramUniform1i(program, location, unit); // glsl330: no layout(binding)
+}
+
+// The uniforms of `program` (that of `pass`) that the table computes ("light" and "camera" sources).
+inline std::string set_computed_uniforms(const Layout& layout, const PassDesc& pass, GLuint program,
+                                         const UniformInputs& inputs) {
+    for (const ProgramDesc& p : layout.programs) {
+        if (p.name != pass.program) continue;
+        for (const ParamDesc& param : p.parameters) {
+            if (param.source != "light" && param.source != "camera") continue;
+            const std::optional<UniformValue> v = uniform_value(param.name, inputs);
+            if (!v) {
+                if (param.source == "camera") continue; // no camera in the runtime's own passes
+                return "pass " + pass.name + ": no value for uniform " + param.name +
+                       " (penumbra/uniform_values.hpp has no rule for it)";
+            }
+            set_uniform(program, glGetUniformLocation(program, param.name.c_str()), *v);
+        }
+    }
+    return {};
+}
+
+// Applies a pass's fixed-function state (everything RenderState names; the rest is left alone).
+inline void apply_state(const RenderState& s) {
+    if (s.blend) {
+        glEnable(GL_BLEND);
+        glBlendEquation(gl_enum(s.blend_equation));
+        glBlendFunc(gl_enum(s.blend_src), gl_enum(s.blend_dst));
+    } else {
+        glDisable(GL_BLEND);
+    }
+    if (s.depth_test) {
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(gl_enum(s.depth_func));
+    } else {
+        glDisable(GL_DEPTH_TEST);
+    }
+    glDepthMask(s.depth_write ? GL_TRUE : GL_FALSE);
+    glColorMask(s.color_mask[0], s.color_mask[1], s.color_mask[2], s.color_mask[3]);
+    if (s.cull == "NONE") {
+        glDisable(GL_CULL_FACE);
+    } else {
+        glEnable(GL_CULL_FACE);
+        glCullFace(gl_enum(s.cull));
+    }
+    if (s.logic_op != "NONE") { // integer targets: each fragment OR-ed into the texel (no blending)
+        glEnable(GL_COLOR_LOGIC_OP);
+        glLogicOp(gl_enum(s.logic_op));
+    } else {
+        glDisable(GL_COLOR_LOGIC_OP);
+    }
+    if (s.polygon_offset_factor != 0.0f || s.polygon_offset_units != 0.0f) {
+        glEnable(GL_POLYGON_OFFSET_FILL);
+        glPolygonOffset(s.polygon_offset_factor, s.polygon_offset_units);
+    } else {
+        glDisable(GL_POLYGON_OFFSET_FILL);
+    }
+}
+
+// GL's defaults for what apply_state touches, restored after the runtime's passes.
+inline void reset_state() {
+    RenderState defaults;
+    defaults.depth_write = true;
+    apply_state(defaults);
+}
+
+} // namespace penumbra::gl::detail
