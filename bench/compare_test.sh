@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # ctest "bench": the quick comparison from an empty folder, its report, then the report rebuilt
 # from results.json alone; each time the check that report, figures and finite numbers are there.
+# Then the sun's own run: the rectangle and the sun, occlusion interval maps (baked into the run's
+# cache) under the sun only, skipped under the rectangle with its reason, the sun's tables.
 # Then --corpus on a corpus made here (one small mesh: a box on a floor, written below, so CI needs
 # no network): the run and the report's per-mesh table.
 #   bench/compare_test.sh path/to/penumbra-bench-compare OUT_DIR
@@ -12,6 +14,21 @@ rm -rf "$out"
 "$root/scripts/compare.sh" --quick --out "$out" --check
 rm -rf "$out/report.md" "$out/figures"
 "$root/scripts/compare.sh" --report-only --out "$out" --check
+
+"$root/scripts/compare.sh" --scenes boxes --settings 'OT nbuffer 8/256,erosion r16,OIM 8/128' --lights rect,sun \
+    --size 32 --samples 4 --light-scales 1 --runs 1 --flicker-frames 2 --out "$out/sun" --check >"$out/sun.log"
+grep -q '^skip: boxes, rect light, OIM 8/128: occlusion interval maps are baked for the sun' "$out/sun.log" ||
+    { echo "error: OIM was not skipped under the rectangle with its reason" >&2; exit 1; }
+grep -q '^# Under the sun' "$out/sun/report.md" || { echo "error: the report has no tables for the sun" >&2; exit 1; }
+for label in 'OIM 8/128' 'erosion r16' 'OT nbuffer 8/256'; do
+    grep -q "^| boxes | x1 | $label | " "$out/sun/report.md" || { echo "error: no measurement of $label" >&2; exit 1; }
+done
+grep -q '^| boxes | OIM 8/128 | 128² | 8 | 256 | ' "$out/sun/report.md" || { echo "error: the report has no bake row" >&2; exit 1; }
+# A second run reads the bake from the cache.
+"$PENUMBRA_BENCH_COMPARE" --scenes boxes --settings 'OIM 8/128' --lights sun --size 32 --samples 4 --light-scales 1 \
+    --runs 1 --flicker-frames 2 --out "$out/sun" >"$out/sun-again.log"
+grep -q '^bake: boxes, sun light, OIM 8/128: .* read ' "$out/sun-again.log" ||
+    { echo "error: the second run did not read the bake from the cache" >&2; exit 1; }
 
 # A corpus of one mesh: a unit box standing on a 6×6 floor, with its manifest as get_corpus.sh writes it.
 corpus="$out/corpus"

@@ -1,6 +1,7 @@
 // penumbra-bench-compare — every technique against ray-traced truth, at equal time, as the light
-// grows. For every scene × technique setting (compare/ladder.hpp) × light size (×1 … ×32 of the
-// scene's default) it measures
+// grows. For every scene × light (--lights: the scene's rectangle, its sun, or one run of each) ×
+// technique setting (compare/ladder.hpp; a setting that cannot run under the light is skipped with
+// its reason) × light size (×1 … ×32 of the scene's default) it measures
 //   cost:      GPU time of every pass (GL_TIME_ELAPSED) and the wall clock to glFinish of the
 //              shadow passes and of the shading pass, medians of --runs runs after one warm-up run
 //              (llvmpipe compiles a shader variant at its first draw), and the texture memory. The
@@ -13,12 +14,14 @@
 //              that of the truth, so the shadow's real motion is not counted.
 // It writes DIR/results.json (every number; scripts/compare_report.py builds the report from it
 // alone) and DIR/images/ (visibility and signed error of the representative settings).
-// The ground truth is cached in DIR/cache/ (it does not depend on the technique).
+// The ground truth is cached in DIR/cache/ (it does not depend on the technique), and the bakes of
+// occlusion interval maps (the sun only) in DIR/cache/oim/; a bake's time is a precomputation,
+// recorded apart from the frame's cost.
 // Scenes: the built-in ones, mesh files, and with --corpus the real meshes of the corpus
 // (scripts/get_corpus.sh), whose names, sources and licences results.json carries.
 //
 //   penumbra-bench-compare [--quick | --full] [--scenes a,b] [FILE ...] [--corpus [DIR]] [--settings a,b]
-//                          [--size N] [--samples N] [--runs N] [--light-scales 1,2,4] [--flicker-frames N]
+//                          [--size N] [--samples N] [--runs N] [--lights rect,sun] [--light-scales 1,2,4] [--flicker-frames N]
 //                          [--out DIR]
 #include "arguments.hpp"
 #include "compare/frame.hpp"
@@ -29,6 +32,7 @@
 
 #include "app/headless_job.hpp"
 #include "app/image_io.hpp"
+#include "bake/oim_scene.hpp"
 #include "reference/metrics.hpp"
 #include "rendering/egl_context.hpp"
 #include "rendering/gpu_scene.hpp"
@@ -38,6 +42,7 @@
 #include <penumbra/cost_model.hpp>
 #include <penumbra/gl/runtime.hpp>
 #include <penumbra/layout.hpp>
+#include <penumbra/sun_path.hpp>
 #include <penumbra/texture_memory.hpp>
 
 #include <nlohmann/json.hpp>
@@ -89,6 +94,7 @@ struct Options {
     int samples = 32;                // ground-truth rays per light axis
     int runs = 7;                    // timed runs per measurement, after one warm-up run
     std::vector<double> light_scales{1, 2, 4, 8, 16, 32};
+    std::vector<Light> lights{Light::rect}; // --lights: each a run of the whole ladder, in this order
     int flicker_frames = 8;
     double flicker_step = 0.005;     // light motion per frame, as a fraction of the scene's ground span
     std::string out_dir = "out/compare";
@@ -98,12 +104,13 @@ struct Options {
 constexpr const char* usage_text =
     "usage: penumbra-bench-compare [--quick | --full] [--scenes a,b,...] [FILE ...] [--corpus [DIR]] [--no-ground]\n"
     "                              [--settings a,b,...] [--size N|WxH] [--samples N] [--runs N]\n"
-    "                              [--light-scales 1,2,...] [--flicker-frames N] [--out DIR]\n"
-    "  (default)         every built-in scene, the standard ladder, light x1 x2 x4 x8 x16 x32, 128x128,\n"
+    "                              [--lights rect,sun] [--light-scales 1,2,...] [--flicker-frames N] [--out DIR]\n"
+    "  (default)         every built-in scene, the standard ladder under each scene's rectangle light,\n"
+    "                    light x1 x2 x4 x8 x16 x32, 128x128,\n"
     "                    32x32 rays, 7 runs, 8 flicker frames (about 30 minutes on 2 llvmpipe cores)\n"
     "  --quick           boxes only, two settings, light x1 and x4, 64x64, 8x8 rays, 4 flicker frames\n"
     "                    (a smoke test: the report states the ray count)\n"
-    "  --full            the full ladder (adds 1024-texel settings), 256x256, 16 flicker frames\n"
+    "  --full            the full ladder (adds 1024-texel settings and OIM 8/256), 256x256, 16 flicker frames\n"
     "  --scenes          built-in scenes, comma-separated (default all: see penumbra-playground --help;\n"
     "                    --scenes '' for none, e.g. to run only files or the corpus)\n"
     "  FILE              mesh files (what penumbra-playground --scene loads), added to the scenes: light\n"
@@ -113,13 +120,21 @@ constexpr const char* usage_text =
     "  --corpus [DIR]    adds every mesh of the corpus in DIR (default ~/.cache/penumbra/corpus, or\n"
     "                    $XDG_CACHE_HOME/penumbra/corpus), fetched by scripts/get_corpus.sh\n"
     "  --settings        only these ladder settings, by label, comma-separated (e.g. 'OT nbuffer 16/512,\n"
-    "                    PCSS 16/16'; default the whole ladder of the set)\n"
+    "                    PCSS 16/16'; default the whole ladder of the set: occlusion textures, hard shadow\n"
+    "                    map, PCF, PCSS, 'erosion r16' and 'OIM 8/128' (intervals/resolution, sun only))\n"
+    "  --lights          the lights the ladder runs under, each a run of its own, comma-separated: rect\n"
+    "                    (each scene's rectangle, the default), sun (each scene's sun, on a path through\n"
+    "                    it: occlusion interval maps run only under it and bake it once into DIR/cache/oim,\n"
+    "                    a precomputation timed apart from the frame). A setting that cannot run under a\n"
+    "                    light is skipped with its reason (printed and in results.json)\n"
     "  --size            image size (square N or WxH, 16 to 1024)\n"
     "  --samples         ground-truth rays per light axis, 1 to 128 (the truth uses N x N stratified rays)\n"
     "  --runs            timed runs per measurement after one warm-up run, 1 to 100 (medians reported)\n"
-    "  --light-scales    multiples of each scene's default light size, each > 0 and <= 64\n"
+    "  --light-scales    multiples of each scene's default light size (the rectangle's sides, the sun's\n"
+    "                    angular diameter), each > 0 and <= 64\n"
     "  --flicker-frames  frames of the slowly moving light for the flicker measurement, 2 to 64\n"
-    "  --out             output folder (default out/compare): results.json, images/, cache/\n"
+    "  --out             output folder (default out/compare): results.json, images/, cache/ (the truth;\n"
+    "                    cache/oim: the bakes of occlusion interval maps)\n"
     "flags after --quick or --full override what they set.\n";
 
 // Options from argv, or an error message (one line).
@@ -166,11 +181,11 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
             continue;
         }
         constexpr std::string_view valued[] = {"--scenes", "--size", "--samples", "--runs", "--flicker-frames",
-                                               "--light-scales", "--out", "--settings"};
+                                               "--light-scales", "--lights", "--out", "--settings"};
         if (std::find(std::begin(valued), std::end(valued), flag) == std::end(valued))
             return fail("unknown flag '" + std::string(flag) +
                         "'; allowed: --quick, --full, --scenes, --corpus, --no-ground, --settings, --size, --samples, --runs, "
-                        "--light-scales, --flicker-frames, --out, --help, FILE");
+                        "--light-scales, --lights, --flicker-frames, --out, --help, FILE");
         if (i + 1 >= argc) return fail(std::string(flag) + ": missing value (see --help)");
         const std::string_view value = argv[++i];
         if (flag == "--scenes") {
@@ -217,6 +232,15 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                 o.light_scales.push_back(scale);
             }
             if (o.light_scales.empty()) return fail("--light-scales: empty; allowed: numbers above 0, at most 64");
+        } else if (flag == "--lights") {
+            o.lights.clear();
+            for (std::string_view part : split(value)) {
+                const Light light = part == "rect" ? Light::rect : Light::sun;
+                if ((part != "rect" && part != "sun") || std::find(o.lights.begin(), o.lights.end(), light) != o.lights.end())
+                    return fail("--lights: '" + std::string(part) + "' is not allowed; allowed: rect, sun, each once");
+                o.lights.push_back(light);
+            }
+            if (o.lights.empty()) return fail("--lights: empty; allowed: rect, sun or rect,sun");
         } else { // --out
             if (value.empty()) return fail("--out: empty; allowed: a folder");
             o.out_dir = std::string(value);
@@ -375,6 +399,56 @@ std::string utc_now() {
     return text;
 }
 
+const char* light_name(Light light) { return light == Light::sun ? "sun" : "rect"; }
+
+// The sun moves this far along its path (in t, 0 to 1) per flicker frame: about 0.3 degrees.
+constexpr double sun_flicker_step = 0.002;
+
+// The sun's path for a scene's sun, through it at t = 0.5, from 80 degrees of azimuth before it to
+// 80 after it, 10 degrees above the horizon at both ends: what occlusion interval maps bake. Every
+// setting under the sun sees the same sun, at the same t.
+SunPath path_through(const SunLight& sun) {
+    const glm::dvec3 to_sun = -glm::normalize(sun.direction);
+    const double elevation = glm::degrees(std::asin(std::clamp(to_sun.y, -1.0, 1.0)));
+    const double azimuth = glm::degrees(std::atan2(to_sun.x, -to_sun.z)); // clockwise from north (-z)
+    return {{{azimuth - 80.0, 10.0}, {azimuth, elevation}, {azimuth + 80.0, 10.0}}};
+}
+
+// One light of a measurement: the scene's rectangle or its sun at a multiple of its size (the
+// rectangle's sides, the sun's angular diameter), at frame `frame` of the flicker motion (the
+// rectangle moves along its u axis by rect_step per frame, the sun along its path).
+struct LightAt {
+    RectLight rect;
+    SunLight sun;
+    double t = 0.5; // the sun's time on its path
+};
+
+LightAt light_at(const Scene& scene, const SunPath& path, double scale, double rect_step, int frame) {
+    LightAt l{moved_light(scaled_light(scene.light, scale), rect_step, frame), scene.sun, 0.5 + sun_flicker_step * frame};
+    l.sun.direction = -sun_direction(path, l.t);
+    l.sun.angular_diameter *= scale;
+    return l;
+}
+
+void set_light(gl::Runtime& runtime, const Scene& scene, Light kind, const SunPath& path, const LightAt& l, bool oim) {
+    if (kind == Light::sun) runtime.set_light(l.sun, glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
+    else runtime.set_light(l.rect, glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
+    if (oim) runtime.set_time_window(oim_time_window(path, l.t, l.sun.angular_diameter));
+}
+
+// One setting of the ladder as it runs under one light: its runtime and, for occlusion interval
+// maps, the bake and the scene with the charts it was baked on (its own mesh and G-buffer, of the
+// same pixels as the others').
+struct Active {
+    const bench::LadderEntry* entry = nullptr;
+    std::unique_ptr<gl::Runtime> runtime;
+    std::optional<OimSetup> oim;
+    std::unique_ptr<MeshBuffers> oim_mesh;
+    std::optional<Pixels> oim_pixels;
+    json config;
+    std::uint64_t texture_bytes = 0;
+};
+
 int fail(const std::string& message, int code = 1) {
     std::cerr << "error: " << message << "\n";
     return code;
@@ -419,19 +493,26 @@ int main(int argc, char** argv) {
     if (ec) return fail("cannot create " + out_dir + ": " + ec.message());
     const auto run_start = std::chrono::steady_clock::now();
 
-    int representatives = 0;
-    for (const bench::LadderEntry& e : ladder) representatives += e.representative;
+    int representatives = 0, oim_settings = 0;
+    for (const bench::LadderEntry& e : ladder) {
+        representatives += e.representative;
+        oim_settings += e.config.technique == Technique::oim;
+    }
     const int scale_count = static_cast<int>(options->light_scales.size());
+    const int runs_of_ladder = static_cast<int>(scenes.size() * options->lights.size()); // scene × light
     bench::Progress progress;
-    progress.plan("truth", static_cast<int>(scenes.size()) * (scale_count + options->flicker_frames));
-    progress.plan("warm-up", static_cast<int>(scenes.size() * ladder.size()) * scale_count);
-    progress.plan("timed round", static_cast<int>(scenes.size()) * scale_count * options->runs);
-    progress.plan("flicker", static_cast<int>(scenes.size()) * representatives);
+    progress.plan("truth", runs_of_ladder * (scale_count + options->flicker_frames));
+    progress.plan("warm-up", runs_of_ladder * static_cast<int>(ladder.size()) * scale_count);
+    progress.plan("timed round", runs_of_ladder * scale_count * options->runs);
+    progress.plan("flicker", runs_of_ladder * representatives);
+    if (std::find(options->lights.begin(), options->lights.end(), Light::sun) != options->lights.end())
+        progress.plan("bake", static_cast<int>(scenes.size()) * oim_settings);
 
     std::string command;
     for (int i = 0; i < argc; ++i) command += (i ? " " : "") + std::string(argv[i]);
-    json light_scales = json::array();
+    json light_scales = json::array(), lights = json::array();
     for (double s : options->light_scales) light_scales.push_back(s);
+    for (Light l : options->lights) lights.push_back(light_name(l));
     json results = {
         {"meta",
          {{"tool", "penumbra-bench-compare"},
@@ -445,197 +526,274 @@ int main(int argc, char** argv) {
           {"truth_rays_per_axis", options->samples},
           {"timed_runs", options->runs},
           {"warmup_runs", 1},
+          {"lights", lights},
           {"light_scales", light_scales},
           {"settings", options->settings.empty() ? json("all") : json(options->settings)},
           {"penumbra_threshold", 0.98},
           {"flicker_frames", options->flicker_frames},
           {"flicker_step_of_ground_span", options->flicker_step},
+          {"sun_flicker_step_t", sun_flicker_step},
+          {"sun_path", "through each scene's sun at t = 0.5, from 80 degrees of azimuth before it to 80 after, "
+                       "10 degrees up at both ends"},
           {"flicker_light_scale", 1.0}}},
         {"scenes", json::array()},
         {"measurements", json::array()},
         {"flicker", json::array()},
+        {"bakes", json::array()},
+        {"skipped", json::array()},
     };
 
     for (std::size_t scene_index = 0; scene_index < scenes.size(); ++scene_index) {
-        const Scene& scene = scenes[scene_index];
         const SceneInput& input = options->scenes[scene_index];
-        const MeshBuffers mesh(scene.mesh);
-        std::optional<Pixels> pixels = render_pixels(scene, mesh, options->width, options->height, &error);
-        if (!pixels) return fail(scene.name + ": " + error);
-        std::size_t geometry_pixels = 0;
-        for (unsigned char g : pixels->frame.geometry) geometry_pixels += g;
-
-        // The truth for every light size and every flicker frame, from the cache where it can be.
-        json truth_files = json::array();
-        Scene lit = scene; // the scene under the light being traced
-        auto truth_for = [&](const RectLight& light, const std::string& what) -> std::optional<bench::CachedTruth> {
-            progress.step("truth", scene.name + ": ground truth " + what);
-            lit.light = light;
-            std::optional<bench::CachedTruth> t = bench::cached_truth(cache_dir, lit, pixels->frame, options->samples, &error);
-            if (t) truth_files.push_back({{"for", what}, {"file", std::filesystem::relative(t->file, out_dir).string()},
-                                          {"cached", t->from_cache}, {"ms", t->milliseconds}});
-            return t;
-        };
-        std::vector<References> truths;
-        for (double scale : options->light_scales) {
-            std::optional<bench::CachedTruth> t = truth_for(scaled_light(scene.light, scale), "light x" + scale_text(scale));
-            if (!t) return fail(scene.name + ": " + error);
-            if (!write_visibility_images(image_dir + "/" + scene.name + "/x" + scale_text(scale), "truth", *pixels,
-                                         t->references.visibility, nullptr, &error))
-                return fail(error);
-            truths.push_back(std::move(t->references));
-        }
-        const double step = options->flicker_step * ground_span(scene);
-        std::vector<std::vector<float>> truth_frames;
-        for (int f = 0; f < options->flicker_frames; ++f) {
-            std::optional<bench::CachedTruth> t =
-                truth_for(moved_light(scene.light, step, f), "flicker frame " + std::to_string(f + 1));
-            if (!t) return fail(scene.name + ": " + error);
-            truth_frames.push_back(std::move(t->references.visibility));
-        }
-        progress.finish();
-        const double truth_delta = mean_frame_delta(truth_frames, pixels->frame.geometry);
-
-        json scene_record = {{"name", scene.name},
+        json scene_record = {{"name", scenes[scene_index].name},
                              {"kind", input.kind},
-                             {"ground", scene.ground},
-                             {"triangles", scene.mesh.triangle_count()},
+                             {"ground", scenes[scene_index].ground},
+                             {"triangles", scenes[scene_index].mesh.triangle_count()},
                              {"load_ms", load_ms[scene_index]},
-                                     {"default_light", {{"width", scene.light.width}, {"height", scene.light.height}}},
-                                     {"geometry_pixels", geometry_pixels},
-                                     {"flicker_step", step},
-                                     {"truth_flicker", truth_delta},
-                             {"truth", truth_files}};
+                             {"default_light", {{"width", scenes[scene_index].light.width},
+                                                {"height", scenes[scene_index].light.height}}},
+                             {"truth", json::array()}};
         if (input.kind != "built-in") scene_record["file"] = input.name_or_path;
         if (input.corpus)
             scene_record["corpus"] = {{"triangles_in_file", input.corpus->triangles},
                                       {"source", input.corpus->source},
                                       {"licence", input.corpus->licence}};
-        results["scenes"].push_back(std::move(scene_record));
 
-        // One runtime per setting, alive together, so that the timed runs can be interleaved.
-        std::vector<std::unique_ptr<gl::Runtime>> runtimes;
-        std::vector<json> configs;
-        std::vector<std::uint64_t> texture_bytes;
-        for (const bench::LadderEntry& entry : ladder) {
-            runtimes.push_back(gl::Runtime::create(entry.config, &error));
-            if (!runtimes.back()) return fail(scene.name + ", " + entry.label + ": " + error);
-            const Layout& layout = runtimes.back()->layout();
-            for (const TextureDesc& t : layout.textures)
-                if (bytes_per_texel(t.internal_format) == 0)
-                    return fail(entry.label + ": texture " + t.name + " has a format of unknown size, " + t.internal_format);
-            texture_bytes.push_back(static_cast<std::uint64_t>(penumbra::texture_bytes(layout, options->width, options->height)));
-            configs.push_back(json::parse(to_json(layout))["config"]);
-        }
+        for (const Light light_kind : options->lights) {
+            // The scene of this light's run: under the sun, its sun on the path through it at t = 0.5.
+            Scene scene = scenes[scene_index];
+            const SunPath path = path_through(scene.sun);
+            if (light_kind == Light::sun) scene.sun.direction = -sun_direction(path, 0.5);
+            const std::string lit_by = light_name(light_kind);
+            const std::string light_dir = light_kind == Light::sun ? "/sun" : ""; // images/<scene>[/sun]/x<scale>
+            const MeshBuffers mesh(scene.mesh);
+            std::optional<Pixels> pixels = render_pixels(scene, mesh, options->width, options->height, &error);
+            if (!pixels) return fail(scene.name + ": " + error);
+            std::size_t geometry_pixels = 0;
+            for (unsigned char g : pixels->frame.geometry) geometry_pixels += g;
+            scene_record["geometry_pixels"] = geometry_pixels;
 
-        for (std::size_t s = 0; s < options->light_scales.size(); ++s) {
-            const double scale = options->light_scales[s];
-            const std::string where = scene.name + ", light x" + scale_text(scale);
-            std::vector<QualityMetrics> quality(ladder.size());
-            std::vector<double> bias(ladder.size()), bias_oriented(ladder.size());
-            std::vector<std::vector<FrameTimes>> timed(ladder.size());
-            std::vector<CostModel> costs(ladder.size());
-            for (std::size_t e = 0; e < ladder.size(); ++e) {
-                const bench::LadderEntry& entry = ladder[e];
-                progress.step("warm-up", where + ": warm-up and quality, " + entry.label);
-                runtimes[e]->set_light(scaled_light(scene.light, scale), glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
-                FrameTimes warmup;
-                if (!run_frame(*runtimes[e], mesh, *pixels, warmup, &error)) return fail(entry.label + ": " + error);
-                // set_light fitted level_bound to this light: memory, configuration and cost as they run
-                texture_bytes[e] = static_cast<std::uint64_t>(penumbra::texture_bytes(runtimes[e]->layout(), options->width, options->height));
-                configs[e] = json::parse(to_json(runtimes[e]->layout()))["config"];
-                costs[e] = cost_model(runtimes[e]->layout(), options->width, options->height);
-                const std::vector<float> visibility = read_visibility(*runtimes[e], *pixels);
-                quality[e] = compare_quality(visibility, pixels->frame.geometry, truths[s].visibility,
-                                             truths[s].oriented, truths[s].irradiance);
-                bias[e] = penumbra_bias(visibility, pixels->frame.geometry, truths[s].visibility);
-                bias_oriented[e] = penumbra_bias(visibility, pixels->frame.geometry, truths[s].oriented);
-                if (entry.representative &&
-                    !write_visibility_images(image_dir + "/" + scene.name + "/x" + scale_text(scale), slug(entry.label),
-                                             *pixels, visibility, &truths[s].visibility, &error))
+            // The truth for every light size and every flicker frame, from the cache where it can be.
+            Scene lit = scene; // the scene under the light being traced
+            auto truth_for = [&](const LightAt& light, const std::string& what) -> std::optional<bench::CachedTruth> {
+                progress.step("truth", scene.name + ": ground truth, " + lit_by + " " + what);
+                lit.light = light.rect;
+                lit.sun = light.sun;
+                std::optional<bench::CachedTruth> t =
+                    bench::cached_truth(cache_dir, lit, pixels->frame, options->samples, &error, light_kind);
+                if (t) scene_record["truth"].push_back({{"light", lit_by}, {"for", what},
+                                                        {"file", std::filesystem::relative(t->file, out_dir).string()},
+                                                        {"cached", t->from_cache}, {"ms", t->milliseconds}});
+                return t;
+            };
+            const double step = options->flicker_step * ground_span(scene);
+            std::vector<References> truths;
+            for (double scale : options->light_scales) {
+                std::optional<bench::CachedTruth> t = truth_for(light_at(scene, path, scale, step, 0), "light x" + scale_text(scale));
+                if (!t) return fail(scene.name + ": " + error);
+                if (!write_visibility_images(image_dir + "/" + scene.name + light_dir + "/x" + scale_text(scale), "truth",
+                                             *pixels, t->references.visibility, nullptr, &error))
                     return fail(error);
+                truths.push_back(std::move(t->references));
             }
-            // Round-robin: run r of every setting, then run r + 1. A burst of load from other
-            // processes then slows every setting of the cell alike, and the ratios survive it.
-            for (int r = 0; r < options->runs; ++r) {
-                progress.step("timed round", where + ": timed run " + std::to_string(r + 1) + "/" +
-                                                 std::to_string(options->runs) + " of every setting");
-                for (std::size_t e = 0; e < ladder.size(); ++e) {
-                    FrameTimes t;
-                    if (!run_frame(*runtimes[e], mesh, *pixels, t, &error)) return fail(ladder[e].label + ": " + error);
-                    timed[e].push_back(std::move(t));
-                }
-            }
-            for (std::size_t e = 0; e < ladder.size(); ++e) {
-                const bench::LadderEntry& entry = ladder[e];
-                json record = {{"scene", scene.name}, {"ground", scene.ground},
-                               {"family", entry.family},
-                               {"label", entry.label},
-                               {"representative", entry.representative},
-                               {"light_scale", scale},
-                               {"light_size", {scene.light.width * scale, scene.light.height * scale}},
-                               {"config", configs[e]},
-                               {"texture_bytes", texture_bytes[e]}};
-                record.update(cost_json(timed[e]));
-                std::vector<double> light_ms;
-                for (const FrameTimes& t : timed[e]) light_ms.push_back(light_pass_ms(t));
-                record["light_passes_gpu_ms"] = median(light_ms);
-                record["cost_model"] = {{"shadow", phase_cost_json(costs[e].shadow)}, {"screen", phase_cost_json(costs[e].screen)}};
-                // "all"/"penumbra": against the visibility of the whole light (rays behind the
-                // receiver's tangent plane blocked); the fair references beside it.
-                const QualityMetrics& q = quality[e];
-                record["quality"] = {{"all", stats_json(q.visibility.all)},
-                                     {"penumbra", stats_json(q.visibility.penumbra)},
-                                     {"penumbra_bias", bias[e]},
-                                     {"oriented", {{"all", stats_json(q.oriented.all)}, {"penumbra", stats_json(q.oriented.penumbra)},
-                                                   {"penumbra_bias", bias_oriented[e]}}},
-                                     {"irradiance", {{"all", stats_json(q.irradiance.all)}, {"penumbra", stats_json(q.irradiance.penumbra)}}}};
-                if (entry.representative) {
-                    const std::string dir = "images/" + scene.name + "/x" + scale_text(scale);
-                    record["images"] = {{"visibility", dir + "/" + slug(entry.label) + ".png"},
-                                        {"error", dir + "/" + slug(entry.label) + ".error.png"},
-                                        {"truth", dir + "/truth.png"}};
-                }
-                std::printf("%-10s x%-4s %-20s GPU %8.2f ms  wall %8.2f ms  textures %7.1f MiB  penumbra MAE %.4f  "
-                            "oriented %.4f  light passes %7.2f ms, model %6.1f MB %6.1f Mfetch; shading model %6.1f Mfetch\n",
-                            scene.name.c_str(), scale_text(scale).c_str(), entry.label.c_str(),
-                            record["gpu_ms"].get<double>(), record["wall_ms"]["total"].get<double>(),
-                            texture_bytes[e] / 1048576.0, q.visibility.penumbra.mae, q.oriented.penumbra.mae,
-                            record["light_passes_gpu_ms"].get<double>(), costs[e].shadow.bytes() / 1e6,
-                            costs[e].shadow.texel_fetches / 1e6, costs[e].screen.texel_fetches / 1e6);
-                std::fflush(stdout);
-                results["measurements"].push_back(std::move(record));
-            }
-        }
-
-        for (std::size_t e = 0; e < ladder.size(); ++e) {
-            const bench::LadderEntry& entry = ladder[e];
-            if (!entry.representative) continue;
-            progress.step("flicker", scene.name + ": flicker, " + std::to_string(options->flicker_frames) +
-                                         " frames of a moving light: " + entry.label);
-            std::vector<std::vector<float>> frames;
+            std::vector<std::vector<float>> truth_frames;
             for (int f = 0; f < options->flicker_frames; ++f) {
-                runtimes[e]->set_light(moved_light(scene.light, step, f), glm::dvec3(scene.bounds_min),
-                                       glm::dvec3(scene.bounds_max));
-                FrameTimes times;
-                if (!run_frame(*runtimes[e], mesh, *pixels, times, &error)) return fail(entry.label + ": " + error);
-                frames.push_back(read_visibility(*runtimes[e], *pixels));
+                std::optional<bench::CachedTruth> t =
+                    truth_for(light_at(scene, path, 1.0, step, f), "flicker frame " + std::to_string(f + 1));
+                if (!t) return fail(scene.name + ": " + error);
+                truth_frames.push_back(std::move(t->references.visibility));
             }
-            double error_sum = 0;
-            for (int f = 0; f < options->flicker_frames; ++f)
-                error_sum += compare(frames[f], pixels->frame.geometry, truth_frames[f]).all.mae;
-            const double delta = mean_frame_delta(frames, pixels->frame.geometry);
-            results["flicker"].push_back({{"scene", scene.name},
-                                          {"family", entry.family},
-                                          {"label", entry.label},
-                                          {"light_scale", 1.0},
-                                          {"frames", options->flicker_frames},
-                                          {"estimate_delta", delta},
-                                          {"truth_delta", truth_delta},
-                                          {"excess", delta - truth_delta},
-                                          {"mean_mae", error_sum / options->flicker_frames}});
-        }
-        progress.finish();
+            progress.finish();
+            const double truth_delta = mean_frame_delta(truth_frames, pixels->frame.geometry);
+            if (light_kind == Light::sun) {
+                json points = json::array();
+                for (const SunPathPoint& p : path.points) points.push_back({p.azimuth_degrees, p.elevation_degrees});
+                scene_record["sun"] = {{"direction", {scene.sun.direction.x, scene.sun.direction.y, scene.sun.direction.z}},
+                                       {"angular_diameter", scene.sun.angular_diameter},
+                                       {"path_azimuth_elevation_degrees", points},
+                                       {"flicker_step_t", sun_flicker_step},
+                                       {"truth_flicker", truth_delta}};
+            } else {
+                scene_record["flicker_step"] = step;
+                scene_record["truth_flicker"] = truth_delta;
+            }
+
+            // One runtime per setting that can run under this light, alive together, so that the timed
+            // runs can be interleaved; the others skipped with their reason.
+            std::vector<Active> active;
+            for (const bench::LadderEntry& entry : ladder) {
+                const std::string where = scene.name + ", " + lit_by + " light, " + entry.label;
+                if (const std::string why = bench::refusal(entry, light_kind); !why.empty()) {
+                    std::printf("skip: %s: %s\n", where.c_str(), why.c_str());
+                    results["skipped"].push_back({{"scene", scene.name}, {"light", lit_by}, {"label", entry.label}, {"reason", why}});
+                    continue;
+                }
+                Active a;
+                a.entry = &entry;
+                Config config = entry.config;
+                config.light = light_kind;
+                const bool oim = config.technique == Technique::oim;
+                if (oim) { // the bake (or its cache), on the scene with the charts it needs
+                    progress.step("bake", scene.name + ": occlusion interval maps, bake of " + entry.label);
+                    Scene charted = scene;
+                    a.oim = prepare_oim(charted, config, path, 0.5, cache_dir + "/oim", &error);
+                    if (!a.oim) {
+                        const std::string why = "no bake: " + error;
+                        std::printf("skip: %s: %s\n", where.c_str(), why.c_str());
+                        results["skipped"].push_back({{"scene", scene.name}, {"light", lit_by}, {"label", entry.label}, {"reason", why}});
+                        continue;
+                    }
+                    progress.finish();
+                    const OimBake& b = a.oim->cached.bake;
+                    std::printf("bake: %s: %dx%d, %d intervals, %d samples, %s %s (%.0f ms to bake, %llu rays)\n", where.c_str(),
+                                b.resolution, b.resolution, b.intervals, b.samples, a.oim->cached.from_cache ? "read" : "baked into",
+                                a.oim->cached.file.string().c_str(), b.bake_ms, static_cast<unsigned long long>(b.rays));
+                    if (!a.oim->cached.warning.empty()) std::cerr << "warning: " << a.oim->cached.warning << "\n";
+                    results["bakes"].push_back({{"scene", scene.name}, {"light", lit_by}, {"label", entry.label},
+                                                {"resolution", b.resolution}, {"intervals", b.intervals}, {"samples", b.samples},
+                                                {"from_cache", a.oim->cached.from_cache}, {"bake_ms", b.bake_ms},
+                                                {"rays", b.rays}, {"merged_texels", b.merged_texels},
+                                                {"file", std::filesystem::relative(a.oim->cached.file, out_dir).string()},
+                                                {"file_bytes", a.oim->cached.file_bytes}});
+                    a.oim_mesh = std::make_unique<MeshBuffers>(charted.mesh);
+                    a.oim_pixels = render_pixels(charted, *a.oim_mesh, options->width, options->height, &error);
+                    if (!a.oim_pixels) return fail(where + ": " + error);
+                }
+                a.runtime = gl::Runtime::create(config, &error);
+                if (!a.runtime) return fail(where + ": " + error);
+                if (oim)
+                    for (const auto& [name, texels] : a.oim->textures)
+                        if (std::string d = a.runtime->supply_texture(name, texels); !d.empty()) return fail(where + ": " + d);
+                const Layout& layout = a.runtime->layout();
+                for (const TextureDesc& t : layout.textures)
+                    if (bytes_per_texel(t.internal_format) == 0)
+                        return fail(entry.label + ": texture " + t.name + " has a format of unknown size, " + t.internal_format);
+                a.texture_bytes = static_cast<std::uint64_t>(penumbra::texture_bytes(layout, options->width, options->height));
+                a.config = json::parse(to_json(layout))["config"];
+                active.push_back(std::move(a));
+            }
+            // Occlusion interval maps draw their own mesh (with the charts' texture coordinates) into their own G-buffer.
+            auto mesh_of = [&](const Active& a) -> const MeshBuffers& { return a.oim_mesh ? *a.oim_mesh : mesh; };
+            auto pixels_of = [&](const Active& a) -> const Pixels& { return a.oim_pixels ? *a.oim_pixels : *pixels; };
+
+            for (std::size_t s = 0; s < options->light_scales.size(); ++s) {
+                const double scale = options->light_scales[s];
+                const std::string where = scene.name + ", " + lit_by + " x" + scale_text(scale);
+                const std::string image_cell = scene.name + light_dir + "/x" + scale_text(scale);
+                std::vector<QualityMetrics> quality(active.size());
+                std::vector<double> bias(active.size()), bias_oriented(active.size());
+                std::vector<std::vector<FrameTimes>> timed(active.size());
+                std::vector<CostModel> costs(active.size());
+                for (std::size_t e = 0; e < active.size(); ++e) {
+                    Active& a = active[e];
+                    const bench::LadderEntry& entry = *a.entry;
+                    progress.step("warm-up", where + ": warm-up and quality, " + entry.label);
+                    set_light(*a.runtime, scene, light_kind, path, light_at(scene, path, scale, step, 0), a.oim.has_value());
+                    FrameTimes warmup;
+                    if (!run_frame(*a.runtime, mesh_of(a), pixels_of(a), warmup, &error)) return fail(entry.label + ": " + error);
+                    // set_light fitted level_bound to this light: memory, configuration and cost as they run
+                    a.texture_bytes = static_cast<std::uint64_t>(penumbra::texture_bytes(a.runtime->layout(), options->width, options->height));
+                    a.config = json::parse(to_json(a.runtime->layout()))["config"];
+                    costs[e] = cost_model(a.runtime->layout(), options->width, options->height);
+                    const std::vector<float> visibility = read_visibility(*a.runtime, pixels_of(a));
+                    quality[e] = compare_quality(visibility, pixels->frame.geometry, truths[s].visibility,
+                                                 truths[s].oriented, truths[s].irradiance);
+                    bias[e] = penumbra_bias(visibility, pixels->frame.geometry, truths[s].visibility);
+                    bias_oriented[e] = penumbra_bias(visibility, pixels->frame.geometry, truths[s].oriented);
+                    if (entry.representative &&
+                        !write_visibility_images(image_dir + "/" + image_cell, slug(entry.label), *pixels, visibility,
+                                                 &truths[s].visibility, &error))
+                        return fail(error);
+                }
+                // Round-robin: run r of every setting, then run r + 1. A burst of load from other
+                // processes then slows every setting of the cell alike, and the ratios survive it.
+                for (int r = 0; r < options->runs; ++r) {
+                    progress.step("timed round", where + ": timed run " + std::to_string(r + 1) + "/" +
+                                                     std::to_string(options->runs) + " of every setting");
+                    for (std::size_t e = 0; e < active.size(); ++e) {
+                        FrameTimes t;
+                        if (!run_frame(*active[e].runtime, mesh_of(active[e]), pixels_of(active[e]), t, &error))
+                            return fail(active[e].entry->label + ": " + error);
+                        timed[e].push_back(std::move(t));
+                    }
+                }
+                for (std::size_t e = 0; e < active.size(); ++e) {
+                    const Active& a = active[e];
+                    const bench::LadderEntry& entry = *a.entry;
+                    json record = {{"scene", scene.name}, {"ground", scene.ground},
+                                   {"light", lit_by},
+                                   {"family", entry.family},
+                                   {"label", entry.label},
+                                   {"representative", entry.representative},
+                                   {"light_scale", scale}};
+                    if (light_kind == Light::sun) record["sun_angular_diameter"] = scene.sun.angular_diameter * scale;
+                    else record["light_size"] = {scene.light.width * scale, scene.light.height * scale};
+                    record["config"] = a.config;
+                    record["texture_bytes"] = a.texture_bytes;
+                    if (a.oim) // a precomputation, like the truth: not in the frame's cost
+                        record["bake"] = {{"ms", a.oim->cached.bake.bake_ms}, {"from_cache", a.oim->cached.from_cache}};
+                    record.update(cost_json(timed[e]));
+                    std::vector<double> light_ms;
+                    for (const FrameTimes& t : timed[e]) light_ms.push_back(light_pass_ms(t));
+                    record["light_passes_gpu_ms"] = median(light_ms);
+                    record["cost_model"] = {{"shadow", phase_cost_json(costs[e].shadow)}, {"screen", phase_cost_json(costs[e].screen)}};
+                    // "all"/"penumbra": against the visibility of the whole light (rays behind the
+                    // receiver's tangent plane blocked); the fair references beside it.
+                    const QualityMetrics& q = quality[e];
+                    record["quality"] = {{"all", stats_json(q.visibility.all)},
+                                         {"penumbra", stats_json(q.visibility.penumbra)},
+                                         {"penumbra_bias", bias[e]},
+                                         {"oriented", {{"all", stats_json(q.oriented.all)}, {"penumbra", stats_json(q.oriented.penumbra)},
+                                                       {"penumbra_bias", bias_oriented[e]}}},
+                                         {"irradiance", {{"all", stats_json(q.irradiance.all)}, {"penumbra", stats_json(q.irradiance.penumbra)}}}};
+                    if (entry.representative) {
+                        const std::string dir = "images/" + image_cell;
+                        record["images"] = {{"visibility", dir + "/" + slug(entry.label) + ".png"},
+                                            {"error", dir + "/" + slug(entry.label) + ".error.png"},
+                                            {"truth", dir + "/truth.png"}};
+                    }
+                    std::printf("%-10s %-4s x%-4s %-20s GPU %8.2f ms  wall %8.2f ms  textures %7.1f MiB  penumbra MAE %.4f  "
+                                "oriented %.4f  light passes %7.2f ms, model %6.1f MB %6.1f Mfetch; shading model %6.1f Mfetch\n",
+                                scene.name.c_str(), lit_by.c_str(), scale_text(scale).c_str(), entry.label.c_str(),
+                                record["gpu_ms"].get<double>(), record["wall_ms"]["total"].get<double>(),
+                                a.texture_bytes / 1048576.0, q.visibility.penumbra.mae, q.oriented.penumbra.mae,
+                                record["light_passes_gpu_ms"].get<double>(), costs[e].shadow.bytes() / 1e6,
+                                costs[e].shadow.texel_fetches / 1e6, costs[e].screen.texel_fetches / 1e6);
+                    std::fflush(stdout);
+                    results["measurements"].push_back(std::move(record));
+                }
+            }
+
+            for (Active& a : active) {
+                const bench::LadderEntry& entry = *a.entry;
+                if (!entry.representative) continue;
+                progress.step("flicker", scene.name + ": flicker, " + std::to_string(options->flicker_frames) +
+                                             " frames of a moving " + lit_by + " light: " + entry.label);
+                std::vector<std::vector<float>> frames;
+                for (int f = 0; f < options->flicker_frames; ++f) {
+                    set_light(*a.runtime, scene, light_kind, path, light_at(scene, path, 1.0, step, f), a.oim.has_value());
+                    FrameTimes times;
+                    if (!run_frame(*a.runtime, mesh_of(a), pixels_of(a), times, &error)) return fail(entry.label + ": " + error);
+                    frames.push_back(read_visibility(*a.runtime, pixels_of(a)));
+                }
+                double error_sum = 0;
+                for (int f = 0; f < options->flicker_frames; ++f)
+                    error_sum += compare(frames[f], pixels->frame.geometry, truth_frames[f]).all.mae;
+                const double delta = mean_frame_delta(frames, pixels->frame.geometry);
+                results["flicker"].push_back({{"scene", scene.name},
+                                              {"light", lit_by},
+                                              {"family", entry.family},
+                                              {"label", entry.label},
+                                              {"light_scale", 1.0},
+                                              {"frames", options->flicker_frames},
+                                              {"estimate_delta", delta},
+                                              {"truth_delta", truth_delta},
+                                              {"excess", delta - truth_delta},
+                                              {"mean_mae", error_sum / options->flicker_frames}});
+            }
+            progress.finish();
+        } // lights
+        results["scenes"].push_back(std::move(scene_record));
     }
     results["meta"]["wall_s"] = milliseconds_since(run_start) / 1000.0;
 

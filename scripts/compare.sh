@@ -3,6 +3,8 @@
 # light grows. Builds penumbra-bench-compare, runs it (results.json, images) and builds the report
 # (report.md, figures/) with Debian's matplotlib.
 #   scripts/compare.sh [--quick | --full] [penumbra-bench-compare flags] [--out DIR]   (default out/compare)
+#   scripts/compare.sh --lights rect,sun ...         the ladder under each scene's rectangle and its sun
+#                                                    (occlusion interval maps: the sun only, baked once)
 #   scripts/compare.sh --report-only [--out DIR]     rebuild report.md and figures from DIR/results.json
 #   scripts/compare.sh --corpus [DIR] ...            also the corpus of real meshes: fetched first into DIR
 #                                                    (scripts/get_corpus.sh; default ~/.cache/penumbra/corpus)

@@ -24,7 +24,8 @@ FALLBACK_REFERENCE = "OT nbuffer 16/512"  # when the run has no PCSS 16/16 (and 
 EQUAL_TIME_BUDGETS = ["PCSS 16/16", "PCSS 32/64"]
 DEFAULT_SETTING = "OT nbuffer 16/512"  # Config{}: the default occlusion-texture configuration
 KEY_SETTINGS = [DEFAULT_SETTING, "PCSS 16/16", "PCSS 32/64"]  # the per-scene and per-mesh tables
-FAMILY_NAMES = {"occlusion": "occlusion textures", "paper": "occlusion textures, the paper's model", "shadowmap": "hard shadow map", "pcf": "PCF", "pcss": "PCSS", "pcss-depth-bias-only": "PCSS with the depth bias only (no normal offset, no receiver-plane bias)"}
+FAMILY_NAMES = {"occlusion": "occlusion textures", "paper": "occlusion textures, the paper's model", "shadowmap": "hard shadow map", "pcf": "PCF", "pcss": "PCSS", "pcss-depth-bias-only": "PCSS with the depth bias only (no normal offset, no receiver-plane bias)", "erosion": "erosion", "oim": "occlusion interval maps"}
+LIGHT_TITLES = {"rect": "the rectangle light", "sun": "the sun"}
 
 
 def family_name(family):
@@ -87,6 +88,31 @@ def has_bias(measurements):
 def load(directory):
     with open(os.path.join(directory, "results.json")) as f:
         return json.load(f)
+
+
+def light_of(m):
+    """The light a measurement ran under; results.json from before --lights has only the rectangle."""
+    return m.get("light", "rect")
+
+
+def lights_of(results):
+    """The lights of the run that have measurements, in the order of --lights."""
+    order = results["meta"].get("lights", ["rect"])
+    present = {light_of(m) for m in results["measurements"]}
+    return [l for l in order if l in present] or ["rect"]
+
+
+def suffix_of(light):
+    """The rectangle's figures keep their names; the sun's end in _sun."""
+    return "" if light == "rect" else f"_{light}"
+
+
+def for_light(results, light):
+    """results with only the measurements and flicker runs under `light`."""
+    out = dict(results)
+    out["measurements"] = [m for m in results["measurements"] if light_of(m) == light]
+    out["flicker"] = [f for f in results["flicker"] if light_of(f) == light]
+    return out
 
 
 # ---- the computed conclusions ------------------------------------------------------------------
@@ -173,7 +199,7 @@ def per_label_over_scenes(measurements):
 
 # ---- figures ------------------------------------------------------------------------------------
 
-def make_figures(results, directory):
+def make_figures(results, directory, suffix=""):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -213,9 +239,10 @@ def make_figures(results, directory):
         for j in range(len(scales), rows * cols):
             axes[j // cols][j % cols].axis("off")
         axes[0][0].legend(fontsize=7)
-        fig.suptitle(f"Pareto front (dashed), {scene}: time against penumbra MAE ({metric_name()} reference)", fontsize=10)
+        fig.suptitle(f"Pareto front (dashed), {scene}{', under the sun' if suffix else ''}: time against penumbra MAE "
+                     f"({metric_name()} reference)", fontsize=10)
         fig.tight_layout(rect=(0, 0, 1, 0.96))
-        path = os.path.join(fig_dir, f"pareto_{scene}.png")
+        path = os.path.join(fig_dir, f"pareto_{scene}{suffix}.png")
         fig.savefig(path, dpi=110)
         plt.close(fig)
         written.append(path)
@@ -246,7 +273,7 @@ def make_figures(results, directory):
     ax_cost.text(0.01, 0.01, "solid: occlusion textures, dashed: shadow-map techniques", fontsize=6,
                  transform=ax_cost.transAxes)
     fig.tight_layout()
-    path = os.path.join(fig_dir, "cost_vs_light_size.png")
+    path = os.path.join(fig_dir, f"cost_vs_light_size{suffix}.png")
     fig.savefig(path, dpi=110)
     plt.close(fig)
     written.append(path)
@@ -282,10 +309,10 @@ def make_figures(results, directory):
                     ax.set_ylabel(f"{scene}\n{kind}", fontsize=6)
                 if kind == "error" and label != "truth" and m:
                     ax.set_xlabel(f"MAE {pen(m):.3f}", fontsize=6)
-        fig.suptitle(f"light {fmt_scale(scale)}: visibility and signed error (red too bright, blue too dark, "
+        fig.suptitle(f"{'sun' if suffix else 'light'} {fmt_scale(scale)}: visibility and signed error (red too bright, blue too dark, "
                      f"±0.25 saturates)", fontsize=8)
         fig.tight_layout(rect=(0, 0, 1, 0.985))
-        path = os.path.join(fig_dir, f"montage_{fmt_scale(scale)}.png")
+        path = os.path.join(fig_dir, f"montage_{fmt_scale(scale)}{suffix}.png")
         fig.savefig(path, dpi=110)
         plt.close(fig)
         written.append(path)
@@ -295,10 +322,9 @@ def make_figures(results, directory):
 # ---- the report ---------------------------------------------------------------------------------
 
 def write_report(results, directory, thresholds, figures):
+    """report.md: the run, then the tables of each light (figures: light -> its figures)."""
     meta = results["meta"]
     measurements = results["measurements"]
-    cells = by_cell(measurements)
-    scales = meta["light_scales"]
     reference, reference_note = reference_label(measurements)
     out = []
     w = out.append
@@ -333,8 +359,42 @@ def write_report(results, directory, thresholds, figures):
         f"{family_name(f)} ({sum(1 for l in {m['label'] for m in measurements if m['family'] == f})} settings)"
         for f in sorted({m["family"] for m in measurements})) + ".\n")
 
+    skipped = results.get("skipped", [])
+    if skipped:
+        w("Skipped (a setting that cannot run under a light, or whose bake could not be made): " + "; ".join(
+            f"{x['label']} on {x['scene']} under the {x['light']} light: {x['reason']}" for x in skipped) + ".\n")
+    for light in lights_of(results):
+        sub = for_light(results, light)
+        if light == "rect" and len(lights_of(results)) > 1:
+            w(f"# Under {LIGHT_TITLES['rect']}\n")
+        if light != "rect":
+            w(f"# Under {LIGHT_TITLES.get(light, light)}\n")
+            w("Each scene's sun (5 × the real sun's angular diameter for the built-in scenes) on a path through it "
+              "at t = 0.5, which occlusion interval maps bake; light sizes are multiples of its angular diameter, "
+              "and for the flicker the sun moves along its path by "
+              f"{meta.get('sun_flicker_step_t', 0):g} in t per frame. Every table below is of the sun alone.\n")
+        write_light(sub, directory, thresholds, figures.get(light, []), w,
+                    "" if light == "rect" else f" (under {LIGHT_TITLES.get(light, light)})")
+
+    # three.js's own shadows against the same kind of truth, when targets/web/three_peers.mjs
+    # --markdown DIR/three_peers.md wrote its tables here (web/three/README.md says how).
+    write_three_peers(directory, w)
+
+    with open(os.path.join(directory, "report.md"), "w") as f:
+        f.write("\n".join(out))
+
+
+def write_light(results, directory, thresholds, figures, w, title):
+    """The report's tables for the measurements of one light; `title` follows every heading."""
+    meta = results["meta"]
+    measurements = results["measurements"]
+    cells = by_cell(measurements)
+    scales = meta["light_scales"]
+    reference, _ = reference_label(measurements)
+    light = light_of(measurements[0]) if measurements else "rect"
+
     # The conclusions in one place: the chosen (fair) reference first, the others after it.
-    w("## Summary\n")
+    w(f"## Summary{title}\n")
     for budget_label in EQUAL_TIME_BUDGETS:
         if not equal_time_rows(cells, budget_label):
             continue
@@ -356,10 +416,10 @@ def write_report(results, directory, thresholds, figures):
     w("")
 
     # Per scene and per mesh, at the default light.
-    write_scene_tables(results, w)
+    write_scene_tables(results, w, title)
 
     # Equal time.
-    w("## Equal time\n")
+    w(f"## Equal time{title}\n")
     w("At the cost of a PCSS setting (same scene, same light size): the lowest penumbra MAE that any "
       "occlusion-texture setting reaches within that cost, beside the PCSS setting's own MAE.\n")
     for budget_label in EQUAL_TIME_BUDGETS:
@@ -393,7 +453,7 @@ def write_report(results, directory, thresholds, figures):
     # Light size.
     summary, family = per_label_over_scenes(measurements)
     lo, hi = min(scales), max(scales)
-    w("## Light size\n")
+    w(f"## Light size{title}\n")
     w(f"Cost at {fmt_scale(hi)} over cost at {fmt_scale(lo)} per setting (fixed settings; the ratio is the mean "
       "over scenes of each scene's ratio), and the penumbra MAE at both sizes (mean over scenes).\n")
     w(f"| setting | technique | ms at {fmt_scale(lo)} | ms at {fmt_scale(hi)} | cost {fmt_scale(hi)} / {fmt_scale(lo)} | "
@@ -437,11 +497,14 @@ def write_report(results, directory, thresholds, figures):
     w("")
 
     # Flicker.
-    w("## Temporal stability\n")
+    w(f"## Temporal stability{title}\n")
     flicker = results["flicker"]
     if flicker:
-        w(f"The light (default size) moves along its u axis by {meta['flicker_step_of_ground_span'] * 100:g} % of "
-          f"the scene's ground span per frame over {meta['flicker_frames']} frames. Excess flicker = mean |Δ "
+        motion = (f"The sun (default size) moves along its path by {meta.get('sun_flicker_step_t', 0):g} in t per frame"
+                  if light == "sun" else
+                  f"The light (default size) moves along its u axis by {meta['flicker_step_of_ground_span'] * 100:g} % "
+                  "of the scene's ground span per frame")
+        w(f"{motion} over {meta['flicker_frames']} frames. Excess flicker = mean |Δ "
           "visibility| between consecutive frames over geometry pixels, minus the same for the truth (the shadow's "
           "real motion). Positive: the technique changes more than the truth does.\n")
         labels = []
@@ -462,7 +525,7 @@ def write_report(results, directory, thresholds, figures):
         w("No flicker measurement in this run.\n")
 
     # Where the time goes.
-    w("## Where the time goes\n")
+    w(f"## Where the time goes{title}\n")
     w(f"Mean over scenes and light sizes of the GPU time of the passes from the light (shadow map or slicing and "
       f"prefilter: independent of the image size) and of the screen pass over the {meta['image'][0]}×"
       f"{meta['image'][1]} G-buffer (proportional to the pixels shaded). At a larger image the screen share grows "
@@ -481,7 +544,7 @@ def write_report(results, directory, thresholds, figures):
     w("")
 
     # Signed error.
-    w("## Too bright or too dark\n")
+    w(f"## Too bright or too dark{title}\n")
     bias_metric = metric_name() if has_bias(measurements) else metric_name("visibility")
     w(f"Mean signed error over penumbra pixels (estimate − truth, against the {bias_metric} reference), mean over "
       "scenes: positive where a setting is too bright (light leaking through or around occluders), negative "
@@ -496,7 +559,7 @@ def write_report(results, directory, thresholds, figures):
     w("")
 
     # Pareto fronts.
-    w("## Pareto fronts\n")
+    w(f"## Pareto fronts{title}\n")
     w("Per scene and light size, the settings no other setting beats on both cost and penumbra MAE, cheapest "
       "first.\n")
     w("| scene | light | front: setting (ms, ratio, MAE) |")
@@ -508,13 +571,13 @@ def write_report(results, directory, thresholds, figures):
     w("")
 
     # Figures.
-    w("## Figures\n")
+    w(f"## Figures{title}\n")
     for path in figures:
         rel = os.path.relpath(path, directory)
         w(f"![{os.path.basename(path)}]({rel})\n")
 
     # Every measurement.
-    w("## Every measurement\n")
+    w(f"## Every measurement{title}\n")
     w(f"GPU: summed timer queries; wall: to glFinish (shadow passes, shading, total); ratio: GPU cost against "
       f"{reference or 'the reference'} at the same scene and light; texture memory from the layout's textures.\n")
     w("| scene | light | setting | GPU ms (fastest) | ratio | wall ms (shadow + shading = total) | textures MiB | "
@@ -534,12 +597,25 @@ def write_report(results, directory, thresholds, figures):
               f"{q['all']['rmse']:.4f} / {q['all']['p95']:.3f} ({q['all']['pixels']}) | {fair_text(m)} | "
               f"{bias(m):+.3f} | {passes} |")
     w("")
+    truths = {s["name"]: [t for t in s["truth"] if t.get("light", "rect") == light] for s in results["scenes"]}
     w("Ground truth per scene (computed or read from the cache): " + "; ".join(
-        f"{s['name']}: {sum(t['ms'] for t in s['truth']) / 1000:.1f} s for {len(s['truth'])} images "
-        f"({sum(1 for t in s['truth'] if t['cached'])} cached)" for s in results["scenes"]) + ".\n")
+        f"{name}: {sum(t['ms'] for t in ts) / 1000:.1f} s for {len(ts)} images "
+        f"({sum(1 for t in ts if t['cached'])} cached)" for name, ts in truths.items() if ts) + ".\n")
+    bakes = [b for b in results.get("bakes", []) if b.get("light") == light]
+    if bakes:
+        w("Bakes of occlusion interval maps: a precomputation like the truth, never in the frame's cost (one per "
+          "scene and setting, cached in the run's cache/oim).\n")
+        w("| scene | setting | maps | intervals | samples along the path | bake s | cached | rays | file MiB |")
+        w("|---|---|---|---|---|---|---|---|---|")
+        for b in bakes:
+            w(f"| {b['scene']} | {b['label']} | {b['resolution']}² | {b['intervals']} | {b['samples']} | "
+              f"{b['bake_ms'] / 1000:.2f} | {'yes' if b['from_cache'] else 'no'} | {b['rays']} | "
+              f"{b['file_bytes'] / 2**20:.2f} |")
+        w("")
 
-    # three.js's own shadows against the same kind of truth, when targets/web/three_peers.mjs
-    # --markdown DIR/three_peers.md wrote its tables here (web/three/README.md says how).
+
+def write_three_peers(directory, w):
+    """three.js's tables, when targets/web/three_peers.mjs --markdown DIR/three_peers.md wrote them."""
     three = os.path.join(directory, "three_peers.md")
     if os.path.isfile(three):
         w("## three.js's shadow maps and the three.js add-on against the truth\n")
@@ -549,11 +625,8 @@ def write_report(results, directory, thresholds, figures):
         with open(three) as f:
             w(f.read())
 
-    with open(os.path.join(directory, "report.md"), "w") as f:
-        f.write("\n".join(out))
 
-
-def write_scene_tables(results, w):
+def write_scene_tables(results, w, title=""):
     """Per built-in scene and per mesh (files and the corpus): the key settings at the smallest light
     size — penumbra MAE and p95, all-pixel MAE (chosen reference), cost and its ratio to PCSS 16/16."""
     measurements = results["measurements"]
@@ -567,7 +640,7 @@ def write_scene_tables(results, w):
     reference, _ = reference_label(measurements)
     built_in = [s for s in results["scenes"] if s.get("kind", "built-in") == "built-in"]
     meshes = [s for s in results["scenes"] if s.get("kind", "built-in") != "built-in"]
-    w("## Per scene and mesh\n")
+    w(f"## Per scene and mesh{title}\n")
     w(f"At each scene's default light ({fmt_scale(scale)}), the default configuration ({DEFAULT_SETTING}) and "
       f"the PCSS settings shipping engines use: penumbra MAE and p95 and all-pixel MAE against the "
       f"{metric_name()} reference; cost: the GPU time of every pass of the frame (light passes and the screen "
@@ -649,8 +722,10 @@ def check(directory):
                         "## Pareto fronts"):
             if heading not in text:
                 problems.append(f"report.md has no '{heading}' section")
-    expected = [f"pareto_{s['name']}.png" for s in results["scenes"]] + ["cost_vs_light_size.png"] + [
-        f"montage_{fmt_scale(s)}.png" for s in results["meta"]["light_scales"]]
+    expected = [name for light in lights_of(results) for name in
+                [f"pareto_{s['name']}{suffix_of(light)}.png" for s in results["scenes"]] +
+                [f"cost_vs_light_size{suffix_of(light)}.png"] +
+                [f"montage_{fmt_scale(s)}{suffix_of(light)}.png" for s in results["meta"]["light_scales"]]]
     for name in expected:
         path = os.path.join(directory, "figures", name)
         if not os.path.exists(path) or os.path.getsize(path) < 1000:
@@ -689,7 +764,8 @@ def main():
         return check(args.directory)
     results = load(args.directory)
     try:
-        figures = make_figures(results, args.directory)
+        figures = {light: make_figures(for_light(results, light), args.directory, suffix_of(light))
+                   for light in lights_of(results)}
     except ImportError as e:
         print(f"error: matplotlib is missing ({e}); install Debian's python3-matplotlib (scripts/setup.sh)",
               file=sys.stderr)
@@ -701,7 +777,8 @@ def main():
               file=sys.stderr)
         return 2
     write_report(results, args.directory, thresholds, figures)
-    print(f"wrote {args.directory}/report.md and {len(figures)} figures in {args.directory}/figures/")
+    print(f"wrote {args.directory}/report.md and {sum(len(f) for f in figures.values())} figures in "
+          f"{args.directory}/figures/")
     return 0
 
 

@@ -73,7 +73,7 @@ inline std::optional<Pixels> render_pixels(const Scene& scene, const MeshBuffers
     return p;
 }
 
-// One frame of a technique: every pass of its layout, then the deferred shading pass.
+// One frame of a technique: every pass of its layout, then the deferred screen passes.
 struct FrameTimes {
     std::vector<gl::PassTiming> passes; // GL_TIME_ELAPSED of each pass, shading last
     double wall_build_ms = 0, wall_shading_ms = 0;
@@ -90,10 +90,23 @@ inline bool run_frame(gl::Runtime& runtime, const MeshBuffers& mesh, const Pixel
     glFinish();
     out.wall_build_ms = milliseconds_since(start);
     const auto shading_start = std::chrono::steady_clock::now();
-    gl::PassTiming shading;
-    if (!runtime.shade_deferred(pixels.gbuffer->positions(), pixels.gbuffer->width(), pixels.gbuffer->height(), error,
-                                &shading, pixels.gbuffer->normals()))
+    // Every G-buffer texture the layouts know (as playground::render_headless gives them): each
+    // technique's screen passes read the ones they declare (occlusion interval maps: the texture
+    // coordinates of their bake; erosion: several passes at the output size).
+    const gl::Runtime::TextureMap gbuffer_textures{{"penumbra_worldPositions", pixels.gbuffer->positions()},
+                                                   {"penumbra_worldNormals", pixels.gbuffer->normals()},
+                                                   {"penumbra_texCoords", pixels.gbuffer->tex_coords()}};
+    std::vector<gl::PassTiming> screen;
+    if (std::string d = runtime.run_screen(gbuffer_textures, pixels.gbuffer->width(), pixels.gbuffer->height(), &screen);
+        !d.empty()) {
+        if (error) *error = d;
         return false;
+    }
+    gl::PassTiming shading; // the screen passes as one: the tables' "screen pass"
+    for (const gl::PassTiming& t : screen) {
+        shading.name += (shading.name.empty() ? "" : "+") + t.name;
+        shading.milliseconds += t.milliseconds;
+    }
     glFinish();
     out.wall_shading_ms = milliseconds_since(shading_start);
     out.passes.push_back(shading);

@@ -2,10 +2,12 @@
 // penumbra::Config at a ladder of quality settings, from the fastest to the best.
 //
 // A technique is just a Config: the benchmark runs each one through the same generic path (the
-// GL runtime executes any layout), and the only technique-specific code here is naming.
+// GL runtime executes any layout), and the only technique-specific code here is naming and which
+// light a setting can run under (refusal).
 #pragma once
 
 #include <penumbra/config.hpp>
+#include <penumbra/validate.hpp>
 
 #include <string>
 #include <vector>
@@ -13,7 +15,8 @@
 namespace penumbra::bench {
 
 struct LadderEntry {
-    std::string family;  // the technique's name: "occlusion", "paper", "shadowmap", "pcf", "pcss" (tables group by it)
+    std::string family;  // the technique's name: "occlusion", "paper", "shadowmap", "pcf", "pcss", "erosion", "oim"
+                         // (tables group by it)
     std::string label;   // short, unique name: "OT nbuffer 16/512"
     Config config;
     bool representative; // also in the flicker measurement and the image montage
@@ -88,6 +91,32 @@ inline LadderEntry pcss_depth_bias_only_entry() {
     return entry;
 }
 
+// Erosion (Klein et al.) at its default parameters, from a hard shadow map of 1024² like the others.
+inline LadderEntry erosion_entry() {
+    Config config{.technique = Technique::erosion, .shadow_map = {.resolution = 1024}};
+    return {"erosion", "erosion r" + std::to_string(config.erosion.max_search_radius), config, true};
+}
+
+// Occlusion interval maps (sun only): intervals/resolution of the baked maps, the fewest samples
+// along the path (256). Small by default: the bake is a precomputation of minutes at the default
+// 256² on two cores.
+inline LadderEntry oim_entry(int intervals, int resolution, bool representative = false) {
+    Config config{.technique = Technique::oim};
+    config.oim = {.resolution = resolution, .intervals = intervals, .samples = 256};
+    return {"oim", "OIM " + std::to_string(intervals) + "/" + std::to_string(resolution), config, representative};
+}
+
+// Why `entry` cannot run under `light`, or empty when it can: occlusion interval maps follow the sun
+// along its path; every other setting whatever validation refuses for that light.
+inline std::string refusal(const LadderEntry& entry, Light light) {
+    if (entry.config.technique == Technique::oim && light == Light::rect)
+        return "occlusion interval maps are baked for the sun along its path; they have no rectangle-light form";
+    Config config = entry.config;
+    config.light = light;
+    const std::vector<ConfigError> errors = validate(config);
+    return errors.empty() ? std::string() : errors.front().message;
+}
+
 // The entries of one set, cheapest settings first within each filter.
 inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
     if (set == LadderSet::quick) return {occlusion_entry(Filter::nbuffer, 8, 256, true), pcss_entry(16, 16, true)};
@@ -114,12 +143,15 @@ inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
         pcss_depth_bias_only_entry(),
         pcss_entry(32, 32),        // Godot ultra
         pcss_entry(32, 64, true), // PlayCanvas high
+        erosion_entry(),
+        oim_entry(8, 128, true),   // the sun only (refusal); baked once per scene into --out's cache/oim
     };
     if (set == LadderSet::full) {
         ladder.push_back(occlusion_entry(Filter::sat, 32, 512)); // about 4x the time of sat 16/512 on llvmpipe
         ladder.push_back(occlusion_entry(Filter::mipmap, 32, 1024));
         ladder.push_back(occlusion_entry(Filter::nbuffer, 32, 1024));
         ladder.push_back(occlusion_entry(Filter::sat, 32, 1024));
+        ladder.push_back(oim_entry(8, 256)); // OimParams' defaults
     }
     return ladder;
 }

@@ -48,29 +48,37 @@ struct CachedTruth {
     double milliseconds = 0;           // time to compute (0 when read from the cache)
 };
 
-// The three references (playground::reference_all) for `scene` with its light as it is, at the
-// pixels of `frame`: from `directory` when a file with the inputs' hash is there, else ray-traced
-// and written there (a 3-channel float map). nullopt and *error when the file cannot be written.
+// The three references (playground::reference_all) for `scene` with its light as it is (the
+// rectangle scene.light, or with Light::sun scene.sun), at the pixels of `frame`: from `directory`
+// when a file with the inputs' hash is there, else ray-traced and written there (a 3-channel float
+// map). nullopt and *error when the file cannot be written.
 inline std::optional<CachedTruth> cached_truth(const std::string& directory, const playground::Scene& scene,
                                                const playground::HeadlessResult& frame, int samples_per_axis,
-                                               std::string* error) {
+                                               std::string* error, Light light_kind = Light::rect) {
     Hash hash;
-    const char version[] = "rect-references-v2";
-    hash.add(version, sizeof version);
+    const char rect_version[] = "rect-references-v2", sun_version[] = "sun-references-v1";
+    if (light_kind == Light::sun) hash.add(sun_version, sizeof sun_version);
+    else hash.add(rect_version, sizeof rect_version);
     hash.add_values(std::span<const glm::vec3>(frame.positions));
     hash.add_values(std::span<const glm::vec3>(frame.normals));
-    const RectLight& light = scene.light;
-    const double light_values[] = {light.center.x, light.center.y, light.center.z, light.u_axis.x, light.u_axis.y,
-                                   light.u_axis.z, light.v_axis.x, light.v_axis.y, light.v_axis.z, light.width,
-                                   light.height};
-    hash.add(light_values, sizeof light_values);
+    if (light_kind == Light::sun) {
+        const SunLight& sun = scene.sun;
+        const double sun_values[] = {sun.direction.x, sun.direction.y, sun.direction.z, sun.angular_diameter};
+        hash.add(sun_values, sizeof sun_values);
+    } else {
+        const RectLight& light = scene.light;
+        const double light_values[] = {light.center.x, light.center.y, light.center.z, light.u_axis.x, light.u_axis.y,
+                                       light.u_axis.z, light.v_axis.x, light.v_axis.y, light.v_axis.z, light.width,
+                                       light.height};
+        hash.add(light_values, sizeof light_values);
+    }
     const glm::vec3 eye = scene.camera.eye_position(); // the fair references face the camera
     hash.add(&eye, sizeof eye);
     const int sizes[] = {frame.width, frame.height, samples_per_axis};
     hash.add(sizes, sizeof sizes);
 
     CachedTruth out;
-    out.file = (std::filesystem::path(directory) / (scene.name + "-" + hash.hex() + ".pfm")).string();
+    out.file = (std::filesystem::path(directory) / (scene.name + (light_kind == Light::sun ? "-sun-" : "-") + hash.hex() + ".pfm")).string();
     const std::size_t n = frame.positions.size();
     std::string read_error;
     if (std::optional<playground::FloatImage> image = playground::read_pfm(out.file, &read_error);
@@ -86,7 +94,7 @@ inline std::optional<CachedTruth> cached_truth(const std::string& directory, con
         return out;
     }
     const auto start = std::chrono::steady_clock::now();
-    out.references = playground::reference_all(scene, frame, samples_per_axis, Light::rect);
+    out.references = playground::reference_all(scene, frame, samples_per_axis, light_kind);
     out.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     playground::FloatImage image{frame.width, frame.height, 3, std::vector<float>(3 * n)};
     for (std::size_t i = 0; i < n; ++i) {
