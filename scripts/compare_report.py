@@ -162,6 +162,8 @@ def equal_time_rows(cells, budget_label, metric=None):
         within = [m for m in cell.values() if m["family"] == "occlusion" and m[COST] <= budget[COST]]
         best = min(within, key=lambda m: pen(m, metric)) if within else None
         cheapest = min((m for m in cell.values() if m["family"] == "occlusion"), key=lambda m: m[COST], default=None)
+        if cheapest is None:  # no occlusion-texture setting in this run: nothing to compare
+            continue
         rows.append((scene, scale, budget, best, cheapest))
     return rows
 
@@ -427,7 +429,8 @@ def write_light(results, directory, thresholds, figures, w, title):
         w(f"### At the cost of {budget_label}\n")
         if not rows:
             w(f"Empty: results.json has no {budget_label} measurement, so there is no budget to compare at "
-              "(the shadow-map techniques were not in this run's ladder).\n")
+              "(the shadow-map techniques were not in this run's ladder), or no occlusion-texture setting to "
+              "compare.\n")
             continue
         w(f"| scene | light | {budget_label} ms | its MAE ({other_metrics()}) | best OT within that cost | "
           f"OT ms (ratio) | OT MAE ({other_metrics()}) | OT wins |")
