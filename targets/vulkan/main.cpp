@@ -9,7 +9,7 @@
 // default 0), so that the comparison means something, and the validation layer reported nothing. Exit status: 0 pass;
 // 1 a difference beyond the bound, a validation message, or a failure; 2 bad arguments;
 // 77 no Vulkan device (the test is skipped).
-#include "bundle.hpp"
+#include "bundle_reader.hpp"
 #include "../../generator/src/cli.hpp"
 #include "layout_runner.hpp"
 #include "vulkan_context.hpp"
@@ -26,6 +26,8 @@
 namespace {
 
 using namespace penumbra::vulkan;
+using penumbra::targets::Bundle;
+using penumbra::targets::read_bundle;
 
 enum Exit { pass = 0, failed = 1, bad_input = 2, skipped = 77 };
 
@@ -60,15 +62,7 @@ int run(const std::vector<std::string>& args) {
     std::string error;
     if (!read_bundle(bundle_dir, bundle, &error)) return fail(error);
     LayoutInputs inputs;
-    {
-        std::ifstream file(bundle.emission_dir / "layout.json");
-        if (!file) return fail("cannot read " + (bundle.emission_dir / "layout.json").string());
-        try {
-            inputs.layout = nlohmann::json::parse(file);
-        } catch (const nlohmann::json::exception& e) {
-            return fail("layout.json: " + std::string(e.what()));
-        }
-    }
+    inputs.layout = bundle.layout;
     inputs.emission_dir = bundle.emission_dir;
     inputs.width = bundle.width;
     inputs.height = bundle.height;
