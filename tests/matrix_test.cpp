@@ -15,6 +15,7 @@
 #include <set>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 using namespace penumbra;
@@ -191,6 +192,15 @@ Row generic_row() {
             }};
 }
 
+// A row whose every configuration must be valid and emit `programs_each` programs.
+Row all_valid_row(std::string name, std::vector<Config> configs, int programs_each) {
+    const int expected = static_cast<int>(configs.size()) * programs_each;
+    return {.name = std::move(name),
+            .configurations = std::move(configs),
+            .expect = [](const Config&) { return Expect::valid; },
+            .check_row = [expected](const RowResult& r) { CHECK(r.programs == expected); }};
+}
+
 // Every shadow map technique (shadowmap, pcf, pcss) over its parameters, on every target and light.
 Row shadow_map_row() {
     std::vector<Config> configs;
@@ -211,11 +221,7 @@ Row shadow_map_row() {
             for (auto [b, f] : {std::pair{8, 8}, {16, 16}, {17, 34}, {32, 32}, {32, 64}, {1, 1}, {64, 128}})
                 with({.technique = Technique::pcss, .pcss = {.blocker_samples = b, .filter_samples = f, .rotate = b != 1}});
         }
-    const int count = static_cast<int>(configs.size());
-    return {.name = "shadow map, pcf, pcss",
-            .configurations = configs,
-            .expect = [](const Config&) { return Expect::valid; },
-            .check_row = [count](const RowResult& r) { CHECK(r.programs == count * 3); }};
+    return all_valid_row("shadow map, pcf, pcss", configs, 3);
 }
 
 // Erosion over its parameters (the defaults and both extremes), on every target and light.
@@ -227,11 +233,7 @@ Row erosion_row() {
                                     ErosionParams{.max_search_radius = 256, .edge_threshold = 4.0, .search_taps = 64,
                                                   .blur_taps = 64}})
                 configs.push_back({.technique = Technique::erosion, .light = light, .target = target, .erosion = e});
-    const int count = static_cast<int>(configs.size());
-    return {.name = "erosion",
-            .configurations = configs,
-            .expect = [](const Config&) { return Expect::valid; },
-            .check_row = [count](const RowResult& r) { CHECK(r.programs == count * 7); }};
+    return all_valid_row("erosion", configs, 7);
 }
 
 // Occlusion interval maps: every interval count, resolution and target. glsl330 guarantees 1024
