@@ -1,9 +1,10 @@
-// bench/arguments.hpp — the benchmarks' command-line pieces: comma-separated lists and whole numbers.
+// bench/arguments.hpp — the benchmarks' command-line pieces: comma-separated lists, and the
+// project's number parsing, --help and "error: …" (generator/src/cli.hpp).
 #pragma once
 
-#include <charconv>
+#include "../generator/src/cli.hpp"
+
 #include <string_view>
-#include <system_error>
 #include <vector>
 
 namespace penumbra::bench {
@@ -21,9 +22,6 @@ inline std::vector<std::string_view> split(std::string_view text, char separator
 }
 
 // The whole of `text` as a number of type T (int, double, ...); false on anything else.
-template <class T> bool parse_number(std::string_view text, T& value) {
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    return ec == std::errc() && end == text.data() + text.size();
-}
+using penumbra::cli::parse_number;
 
 } // namespace penumbra::bench

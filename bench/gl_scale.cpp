@@ -223,25 +223,16 @@ std::string fmt(double v) { // 3 significant digits or so
     return text;
 }
 
-int fail(const std::string& message, int code = 1) {
-    std::cerr << "error: " << message << "\n";
-    return code;
-}
+using penumbra::cli::fail;
 
 } // namespace
 
 int main(int argc, char** argv) {
-    for (int i = 1; i < argc; ++i)
-        if (std::string_view(argv[i]) == "--help" || std::string_view(argv[i]) == "-h") {
-            std::cout << usage_text;
-            return 0;
-        }
+    if (penumbra::cli::asks_for_help(std::vector<std::string>(argv + 1, argv + argc)))
+        return penumbra::cli::print_usage(usage_text);
     std::string error;
     const std::optional<Options> options = parse(argc, argv, error);
-    if (!options) {
-        std::cerr << "error: " << error << "\n" << usage_text;
-        return 2;
-    }
+    if (!options) return penumbra::cli::fail_with_usage(error, usage_text);
     // Every measurement is interleaved over the scenes (round r of every scene, then round r + 1),
     // so that load from other processes on a shared machine slows every triangle count alike and
     // the ratios and exponents survive it. Medians of the rounds.

@@ -1,5 +1,6 @@
 // Erosion's emitted structure: tap counts in the text equal the configuration's, no loop statement
-// in the unrolled passes, the min-max chain as one reduction pass per level in the layout.
+// in the unrolled passes, the min-max chain as one reduction pass per level in the layout; invalid
+// erosion parameters refused with their message. (Its programs compile in matrix_test.cpp.)
 #include <penumbra/penumbra.hpp>
 
 #include <doctest/doctest.h>
@@ -51,4 +52,21 @@ TEST_CASE("erosion: tap counts equal the configuration's, no loop statements") {
     CHECK(erosion_levels({.max_search_radius = 16}) == 4);
     CHECK(erosion_levels({.max_search_radius = 17}) == 5);
     CHECK(erosion_levels({.max_search_radius = 1}) == 0);
+}
+
+TEST_CASE("invalid erosion parameters are rejected with field, value and what is allowed") {
+    auto first_error = [](ErosionParams e) {
+        const std::vector<ConfigError> errors = validate(Config{.technique = Technique::erosion, .erosion = e});
+        return errors.empty() ? std::string() : errors.front().message;
+    };
+    CHECK(first_error({.max_search_radius = 0}) ==
+          "erosion.max_search_radius: 0 pixels is a search beyond the image (its min-max chain needs an image of at "
+          "least twice the radius); allowed: 1 to 256 pixels");
+    CHECK(first_error({.max_search_radius = 5000}).starts_with("erosion.max_search_radius: 5000 pixels is a search beyond the image"));
+    CHECK(first_error({.edge_threshold = 0.0}) ==
+          "erosion.edge_threshold: 0.0 is out of range; allowed: more than 0.0 to 4.0 (|Laplacian| of the 0/1 hard shadow)");
+    CHECK(first_error({.search_taps = 0}) == "erosion.search_taps: 0 is out of range; allowed: 1 to 64");
+    CHECK(first_error({.blur_taps = 0}) == "erosion.blur_taps: 0 is out of range; allowed: 1 to 64");
+    CHECK(first_error({.blur_taps = 65}) == "erosion.blur_taps: 65 is out of range; allowed: 1 to 64");
+    CHECK(first_error({}).empty());
 }

@@ -1,4 +1,8 @@
-// The whole configuration matrix, compiled and linked by glslang for its target.
+// The glslang matrix: one table of (technique, configurations), every emitted program of every
+// valid configuration compiled and linked by glslang for its target, through one check. A row
+// says which configurations it covers, which of them must be valid or refused, and what else must
+// hold of each emission and of the row as a whole.
+#include <penumbra/generic.hpp>
 #include <penumbra/penumbra.hpp>
 #include <penumbra/validation.hpp>
 
@@ -7,172 +11,314 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <functional>
+#include <set>
 #include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 using namespace penumbra;
 
 namespace {
 
-constexpr int matrix_slices[] = {1, 4, 5, 8, 16, 32};
-constexpr int matrix_resolutions[] = {32, 256, 2048};
+// What one configuration emitted: its programs (none when refused), the snippet, the refusal.
+struct Emitted {
+    std::vector<Program> programs;
+    std::string snippet;
+    std::vector<ConfigError> errors;
+};
 
-template <class Visit> void for_each_configuration(Visit visit) {
+Emitted emit_all(const Config& config) {
+    Result<Emission> result = emit(config);
+    if (!result.value) return {{}, {}, result.errors};
+    return {result.value->programs, result.value->snippet.text, {}};
+}
+
+// penumbra/generic.hpp: the one reference program of a configuration.
+Emitted emit_generic_program(const Config& config) {
+    Result<GenericShading> result = emit_generic(config);
+    if (!result.value) return {{}, {}, result.errors};
+    return {{result.value->program}, {}, {}};
+}
+
+enum class Expect { either, valid, refused };
+
+// What a row's run found, for its own final checks.
+struct RowResult {
+    int valid = 0, refused = 0, programs = 0;
+    int compiled = 0;                  // distinct program texts glslang compiled
+    std::vector<Config> valid_configs; // in table order
+};
+
+struct Row {
+    std::string name;
+    std::vector<Config> configurations;
+    std::function<Emitted(const Config&)> emit_programs = emit_all;
+    std::function<Expect(const Config&)> expect = [](const Config&) { return Expect::either; };
+    std::function<void(const Config&, const Emitted&)> check_emission = nullptr; // each valid one
+    std::function<void(const Config&, const Emitted&)> check_refusal = nullptr;  // each refused one
+    std::function<void(const RowResult&)> check_row = nullptr;
+};
+
+std::string name_of(const Config& c) {
+    if (c.technique != Technique::occlusion) return std::string(detail::describe(c).view());
+    return std::string(to_string(c.filter)) + "/" + std::string(to_string(c.fusion)) + "/" +
+           std::string(to_string(c.packing)) + "/" + std::string(to_string(c.light)) + "/" +
+           std::string(to_string(c.target)) + "/S" + std::to_string(c.slices) + "/R" + std::to_string(c.resolution) +
+           (c.tangent_clip ? "/tangent-clip" : "") +
+           (c.slice_placement == SlicePlacement::adaptive ? "/adaptive" : "");
+}
+
+// --- the rows ------------------------------------------------------------------------------------
+
+// Every filter × fusion × packing × target × light × slices × resolution.
+std::vector<Config> occlusion_matrix(bool fade_both_ways) {
+    std::vector<Config> configs;
     for (Filter filter : all_values<Filter>())
         for (Fusion fusion : all_values<Fusion>())
             for (Packing packing : all_values<Packing>())
                 for (Target target : all_values<Target>())
                     for (Light light : all_values<Light>())
-                        for (int slices : matrix_slices)
-                            for (int resolution : matrix_resolutions)
-                                visit(Config{.slices = slices, .resolution = resolution, .filter = filter,
-                                             .fusion = fusion, .packing = packing, .light = light,
-                                             .target = target});
+                        for (bool fade : fade_both_ways ? std::vector<bool>{true, false} : std::vector<bool>{true})
+                            for (int slices : {1, 4, 5, 8, 16, 32})
+                                for (int resolution : {32, 256, 2048})
+                                    configs.push_back({.slices = slices, .resolution = resolution, .filter = filter,
+                                                       .fusion = fusion, .packing = packing, .light = light,
+                                                       .self_shadow_fade = fade, .target = target});
+    return configs;
 }
 
-std::string name_of(const Config& c) {
-    return std::string(to_string(c.filter)) + "/" + std::string(to_string(c.fusion)) + "/" +
-           std::string(to_string(c.packing)) + "/" + std::string(to_string(c.light)) + "/" +
-           std::string(to_string(c.target)) + "/S" + std::to_string(c.slices) + "/R" + std::to_string(c.resolution);
+Row occlusion_row() {
+    return {.name = "occlusion",
+            .configurations = occlusion_matrix(false),
+            .check_refusal = [](const Config&, const Emitted& e) { REQUIRE(!e.errors.empty()); },
+            .check_row = [](const RowResult& r) {
+                CHECK(r.valid > 0);
+                CHECK(r.refused > 0);
+            }};
 }
-
-} // namespace
-
-TEST_CASE("every valid configuration of the matrix compiles and links with glslang") {
-    int valid = 0, rejected = 0, programs = 0;
-    const auto start = std::chrono::steady_clock::now();
-    for_each_configuration([&](const Config& config) {
-        Result<Emission> result = emit(config);
-        if (!result.value) {
-            ++rejected;
-            REQUIRE(!result.errors.empty());
-            return;
-        }
-        ++valid;
-        for (const Program& program : result.value->programs) {
-            ++programs;
-            const std::vector<ShaderDiagnostic> diagnostics = validate_program(program, config.target);
-            if (has_errors(diagnostics)) {
-                for (const ShaderDiagnostic& d : diagnostics) MESSAGE(name_of(config) << ": " << format(d));
-                FAIL(name_of(config) << " program " << program.name << " does not compile");
-            }
-        }
-    });
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::printf("matrix: %d valid configurations (%d programs) validated, %d rejected, %.1f s\n", valid, programs,
-                rejected, seconds);
-    CHECK(valid > 0);
-    CHECK(rejected > 0);
-}
-
 
 // The tangent clip changes the visibility function, the kernel and the deferred pass's inputs:
 // every filter × packing × light × target with it on (chained fusion, two slice counts).
-TEST_CASE("the tangent clip compiles and links with glslang for every filter, packing, light and target") {
-    int valid = 0;
+Row tangent_clip_row() {
+    std::vector<Config> configs;
     for (Filter filter : all_values<Filter>())
         for (Packing packing : all_values<Packing>())
             for (Target target : all_values<Target>())
                 for (Light light : all_values<Light>())
-                    for (int slices : {5, 16}) {
-                        const Config config{.slices = slices, .resolution = 256, .filter = filter,
-                                            .fusion = Fusion::chained, .packing = packing, .light = light,
-                                            .tangent_clip = true, .target = target};
-                        Result<Emission> result = emit(config);
-                        if (!result.value) continue;
-                        ++valid;
-                        CHECK(result.value->snippet.text.find("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)") !=
-                              std::string::npos);
-                        for (const Program& program : result.value->programs) {
-                            const std::vector<ShaderDiagnostic> diagnostics = validate_program(program, config.target);
-                            if (has_errors(diagnostics)) {
-                                for (const ShaderDiagnostic& d : diagnostics) MESSAGE(name_of(config) << ": " << format(d));
-                                FAIL(name_of(config) << " tangent clip: program " << program.name << " does not compile");
-                            }
-                        }
-                    }
-    CHECK(valid > 40);
+                    for (int slices : {5, 16})
+                        configs.push_back({.slices = slices, .resolution = 256, .filter = filter,
+                                           .fusion = Fusion::chained, .packing = packing, .light = light,
+                                           .tangent_clip = true, .target = target});
+    return {.name = "occlusion, tangent clip",
+            .configurations = configs,
+            .check_emission = [](const Config&, const Emitted& e) {
+                CHECK(e.snippet.find("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)") != std::string::npos);
+            },
+            .check_row = [](const RowResult& r) { CHECK(r.valid > 40); }};
 }
 
 // More than 32 slices (paper §3.7): the slicing writes bits of one RGBA32UI target, the unpack pass
 // writes the occlusion textures, and the unrolled slice or level loops grow to 64 or 128 slices.
 // Every filter × packing × light × target × {64, 128}, the fusion and tangent clip rotating over the
-// combinations; ES 3.0 has no logic op and must refuse.
-TEST_CASE("64 and 128 slices compile and link with glslang where the target has a logic op") {
-    int valid = 0, index = 0;
-    double slowest = 0;
-    std::string slowest_name;
-    std::size_t largest_snippet = 0;
-    const auto start = std::chrono::steady_clock::now();
+// combinations; ES 3.0 has no logic op and must refuse, and so must the volume packing.
+Row many_slices_row() {
+    std::vector<Config> configs;
+    int index = 0;
     for (Filter filter : all_values<Filter>())
         for (Packing packing : all_values<Packing>())
             for (Target target : all_values<Target>())
                 for (Light light : all_values<Light>())
                     for (int slices : {64, 128}) {
                         const Fusion fusion = all_values<Fusion>()[static_cast<std::size_t>(index % 5)];
-                        const Config config{.slices = slices, .resolution = 32, .filter = filter, .fusion = fusion,
-                                            .packing = packing, .light = light, .leak_fix = index % 3 != 0,
-                                            .self_shadow_fade = true, .tangent_clip = index % 2 == 0, .target = target};
+                        configs.push_back({.slices = slices, .resolution = 32, .filter = filter, .fusion = fusion,
+                                           .packing = packing, .light = light, .leak_fix = index % 3 != 0,
+                                           .self_shadow_fade = true, .tangent_clip = index % 2 == 0, .target = target});
                         ++index;
-                        Result<Emission> result = emit(config);
-                        if (target == Target::essl300 || packing == Packing::volume) {
-                            CHECK_FALSE(result.value.has_value());
-                            continue;
-                        }
-                        if (!result.value) continue; // gaussian with a rect light
-                        ++valid;
-                        largest_snippet = std::max(largest_snippet, result.value->snippet.text.size());
-                        bool unpacks = false;
-                        for (const Program& program : result.value->programs) {
-                            unpacks = unpacks || program.name == "unpack_slices";
-                            const auto program_start = std::chrono::steady_clock::now();
-                            const std::vector<ShaderDiagnostic> diagnostics = validate_program(program, config.target);
-                            const double took =
-                                std::chrono::duration<double>(std::chrono::steady_clock::now() - program_start).count();
-                            if (took > slowest) slowest = took, slowest_name = name_of(config) + " " + program.name;
-                            if (has_errors(diagnostics)) {
-                                for (const ShaderDiagnostic& d : diagnostics) MESSAGE(name_of(config) << ": " << format(d));
-                                FAIL(name_of(config) << " program " << program.name << " does not compile");
-                            }
-                        }
-                        CHECK(unpacks);
                     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::printf("matrix 64/128 slices: %d valid configurations, %.1f s; largest snippet %zu bytes; slowest program "
-                "%.3f s (%s)\n",
-                valid, seconds, largest_snippet, slowest, slowest_name.c_str());
-    CHECK(valid >= 48);
+    return {.name = "occlusion, 64 and 128 slices",
+            .configurations = configs,
+            .expect = [](const Config& c) {
+                return c.target == Target::essl300 || c.packing == Packing::volume ? Expect::refused : Expect::either;
+            },
+            .check_emission = [](const Config&, const Emitted& e) {
+                CHECK(std::any_of(e.programs.begin(), e.programs.end(),
+                                  [](const Program& p) { return p.name == "unpack_slices"; }));
+            },
+            .check_row = [](const RowResult& r) { CHECK(r.valid >= 48); }};
 }
 
 // Adaptive slice placement adds two programs (the depth-bin pre-pass, the boundary pass) and changes
 // the slicing fragment and penumbraVisibility (boundaries read from an R32UI texture): every filter ×
 // packing × light × target, with 1 slice (no inner boundary) and the fade on, and with 16 slices,
 // the tangent clip on and the fade off.
-TEST_CASE("adaptive slice placement compiles and links with glslang for every filter, packing, light and target") {
-    int valid = 0;
+Row adaptive_row() {
+    std::vector<Config> configs;
     for (Filter filter : all_values<Filter>())
         for (Packing packing : all_values<Packing>())
             for (Target target : all_values<Target>())
                 for (Light light : all_values<Light>())
-                    for (bool switches : {false, true}) {
-                        const Config config{.slices = switches ? 16 : 1, .resolution = 256, .filter = filter,
-                                            .fusion = switches ? Fusion::chained : Fusion::probabilistic,
-                                            .packing = packing, .light = light, .self_shadow_fade = !switches,
-                                            .tangent_clip = switches, .slice_placement = SlicePlacement::adaptive,
-                                            .target = target};
-                        Result<Emission> result = emit(config);
-                        if (!result.value) continue;
-                        ++valid;
-                        int placement_programs = 0;
-                        for (const Program& program : result.value->programs) {
-                            placement_programs += program.name == "depth_bins" || program.name == "slice_boundaries";
-                            const std::vector<ShaderDiagnostic> diagnostics = validate_program(program, config.target);
-                            if (has_errors(diagnostics)) {
-                                for (const ShaderDiagnostic& d : diagnostics) MESSAGE(name_of(config) << ": " << format(d));
-                                FAIL(name_of(config) << " adaptive placement: program " << program.name
-                                                     << " does not compile");
-                            }
-                        }
-                        CHECK_MESSAGE(placement_programs == 2, name_of(config));
-                    }
-    CHECK(valid > 60);
+                    for (bool switches : {false, true})
+                        configs.push_back({.slices = switches ? 16 : 1, .resolution = 256, .filter = filter,
+                                           .fusion = switches ? Fusion::chained : Fusion::probabilistic,
+                                           .packing = packing, .light = light, .self_shadow_fade = !switches,
+                                           .tangent_clip = switches, .slice_placement = SlicePlacement::adaptive,
+                                           .target = target});
+    return {.name = "occlusion, adaptive slice placement",
+            .configurations = configs,
+            .check_emission = [](const Config& c, const Emitted& e) {
+                const auto placement = std::count_if(e.programs.begin(), e.programs.end(), [](const Program& p) {
+                    return p.name == "depth_bins" || p.name == "slice_boundaries";
+                });
+                CHECK_MESSAGE(placement == 2, name_of(c));
+            },
+            .check_row = [](const RowResult& r) { CHECK(r.valid > 60); }};
+}
+
+// The generic reference program (penumbra/generic.hpp) of the occlusion matrix, plus fade off (a
+// uniform of the generic program): exactly one program per filter × packing × light × target.
+Row generic_row() {
+    return {.name = "occlusion, generic program",
+            .configurations = occlusion_matrix(true),
+            .emit_programs = emit_generic_program,
+            .check_refusal = [](const Config& c, const Emitted& e) { CHECK(e.errors.size() == validate(c).size()); },
+            .check_row = [](const RowResult& r) {
+                CHECK(r.valid > 0);
+                CHECK(r.refused > 0);
+                std::set<std::tuple<Filter, Packing, Light, Target>> storages;
+                for (const Config& c : r.valid_configs) storages.insert({c.filter, c.packing, c.light, c.target});
+                CHECK(r.compiled == static_cast<int>(storages.size()));
+            }};
+}
+
+// A row whose every configuration must be valid and emit `programs_each` programs.
+Row all_valid_row(std::string name, std::vector<Config> configs, int programs_each) {
+    const int expected = static_cast<int>(configs.size()) * programs_each;
+    return {.name = std::move(name),
+            .configurations = std::move(configs),
+            .expect = [](const Config&) { return Expect::valid; },
+            .check_row = [expected](const RowResult& r) { CHECK(r.programs == expected); }};
+}
+
+// Every shadow map technique (shadowmap, pcf, pcss) over its parameters, on every target and light.
+Row shadow_map_row() {
+    std::vector<Config> configs;
+    for (Target target : all_values<Target>())
+        for (Light light : all_values<Light>()) {
+            auto with = [&](Config c) {
+                c.light = light;
+                c.target = target;
+                configs.push_back(c);
+            };
+            with({.technique = Technique::shadowmap});
+            with({.technique = Technique::shadowmap, .shadow_map = {.resolution = 32, .constant_bias = 0.0, .slope_bias = 0.0}});
+            for (int n : {1, 4, 16})
+                with({.technique = Technique::pcf, .pcf = {.pattern = TapPattern::grid, .grid_size = n, .rotate = n == 4}});
+            for (int k : {1, 16, 64})
+                with({.technique = Technique::pcf, .pcf = {.pattern = TapPattern::poisson, .poisson_taps = k, .rotate = k != 1}});
+            // engine settings (Bevy, Filament, three.js, Godot ultra, PlayCanvas high) and the extremes
+            for (auto [b, f] : {std::pair{8, 8}, {16, 16}, {17, 34}, {32, 32}, {32, 64}, {1, 1}, {64, 128}})
+                with({.technique = Technique::pcss, .pcss = {.blocker_samples = b, .filter_samples = f, .rotate = b != 1}});
+        }
+    return all_valid_row("shadow map, pcf, pcss", configs, 3);
+}
+
+// Erosion over its parameters (the defaults and both extremes), on every target and light.
+Row erosion_row() {
+    std::vector<Config> configs;
+    for (Target target : all_values<Target>())
+        for (Light light : all_values<Light>())
+            for (ErosionParams e : {ErosionParams{}, ErosionParams{.max_search_radius = 1, .search_taps = 1, .blur_taps = 1},
+                                    ErosionParams{.max_search_radius = 256, .edge_threshold = 4.0, .search_taps = 64,
+                                                  .blur_taps = 64}})
+                configs.push_back({.technique = Technique::erosion, .light = light, .target = target, .erosion = e});
+    return all_valid_row("erosion", configs, 7);
+}
+
+// Occlusion interval maps: every interval count, resolution and target. glsl330 guarantees 1024
+// texels, so 2048 is refused for each interval count.
+Row oim_row() {
+    std::vector<Config> configs;
+    for (Target target : all_values<Target>())
+        for (int intervals : {4, 8, 12, 16})
+            for (int resolution : {32, 256, 2048}) {
+                Config config{.technique = Technique::oim, .target = target};
+                config.oim.intervals = intervals;
+                config.oim.resolution = resolution;
+                configs.push_back(config);
+            }
+    return {.name = "oim",
+            .configurations = configs,
+            .check_emission = [](const Config&, const Emitted& e) {
+                REQUIRE(e.programs.size() == 2); // shading_example, shading_deferred
+            },
+            .check_refusal = [](const Config&, const Emitted& e) {
+                CHECK(e.errors.front().field == "oim.resolution"); // a map larger than the target guarantees
+            },
+            .check_row = [](const RowResult& r) {
+                CHECK(r.programs + 2 * r.refused == 4 * 4 * 3 * 2);
+                CHECK(r.refused == 4);
+            }};
+}
+
+// --- the one check -------------------------------------------------------------------------------
+
+// Emits every configuration of `row` and compiles and links each program with glslang for its
+// target. A program text seen before (same stages, same text, same target) is not compiled again:
+// glslang sees only the text, so a second compile would prove nothing new.
+RowResult run_row(const Row& row) {
+    RowResult r;
+    std::set<std::string> compiled;
+    for (const Config& config : row.configurations) {
+        const Emitted emitted = row.emit_programs(config);
+        const Expect expect = row.expect(config);
+        if (emitted.programs.empty()) {
+            CHECK_MESSAGE(expect != Expect::valid,
+                          name_of(config) << ": " << (emitted.errors.empty() ? "" : emitted.errors[0].message));
+            ++r.refused;
+            if (row.check_refusal) row.check_refusal(config, emitted);
+            continue;
+        }
+        CHECK_MESSAGE(expect != Expect::refused, name_of(config) << " should be refused");
+        ++r.valid;
+        r.valid_configs.push_back(config);
+        if (row.check_emission) row.check_emission(config, emitted);
+        for (const Program& program : emitted.programs) {
+            ++r.programs;
+            std::string key = std::to_string(static_cast<int>(config.target));
+            for (const auto& stage : program.stages) key += "\n//" + stage.file_name + "\n" + stage.text;
+            if (!compiled.insert(key).second) continue;
+            const std::vector<ShaderDiagnostic> diagnostics = validate_program(program, config.target);
+            if (has_errors(diagnostics)) {
+                for (const ShaderDiagnostic& d : diagnostics) MESSAGE(name_of(config) << ": " << format(d));
+                FAIL(name_of(config) << " program " << program.name << " does not compile");
+            }
+        }
+    }
+    r.compiled = static_cast<int>(compiled.size());
+    return r;
+}
+
+} // namespace
+
+TEST_CASE("the glslang matrix: every program of every valid configuration of each technique compiles and links") {
+    const Row rows[] = {occlusion_row(), tangent_clip_row(), many_slices_row(), adaptive_row(), generic_row(),
+                        shadow_map_row(), erosion_row(), oim_row()};
+    int configurations = 0, programs = 0, compiled = 0;
+    for (const Row& row : rows) {
+        CAPTURE(row.name);
+        const auto start = std::chrono::steady_clock::now();
+        const RowResult r = run_row(row);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::printf("glslang matrix, %s: %zu configurations (%d valid, %d refused), %d programs (%d distinct "
+                    "compiled), %.1f s\n",
+                    row.name.c_str(), row.configurations.size(), r.valid, r.refused, r.programs, r.compiled, seconds);
+        if (row.check_row) row.check_row(r);
+        configurations += static_cast<int>(row.configurations.size());
+        programs += r.programs;
+        compiled += r.compiled;
+    }
+    std::printf("glslang matrix: %d configurations, %d programs, %d distinct compiled\n", configurations, programs,
+                compiled);
 }

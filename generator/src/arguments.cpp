@@ -1,8 +1,8 @@
 #include "arguments.hpp"
+#include "cli.hpp"
 
 #include <penumbra/validate.hpp>
 
-#include <charconv>
 #include <string_view>
 
 namespace penumbra_gen {
@@ -14,44 +14,14 @@ constexpr std::string_view flag_list =
     "--shadow-bias, --shadow-slope-bias, --pcf-pattern, --pcf-grid, --pcf-taps, --pcf-radius, --pcss-blockers, "
     "--pcss-filter, --pcss-max-texels, --no-rotation, --no-receiver-plane-bias";
 
-// "16" → 16; anything else (empty, sign only, trailing text, outside int) is an error.
-Parsed<int> parse_int(std::string_view flag, std::string_view text, std::string_view allowed) {
-    int value = 0;
-    const char* end = text.data() + text.size();
-    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-    if (text.empty() || ec == std::errc::invalid_argument || ptr != end)
-        return {{},
-                std::string(flag) + ": '" + printable(text) +
-                    "' is not an integer; allowed: " + std::string(allowed)};
-    if (ec == std::errc::result_out_of_range)
-        return {{},
-                std::string(flag) + ": " + printable(text) +
-                    " is out of range; allowed: " + std::string(allowed)};
-    return {value, {}};
-}
-
-template <class Enum> Parsed<Enum> parse_name(std::string_view flag, std::string_view text) {
-    if (std::optional<Enum> value = penumbra::parse_enum<Enum>(text)) return {*value, {}};
-    return {{},
-            std::string(flag) + ": '" + printable(text) +
-                "' is not allowed; allowed: " + allowed_names<Enum>()};
-}
-
-// Stores a parsed value into `slot`, or returns its error.
-template <class T> std::string store(Parsed<T> parsed, std::optional<T>& slot) {
-    if (parsed.error.empty()) slot = parsed.value;
-    return parsed.error;
-}
-
 } // namespace
 
 Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
-    for (const std::string& arg : args)
-        if (arg == "--help" || arg == "-h") {
-            Arguments help;
-            help.help = true;
-            return {help, {}};
-        }
+    if (penumbra::cli::asks_for_help(args)) {
+        Arguments help;
+        help.help = true;
+        return {help, {}};
+    }
 
     Arguments out;
     for (std::size_t i = 0; i < args.size(); ++i) {
@@ -103,32 +73,32 @@ Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
 
         std::string error;
         if (flag == "--slices")
-            error = store(parse_int(flag, value, penumbra::allowed_slices), out.flags.slices);
+            error = parse_int(flag, value, out.flags.slices, penumbra::allowed_slices);
         else if (flag == "--resolution")
-            error = store(parse_int(flag, value, "a power of two from 32 to 4096"), out.flags.resolution);
+            error = parse_int(flag, value, out.flags.resolution, "a power of two from 32 to 4096");
         else if (flag == "--filter")
-            error = store(parse_name<penumbra::Filter>(flag, value), out.flags.filter);
+            error = parse_name(flag, value, out.flags.filter);
         else if (flag == "--fusion")
-            error = store(parse_name<penumbra::Fusion>(flag, value), out.flags.fusion);
+            error = parse_name(flag, value, out.flags.fusion);
         else if (flag == "--packing")
-            error = store(parse_name<penumbra::Packing>(flag, value), out.flags.packing);
+            error = parse_name(flag, value, out.flags.packing);
         else if (flag == "--light")
-            error = store(parse_name<penumbra::Light>(flag, value), out.flags.light);
+            error = parse_name(flag, value, out.flags.light);
         else if (flag == "--target")
-            error = store(parse_name<penumbra::Target>(flag, value), out.flags.target);
+            error = parse_name(flag, value, out.flags.target);
         else if (flag == "--slice-placement")
-            error = store(parse_name<penumbra::SlicePlacement>(flag, value), out.flags.slice_placement);
+            error = parse_name(flag, value, out.flags.slice_placement);
         else if (flag == "--level-format")
-            error = store(parse_name<penumbra::LevelFormat>(flag, value), out.flags.level_format);
+            error = parse_name(flag, value, out.flags.level_format);
         else if (flag == "--level-bound")
-            error = store(parse_int(flag, value, "-1 (every level) or 0 to log2(resolution)"), out.flags.level_bound);
+            error = parse_int(flag, value, out.flags.level_bound, "-1 (every level) or 0 to log2(resolution)");
         else if (flag == "--tangent-clip-offset")
             error = parse_real(flag, value, out.flags.tangent_clip_offset, "0 to 8 slicing texels");
         else if (flag == "--fade-ramp")
             error = parse_real(flag, value, out.flags.fade_ramp, "more than 0 to 4 (fraction of a slice's thickness)");
         else if (flag == "--level-reduction")
-            error = store(parse_int(flag, value, "-1 (every level at full resolution) or 0 to log2(resolution)"),
-                          out.flags.level_reduction);
+            error = parse_int(flag, value, out.flags.level_reduction,
+                              "-1 (every level at full resolution) or 0 to log2(resolution)");
         else if (is_technique_flag(flag))
             error = parse_technique_flag(flag, value, out.flags.technique);
         else if (value.empty())

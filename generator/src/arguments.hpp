@@ -66,4 +66,13 @@ template <class Enum> std::string allowed_names() {
     return out;
 }
 
+// One of Enum's names into `slot`, else one line: "FLAG: 'TEXT' is not allowed; allowed: a, b, c".
+template <class Enum> std::string parse_name(std::string_view flag, std::string_view text, std::optional<Enum>& slot) {
+    if (std::optional<Enum> value = penumbra::parse_enum<Enum>(text)) {
+        slot = *value;
+        return {};
+    }
+    return std::string(flag) + ": '" + printable(text) + "' is not allowed; allowed: " + allowed_names<Enum>();
+}
+
 } // namespace penumbra_gen

@@ -8,13 +8,13 @@
 // written so the failing file can be inspected at the reported line); 2 bad arguments, bad config
 // file, invalid configuration or unwritable output (nothing written); 3 internal error.
 #include "arguments.hpp"
+#include "cli.hpp"
 #include "config_file.hpp"
 #include "write_files.hpp"
 
 #include <penumbra/emit.hpp>
 #include <penumbra/validation.hpp>
 
-#include <exception>
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -24,10 +24,8 @@ namespace {
 
 enum Exit { ok = 0, invalid_shaders = 1, bad_input = 2, internal_error = 3 };
 
-int fail(const std::string& message) {
-    std::cerr << "error: " << message << '\n';
-    return bad_input;
-}
+// Every failure this file reports is bad input (exit status 2); glslang's are counted apart.
+int fail(const std::string& message) { return penumbra::cli::fail(message, bad_input); }
 
 std::string describe(const penumbra::Config& c) {
     using penumbra::to_string;
@@ -47,10 +45,7 @@ int run(const std::vector<std::string>& args) {
     const Parsed<Arguments> parsed = parse_arguments(args);
     if (!parsed.error.empty()) return fail(parsed.error);
     const Arguments& arguments = *parsed.value;
-    if (arguments.help) {
-        std::cout << usage();
-        return ok;
-    }
+    if (arguments.help) return penumbra::cli::print_usage(usage());
 
     // 2. Configuration: the file, then the flags over it.
     penumbra::Config config{};
@@ -106,13 +101,4 @@ int run(const std::vector<std::string>& args) {
 
 } // namespace
 
-int main(int argc, char** argv) {
-    try {
-        return run(std::vector<std::string>(argv + 1, argv + argc));
-    } catch (const std::exception& e) {
-        std::cerr << "error: internal: " << e.what() << '\n';
-    } catch (...) {
-        std::cerr << "error: internal: unknown exception\n";
-    }
-    return internal_error;
-}
+int main(int argc, char** argv) { return penumbra::cli::run_main(argc, argv, run, internal_error); }

@@ -1,9 +1,7 @@
 #include "technique_flags.hpp"
 
 #include "arguments.hpp"
-
-#include <charconv>
-#include <cmath>
+#include "cli.hpp"
 
 namespace penumbra_gen {
 
@@ -24,38 +22,22 @@ constexpr std::string_view value_flags[] = {"--technique",   "--shadow-resolutio
                                             "--erosion-radius", "--erosion-edge-threshold",
                                             "--erosion-search-taps", "--erosion-blur-taps"};
 
+} // namespace
+
 std::string parse_int(std::string_view flag, std::string_view text, std::optional<int>& slot,
                       std::string_view allowed) {
     int value = 0;
-    const char* end = text.data() + text.size();
-    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-    if (text.empty() || ec == std::errc::invalid_argument || ptr != end)
-        return std::string(flag) + ": '" + printable(text) + "' is not an integer; allowed: " + std::string(allowed);
-    if (ec == std::errc::result_out_of_range)
-        return std::string(flag) + ": " + printable(text) + " is out of range; allowed: " + std::string(allowed);
-    slot = value;
-    return {};
+    std::string error = penumbra::cli::parse_int(flag, text, value, allowed);
+    if (error.empty()) slot = value;
+    return error;
 }
-
-template <class Enum> std::string parse_name(std::string_view flag, std::string_view text, std::optional<Enum>& slot) {
-    if (std::optional<Enum> value = penumbra::parse_enum<Enum>(text)) {
-        slot = *value;
-        return {};
-    }
-    return std::string(flag) + ": '" + printable(text) + "' is not allowed; allowed: " + allowed_names<Enum>();
-}
-
-} // namespace
 
 std::string parse_real(std::string_view flag, std::string_view text, std::optional<double>& slot,
                        std::string_view allowed) {
     double value = 0.0;
-    const char* end = text.data() + text.size();
-    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-    if (text.empty() || ec != std::errc() || ptr != end || !std::isfinite(value))
-        return std::string(flag) + ": '" + printable(text) + "' is not a number; allowed: " + std::string(allowed);
-    slot = value;
-    return {};
+    std::string error = penumbra::cli::parse_real(flag, text, value, allowed);
+    if (error.empty()) slot = value;
+    return error;
 }
 
 bool is_technique_switch(std::string_view flag) {

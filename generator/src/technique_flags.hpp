@@ -39,6 +39,11 @@ void set_technique_switch(std::string_view flag, TechniqueFlags& flags);
 
 penumbra::Config apply(const TechniqueFlags& flags, penumbra::Config config);
 
+// Stores the integer `text` into `slot`; else returns one line naming the flag, the text and what
+// is allowed (cli.hpp; ranges are penumbra::validate's).
+std::string parse_int(std::string_view flag, std::string_view text, std::optional<int>& slot,
+                      std::string_view allowed);
+
 // Stores the finite number `text` into `slot`; else returns one line naming the flag, the text and
 // what is allowed (ranges are penumbra::validate's).
 std::string parse_real(std::string_view flag, std::string_view text, std::optional<double>& slot,

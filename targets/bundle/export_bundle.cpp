@@ -10,6 +10,7 @@
 // configuration (with target glsl450 when the target is vulkan). Exit status: 0 written,
 // 1 rendering or writing failed, 2 bad arguments.
 #include "../../generator/src/arguments.hpp"
+#include "../../generator/src/cli.hpp"
 #include "../../generator/src/config_file.hpp"
 #include "../../generator/src/write_files.hpp"
 
@@ -26,11 +27,9 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <nlohmann/json.hpp>
 
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -89,12 +88,10 @@ constexpr std::string_view flag_list =
     "--filter, --fusion, --packing, --light, --target, --no-leak-fix, --no-fade, --tangent-clip, --no-tangent-clip, "
     "--slice-placement, --config, --help, and the technique flags of penumbra-gen";
 
-std::string parse_positive_int(std::string_view text, int& value) {
-    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    return text.empty() || ec != std::errc() || ptr != text.data() + text.size() || value < 1 || value > 4096
-               ? "not"
-               : "";
-}
+using penumbra::cli::parse_number;
+
+// An integer from 1 to 4096 (an image side, rays per axis).
+bool parse_positive_int(std::string_view text, int& value) { return parse_number(text, value) && value >= 1 && value <= 4096; }
 
 // Our own flags out of `args`; the rest goes to penumbra-gen's parser.
 penumbra_gen::Parsed<BundleArguments> parse(const std::vector<std::string>& args) {
@@ -143,23 +140,21 @@ penumbra_gen::Parsed<BundleArguments> parse(const std::vector<std::string>& args
         } else if (flag == "--bake-cache") {
             out.bake_cache = value;
         } else if (flag == "--reference") {
-            if (!parse_positive_int(value, out.reference_samples).empty() || out.reference_samples > 64)
+            if (!parse_positive_int(value, out.reference_samples) || out.reference_samples > 64)
                 return fail("--reference: '" + printable(value) + "' is not allowed; allowed: rays per axis, 1 to 64");
         } else if (flag == "--sun-time") {
             double t = 0;
-            const auto [ptr, ec] = std::from_chars(value.data(), value.data() + value.size(), t);
-            if (ec != std::errc() || ptr != value.data() + value.size() || !(t >= 0.0 && t <= 1.0))
+            if (!parse_number(value, t) || !(t >= 0.0 && t <= 1.0))
                 return fail("--sun-time: '" + printable(value) + "' is not allowed; allowed: a number from 0 to 1");
             out.sun_time = t;
         } else if (flag == "--size") {
             const std::size_t x = value.find('x');
-            if (x == std::string::npos || !parse_positive_int(std::string_view(value).substr(0, x), out.width).empty() ||
-                !parse_positive_int(std::string_view(value).substr(x + 1), out.height).empty())
+            if (x == std::string::npos || !parse_positive_int(std::string_view(value).substr(0, x), out.width) ||
+                !parse_positive_int(std::string_view(value).substr(x + 1), out.height))
                 return fail("--size: '" + printable(value) + "' is not WxH; allowed: two integers 1 to 4096, e.g. 128x128");
         } else {
             double size = 0;
-            const auto [ptr, ec] = std::from_chars(value.data(), value.data() + value.size(), size);
-            if (ec != std::errc() || ptr != value.data() + value.size() || !std::isfinite(size) || size <= 0)
+            if (!parse_number(value, size) || !std::isfinite(size) || size <= 0)
                 return fail("--light-size: '" + printable(value) + "' is not a positive number");
             out.light_size = size;
         }
@@ -226,19 +221,13 @@ nlohmann::ordered_json uniforms_json(const UniformInputs& inputs, const Layout& 
     return out;
 }
 
-int fail(const std::string& message, int code = failed) {
-    std::cerr << "error: " << message << '\n';
-    return code;
-}
+using penumbra::cli::fail;
 
 int run(const std::vector<std::string>& args) {
     const penumbra_gen::Parsed<BundleArguments> parsed = parse(args);
     if (!parsed.error.empty()) return fail(parsed.error, bad_input);
     const BundleArguments& a = *parsed.value;
-    if (a.help) {
-        std::cout << usage_text;
-        return ok;
-    }
+    if (a.help) return penumbra::cli::print_usage(usage_text);
     SceneLoad loaded = load_scene(a.scene, a.ground);
     if (!loaded.scene) return fail(loaded.error, bad_input);
     Scene& scene = *loaded.scene;
@@ -379,10 +368,5 @@ int run(const std::vector<std::string>& args) {
 
 int main(int argc, char** argv) {
     static_assert(sizeof(glm::vec3) == 12 && sizeof(glm::vec4) == 16, "tightly packed float vectors");
-    try {
-        return run(std::vector<std::string>(argv + 1, argv + argc));
-    } catch (const std::exception& e) {
-        std::cerr << "error: internal: " << e.what() << '\n';
-    }
-    return 3;
+    return penumbra::cli::run_main(argc, argv, run, 3);
 }

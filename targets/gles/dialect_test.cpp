@@ -14,6 +14,7 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
+#include "bundle_reader.hpp"
 #include "layout_runner.hpp"
 #include "rendering/egl_context.hpp"
 
@@ -23,13 +24,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
-#include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -38,23 +35,9 @@ namespace {
 using nlohmann::json;
 using penumbra::playground::ContextRequest;
 using penumbra::playground::HeadlessContext;
+using penumbra::targets::Bundle;
 using penumbra::targets::LayoutRunner;
 namespace fs = std::filesystem;
-
-std::optional<std::string> read_text(const fs::path& path) {
-    std::ifstream file(path, std::ios::binary);
-    if (!file) return std::nullopt;
-    std::ostringstream text;
-    text << file.rdbuf();
-    return text.str();
-}
-
-std::vector<float> read_floats(const fs::path& path) {
-    const std::optional<std::string> bytes = read_text(path);
-    std::vector<float> out(bytes ? bytes->size() / sizeof(float) : 0);
-    if (bytes) std::memcpy(out.data(), bytes->data(), out.size() * sizeof(float));
-    return out;
-}
 
 struct Outcome {
     bool ok = false;
@@ -63,17 +46,16 @@ struct Outcome {
 
 Outcome check_bundle(const fs::path& dir, std::map<std::string, HeadlessContext>& contexts) {
     auto fail = [&](const std::string& why) { return Outcome{false, "FAIL " + dir.string() + ": " + why}; };
-    const std::optional<std::string> uniforms_text = read_text(dir / "uniforms.json");
-    const std::optional<std::string> layout_text = read_text(dir / "emission" / "layout.json");
-    if (!uniforms_text || !layout_text) return fail("no uniforms.json or emission/layout.json (not a target bundle)");
-    const json bundle = json::parse(*uniforms_text), layout = json::parse(*layout_text);
+    Bundle bundle;
+    std::string error;
+    if (!penumbra::targets::read_bundle(dir, bundle, &error)) return fail(error);
+    const json& layout = bundle.layout;
     const std::string target = layout["config"]["target"];
     if (target != "glsl330" && target != "essl300")
         return fail("emission for '" + target + "'; this test runs glsl330 and essl300");
 
     // The context the dialect is written for.
     if (!contexts.count(target)) {
-        std::string error;
         const ContextRequest request = target == "essl300" ? ContextRequest{.es = true, .major = 3, .minor = 0}
                                                            : ContextRequest{.es = false, .major = 3, .minor = 3};
         std::optional<HeadlessContext> context = HeadlessContext::create(&error, request);
@@ -84,20 +66,13 @@ Outcome check_bundle(const fs::path& dir, std::map<std::string, HeadlessContext>
     if (!context.make_current()) return fail("eglMakeCurrent failed");
 
     std::map<std::string, std::string> sources;
-    for (const json& program : layout["programs"])
-        for (const std::string file : program["files"]) {
-            std::optional<std::string> text = read_text(dir / "emission" / file);
-            if (!text) return fail("emission/" + file + " missing");
-            sources[file] = std::move(*text);
-        }
+    if (!penumbra::targets::read_emission_sources(bundle, sources, &error)) return fail(error);
     const auto start = std::chrono::steady_clock::now();
-    std::string error;
     std::unique_ptr<LayoutRunner> runner = LayoutRunner::create(layout, sources, &error, {"shadow", "screen"});
     if (!runner) return fail(error);
-    for (const auto& [name, value] : bundle["uniforms"].items())
-        runner->set_uniform(name, value.is_array() ? value.get<std::vector<float>>() : std::vector<float>{value.get<float>()});
+    for (const auto& [name, value] : bundle.uniforms) runner->set_uniform(name, value);
 
-    const std::vector<float> triangles = read_floats(dir / "mesh.f32");
+    const std::vector<float>& triangles = bundle.triangles;
     GLuint vao = 0, vbo = 0;
     glGenVertexArrays(1, &vao);
     glGenBuffers(1, &vbo);
@@ -112,21 +87,18 @@ Outcome check_bundle(const fs::path& dir, std::map<std::string, HeadlessContext>
         glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(triangles.size() / 3));
         glBindVertexArray(0);
     };
-    const int width = bundle["width"], height = bundle["height"];
+    const int width = bundle.width, height = bundle.height;
     error = runner->run_phase("shadow", draw, width, height);
     // Every texture the layout leaves to the caller, from the bundle's G-buffer file for it.
-    const json caller_files = bundle.value("caller_textures", json::object());
     for (const json& t : layout["textures"]) {
         if (!error.empty() || t.value("source", "passes") != "caller") continue;
         const std::string name = t["name"];
-        if (!caller_files.contains(name)) {
+        const auto texels = bundle.caller_textures.find(name);
+        if (texels == bundle.caller_textures.end()) {
             error = "the layout's caller texture " + name + " has no file in the bundle's caller_textures";
             break;
         }
-        const std::string file = caller_files.at(name);
-        const std::vector<float> texels = read_floats(dir / file);
-        if (texels.size() != 4u * width * height) error = file + " does not hold width × height RGBA floats";
-        else error = runner->fill_texture(name, width, height, texels.data());
+        error = runner->fill_texture(name, width, height, texels->second.data());
     }
     if (error.empty()) error = runner->run_phase("screen", nullptr, width, height);
     const std::vector<float> visibility = runner->read_result();
@@ -136,8 +108,9 @@ Outcome check_bundle(const fs::path& dir, std::map<std::string, HeadlessContext>
     glDeleteVertexArrays(1, &vao);
     if (!error.empty()) return fail(error);
 
-    const std::vector<float> desktop = read_floats(dir / "visibility_gl.f32"), bound = read_floats(dir / "bound.f32"),
-                             model = read_floats(dir / "oracle.f32");
+    const std::vector<float>& desktop = bundle.visibility_gl;
+    const std::vector<float>& bound = bundle.bound;
+    const std::vector<float>& model = bundle.oracle;
     if (visibility.size() != desktop.size() || bound.size() != desktop.size() || model.size() != desktop.size())
         return fail("image sizes differ (runner " + std::to_string(visibility.size()) + ", desktop " +
                     std::to_string(desktop.size()) + ", bound " + std::to_string(bound.size()) + " pixels)");

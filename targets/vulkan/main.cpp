@@ -9,12 +9,12 @@
 // default 0), so that the comparison means something, and the validation layer reported nothing. Exit status: 0 pass;
 // 1 a difference beyond the bound, a validation message, or a failure; 2 bad arguments;
 // 77 no Vulkan device (the test is skipped).
-#include "bundle.hpp"
+#include "bundle_reader.hpp"
+#include "../../generator/src/cli.hpp"
 #include "layout_runner.hpp"
 #include "vulkan_context.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -26,16 +26,16 @@
 namespace {
 
 using namespace penumbra::vulkan;
+using penumbra::targets::Bundle;
+using penumbra::targets::read_bundle;
 
 enum Exit { pass = 0, failed = 1, bad_input = 2, skipped = 77 };
 
 constexpr const char* usage =
     "usage: penumbra-vulkan-run --bundle DIR [--epsilon E] [--min-penumbra N] [--out visibility.f32]\n";
 
-int fail(const std::string& message, int code = failed) {
-    std::cerr << "error: " << message << '\n';
-    return code;
-}
+using penumbra::cli::fail;
+using penumbra::cli::parse_number;
 
 int run(const std::vector<std::string>& args) {
     std::string bundle_dir, out_path;
@@ -43,10 +43,7 @@ int run(const std::vector<std::string>& args) {
     std::size_t min_penumbra = 0;
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& flag = args[i];
-        if (flag == "--help" || flag == "-h") {
-            std::cout << usage;
-            return pass;
-        }
+        if (flag == "--help" || flag == "-h") return penumbra::cli::print_usage(usage);
         if (flag != "--bundle" && flag != "--epsilon" && flag != "--min-penumbra" && flag != "--out")
             return fail("unknown argument '" + flag + "'; allowed: --bundle, --epsilon, --min-penumbra, --out", bad_input);
         if (i + 1 >= args.size()) return fail(flag + ": missing value", bad_input);
@@ -54,14 +51,10 @@ int run(const std::vector<std::string>& args) {
         if (flag == "--bundle") bundle_dir = value;
         else if (flag == "--out") out_path = value;
         else if (flag == "--min-penumbra") {
-            const auto [ptr, ec] = std::from_chars(value.data(), value.data() + value.size(), min_penumbra);
-            if (ec != std::errc() || ptr != value.data() + value.size())
+            if (!parse_number(value, min_penumbra))
                 return fail("--min-penumbra: '" + value + "' is not a pixel count >= 0", bad_input);
-        } else {
-            const auto [ptr, ec] = std::from_chars(value.data(), value.data() + value.size(), epsilon);
-            if (ec != std::errc() || ptr != value.data() + value.size() || !(epsilon >= 0))
-                return fail("--epsilon: '" + value + "' is not a number >= 0", bad_input);
-        }
+        } else if (!parse_number(value, epsilon) || !(epsilon >= 0))
+            return fail("--epsilon: '" + value + "' is not a number >= 0", bad_input);
     }
     if (bundle_dir.empty()) return fail(std::string("--bundle: missing\n") + usage, bad_input);
 
@@ -69,15 +62,7 @@ int run(const std::vector<std::string>& args) {
     std::string error;
     if (!read_bundle(bundle_dir, bundle, &error)) return fail(error);
     LayoutInputs inputs;
-    {
-        std::ifstream file(bundle.emission_dir / "layout.json");
-        if (!file) return fail("cannot read " + (bundle.emission_dir / "layout.json").string());
-        try {
-            inputs.layout = nlohmann::json::parse(file);
-        } catch (const nlohmann::json::exception& e) {
-            return fail("layout.json: " + std::string(e.what()));
-        }
-    }
+    inputs.layout = bundle.layout;
     inputs.emission_dir = bundle.emission_dir;
     inputs.width = bundle.width;
     inputs.height = bundle.height;
@@ -138,11 +123,4 @@ int run(const std::vector<std::string>& args) {
 
 } // namespace
 
-int main(int argc, char** argv) {
-    try {
-        return run(std::vector<std::string>(argv + 1, argv + argc));
-    } catch (const std::exception& e) {
-        std::cerr << "error: internal: " << e.what() << '\n';
-    }
-    return failed;
-}
+int main(int argc, char** argv) { return penumbra::cli::run_main(argc, argv, run, failed); }

@@ -3,6 +3,7 @@
 #include <stb/stb_image_write.h>
 
 #include "app/image_io.hpp"
+#include "app/palette.hpp"
 
 #include "../../../generator/src/file_transaction.hpp"
 
@@ -93,16 +94,6 @@ std::optional<std::string> encode_pfm_named(const std::string& what, const Float
     return std::move(out).str();
 }
 
-// Piecewise-linear colour ramp through evenly spaced stops.
-template <std::size_t N>
-glm::vec3 ramp(const std::array<glm::vec3, N>& stops, float t) {
-    t = std::clamp(t, 0.0f, 1.0f) * static_cast<float>(N - 1);
-    const std::size_t i = std::min(static_cast<std::size_t>(t), N - 2);
-    return glm::mix(stops[i], stops[i + 1], t - static_cast<float>(i));
-}
-
-void push(std::vector<float>& out, glm::vec3 c) { out.insert(out.end(), {c.r, c.g, c.b}); }
-
 } // namespace
 
 bool write_png_rgb(const std::string& path, int width, int height, std::span<const float> rgb, RowOrder order,
@@ -172,32 +163,16 @@ std::vector<float> signed_error_colors(std::span<const float> errors, float max_
     static constexpr std::array<glm::vec3, 5> stops{
         glm::vec3(0.02f, 0.19f, 0.58f), glm::vec3(0.45f, 0.68f, 0.95f), glm::vec3(1.0f, 1.0f, 1.0f),
         glm::vec3(0.97f, 0.55f, 0.40f), glm::vec3(0.60f, 0.02f, 0.05f)};
-    std::vector<float> out;
-    out.reserve(errors.size() * 3);
     const float scale = max_abs > 0.0f ? 1.0f / max_abs : 0.0f;
-    for (float e : errors) {
-        if (std::isnan(e))
-            push(out, glm::vec3(0.0f, 1.0f, 0.0f));
-        else
-            push(out, ramp(stops, 0.5f + 0.5f * e * scale));
-    }
-    return out;
+    return false_colors(errors, stops, [scale](float e) { return 0.5f + 0.5f * e * scale; });
 }
 
 std::vector<float> magnitude_colors(std::span<const float> values, float max_value) {
     static constexpr std::array<glm::vec3, 5> stops{
         glm::vec3(0.0f, 0.0f, 0.02f), glm::vec3(0.34f, 0.06f, 0.43f), glm::vec3(0.73f, 0.21f, 0.33f),
         glm::vec3(0.98f, 0.55f, 0.04f), glm::vec3(0.99f, 1.0f, 0.64f)};
-    std::vector<float> out;
-    out.reserve(values.size() * 3);
     const float scale = max_value > 0.0f ? 1.0f / max_value : 0.0f;
-    for (float v : values) {
-        if (std::isnan(v))
-            push(out, glm::vec3(0.0f, 1.0f, 0.0f));
-        else
-            push(out, ramp(stops, v * scale));
-    }
-    return out;
+    return false_colors(values, stops, [scale](float v) { return v * scale; });
 }
 
 } // namespace penumbra::playground

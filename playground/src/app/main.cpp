@@ -3,21 +3,17 @@
 #include "app/headless_job.hpp"
 #include "app/options.hpp"
 
-#include <iostream>
+#include "../../../generator/src/cli.hpp"
+
 #include <string>
 #include <vector>
 
 int main(int argc, char** argv) {
     using namespace penumbra::playground;
     const ParsedOptions parsed = parse_options(std::vector<std::string>(argv + 1, argv + argc));
-    if (parsed.help) {
-        std::cout << usage();
-        return 0;
-    }
-    if (!parsed.options) {
-        std::cerr << "error: " << parsed.error << "\n(see penumbra-playground --help)\n";
-        return 2;
-    }
+    if (parsed.help) return penumbra::cli::print_usage(usage());
+    if (!parsed.options)
+        return penumbra::cli::fail(parsed.error + "\n(see penumbra-playground --help)", penumbra::cli::bad_arguments);
     if (parsed.options->headless) return run_headless(*parsed.options);
     return run_window(*parsed.options);
 }

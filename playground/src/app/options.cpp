@@ -6,13 +6,13 @@
 #include "app/options.hpp"
 
 #include "../../../generator/src/arguments.hpp"
+#include "../../../generator/src/cli.hpp"
 #include "../../../generator/src/config_file.hpp"
 
 #include "bake/oim_scene.hpp"
 
 #include <penumbra/validate.hpp>
 
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <string_view>
@@ -21,6 +21,7 @@ namespace penumbra::playground {
 namespace {
 
 using penumbra_gen::allowed_names;
+using penumbra_gen::parse_name;
 using penumbra_gen::printable;
 
 constexpr std::string_view flag_list =
@@ -47,21 +48,10 @@ bool takes_value(std::string_view flag) {
     return false;
 }
 
-// An integer, or an error naming the flag, the text and what is allowed.
-std::string parse_int(std::string_view flag, std::string_view text, int& value, std::string_view allowed) {
-    const char* end = text.data() + text.size();
-    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-    if (text.empty() || ec == std::errc::invalid_argument || ptr != end)
-        return std::string(flag) + ": '" + printable(text) + "' is not an integer; allowed: " + std::string(allowed);
-    if (ec == std::errc::result_out_of_range)
-        return std::string(flag) + ": " + printable(text) + " is out of range; allowed: " + std::string(allowed);
-    return {};
-}
-
 // An integer in [lo, hi].
 std::string parse_int_in(std::string_view flag, std::string_view text, int lo, int hi, int& value) {
     const std::string allowed = std::to_string(lo) + " to " + std::to_string(hi);
-    if (std::string error = parse_int(flag, text, value, allowed); !error.empty()) return error;
+    if (std::string error = cli::parse_int(flag, text, value, allowed); !error.empty()) return error;
     if (value < lo || value > hi) return std::string(flag) + ": " + printable(text) + " is out of range; allowed: " + allowed;
     return {};
 }
@@ -79,8 +69,7 @@ std::string parse_size(std::string_view text, int& width, int& height) {
         // Digits only: a sign, spaces or a second 'x' make it not WxH; too many digits or a value
         // outside 1..8192 is out of range.
         if (sides[i].empty() || sides[i].find_first_not_of("0123456789") != std::string_view::npos) return bad;
-        const auto [ptr, ec] = std::from_chars(sides[i].data(), sides[i].data() + sides[i].size(), *values[i]);
-        if (ec != std::errc() || *values[i] < 1 || *values[i] > 8192) out_of_range = true;
+        if (!cli::parse_number(sides[i], *values[i]) || *values[i] < 1 || *values[i] > 8192) out_of_range = true;
     }
     if (out_of_range) return "--size: " + printable(text) + " is out of range" + allowed;
     return {};
@@ -89,21 +78,11 @@ std::string parse_size(std::string_view text, int& width, int& height) {
 // A finite positive number (the light's size); its upper limit depends on the light and is
 // checked once the light is known.
 std::string parse_light_size(std::string_view text, double& value) {
-    const char* end = text.data() + text.size();
-    const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-    if (text.empty() || ec != std::errc() || ptr != end || !std::isfinite(value) || value <= 0.0)
+    if (!cli::parse_number(text, value) || !std::isfinite(value) || value <= 0.0)
         return "--light-size: '" + printable(text) +
                "' is not a positive number; allowed: the rectangle's longer side in scene units (rect) or the "
                "sun's angular diameter in degrees, below 90 (sun)";
     return {};
-}
-
-template <class Enum> std::string parse_name(std::string_view flag, std::string_view text, std::optional<Enum>& slot) {
-    if (std::optional<Enum> value = penumbra::parse_enum<Enum>(text)) {
-        slot = *value;
-        return {};
-    }
-    return std::string(flag) + ": '" + printable(text) + "' is not allowed; allowed: " + allowed_names<Enum>();
 }
 
 // Checks that need every flag: the configuration as a whole, the light size for the chosen
@@ -135,8 +114,7 @@ std::string check(const PlaygroundOptions& o) {
 } // namespace
 
 ParsedOptions parse_options(const std::vector<std::string>& args) {
-    for (const std::string& arg : args)
-        if (arg == "--help" || arg == "-h") return {{}, true, {}};
+    if (cli::asks_for_help(args)) return {{}, true, {}};
 
     auto fail = [](std::string message) { return ParsedOptions{{}, false, std::move(message)}; };
     PlaygroundOptions options;
@@ -177,10 +155,10 @@ ParsedOptions parse_options(const std::vector<std::string>& args) {
         int number = 0;
         if (flag == "--slices") {
             // The range is checked by penumbra::validate, with the same message penumbra-gen gives.
-            error = parse_int(flag, value, number, penumbra::allowed_slices);
+            error = cli::parse_int(flag, value, number, penumbra::allowed_slices);
             if (error.empty()) flags.slices = number;
         } else if (flag == "--resolution") {
-            error = parse_int(flag, value, number, "a power of two from 32 to 4096");
+            error = cli::parse_int(flag, value, number, "a power of two from 32 to 4096");
             if (error.empty()) flags.resolution = number;
         } else if (penumbra_gen::is_technique_flag(flag)) error = penumbra_gen::parse_technique_flag(flag, value, flags.technique);
         else if (flag == "--filter") error = parse_name(flag, value, flags.filter);
@@ -193,9 +171,7 @@ ParsedOptions parse_options(const std::vector<std::string>& args) {
         else if (flag == "--samples") error = parse_int_in(flag, value, 1, 1024, options.samples);
         else if (flag == "--frames") error = parse_int_in(flag, value, 0, 1000000000, options.frames);
         else if (flag == "--sun-time") {
-            const char* end = value.data() + value.size();
-            const auto [ptr, ec] = std::from_chars(value.data(), end, options.sun_time);
-            if (value.empty() || ec != std::errc() || ptr != end || !(options.sun_time >= 0.0 && options.sun_time <= 1.0))
+            if (!cli::parse_number(value, options.sun_time) || !(options.sun_time >= 0.0 && options.sun_time <= 1.0))
                 error = "--sun-time: '" + printable(value) + "' is not allowed; allowed: a path time from 0 to 1";
         } else if (flag == "--sun-path") {
             options.sun_path = std::string(value);

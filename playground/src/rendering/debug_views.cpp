@@ -3,6 +3,7 @@
 
 #include "rendering/gpu_scene.hpp"
 #include "app/image_io.hpp"
+#include "app/palette.hpp"
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -304,13 +305,6 @@ SliceSource locate_slice(const penumbra::Config& config, int slice, int level) {
         }
     }
     return s;
-}
-
-// Piecewise-linear ramp through evenly spaced stops (t in [0, 1]).
-template <std::size_t N> glm::vec3 ramp(const std::array<glm::vec3, N>& stops, float t) {
-    t = std::clamp(t, 0.0f, 1.0f) * static_cast<float>(N - 1);
-    const std::size_t i = std::min(static_cast<std::size_t>(t), N - 2);
-    return glm::mix(stops[i], stops[i + 1], t - static_cast<float>(i));
 }
 
 } // namespace
