@@ -8,13 +8,13 @@
 #   scripts/emission_snapshot.sh /tmp/after    # on the new tree
 #   diff -r /tmp/before /tmp/after && find /tmp/before -type f | wc -l
 #
-# The matrix is that of tests/matrix_*_test.cpp (keep the two in step):
-#   occlusion/   matrix_test.cpp: filter x fusion x packing x target x light x slices {1,4,5,8,16,32}
-#                x resolution {32,256,2048}, and the same with --no-fade (matrix_generic_test.cpp's
-#                configurations; penumbra-gen does not emit the generic program itself)
-#   tangent_clip/, slices_64_128/, adaptive/   the other cases of matrix_test.cpp
-#   shadow_map/  matrix_shadow_map_test.cpp   erosion/ matrix_erosion_test.cpp
-#   oim/         matrix_oim_test.cpp          snippet/ matrix_snippet_test.cpp
+# The matrix is that of tests/matrix_test.cpp's rows and tests/matrix_snippet_test.cpp (keep them in step):
+#   occlusion/   filter x fusion x packing x target x light x slices {1,4,5,8,16,32}
+#                x resolution {32,256,2048}, and the same with --no-fade (the generic program's row;
+#                penumbra-gen does not emit the generic program itself)
+#   tangent_clip/, slices_64_128/, adaptive/   the other occlusion rows
+#   shadow_map/, erosion/, oim/                 the rows of those techniques
+#   snippet/     matrix_snippet_test.cpp
 # Not covered: the generic reference program (penumbra::emit_generic), which penumbra-gen cannot
 # write. --no-rotation turns off both pcf.rotate and pcss.rotate (the tests turn off only the
 # technique's own), so layout.json's config differs there from the test's Config; the shaders do not.
