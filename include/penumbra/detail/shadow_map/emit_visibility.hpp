@@ -195,11 +195,8 @@ constexpr void write_receiver_plane_slope(LineWriter& out, const Config& config)
     }
     out.line("vec2 rise = facing > 0.0 ? nLight.xy / max(facing, 0.1) : vec2(0.0);");
     out.line("vec2 depthRange = penumbra_shadowDepthRange;");
-    out.comment("scene units per uv on the receiver, then depth as stored: (z - near) / (far - near)");
-    if (config.light == Light::rect)
-        out.line("vec2 depthSlope = rise * (2.0 * penumbra_shadowTanHalfFov * p.z) / (depthRange.y - depthRange.x);");
-    else
-        out.line("vec2 depthSlope = rise * (2.0 * penumbra_windowHalfSize) / (depthRange.y - depthRange.x);");
+    out.comment("per uv instead of per scene unit on the receiver, then depth as stored: (z - near) / (far - near)");
+    out.line("vec2 depthSlope = rise / (penumbra_uvPerUnit(p.z) * (depthRange.y - depthRange.x));");
 }
 
 // penumbraVisibility(worldPos, worldNormal) with what the normal is for: the normal offset, the
@@ -209,7 +206,8 @@ constexpr void write_normal_visibility(LineWriter& out, const Config& config) {
     const bool tilt = tilts_taps_to_receiver_plane(config);
     if (!offset && !tilt) {
         out.comment("The same with the receiver's normal, so that shaders written for the occlusion technique's");
-        out.comment("tangent clip compile unchanged; without the normal offset a depth map has no use for it.");
+        out.comment("tangent clip compile unchanged; without the normal offset or the receiver-plane bias a depth");
+        out.comment("map has no use for it.");
         out.line("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)");
         out.line("{");
         out.line("return penumbraVisibility(worldPos);");
