@@ -235,10 +235,10 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
         } else if (flag == "--lights") {
             o.lights.clear();
             for (std::string_view part : split(value)) {
-                const Light light = part == "rect" ? Light::rect : Light::sun;
-                if ((part != "rect" && part != "sun") || std::find(o.lights.begin(), o.lights.end(), light) != o.lights.end())
+                const std::optional<Light> light = parse_enum<Light>(part);
+                if (!light || std::find(o.lights.begin(), o.lights.end(), *light) != o.lights.end())
                     return fail("--lights: '" + std::string(part) + "' is not allowed; allowed: rect, sun, each once");
-                o.lights.push_back(light);
+                o.lights.push_back(*light);
             }
             if (o.lights.empty()) return fail("--lights: empty; allowed: rect, sun or rect,sun");
         } else { // --out
@@ -399,8 +399,6 @@ std::string utc_now() {
     return text;
 }
 
-const char* light_name(Light light) { return light == Light::sun ? "sun" : "rect"; }
-
 // The sun moves this far along its path (in t, 0 to 1) per flicker frame: about 0.3 degrees.
 constexpr double sun_flicker_step = 0.002;
 
@@ -503,7 +501,7 @@ int main(int argc, char** argv) {
     for (int i = 0; i < argc; ++i) command += (i ? " " : "") + std::string(argv[i]);
     json light_scales = json::array(), lights = json::array();
     for (double s : options->light_scales) light_scales.push_back(s);
-    for (Light l : options->lights) lights.push_back(light_name(l));
+    for (Light l : options->lights) lights.push_back(std::string(to_string(l)));
     json results = {
         {"meta",
          {{"tool", "penumbra-bench-compare"},
@@ -555,7 +553,7 @@ int main(int argc, char** argv) {
             Scene scene = scenes[scene_index];
             const SunPath path = path_through(scene.sun);
             if (light_kind == Light::sun) scene.sun.direction = -sun_direction(path, 0.5);
-            const std::string lit_by = light_name(light_kind);
+            const std::string lit_by(to_string(light_kind));
             const std::string light_dir = light_kind == Light::sun ? "/sun" : ""; // images/<scene>[/sun]/x<scale>
             const MeshBuffers mesh(scene.mesh);
             std::optional<Pixels> pixels = render_pixels(scene, mesh, options->width, options->height, &error);
