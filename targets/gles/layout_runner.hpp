@@ -19,6 +19,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,10 @@ public:
 
     // Fills a texture whose source is "caller" (RGBA floats); output-sized ones are allocated here.
     std::string fill_texture(const std::string& name, int width, int height, const float* rgba);
+
+    // Uploads a texture whose source is "bake" (oim's interval maps): RGBA floats, rows from v = 0,
+    // exactly the layout's width × height. Empty on success, else a diagnostic naming the texture.
+    std::string fill_bake(const std::string& name, const std::vector<float>& rgba);
 
     // Runs the passes of `phase` ("shadow", "screen", "example") in layout order; width × height
     // is the output size (passes with a 0 × 0 viewport). Empty on success, else a diagnostic.
@@ -74,10 +79,11 @@ private:
     std::string link(const nlohmann::json& desc, const std::map<std::string, std::string>& sources);
     std::string allocate_output_sized(int width, int height);
     std::string run_pass(const nlohmann::json& pass, const DrawScene& draw, int width, int height);
-    std::string bind_outputs(const nlohmann::json& pass);
+    std::string bind_outputs(const nlohmann::json& pass, std::vector<bool>& integer_buffers, bool& has_depth);
+    std::string clear(const nlohmann::json& state, const std::vector<bool>& integer_buffers, bool has_depth);
     void attach(GLenum framebuffer, GLenum attachment, const std::string& texture, int level, int layer);
     void apply_uniforms(const Program& program);
-    std::string sampler(const nlohmann::json& sampling, const std::string& where, GLuint* id);
+    std::string sampler(const nlohmann::json& sampling, const std::string& where, GLuint* id, bool depth_texture);
     std::string apply_state(const nlohmann::json& state);
     std::vector<float> read_texture(const Texture& t);
 
@@ -86,6 +92,7 @@ private:
     std::map<std::string, Program> programs_;
     std::map<std::string, std::vector<float>> values_;
     std::vector<std::string> extensions_;
+    std::set<std::string> filled_; // caller and bake textures filled since their allocation
     std::map<std::string, GLuint> samplers_; // by the sampling's JSON text
     GLuint framebuffer_ = 0, read_framebuffer_ = 0, empty_vao_ = 0;
     int output_width_ = 0, output_height_ = 0;
