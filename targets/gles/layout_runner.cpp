@@ -307,8 +307,16 @@ void LayoutRunner::apply_uniforms(const Program& program) {
 
 std::string LayoutRunner::apply_state(const json& s) {
     auto on = [](GLenum cap, bool enabled) { enabled ? glEnable(cap) : glDisable(cap); };
-    if (s.value("logic_op", "NONE") != "NONE") // ES 3.0 has no glLogicOp (penumbra emits none for essl300)
-        return "state: logic_op " + s.value("logic_op", "") + " is not available on OpenGL ES; allowed: NONE";
+    // Logical operations: OpenGL 3.3 has them (more than 32 slices OR their bits into RGBA32UI);
+    // ES 3.0 has no glLogicOp (penumbra emits none for essl300).
+    const std::string logic_op = s.value("logic_op", "NONE");
+    if (logic_op != "NONE") {
+        if (!epoxy_is_desktop_gl())
+            return "state: logic_op " + logic_op + " is not available on OpenGL ES; allowed: NONE";
+        if (logic_op != "OR") return "state: logic_op '" + logic_op + "' unknown; allowed: NONE, OR";
+        glLogicOp(GL_OR);
+    }
+    if (epoxy_is_desktop_gl()) on(GL_COLOR_LOGIC_OP, logic_op != "NONE");
     on(GL_BLEND, s.value("blend", false));
     if (s.value("blend", false)) {
         const GLenum equation = gl_enum(s["blend_equation"]), src = gl_enum(s["blend_src"]), dst = gl_enum(s["blend_dst"]);
