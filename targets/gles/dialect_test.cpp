@@ -11,9 +11,10 @@
 // model and its texture precision bound, from the desktop run's slicing output, which the same
 // llvmpipe rasterizer reproduces) and |runner − desktop| ≤ 2·bound + q (both runs are within the
 // bound). The other techniques (the oracle models none of them; their bundles have no oracle.f32
-// or bound.f32): per pixel |runner − desktop| ≤ q + 1e-4, the same shader text on the same
-// llvmpipe rasterizer and samplers. q is one step of the layout's result format when it has
-// 8 bits (essl300: R8), else 0. Either way the desktop image must have a shadowed pixel, or the
+// or bound.f32): per pixel |runner − desktop| ≤ 1e-4: the same shader text (the bundle's GL run
+// emits the requested target) into the same result format on the same llvmpipe rasterizer and
+// samplers (measured: 0 on glsl330, 6e-8 on essl300, its R8 read back two ways). q is one step
+// of the layout's result format when it has 8 bits (essl300: R8), else 0. Either way the desktop image must have a shadowed pixel, or the
 // comparison would prove nothing. On Mesa the contexts are capped at exactly 3.3 / ES 3.0
 // (MESA_GL_VERSION_OVERRIDE / MESA_GLES_VERSION_OVERRIDE, unless already set).
 // Exit status: 0 all agree, 1 a difference or a failure, 2 bad arguments.
@@ -46,8 +47,8 @@ using penumbra::targets::Bundle;
 using penumbra::targets::LayoutRunner;
 namespace fs = std::filesystem;
 
-// |runner − desktop| beyond q for the techniques without an oracle: the same text on the same
-// Mesa rasterizer and sampler code differs by float rounding at most.
+// |runner − desktop| for the techniques without an oracle: the same text into the same format on
+// the same Mesa rasterizer and sampler code differs by float rounding at most.
 constexpr double no_oracle_epsilon = 1e-4;
 
 constexpr const char* usage =
@@ -178,7 +179,7 @@ Outcome check_bundle(const fs::path& dir, std::map<std::string, HeadlessContext>
         worst = std::max(worst, difference);
         if (desktop[i] < 0.98f) ++shadowed;
         if (!oracle) { // NaN counts as outside
-            if (!(difference <= step + no_oracle_epsilon)) ++outside;
+            if (!(difference <= no_oracle_epsilon)) ++outside;
             continue;
         }
         const double to_model = std::abs(static_cast<double>(visibility[i]) - model[i]);
@@ -194,9 +195,8 @@ Outcome check_bundle(const fs::path& dir, std::map<std::string, HeadlessContext>
                       worst, worst_model, worst_bound, result_format.c_str(), shadowed, outside, step);
     else
         std::snprintf(comparison, sizeof comparison,
-                      "max |runner − desktop| = %.3e (no oracle for %s; %s result), %d shadowed pixels, %d beyond q + %.0e "
-                      "(q = %.4f)",
-                      worst, technique.c_str(), result_format.c_str(), shadowed, outside, no_oracle_epsilon, step);
+                      "max |runner − desktop| = %.3e (no oracle for %s; %s result), %d shadowed pixels, %d beyond %.0e",
+                      worst, technique.c_str(), result_format.c_str(), shadowed, outside, no_oracle_epsilon);
     char line[768];
     std::snprintf(line, sizeof line, "%s %s on %s: %s, %dx%d: %s; %.0f ms", outside || shadowed == 0 ? "FAIL" : "ok  ",
                   target.c_str(), context.version().c_str(), describe(layout["config"]).c_str(), width, height, comparison, ms);
