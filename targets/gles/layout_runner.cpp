@@ -20,7 +20,7 @@ struct Format {
     bool depth = false;   // ES 3.0: read without comparison only through NEAREST filters
 };
 
-const Format* format_of(const std::string& name) {
+const std::map<std::string, Format>& formats() {
     static const std::map<std::string, Format> formats{
         {"RGBA8", {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, 4, false, true}},
         {"R8", {GL_R8, GL_RED, GL_UNSIGNED_BYTE, 1, false, true}},
@@ -35,8 +35,18 @@ const Format* format_of(const std::string& name) {
         {"DEPTH_COMPONENT24", {GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, 4, false, true, false, true}},
         {"DEPTH_COMPONENT32F", {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, 4, false, true, false, true}},
     };
-    auto it = formats.find(name);
-    return it == formats.end() ? nullptr : &it->second;
+    return formats;
+}
+
+const Format* format_of(const std::string& name) {
+    auto it = formats().find(name);
+    return it == formats().end() ? nullptr : &it->second;
+}
+
+std::string format_names() {
+    std::string names;
+    for (const auto& [name, format] : formats()) names += (names.empty() ? "" : ", ") + name;
+    return names;
 }
 
 // GL_<name> for the enum strings layout.json uses; 0 when unknown.
@@ -93,7 +103,7 @@ std::unique_ptr<LayoutRunner> LayoutRunner::create(const json& layout, const std
     for (const json& t : l["textures"]) {
         const std::string name = t["name"], format = t["internal_format"];
         const Format* f = format_of(format);
-        if (!f) return fail("texture " + name + ": internal_format '" + format + "' unknown");
+        if (!f) return fail("texture " + name + ": internal_format '" + format + "' unknown; allowed: " + format_names());
         // layout.json "initial": zero (cleared at allocation, as here), caller (filled every run
         // with fill_texture) or bake (uploaded once with fill_bake); a pass reading a caller or bake
         // texture that was never filled fails with its name.
