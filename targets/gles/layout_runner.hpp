@@ -2,12 +2,17 @@
 // following its layout.json alone: the textures of `textures`, the programs of `programs`, the
 // passes of `passes` in order with their render state, bindings, attachments and integer
 // uniforms. Only calls that both APIs have (no direct state access, no texture storage, no
-// layout(binding)); libepoxy resolves them on whichever context is current. The desktop runtime
-// (include/penumbra/gl/runtime.hpp) needs OpenGL 4.5; this is the portable one.
+// layout(binding)), except logic_op OR (OpenGL 3.3 only); libepoxy resolves them on whichever
+// context is current. The desktop runtime (include/penumbra/gl/runtime.hpp) needs OpenGL 4.5;
+// this is the portable one. Every technique: occlusion textures (uniform or adaptive slices),
+// the shadow-map techniques (depth attachments, per-binding comparison samplers, erosion's mip
+// chain) and oim (its bake uploaded with fill_bake). What the API cannot do (on ES 3.0:
+// CLAMP_TO_BORDER, logic_op, a depth texture filtered without comparison) fails with its reason.
 //
 //   auto runner = LayoutRunner::create(layout_json, sources, &error);  // a context is current
 //   runner->set_uniform("penumbra_lightFromWorld", {16 floats, column-major});
-//   runner->run_phase("shadow", draw_triangles, 0, 0);                  // slicing + prefilter
+//   runner->fill_bake("penumbra_rise0", rgba);                          // a "bake" texture (oim), once
+//   runner->run_phase("shadow", draw_triangles, 0, 0);                  // slicing + prefilter, or the shadow map
 //   runner->fill_texture("penumbra_worldPositions", w, h, rgba32f);     // a "caller" texture
 //   runner->run_phase("screen", nullptr, w, h);                         // deferred visibility
 //   std::vector<float> visibility = runner->read_result();              // bottom row first
