@@ -528,7 +528,10 @@ private:
                     if (tex.format.integer)
                         fail(reading + ": LINEAR filtering of the integer texture " + tex.name + " (" + format_name +
                              "); Vulkan filters integer formats with NEAREST only");
-                    features |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+                    // With depth comparison, LINEAR needs no FILTER_LINEAR feature (the specification
+                    // allows it wherever comparison is supported, filtered "in an implementation-
+                    // dependent manner" without the feature; lavapipe lacks it for D32_SFLOAT).
+                    if (sampling.compare.empty()) features |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
                 }
                 if (!sampling.compare.empty()) {
                     if (!tex.format.depth)
@@ -554,7 +557,7 @@ private:
                 return std::string(hex);
             }() + " of " + format_name + " that its passes need" +
                  ((features & ~have & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) && tex.format.depth
-                      ? " (linear filtering of a depth format, which Vulkan 1.0 does not require)"
+                      ? " (LINEAR filtering of a depth format read without comparison, which Vulkan does not require)"
                       : ""));
         if (compared && !(props3.optimalTilingFeatures & VK_FORMAT_FEATURE_2_SAMPLED_IMAGE_DEPTH_COMPARISON_BIT))
             fail(what + ": the device cannot compare " + format_name + " in a sampler (SAMPLED_IMAGE_DEPTH_COMPARISON)");
@@ -931,11 +934,28 @@ private:
 
         Program& prog = program(pass.at("program"));
         const std::string program_name = pass.at("program");
+        // A 0 x 0 viewport: the size of the first output's level (as the GL runtime), else the output size.
         std::uint32_t width = pass.at("viewport").at(0).get<std::uint32_t>();
         std::uint32_t height = pass.at("viewport").at(1).get<std::uint32_t>();
         if (width == 0 || height == 0) {
             width = static_cast<std::uint32_t>(in_.width);
             height = static_cast<std::uint32_t>(in_.height);
+            if (!pass.at("outputs").empty()) {
+                const json& o = pass.at("outputs").at(0);
+                const Texture& t = texture(o.at("texture"));
+                const int level = std::clamp(o.at("level").get<int>(), 0, 31);
+                width = std::max(t.width >> level, 1u);
+                height = std::max(t.height >> level, 1u);
+            }
+        }
+        // Rendering beyond an attachment is undefined in Vulkan (GL clips it): refused.
+        for (const json& o : pass.at("outputs")) {
+            const Texture& t = texture(o.at("texture"));
+            const int level = std::clamp(o.at("level").get<int>(), 0, 31);
+            if (width > std::max(t.width >> level, 1u) || height > std::max(t.height >> level, 1u))
+                fail("pass " + name + ": viewport " + std::to_string(width) + "x" + std::to_string(height) +
+                     " is larger than level " + std::to_string(level) + " of output " + t.name + " (" +
+                     std::to_string(std::max(t.width >> level, 1u)) + "x" + std::to_string(std::max(t.height >> level, 1u)) + ")");
         }
         std::vector<VkRenderingAttachmentInfo> attachments;
         std::vector<VkFormat> formats;
