@@ -1207,28 +1207,63 @@ private:
     }
 
     // Textures whose initial contents come from outside ("initial" caller: the G-buffers; bake:
-    // precomputed maps), from the inputs into staging buffers.
+    // precomputed maps), from the inputs' RGBA floats into staging buffers in the texture's format
+    // (32-bit floats as given, 16-bit floats rounded to nearest even, as GL converts them).
     std::vector<Buffer> stage_caller_textures() {
         std::vector<Buffer> out;
         for (const auto& [name, t] : textures_) {
             if (t.initial != "caller" && t.initial != "bake") continue;
-            auto it = in_.caller_textures.find(name);
-            if (it == in_.caller_textures.end())
+            const bool bake = t.initial == "bake";
+            const auto& given = bake ? in_.bake_textures : in_.caller_textures;
+            auto it = given.find(name);
+            if (it == given.end())
                 fail("texture " + name + ": its initial contents come from the " +
-                     (t.initial == "bake" ? std::string("bake (the bundle's bake_textures)")
-                                          : std::string("caller (the bundle's caller_textures)")) +
+                     (bake ? std::string("bake (the bundle's bake_textures)") : std::string("caller (the bundle's caller_textures)")) +
                      ", and the bundle has none for it");
-            if (t.format.bytes_per_channel != 4 || t.format.integer || t.format.depth || t.depth != 1 || t.levels != 1)
-                fail("texture " + name + ": only single-level 32-bit float textures can be uploaded by this runner");
-            const std::size_t floats = static_cast<std::size_t>(t.width) * t.height * t.format.channels;
-            if (it->second.size() != floats)
-                fail("texture " + name + ": " + std::to_string(it->second.size()) + " floats given, " + std::to_string(floats) + " needed");
-            Buffer b = create_buffer(floats * sizeof(float), VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
-            std::memcpy(b.mapped, it->second.data(), floats * sizeof(float));
+            if (t.format.integer || t.format.depth || t.format.normalized || t.depth != 1 || t.levels != 1)
+                fail("texture " + name + ": only single-level 16- or 32-bit float textures can be uploaded by this runner");
+            const std::size_t texels = static_cast<std::size_t>(t.width) * t.height;
+            if (it->second.size() != 4 * texels)
+                fail("texture " + name + ": " + std::to_string(it->second.size()) + " floats given, " +
+                     std::to_string(4 * texels) + " needed (RGBA, " + std::to_string(t.width) + "x" + std::to_string(t.height) + ")");
+            const auto channels = static_cast<std::size_t>(t.format.channels);
+            const std::size_t bytes = texels * channels * static_cast<std::size_t>(t.format.bytes_per_channel);
+            Buffer b = create_buffer(bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+            auto* to = static_cast<unsigned char*>(b.mapped);
+            for (std::size_t i = 0; i < texels; ++i)
+                for (std::size_t c = 0; c < channels; ++c) {
+                    const float v = it->second[4 * i + c];
+                    if (t.format.bytes_per_channel == 4) {
+                        std::memcpy(to + 4 * (i * channels + c), &v, 4);
+                    } else {
+                        const std::uint16_t h = to_half(v);
+                        std::memcpy(to + 2 * (i * channels + c), &h, 2);
+                    }
+                }
             out.push_back(b);
             caller_order_.push_back(name);
         }
         return out;
+    }
+
+    // IEEE binary16 of a float, rounded to nearest even; overflow to infinity, NaN kept.
+    static std::uint16_t to_half(float value) {
+        std::uint32_t f;
+        std::memcpy(&f, &value, 4);
+        const auto sign = static_cast<std::uint16_t>((f >> 16) & 0x8000u);
+        const std::uint32_t abs = f & 0x7fffffffu;
+        if (abs >= 0x7f800000u) return static_cast<std::uint16_t>(sign | (abs > 0x7f800000u ? 0x7e00u : 0x7c00u));
+        if (abs >= 0x477ff000u) return static_cast<std::uint16_t>(sign | 0x7c00u); // rounds to beyond 65504
+        if (abs < 0x38800000u) { // a subnormal half (or zero): value / 2^-24, rounded to nearest even
+            if (abs < 0x33000000u) return sign;                                   // below half of 2^-24
+            const std::uint32_t mantissa = (abs & 0x7fffffu) | 0x800000u;
+            const int shift = 126 - static_cast<int>(abs >> 23);                  // 14 to 24
+            const std::uint32_t half = mantissa >> shift, rest = mantissa & ((1u << shift) - 1), mid = 1u << (shift - 1);
+            return static_cast<std::uint16_t>(sign | (half + (rest > mid || (rest == mid && (half & 1u)))));
+        }
+        const std::uint32_t rebased = abs - 0x38000000u; // exponent 127 → 15
+        const std::uint32_t half = rebased >> 13, rest = rebased & 0x1fffu;
+        return static_cast<std::uint16_t>(sign | (half + (rest > 0x1000u || (rest == 0x1000u && (half & 1u)))));
     }
 
     // Every image by its "initial": zero cleared to 0 (all levels and layers; depth to 0.0), caller

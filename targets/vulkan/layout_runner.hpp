@@ -27,7 +27,10 @@ struct LayoutInputs {
     int width = 0, height = 0;                 // the output size (textures and passes sized "output")
     std::vector<float> triangles;              // what "draw_scene" passes draw: xyz, 3 vertices a triangle
     std::map<std::string, std::vector<float>> uniforms; // values of parameters whose source is "light"
-    std::map<std::string, std::vector<float>> caller_textures; // texture name → texels (RGBA32F rows from 0 up)
+    // Textures whose "initial" is "caller" (G-buffers) or "bake" (precomputed maps, e.g. OIM's):
+    // texture name → RGBA floats, 4 a texel, rows from 0 up; converted to the texture's format.
+    std::map<std::string, std::vector<float>> caller_textures;
+    std::map<std::string, std::vector<float>> bake_textures;
 };
 
 struct LayoutOutput {
