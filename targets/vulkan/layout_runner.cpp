@@ -120,10 +120,11 @@ VkSamplerAddressMode address_mode(const std::string& wrap) {
 }
 
 // Core Vulkan has three border colours; others need VK_EXT_custom_border_color.
-VkBorderColor border_color(const std::vector<float>& c) {
-    if (c == std::vector<float>{0, 0, 0, 0}) return VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK;
-    if (c == std::vector<float>{0, 0, 0, 1}) return VK_BORDER_COLOR_FLOAT_OPAQUE_BLACK;
-    if (c == std::vector<float>{1, 1, 1, 1}) return VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
+// `integer`: the sampler reads an integer texture (usampler), whose border is an integer colour.
+VkBorderColor border_color(const std::vector<float>& c, bool integer) {
+    if (c == std::vector<float>{0, 0, 0, 0}) return integer ? VK_BORDER_COLOR_INT_TRANSPARENT_BLACK : VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK;
+    if (c == std::vector<float>{0, 0, 0, 1}) return integer ? VK_BORDER_COLOR_INT_OPAQUE_BLACK : VK_BORDER_COLOR_FLOAT_OPAQUE_BLACK;
+    if (c == std::vector<float>{1, 1, 1, 1}) return integer ? VK_BORDER_COLOR_INT_OPAQUE_WHITE : VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
     fail("border colour is not one of core Vulkan's (0,0,0,0), (0,0,0,1), (1,1,1,1)");
 }
 
@@ -601,7 +602,8 @@ private:
             fail(what + ": the program declares a " + type + ", but its sampling has no compare function");
         if (!shadow_type && !sampling.compare.empty())
             fail(what + ": compare '" + sampling.compare + "' on a " + type + "; hardware comparison needs a shadow sampler type");
-        const std::string key = sampling.key();
+        const bool integer = type.starts_with("usampler") || type.starts_with("isampler");
+        const std::string key = sampling.key() + (integer ? "|integer" : "");
         if (auto it = samplers_.find(key); it != samplers_.end()) return it->second;
         VkSamplerCreateInfo s{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
         s.magFilter = filter_of(sampling.mag_filter);
@@ -610,7 +612,7 @@ private:
         s.addressModeU = s.addressModeV = s.addressModeW = address_mode(sampling.wrap);
         if (sampling.wrap == "CLAMP_TO_BORDER") {
             try {
-                s.borderColor = border_color(sampling.border_color);
+                s.borderColor = border_color(sampling.border_color, integer);
             } catch (const Failure& f) {
                 fail(what + ": " + f.message);
             }
