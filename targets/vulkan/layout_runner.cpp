@@ -523,6 +523,8 @@ private:
                 }
                 const Sampling sampling = input_sampling(*pass, i);
                 const std::string reading = "pass " + pass_name + ", sampler " + i.at("sampler").get<std::string>();
+                if (const json* param = parameter(pass->value("program", ""), i.at("sampler")))
+                    check_sampler_type(sampling, param->at("type"), reading);
                 usage |= VK_IMAGE_USAGE_SAMPLED_BIT;
                 features |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
                 if (sampling.linear()) {
@@ -596,12 +598,16 @@ private:
 
     // One VkSampler per distinct sampling state. A sampler parameter declared as a shadow sampler
     // (sampler2DShadow, ...) must be read with a compare function, and any other without one.
-    VkSampler sampler(const Sampling& sampling, const std::string& type, const std::string& what) {
+    static void check_sampler_type(const Sampling& sampling, const std::string& type, const std::string& what) {
         const bool shadow_type = type.find("Shadow") != std::string::npos;
         if (shadow_type && sampling.compare.empty())
             fail(what + ": the program declares a " + type + ", but its sampling has no compare function");
         if (!shadow_type && !sampling.compare.empty())
             fail(what + ": compare '" + sampling.compare + "' on a " + type + "; hardware comparison needs a shadow sampler type");
+    }
+
+    VkSampler sampler(const Sampling& sampling, const std::string& type, const std::string& what) {
+        check_sampler_type(sampling, type, what);
         const bool integer = type.starts_with("usampler") || type.starts_with("isampler");
         const std::string key = sampling.key() + (integer ? "|integer" : "");
         if (auto it = samplers_.find(key); it != samplers_.end()) return it->second;
