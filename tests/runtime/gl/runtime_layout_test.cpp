@@ -93,6 +93,32 @@ PassDesc pass(std::string name, std::string phase, std::string action, std::stri
     return p;
 }
 
+// One triangle covering the viewport, world positions at attribute 0: the "scene" of the depth pass.
+struct ScreenTriangle {
+    GLuint vao = 0, vbo = 0;
+    ScreenTriangle() {
+        glCreateVertexArrays(1, &vao);
+        glCreateBuffers(1, &vbo);
+        const float triangle[9] = {-1, -1, 0, 3, -1, 0, -1, 3, 0};
+        glNamedBufferData(vbo, sizeof triangle, triangle, GL_STATIC_DRAW);
+        glVertexArrayVertexBuffer(vao, 0, vbo, 0, 3 * sizeof(float));
+        glEnableVertexArrayAttrib(vao, 0);
+        glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(vao, 0, 0);
+    }
+    ScreenTriangle(const ScreenTriangle&) = delete;
+    ScreenTriangle& operator=(const ScreenTriangle&) = delete;
+    ~ScreenTriangle() {
+        glDeleteBuffers(1, &vbo);
+        glDeleteVertexArrays(1, &vao);
+    }
+    void draw() const {
+        glBindVertexArray(vao);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glBindVertexArray(0);
+    }
+};
+
 Emission hand_made() {
     Emission e;
     auto program = [&](std::string name, const std::string& vert, const std::string& frag) {
@@ -165,20 +191,10 @@ TEST_CASE("gl runtime: a hand-made layout runs from its data (depth, compare, ba
     frame.slice_depths = {0.0f, 0.5f};
     rt->set_frame(frame);
 
-    GLuint vao = 0, vbo = 0;
-    glCreateVertexArrays(1, &vao);
-    glCreateBuffers(1, &vbo);
-    const float triangle[9] = {-1, -1, 0, 3, -1, 0, -1, 3, 0};
-    glNamedBufferData(vbo, sizeof triangle, triangle, GL_STATIC_DRAW);
-    glVertexArrayVertexBuffer(vao, 0, vbo, 0, 3 * sizeof(float));
-    glEnableVertexArrayAttrib(vao, 0);
-    glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(vao, 0, 0);
+    ScreenTriangle triangle;
     int draws = 0;
     const std::string built = rt->build([&](GLuint) {
-        glBindVertexArray(vao);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        glBindVertexArray(0);
+        triangle.draw();
         ++draws;
     });
     REQUIRE_MESSAGE(built.empty(), built);
@@ -213,8 +229,6 @@ TEST_CASE("gl runtime: a hand-made layout runs from its data (depth, compare, ba
     CHECK(rt->read_visibility().size() == 6);
     CHECK(rt->texture("result") != 0);
     glDeleteTextures(1, &caller);
-    glDeleteBuffers(1, &vbo);
-    glDeleteVertexArrays(1, &vao);
 }
 
 // layout.json's conventions are data the runner follows: change the depth binding's comparison in the
@@ -237,20 +251,8 @@ TEST_CASE("gl runtime: a binding's sampling decides the comparison, not the text
         SliceFrame frame;
         frame.slice_depths = {0.0f, 0.5f};
         rt->set_frame(frame);
-        GLuint vao = 0, vbo = 0;
-        glCreateVertexArrays(1, &vao);
-        glCreateBuffers(1, &vbo);
-        const float triangle[9] = {-1, -1, 0, 3, -1, 0, -1, 3, 0};
-        glNamedBufferData(vbo, sizeof triangle, triangle, GL_STATIC_DRAW);
-        glVertexArrayVertexBuffer(vao, 0, vbo, 0, 3 * sizeof(float));
-        glEnableVertexArrayAttrib(vao, 0);
-        glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
-        glVertexArrayAttribBinding(vao, 0, 0);
-        REQUIRE(rt->build([&](GLuint) {
-                      glBindVertexArray(vao);
-                      glDrawArrays(GL_TRIANGLES, 0, 3);
-                      glBindVertexArray(0);
-                  }).empty());
+        ScreenTriangle triangle;
+        REQUIRE(rt->build([&](GLuint) { triangle.draw(); }).empty());
         GLuint caller = 0;
         glCreateTextures(GL_TEXTURE_2D, 1, &caller);
         glTextureStorage2D(caller, 1, GL_RGBA32F, 2, 1);
@@ -264,7 +266,5 @@ TEST_CASE("gl runtime: a binding's sampling decides the comparison, not the text
         CHECK(values[0] == doctest::Approx(1.0 + (leq ? 10.0 : 0.0) + 100.0 + 64000.0 + 5000.0));
         CHECK(values[1] == doctest::Approx(2.0 + (leq ? 0.0 : 10.0) + 100.0 + 64000.0 + 5000.0));
         glDeleteTextures(1, &caller);
-        glDeleteBuffers(1, &vbo);
-        glDeleteVertexArrays(1, &vao);
     }
 }
