@@ -35,7 +35,7 @@ inline Layout describe_layout(const Config& config) {
 
     // Programs with their parameters, in pass order.
     for (const ProgramPlan& plan : technique.programs(config)) {
-        ProgramDesc program{std::string(plan.name), {}, describe_params(config, technique.param_groups(config, plan.name))};
+        ProgramDesc program{std::string(plan.name), {}, describe_params(config, technique.param_groups(config, plan.name)), {}};
         for (Artifact a : plan.stages) program.files.emplace_back(file_name(a));
         if (!plan.stages.empty()) program.vertex_inputs = vertex_inputs(plan.stages.front());
         layout.programs.push_back(std::move(program));
