@@ -20,9 +20,11 @@ constexpr std::vector<ProgramPlan> occlusion_programs(const Config& config) {
         plan.push_back({"unpack_slices", {Artifact::fullscreen_vert, Artifact::unpack_slices_frag}});
     if (config.packing == Packing::atlas && config.filter != Filter::sat)
         plan.push_back({"pack_atlas", {Artifact::fullscreen_vert, Artifact::pack_atlas_frag}});
-    if (config.filter == Filter::nbuffer)
+    // the atlas packing pass writes levels 0 to packed_level; a level pass builds each one above
+    const bool level_passes = max_level(config) > packed_level(config);
+    if (config.filter == Filter::nbuffer && level_passes)
         plan.push_back({"nbuffer_level", {Artifact::fullscreen_vert, Artifact::nbuffer_level_frag}});
-    if (config.filter == Filter::gaussian)
+    if (config.filter == Filter::gaussian && level_passes)
         plan.push_back({"gaussian_level", {Artifact::fullscreen_vert, Artifact::gaussian_level_frag}});
     if (config.filter == Filter::sat) {
         plan.push_back({"sat_shift", {Artifact::fullscreen_vert, Artifact::sat_shift_frag}});
@@ -160,8 +162,10 @@ inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
     // Prefilter passes.
     const std::string level_program = config.filter == Filter::gaussian ? "gaussian_level" : "nbuffer_level";
     if (config.packing == Packing::atlas && config.filter != Filter::sat) {
-        const std::string level0 = config.filter == Filter::mipmap ? "penumbra_occlusionAtlas" : "penumbra_level0";
-        b.fullscreen("pack_atlas", "pack_atlas", {{"penumbra_slices", "penumbra_slices"}}, {level0, 0, -1}, {}, T * R, R);
+        // level 0, and levels 1 to packed_level (same size) as further colour outputs
+        std::vector<AttachmentDesc> packed{{config.filter == Filter::mipmap ? "penumbra_occlusionAtlas" : "penumbra_level0", 0, -1}};
+        for (int l = 1; l <= packed_level(config); ++l) packed.push_back({atlas_level_name(l).str(), 0, -1});
+        b.pass("pack_atlas", "fullscreen", "pack_atlas", {{"penumbra_slices", "penumbra_slices"}}, packed, {}, T * R, R);
     }
     if (config.filter == Filter::mipmap) {
         const std::string storage = config.packing == Packing::atlas ? "penumbra_occlusionAtlas" : "penumbra_occlusion";
@@ -188,7 +192,7 @@ inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
                 }
         }
     } else {
-        for (int l = 1; l <= L; ++l) {
+        for (int l = packed_level(config) + 1; l <= L; ++l) {
             const std::pair<std::string, int> step{"penumbra_step", 1 << (l - 1)};
             if (config.packing == Packing::atlas) {
                 const int spacing = level_spacing(config, l), source_spacing = level_spacing(config, l - 1);
