@@ -20,11 +20,11 @@ constexpr std::vector<ProgramPlan> occlusion_programs(const Config& config) {
         plan.push_back({"unpack_slices", {Artifact::fullscreen_vert, Artifact::unpack_slices_frag}});
     if (config.packing == Packing::atlas && config.filter != Filter::sat)
         plan.push_back({"pack_atlas", {Artifact::fullscreen_vert, Artifact::pack_atlas_frag}});
-    // the atlas packing pass writes levels 0 to packed_level; a level pass builds each one above
-    const bool level_passes = max_level(config) > packed_level(config);
-    if (config.filter == Filter::nbuffer && level_passes)
+    // (the atlas packing pass writes levels 0 to packed_level; a level pass builds each one above:
+    // the level program stays listed where there is none, as with level_bound 0 before)
+    if (config.filter == Filter::nbuffer)
         plan.push_back({"nbuffer_level", {Artifact::fullscreen_vert, Artifact::nbuffer_level_frag}});
-    if (config.filter == Filter::gaussian && level_passes)
+    if (config.filter == Filter::gaussian)
         plan.push_back({"gaussian_level", {Artifact::fullscreen_vert, Artifact::gaussian_level_frag}});
     if (config.filter == Filter::sat) {
         plan.push_back({"sat_shift", {Artifact::fullscreen_vert, Artifact::sat_shift_frag}});
