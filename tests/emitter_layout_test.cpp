@@ -373,6 +373,11 @@ TEST_CASE("layout: levels above level_reduction at half the resolution of the on
     CHECK(pack->outputs[1].texture == "penumbra_level1");
     CHECK(pack->viewport_width == 2048);
     CHECK(pack->inputs.front().texture == "penumbra_slices");
+    // level_reduction 0: level 1 is at half the size, so it gets its own pass (one size per pass)
+    Config halved = config;
+    halved.level_reduction = 0;
+    for (const PassDesc& p : describe_layout(halved).passes)
+        if (p.name == "pack_atlas") CHECK(p.outputs.size() == 1);
     auto ints = [](const PassDesc& p) {
         std::map<std::string, int> m(p.int_uniforms.begin(), p.int_uniforms.end());
         return m;

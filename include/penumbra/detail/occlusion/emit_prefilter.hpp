@@ -173,9 +173,13 @@ constexpr std::vector<Param> pack_atlas_params() { return {slices_param()}; }
 
 // The highest filter level the atlas packing pass writes: level 0 (the slicing output as tiles),
 // and for N-buffer and Gaussian levels also level 1, whose taps it reads from the slices anyway
-// (one pass, two outputs of one size, instead of a copy and a level pass). Mip chains: 0.
+// (one pass, two outputs of one size, instead of a copy and a level pass), where level 1 has level
+// 0's size (a pass's outputs share one size: not with level_reduction 0). Mip chains: 0.
 constexpr int packed_level(const Config& config) {
-    return config.packing == Packing::atlas && has_level_images(config) && max_level(config) >= 1 ? 1 : 0;
+    return config.packing == Packing::atlas && has_level_images(config) && max_level(config) >= 1 &&
+                   level_spacing(config, 1) == 1
+               ? 1
+               : 0;
 }
 
 // The atlas's level 0: the slicing output (a T-layer array) laid out as tiles side by side; with
