@@ -168,7 +168,7 @@ TEST_CASE("layout.json (version 2): phases, structured state, the deferred pass 
     const fs::path dir = scratch().fresh("layout_v2");
     REQUIRE(run_gen(with_out({"--packing", "array"}, dir)).exit_code == 0);
     const nlohmann::json layout = nlohmann::json::parse(read_text(dir / "layout.json"));
-    CHECK(layout.at("layout_version") == 2);
+    CHECK(layout.at("layout_version") == 3);
     CHECK(layout.at("technique") == "occlusion");
     const std::string result = layout.at("result");
     std::map<std::string, nlohmann::json> textures;

@@ -106,7 +106,7 @@ TEST_CASE("generic: none of the constants the specialized code bakes in") {
         config.resolution = 512;
         const std::string text = generic_fragment(config);
         const std::string specialized = specialized_snippet(config);
-        // as emit_visibility.hpp writes them: R, 1 / T, L
+        // as detail/occlusion/emit_visibility.hpp writes them: R, 1 / T, L
         const std::string R = "512.0", inv_T = "0.333333333333", L = "9.0";
         CHECK(specialized.find(R) != std::string::npos);
         CHECK(text.find(R) == std::string::npos);

@@ -1,4 +1,4 @@
-// layout.json vocabulary (layout version 2): phases, structured render state, output-sized and
+// layout.json vocabulary (layout version 3): phases, structured render state, output-sized and
 // caller textures, border colours, uniform sources. No glslang, no GL.
 #include <penumbra/penumbra.hpp>
 #include <penumbra/cost_model.hpp>
@@ -34,7 +34,7 @@ const TextureDesc* find_texture(const Layout& layout, std::string_view name) {
 
 } // namespace
 
-TEST_CASE("layout v2: version, technique, the screen pass and its result") {
+TEST_CASE("layout v3: version, technique, the screen pass and its result") {
     const std::vector<Config> configs = vocabulary_configs();
     REQUIRE(configs.size() > 40);
     for (const Config& config : configs) {
@@ -43,10 +43,10 @@ TEST_CASE("layout v2: version, technique, the screen pass and its result") {
         CAPTURE(to_string(config.light));
         CAPTURE(to_string(config.target));
         const Layout layout = describe_layout(config);
-        CHECK(layout.version == 2);
+        CHECK(layout.version == 3);
         CHECK(layout.technique == "occlusion");
         const std::string json = to_json(layout);
-        CHECK(json.find("\"layout_version\": 2,") != std::string::npos);
+        CHECK(json.find("\"layout_version\": 3,") != std::string::npos);
         CHECK(json.find("\"technique\": \"occlusion\",") != std::string::npos);
         CHECK(json.find("\"result\": \"penumbra_visibility\",") != std::string::npos);
 
@@ -101,7 +101,7 @@ TEST_CASE("layout v2: version, technique, the screen pass and its result") {
     }
 }
 
-TEST_CASE("layout v2: structured state, border colours, attachment kinds, levels") {
+TEST_CASE("layout: structured state, border colours, attachment kinds, levels") {
     for (const Config& config : vocabulary_configs()) {
         CAPTURE(to_string(config.filter));
         CAPTURE(to_string(config.packing));
@@ -128,18 +128,20 @@ TEST_CASE("layout v2: structured state, border colours, attachment kinds, levels
             for (const AttachmentDesc& out : pass.outputs) CHECK(out.kind == "color");
             for (const BindingDesc& in : pass.inputs) CHECK(in.level == -1);
         }
-        // a border colour exactly where the wrap is CLAMP_TO_BORDER (ES 3.0 has none)
+        // a border colour exactly where the wrap is CLAMP_TO_BORDER, in textures and in samplings (ES 3.0
+        // has none)
         int borders = 0;
         for (const TextureDesc& t : layout.textures) {
             CHECK((t.size == "fixed") == (t.width > 0));
-            CHECK(t.compare.empty());
             borders += t.wrap == "CLAMP_TO_BORDER";
         }
-        int border_fields = 0;
-        for (std::size_t at = json.find("\"border_color\": [0, 0, 0, 0]"); at != std::string::npos;
-             at = json.find("\"border_color\"", at + 1))
-            ++border_fields;
-        CHECK(border_fields == borders);
+        auto count = [&](std::string_view text) {
+            int n = 0;
+            for (std::size_t at = json.find(text); at != std::string::npos; at = json.find(text, at + 1)) ++n;
+            return n;
+        };
+        CHECK(count("\"border_color\": [0, 0, 0, 0]") == count("\"wrap\": \"CLAMP_TO_BORDER\""));
+        CHECK(count("\"border_color\"") == count("\"wrap\": \"CLAMP_TO_BORDER\""));
         CHECK((borders == 0) == (config.target == Target::essl300));
     }
 }
@@ -486,4 +488,149 @@ TEST_CASE("cost_model: fragments, fetches and bytes per pass, from the layout") 
     CHECK(built[1]->bytes_read == 4LL * 2048 * 512 / 4); // a quarter of level 2's texels
     CHECK(built[1]->bytes_written == 4LL * 1024 * 256);
     CHECK(built[2]->bytes_read == 4LL * 1024 * 256 / 4); // a quarter of level 3's
+}
+
+namespace {
+
+// Every technique, light and target with a small valid configuration (plus 64 slices and adaptive
+// placement for the occlusion textures): the conventions must hold for each.
+std::vector<Config> convention_configs() {
+    std::vector<Config> configs = vocabulary_configs();
+    for (Technique technique : all_values<Technique>())
+        for (Light light : all_values<Light>())
+            for (Target target : all_values<Target>()) {
+                Config c{.technique = technique, .slices = 5, .resolution = 64, .light = light, .target = target};
+                c.shadow_map.resolution = 64;
+                if (is_valid(c)) configs.push_back(c);
+            }
+    for (Target target : all_values<Target>()) {
+        Config bits{.slices = 64, .resolution = 64, .target = target};
+        Config adaptive{.slices = 8, .resolution = 64, .slice_placement = SlicePlacement::adaptive, .target = target};
+        for (const Config& c : {bits, adaptive})
+            if (is_valid(c)) configs.push_back(c);
+    }
+    return configs;
+}
+
+} // namespace
+
+TEST_CASE("layout v3: vertex inputs as data, and the vertex stages declare exactly them") {
+    for (const Config& config : convention_configs()) {
+        CAPTURE(to_string(config.technique));
+        CAPTURE(to_string(config.target));
+        const Emission e = *emit(config).value;
+        for (const ProgramDesc& program : e.layout.programs) {
+            CAPTURE(program.name);
+            std::string vertex_text;
+            for (const Program& p : e.programs)
+                if (p.name == program.name)
+                    for (const ShaderFile& stage : p.stages)
+                        if (stage.stage == Stage::vertex) vertex_text = stage.text;
+            REQUIRE_FALSE(vertex_text.empty());
+            int declared = 0;
+            for (std::size_t at = vertex_text.find(") in "); at != std::string::npos; at = vertex_text.find(") in ", at + 1))
+                ++declared;
+            CHECK(declared == static_cast<int>(program.vertex_inputs.size()));
+            for (const VertexInputDesc& in : program.vertex_inputs)
+                CHECK(vertex_text.find("layout(location = " + std::to_string(in.location) + ") in " + in.type + " " +
+                                       in.name + ";") != std::string::npos);
+        }
+        // every program a draw_scene pass runs reads the position; full-screen ones read nothing
+        for (const PassDesc& pass : e.layout.passes) {
+            const ProgramDesc* program = nullptr;
+            for (const ProgramDesc& p : e.layout.programs)
+                if (p.name == pass.program) program = &p;
+            if (!program) continue;
+            CAPTURE(pass.name);
+            if (pass.action == "fullscreen") CHECK(program->vertex_inputs.empty());
+            if (pass.action == "draw_scene") {
+                REQUIRE_FALSE(program->vertex_inputs.empty());
+                CHECK(program->vertex_inputs.front().name == "penumbra_position");
+            }
+        }
+    }
+}
+
+TEST_CASE("layout v3: every binding states its sampling; only shadow samplers compare") {
+    for (const Config& config : convention_configs()) {
+        CAPTURE(to_string(config.technique));
+        CAPTURE(to_string(config.target));
+        const Layout layout = describe_layout(config);
+        std::map<std::string, std::string> sampler_types; // program/sampler → GLSL type
+        for (const ProgramDesc& program : layout.programs)
+            for (const ParamDesc& p : program.parameters) {
+                if (p.binding < 0) continue;
+                CAPTURE(p.name);
+                sampler_types[program.name + "/" + p.name] = p.type;
+                CHECK_FALSE(p.sampling.min_filter.empty());
+                CHECK_FALSE(p.sampling.wrap.empty());
+                CHECK((p.sampling.compare == "LEQUAL") == p.type.ends_with("Shadow"));
+                CHECK(p.set == (config.target == Target::vulkan ? 0 : -1));
+            }
+        for (const PassDesc& pass : layout.passes)
+            for (const BindingDesc& in : pass.inputs) {
+                CAPTURE(pass.name);
+                CAPTURE(in.sampler);
+                const TextureDesc* t = find_texture(layout, in.texture);
+                REQUIRE(t);
+                CHECK_FALSE(in.sampling.min_filter.empty());
+                CHECK(in.sampling.wrap == t->wrap);
+                if (!in.sampling.compare.empty()) {
+                    CHECK(t->internal_format.starts_with("DEPTH_COMPONENT"));
+                    CHECK(sampler_types[pass.program + "/" + in.sampler].ends_with("Shadow"));
+                }
+            }
+        // initial contents: the passes' textures start at zero, the others are the engine's
+        for (const TextureDesc& t : layout.textures)
+            CHECK(t.initial == (t.source == "passes" ? "zero" : t.source));
+    }
+}
+
+TEST_CASE("layout v3: copy and generate_mipmap passes say what they do; the slice map names every slice") {
+    int copies = 0, mipmaps = 0;
+    for (const Config& config : convention_configs()) {
+        CAPTURE(to_string(config.technique));
+        CAPTURE(to_string(config.filter));
+        CAPTURE(to_string(config.packing));
+        const Layout layout = describe_layout(config);
+        for (const PassDesc& pass : layout.passes) {
+            CAPTURE(pass.name);
+            CHECK(pass.copy.has_value() == (pass.action == "copy"));
+            CHECK(pass.mipmap.has_value() == (pass.action == "generate_mipmap"));
+            if (pass.copy) {
+                ++copies;
+                CHECK(pass.copy->width == pass.viewport_width);
+                CHECK(pass.copy->target_level == pass.outputs[0].level);
+                CHECK(pass.copy->target_layer == pass.outputs[0].layer);
+            }
+            if (pass.mipmap) {
+                ++mipmaps;
+                const TextureDesc* t = find_texture(layout, pass.outputs[0].texture);
+                REQUIRE(t);
+                CHECK(pass.mipmap->levels == t->mip_levels);
+            }
+        }
+        if (config.technique != Technique::occlusion) {
+            CHECK(layout.slice_map.empty());
+            continue;
+        }
+        REQUIRE(layout.slice_map.size() == static_cast<std::size_t>(config.slices));
+        for (const SliceLocation& at : layout.slice_map) {
+            CAPTURE(at.slice);
+            CHECK(at.channel == std::string(1, "rgba"[at.slice % 4]));
+            const TextureDesc* t = find_texture(layout, at.texture);
+            REQUIRE(t);
+            CHECK(t->internal_format.starts_with("RGBA"));
+            CHECK(at.layer < t->depth);
+            // the slicing (or unpack) pass writes that texture and layer
+            bool written = false;
+            for (const PassDesc& pass : layout.passes)
+                if (pass.program == "slicing" || pass.program == "unpack_slices")
+                    for (const AttachmentDesc& out : pass.outputs)
+                        written = written || (out.texture == at.texture && out.layer == at.layer);
+            CHECK(written);
+        }
+    }
+    CHECK(copies > 0);
+    CHECK(mipmaps > 0);
 }

@@ -12,7 +12,7 @@
 //   runner.runPhase("screen", null, {width: w, height: h});             // deferred visibility
 //   const visibility = runner.readResult();                             // Float32Array, bottom row first
 
-const LAYOUT_VERSION = 2;
+const LAYOUT_VERSION = 3;
 
 // Sized internal formats: upload format and type, whether rendering to it needs
 // EXT_color_buffer_float, whether LINEAR filtering needs OES_texture_float_linear.
@@ -139,10 +139,6 @@ export class LayoutRunner {
         const wrap = glEnum(gl, `texture ${t.name}: wrap`, t.wrap);
         for (const axis of [gl.TEXTURE_WRAP_S, gl.TEXTURE_WRAP_T, gl.TEXTURE_WRAP_R]) gl.texParameteri(target, axis, wrap);
         gl.texParameteri(target, gl.TEXTURE_MAX_LEVEL, t.mip_levels - 1);
-        if (t.compare) {
-            gl.texParameteri(target, gl.TEXTURE_COMPARE_MODE, gl.COMPARE_REF_TO_TEXTURE);
-            gl.texParameteri(target, gl.TEXTURE_COMPARE_FUNC, glEnum(gl, `texture ${t.name}: compare`, t.compare));
-        }
         gl.bindTexture(target, null);
         // WebGL2 zero-initialises texture storage, as the layout's textures expect.
         return {id, target, desc: t, width, height};
@@ -309,7 +305,28 @@ export class LayoutRunner {
         if (status !== gl.FRAMEBUFFER_COMPLETE) fail(`pass ${pass.name}: framebuffer incomplete (0x${status.toString(16)})`);
     }
 
-    // Binds each input's texture to its unit; an input with a level reads only that level.
+    // The sampler object of a binding's "sampling" (filters, wrap, comparison), made once: bindings
+    // read through samplers, so one texture can be read two ways (PCSS's shadow map).
+    sampler(sampling, where) {
+        const gl = this.gl;
+        const key = JSON.stringify(sampling);
+        this.samplers = this.samplers || {};
+        if (this.samplers[key]) return this.samplers[key];
+        if (sampling.wrap === "CLAMP_TO_BORDER") fail(`${where}: wrap CLAMP_TO_BORDER does not exist in WebGL2`);
+        const id = gl.createSampler();
+        gl.samplerParameteri(id, gl.TEXTURE_MIN_FILTER, glEnum(gl, `${where}: min_filter`, sampling.min_filter));
+        gl.samplerParameteri(id, gl.TEXTURE_MAG_FILTER, glEnum(gl, `${where}: mag_filter`, sampling.mag_filter));
+        const wrap = glEnum(gl, `${where}: wrap`, sampling.wrap);
+        for (const axis of [gl.TEXTURE_WRAP_S, gl.TEXTURE_WRAP_T, gl.TEXTURE_WRAP_R]) gl.samplerParameteri(id, axis, wrap);
+        if (sampling.compare) {
+            gl.samplerParameteri(id, gl.TEXTURE_COMPARE_MODE, gl.COMPARE_REF_TO_TEXTURE);
+            gl.samplerParameteri(id, gl.TEXTURE_COMPARE_FUNC, glEnum(gl, `${where}: compare`, sampling.compare));
+        }
+        this.samplers[key] = id;
+        return id;
+    }
+
+    // Binds each input's texture and sampler to its unit; an input with a level reads only that level.
     bindInputs(pass) {
         const gl = this.gl;
         const restore = [];
@@ -317,6 +334,7 @@ export class LayoutRunner {
             const t = this.texture(input.texture);
             gl.activeTexture(gl.TEXTURE0 + input.binding);
             gl.bindTexture(t.target, t.id);
+            gl.bindSampler(input.binding, input.sampling ? this.sampler(input.sampling, `pass ${pass.name} input ${input.texture}`) : null);
             if (input.level !== undefined && input.level >= 0) {
                 gl.texParameteri(t.target, gl.TEXTURE_BASE_LEVEL, input.level);
                 gl.texParameteri(t.target, gl.TEXTURE_MAX_LEVEL, input.level);
@@ -333,32 +351,43 @@ export class LayoutRunner {
             for (const input of pass.inputs) {
                 gl.activeTexture(gl.TEXTURE0 + input.binding);
                 gl.bindTexture(this.texture(input.texture).target, null);
+                gl.bindSampler(input.binding, null);
             }
             gl.activeTexture(gl.TEXTURE0);
         };
     }
 
-    // Runs one pass. `drawScene(programId)` draws the caller's triangles (attribute 0: world
-    // position); `size` is the output size, for passes whose viewport is 0 × 0.
+    // The location layout.json's programs give vertex input `name` (penumbra_position, …); -1 if none.
+    vertexLocation(name) {
+        for (const p of this.layout.programs)
+            for (const v of p.vertex_inputs || []) if (v.name === name) return v.location;
+        return -1;
+    }
+
+    // Runs one pass. `drawScene(programId)` draws the caller's triangles (world positions at
+    // vertexLocation("penumbra_position")); `size` is the output size, for passes whose viewport is 0 × 0.
     runPass(pass, drawScene, size) {
         const gl = this.gl;
-        if (pass.action === "generate_mipmap") {
+        if (pass.action === "generate_mipmap") { // 2x2 box levels ("mipmap": downsample box)
+            if (!pass.mipmap || pass.mipmap.downsample !== "box") fail(`pass ${pass.name}: generate_mipmap needs "mipmap" with downsample "box"`);
             const t = this.texture(pass.outputs[0].texture);
             gl.bindTexture(t.target, t.id);
             gl.generateMipmap(t.target);
             gl.bindTexture(t.target, null);
             return;
         }
+        if (pass.action === "copy" && !pass.copy) fail(`pass ${pass.name}: a copy pass needs "copy" (levels, layers, size)`);
         if (pass.action === "copy" && FORMATS[this.texture(pass.inputs[0].texture).desc.internal_format].depth) {
             // A depth texture: WebGL2 cannot copyTexSubImage depth, but blits it between two
             // framebuffers of the same depth format (NEAREST, same size).
-            const source = pass.inputs[0], out = pass.outputs[0];
-            const [w, h] = pass.viewport;
+            const source = pass.inputs[0], c = pass.copy;
+            const out = {texture: pass.outputs[0].texture, level: c.target_level, layer: c.target_layer};
+            const [w, h] = [c.width, c.height];
             gl.bindFramebuffer(gl.READ_FRAMEBUFFER, this.readFramebuffer);
             // only the depth attachments: a colour texture left from a read-back would make the
             // framebuffer incomplete (attachments of different sizes)
             gl.framebufferTexture2D(gl.READ_FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, null, 0);
-            this.attach(gl.READ_FRAMEBUFFER, gl.DEPTH_ATTACHMENT, {texture: source.texture, level: 0, layer: -1});
+            this.attach(gl.READ_FRAMEBUFFER, gl.DEPTH_ATTACHMENT, {texture: source.texture, level: c.source_level, layer: c.source_layer});
             gl.bindFramebuffer(gl.DRAW_FRAMEBUFFER, this.framebuffer);
             for (let i = 0; i < 8; ++i) gl.framebufferTexture2D(gl.DRAW_FRAMEBUFFER, gl.COLOR_ATTACHMENT0 + i, gl.TEXTURE_2D, null, 0);
             this.attach(gl.DRAW_FRAMEBUFFER, gl.DEPTH_ATTACHMENT, out);
@@ -370,16 +399,15 @@ export class LayoutRunner {
             return;
         }
         if (pass.action === "copy") {
-            // inputs[0] level 0 into outputs[0] (same size): through a read framebuffer.
-            const source = pass.inputs[0], out = pass.outputs[0];
-            const t = this.texture(out.texture);
+            // the region "copy" names, texel for texel, through a read framebuffer
+            const source = pass.inputs[0], c = pass.copy;
+            const t = this.texture(pass.outputs[0].texture);
             gl.bindFramebuffer(gl.READ_FRAMEBUFFER, this.readFramebuffer);
-            this.attach(gl.READ_FRAMEBUFFER, gl.COLOR_ATTACHMENT0, {texture: source.texture, level: 0, layer: -1});
+            this.attach(gl.READ_FRAMEBUFFER, gl.COLOR_ATTACHMENT0, {texture: source.texture, level: c.source_level, layer: c.source_layer});
             gl.readBuffer(gl.COLOR_ATTACHMENT0);
             gl.bindTexture(t.target, t.id);
-            const [w, h] = pass.viewport;
-            if (t.target === gl.TEXTURE_2D) gl.copyTexSubImage2D(t.target, out.level, 0, 0, 0, 0, w, h);
-            else gl.copyTexSubImage3D(t.target, out.level, 0, 0, Math.max(out.layer, 0), 0, 0, w, h);
+            if (t.target === gl.TEXTURE_2D) gl.copyTexSubImage2D(t.target, c.target_level, 0, 0, 0, 0, c.width, c.height);
+            else gl.copyTexSubImage3D(t.target, c.target_level, 0, 0, Math.max(c.target_layer, 0), 0, 0, c.width, c.height);
             gl.bindTexture(t.target, null);
             gl.bindFramebuffer(gl.READ_FRAMEBUFFER, null);
             return;
@@ -481,6 +509,8 @@ export class LayoutRunner {
     dispose() {
         const gl = this.gl;
         for (const t of Object.values(this.textures)) gl.deleteTexture(t.id);
+        for (const id of Object.values(this.samplers || {})) gl.deleteSampler(id);
+        this.samplers = {};
         for (const p of Object.values(this.programs)) gl.deleteProgram(p.id);
         gl.deleteFramebuffer(this.framebuffer);
         gl.deleteFramebuffer(this.readFramebuffer);

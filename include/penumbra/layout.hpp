@@ -13,6 +13,7 @@
 
 #include "detail/layout_builder.hpp"
 #include "detail/techniques.hpp"
+#include "detail/vertex_inputs.hpp"
 #include "validate.hpp"
 
 #include <array>
@@ -36,6 +37,7 @@ inline Layout describe_layout(const Config& config) {
     for (const ProgramPlan& plan : technique.programs(config)) {
         ProgramDesc program{std::string(plan.name), {}, describe_params(config, technique.param_groups(config, plan.name))};
         for (Artifact a : plan.stages) program.files.emplace_back(file_name(a));
+        if (!plan.stages.empty()) program.vertex_inputs = vertex_inputs(plan.stages.front());
         layout.programs.push_back(std::move(program));
     }
     // The technique's textures and passes: shadow phase, then the screen phase over the caller's
@@ -53,6 +55,8 @@ inline Layout describe_layout(const Config& config) {
     depth_tested.clear_color = std::array<float, 4>{0.0f, 0.0f, 0.0f, 1.0f};
     depth_tested.clear_depth = 1.0f;
     build.pass("shading_example", "draw_scene", "shading_example", example_inputs, {}, {}, 0, 0, depth_tested, "example");
+
+    finish_sampling(layout);
 
     for (Artifact a : artifacts(config)) layout.files.emplace_back(file_name(a));
     layout.files.emplace_back("layout.json");
@@ -106,6 +110,13 @@ inline std::string json_state(const RenderState& s) {
                     ", \"polygon_offset_units\": " + json_number(s.polygon_offset_units) +
                     ", \"logic_op\": " + json_string(s.logic_op) + "}";
     return o;
+}
+
+inline std::string json_sampling(const Sampling& s) {
+    std::string o = "{\"min_filter\": " + json_string(s.min_filter) + ", \"mag_filter\": " + json_string(s.mag_filter) +
+                    ", \"wrap\": " + json_string(s.wrap);
+    if (s.wrap == "CLAMP_TO_BORDER") o += ", \"border_color\": " + json_floats(s.border_color);
+    return o + ", \"compare\": " + json_string(s.compare) + "}";
 }
 
 } // namespace detail
@@ -177,7 +188,7 @@ inline std::string to_json(const Layout& layout) {
              ", \"mag_filter\": " + json_string(t.mag_filter) + ", \"wrap\": " + json_string(t.wrap);
         if (t.wrap == "CLAMP_TO_BORDER") o += ", \"border_color\": " + detail::json_floats(t.border_color);
         o += ", \"size\": " + json_string(t.size) + ", \"source\": " + json_string(t.source) +
-             ", \"compare\": " + json_string(t.compare) + ", \"purpose\": " + json_string(t.purpose) + "}" +
+             ", \"initial\": " + json_string(t.initial) + ", \"purpose\": " + json_string(t.purpose) + "}" +
              (i + 1 < layout.textures.size() ? ",\n" : "\n");
     }
     o += "  ],\n  \"programs\": [\n";
@@ -185,16 +196,26 @@ inline std::string to_json(const Layout& layout) {
         const ProgramDesc& p = layout.programs[i];
         o += "    {\"name\": " + json_string(p.name) + ", \"files\": [";
         for (std::size_t f = 0; f < p.files.size(); ++f) o += (f ? ", " : "") + json_string(p.files[f]);
+        o += "], \"vertex_inputs\": [";
+        for (std::size_t v = 0; v < p.vertex_inputs.size(); ++v) {
+            const VertexInputDesc& in = p.vertex_inputs[v];
+            o += (v ? ", " : "") + std::string("{\"name\": ") + json_string(in.name) + ", \"location\": " +
+                 std::to_string(in.location) + ", \"type\": " + json_string(in.type) + ", \"meaning\": " +
+                 json_string(in.meaning) + "}";
+        }
         o += "], \"parameters\": [\n";
         for (std::size_t u = 0; u < p.parameters.size(); ++u) {
             const ParamDesc& d = p.parameters[u];
             o += "      {\"name\": " + json_string(d.name) + ", \"type\": " + json_string(d.type) +
                  ", \"meaning\": " + json_string(d.meaning) + ", \"units\": " + json_string(d.units);
             if (!d.source.empty()) o += ", \"source\": " + json_string(d.source) + ", \"compute\": " + json_string(d.compute);
-            if (d.binding >= 0) o += ", \"binding\": " + std::to_string(d.binding) + ", \"texture\": " + json_string(d.texture);
+            if (d.binding >= 0)
+                o += ", \"binding\": " + std::to_string(d.binding) + ", \"texture\": " + json_string(d.texture) +
+                     ", \"sampling\": " + detail::json_sampling(d.sampling);
             if (d.offset >= 0)
                 o += ", \"block\": " + json_string(d.block) + ", \"block_binding\": " + std::to_string(d.block_binding) +
                      ", \"offset\": " + std::to_string(d.offset);
+            if (d.set >= 0) o += ", \"set\": " + std::to_string(d.set);
             o += std::string("}") + (u + 1 < p.parameters.size() ? ",\n" : "\n");
         }
         o += std::string("    ]}") + (i + 1 < layout.programs.size() ? ",\n" : "\n");
@@ -207,7 +228,8 @@ inline std::string to_json(const Layout& layout) {
         for (std::size_t b = 0; b < p.inputs.size(); ++b)
             o += (b ? ", " : "") + std::string("{\"sampler\": ") + json_string(p.inputs[b].sampler) +
                  ", \"texture\": " + json_string(p.inputs[b].texture) + ", \"binding\": " +
-                 std::to_string(p.inputs[b].binding) + ", \"level\": " + std::to_string(p.inputs[b].level) + "}";
+                 std::to_string(p.inputs[b].binding) + ", \"level\": " + std::to_string(p.inputs[b].level) +
+                 ", \"sampling\": " + detail::json_sampling(p.inputs[b].sampling) + "}";
         o += "], \"outputs\": [";
         for (std::size_t a = 0; a < p.outputs.size(); ++a)
             o += (a ? ", " : "") + std::string("{\"texture\": ") + json_string(p.outputs[a].texture) +
@@ -217,7 +239,16 @@ inline std::string to_json(const Layout& layout) {
         for (std::size_t u = 0; u < p.int_uniforms.size(); ++u)
             o += (u ? ", " : "") + json_string(p.int_uniforms[u].first) + ": " + std::to_string(p.int_uniforms[u].second);
         o += "}, \"viewport\": [" + std::to_string(p.viewport_width) + ", " + std::to_string(p.viewport_height) +
-             "], \"state\": " + detail::json_state(p.state) + "}" + (i + 1 < layout.passes.size() ? ",\n" : "\n");
+             "], \"state\": " + detail::json_state(p.state);
+        if (const std::optional<CopyDesc>& c = p.copy)
+            o += ", \"copy\": {\"source_level\": " + std::to_string(c->source_level) + ", \"source_layer\": " +
+                 std::to_string(c->source_layer) + ", \"target_level\": " + std::to_string(c->target_level) +
+                 ", \"target_layer\": " + std::to_string(c->target_layer) + ", \"width\": " + std::to_string(c->width) +
+                 ", \"height\": " + std::to_string(c->height) + "}";
+        if (const std::optional<MipmapDesc>& m = p.mipmap)
+            o += ", \"mipmap\": {\"base_level\": " + std::to_string(m->base_level) + ", \"levels\": " +
+                 std::to_string(m->levels) + ", \"downsample\": " + json_string(m->downsample) + "}";
+        o += std::string("}") + (i + 1 < layout.passes.size() ? ",\n" : "\n");
     }
     o += "  ],\n";
     field("  ", "result", json_string(layout.result));
@@ -229,6 +260,14 @@ inline std::string to_json(const Layout& layout) {
         o += "]";
     }
     o += "},\n";
+    o += "  \"slice_map\": [";
+    for (std::size_t k = 0; k < layout.slice_map.size(); ++k) {
+        const SliceLocation& at = layout.slice_map[k];
+        o += (k ? ", " : "") + std::string("{\"slice\": ") + std::to_string(at.slice) + ", \"texture\": " +
+             json_string(at.texture) + ", \"layer\": " + std::to_string(at.layer) + ", \"channel\": " +
+             json_string(at.channel) + "}";
+    }
+    o += "],\n";
     o += "  \"files\": [";
     for (std::size_t f = 0; f < layout.files.size(); ++f) o += (f ? ", " : "") + json_string(layout.files[f]);
     o += "]\n}\n";

@@ -243,6 +243,7 @@ int run(const std::vector<std::string>& args) {
     if (!context) return fail("no OpenGL 4.5 context: " + error);
     HeadlessResult result;
     SliceTextures slices;
+    std::vector<float> boundaries; // adaptive slice placement: the S + 1 boundaries the GL run computed
     SliceFrame frame;
     UniformInputs inputs;
     std::vector<float> visibility_gl; // bottom row first, as the runtime wrote it
@@ -253,7 +254,9 @@ int run(const std::vector<std::string>& args) {
     std::string read_error;
     RenderOptions options;
     options.inspect = [&](const gl::Runtime& runtime) {
-        if (occlusion) read = read_slice_textures(runtime, slices, &read_error);
+        if (occlusion)
+            read = read_slice_textures(runtime, slices, &read_error) &&
+                   read_slice_boundaries(runtime, boundaries, &read_error); // empty for uniform placement
         frame = runtime.frame();
         inputs = runtime.uniform_inputs();
         visibility_gl = runtime.read_visibility();
@@ -271,7 +274,7 @@ int run(const std::vector<std::string>& args) {
     if (!read) return fail(read_error);
     const std::vector<float> coverage = slices.coverage; // slices.f32: what a runner can rasterize differently
     std::optional<Oracle> oracle;
-    if (occlusion) oracle.emplace(gl_config, frame, std::move(slices));
+    if (occlusion) oracle.emplace(gl_config, frame, std::move(slices), std::move(boundaries));
     std::vector<float> truth;
     if (a.reference_samples > 0) truth = reference_all(scene, result, a.reference_samples, shading_light(gl_config)).oriented;
 

@@ -79,8 +79,10 @@ Outcome check_bundle(const fs::path& dir, std::map<std::string, HeadlessContext>
     glBindVertexArray(vao);
     glBindBuffer(GL_ARRAY_BUFFER, vbo);
     glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(triangles.size() * sizeof(float)), triangles.data(), GL_STATIC_DRAW);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+    const int position = runner->vertex_location("penumbra_position"); // layout.json's vertex_inputs
+    if (position < 0) return fail("layout.json names no location for penumbra_position");
+    glEnableVertexAttribArray(static_cast<GLuint>(position));
+    glVertexAttribPointer(static_cast<GLuint>(position), 3, GL_FLOAT, GL_FALSE, 0, nullptr);
     glBindVertexArray(0);
     const auto draw = [&](GLuint) {
         glBindVertexArray(vao);

@@ -74,9 +74,9 @@ std::unique_ptr<LayoutRunner> LayoutRunner::create(const json& layout, const std
         if (error) *error = std::move(message);
         return nullptr;
     };
-    if (!layout.contains("layout_version")) return fail("layout.json: no layout_version (an older layout); this runner reads version 2");
-    if (layout["layout_version"] != 2)
-        return fail("layout.json: layout_version " + layout["layout_version"].dump() + "; this runner reads version 2");
+    if (!layout.contains("layout_version")) return fail("layout.json: no layout_version (an older layout); this runner reads version 3");
+    if (layout["layout_version"] != 3)
+        return fail("layout.json: layout_version " + layout["layout_version"].dump() + "; this runner reads version 3");
     std::unique_ptr<LayoutRunner> runner(new LayoutRunner());
     runner->layout_ = layout;
     const bool es = !epoxy_is_desktop_gl();
@@ -125,9 +125,50 @@ std::unique_ptr<LayoutRunner> LayoutRunner::create(const json& layout, const std
 LayoutRunner::~LayoutRunner() {
     for (auto& [name, t] : textures_) glDeleteTextures(1, &t.id);
     for (auto& [name, p] : programs_) glDeleteProgram(p.id);
+    for (auto& [key, id] : samplers_) glDeleteSamplers(1, &id);
     if (framebuffer_) glDeleteFramebuffers(1, &framebuffer_);
     if (read_framebuffer_) glDeleteFramebuffers(1, &read_framebuffer_);
     if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
+}
+
+// The sampler object of one binding's "sampling" (filters, wrap, border, comparison), made once:
+// bindings read through samplers, so one texture may be read two ways (PCSS's shadow map).
+std::string LayoutRunner::sampler(const json& sampling, const std::string& where, GLuint* id) {
+    const std::string key = sampling.dump();
+    if (auto it = samplers_.find(key); it != samplers_.end()) {
+        *id = it->second;
+        return {};
+    }
+    const std::string wrap_name = sampling.value("wrap", ""), compare = sampling.value("compare", "");
+    const GLenum min = gl_enum(sampling.value("min_filter", "")), mag = gl_enum(sampling.value("mag_filter", ""));
+    const GLenum wrap = gl_enum(wrap_name);
+    if (!min || !mag || !wrap) return where + ": sampling " + key + " has an unknown filter or wrap";
+    if (wrap == GL_CLAMP_TO_BORDER && !epoxy_is_desktop_gl())
+        return where + ": wrap CLAMP_TO_BORDER does not exist in OpenGL ES 3.0";
+    glGenSamplers(1, id);
+    glSamplerParameteri(*id, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(min));
+    glSamplerParameteri(*id, GL_TEXTURE_MAG_FILTER, static_cast<GLint>(mag));
+    for (GLenum axis : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+        glSamplerParameteri(*id, axis, static_cast<GLint>(wrap));
+    if (wrap == GL_CLAMP_TO_BORDER) {
+        std::vector<float> border = sampling.value("border_color", std::vector<float>{0, 0, 0, 0});
+        glSamplerParameterfv(*id, GL_TEXTURE_BORDER_COLOR, border.data());
+    }
+    if (!compare.empty()) {
+        const GLenum func = gl_enum(compare);
+        if (!func) return where + ": compare '" + compare + "' unknown";
+        glSamplerParameteri(*id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+        glSamplerParameteri(*id, GL_TEXTURE_COMPARE_FUNC, static_cast<GLint>(func));
+    }
+    samplers_[key] = *id;
+    return gl_error_text(where + ": sampler");
+}
+
+int LayoutRunner::vertex_location(const std::string& input) const {
+    for (const json& program : layout_["programs"])
+        for (const json& v : program.value("vertex_inputs", json::array()))
+            if (v.value("name", "") == input) return v.value("location", -1);
+    return -1;
 }
 
 // glTexImage per level with zeros (GL 3.3 has no glTexStorage; both APIs take sized formats).
@@ -164,10 +205,6 @@ std::string LayoutRunner::allocate(const json& desc, int width, int height) {
     }
     glTexParameteri(target, GL_TEXTURE_BASE_LEVEL, 0);
     glTexParameteri(target, GL_TEXTURE_MAX_LEVEL, levels - 1);
-    if (const std::string compare = desc.value("compare", ""); !compare.empty()) {
-        glTexParameteri(target, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-        glTexParameteri(target, GL_TEXTURE_COMPARE_FUNC, static_cast<GLint>(gl_enum(compare)));
-    }
     glBindTexture(target, 0);
     if (auto it = textures_.find(name); it != textures_.end()) glDeleteTextures(1, &it->second.id);
     textures_[name] = t;
@@ -317,21 +354,25 @@ std::string LayoutRunner::bind_outputs(const json& pass) {
 
 std::string LayoutRunner::run_pass(const json& pass, const DrawScene& draw, int width, int height) {
     const std::string name = pass["name"], action = pass["action"];
-    if (action == "generate_mipmap") {
+    if (action == "generate_mipmap") { // 2x2 box levels ("mipmap": downsample box)
+        if (pass.value("mipmap", json::object()).value("downsample", "") != "box")
+            return "pass " + name + ": generate_mipmap needs \"mipmap\" with downsample \"box\"";
         const Texture& t = textures_.at(pass["outputs"][0]["texture"]);
         glBindTexture(t.target, t.id);
         glGenerateMipmap(t.target);
         glBindTexture(t.target, 0);
         return {};
     }
-    if (action == "copy") { // inputs[0] level 0 into outputs[0] (same size), through a read framebuffer
-        const json& out = pass["outputs"][0];
-        const Texture& t = textures_.at(out["texture"]);
+    if (action == "copy") { // the region "copy" names, through a read framebuffer (texel for texel)
+        if (!pass.contains("copy")) return "pass " + name + ": a copy pass needs \"copy\" (levels, layers, size)";
+        const json& copy = pass["copy"];
+        const Texture& t = textures_.at(pass["outputs"][0]["texture"]);
         glBindFramebuffer(GL_READ_FRAMEBUFFER, read_framebuffer_);
-        attach(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, pass["inputs"][0]["texture"], 0, -1);
+        attach(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, pass["inputs"][0]["texture"], copy["source_level"],
+               copy["source_layer"]);
         glReadBuffer(GL_COLOR_ATTACHMENT0);
         glBindTexture(t.target, t.id);
-        const int w = pass["viewport"][0], h = pass["viewport"][1], level = out["level"], layer = out["layer"];
+        const int w = copy["width"], h = copy["height"], level = copy["target_level"], layer = copy["target_layer"];
         if (t.target == GL_TEXTURE_2D)
             glCopyTexSubImage2D(t.target, level, 0, 0, 0, 0, w, h);
         else
@@ -355,8 +396,15 @@ std::string LayoutRunner::run_pass(const json& pass, const DrawScene& draw, int 
     for (const json& input : pass["inputs"]) {
         auto t = textures_.find(input["texture"]);
         if (t == textures_.end()) return "pass " + name + ": no texture " + std::string(input["texture"]);
+        GLuint sampler_id = 0;
+        if (input.contains("sampling"))
+            if (std::string e = sampler(input["sampling"], "pass " + name + " input " + std::string(input["texture"]),
+                                        &sampler_id);
+                !e.empty())
+                return e;
         glActiveTexture(GL_TEXTURE0 + input["binding"].get<GLenum>());
         glBindTexture(t->second.target, t->second.id);
+        glBindSampler(input["binding"].get<GLuint>(), sampler_id);
         if (const int level = input.value("level", -1); level >= 0) { // the pass reads only this level
             glTexParameteri(t->second.target, GL_TEXTURE_BASE_LEVEL, level);
             glTexParameteri(t->second.target, GL_TEXTURE_MAX_LEVEL, level);
@@ -379,6 +427,7 @@ std::string LayoutRunner::run_pass(const json& pass, const DrawScene& draw, int 
     for (const json& input : pass["inputs"]) {
         glActiveTexture(GL_TEXTURE0 + input["binding"].get<GLenum>());
         glBindTexture(textures_.at(input["texture"]).target, 0);
+        glBindSampler(input["binding"].get<GLuint>(), 0);
     }
     glActiveTexture(GL_TEXTURE0);
     apply_state(json::object());

@@ -51,6 +51,9 @@ public:
     // The layout's result texture (visibility) as floats, bottom row first.
     std::vector<float> read_result();
 
+    // The location layout.json's programs give vertex input `input` (penumbra_position, …); -1 if none.
+    int vertex_location(const std::string& input) const;
+
     // Extensions the layout made us require ("GL_EXT_color_buffer_float" on ES for float targets).
     const std::vector<std::string>& required_extensions() const { return extensions_; }
 
@@ -74,6 +77,7 @@ private:
     std::string bind_outputs(const nlohmann::json& pass);
     void attach(GLenum framebuffer, GLenum attachment, const std::string& texture, int level, int layer);
     void apply_uniforms(const Program& program);
+    std::string sampler(const nlohmann::json& sampling, const std::string& where, GLuint* id);
     std::string apply_state(const nlohmann::json& state);
     std::vector<float> read_texture(const Texture& t);
 
@@ -82,6 +86,7 @@ private:
     std::map<std::string, Program> programs_;
     std::map<std::string, std::vector<float>> values_;
     std::vector<std::string> extensions_;
+    std::map<std::string, GLuint> samplers_; // by the sampling's JSON text
     GLuint framebuffer_ = 0, read_framebuffer_ = 0, empty_vao_ = 0;
     int output_width_ = 0, output_height_ = 0;
 };

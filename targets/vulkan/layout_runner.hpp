@@ -1,13 +1,18 @@
 // targets/vulkan/layout_runner.hpp — runs an emission for the vulkan target by following its
-// layout.json alone: the textures become images, each program's GLSL is compiled to SPIR-V with
-// glslang, descriptor set layouts come from the parameters' bindings and the uniform blocks from
-// their std140 offsets, and the passes of the "shadow" phase, then the "screen" phase, are
-// recorded in order (dynamic rendering; copies and mipmap blits as transfer commands).
+// layout.json alone: the textures become images (colour, depth, integer), each program's GLSL is
+// compiled to SPIR-V with glslang, descriptor set layouts come from the parameters' sets and
+// bindings and the uniform blocks from their std140 offsets, every sampled binding gets the
+// VkSampler its "sampling" describes (filters, wrap, border, depth comparison; layout_version 2:
+// the texture's), draw_scene passes feed position and normal to the locations "vertex_inputs"
+// names, and the passes of the "shadow" phase, then the "screen" phase, are recorded in order
+// (dynamic rendering with colour and depth attachments; copies and mipmap blits as transfer
+// commands, per their "copy" and "mipmap" details). Textures start as their "initial" says: zero
+// (cleared), undefined, caller or bake (uploaded from the inputs).
 //
-// Every image rests in VK_IMAGE_LAYOUT_GENERAL (passes sample and render it there), transfer
-// commands move the subresources they touch to TRANSFER_SRC/DST_OPTIMAL and back, and a full
-// memory barrier separates consecutive commands: simple and valid, not fast (this runner checks
-// correctness, it is not an engine).
+// Every image rests in VK_IMAGE_LAYOUT_GENERAL (passes sample and render it there, depth images
+// too), transfer commands move the subresources they touch to TRANSFER_SRC/DST_OPTIMAL and back,
+// and a full memory barrier separates consecutive commands: simple and valid, not fast (this
+// runner checks correctness, it is not an engine).
 #pragma once
 
 #include "vulkan_context.hpp"
@@ -27,7 +32,10 @@ struct LayoutInputs {
     int width = 0, height = 0;                 // the output size (textures and passes sized "output")
     std::vector<float> triangles;              // what "draw_scene" passes draw: xyz, 3 vertices a triangle
     std::map<std::string, std::vector<float>> uniforms; // values of parameters whose source is "light"
-    std::map<std::string, std::vector<float>> caller_textures; // texture name → texels (RGBA32F rows from 0 up)
+    // Textures whose "initial" is "caller" (G-buffers) or "bake" (precomputed maps, e.g. OIM's):
+    // texture name → RGBA floats, 4 a texel, rows from 0 up; converted to the texture's format.
+    std::map<std::string, std::vector<float>> caller_textures;
+    std::map<std::string, std::vector<float>> bake_textures;
 };
 
 struct LayoutOutput {

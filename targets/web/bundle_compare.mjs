@@ -2,8 +2,10 @@
 // bundles, the per-pixel comparison with a bundle's desktop run and CPU oracle, and Debian's
 // chromium started headless (WebGL2 through SwiftShader).
 import fs from "node:fs";
-import http from "node:http";
 import path from "node:path";
+import {CHROMIUM_ARGS, readFloats, serve as serveRoots} from "./harness.mjs";
+
+export {readFloats};
 
 export const R8_STEP = 1 / 255;
 export const UNIFORM_TOLERANCE = 1e-5; // JS light frame vs the exported one, relative to the largest entry
@@ -11,36 +13,12 @@ export const UNIFORM_TOLERANCE = 1e-5; // JS light frame vs the exported one, re
 export const SLICE_TEXELS_ALLOWED = 0.05; // slicing texels that may differ, of the desktop's covered texels
 export const OWN_PIXELS_ALLOWED = 0.01;   // pixels of the browser's own run that may leave 2·bound + q
 
-const CONTENT_TYPES = {".html": "text/html", ".js": "text/javascript", ".mjs": "text/javascript", ".json": "application/json",
-                       ".wasm": "application/wasm"};
-
 // Serves /web/... from the page folder, /bundle/<i>/... from the i-th bundle and each URL path of
 // `files` from its file (the WebAssembly module from the build folder), on localhost only.
 export function serve(webDir, bundles, files = {}) {
-    const roots = {web: path.resolve(webDir)};
-    bundles.forEach((dir, i) => (roots[`bundle/${i}`] = path.resolve(dir)));
-    const send = (response, file) => {
-        response.writeHead(200, {"Content-Type": CONTENT_TYPES[path.extname(file)] || "application/octet-stream", "Cache-Control": "no-store"});
-        fs.createReadStream(file).pipe(response);
-    };
-    const server = http.createServer((request, response) => {
-        const url = decodeURIComponent(new URL(request.url, "http://localhost").pathname);
-        if (files[url]) return send(response, files[url]);
-        for (const [prefix, root] of Object.entries(roots)) {
-            if (!url.startsWith(`/${prefix}/`)) continue;
-            const file = path.join(root, url.slice(prefix.length + 2));
-            if (!file.startsWith(root) || !fs.existsSync(file) || !fs.statSync(file).isFile()) break;
-            return send(response, file);
-        }
-        response.writeHead(404);
-        response.end();
-    });
-    return new Promise((resolve) => server.listen(0, "127.0.0.1", () => resolve(server)));
-}
-
-export function readFloats(file) {
-    const bytes = fs.readFileSync(file);
-    return new Float32Array(bytes.buffer, bytes.byteOffset, bytes.length / 4);
+    const roots = {web: webDir};
+    bundles.forEach((dir, i) => (roots[`bundle/${i}`] = dir));
+    return serveRoots(roots, files);
 }
 
 export function largestDifference(a, b) {
@@ -107,8 +85,6 @@ export async function launchChromium(chromium, userDataDir) {
         executablePath: chromium,
         headless: true,
         userDataDir,
-        args: ["--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--disable-background-networking",
-               "--disable-component-update", "--disable-sync", "--no-first-run", "--disable-quic", "--disable-extensions",
-               "--disable-dev-shm-usage"], // containers often have a tiny /dev/shm
+        args: CHROMIUM_ARGS,
     });
 }

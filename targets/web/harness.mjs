@@ -6,21 +6,33 @@ import http from "node:http";
 import os from "node:os";
 import path from "node:path";
 
-const CONTENT_TYPES = {".html": "text/html", ".js": "text/javascript", ".mjs": "text/javascript", ".json": "application/json"};
+const CONTENT_TYPES = {".html": "text/html", ".js": "text/javascript", ".mjs": "text/javascript", ".json": "application/json",
+                       ".wasm": "application/wasm"};
 
-// Serves /<prefix>/... from roots[prefix] (longest prefix first), on 127.0.0.1 only.
-export function serve(roots) {
+// Headless chromium's flags for WebGL2 on SwiftShader in a container (every browser test).
+export const CHROMIUM_ARGS = ["--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
+                              "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                              "--no-first-run", "--disable-quic", "--disable-extensions",
+                              "--disable-dev-shm-usage"]; // containers often have a tiny /dev/shm
+
+// Serves /<prefix>/... from roots[prefix] (longest prefix first) and each URL path of `files` from
+// its file, on 127.0.0.1 only.
+export function serve(roots, files = {}) {
     const entries = Object.entries(roots).map(([prefix, dir]) => [prefix, path.resolve(dir)])
         .sort((a, b) => b[0].length - a[0].length);
+    const send = (response, file) => {
+        response.writeHead(200, {"Content-Type": CONTENT_TYPES[path.extname(file)] || "application/octet-stream",
+                                 "Cache-Control": "no-store"});
+        fs.createReadStream(file).pipe(response);
+    };
     const server = http.createServer((request, response) => {
         const url = decodeURIComponent(new URL(request.url, "http://localhost").pathname);
+        if (files[url]) return send(response, files[url]);
         for (const [prefix, root] of entries) {
             if (!url.startsWith(`/${prefix}/`)) continue;
             const file = path.join(root, url.slice(prefix.length + 2));
             if (!file.startsWith(root) || !fs.existsSync(file) || !fs.statSync(file).isFile()) break;
-            response.writeHead(200, {"Content-Type": CONTENT_TYPES[path.extname(file)] || "application/octet-stream",
-                                     "Cache-Control": "no-store"});
-            fs.createReadStream(file).pipe(response);
+            send(response, file);
             return;
         }
         response.writeHead(404);
@@ -48,9 +60,7 @@ export async function launchChromium(executablePath) {
         headless: true,
         userDataDir,
         protocolTimeout: 600000,
-        args: ["--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--disable-background-networking",
-               "--disable-component-update", "--disable-sync", "--no-first-run", "--disable-quic", "--disable-extensions",
-               "--disable-dev-shm-usage"],
+        args: CHROMIUM_ARGS,
     });
     const close = async () => {
         await browser.close();

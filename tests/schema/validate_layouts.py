@@ -133,6 +133,20 @@ def main():
         "extra field": lambda d: d["passes"][0].update(colour="blue"),
         "unknown logic op": lambda d: d["passes"][0]["state"].update(logic_op="XOR"),
         "logic op with blending": lambda d: d["passes"][0]["state"].update(logic_op="OR", blend=True),
+        # layout_version 3: the conventions are data
+        "binding without sampling": lambda d: next(i for p in d["passes"] for i in p["inputs"]).pop("sampling"),
+        "sampling with an unknown compare": lambda d: next(i for p in d["passes"] for i in p["inputs"])["sampling"]
+                                                      .update(compare="SOMETIMES"),
+        "texture compare (version 2)": lambda d: d["textures"][0].update(compare=""),
+        "program without vertex_inputs": lambda d: d["programs"][0].pop("vertex_inputs"),
+        "vertex input without a location": lambda d: next(p for p in d["programs"] if p["vertex_inputs"])
+                                                     ["vertex_inputs"][0].pop("location"),
+        "caller texture starting at zero": lambda d: next(t for t in d["textures"] if t["source"] == "caller")
+                                                     .update(initial="zero"),
+        "copy details on a draw": lambda d: d["passes"][0].update(copy={"source_level": 0, "source_layer": -1,
+                                                                          "target_level": 0, "target_layer": -1,
+                                                                          "width": 1, "height": 1}),
+        "slice in channel x": lambda d: d["slice_map"][0].update(channel="x"),
     }
     if sample is None:
         failures.append("no layout was generated")

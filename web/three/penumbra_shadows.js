@@ -629,13 +629,5 @@ async function fetchSources(folder, layout) {
 }
 
 function disposeRunner(runner) {
-    if (!runner) return;
-    const gl = runner.gl;
-    for (const t of Object.values(runner.textures)) gl.deleteTexture(t.id);
-    for (const p of Object.values(runner.programs)) gl.deleteProgram(p.id);
-    gl.deleteFramebuffer(runner.framebuffer);
-    gl.deleteFramebuffer(runner.readFramebuffer);
-    gl.deleteVertexArray(runner.emptyVertexArray);
-    runner.textures = {};
-    runner.programs = {};
+    if (runner) runner.dispose(); // its textures, samplers, programs, framebuffers and queries
 }

@@ -24,6 +24,9 @@ struct Param {
     // (penumbra::uniform_value, penumbra/uniform_values.hpp); "pass": the pass's int_uniforms;
     // "camera": the engine's camera (also in uniform_value when the camera is given).
     std::string_view source = "light";
+    // Samplers: the filter this binding reads its texture with when it is not the texture's own
+    // (layout.json's "sampling"); "" for the texture's filters.
+    std::string_view filter = {};
 };
 
 constexpr bool is_sampler(const Param& param) {
@@ -31,6 +34,8 @@ constexpr bool is_sampler(const Param& param) {
 }
 
 constexpr bool is_vulkan(const Config& config) { return config.target == Target::vulkan; }
+// The one Vulkan descriptor set every emitted block and sampler is declared in ("set" in layout.json).
+inline constexpr int vulkan_descriptor_set = 0;
 constexpr bool has_explicit_bindings(const Config& config) {
     return config.target == Target::vulkan || config.target == Target::glsl450;
 }
@@ -182,7 +187,7 @@ constexpr void write_params(LineWriter& out, const Config& config, const std::ve
         return choose(p.units.empty(), cat(" // ", p.meaning), cat(" // ", p.meaning, " (", p.units, ")"));
     };
     if (has_values(params) && is_vulkan(config)) {
-        out.line("layout(set = 0, binding = ", format_int(block_binding), ", std140) uniform ", block_name, " {");
+        out.line("layout(set = ", format_int(vulkan_descriptor_set), ", binding = ", format_int(block_binding), ", std140) uniform ", block_name, " {");
         for (const Param& p : params)
             if (!is_sampler(p)) out.line(p.type, " ", p.name, ";", comment(p));
         out.line("};");
@@ -195,7 +200,7 @@ constexpr void write_params(LineWriter& out, const Config& config, const std::ve
         if (!is_sampler(p)) continue;
         const Text binding = format_int(bindings[i]);
         if (is_vulkan(config))
-            out.line("layout(set = 0, binding = ", binding, ") uniform ", p.type, " ", p.name, ";", comment(p));
+            out.line("layout(set = ", format_int(vulkan_descriptor_set), ", binding = ", binding, ") uniform ", p.type, " ", p.name, ";", comment(p));
         else if (has_explicit_bindings(config))
             out.line("layout(binding = ", binding, ") uniform ", p.type, " ", p.name, ";", comment(p));
         else

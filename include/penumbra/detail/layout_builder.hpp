@@ -8,6 +8,7 @@
 #include "target_limits.hpp"
 #include "uniform_compute.hpp"
 
+#include <algorithm>
 #include <array>
 #include <optional>
 #include <string>
@@ -16,7 +17,22 @@
 
 namespace penumbra {
 
-inline constexpr int layout_version = 2; // "layout_version" in layout.json
+inline constexpr int layout_version = 3; // "layout_version" in layout.json
+
+// The one compare function of every depth comparison (sampler2DShadow): lit where the receiver's
+// depth <= the stored, biased occluder depth.
+inline constexpr std::string_view shadow_compare_func = "LEQUAL";
+
+// How one binding samples its texture: a sampler object (GL 3.3+, ES 3.0, WebGL2) or a VkSampler.
+// The texture's own filters and wrap are its defaults; a binding may read the same texture another
+// way (PCSS reads its shadow map NEAREST without comparison for the blocker search and LINEAR with
+// comparison for the filter, through two samplers).
+struct Sampling {
+    std::string min_filter, mag_filter; // "NEAREST", "LINEAR", "LINEAR_MIPMAP_LINEAR", …
+    std::string wrap;                   // "CLAMP_TO_BORDER" (border_color) or "CLAMP_TO_EDGE"
+    std::array<float, 4> border_color{0.0f, 0.0f, 0.0f, 0.0f};
+    std::string compare; // "" (a plain read) or the compare func of a depth comparison (sampler*Shadow)
+};
 
 struct TextureDesc {
     std::string name;
@@ -33,8 +49,10 @@ struct TextureDesc {
     std::string size = "fixed";    // "fixed": width × height; "output": the output image's size (per frame)
     std::string source = "passes"; // "passes": written by the layout's passes; "caller": the engine fills it
                                    // every frame; "bake": uploaded once from an offline bake
-    std::string compare;           // "" or a compare func ("LEQUAL", …): depth texture read with
-                                   // hardware comparison (sampler2DShadow)
+    // What the texture holds before the first pass writes it: "zero" (every level cleared to 0 once,
+    // at allocation: passes that blend, OR or read outside what they wrote rely on it), "caller"
+    // (source caller) or "bake" (source bake).
+    std::string initial = "zero";
     std::string purpose;
 };
 
@@ -44,15 +62,26 @@ struct ParamDesc {
     std::string compute;         // plain uniforms: how to compute the value (formula, light_frame.hpp field)
     int binding = -1;            // sampler: texture unit / Vulkan binding; -1 for plain uniforms
     std::string texture;         // sampler: the texture bound to it when the program runs its usual pass
+    Sampling sampling;           // sampler: how it reads its texture (finish_sampling fills it)
     std::string block;           // Vulkan: uniform block holding this value
     int block_binding = -1;      // Vulkan: binding of that block
     int offset = -1;             // Vulkan: std140 byte offset in the block
+    int set = -1;                // Vulkan: descriptor set of the block or sampler (vulkan_descriptor_set)
+};
+
+// A vertex attribute of a program that draws the caller's geometry ("draw_scene").
+struct VertexInputDesc {
+    std::string name;    // the GLSL input, e.g. penumbra_position
+    int location = 0;    // layout(location = …) in the vertex stage
+    std::string type;    // "vec3", "vec2"
+    std::string meaning; // what the engine feeds it
 };
 
 struct ProgramDesc {
     std::string name;
     std::vector<std::string> files; // stage files, in pipeline order
     std::vector<ParamDesc> parameters;
+    std::vector<VertexInputDesc> vertex_inputs; // empty for full-screen programs (no attributes)
 };
 
 struct AttachmentDesc {
@@ -68,6 +97,7 @@ struct BindingDesc {
     int binding = 0;
     int level = -1;      // -1: all levels; n: the pass reads only level n (base = max level = n while it
                          // runs), so it may render another level of the same texture (min-max mip chains)
+    Sampling sampling;   // how this binding reads the texture (that of its sampler parameter)
 };
 
 // Fixed-function state of a pass. Blend, depth test and culling are off unless set; polygon
@@ -89,11 +119,29 @@ struct RenderState {
     std::string logic_op = "NONE";
 };
 
+// What a "copy" pass copies: a width × height region, texel for texel (no filtering, no format
+// conversion), from level/layer of inputs[0].texture to level/layer of outputs[0].texture (layer -1:
+// a 2D texture). glCopyImageSubData, vkCmdCopyImage, or a framebuffer blit with NEAREST.
+struct CopyDesc {
+    int source_level = 0, source_layer = -1;
+    int target_level = 0, target_layer = -1;
+    int width = 0, height = 0;
+};
+
+// What a "generate_mipmap" pass computes: levels base_level + 1 … base_level + levels - 1 of
+// outputs[0].texture, each from the one below by a 2×2 box average (glGenerateMipmap; on Vulkan a
+// chain of vkCmdBlitImage with LINEAR filtering, which averages the same 2×2 texels).
+struct MipmapDesc {
+    int base_level = 0;
+    int levels = 1;
+    std::string downsample = "box"; // "box": the mean of the 2×2 texels below
+};
+
 struct PassDesc {
     std::string name;
     // "draw_scene": draw the caller's geometry with `program`; "fullscreen": draw 3 vertices
-    // with `program`; "generate_mipmap": glGenerateMipmap(texture of outputs[0]);
-    // "copy": copy inputs[0].texture level 0 into outputs[0] (same size).
+    // with `program`; "generate_mipmap": the mipmap chain of outputs[0] (mipmap); "copy": the region
+    // `copy` says, from inputs[0] into outputs[0].
     std::string action;
     std::string program;
     std::vector<BindingDesc> inputs;
@@ -105,6 +153,18 @@ struct PassDesc {
     // at the output size over the caller's textures (Runtime::run_screen); "example": drawn by the
     // engine itself with its camera (the runtime does not run it)
     std::string phase = "shadow";
+    std::optional<CopyDesc> copy;     // action "copy"
+    std::optional<MipmapDesc> mipmap; // action "generate_mipmap"
+};
+
+// Where slice k of the occlusion textures is after the slicing (and unpack) passes: texture, layer
+// (-1: a 2D texture; the depth index of a 3D texture) and channel ("r", "g", "b", "a"). The
+// occlusion technique only; slice k is in channel k % 4 of RGBA texture k / 4.
+struct SliceLocation {
+    int slice = 0;
+    std::string texture;
+    int layer = -1;
+    std::string channel;
 };
 
 struct Layout {
@@ -121,6 +181,7 @@ struct Layout {
     // What each phase's output depends on ("light", "geometry", "camera", "caller_textures", "bake"):
     // an engine reruns a phase only when one of them changed (a camera-only change skips "shadow").
     std::vector<std::pair<std::string, std::vector<std::string>>> phase_inputs;
+    std::vector<SliceLocation> slice_map; // occlusion: where each slice is (empty for other techniques)
 };
 
 namespace detail {
@@ -184,6 +245,11 @@ inline std::vector<ParamDesc> describe_params(const Config& config, const std::v
                 desc.compute = p.source == "pass" ? "the value in int_uniforms of the pass that runs this program"
                                                   : std::string(uniform_compute(p.name.view(), config.light));
             }
+            if (is_sampler(p)) { // completed from the texture by finish_sampling
+                desc.sampling.min_filter = desc.sampling.mag_filter = std::string(p.filter);
+                if (p.type.ends_with("Shadow")) desc.sampling.compare = std::string(shadow_compare_func);
+            }
+            if (is_vulkan(config)) desc.set = vulkan_descriptor_set;
             if (!is_sampler(p) && is_vulkan(config)) {
                 // std140: scalars align to 4, vec2 to 8, vec3/vec4/mat4 to 16
                 const int size = p.type == "mat4" ? 64 : p.type == "vec4" ? 16 : p.type == "vec3" ? 12
@@ -253,6 +319,11 @@ struct LayoutBuilder {
         p.viewport_height = h;
         p.state = std::move(state);
         p.phase = std::move(phase);
+        if (p.action == "copy" && !p.inputs.empty() && !p.outputs.empty())
+            p.copy = CopyDesc{std::max(p.inputs[0].level, 0), -1, p.outputs[0].level, p.outputs[0].layer, w, h};
+        if (p.action == "generate_mipmap" && !p.outputs.empty())
+            for (const TextureDesc& t : layout.textures)
+                if (t.name == p.outputs[0].texture) p.mipmap = MipmapDesc{p.outputs[0].level, t.mip_levels - p.outputs[0].level};
         layout.passes.push_back(std::move(p));
     }
     // Full-screen passes: no blending, no depth test, an empty vertex array, 3 vertices.
@@ -262,6 +333,51 @@ struct LayoutBuilder {
              w, h);
     }
 };
+
+// How a binding reads `texture`: the texture's own filters and wrap, unless the sampler parameter
+// asks for another filter; `partial` holds what describe_params knew (filter override, compare).
+inline Sampling complete_sampling(const Sampling& partial, const TextureDesc& texture) {
+    Sampling s = partial;
+    if (s.min_filter.empty()) s.min_filter = texture.min_filter;
+    if (s.mag_filter.empty()) s.mag_filter = texture.mag_filter;
+    s.wrap = texture.wrap;
+    s.border_color = texture.border_color;
+    return s;
+}
+
+// Every sampler parameter's and every pass input's "sampling", from the textures they read and what
+// their parameter says; the initial contents of textures that the engine provides.
+inline void finish_sampling(Layout& layout) {
+    auto texture_of = [&](const std::string& name) -> const TextureDesc* {
+        for (const TextureDesc& t : layout.textures)
+            if (t.name == name) return &t;
+        return nullptr;
+    };
+    for (TextureDesc& t : layout.textures)
+        if (t.source != "passes") t.initial = t.source;
+    for (PassDesc& pass : layout.passes)
+        for (BindingDesc& in : pass.inputs) {
+            Sampling partial;
+            for (const ProgramDesc& program : layout.programs)
+                if (program.name == pass.program)
+                    for (const ParamDesc& param : program.parameters)
+                        if (param.name == in.sampler) partial = param.sampling;
+            if (const TextureDesc* t = texture_of(in.texture)) in.sampling = complete_sampling(partial, *t);
+        }
+    // a parameter without a texture of its own (a level pass's source, bound per pass): its first pass's
+    for (ProgramDesc& program : layout.programs)
+        for (ParamDesc& param : program.parameters) {
+            if (param.binding < 0) continue;
+            if (const TextureDesc* t = texture_of(param.texture)) {
+                param.sampling = complete_sampling(param.sampling, *t);
+                continue;
+            }
+            for (const PassDesc& pass : layout.passes)
+                for (const BindingDesc& in : pass.inputs)
+                    if (pass.program == program.name && in.sampler == param.name && param.sampling.wrap.empty())
+                        param.sampling = in.sampling;
+        }
+}
 
 // The screen phase's textures: the caller's G-buffer (`gbuffer`: world positions, or what the
 // technique reads instead), its normals where penumbraVisibility uses them, and the visibility

@@ -39,6 +39,7 @@ struct PassContext {
     GLuint empty_vertex_array = 0;
     std::function<GLuint(const std::string&)> program; // 0 when there is none of that name
     std::function<GLuint(const std::string&)> texture; // the GL texture of a layout texture name
+    std::function<GLuint(const Sampling&)> sampler;     // the sampler object of a binding's sampling
     int output_width = 0, output_height = 0;           // of the textures whose size is "output"
     UniformInputs uniforms;                             // for the "light" and "camera" uniforms
 };
@@ -53,17 +54,23 @@ inline std::pair<int, int> attachment_size(const PassContext& c, const Attachmen
 
 // Runs one pass: a copy, a mipmap generation, or a draw of `program` into the pass's outputs.
 inline std::string run_pass(const PassContext& c, const PassDesc& pass, const DrawScene& draw) {
-    if (pass.action == "generate_mipmap") {
+    if (pass.action == "generate_mipmap") { // every level above the base, each a 2x2 box of the one below
+        if (!pass.mipmap || pass.mipmap->downsample != "box")
+            return "pass " + pass.name + ": generate_mipmap needs \"mipmap\" with downsample \"box\"";
         glGenerateTextureMipmap(c.texture(pass.outputs.at(0).texture));
         return {};
     }
-    if (pass.action == "copy") {
-        const GLuint src = c.texture(pass.inputs.at(0).texture), dst = c.texture(pass.outputs.at(0).texture);
-        const AttachmentDesc& out = pass.outputs.at(0);
-        const TextureDesc* dst_desc = find_texture(c.layout, out.texture);
-        const GLenum dst_target = dst_desc ? detail::gl_enum(dst_desc->target) : GL_TEXTURE_2D;
-        glCopyImageSubData(src, GL_TEXTURE_2D, 0, 0, 0, 0, dst, dst_target, out.level, 0, 0,
-                           std::max(out.layer, 0), pass.viewport_width, pass.viewport_height, 1);
+    if (pass.action == "copy") { // the region "copy" names, texel for texel
+        if (!pass.copy) return "pass " + pass.name + ": a copy pass needs \"copy\" (levels, layers, size)";
+        const CopyDesc& copy = *pass.copy;
+        auto target_of = [&](const std::string& name) {
+            const TextureDesc* t = find_texture(c.layout, name);
+            return t ? detail::gl_enum(t->target) : GL_TEXTURE_2D;
+        };
+        const std::string &from = pass.inputs.at(0).texture, &to = pass.outputs.at(0).texture;
+        glCopyImageSubData(c.texture(from), target_of(from), copy.source_level, 0, 0, std::max(copy.source_layer, 0),
+                           c.texture(to), target_of(to), copy.target_level, 0, 0, std::max(copy.target_layer, 0),
+                           copy.width, copy.height, 1);
         return {};
     }
     if (pass.action != "draw_scene" && pass.action != "fullscreen")
@@ -133,7 +140,7 @@ inline std::string run_pass(const PassContext& c, const PassDesc& pass, const Dr
             glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, in.level);
             restricted.push_back(id);
         }
-        bind_sampler(program, in.sampler, in.binding, id);
+        bind_sampler(program, in.sampler, in.binding, id, c.sampler(in.sampling));
     }
     for (const auto& [name, value] : pass.int_uniforms)
         glProgramUniform1i(program, glGetUniformLocation(program, name.c_str()), value);
@@ -154,6 +161,7 @@ inline std::string run_pass(const PassContext& c, const PassDesc& pass, const Dr
         glTextureParameteri(id, GL_TEXTURE_BASE_LEVEL, 0);
         glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, t ? t->mip_levels - 1 : 1000);
     }
+    for (const BindingDesc& in : pass.inputs) glBindSampler(static_cast<GLuint>(in.binding), 0);
     glUseProgram(0);
     return diagnostic;
 }

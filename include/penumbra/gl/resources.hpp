@@ -1,5 +1,5 @@
 // penumbra/gl/resources.hpp — the GL objects a layout's textures and passes need: textures allocated
-// from their layout description (format, levels, sampling, initial zeros), and the framebuffer the
+// from their layout description (format, levels, default sampling, initial zeros), and the framebuffer the
 // passes render through.
 //
 // Header-only; includes <epoxy/gl.h>.
@@ -26,7 +26,7 @@ inline bool same_storage(const TextureDesc& a, const TextureDesc& b) {
     return a.target == b.target && a.internal_format == b.internal_format && a.width == b.width &&
            a.height == b.height && a.depth == b.depth && a.mip_levels == b.mip_levels &&
            a.min_filter == b.min_filter && a.mag_filter == b.mag_filter && a.wrap == b.wrap &&
-           a.border_color == b.border_color && a.size == b.size && a.source == b.source && a.compare == b.compare;
+           a.border_color == b.border_color && a.size == b.size && a.source == b.source && a.initial == b.initial;
 }
 
 inline bool is_depth_format(const std::string& format) { return format.starts_with("DEPTH_COMPONENT"); }
@@ -43,7 +43,8 @@ inline GLenum pixel_format(int channels, bool integer) {
 }
 
 // A texture of description `t` at width × height (a fixed size or the output size), its levels
-// cleared to zero. 0 with *log set on failure.
+// cleared to zero (initial "zero"; the others are the caller's or a bake's and are overwritten).
+// Comparison is the binding's sampler's, not the texture's. 0 with *log set on failure.
 inline GLuint allocate_texture(const TextureDesc& t, int width, int height, std::string* log) {
     const GLenum target = detail::gl_enum(t.target), format = detail::gl_enum(t.internal_format);
     if (!target || !format) {
@@ -68,10 +69,6 @@ inline GLuint allocate_texture(const TextureDesc& t, int width, int height, std:
     glTextureParameteri(id, GL_TEXTURE_WRAP_R, wrap);
     glTextureParameterfv(id, GL_TEXTURE_BORDER_COLOR, t.border_color.data());
     glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, t.mip_levels - 1);
-    if (!t.compare.empty()) {
-        glTextureParameteri(id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-        glTextureParameteri(id, GL_TEXTURE_COMPARE_FUNC, static_cast<GLint>(detail::gl_enum(t.compare)));
-    }
     const bool depth = detail::is_depth_format(t.internal_format);
     const bool integer = detail::is_integer_format(t.internal_format);
     const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};

@@ -376,13 +376,15 @@ public:
         return texture(emission_.layout.result);
     }
 
-    // Binds the samplers of the layout's "example" passes and sets every uniform the table computes
-    // (uniform_values.hpp) on a program that includes the snippet (shading_example, shading_deferred, or
-    // the engine's own); the program must be in use.
+    // Binds the samplers of the layout's "example" passes (texture and sampler object at each unit, left
+    // bound for the caller's draw) and sets every uniform the table computes (uniform_values.hpp) on a
+    // program that includes the snippet (shading_example, shading_deferred, or the engine's own); the
+    // program must be in use.
     void bind_visibility(GLuint program, const std::optional<glm::mat4>& clip_from_world = std::nullopt) const {
         for (const PassDesc& pass : emission_.layout.passes)
             if (pass.phase == "example")
-                for (const BindingDesc& in : pass.inputs) detail::bind_sampler(program, in.sampler, in.binding, texture(in.texture));
+                for (const BindingDesc& in : pass.inputs)
+                    detail::bind_sampler(program, in.sampler, in.binding, texture(in.texture), samplers_->get(in.sampling));
         UniformInputs inputs = uniform_inputs();
         inputs.clip_from_world = clip_from_world;
         for (const UniformRule& rule : uniform_rules())
@@ -587,6 +589,7 @@ private:
                 empty_vao_,
                 [this](const std::string& name) { return program(name); },
                 [this](const std::string& name) { return resolve(name); },
+                [this](const Sampling& s) { return samplers_->get(s); },
                 output_width_,
                 output_height_,
                 uniform_inputs()};
@@ -625,6 +628,8 @@ private:
     TextureMap supplied_;        // bake textures the caller gave (not owned)
     TextureMap caller_;          // the caller's textures during a screen run
     GLuint empty_vao_ = 0, fbo_ = 0;
+    // the bindings' sampler objects (one per distinct sampling); a pointer so bind_visibility stays const
+    std::unique_ptr<detail::SamplerCache> samplers_ = std::make_unique<detail::SamplerCache>();
     int output_width_ = 0, output_height_ = 0;
     std::variant<std::monostate, RectLight, SunLight> light_; // last set_light, for reconfigure
     std::optional<glm::vec4> time_window_;                    // last set_time_window

@@ -11,6 +11,7 @@
 #include <epoxy/gl.h>
 #include <glm/gtc/type_ptr.hpp>
 
+#include <map>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -33,9 +34,51 @@ inline void set_uniform(GLuint program, GLint location, const UniformValue& valu
         value);
 }
 
-// Binds `texture_id` to texture unit `unit` and points sampler `name` of `program` at it.
-inline void bind_sampler(GLuint program, const std::string& name, int unit, GLuint texture_id) {
+// GL sampler objects, one per distinct layout.json "sampling" (filters, wrap, border, comparison):
+// a binding reads its texture through the sampler of its own sampling, so two bindings may read one
+// texture two ways (PCSS: the shadow map with and without comparison). Owns the objects.
+class SamplerCache {
+public:
+    SamplerCache() = default;
+    SamplerCache(const SamplerCache&) = delete;
+    SamplerCache& operator=(const SamplerCache&) = delete;
+    ~SamplerCache() {
+        for (auto& [key, id] : samplers_) glDeleteSamplers(1, &id);
+    }
+
+    // The sampler of `s`; 0 (the texture's own parameters, no comparison) when `s` names no filter.
+    GLuint get(const Sampling& s) {
+        if (s.min_filter.empty()) return 0;
+        const std::string key = s.min_filter + "|" + s.mag_filter + "|" + s.wrap + "|" + s.compare + "|" +
+                                std::to_string(s.border_color[0]) + "," + std::to_string(s.border_color[1]) + "," +
+                                std::to_string(s.border_color[2]) + "," + std::to_string(s.border_color[3]);
+        if (auto it = samplers_.find(key); it != samplers_.end()) return it->second;
+        GLuint id = 0;
+        glCreateSamplers(1, &id);
+        glSamplerParameteri(id, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(gl_enum(s.min_filter)));
+        glSamplerParameteri(id, GL_TEXTURE_MAG_FILTER, static_cast<GLint>(gl_enum(s.mag_filter)));
+        const GLint wrap = static_cast<GLint>(gl_enum(s.wrap));
+        glSamplerParameteri(id, GL_TEXTURE_WRAP_S, wrap);
+        glSamplerParameteri(id, GL_TEXTURE_WRAP_T, wrap);
+        glSamplerParameteri(id, GL_TEXTURE_WRAP_R, wrap);
+        glSamplerParameterfv(id, GL_TEXTURE_BORDER_COLOR, s.border_color.data());
+        if (!s.compare.empty()) {
+            glSamplerParameteri(id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+            glSamplerParameteri(id, GL_TEXTURE_COMPARE_FUNC, static_cast<GLint>(gl_enum(s.compare)));
+        }
+        samplers_.emplace(key, id);
+        return id;
+    }
+
+private:
+    std::map<std::string, GLuint> samplers_;
+};
+
+// Binds `texture_id` to texture unit `unit` with sampler object `sampler` (0: the texture's own
+// parameters) and points sampler `name` of `program` at it.
+inline void bind_sampler(GLuint program, const std::string& name, int unit, GLuint texture_id, GLuint sampler) {
     glBindTextureUnit(static_cast<GLuint>(unit), texture_id);
+    glBindSampler(static_cast<GLuint>(unit), sampler);
     const GLint location = glGetUniformLocation(program, name.c_str());
     if (location >= 0) glProgramUniform1i(program, location, unit); // glsl330: no layout(binding)
 }

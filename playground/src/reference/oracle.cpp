@@ -40,7 +40,7 @@ constexpr double weight_step = 1.0 / 256.0;       // δ: 8-bit sub-texel fractio
 constexpr double level_error = 1.0 / 65536.0;     // fp32 log2 and level arithmetic
 constexpr double arithmetic_error = 1.0 / 65536.0; // fp32 fade weight and fusion, per slice
 constexpr double fp32_epsilon = 1.0 / 16777216.0;  // 2^-24
-// Gaussian levels are read at log2(side) + log2(√6/4) (emit_visibility.hpp): level l has a
+// Gaussian levels are read at log2(side) + log2(√6/4) (detail/occlusion/emit_visibility.hpp): level l has a
 // standard deviation of about 2^l/√6 texels, a disk of diameter D one of D/4.
 const double gaussian_bias = std::log2(std::sqrt(6.0) / 4.0);
 
@@ -121,7 +121,7 @@ Oracle::Oracle(const Config& config, const SliceFrame& frame, SliceTextures slic
                                     std::to_string(S + 1));
     // uniform: slice s holds (z0 + s·Δ, z0 + (s+1)·Δ] and every fade ramps over Δ; adaptive: the
     // boundaries, each plane's fade over the slice below it, down to a virtual plane a last slice's
-    // thickness below the last one, in fp32 as the GLSL computes them (emit_visibility.hpp)
+    // thickness below the last one, in fp32 as the GLSL computes them (detail/occlusion/emit_visibility.hpp)
     const double z0 = frame.slice_depths.x, thickness = frame.slice_depths.y;
     thickness_ = thickness;
     for (int k = 0; k <= S; ++k) planes_.push_back(boundaries.empty() ? z0 + k * thickness : double(boundaries[k]));
@@ -377,7 +377,7 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
     p.z = std::max(p.z, 1e-6); // points on or behind the light plane
     double lit = 1.0, sum = 0.0, maximum = 0.0, bound = 0.0, chain = 1.0, previous = 0.0;
     bool beyond = false;
-    // Tangent clip (emit_visibility.hpp): the part of the light above the tangent plane, in the
+    // Tangent clip (detail/occlusion/emit_visibility.hpp): the part of the light above the tangent plane, in the
     // light's unit square, cut along the axis the plane crosses most steeply; then the point
     // moves config.tangent_clip_offset slicing texels sideways along its normal.
     glm::dvec3 clip(0.0, 0.0, 1.0);

@@ -114,7 +114,7 @@ void main() {
 }
 )";
 
-// Same slice and kernel arithmetic as the emitted penumbraVisibility (docs/model.md §1, emit_visibility.hpp).
+// Same slice and kernel arithmetic as the emitted penumbraVisibility (docs/model.md §1, detail/occlusion/emit_visibility.hpp).
 constexpr const char* slice_level_fragment = R"(
 layout(binding = 0) uniform sampler2D u_positions;
 uniform mat4 u_lightFromWorld;

@@ -93,6 +93,32 @@ PassDesc pass(std::string name, std::string phase, std::string action, std::stri
     return p;
 }
 
+// One triangle covering the viewport, world positions at attribute 0: the "scene" of the depth pass.
+struct ScreenTriangle {
+    GLuint vao = 0, vbo = 0;
+    ScreenTriangle() {
+        glCreateVertexArrays(1, &vao);
+        glCreateBuffers(1, &vbo);
+        const float triangle[9] = {-1, -1, 0, 3, -1, 0, -1, 3, 0};
+        glNamedBufferData(vbo, sizeof triangle, triangle, GL_STATIC_DRAW);
+        glVertexArrayVertexBuffer(vao, 0, vbo, 0, 3 * sizeof(float));
+        glEnableVertexArrayAttrib(vao, 0);
+        glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(vao, 0, 0);
+    }
+    ScreenTriangle(const ScreenTriangle&) = delete;
+    ScreenTriangle& operator=(const ScreenTriangle&) = delete;
+    ~ScreenTriangle() {
+        glDeleteBuffers(1, &vbo);
+        glDeleteVertexArrays(1, &vao);
+    }
+    void draw() const {
+        glBindVertexArray(vao);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glBindVertexArray(0);
+    }
+};
+
 Emission hand_made() {
     Emission e;
     auto program = [&](std::string name, const std::string& vert, const std::string& frag) {
@@ -109,7 +135,6 @@ Emission hand_made() {
     Layout& l = e.layout;
     l.technique = "hand-made";
     TextureDesc depth = texture("depthMap", "DEPTH_COMPONENT32F", 4);
-    depth.compare = "LEQUAL";
     depth.wrap = "CLAMP_TO_BORDER";
     depth.border_color = {1.0f, 1.0f, 1.0f, 1.0f};
     l.textures.push_back(depth);
@@ -136,9 +161,11 @@ Emission hand_made() {
     for (int level = 0; level < 3; ++level)
         l.passes.push_back(pass("reduce", "shadow", "fullscreen", "reduce", {{"source", "chain", 0, level}},
                                 {{"chain", level + 1, -1}}));
+    // the depth map is compared by its binding's sampler, not by the texture
+    BindingDesc compared{"depthMap", "depthMap", 1};
+    compared.sampling = {"NEAREST", "NEAREST", "CLAMP_TO_BORDER", {1.0f, 1.0f, 1.0f, 1.0f}, "LEQUAL"};
     l.passes.push_back(pass("screen", "screen", "fullscreen", "screen",
-                            {{"callerInput", "callerInput", 0}, {"depthMap", "depthMap", 1}, {"chain", "chain", 2}},
-                            {{"result", 0, -1}}));
+                            {{"callerInput", "callerInput", 0}, compared, {"chain", "chain", 2}}, {{"result", 0, -1}}));
     return e;
 }
 
@@ -164,20 +191,10 @@ TEST_CASE("gl runtime: a hand-made layout runs from its data (depth, compare, ba
     frame.slice_depths = {0.0f, 0.5f};
     rt->set_frame(frame);
 
-    GLuint vao = 0, vbo = 0;
-    glCreateVertexArrays(1, &vao);
-    glCreateBuffers(1, &vbo);
-    const float triangle[9] = {-1, -1, 0, 3, -1, 0, -1, 3, 0};
-    glNamedBufferData(vbo, sizeof triangle, triangle, GL_STATIC_DRAW);
-    glVertexArrayVertexBuffer(vao, 0, vbo, 0, 3 * sizeof(float));
-    glEnableVertexArrayAttrib(vao, 0);
-    glVertexArrayAttribFormat(vao, 0, 3, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(vao, 0, 0);
+    ScreenTriangle triangle;
     int draws = 0;
     const std::string built = rt->build([&](GLuint) {
-        glBindVertexArray(vao);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        glBindVertexArray(0);
+        triangle.draw();
         ++draws;
     });
     REQUIRE_MESSAGE(built.empty(), built);
@@ -212,6 +229,42 @@ TEST_CASE("gl runtime: a hand-made layout runs from its data (depth, compare, ba
     CHECK(rt->read_visibility().size() == 6);
     CHECK(rt->texture("result") != 0);
     glDeleteTextures(1, &caller);
-    glDeleteBuffers(1, &vbo);
-    glDeleteVertexArrays(1, &vao);
+}
+
+// layout.json's conventions are data the runner follows: change the depth binding's comparison in the
+// layout (not in the shader) and the result flips.
+TEST_CASE("gl runtime: a binding's sampling decides the comparison, not the texture") {
+    std::string error;
+    auto context = HeadlessContext::create(&error);
+    REQUIRE_MESSAGE(context, error);
+    for (const std::string compare : {"LEQUAL", "GREATER"}) {
+        CAPTURE(compare);
+        Emission e = hand_made();
+        for (PassDesc& p : e.layout.passes)
+            for (BindingDesc& in : p.inputs)
+                if (in.texture == "depthMap") in.sampling.compare = compare;
+        auto rt = gl::Runtime::create(e, &error);
+        REQUIRE_MESSAGE(rt, error);
+        std::vector<float> texels(64);
+        for (int i = 0; i < 64; ++i) texels[i] = static_cast<float>(i + 1);
+        REQUIRE(rt->supply_texture("bake", texels).empty());
+        SliceFrame frame;
+        frame.slice_depths = {0.0f, 0.5f};
+        rt->set_frame(frame);
+        ScreenTriangle triangle;
+        REQUIRE(rt->build([&](GLuint) { triangle.draw(); }).empty());
+        GLuint caller = 0;
+        glCreateTextures(GL_TEXTURE_2D, 1, &caller);
+        glTextureStorage2D(caller, 1, GL_RGBA32F, 2, 1);
+        const float caller_texels[8] = {1, 0, 0, 0, 2, 0, 0, 0};
+        glTextureSubImage2D(caller, 0, 0, 0, 2, 1, GL_RGBA, GL_FLOAT, caller_texels);
+        REQUIRE(rt->run_screen({{"callerInput", caller}}, 2, 1).empty());
+        const std::vector<float> values = rt->read_visibility();
+        REQUIRE(values.size() == 2);
+        // LEQUAL: x = 0 (reference 0.2 <= stored 0.25) lit, x = 1 not; GREATER: the other way round
+        const bool leq = compare == "LEQUAL";
+        CHECK(values[0] == doctest::Approx(1.0 + (leq ? 10.0 : 0.0) + 100.0 + 64000.0 + 5000.0));
+        CHECK(values[1] == doctest::Approx(2.0 + (leq ? 0.0 : 10.0) + 100.0 + 64000.0 + 5000.0));
+        glDeleteTextures(1, &caller);
+    }
 }

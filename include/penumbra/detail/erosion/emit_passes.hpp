@@ -39,7 +39,9 @@ constexpr std::vector<Param> erosion_params(const Config& config, std::string_vi
             params.push_back({"penumbra_lightSize", "vec2", "light rectangle width, height", "scene units"});
         else
             params.push_back({"penumbra_tanAngularRadius", "float", "tangent of the sun's angular radius", ""});
-        params.push_back(sampler_param("penumbra_shadowDepth", "shadow map read as depth (no comparison)"));
+        // the shadow map itself, through a sampler without comparison
+        params.push_back({"penumbra_shadowDepth", "sampler2D", "shadow map read as depth (no comparison)", "",
+                          Text(shadow_map_texture), "light", "NEAREST"});
         params.push_back(world_positions_param());
         return params;
     }

@@ -118,7 +118,7 @@ constexpr void write_generic_params(LineWriter& out, const Config& config) {
     for (const GenericSamplerDecl& s : generic_samplers_decl(config)) {
         const Text array = choose(s.count > 1, cat("[", format_int(s.count), "]"), Text());
         const Text declaration = cat("uniform ", s.type, " ", s.name, array, "; // ", s.meaning);
-        if (is_vulkan(config)) out.line("layout(set = 0, binding = ", format_int(binding), ") ", declaration);
+        if (is_vulkan(config)) out.line("layout(set = ", format_int(vulkan_descriptor_set), ", binding = ", format_int(binding), ") ", declaration);
         else if (has_explicit_bindings(config)) out.line("layout(binding = ", format_int(binding), ") ", declaration);
         else out.line(declaration, ", first texture unit ", format_int(binding));
         binding += is_vulkan(config) ? 1 : s.count;

@@ -129,6 +129,12 @@ inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
                 "level being built (a texture cannot be sampled and rendered at once)");
     }
 
+    // layout.json's slice_map: slice k is channel k % 4 of slicing output k / 4 (emit_slicing.hpp)
+    for (int k = 0; k < config.slices; ++k) {
+        const AttachmentDesc& out = slicing_outputs[static_cast<std::size_t>(k / 4)];
+        b.layout.slice_map.push_back({k, out.texture, out.layer, std::string(1, "rgba"[k % 4])});
+    }
+
     RenderState max_blend; // a texel is covered when any triangle covers it: blend MAX over a cleared target
     max_blend.blend = true;
     max_blend.blend_equation = "MAX";

@@ -22,28 +22,20 @@ inline std::vector<ParamGroup> shadow_map_param_groups(const Config& config, std
 }
 
 // Shadow map techniques, phase "shadow": the depth pass from the light (shadow_frame in
-// light_frame.hpp), and for PCSS a copy of the depth that the blocker search reads without
-// comparison (a texture has one compare mode).
+// light_frame.hpp). PCSS's blocker search and erosion read the same depth texture without comparison,
+// through a second sampler (the bindings' "sampling"), so there is no copy of it.
 inline void describe_shadow_map_passes(LayoutBuilder& b, const Config& config) {
     const int R = config.shadow_map.resolution;
     TextureDesc& map = b.texture(std::string(shadow_map_texture), "2D", "DEPTH_COMPONENT32F", R, R, 1, 1, "LINEAR",
                                  "LINEAR", "shadow map: (z - near) / (far - near) along the light axis, biased; "
-                                           "read with hardware comparison, bilinear");
+                                           "the filter reads it with hardware comparison, bilinear");
     map.wrap = "CLAMP_TO_EDGE"; // kernels reaching past the map read its edge, not a shadowing border
-    map.compare = "LEQUAL";     // lit where the receiver's depth <= the stored (biased) occluder depth
     RenderState depth_only;
     depth_only.depth_test = depth_only.depth_write = true;
     depth_only.depth_func = "LESS";
     depth_only.clear_depth = 1.0f;
     b.pass("shadow_depth", "draw_scene", "shadow_depth", {}, {{std::string(shadow_map_texture), 0, -1, "depth"}}, {},
            R, R, depth_only);
-    if (config.technique == Technique::pcss || config.technique == Technique::erosion) {
-        TextureDesc& plain = b.texture("penumbra_shadowDepth", "2D", "DEPTH_COMPONENT32F", R, R, 1, 1, "NEAREST",
-                                       "NEAREST", "copy of the shadow map, read as depth for the blocker search");
-        plain.wrap = "CLAMP_TO_EDGE";
-        b.pass("copy_shadow_depth", "copy", "", {{"", std::string(shadow_map_texture), 0}},
-               {{"penumbra_shadowDepth", 0, -1, "depth"}}, {}, R, R);
-    }
 }
 
 inline void describe_shadow_map_layout(LayoutBuilder& b, const Config& config) {

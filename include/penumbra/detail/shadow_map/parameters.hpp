@@ -58,9 +58,10 @@ constexpr std::vector<Param> shadow_visibility_params(const Config& config) {
                               "the sun's cone: growth of the light's footprint per unit of depth, in shadow-map uv",
                               "uv per scene unit"});
         }
+        // the same depth texture as the filter's, through a second sampler: NEAREST, no comparison
         params.push_back({"penumbra_shadowDepth", "sampler2D",
                           "shadow map read as depth (no comparison): the blocker search", "",
-                          "penumbra_shadowDepth"});
+                          Text(shadow_map_texture), "light", "NEAREST"});
     }
     params.push_back({Text(shadow_map_texture), "sampler2DShadow",
                       "shadow map with hardware depth comparison (LEQUAL) and bilinear filtering", "",

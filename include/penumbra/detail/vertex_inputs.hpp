@@ -1,0 +1,33 @@
+// penumbra/detail/vertex_inputs.hpp — the vertex attributes of the programs that draw the caller's
+// geometry, as layout.json's "vertex_inputs" states them. The vertex stages declare the same
+// (layout(location = …) in …); tests/emitter_layout_test.cpp checks that they agree.
+#pragma once
+
+#include "artifacts.hpp"
+#include "layout_builder.hpp"
+
+#include <vector>
+
+namespace penumbra::detail {
+
+inline VertexInputDesc position_input() {
+    return {"penumbra_position", 0, "vec3", "vertex position, world space (scene units)"};
+}
+inline VertexInputDesc normal_input() { return {"penumbra_normal", 1, "vec3", "vertex normal, world space"}; }
+inline VertexInputDesc uv_input() {
+    return {"penumbra_uv", 2, "vec2", "unique texture coordinates (those of the occlusion interval map's bake)"};
+}
+
+// The attributes a vertex stage reads; none for the full-screen triangle.
+inline std::vector<VertexInputDesc> vertex_inputs(Artifact vertex_stage) {
+    switch (vertex_stage) {
+    case Artifact::slicing_vert:
+    case Artifact::depth_bins_vert:
+    case Artifact::shadow_depth_vert: return {position_input()};
+    case Artifact::shading_vert: return {position_input(), normal_input()};
+    case Artifact::oim_shading_vert: return {position_input(), normal_input(), uv_input()};
+    default: return {};
+    }
+}
+
+} // namespace penumbra::detail
