@@ -60,6 +60,11 @@ bool read_bundle(const std::filesystem::path& dir, Bundle& out, std::string* err
         !read_json(out.emission_dir / "layout.json", out.layout, error, not_a_bundle))
         return false;
     std::map<std::string, std::string> caller_files; // texture name → file in the bundle
+    std::map<std::string, std::string> bake_files;   // uniforms.json bake_textures (oim)
+    std::string technique = "occlusion";
+    if (out.layout.is_object() && out.layout.contains("config") && out.layout["config"].is_object() &&
+        out.layout["config"].contains("technique") && out.layout["config"]["technique"].is_string())
+        technique = out.layout["config"]["technique"].get<std::string>();
     try {
         out.width = info.at("width").get<int>();
         out.height = info.at("height").get<int>();
@@ -67,6 +72,8 @@ bool read_bundle(const std::filesystem::path& dir, Bundle& out, std::string* err
             out.uniforms[name] = value.is_array() ? value.get<std::vector<float>>() : std::vector<float>{value.get<float>()};
         const nlohmann::json callers = info.value("caller_textures", nlohmann::json::object()); // kept: items() refers to it
         for (const auto& [name, file] : callers.items()) caller_files[name] = file.get<std::string>();
+        const nlohmann::json bakes = info.value("bake_textures", nlohmann::json::object());
+        for (const auto& [name, file] : bakes.items()) bake_files[name] = file.get<std::string>();
     } catch (const nlohmann::json::exception& e) {
         *error = uniforms_path.string() + ": " + e.what();
         return false;
@@ -84,9 +91,23 @@ bool read_bundle(const std::filesystem::path& dir, Bundle& out, std::string* err
     }
     for (const auto& [name, file] : caller_files)
         if (!read_floats(dir / file, 4 * pixels, out.caller_textures[name], error)) return false;
-    return read_floats(dir / "visibility_gl.f32", pixels, out.visibility_gl, error) &&
-           read_floats(dir / "oracle.f32", pixels, out.oracle, error) &&
-           read_floats(dir / "bound.f32", pixels, out.bound, error);
+    for (const auto& [name, file] : bake_files) {
+        std::vector<float>& texels = out.bake_textures[name];
+        if (!read_floats(dir / file, 0, texels, error)) return false;
+        if (texels.empty() || texels.size() % 4 != 0) {
+            *error = (dir / file).string() + ": " + std::to_string(texels.size()) +
+                     " floats, not whole RGBA texels (uniforms.json bake_textures " + name + ")";
+            return false;
+        }
+    }
+    if (!read_floats(dir / "visibility_gl.f32", pixels, out.visibility_gl, error)) return false;
+    // The oracle models occlusion textures only (targets/bundle/README.md): other techniques' bundles
+    // have neither oracle.f32 nor bound.f32.
+    const bool oracle_files = std::filesystem::exists(dir / "oracle.f32") || std::filesystem::exists(dir / "bound.f32");
+    if (technique != "occlusion" && !oracle_files) return true;
+    out.has_oracle = read_floats(dir / "oracle.f32", pixels, out.oracle, error) &&
+                     read_floats(dir / "bound.f32", pixels, out.bound, error);
+    return out.has_oracle;
 }
 
 bool read_emission_sources(const Bundle& bundle, std::map<std::string, std::string>& out, std::string* error) {

@@ -16,9 +16,11 @@ struct Format {
     int bytes;       // per texel
     bool is_float;   // rendering to it needs EXT_color_buffer_float on ES 3.0
     bool filterable; // LINEAR filtering without OES_texture_float_linear
+    bool integer = false; // cleared with glClearBufferuiv, never filtered
+    bool depth = false;   // ES 3.0: read without comparison only through NEAREST filters
 };
 
-const Format* format_of(const std::string& name) {
+const std::map<std::string, Format>& formats() {
     static const std::map<std::string, Format> formats{
         {"RGBA8", {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, 4, false, true}},
         {"R8", {GL_R8, GL_RED, GL_UNSIGNED_BYTE, 1, false, true}},
@@ -28,12 +30,23 @@ const Format* format_of(const std::string& name) {
         {"RGBA32F", {GL_RGBA32F, GL_RGBA, GL_FLOAT, 16, true, false}},
         {"RG32F", {GL_RG32F, GL_RG, GL_FLOAT, 8, true, false}},
         {"R32F", {GL_R32F, GL_RED, GL_FLOAT, 4, true, false}},
-        {"RGBA32UI", {GL_RGBA32UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT, 16, false, false}},
-        {"DEPTH_COMPONENT24", {GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, 4, false, true}},
-        {"DEPTH_COMPONENT32F", {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, 4, false, true}},
+        {"RGBA32UI", {GL_RGBA32UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT, 16, false, false, true}},
+        {"R32UI", {GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, 4, false, false, true}}, // adaptive slice boundaries
+        {"DEPTH_COMPONENT24", {GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, 4, false, true, false, true}},
+        {"DEPTH_COMPONENT32F", {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, 4, false, true, false, true}},
     };
-    auto it = formats.find(name);
-    return it == formats.end() ? nullptr : &it->second;
+    return formats;
+}
+
+const Format* format_of(const std::string& name) {
+    auto it = formats().find(name);
+    return it == formats().end() ? nullptr : &it->second;
+}
+
+std::string format_names() {
+    std::string names;
+    for (const auto& [name, format] : formats()) names += (names.empty() ? "" : ", ") + name;
+    return names;
 }
 
 // GL_<name> for the enum strings layout.json uses; 0 when unknown.
@@ -90,7 +103,18 @@ std::unique_ptr<LayoutRunner> LayoutRunner::create(const json& layout, const std
     for (const json& t : l["textures"]) {
         const std::string name = t["name"], format = t["internal_format"];
         const Format* f = format_of(format);
-        if (!f) return fail("texture " + name + ": internal_format '" + format + "' unknown");
+        if (!f) return fail("texture " + name + ": internal_format '" + format + "' unknown; allowed: " + format_names());
+        // layout.json "initial": zero (cleared at allocation, as here), caller (filled every run
+        // with fill_texture) or bake (uploaded once with fill_bake); a pass reading a caller or bake
+        // texture that was never filled fails with its name.
+        const std::string source = t.value("source", "passes"), initial = t.value("initial", "zero");
+        if (source != "passes" && source != "caller" && source != "bake")
+            return fail("texture " + name + ": source '" + source + "' unknown; allowed: passes, caller, bake");
+        if (initial != "zero" && initial != "caller" && initial != "bake")
+            return fail("texture " + name + ": initial '" + initial + "' unknown; allowed: zero, caller, bake");
+        if ((source == "passes") != (initial == "zero"))
+            return fail("texture " + name + ": initial '" + initial + "' with source '" + source +
+                        "'; allowed: initial zero exactly for source passes");
         auto need = [&](const std::string& extension, const std::string& why) {
             if (!es || std::find(runner->extensions_.begin(), runner->extensions_.end(), extension) != runner->extensions_.end())
                 return std::string();
@@ -133,8 +157,15 @@ LayoutRunner::~LayoutRunner() {
 
 // The sampler object of one binding's "sampling" (filters, wrap, border, comparison), made once:
 // bindings read through samplers, so one texture may be read two ways (PCSS's shadow map).
-std::string LayoutRunner::sampler(const json& sampling, const std::string& where, GLuint* id) {
+std::string LayoutRunner::sampler(const json& sampling, const std::string& where, GLuint* id, bool depth_texture) {
     const std::string key = sampling.dump();
+    // OpenGL ES 3.0 (§3.8.13): a depth texture read without comparison is incomplete unless both
+    // filters are NEAREST (desktop GL 3.3 filters it); it would read as zero, silently.
+    if (depth_texture && !epoxy_is_desktop_gl() && sampling.value("compare", "").empty() &&
+        (sampling.value("min_filter", "") != "NEAREST" || sampling.value("mag_filter", "") != "NEAREST"))
+        return where + ": a depth texture read without comparison through " + sampling.value("min_filter", "?") + "/" +
+               sampling.value("mag_filter", "?") + " filters, which OpenGL ES 3.0 cannot (incomplete texture); allowed: "
+               "NEAREST filters, or a compare function";
     if (auto it = samplers_.find(key); it != samplers_.end()) {
         *id = it->second;
         return {};
@@ -208,6 +239,7 @@ std::string LayoutRunner::allocate(const json& desc, int width, int height) {
     glBindTexture(target, 0);
     if (auto it = textures_.find(name); it != textures_.end()) glDeleteTextures(1, &it->second.id);
     textures_[name] = t;
+    filled_.erase(name); // caller and bake textures hold zeros until filled again
     return gl_error_text("texture " + name);
 }
 
@@ -285,8 +317,16 @@ void LayoutRunner::apply_uniforms(const Program& program) {
 
 std::string LayoutRunner::apply_state(const json& s) {
     auto on = [](GLenum cap, bool enabled) { enabled ? glEnable(cap) : glDisable(cap); };
-    if (s.value("logic_op", "NONE") != "NONE") // ES 3.0 has no glLogicOp (penumbra emits none for essl300)
-        return "state: logic_op " + s.value("logic_op", "") + " is not available on OpenGL ES; allowed: NONE";
+    // Logical operations: OpenGL 3.3 has them (more than 32 slices OR their bits into RGBA32UI);
+    // ES 3.0 has no glLogicOp (penumbra emits none for essl300).
+    const std::string logic_op = s.value("logic_op", "NONE");
+    if (logic_op != "NONE") {
+        if (!epoxy_is_desktop_gl())
+            return "state: logic_op " + logic_op + " is not available on OpenGL ES; allowed: NONE";
+        if (logic_op != "OR") return "state: logic_op '" + logic_op + "' unknown; allowed: NONE, OR";
+        glLogicOp(GL_OR);
+    }
+    if (epoxy_is_desktop_gl()) on(GL_COLOR_LOGIC_OP, logic_op != "NONE");
     on(GL_BLEND, s.value("blend", false));
     if (s.value("blend", false)) {
         const GLenum equation = gl_enum(s["blend_equation"]), src = gl_enum(s["blend_src"]), dst = gl_enum(s["blend_dst"]);
@@ -304,20 +344,33 @@ std::string LayoutRunner::apply_state(const json& s) {
     const float factor = s.value("polygon_offset_factor", 0.0f), units = s.value("polygon_offset_units", 0.0f);
     on(GL_POLYGON_OFFSET_FILL, factor != 0.0f || units != 0.0f);
     glPolygonOffset(factor, units);
-    GLbitfield clear = 0;
+    glDepthMask(s.value("depth_write", false) ? GL_TRUE : GL_FALSE);
+    return {};
+}
+
+// The pass's clears, as the desktop runtime does them: every colour output with full write masks
+// (integer ones, R32UI, with glClearBufferuiv: glClear would be an error), the depth output with
+// depth writes on; both APIs have glClearBuffer*.
+std::string LayoutRunner::clear(const json& s, const std::vector<bool>& integer_buffers, bool has_depth) {
     if (s.contains("clear_color") && !s["clear_color"].is_null()) {
         const std::vector<float> c = s["clear_color"];
-        glClearColor(c[0], c[1], c[2], c[3]);
-        clear |= GL_COLOR_BUFFER_BIT;
+        if (c.size() != 4) return "state: clear_color " + s["clear_color"].dump() + " is not 4 numbers";
+        glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+        for (std::size_t i = 0; i < integer_buffers.size(); ++i) {
+            if (integer_buffers[i]) {
+                const GLuint value[4] = {static_cast<GLuint>(c[0]), static_cast<GLuint>(c[1]), static_cast<GLuint>(c[2]),
+                                         static_cast<GLuint>(c[3])};
+                glClearBufferuiv(GL_COLOR, static_cast<GLint>(i), value);
+            } else {
+                glClearBufferfv(GL_COLOR, static_cast<GLint>(i), c.data());
+            }
+        }
     }
-    if (s.contains("clear_depth") && !s["clear_depth"].is_null()) {
+    if (has_depth && s.contains("clear_depth") && !s["clear_depth"].is_null()) {
         const float depth = s["clear_depth"].get<float>();
-        epoxy_is_desktop_gl() ? glClearDepth(depth) : glClearDepthf(depth); // glClearDepthf: GL 4.1
         glDepthMask(GL_TRUE);
-        clear |= GL_DEPTH_BUFFER_BIT;
+        glClearBufferfv(GL_DEPTH, 0, &depth);
     }
-    if (clear) glClear(clear);
-    glDepthMask(s.value("depth_write", false) ? GL_TRUE : GL_FALSE);
     return {};
 }
 
@@ -329,7 +382,7 @@ void LayoutRunner::attach(GLenum framebuffer, GLenum attachment, const std::stri
         glFramebufferTexture2D(framebuffer, attachment, GL_TEXTURE_2D, t.id, level);
 }
 
-std::string LayoutRunner::bind_outputs(const json& pass) {
+std::string LayoutRunner::bind_outputs(const json& pass, std::vector<bool>& integer_buffers, bool& has_depth) {
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
     for (GLenum i = 0; i < 8; ++i) glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + i, GL_TEXTURE_2D, 0, 0);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, 0, 0);
@@ -337,15 +390,20 @@ std::string LayoutRunner::bind_outputs(const json& pass) {
     for (const json& out : pass["outputs"]) {
         const std::string texture = out["texture"];
         if (!textures_.count(texture)) return "pass " + std::string(pass["name"]) + ": no texture " + texture;
+        const Format* f = format_of((*textures_.at(texture).desc)["internal_format"]);
         if (out.value("kind", "color") == "depth") {
+            if (!f->depth) return "pass " + std::string(pass["name"]) + ": depth output " + texture + " has a colour format";
             attach(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, texture, out["level"], out["layer"]);
+            has_depth = true;
             continue;
         }
         const GLenum attachment = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(buffers.size());
         attach(GL_FRAMEBUFFER, attachment, texture, out["level"], out["layer"]);
         buffers.push_back(attachment);
+        integer_buffers.push_back(f->integer);
     }
-    if (buffers.empty()) buffers.push_back(GL_NONE);
+    glReadBuffer(buffers.empty() ? GL_NONE : GL_COLOR_ATTACHMENT0);
+    if (buffers.empty()) buffers.push_back(GL_NONE); // a depth-only pass (the shadow map)
     glDrawBuffers(static_cast<GLsizei>(buffers.size()), buffers.data());
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
         return "pass " + std::string(pass["name"]) + ": framebuffer incomplete";
@@ -385,9 +443,25 @@ std::string LayoutRunner::run_pass(const json& pass, const DrawScene& draw, int 
         return "pass " + name + ": action '" + action + "' unknown; allowed: draw_scene, fullscreen, generate_mipmap, copy";
     auto program = programs_.find(pass["program"]);
     if (program == programs_.end()) return "pass " + name + ": no program " + std::string(pass["program"]);
-    if (std::string e = bind_outputs(pass); !e.empty()) return e;
-    const int vw = pass["viewport"][0], vh = pass["viewport"][1];
-    glViewport(0, 0, vw > 0 ? vw : width, vw > 0 ? vh : height);
+    std::vector<bool> integer_buffers;
+    bool has_depth = false;
+    if (std::string e = bind_outputs(pass, integer_buffers, has_depth); !e.empty()) return e;
+    // A 0 x 0 viewport is the size of the first output at its level (the desktop runtime's rule:
+    // erosion's reductions render a 32 x 32 level of a 64 x 64 output), else the output size.
+    int vw = pass["viewport"][0], vh = pass["viewport"][1];
+    if (vw <= 0 || vh <= 0) {
+        vw = width;
+        vh = height;
+        if (!pass["outputs"].empty()) {
+            const json& out = pass["outputs"][0];
+            const Texture& t = textures_.at(out["texture"]);
+            const int level = out.value("level", 0);
+            vw = std::max(t.width >> level, 1);
+            vh = std::max(t.height >> level, 1);
+        }
+    }
+    glViewport(0, 0, vw, vh);
+    if (std::string e = clear(pass["state"], integer_buffers, has_depth); !e.empty()) return "pass " + name + ": " + e;
     glUseProgram(program->second.id);
     apply_uniforms(program->second);
     for (const auto& [uniform, value] : pass["int_uniforms"].items())
@@ -396,10 +470,16 @@ std::string LayoutRunner::run_pass(const json& pass, const DrawScene& draw, int 
     for (const json& input : pass["inputs"]) {
         auto t = textures_.find(input["texture"]);
         if (t == textures_.end()) return "pass " + name + ": no texture " + std::string(input["texture"]);
+        const std::string source = t->second.desc->value("source", "passes");
+        if (source != "passes" && !filled_.count(t->first))
+            return "pass " + name + ": texture " + t->first + " (source " + source + ") was never filled" +
+                   (source == "bake" ? " (a bake: uniforms.json bake_textures names its file)"
+                                     : " (a caller G-buffer: uniforms.json caller_textures names its file)");
+        const Format* f = format_of((*t->second.desc)["internal_format"]);
         GLuint sampler_id = 0;
         if (input.contains("sampling"))
             if (std::string e = sampler(input["sampling"], "pass " + name + " input " + std::string(input["texture"]),
-                                        &sampler_id);
+                                        &sampler_id, f->depth);
                 !e.empty())
                 return e;
         glActiveTexture(GL_TEXTURE0 + input["binding"].get<GLenum>());
@@ -413,6 +493,7 @@ std::string LayoutRunner::run_pass(const json& pass, const DrawScene& draw, int 
     }
     if (std::string e = apply_state(pass["state"]); !e.empty()) return "pass " + name + ": " + e;
     if (action == "draw_scene") {
+        if (!draw) return "pass " + name + ": draws the scene, and the caller gave no scene for phase " + pass.value("phase", "shadow");
         draw(program->second.id);
     } else {
         glBindVertexArray(empty_vao_);
@@ -459,7 +540,39 @@ std::string LayoutRunner::fill_texture(const std::string& name, int width, int h
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTexSubImage2D(t.target, 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, rgba);
     glBindTexture(t.target, 0);
-    return gl_error_text("fill " + name);
+    if (std::string e = gl_error_text("fill " + name); !e.empty()) return e;
+    filled_.insert(name);
+    return {};
+}
+
+std::string LayoutRunner::fill_bake(const std::string& name, const std::vector<float>& rgba) {
+    const json* desc = nullptr;
+    std::string bakes;
+    for (const json& t : layout_["textures"]) {
+        if (t["name"] == name) desc = &t;
+        if (t.value("source", "passes") == "bake") bakes += (bakes.empty() ? "" : ", ") + std::string(t["name"]);
+    }
+    if (!desc || desc->value("source", "passes") != "bake")
+        return "texture " + name + " is not a bake texture of this layout; bake textures: " + (bakes.empty() ? "none" : bakes);
+    const Texture& t = textures_.at(name);
+    const Format* f = format_of((*desc)["internal_format"]);
+    if (t.target != GL_TEXTURE_2D || f->format != GL_RGBA || f->integer || f->depth)
+        return "bake texture " + name + ": " + std::string((*desc)["internal_format"]) + " " + std::string((*desc)["target"]) +
+               "; this runner uploads RGBA floats into 2D RGBA textures only";
+    const std::size_t expected = 4 * static_cast<std::size_t>(t.width) * t.height;
+    if (rgba.size() != expected)
+        return "bake texture " + name + ": " + std::to_string(rgba.size()) + " floats; the layout's " +
+               std::to_string(t.width) + " x " + std::to_string(t.height) + " RGBA texture needs " + std::to_string(expected) +
+               " (a bake of another resolution?)";
+    // The GL converts the floats to the texture's format (RGBA16F: round to nearest), as the
+    // desktop runtime's upload does.
+    glBindTexture(t.target, t.id);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexSubImage2D(t.target, 0, 0, 0, t.width, t.height, GL_RGBA, GL_FLOAT, rgba.data());
+    glBindTexture(t.target, 0);
+    if (std::string e = gl_error_text("bake " + name); !e.empty()) return e;
+    filled_.insert(name);
+    return {};
 }
 
 std::vector<float> LayoutRunner::read_texture(const Texture& t) {

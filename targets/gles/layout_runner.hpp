@@ -2,12 +2,17 @@
 // following its layout.json alone: the textures of `textures`, the programs of `programs`, the
 // passes of `passes` in order with their render state, bindings, attachments and integer
 // uniforms. Only calls that both APIs have (no direct state access, no texture storage, no
-// layout(binding)); libepoxy resolves them on whichever context is current. The desktop runtime
-// (include/penumbra/gl/runtime.hpp) needs OpenGL 4.5; this is the portable one.
+// layout(binding)), except logic_op OR (OpenGL 3.3 only); libepoxy resolves them on whichever
+// context is current. The desktop runtime (include/penumbra/gl/runtime.hpp) needs OpenGL 4.5;
+// this is the portable one. Every technique: occlusion textures (uniform or adaptive slices),
+// the shadow-map techniques (depth attachments, per-binding comparison samplers, erosion's mip
+// chain) and oim (its bake uploaded with fill_bake). What the API cannot do (on ES 3.0:
+// CLAMP_TO_BORDER, logic_op, a depth texture filtered without comparison) fails with its reason.
 //
 //   auto runner = LayoutRunner::create(layout_json, sources, &error);  // a context is current
 //   runner->set_uniform("penumbra_lightFromWorld", {16 floats, column-major});
-//   runner->run_phase("shadow", draw_triangles, 0, 0);                  // slicing + prefilter
+//   runner->fill_bake("penumbra_rise0", rgba);                          // a "bake" texture (oim), once
+//   runner->run_phase("shadow", draw_triangles, 0, 0);                  // slicing + prefilter, or the shadow map
 //   runner->fill_texture("penumbra_worldPositions", w, h, rgba32f);     // a "caller" texture
 //   runner->run_phase("screen", nullptr, w, h);                         // deferred visibility
 //   std::vector<float> visibility = runner->read_result();              // bottom row first
@@ -19,6 +24,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -43,6 +49,10 @@ public:
 
     // Fills a texture whose source is "caller" (RGBA floats); output-sized ones are allocated here.
     std::string fill_texture(const std::string& name, int width, int height, const float* rgba);
+
+    // Uploads a texture whose source is "bake" (oim's interval maps): RGBA floats, rows from v = 0,
+    // exactly the layout's width × height. Empty on success, else a diagnostic naming the texture.
+    std::string fill_bake(const std::string& name, const std::vector<float>& rgba);
 
     // Runs the passes of `phase` ("shadow", "screen", "example") in layout order; width × height
     // is the output size (passes with a 0 × 0 viewport). Empty on success, else a diagnostic.
@@ -74,10 +84,11 @@ private:
     std::string link(const nlohmann::json& desc, const std::map<std::string, std::string>& sources);
     std::string allocate_output_sized(int width, int height);
     std::string run_pass(const nlohmann::json& pass, const DrawScene& draw, int width, int height);
-    std::string bind_outputs(const nlohmann::json& pass);
+    std::string bind_outputs(const nlohmann::json& pass, std::vector<bool>& integer_buffers, bool& has_depth);
+    std::string clear(const nlohmann::json& state, const std::vector<bool>& integer_buffers, bool has_depth);
     void attach(GLenum framebuffer, GLenum attachment, const std::string& texture, int level, int layer);
     void apply_uniforms(const Program& program);
-    std::string sampler(const nlohmann::json& sampling, const std::string& where, GLuint* id);
+    std::string sampler(const nlohmann::json& sampling, const std::string& where, GLuint* id, bool depth_texture);
     std::string apply_state(const nlohmann::json& state);
     std::vector<float> read_texture(const Texture& t);
 
@@ -86,6 +97,7 @@ private:
     std::map<std::string, Program> programs_;
     std::map<std::string, std::vector<float>> values_;
     std::vector<std::string> extensions_;
+    std::set<std::string> filled_; // caller and bake textures filled since their allocation
     std::map<std::string, GLuint> samplers_; // by the sampling's JSON text
     GLuint framebuffer_ = 0, read_framebuffer_ = 0, empty_vao_ = 0;
     int output_width_ = 0, output_height_ = 0;

@@ -62,7 +62,7 @@ struct ParamDesc {
     std::string compute;         // plain uniforms: how to compute the value (formula, light_frame.hpp field)
     int binding = -1;            // sampler: texture unit / Vulkan binding; -1 for plain uniforms
     std::string texture;         // sampler: the texture bound to it when the program runs its usual pass
-    Sampling sampling;           // sampler: how it reads its texture (finish_sampling fills it)
+    Sampling sampling{};         // sampler: how it reads its texture (finish_sampling fills it)
     std::string block;           // Vulkan: uniform block holding this value
     int block_binding = -1;      // Vulkan: binding of that block
     int offset = -1;             // Vulkan: std140 byte offset in the block
@@ -97,7 +97,7 @@ struct BindingDesc {
     int binding = 0;
     int level = -1;      // -1: all levels; n: the pass reads only level n (base = max level = n while it
                          // runs), so it may render another level of the same texture (min-max mip chains)
-    Sampling sampling;   // how this binding reads the texture (that of its sampler parameter)
+    Sampling sampling{}; // how this binding reads the texture (that of its sampler parameter)
 };
 
 // Fixed-function state of a pass. Blend, depth test and culling are off unless set; polygon

@@ -68,10 +68,19 @@ constexpr bool rotates(const Config& config) {
 constexpr void write_rotation_function(LineWriter& out, const Config& config) {
     if (!rotates(config)) return;
     out.chunk("rotation");
-    out.comment("per-pixel rotation of the tap pattern: an angle from a hash of the world position");
+    // An integer hash of the position's bits (a PCG step, Jarzynski & Olano 2020), not fract(sin(x)·k):
+    // sin of large arguments differs between drivers and even between one driver's GLSL and SPIR-V
+    // paths, so the same pixel got another pattern on another API.
+    out.comment("per-pixel rotation of the tap pattern: an angle from an integer hash of the world position's bits,");
+    out.comment("the same on every API and GPU");
     out.line("mat2 penumbra_rotation(vec3 worldPos)");
     out.line("{");
-    out.line("float angle = 6.283185307 * fract(sin(dot(worldPos, vec3(12.9898, 78.233, 37.719))) * 43758.5453);");
+    out.line("uvec3 bits = floatBitsToUint(worldPos);");
+    out.line("uint h = bits.x * 0x8da6b343u ^ bits.y * 0xd8163841u ^ bits.z * 0xcb1ab31fu;");
+    out.line("h = h * 747796405u + 2891336453u;");
+    out.line("h = ((h >> ((h >> 28u) + 4u)) ^ h) * 277803737u;");
+    out.line("h = (h >> 22u) ^ h;");
+    out.line("float angle = 6.283185307 * float(h >> 8u) * (1.0 / 16777216.0);");
     out.line("float c = cos(angle);");
     out.line("float s = sin(angle);");
     out.line("return mat2(c, s, -s, c);");
