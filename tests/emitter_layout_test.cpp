@@ -320,8 +320,9 @@ TEST_CASE("layout: level_bound builds, allocates and reads only levels 0 to the 
         for (const PassDesc& p : l.passes) n += p.name == pass;
         return n;
     };
-    CHECK(count(full, "nbuffer_level") == 9);
-    CHECK(count(cut, "nbuffer_level") == 5);
+    // level 1 comes out of the atlas packing pass (a second colour output), levels 2 to L from one pass each
+    CHECK(count(full, "nbuffer_level") == 8);
+    CHECK(count(cut, "nbuffer_level") == 4);
     // 16 slices at 512²: ten RGBA8 levels of 2048 × 512 (40 MiB) against six (24 MiB), plus the slices
     CHECK(texture_bytes(full) - texture_bytes(cut) == 4LL * 2048 * 512 * 4);
     Config half = bounded;
@@ -364,20 +365,34 @@ TEST_CASE("layout: levels above level_reduction at half the resolution of the on
     std::vector<const PassDesc*> levels;
     for (const PassDesc& p : layout.passes)
         if (p.name == "nbuffer_level") levels.push_back(&p);
-    REQUIRE(levels.size() == 6);
+    REQUIRE(levels.size() == 5); // levels 2 to 6: the atlas packing pass writes levels 0 and 1
+    const PassDesc* pack = nullptr;
+    for (const PassDesc& p : layout.passes)
+        if (p.name == "pack_atlas") pack = &p;
+    REQUIRE(pack != nullptr);
+    REQUIRE(pack->outputs.size() == 2);
+    CHECK(pack->outputs[0].texture == "penumbra_level0");
+    CHECK(pack->outputs[1].texture == "penumbra_level1");
+    CHECK(pack->viewport_width == 2048);
+    CHECK(pack->inputs.front().texture == "penumbra_slices");
+    // level_reduction 0: level 1 is at half the size, so it gets its own pass (one size per pass)
+    Config halved = config;
+    halved.level_reduction = 0;
+    for (const PassDesc& p : describe_layout(halved).passes)
+        if (p.name == "pack_atlas") CHECK(p.outputs.size() == 1);
     auto ints = [](const PassDesc& p) {
         std::map<std::string, int> m(p.int_uniforms.begin(), p.int_uniforms.end());
         return m;
     };
     // level 2 from level 1: full resolution, offsets of 2 texels
-    CHECK(ints(*levels[1]) == std::map<std::string, int>{{"penumbra_step", 2}, {"penumbra_sourceTile", 512}, {"penumbra_scale", 1}});
-    CHECK(levels[1]->viewport_width == 2048);
+    CHECK(ints(*levels[0]) == std::map<std::string, int>{{"penumbra_step", 2}, {"penumbra_sourceTile", 512}, {"penumbra_scale", 1}});
+    CHECK(levels[0]->viewport_width == 2048);
     // level 3 from level 2 (full): half the size, offsets of 4 level-0 texels = 4 of level 2
-    CHECK(ints(*levels[2]) == std::map<std::string, int>{{"penumbra_step", 4}, {"penumbra_sourceTile", 512}, {"penumbra_scale", 2}});
-    CHECK(levels[2]->viewport_width == 1024);
-    CHECK(levels[2]->viewport_height == 256);
+    CHECK(ints(*levels[1]) == std::map<std::string, int>{{"penumbra_step", 4}, {"penumbra_sourceTile", 512}, {"penumbra_scale", 2}});
+    CHECK(levels[1]->viewport_width == 1024);
+    CHECK(levels[1]->viewport_height == 256);
     // level 5 from level 4 (spacing 4): 16 level-0 texels = 4 of level 4
-    CHECK(ints(*levels[4]) == std::map<std::string, int>{{"penumbra_step", 4}, {"penumbra_sourceTile", 128}, {"penumbra_scale", 2}});
+    CHECK(ints(*levels[3]) == std::map<std::string, int>{{"penumbra_step", 4}, {"penumbra_sourceTile", 128}, {"penumbra_scale", 2}});
     CHECK(to_json(layout).find("\"level_reduction\": 2") != std::string::npos);
     // slices (4 MiB) + levels 0 to 2 (4 MiB each) + levels 3 to 6 (a quarter less each time)
     const long long full_level = 2048LL * 512 * 4;
@@ -438,8 +453,17 @@ TEST_CASE("cost_model: fragments, fetches and bytes per pass, from the layout") 
         CHECK(p.bytes_written == 4LL * 2048 * 512); // RGBA8
         CHECK(p.bytes_read == 4LL * 2048 * 512);    // the previous level, each texel once
     }
-    CHECK(levels == 5);
-    CHECK(cost.shadow.passes == 1 + 1 + 5); // slicing, pack_atlas, five levels
+    CHECK(levels == 4);
+    CHECK(cost.shadow.passes == 1 + 1 + 4); // slicing, pack_atlas (levels 0 and 1), levels 2 to 5
+    // the atlas packing pass: level 1's four taps per texel from the slices (4 MiB, each texel once),
+    // levels 0 and 1 written
+    const PassCost* pack = nullptr;
+    for (const PassCost& p : cost.passes)
+        if (p.name == "pack_atlas") pack = &p;
+    REQUIRE(pack != nullptr);
+    CHECK(pack->texel_fetches == 4LL * 2048 * 512);
+    CHECK(pack->bytes_read == 4LL * 2048 * 512);
+    CHECK(pack->bytes_written == 2 * 4LL * 2048 * 512);
     CHECK(cost.screen.passes == 1);
     CHECK(cost.screen.fragments == 256LL * 256);
     CHECK(cost.screen.texel_fetches == 256LL * 256 * (2 + 16 * 8)); // G-buffer (positions, normals) + 2 bilinear per slice
@@ -449,6 +473,21 @@ TEST_CASE("cost_model: fragments, fetches and bytes per pass, from the layout") 
     const CostModel wider = cost_model(describe_layout(half), 256, 256);
     CHECK(wider.shadow.bytes() > cost.shadow.bytes());
     CHECK(wider.shadow.texel_fetches == cost.shadow.texel_fetches);
+
+    // reduced levels (the default level_reduction 2): a pass that halves the resolution reads every
+    // second texel of the previous level per axis, a quarter of it
+    Config reduced{.slices = 16, .resolution = 512, .level_bound = 5};
+    const CostModel r = cost_model(describe_layout(reduced), 256, 256);
+    std::vector<const PassCost*> built;
+    for (const PassCost& p : r.passes)
+        if (p.name == "nbuffer_level") built.push_back(&p);
+    REQUIRE(built.size() == 4);                     // levels 2 to 5
+    CHECK(built[0]->bytes_read == 4LL * 2048 * 512); // level 2 from level 1, full resolution
+    CHECK(built[1]->fragments == 1024LL * 256);      // level 3, half the resolution
+    CHECK(built[1]->texel_fetches == 4LL * 1024 * 256);
+    CHECK(built[1]->bytes_read == 4LL * 2048 * 512 / 4); // a quarter of level 2's texels
+    CHECK(built[1]->bytes_written == 4LL * 1024 * 256);
+    CHECK(built[2]->bytes_read == 4LL * 1024 * 256 / 4); // a quarter of level 3's
 }
 
 namespace {

@@ -12,12 +12,16 @@
 //                  program's texel reads per fragment (below) × fragments; bytes written = fragments ×
 //                  the bytes per texel of every output; bytes read = every input texel once (a cache
 //                  holds the neighbourhood the taps share): the input's bytes at the level it reads,
-//                  at most the fetches' bytes.
+//                  at most the fetches' bytes. A pass that builds a reduced level (int uniform
+//                  penumbra_scale = 2: it halves the resolution) reads every second texel of its
+//                  source per axis, a quarter of them.
 //   draw_scene     the clear of every output (bytes written = its size); the scene's own fragments
 //                  depend on the geometry and are not counted (their blended writes go to the same
 //                  texels, so the clear's bytes are the least the pass moves).
 //   copy           the texel count read and written once.
 //   generate_mipmap each level read once and the next written: 4/3 of level 0's bytes read, 1/3 written.
+// Fetches per fragment of the prefilter: an N-buffer level 4 texels, a Gaussian one 9; the atlas
+// packing 1, or the taps of level 1 where it writes level 1 too (a second colour output).
 // Fetches per fragment of the shading pass (occlusion textures) are an upper bound: every slice
 // above the point looks up (one per slice: two bilinear fetches for N-buffer atlas and array levels,
 // one trilinear for mip chains and volumes, four bilinear for summed-area tables); a bilinear fetch
@@ -58,10 +62,12 @@ struct CostModel {
 namespace detail {
 
 // Texels one fragment of `program` reads (the cost model's rules above).
-inline long long texels_per_fragment(const Layout& layout, std::string_view program) {
+inline long long texels_per_fragment(const Layout& layout, const PassDesc& pass) {
     const Config& c = layout.config;
+    const std::string_view program = pass.program;
     if (program == "nbuffer_level") return 4;
     if (program == "gaussian_level") return 9;
+    if (program == "pack_atlas" && pass.outputs.size() > 1) return c.filter == Filter::gaussian ? 9 : 4; // + level 1
     if (program == "pack_atlas" || program == "sat_shift" || program == "unpack_slices") return 1;
     if (program == "sat_pass") return 2;
     if (program == "slice_boundaries") return 64; // the 8 x 8 cells of one depth bin (detail/occlusion/emit_slice_placement.hpp)
@@ -114,19 +120,24 @@ inline CostModel cost_model(const Layout& layout, int output_width, int output_h
         };
         if (pass.action == "fullscreen") {
             cost.fragments = w * h;
-            cost.texel_fetches = cost.fragments * detail::texels_per_fragment(layout, pass.program);
+            cost.texel_fetches = cost.fragments * detail::texels_per_fragment(layout, pass);
             long long per_texel_written = 0;
             for (const AttachmentDesc& a : pass.outputs)
                 if (const TextureDesc* t = find_layout_texture(layout, a.texture)) per_texel_written += bytes_per_texel(t->internal_format);
             cost.bytes_written = cost.fragments * per_texel_written;
             // a pass with penumbra_sourceLayer reads one layer (array) or depth slice (volume) of its source
             bool one_layer = false;
-            for (const auto& [name, value] : pass.int_uniforms) one_layer = one_layer || name == "penumbra_sourceLayer";
+            long long scale = 1; // reduced levels: every scale-th texel of the source per axis
+            for (const auto& [name, value] : pass.int_uniforms) {
+                one_layer = one_layer || name == "penumbra_sourceLayer";
+                if (name == "penumbra_scale" && value > 1) scale = value;
+            }
             long long fetched_bytes = 0, inputs = 0;
             for (const BindingDesc& in : pass.inputs) {
                 const TextureDesc* t = find_layout_texture(layout, in.texture);
                 if (!t) continue;
-                inputs += detail::level_bytes(*t, std::max(in.level, 0), output_width, output_height, one_layer);
+                inputs += detail::level_bytes(*t, std::max(in.level, 0), output_width, output_height, one_layer) /
+                          (scale * scale);
                 fetched_bytes = std::max<long long>(fetched_bytes, bytes_per_texel(t->internal_format));
             }
             // every input texel once, but never more than the fetches bring in

@@ -91,6 +91,12 @@ public:
     };
     Sample filtered(int slice, glm::dvec2 centre, double side) const;
 
+    // Texel (x, y) of one slice's filter level as the oracle stores it (mip chains and reduced
+    // levels at their own size, level_side texels per side), for the tests that compare the GPU's
+    // levels texel by texel. Not for summed-area tables.
+    double level_texel(int slice, int level, int x, int y) const { return levels_[slice][level].at(x, y); }
+    int level_side(int slice, int level) const { return levels_[slice][level].width; }
+
 private:
     struct Plane {
         int width = 0, height = 0;

@@ -58,7 +58,10 @@ constexpr std::vector<Param> level_params(const Config& config) {
 }
 
 // Declarations of a level-building pass and the texel read that returns 0 outside the occlusion
-// texture's R×R tile (the window sums treat the outside as unoccluded).
+// texture's tile (the window sums treat the outside as unoccluded). The read takes the tile's
+// origin in the source and a position inside the tile, so a fragment finds its tile once and each
+// tap costs an add, a bounds test and a clamp (no integer division per tap: on a CPU rasterizer a
+// division by a uniform is scalar, eight per SIMD vector).
 constexpr void write_level_source(LineWriter& out, const Config& config) {
     const Text R = format_int(config.resolution);
     const std::vector<Param> params = level_params(config);
@@ -67,56 +70,51 @@ constexpr void write_level_source(LineWriter& out, const Config& config) {
     out.line("layout(location = 0) out vec4 penumbra_result;");
     out.blank();
     out.chunk("level_source");
-    out.comment("texel of the previous level at base + offset, 0 outside the tile");
-    out.line("vec4 penumbra_source_texel(ivec2 base, ivec2 offset)");
-    out.line("{");
-    if (reduces_levels(config)) {
-        // the previous level's tiles are penumbra_sourceTile texels wide (reduced levels)
-        out.line("ivec2 local = ivec2(base.x % penumbra_sourceTile, base.y) + offset;");
-        out.line("ivec2 texel = base + offset;");
-        out.line("bool inside = all(greaterThanEqual(local, ivec2(0))) && all(lessThan(local, ivec2(penumbra_sourceTile)));");
-        out.line("texel = clamp(texel, ivec2(0), ivec2(", format_int(texture_count(config)),
-                 " * penumbra_sourceTile - 1, penumbra_sourceTile - 1));");
-        out.line("vec4 value = texelFetch(penumbra_source, texel, 0);");
-        out.line("return inside ? value : vec4(0.0);");
-        out.line("}");
-        out.blank();
-        return;
-    }
     if (config.packing == Packing::atlas) {
-        out.line("ivec2 local = ivec2(base.x % ", R, ", base.y) + offset;");
-        out.line("ivec2 texel = base + offset;");
+        // reduced levels: the previous level's tiles are penumbra_sourceTile texels wide
+        const Text tile = choose(reduces_levels(config), Text("penumbra_sourceTile"), R);
+        out.comment("texel `local` of the previous level's tile that starts at `origin`, 0 outside the tile");
+        out.line("vec4 penumbra_source_texel(ivec2 origin, ivec2 local)");
+        out.line("{");
+        out.line("bool inside = all(greaterThanEqual(local, ivec2(0))) && all(lessThan(local, ivec2(", tile, ")));");
+        out.line("vec4 value = texelFetch(penumbra_source, origin + clamp(local, ivec2(0), ivec2(", tile, " - 1)), 0);");
     } else {
-        out.line("ivec2 local = base + offset;");
-        out.line("ivec2 texel = local;");
-    }
-    out.line("bool inside = all(greaterThanEqual(local, ivec2(0))) && all(lessThan(local, ivec2(", R, ")));");
-    const Text max_x = choose(config.packing == Packing::atlas,
-                              format_int(config.resolution * texture_count(config) - 1),
-                              format_int(config.resolution - 1));
-    out.line("texel = clamp(texel, ivec2(0), ivec2(", max_x, ", ", format_int(config.resolution - 1), "));");
-    if (config.packing == Packing::atlas)
-        out.line("vec4 value = texelFetch(penumbra_source, texel, 0);");
-    else
+        out.comment("texel `local` of the previous level, 0 outside the texture (origin: always 0)");
+        out.line("vec4 penumbra_source_texel(ivec2 origin, ivec2 local)");
+        out.line("{");
+        out.line("bool inside = all(greaterThanEqual(local, ivec2(0))) && all(lessThan(local, ivec2(", R, ")));");
+        out.line("ivec2 texel = origin + clamp(local, ivec2(0), ivec2(", format_int(config.resolution - 1), "));");
         out.line("vec4 value = texelFetch(penumbra_source, ivec3(texel, penumbra_sourceLayer), 0);");
+    }
     out.line("return inside ? value : vec4(0.0);");
     out.line("}");
     out.blank();
 }
 
-// The texel of the previous level under this fragment's texel. Reduced levels (reduces_levels): a
-// texel of a level at spacing s (texels of level 0) stands for level-0 texel s·j of its tile, so
-// with penumbra_scale = s / s' it is texel scale·j of the previous level's tile (offsets in the
-// previous level's texels: penumbra_step = 2^(l-1) / s').
+// The tile origin and the position in it, in the previous level, of this fragment's texel. Reduced
+// levels (reduces_levels): a texel of a level at spacing s (texels of level 0) stands for level-0
+// texel s·j of its tile, so with penumbra_scale = s / s' it is texel scale·j of the previous level's
+// tile (offsets in the previous level's texels: penumbra_step = 2^(l-1) / s').
 constexpr void write_level_base(LineWriter& out, const Config& config) {
-    if (!reduces_levels(config)) {
-        out.line("ivec2 base = ivec2(gl_FragCoord.xy);");
+    out.line("ivec2 fragment = ivec2(gl_FragCoord.xy);");
+    if (config.packing != Packing::atlas) {
+        out.line("ivec2 origin = ivec2(0);");
+        out.line("ivec2 local = fragment;");
         return;
     }
-    out.line("ivec2 fragment = ivec2(gl_FragCoord.xy);");
-    out.line("int tile = penumbra_sourceTile / penumbra_scale; // this level's tile side");
-    out.line("ivec2 base = ivec2((fragment.x / tile) * penumbra_sourceTile + (fragment.x % tile) * penumbra_scale,");
-    out.line("    fragment.y * penumbra_scale);");
+    if (!reduces_levels(config)) {
+        const Text R = format_int(config.resolution);
+        out.line("int tile = fragment.x / ", R, "; // which occlusion texture");
+        out.line("ivec2 origin = ivec2(tile * ", R, ", 0);");
+        out.line("ivec2 local = ivec2(fragment.x - tile * ", R, ", fragment.y);");
+        return;
+    }
+    out.line("int side = penumbra_scale == 1 ? penumbra_sourceTile : penumbra_sourceTile / 2; // this level's tile side");
+    out.comment("which occlusion texture: fragment.x / side without an integer division (the pixel centre's");
+    out.comment("half texel keeps the float quotient at least 0.5 / side off an integer: exact for any side)");
+    out.line("int tile = int(gl_FragCoord.x / float(side));");
+    out.line("ivec2 origin = ivec2(tile * penumbra_sourceTile, 0);");
+    out.line("ivec2 local = ivec2(fragment.x - tile * side, fragment.y) * penumbra_scale;");
 }
 
 // Décoret 2005: level l at a texel is the mean of the 2^l window anchored there, i.e. of four
@@ -131,8 +129,8 @@ constexpr Text nbuffer_level_fragment(const Config& config) {
     write_level_base(out, config);
     out.block(R"(
     int s = penumbra_step; // 2^(l-1) texels of level 0, in texels of the previous level
-    penumbra_result = 0.25 * (penumbra_source_texel(base, ivec2(0, 0)) + penumbra_source_texel(base, ivec2(s, 0))
-        + penumbra_source_texel(base, ivec2(0, s)) + penumbra_source_texel(base, ivec2(s, s)));
+    penumbra_result = 0.25 * (penumbra_source_texel(origin, local) + penumbra_source_texel(origin, local + ivec2(s, 0))
+        + penumbra_source_texel(origin, local + ivec2(0, s)) + penumbra_source_texel(origin, local + ivec2(s, s)));
 }
 )");
     return out.take();
@@ -153,15 +151,15 @@ constexpr Text gaussian_level_fragment(const Config& config) {
     int s = penumbra_step; // 2^(l-1) texels of level 0, in texels of the previous level
     vec4 sum = vec4(0.0);
     // 3 x 3 taps, weights (1 2 1) x (1 2 1) / 16
-    sum += 1.0 * penumbra_source_texel(base, ivec2(-s, -s));
-    sum += 2.0 * penumbra_source_texel(base, ivec2(0, -s));
-    sum += 1.0 * penumbra_source_texel(base, ivec2(s, -s));
-    sum += 2.0 * penumbra_source_texel(base, ivec2(-s, 0));
-    sum += 4.0 * penumbra_source_texel(base, ivec2(0, 0));
-    sum += 2.0 * penumbra_source_texel(base, ivec2(s, 0));
-    sum += 1.0 * penumbra_source_texel(base, ivec2(-s, s));
-    sum += 2.0 * penumbra_source_texel(base, ivec2(0, s));
-    sum += 1.0 * penumbra_source_texel(base, ivec2(s, s));
+    sum += 1.0 * penumbra_source_texel(origin, local + ivec2(-s, -s));
+    sum += 2.0 * penumbra_source_texel(origin, local + ivec2(0, -s));
+    sum += 1.0 * penumbra_source_texel(origin, local + ivec2(s, -s));
+    sum += 2.0 * penumbra_source_texel(origin, local + ivec2(-s, 0));
+    sum += 4.0 * penumbra_source_texel(origin, local + ivec2(0, 0));
+    sum += 2.0 * penumbra_source_texel(origin, local + ivec2(s, 0));
+    sum += 1.0 * penumbra_source_texel(origin, local + ivec2(-s, s));
+    sum += 2.0 * penumbra_source_texel(origin, local + ivec2(0, s));
+    sum += 1.0 * penumbra_source_texel(origin, local + ivec2(s, s));
     penumbra_result = sum / 16.0;
 }
 )");
@@ -173,21 +171,84 @@ constexpr Param slices_param() {
 }
 constexpr std::vector<Param> pack_atlas_params() { return {slices_param()}; }
 
-// The atlas's level 0: the slicing output (a T-layer array) laid out as tiles side by side.
+// The highest filter level the atlas packing pass writes: level 0 (the slicing output as tiles),
+// and for N-buffer and Gaussian levels also level 1, whose taps it reads from the slices anyway
+// (one pass, two outputs of one size, instead of a copy and a level pass), where level 1 has level
+// 0's size (a pass's outputs share one size: not with level_reduction 0). Mip chains: 0.
+constexpr int packed_level(const Config& config) {
+    return config.packing == Packing::atlas && has_level_images(config) && max_level(config) >= 1 &&
+                   level_spacing(config, 1) == 1
+               ? 1
+               : 0;
+}
+
+// The atlas's level 0: the slicing output (a T-layer array) laid out as tiles side by side; with
+// packed_level 1 also level 1, from the same texels as the level pass would read from level 0 (the
+// same sums in the same order: the same values, in RGBA8 too).
 constexpr Text pack_atlas_fragment(const Config& config) {
     LineWriter out;
-    write_preamble(out, config, "atlas packing of the slicing output (paper §3.6), fragment stage");
+    const int packed = packed_level(config);
+    const bool gaussian = config.filter == Filter::gaussian;
+    write_preamble(out, config,
+                   packed == 0 ? Text("atlas packing of the slicing output (paper §3.6), fragment stage")
+                               : cat("atlas packing of the slicing output (paper §3.6) and ",
+                                     gaussian ? "Gaussian" : "N-buffer", " level 1 from it, fragment stage"));
     int binding = 0;
     write_params(out, config, pack_atlas_params(), "PenumbraPass", binding);
-    out.line("layout(location = 0) out vec4 penumbra_result;");
+    const Text R = format_int(config.resolution);
+    if (packed == 0) {
+        out.line("layout(location = 0) out vec4 penumbra_result;");
+        out.blank();
+        out.chunk("pack_atlas_main");
+        out.line("void main()");
+        out.line("{");
+        out.line("ivec2 texel = ivec2(gl_FragCoord.xy);");
+        out.line("penumbra_result = texelFetch(penumbra_slices, ivec3(texel.x % ", R, ", texel.y, texel.x / ", R,
+                 "), 0);");
+        out.line("}");
+        return out.take();
+    }
+    out.line("layout(location = 0) out vec4 penumbra_level0; // level 0: the slicing output");
+    out.line("layout(location = 1) out vec4 penumbra_level1; // level 1, same size");
+    out.blank();
+    out.chunk("pack_atlas_source");
+    out.comment(cat("texel `local` of occlusion texture `layer` of the slicing output, 0 outside its ", R, " x ", R,
+                    " texels"));
+    out.line("vec4 penumbra_slice_texel(int layer, ivec2 local)");
+    out.line("{");
+    out.line("bool inside = all(greaterThanEqual(local, ivec2(0))) && all(lessThan(local, ivec2(", R, ")));");
+    out.line("vec4 value = texelFetch(penumbra_slices, ivec3(clamp(local, ivec2(0), ivec2(",
+             format_int(config.resolution - 1), ")), layer), 0);");
+    out.line("return inside ? value : vec4(0.0);");
+    out.line("}");
     out.blank();
     out.chunk("pack_atlas_main");
-    const Text R = format_int(config.resolution);
     out.line("void main()");
     out.line("{");
     out.line("ivec2 texel = ivec2(gl_FragCoord.xy);");
-    out.line("penumbra_result = texelFetch(penumbra_slices, ivec3(texel.x % ", R, ", texel.y, texel.x / ", R,
-             "), 0);");
+    out.line("int layer = texel.x / ", R, "; // which occlusion texture: the tile");
+    out.line("ivec2 local = ivec2(texel.x - layer * ", R, ", texel.y);");
+    out.line("vec4 level0 = penumbra_slice_texel(layer, local);");
+    out.line("penumbra_level0 = level0;");
+    if (!gaussian) {
+        out.comment("level 1 (Décoret 2005): the mean of the 2 x 2 window anchored here");
+        out.line("penumbra_level1 = 0.25 * (level0 + penumbra_slice_texel(layer, local + ivec2(1, 0))");
+        out.line("    + penumbra_slice_texel(layer, local + ivec2(0, 1)) + penumbra_slice_texel(layer, local + ivec2(1, 1)));");
+    } else {
+        out.comment("level 1: level 0 blurred by [1 2 1] / 4 in x and y, 3 x 3 taps, weights (1 2 1) x (1 2 1) / 16");
+        out.line("vec4 sum = vec4(0.0);");
+        const int weights[3] = {1, 2, 1};
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                const Text w = cat(format_int(weights[dx + 1] * weights[dy + 1]), ".0");
+                if (dx == 0 && dy == 0)
+                    out.line("sum += ", w, " * level0;");
+                else
+                    out.line("sum += ", w, " * penumbra_slice_texel(layer, local + ivec2(", format_int(dx), ", ",
+                             format_int(dy), "));");
+            }
+        out.line("penumbra_level1 = sum / 16.0;");
+    }
     out.line("}");
     return out.take();
 }

@@ -20,6 +20,8 @@ constexpr std::vector<ProgramPlan> occlusion_programs(const Config& config) {
         plan.push_back({"unpack_slices", {Artifact::fullscreen_vert, Artifact::unpack_slices_frag}});
     if (config.packing == Packing::atlas && config.filter != Filter::sat)
         plan.push_back({"pack_atlas", {Artifact::fullscreen_vert, Artifact::pack_atlas_frag}});
+    // (the atlas packing pass writes levels 0 to packed_level; a level pass builds each one above:
+    // the level program stays listed where there is none, as with level_bound 0 before)
     if (config.filter == Filter::nbuffer)
         plan.push_back({"nbuffer_level", {Artifact::fullscreen_vert, Artifact::nbuffer_level_frag}});
     if (config.filter == Filter::gaussian)
@@ -166,8 +168,10 @@ inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
     // Prefilter passes.
     const std::string level_program = config.filter == Filter::gaussian ? "gaussian_level" : "nbuffer_level";
     if (config.packing == Packing::atlas && config.filter != Filter::sat) {
-        const std::string level0 = config.filter == Filter::mipmap ? "penumbra_occlusionAtlas" : "penumbra_level0";
-        b.fullscreen("pack_atlas", "pack_atlas", {{"penumbra_slices", "penumbra_slices"}}, {level0, 0, -1}, {}, T * R, R);
+        // level 0, and levels 1 to packed_level (same size) as further colour outputs
+        std::vector<AttachmentDesc> packed{{config.filter == Filter::mipmap ? "penumbra_occlusionAtlas" : "penumbra_level0", 0, -1}};
+        for (int l = 1; l <= packed_level(config); ++l) packed.push_back({atlas_level_name(l).str(), 0, -1});
+        b.pass("pack_atlas", "fullscreen", "pack_atlas", {{"penumbra_slices", "penumbra_slices"}}, packed, {}, T * R, R);
     }
     if (config.filter == Filter::mipmap) {
         const std::string storage = config.packing == Packing::atlas ? "penumbra_occlusionAtlas" : "penumbra_occlusion";
@@ -194,7 +198,7 @@ inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
                 }
         }
     } else {
-        for (int l = 1; l <= L; ++l) {
+        for (int l = packed_level(config) + 1; l <= L; ++l) {
             const std::pair<std::string, int> step{"penumbra_step", 1 << (l - 1)};
             if (config.packing == Packing::atlas) {
                 const int spacing = level_spacing(config, l), source_spacing = level_spacing(config, l - 1);
