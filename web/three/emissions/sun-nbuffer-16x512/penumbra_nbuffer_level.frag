@@ -18,14 +18,11 @@ uniform sampler2D penumbra_source; // previous filter level (atlas), texture uni
 layout(location = 0) out vec4 penumbra_result;
 
 // @penumbra:level_source
-// texel of the previous level at base + offset, 0 outside the tile
-vec4 penumbra_source_texel(ivec2 base, ivec2 offset)
+// texel `local` of the previous level's tile that starts at `origin`, 0 outside the tile
+vec4 penumbra_source_texel(ivec2 origin, ivec2 local)
 {
-    ivec2 local = ivec2(base.x % penumbra_sourceTile, base.y) + offset;
-    ivec2 texel = base + offset;
     bool inside = all(greaterThanEqual(local, ivec2(0))) && all(lessThan(local, ivec2(penumbra_sourceTile)));
-    texel = clamp(texel, ivec2(0), ivec2(4 * penumbra_sourceTile - 1, penumbra_sourceTile - 1));
-    vec4 value = texelFetch(penumbra_source, texel, 0);
+    vec4 value = texelFetch(penumbra_source, origin + clamp(local, ivec2(0), ivec2(penumbra_sourceTile - 1)), 0);
     return inside ? value : vec4(0.0);
 }
 
@@ -33,10 +30,13 @@ vec4 penumbra_source_texel(ivec2 base, ivec2 offset)
 void main()
 {
     ivec2 fragment = ivec2(gl_FragCoord.xy);
-    int tile = penumbra_sourceTile / penumbra_scale; // this level's tile side
-    ivec2 base = ivec2((fragment.x / tile) * penumbra_sourceTile + (fragment.x % tile) * penumbra_scale,
-        fragment.y * penumbra_scale);
+    int side = penumbra_scale == 1 ? penumbra_sourceTile : penumbra_sourceTile / 2; // this level's tile side
+    // which occlusion texture: fragment.x / side without an integer division (the pixel centre's
+    // half texel keeps the float quotient at least 0.5 / side off an integer: exact for any side)
+    int tile = int(gl_FragCoord.x / float(side));
+    ivec2 origin = ivec2(tile * penumbra_sourceTile, 0);
+    ivec2 local = ivec2(fragment.x - tile * side, fragment.y) * penumbra_scale;
     int s = penumbra_step; // 2^(l-1) texels of level 0, in texels of the previous level
-    penumbra_result = 0.25 * (penumbra_source_texel(base, ivec2(0, 0)) + penumbra_source_texel(base, ivec2(s, 0))
-    + penumbra_source_texel(base, ivec2(0, s)) + penumbra_source_texel(base, ivec2(s, s)));
+    penumbra_result = 0.25 * (penumbra_source_texel(origin, local) + penumbra_source_texel(origin, local + ivec2(s, 0))
+    + penumbra_source_texel(origin, local + ivec2(0, s)) + penumbra_source_texel(origin, local + ivec2(s, s)));
 }
