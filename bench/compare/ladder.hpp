@@ -124,7 +124,9 @@ inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
         occlusion_entry(Filter::mipmap, 4, 128, true),
         occlusion_entry(Filter::mipmap, 8, 256),
         occlusion_entry(Filter::mipmap, 16, 512),
+        occlusion_entry(Filter::mipmap, 8, 128),
         occlusion_entry(Filter::nbuffer, 4, 128),
+        occlusion_entry(Filter::nbuffer, 8, 128),
         occlusion_entry(Filter::nbuffer, 8, 256),
         occlusion_entry(Filter::nbuffer, 16, 256),
         occlusion_entry(Filter::nbuffer, 16, 512, true), // the default configuration
