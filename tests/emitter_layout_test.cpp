@@ -26,11 +26,7 @@ std::vector<Config> vocabulary_configs() {
     return configs;
 }
 
-const TextureDesc* find_texture(const Layout& layout, std::string_view name) {
-    for (const TextureDesc& t : layout.textures)
-        if (t.name == name) return &t;
-    return nullptr;
-}
+using penumbra::detail::find_texture;
 
 } // namespace
 

@@ -13,7 +13,7 @@ import {LayoutRunner} from "./penumbra_runner.js";
 import {lightUniforms} from "./light_frame.js";
 import {sunDirection, timeWindow} from "./sun_path.js";
 import {ConfigPanel} from "./config_panel.js";
-import {SceneGeometry, GBuffer, Composite, perspective, lookAt, multiply} from "./scene_view.js";
+import {SceneGeometry, GBuffer, Composite, perspective, lookAt, multiply, SCENE_POSITION_LOCATION} from "./scene_view.js";
 
 const $ = (id) => document.getElementById(id);
 
@@ -241,6 +241,10 @@ class App {
         // oim: the sun's window along the path the bake traced, at the page's instant.
         if (config.technique === "oim" && this.bundle.info.sun_path) runner.setUniforms(this.oimUniforms(light));
         const replace = this.state.bundleSlices && this.state.camera === "bundle" ? {slicing: (pass) => this.injectSlices(runner, pass)} : {};
+        // the scene's vertex array holds positions at SCENE_POSITION_LOCATION: the layout must read them there
+        const position = runner.vertexLocation("penumbra_position");
+        if (position !== SCENE_POSITION_LOCATION)
+            throw new Error(`layout.json reads penumbra_position at location ${position}; the page's scene geometry provides it at ${SCENE_POSITION_LOCATION}`);
         runner.runPhase("shadow", () => this.geometry.draw(), null, replace);
 
         const bundleCamera = this.state.camera === "bundle";

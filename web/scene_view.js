@@ -46,6 +46,10 @@ function flatNormals(t) {
     return n;
 }
 
+// Where SceneGeometry's vertex array holds positions and flat normals (the G-buffer shader below
+// reads them there; layout.json's vertex_inputs must agree for the runner's draw_scene passes).
+export const SCENE_POSITION_LOCATION = 0, SCENE_NORMAL_LOCATION = 1;
+
 export class SceneGeometry {
     constructor(gl, triangles) {
         this.gl = gl;
@@ -54,7 +58,7 @@ export class SceneGeometry {
         this.vao = gl.createVertexArray();
         this.buffers = [];
         gl.bindVertexArray(this.vao);
-        [triangles, flatNormals(triangles)].forEach((data, location) => {
+        [[SCENE_POSITION_LOCATION, triangles], [SCENE_NORMAL_LOCATION, flatNormals(triangles)]].forEach(([location, data]) => {
             const buffer = gl.createBuffer();
             gl.bindBuffer(gl.ARRAY_BUFFER, buffer);
             gl.bufferData(gl.ARRAY_BUFFER, data, gl.STATIC_DRAW);

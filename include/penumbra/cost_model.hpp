@@ -89,12 +89,6 @@ inline long long texels_per_fragment(const Layout& layout, const PassDesc& pass)
     return 1;
 }
 
-inline const TextureDesc* find_layout_texture(const Layout& layout, std::string_view name) {
-    for (const TextureDesc& t : layout.textures)
-        if (t.name == name) return &t;
-    return nullptr;
-}
-
 // Bytes of one level (or one layer) of a texture.
 inline long long level_bytes(const TextureDesc& t, int level, int output_width, int output_height, bool one_layer) {
     long long w = t.width > 0 ? t.width : output_width, h = t.height > 0 ? t.height : output_height;
@@ -107,7 +101,7 @@ inline long long level_bytes(const TextureDesc& t, int level, int output_width, 
 } // namespace detail
 
 inline CostModel cost_model(const Layout& layout, int output_width, int output_height) {
-    using detail::find_layout_texture;
+    using detail::find_texture;
     CostModel model;
     for (const PassDesc& pass : layout.passes) {
         if (pass.phase != "shadow" && pass.phase != "screen") continue;
@@ -115,7 +109,7 @@ inline CostModel cost_model(const Layout& layout, int output_width, int output_h
         const bool screen = pass.phase == "screen";
         const long long w = screen ? output_width : pass.viewport_width, h = screen ? output_height : pass.viewport_height;
         auto output_bytes = [&](const AttachmentDesc& a) {
-            const TextureDesc* t = find_layout_texture(layout, a.texture);
+            const TextureDesc* t = find_texture(layout, a.texture);
             return t ? detail::level_bytes(*t, a.level, output_width, output_height, true) : 0LL;
         };
         if (pass.action == "fullscreen") {
@@ -123,7 +117,7 @@ inline CostModel cost_model(const Layout& layout, int output_width, int output_h
             cost.texel_fetches = cost.fragments * detail::texels_per_fragment(layout, pass);
             long long per_texel_written = 0;
             for (const AttachmentDesc& a : pass.outputs)
-                if (const TextureDesc* t = find_layout_texture(layout, a.texture)) per_texel_written += bytes_per_texel(t->internal_format);
+                if (const TextureDesc* t = find_texture(layout, a.texture)) per_texel_written += bytes_per_texel(t->internal_format);
             cost.bytes_written = cost.fragments * per_texel_written;
             // a pass with penumbra_sourceLayer reads one layer (array) or depth slice (volume) of its source
             bool one_layer = false;
@@ -134,7 +128,7 @@ inline CostModel cost_model(const Layout& layout, int output_width, int output_h
             }
             long long fetched_bytes = 0, inputs = 0;
             for (const BindingDesc& in : pass.inputs) {
-                const TextureDesc* t = find_layout_texture(layout, in.texture);
+                const TextureDesc* t = find_texture(layout, in.texture);
                 if (!t) continue;
                 inputs += detail::level_bytes(*t, std::max(in.level, 0), output_width, output_height, one_layer) /
                           (scale * scale);
@@ -145,7 +139,7 @@ inline CostModel cost_model(const Layout& layout, int output_width, int output_h
         } else if (pass.action == "draw_scene") {
             for (const AttachmentDesc& a : pass.outputs) cost.bytes_written += output_bytes(a);
             for (const BindingDesc& in : pass.inputs)
-                if (const TextureDesc* t = find_layout_texture(layout, in.texture))
+                if (const TextureDesc* t = find_texture(layout, in.texture))
                     cost.bytes_read += detail::level_bytes(*t, 0, output_width, output_height, false);
         } else if (pass.action == "copy") {
             const long long bytes = pass.outputs.empty() ? 0 : output_bytes(pass.outputs.front());
@@ -153,7 +147,7 @@ inline CostModel cost_model(const Layout& layout, int output_width, int output_h
             cost.fragments = w * h;
         } else if (pass.action == "generate_mipmap") {
             if (!pass.outputs.empty())
-                if (const TextureDesc* t = find_layout_texture(layout, pass.outputs.front().texture)) {
+                if (const TextureDesc* t = find_texture(layout, pass.outputs.front().texture)) {
                     const long long base = detail::level_bytes(*t, 0, output_width, output_height, false);
                     cost.bytes_read = base * 4 / 3;
                     cost.bytes_written = base / 3;

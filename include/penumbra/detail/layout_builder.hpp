@@ -12,6 +12,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -32,6 +33,12 @@ struct Sampling {
     std::string wrap;                   // "CLAMP_TO_BORDER" (border_color) or "CLAMP_TO_EDGE"
     std::array<float, 4> border_color{0.0f, 0.0f, 0.0f, 0.0f};
     std::string compare; // "" (a plain read) or the compare func of a depth comparison (sampler*Shadow)
+
+    // an order, so that a runner keeps one sampler object per distinct sampling (a map key)
+    friend bool operator<(const Sampling& a, const Sampling& b) {
+        return std::tie(a.min_filter, a.mag_filter, a.wrap, a.border_color, a.compare) <
+               std::tie(b.min_filter, b.mag_filter, b.wrap, b.border_color, b.compare);
+    }
 };
 
 struct TextureDesc {
@@ -267,6 +274,13 @@ inline std::vector<ParamDesc> describe_params(const Config& config, const std::v
     return out;
 }
 
+// The description of layout texture `name`; nullptr when the layout has none.
+inline const TextureDesc* find_texture(const Layout& layout, std::string_view name) {
+    for (const TextureDesc& t : layout.textures)
+        if (t.name == name) return &t;
+    return nullptr;
+}
+
 inline int binding_of(const std::vector<ParamDesc>& params, std::string_view name) {
     for (const ParamDesc& p : params)
         if (p.name == name) return p.binding;
@@ -322,8 +336,8 @@ struct LayoutBuilder {
         if (p.action == "copy" && !p.inputs.empty() && !p.outputs.empty())
             p.copy = CopyDesc{std::max(p.inputs[0].level, 0), -1, p.outputs[0].level, p.outputs[0].layer, w, h};
         if (p.action == "generate_mipmap" && !p.outputs.empty())
-            for (const TextureDesc& t : layout.textures)
-                if (t.name == p.outputs[0].texture) p.mipmap = MipmapDesc{p.outputs[0].level, t.mip_levels - p.outputs[0].level};
+            if (const TextureDesc* t = find_texture(layout, p.outputs[0].texture))
+                p.mipmap = MipmapDesc{p.outputs[0].level, t->mip_levels - p.outputs[0].level};
         layout.passes.push_back(std::move(p));
     }
     // Full-screen passes: no blending, no depth test, an empty vertex array, 3 vertices.
@@ -348,11 +362,6 @@ inline Sampling complete_sampling(const Sampling& partial, const TextureDesc& te
 // Every sampler parameter's and every pass input's "sampling", from the textures they read and what
 // their parameter says; the initial contents of textures that the engine provides.
 inline void finish_sampling(Layout& layout) {
-    auto texture_of = [&](const std::string& name) -> const TextureDesc* {
-        for (const TextureDesc& t : layout.textures)
-            if (t.name == name) return &t;
-        return nullptr;
-    };
     for (TextureDesc& t : layout.textures)
         if (t.source != "passes") t.initial = t.source;
     for (PassDesc& pass : layout.passes)
@@ -362,13 +371,13 @@ inline void finish_sampling(Layout& layout) {
                 if (program.name == pass.program)
                     for (const ParamDesc& param : program.parameters)
                         if (param.name == in.sampler) partial = param.sampling;
-            if (const TextureDesc* t = texture_of(in.texture)) in.sampling = complete_sampling(partial, *t);
+            if (const TextureDesc* t = find_texture(layout, in.texture)) in.sampling = complete_sampling(partial, *t);
         }
     // a parameter without a texture of its own (a level pass's source, bound per pass): its first pass's
     for (ProgramDesc& program : layout.programs)
         for (ParamDesc& param : program.parameters) {
             if (param.binding < 0) continue;
-            if (const TextureDesc* t = texture_of(param.texture)) {
+            if (const TextureDesc* t = find_texture(layout, param.texture)) {
                 param.sampling = complete_sampling(param.sampling, *t);
                 continue;
             }

@@ -14,12 +14,7 @@
 
 namespace penumbra::gl::detail {
 
-// The description of layout texture `name`; nullptr when the layout has none.
-inline const TextureDesc* find_texture(const Layout& layout, const std::string& name) {
-    for (const TextureDesc& t : layout.textures)
-        if (t.name == name) return &t;
-    return nullptr;
-}
+using penumbra::detail::find_texture; // the layout's description of a texture, by name
 
 // Same GL storage and sampling: a texture with this description can be kept as it is.
 inline bool same_storage(const TextureDesc& a, const TextureDesc& b) {

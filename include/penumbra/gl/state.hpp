@@ -43,16 +43,13 @@ public:
     SamplerCache(const SamplerCache&) = delete;
     SamplerCache& operator=(const SamplerCache&) = delete;
     ~SamplerCache() {
-        for (auto& [key, id] : samplers_) glDeleteSamplers(1, &id);
+        for (auto& [sampling, id] : samplers_) glDeleteSamplers(1, &id);
     }
 
     // The sampler of `s`; 0 (the texture's own parameters, no comparison) when `s` names no filter.
     GLuint get(const Sampling& s) {
         if (s.min_filter.empty()) return 0;
-        const std::string key = s.min_filter + "|" + s.mag_filter + "|" + s.wrap + "|" + s.compare + "|" +
-                                std::to_string(s.border_color[0]) + "," + std::to_string(s.border_color[1]) + "," +
-                                std::to_string(s.border_color[2]) + "," + std::to_string(s.border_color[3]);
-        if (auto it = samplers_.find(key); it != samplers_.end()) return it->second;
+        if (auto it = samplers_.find(s); it != samplers_.end()) return it->second;
         GLuint id = 0;
         glCreateSamplers(1, &id);
         glSamplerParameteri(id, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(gl_enum(s.min_filter)));
@@ -66,12 +63,12 @@ public:
             glSamplerParameteri(id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
             glSamplerParameteri(id, GL_TEXTURE_COMPARE_FUNC, static_cast<GLint>(gl_enum(s.compare)));
         }
-        samplers_.emplace(key, id);
+        samplers_.emplace(s, id);
         return id;
     }
 
 private:
-    std::map<std::string, GLuint> samplers_;
+    std::map<Sampling, GLuint> samplers_;
 };
 
 // Binds `texture_id` to texture unit `unit` with sampler object `sampler` (0: the texture's own

@@ -154,17 +154,23 @@ std::vector<Config> oracle_matrix() {
     return configs;
 }
 
+// The boxes scene with a 20-degree sun: the default sun (5x the real one) casts penumbrae under 2
+// texels wide at R = 256, which reach only level 0 of the filters; this one reaches the upper
+// Gaussian and N-buffer levels.
+std::optional<Scene> boxes_under_a_wide_sun() {
+    std::optional<Scene> scene = make_scene("boxes");
+    if (scene) scene->sun.angular_diameter = 0.35;
+    return scene;
+}
+
 } // namespace
 
 TEST_CASE("oracle: GPU matches the CPU oracle within texture precision, every filter x fusion x packing") {
     std::string error;
     auto context = HeadlessContext::create(&error);
     REQUIRE_MESSAGE(context, error);
-    std::optional<Scene> scene = make_scene("boxes");
+    std::optional<Scene> scene = boxes_under_a_wide_sun();
     REQUIRE(scene);
-    // The default sun (5x the real one) casts penumbrae under 2 texels wide at R = 256, which
-    // reach only level 0 of the filters; a 20-degree sun reaches the upper Gaussian and N-buffer levels.
-    scene->sun.angular_diameter = 0.35;
     constexpr int image_size = 64;
     std::vector<Agreement> runs;
     for (const Config& base : oracle_matrix()) {
@@ -221,9 +227,8 @@ TEST_CASE("oracle: the GPU's atlas filter levels equal the oracle's, texel by te
     std::string error;
     auto context = HeadlessContext::create(&error);
     REQUIRE_MESSAGE(context, error);
-    std::optional<Scene> scene = make_scene("boxes");
+    std::optional<Scene> scene = boxes_under_a_wide_sun();
     REQUIRE(scene);
-    scene->sun.angular_diameter = 0.35;
     std::vector<Config> configs;
     for (int reduction : {2, 0, -1}) {
         Config c{.slices = 16, .resolution = 256};
