@@ -32,6 +32,17 @@ inline LadderEntry occlusion_entry(Filter filter, int slices, int resolution, bo
             config, representative};
 }
 
+// An occlusion-texture setting whose atlas levels above `level_reduction` (Config's default: 2) are
+// stored at reduced resolution ("r1": from level 2 on). Cheaper light passes, and the reduced levels'
+// bilinear reads blur small kernels: better under small lights, slightly worse under large ones (the
+// note of issue 22 gives the figures), so the ladder offers both.
+inline LadderEntry reduced_from_entry(Filter filter, int slices, int resolution, int level_reduction) {
+    LadderEntry entry = occlusion_entry(filter, slices, resolution);
+    entry.config.level_reduction = level_reduction;
+    entry.label += " r" + std::to_string(level_reduction);
+    return entry;
+}
+
 // The paper's own model at the default size: probabilistic fusion (eq. 5) and whole-light kernels,
 // in its own family so that the tables show how far the default (chained fusion, tangent clip)
 // moved from it and never pick it as "occlusion textures".
@@ -127,7 +138,9 @@ inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
         occlusion_entry(Filter::mipmap, 8, 128),
         occlusion_entry(Filter::nbuffer, 4, 128),
         occlusion_entry(Filter::nbuffer, 8, 128),
+        reduced_from_entry(Filter::nbuffer, 8, 128, 1),
         occlusion_entry(Filter::nbuffer, 8, 256),
+        reduced_from_entry(Filter::nbuffer, 8, 256, 1),
         occlusion_entry(Filter::nbuffer, 16, 256),
         occlusion_entry(Filter::nbuffer, 16, 512, true), // the default configuration
         every_level_entry(16, 512),
