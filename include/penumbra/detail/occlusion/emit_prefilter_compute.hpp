@@ -94,8 +94,9 @@ constexpr Text nbuffer_levels_compute(const Config& config) {
         out.line("return vec4(unpackHalf2x16(packHalf2x16(value.xy)), unpackHalf2x16(packHalf2x16(value.zw)));");
         out.line("}");
     } else {
-        out.comment("what an RGBA8 level stores: the nearest 1/255 (ties to even, as the conversion to a render target),");
-        out.comment("so the next level is built from what the fragment path would read back");
+        out.comment("what an RGBA8 level stores: the nearest 1/255, so the next level is built from what the fragment path");
+        out.comment("reads back (where the fp32 sum lies on a rounding tie, a driver's conversion may round the other way:");
+        out.comment("one unit)");
         out.line("vec4 penumbra_stored(vec4 value)");
         out.line("{");
         out.line("return roundEven(value * 255.0) / 255.0;");
