@@ -147,7 +147,9 @@ inline std::string to_json(const Layout& layout) {
     field("    ", "level_format", json_string(to_string(c.level_format)));
     field("    ", "level_bound", std::to_string(c.level_bound));
     field("    ", "level_reduction", std::to_string(c.level_reduction));
-    field("    ", "prefilter_stage", json_string(to_string(c.prefilter_stage)));
+    // written when not the default (fragment), so that the fragment path's layouts read as before
+    if (c.prefilter_stage != PrefilterStage::fragment)
+        field("    ", "prefilter_stage", json_string(to_string(c.prefilter_stage)));
     auto real = [](double v) { return detail::format_float(v).str(); };
     field("    ", "tangent_clip_offset", real(c.tangent_clip_offset));
     field("    ", "clip_footprint", c.clip_footprint ? "true" : "false");
