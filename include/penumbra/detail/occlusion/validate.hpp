@@ -114,9 +114,11 @@ constexpr std::vector<Problem> occlusion_problems(const Config& config) {
                     to_string(config.packing), "'; allowed: fragment, or compute with filter nbuffer and packing atlas"));
         else if (config.target != Target::glsl450)
             add("prefilter_stage", Text("compute"),
-                cat("needs compute shaders (OpenGL 4.3+), which target '", target,
-                    "' does not have (the Vulkan runner has no compute pipelines); allowed for ", target,
-                    ": fragment; compute with target glsl450"));
+                cat("needs compute shaders (OpenGL 4.3+), which ",
+                    config.target == Target::vulkan ? Text("the Vulkan runner (targets/vulkan) does not run (it has no "
+                                                           "compute pipelines)")
+                                                    : cat("target '", target, "' does not have"),
+                    "; allowed for ", target, ": fragment; compute with target glsl450"));
         else if (compute_source_step(config) > compute_max_step)
             add("prefilter_stage", Text("compute"),
                 cat("needs level_reduction 0 to ", format_int(compute_max_level_reduction),
