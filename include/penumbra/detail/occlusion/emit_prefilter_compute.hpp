@@ -73,6 +73,7 @@ constexpr Text nbuffer_levels_compute(const Config& config) {
     out.comment("and the apron the widest window of the dispatch reaches. Dispatches of this configuration:");
     out.comment(describe_compute_dispatches(config));
     out.line("layout(local_size_x = ", G, ", local_size_y = ", G, ") in;");
+    out.line("const int PENUMBRA_GROUP = ", G, "; // invocations per side of a workgroup, texels per side of its block");
     out.line("const int PENUMBRA_TILE = ", format_int(tile), "; // texels per side of the largest tile");
     out.line("shared vec4 penumbra_tile[PENUMBRA_TILE * PENUMBRA_TILE];");
     out.blank();
@@ -116,68 +117,70 @@ constexpr Text nbuffer_levels_compute(const Config& config) {
     out.blank();
 
     out.chunk("nbuffer_levels_main");
-    out.line("void main()");
-    out.line("{");
-    out.comment("the occlusion texture (tile) this workgroup works in, its block in the tile, this invocation's texel");
-    out.line("int tile = int(gl_WorkGroupID.x) / penumbra_groupsPerTile;");
-    out.line("ivec2 block = ivec2(int(gl_WorkGroupID.x) - tile * penumbra_groupsPerTile, int(gl_WorkGroupID.y)) * ", G, ";");
-    out.line("ivec2 origin = ivec2(tile * penumbra_sourceTile, 0);");
-    out.line("ivec2 thread = ivec2(gl_LocalInvocationID.xy);");
-    out.blank();
-    out.comment("1. Load the block and its apron once: level i's taps are penumbra_step << i texels apart, so the");
-    out.comment("last level's windows reach (2^levels - 1) * penumbra_step texels past the block.");
-    out.line("int span = ", G, " + ((1 << penumbra_levels) - 1) * penumbra_step;");
-    out.line("for (int y = thread.y; y < span; y += ", G, ")");
-    out.line("{");
-    out.line("for (int x = thread.x; x < span; x += ", G, ")");
-    out.line("{");
-    out.line("penumbra_tile[y * PENUMBRA_TILE + x] = penumbra_source_texel(origin, block + ivec2(x, y));");
-    out.line("}");
-    out.line("}");
-    out.line("barrier();");
-    out.blank();
-    out.comment("2. Each level in place from the one below (Décoret 2005): the mean of four windows of the level below");
-    out.comment("at offsets 0 and s. A position reads positions at or after it only, so the tile is updated in");
-    out.comment(cat("rounds of ", G, " x ", G, " positions in row order, every read of a round before its writes."));
-    out.line("for (int level = 0; level < penumbra_levels; ++level)");
-    out.line("{");
-    out.line("int s = penumbra_step << level;");
-    out.comment("positions the levels above this one still read (the block alone for the last level)");
-    out.line("int extent = ", G, " + ((1 << penumbra_levels) - (2 << level)) * penumbra_step;");
-    out.line("for (int y0 = 0; y0 < extent; y0 += ", G, ")");
-    out.line("{");
-    out.line("for (int x0 = 0; x0 < extent; x0 += ", G, ")");
-    out.line("{");
-    out.line("ivec2 at = ivec2(x0, y0) + thread;");
-    out.line("bool needed = all(lessThan(at, ivec2(extent)));");
-    out.line("int k = at.y * PENUMBRA_TILE + at.x;");
-    out.line("vec4 value = vec4(0.0);");
-    out.line("if (needed)");
-    out.line("{");
-    out.line("value = 0.25 * (penumbra_tile[k] + penumbra_tile[k + s]");
-    out.line("    + penumbra_tile[k + s * PENUMBRA_TILE] + penumbra_tile[k + s * PENUMBRA_TILE + s]);");
-    out.line("}");
-    out.line("barrier();");
-    out.line("if (needed)");
-    out.line("{");
-    out.line("penumbra_tile[k] = penumbra_stored(value);");
-    out.line("}");
-    out.line("barrier();");
-    out.line("}");
-    out.line("}");
-    out.blank();
-    out.comment("3. Store this level's texels of the block. A reduced level keeps every 2^shift-th texel of the");
-    out.comment("source level per axis (the window anchored there), in a tile 2^shift times smaller.");
-    out.line("int shift = max(0, level + 1 - penumbra_sameSize);");
-    out.line("ivec2 source = block + thread;");
-    out.line("bool stored = all(equal(source & ivec2((1 << shift) - 1), ivec2(0)));");
-    out.line("if (stored && all(lessThan(source, ivec2(penumbra_sourceTile))))");
-    out.line("{");
-    out.line("int side = penumbra_sourceTile >> shift; // this level's tile side");
-    out.line("penumbra_store(level, ivec2(tile * side, 0) + (source >> shift), penumbra_tile[thread.y * PENUMBRA_TILE + thread.x]);");
-    out.line("}");
-    out.line("}");
-    out.line("}");
+    out.block(R"(
+void main()
+{
+    // the occlusion texture (tile) this workgroup works in, its block in the tile, this invocation's texel
+    int tile = int(gl_WorkGroupID.x) / penumbra_groupsPerTile;
+    ivec2 block = ivec2(int(gl_WorkGroupID.x) - tile * penumbra_groupsPerTile, int(gl_WorkGroupID.y)) * PENUMBRA_GROUP;
+    ivec2 origin = ivec2(tile * penumbra_sourceTile, 0);
+    ivec2 thread = ivec2(gl_LocalInvocationID.xy);
+
+    // 1. Load the block and its apron once: level i's taps are penumbra_step << i texels apart, so the
+    // last level's windows reach (2^levels - 1) * penumbra_step texels past the block.
+    int span = PENUMBRA_GROUP + ((1 << penumbra_levels) - 1) * penumbra_step;
+    for (int y = thread.y; y < span; y += PENUMBRA_GROUP)
+    {
+        for (int x = thread.x; x < span; x += PENUMBRA_GROUP)
+        {
+            penumbra_tile[y * PENUMBRA_TILE + x] = penumbra_source_texel(origin, block + ivec2(x, y));
+        }
+    }
+    barrier();
+
+    for (int level = 0; level < penumbra_levels; ++level)
+    {
+        // 2. This level in place from the one below (Décoret 2005): the mean of four windows of the level
+        // below at offsets 0 and s. A position reads positions at or after it only, so the tile is updated
+        // in rounds of PENUMBRA_GROUP x PENUMBRA_GROUP positions in row order, every read of a round before
+        // its writes; only the positions the levels above this one still read (the block alone for the last).
+        int s = penumbra_step << level;
+        int extent = PENUMBRA_GROUP + ((1 << penumbra_levels) - (2 << level)) * penumbra_step;
+        for (int y0 = 0; y0 < extent; y0 += PENUMBRA_GROUP)
+        {
+            for (int x0 = 0; x0 < extent; x0 += PENUMBRA_GROUP)
+            {
+                ivec2 at = ivec2(x0, y0) + thread;
+                bool needed = all(lessThan(at, ivec2(extent)));
+                int k = at.y * PENUMBRA_TILE + at.x;
+                vec4 value = vec4(0.0);
+                if (needed)
+                {
+                    int below = k + s * PENUMBRA_TILE; // the row s texels further
+                    value = 0.25 * (penumbra_tile[k] + penumbra_tile[k + s] + penumbra_tile[below] + penumbra_tile[below + s]);
+                }
+                barrier();
+                if (needed)
+                {
+                    penumbra_tile[k] = penumbra_stored(value);
+                }
+                barrier();
+            }
+        }
+
+        // 3. Store this level's texels of the block. A reduced level keeps every 2^shift-th texel of the
+        // source level per axis (the window anchored there), in a tile 2^shift times smaller.
+        int shift = max(0, level + 1 - penumbra_sameSize);
+        ivec2 source = block + thread;
+        bool stored = all(equal(source & ivec2((1 << shift) - 1), ivec2(0)));
+        if (stored && all(lessThan(source, ivec2(penumbra_sourceTile))))
+        {
+            int side = penumbra_sourceTile >> shift; // this level's tile side
+            penumbra_store(level, ivec2(tile * side, 0) + (source >> shift), penumbra_tile[thread.y * PENUMBRA_TILE + thread.x]);
+        }
+    }
+}
+)");
     return out.take();
 }
 
