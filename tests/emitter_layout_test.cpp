@@ -6,6 +6,8 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <array>
 #include <map>
 #include <set>
 
@@ -629,4 +631,106 @@ TEST_CASE("layout v3: copy and generate_mipmap passes say what they do; the slic
     }
     CHECK(copies > 0);
     CHECK(mipmaps > 0);
+}
+
+// The compute prefilter (prefilter_stage compute): only when asked, its dispatch passes build every
+// level above the packing pass exactly once, as images of the level's format, with the barrier the
+// shading pass needs; the cost model counts them; every other combination is refused by name.
+TEST_CASE("layout: the compute prefilter's dispatch passes, only when asked") {
+    const Config fragment{.slices = 16, .resolution = 512};
+    const Layout plain = describe_layout(fragment);
+    for (const PassDesc& p : plain.passes) CHECK(p.action != "dispatch");
+    for (const std::string& f : plain.files) CHECK(!f.ends_with(".comp"));
+    CHECK(to_json(plain).find("\"prefilter_stage\"") == std::string::npos); // the default: not written
+
+    Config config = fragment;
+    config.prefilter_stage = PrefilterStage::compute;
+    REQUIRE(is_valid(config));
+    const Layout layout = describe_layout(config);
+    CHECK(std::find(layout.files.begin(), layout.files.end(), "penumbra_nbuffer_levels.comp") != layout.files.end());
+    std::vector<int> built; // levels the dispatches write, in order
+    for (const PassDesc& p : layout.passes) {
+        CHECK(p.program != "nbuffer_level");
+        if (p.action != "dispatch") continue;
+        REQUIRE(p.dispatch);
+        CHECK(p.outputs.empty());
+        CHECK(p.dispatch->local_size == std::array<int, 3>{16, 16, 1});
+        CHECK(p.dispatch->memory_barrier == std::vector<std::string>{"TEXTURE_FETCH", "TEXTURE_UPDATE"});
+        REQUIRE(p.inputs.size() == 1);
+        const TextureDesc* source = find_texture(layout, p.inputs[0].texture);
+        REQUIRE(source);
+        const int tile = source->height, groups = (tile + 15) / 16;
+        CHECK(p.dispatch->groups == std::array<int, 3>{4 * groups, groups, 1}); // T = 4 tiles side by side
+        for (std::size_t i = 0; i < p.image_outputs.size(); ++i) {
+            const ImageBindingDesc& image = p.image_outputs[i];
+            CHECK(image.unit == static_cast<int>(i));
+            CHECK(image.image == "penumbra_output" + std::to_string(i));
+            CHECK(image.format == "RGBA8");
+            CHECK(image.access == "WRITE_ONLY");
+            built.push_back(std::stoi(image.texture.substr(std::string("penumbra_level").size())));
+        }
+    }
+    // levels 2 to 4 from level 1, 5 to 7 from level 4, 8 and 9 from level 7
+    CHECK(built == std::vector<int>{2, 3, 4, 5, 6, 7, 8, 9});
+    const std::string json = to_json(layout);
+    CHECK(json.find("\"prefilter_stage\": \"compute\"") != std::string::npos);
+    CHECK(json.find("\"action\": \"dispatch\"") != std::string::npos);
+    CHECK(json.find("\"image_outputs\": [{\"image\": \"penumbra_output0\", \"texture\": \"penumbra_level2\"") !=
+          std::string::npos);
+    CHECK(json.find("\"dispatch\": {\"groups\": [128, 32, 1], \"local_size\": [16, 16, 1], \"memory_barrier\": "
+                    "[\"TEXTURE_FETCH\", \"TEXTURE_UPDATE\"]}") != std::string::npos);
+
+    // RGBA16F levels: rgba16f images
+    Config half = config;
+    half.level_format = LevelFormat::rgba16f;
+    for (const PassDesc& p : describe_layout(half).passes)
+        for (const ImageBindingDesc& image : p.image_outputs) CHECK(image.format == "RGBA16F");
+    const Result<Emission> emitted = emit(half);
+    REQUIRE(emitted.value);
+    for (const Program& p : emitted.value->programs)
+        if (p.name == "nbuffer_levels") CHECK(p.stages[0].text.find(", rgba16f) writeonly uniform image2D") != std::string::npos);
+
+    // the cost model: each dispatch writes its levels once and reads its source level once
+    const CostModel cost = cost_model(layout, 256, 256);
+    long long written = 0, levels_bytes = 0;
+    for (const PassCost& p : cost.passes)
+        if (p.name.starts_with("nbuffer_levels_")) {
+            written += p.bytes_written;
+            CHECK(p.texel_fetches > 0);
+            CHECK(p.bytes_read > 0);
+        }
+    for (int l = 2; l <= 9; ++l) {
+        const TextureDesc* t = find_texture(layout, "penumbra_level" + std::to_string(l));
+        REQUIRE(t);
+        levels_bytes += 4LL * t->width * t->height;
+    }
+    CHECK(written == levels_bytes);
+}
+
+TEST_CASE("validate: the compute prefilter is refused outside N-buffers in the atlas on glsl450") {
+    auto refusal = [](Config c) {
+        c.prefilter_stage = PrefilterStage::compute;
+        const std::vector<ConfigError> errors = validate(c);
+        REQUIRE(errors.size() == 1);
+        CHECK(errors[0].field == "prefilter_stage");
+        CHECK(errors[0].message.find("allowed") != std::string::npos);
+        return errors[0].message;
+    };
+    CHECK(refusal({.filter = Filter::mipmap}).find("N-buffer levels in the atlas only") != std::string::npos);
+    CHECK(refusal({.filter = Filter::sat}).find("filter 'sat'") != std::string::npos);
+    CHECK(refusal({.packing = Packing::array}).find("packing 'array'") != std::string::npos);
+    CHECK(refusal({.filter = Filter::gaussian, .light = Light::sun}).find("filter 'gaussian'") != std::string::npos);
+    for (Target target : {Target::glsl330, Target::essl300, Target::vulkan})
+        CHECK(refusal({.resolution = 256, .target = target}).find("needs compute shaders") != std::string::npos);
+    Config full{.slices = 16, .resolution = 512};
+    full.level_reduction = -1; // every level at full resolution: level 9's taps 256 texels apart
+    CHECK(refusal(full).find("level_reduction 0 to 4") != std::string::npos);
+    full.level_bound = 5; // up to level 5 they fit
+    full.prefilter_stage = PrefilterStage::compute;
+    CHECK(is_valid(full));
+    Config wide{.slices = 16, .resolution = 512};
+    wide.level_reduction = 5;
+    CHECK(refusal(wide).find("level_reduction 0 to 4") != std::string::npos);
+    // the other techniques do not read it
+    CHECK(is_valid({.technique = Technique::pcf, .prefilter_stage = PrefilterStage::compute}));
 }

@@ -176,6 +176,60 @@ Row adaptive_row() {
             .check_row = [](const RowResult& r) { CHECK(r.valid > 60); }};
 }
 
+// The compute prefilter (prefilter_stage compute): allowed for N-buffers in the atlas on glsl450 only,
+// where one level's taps fit the shared tile (level_reduction up to 4, or every level at full
+// resolution up to level 5); its program is one compute stage, glslang-compiled for GLSL 4.50, and
+// the fragment level passes' program is gone. Every filter × packing × target × light × resolution ×
+// level_reduction; every other combination refused on field prefilter_stage (where the fragment
+// configuration itself is valid).
+bool compute_prefilter_allowed(const Config& c) {
+    Config fragment = c;
+    fragment.prefilter_stage = PrefilterStage::fragment;
+    return is_valid(fragment) && c.filter == Filter::nbuffer && c.packing == Packing::atlas &&
+           c.target == Target::glsl450 && (c.level_reduction >= 0 ? std::min(c.level_reduction, max_level(c) - 1) : max_level(c) - 1) <= 4;
+}
+
+Row compute_prefilter_row() {
+    std::vector<Config> configs;
+    for (Filter filter : all_values<Filter>())
+        for (Packing packing : all_values<Packing>())
+            for (Target target : all_values<Target>())
+                for (Light light : all_values<Light>())
+                    for (int resolution : {32, 256, 2048})
+                        for (int reduction : {2, 0, 4, 5, -1}) {
+                            Config c{.slices = 16, .resolution = resolution, .filter = filter, .packing = packing,
+                                     .light = light, .level_reduction = reduction, .target = target,
+                                     .prefilter_stage = PrefilterStage::compute};
+                            configs.push_back(c);
+                            if (reduction == -1 && resolution > 32) { // every level at full resolution up to level 5
+                                c.level_bound = 5;
+                                configs.push_back(c);
+                            }
+                        }
+    return {.name = "occlusion, compute prefilter",
+            .configurations = configs,
+            .expect = [](const Config& c) { return compute_prefilter_allowed(c) ? Expect::valid : Expect::refused; },
+            .check_emission = [](const Config& c, const Emitted& e) {
+                const auto compute = std::find_if(e.programs.begin(), e.programs.end(),
+                                                  [](const Program& p) { return p.name == "nbuffer_levels"; });
+                REQUIRE_MESSAGE(compute != e.programs.end(), name_of(c));
+                REQUIRE(compute->stages.size() == 1);
+                CHECK(compute->stages[0].stage == Stage::compute);
+                CHECK(compute->stages[0].file_name == "penumbra_nbuffer_levels.comp");
+                CHECK(compute->stages[0].text.find("shared vec4 penumbra_tile[") != std::string::npos);
+                CHECK(std::none_of(e.programs.begin(), e.programs.end(),
+                                   [](const Program& p) { return p.name == "nbuffer_level"; }));
+            },
+            .check_refusal = [](const Config& c, const Emitted& e) {
+                Config fragment = c;
+                fragment.prefilter_stage = PrefilterStage::fragment;
+                if (!is_valid(fragment)) return;
+                REQUIRE_MESSAGE(!e.errors.empty(), name_of(c));
+                CHECK_MESSAGE(e.errors.front().field == "prefilter_stage", name_of(c), ": ", e.errors.front().message);
+            },
+            .check_row = [](const RowResult& r) { CHECK(r.valid >= 10); }};
+}
+
 // The generic reference program (penumbra/generic.hpp) of the occlusion matrix, plus fade off (a
 // uniform of the generic program): exactly one program per filter × packing × light × target.
 Row generic_row() {
@@ -303,8 +357,8 @@ RowResult run_row(const Row& row) {
 } // namespace
 
 TEST_CASE("the glslang matrix: every program of every valid configuration of each technique compiles and links") {
-    const Row rows[] = {occlusion_row(), tangent_clip_row(), many_slices_row(), adaptive_row(), generic_row(),
-                        shadow_map_row(), erosion_row(), oim_row()};
+    const Row rows[] = {occlusion_row(), tangent_clip_row(), many_slices_row(), adaptive_row(), compute_prefilter_row(),
+                        generic_row(), shadow_map_row(), erosion_row(), oim_row()};
     int configurations = 0, programs = 0, compiled = 0;
     for (const Row& row : rows) {
         CAPTURE(row.name);

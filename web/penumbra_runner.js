@@ -77,6 +77,9 @@ export class LayoutRunner {
             fail(`layout.json: layout_version ${layout.layout_version}; this runner reads version ${LAYOUT_VERSION}`);
         if (layout.config && layout.config.target !== "essl300")
             fail(`layout.json: target '${layout.config.target}'; WebGL2 runs the essl300 emission`);
+        for (const pass of layout.passes || [])
+            if (pass.action === "dispatch")
+                fail(`pass ${pass.name}: action 'dispatch' runs a compute shader (prefilter_stage compute), which WebGL2 does not have; emit with prefilter_stage fragment`);
         this.gl = gl;
         this.layout = layout;
         this.uniformValues = {};

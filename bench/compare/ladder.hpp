@@ -76,6 +76,16 @@ inline LadderEntry full_levels_entry(int slices, int resolution) {
             false};
 }
 
+// The default with its N-buffer levels above the packing pass built by compute dispatches
+// (prefilter_stage compute, glsl450) instead of one fragment pass per level: its own family, so that
+// the tables show it beside the default and never pick it as "occlusion".
+inline LadderEntry compute_prefilter_entry(int slices, int resolution) {
+    Config config{.slices = slices, .resolution = resolution, .filter = Filter::nbuffer};
+    config.prefilter_stage = PrefilterStage::compute;
+    return {"compute-prefilter", "OT nbuffer " + std::to_string(slices) + "/" + std::to_string(resolution) + " compute",
+            config, false};
+}
+
 // The shadow-map family (penumbra/config.hpp: shadowmap, pcf, pcss), one depth map of 1024².
 inline LadderEntry shadow_map_entry(Technique technique, std::string label, bool representative,
                                     PcfParams pcf = {}, PcssParams pcss = {}) {
@@ -145,6 +155,7 @@ inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
         occlusion_entry(Filter::nbuffer, 16, 512, true), // the default configuration
         every_level_entry(16, 512),
         full_levels_entry(16, 512),
+        compute_prefilter_entry(16, 512),
         paper_entry(16, 512),
         occlusion_entry(Filter::nbuffer, 32, 512),
         occlusion_entry(Filter::sat, 8, 256),

@@ -10,7 +10,7 @@ namespace {
 
 constexpr std::string_view flag_list =
     "--slices, --resolution, --filter, --fusion, --packing, --light, --target, --no-leak-fix, --no-fade, "
-    "--tangent-clip, --no-tangent-clip, --slice-placement, --level-bound, --level-format, --level-reduction, --tangent-clip-offset, --no-clip-footprint, --fade-ramp, --config, --validate, --out, --help, --technique, --shadow-resolution, "
+    "--tangent-clip, --no-tangent-clip, --slice-placement, --level-bound, --level-format, --level-reduction, --prefilter-stage, --tangent-clip-offset, --no-clip-footprint, --fade-ramp, --config, --validate, --out, --help, --technique, --shadow-resolution, "
     "--shadow-bias, --shadow-slope-bias, --pcf-pattern, --pcf-grid, --pcf-taps, --pcf-radius, --pcss-blockers, "
     "--pcss-filter, --pcss-max-texels, --no-rotation, --no-receiver-plane-bias";
 
@@ -52,7 +52,7 @@ Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
         }
         const bool takes_value = flag == "--slices" || flag == "--resolution" || flag == "--filter" ||
                                  flag == "--fusion" || flag == "--packing" || flag == "--light" ||
-                                 flag == "--target" || flag == "--slice-placement" || flag == "--level-bound" || flag == "--level-format" || flag == "--level-reduction" || flag == "--config" ||
+                                 flag == "--target" || flag == "--slice-placement" || flag == "--level-bound" || flag == "--level-format" || flag == "--level-reduction" || flag == "--prefilter-stage" || flag == "--config" ||
                                  flag == "--tangent-clip-offset" || flag == "--fade-ramp" ||
                                  flag == "--out" ||
                                  is_technique_flag(flag);
@@ -90,6 +90,8 @@ Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
             error = parse_name(flag, value, out.flags.slice_placement);
         else if (flag == "--level-format")
             error = parse_name(flag, value, out.flags.level_format);
+        else if (flag == "--prefilter-stage")
+            error = parse_name(flag, value, out.flags.prefilter_stage);
         else if (flag == "--level-bound")
             error = parse_int(flag, value, out.flags.level_bound, "-1 (every level) or 0 to log2(resolution)");
         else if (flag == "--tangent-clip-offset")
@@ -131,6 +133,7 @@ penumbra::Config apply(const ConfigFlags& flags, penumbra::Config config) {
     if (flags.fade_ramp) config.fade_ramp = *flags.fade_ramp;
     if (flags.no_clip_footprint) config.clip_footprint = false;
     if (flags.level_reduction) config.level_reduction = *flags.level_reduction;
+    if (flags.prefilter_stage) config.prefilter_stage = *flags.prefilter_stage;
     return apply(flags.technique, config);
 }
 
@@ -149,7 +152,7 @@ std::string usage() {
     std::string out = "usage: penumbra-gen [--technique T] [--slices N] [--resolution R] [--filter F] [--fusion U] "
                       "[--packing P] [--light L]\n"
                       "                    [--target T] [--no-leak-fix] [--no-fade] [--[no-]tangent-clip] [--slice-placement P]\n"
-                      "                    [--level-bound N] [--level-format F] [--level-reduction N]\n"
+                      "                    [--level-bound N] [--level-format F] [--level-reduction N] [--prefilter-stage S]\n"
                       "                    [--tangent-clip-offset T] [--no-clip-footprint] [--fade-ramp F]\n"
                       "                    [technique flags] [--config FILE.json] [--validate] --out DIR\n"
                       "\n"
@@ -196,13 +199,18 @@ std::string usage() {
                 "                      the resolution of the one below (level l at resolution / 2^(l - N));\n"
                 "                      -1: every level at full resolution; 0 to log2(resolution)\n"
                 "                      (default " + std::to_string(d.level_reduction) + ")");
+    out += line("--prefilter-stage S",
+                names("what builds the N-buffer levels above the packing pass: " + allowed_names<PrefilterStage>() +
+                          "\n                      (compute: dispatches that build several levels each in shared memory;\n"
+                          "                      filter nbuffer, packing atlas, target glsl450 only)",
+                      to_string(d.prefilter_stage)));
     out += "\ntechnique (occlusion: the flags above; shadowmap, pcf, pcss, erosion, oim: these, plus --light and --target):\n";
     out += technique_usage(25);
     out +=
         line("--config FILE.json",
              "read the configuration from JSON: an object with the keys technique, slices, resolution,\n"
              "                      filter, fusion, packing, light, leak_fix, self_shadow_fade, tangent_clip,\n"
-             "                      slice_placement, level_format, level_bound, level_reduction,\n"
+             "                      slice_placement, level_format, level_bound, level_reduction, prefilter_stage,\n"
              "                      tangent_clip_offset, clip_footprint, fade_ramp, target, and the objects shadow_map, pcf,\n"
              "                      pcss (all optional), or a\n"
              "                      layout.json, whose \"config\" object is read; a regular file of at most 1 MiB");

@@ -30,6 +30,7 @@ struct ConfigFlags {
     bool no_clip_footprint = false;                           // --no-clip-footprint
     std::optional<double> fade_ramp;                          // --fade-ramp
     std::optional<int> level_reduction;                       // --level-reduction
+    std::optional<penumbra::PrefilterStage> prefilter_stage;  // --prefilter-stage
     TechniqueFlags technique; // --technique and each technique's flags (technique_flags.hpp)
 };
 

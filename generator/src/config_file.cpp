@@ -15,7 +15,7 @@ using nlohmann::json;
 
 constexpr std::string_view key_list =
     "slices, resolution, filter, fusion, packing, light, leak_fix, self_shadow_fade, tangent_clip, slice_placement, "
-    "level_format, level_bound, level_reduction, tangent_clip_offset, clip_footprint, fade_ramp, target, "
+    "level_format, level_bound, level_reduction, prefilter_stage, tangent_clip_offset, clip_footprint, fade_ramp, target, "
     "technique, shadow_map, pcf, pcss, oim, erosion";
 
 std::string type_of(const json& value) {
@@ -320,6 +320,8 @@ Parsed<penumbra::Config> parse_config_json(std::string_view text, std::string_vi
             error = store(read_real(key, value, allowed_for(key)), config.fade_ramp);
         else if (key == "level_reduction")
             error = store(read_int(key, value, allowed_for(key)), config.level_reduction);
+        else if (key == "prefilter_stage")
+            error = store(read_enum<penumbra::PrefilterStage>(key, value), config.prefilter_stage);
         else
             error = "unknown key '" + printable(key) + "'; allowed keys: " + std::string(key_list);
         if (!error.empty()) return {{}, where + ": " + error};

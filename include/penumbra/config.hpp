@@ -61,6 +61,13 @@ enum class LevelFormat : std::uint8_t {
     rgba16f, // half floats (11-bit mantissa)
 };
 
+// Which GPU stage builds the filter levels above the atlas packing pass (N-buffers).
+enum class PrefilterStage : std::uint8_t {
+    fragment, // one full-screen pass per level (every target)
+    compute,  // compute dispatches (GLSL 4.50, target glsl450): a workgroup loads one tile of a level into shared
+              // memory and builds several levels from it (N-buffer filter, atlas packing)
+};
+
 enum class Light : std::uint8_t {
     rect, // rectangular area light: perspective slicing from behind the light (paper §3.4)
     sun,  // light at infinity with an angular radius: orthographic slicing (journal §3.5)
@@ -195,6 +202,8 @@ struct Config {
                                             // R / 2^(l - level_reduction) (a window of 2^l texels is smooth at
                                             // that scale); -1: every level at R (array and volume: always)
     Target target = Target::glsl450;        // shading language of the output
+    PrefilterStage prefilter_stage = PrefilterStage::fragment; // N-buffer levels above the packing pass: full-screen
+                                            // passes, or compute dispatches (glsl450, nbuffer, atlas only)
     ShadowMapParams shadow_map{};           // shadowmap, pcf, pcss: the depth map from the light
     PcfParams pcf{};                        // pcf: the fixed kernel
     PcssParams pcss{};                      // pcss: blocker search and filter
@@ -228,6 +237,9 @@ template <> struct EnumNames<SlicePlacement> {
 };
 template <> struct EnumNames<LevelFormat> {
     static constexpr std::array<std::string_view, 2> names{"rgba8", "rgba16f"};
+};
+template <> struct EnumNames<PrefilterStage> {
+    static constexpr std::array<std::string_view, 2> names{"fragment", "compute"};
 };
 template <> struct EnumNames<Light> {
     static constexpr std::array<std::string_view, 2> names{"rect", "sun"};
@@ -350,6 +362,12 @@ constexpr bool reduces_levels(const Config& config) {
 constexpr int level_spacing(const Config& config, int level) {
     if (!reduces_levels(config) || level <= config.level_reduction) return 1;
     return 1 << (level - config.level_reduction);
+}
+
+// True when compute dispatches build the N-buffer levels above the atlas packing pass
+// (Config::prefilter_stage; validate() allows it for the N-buffer filter, the atlas packing and target glsl450).
+constexpr bool prefilters_in_compute(const Config& config) {
+    return config.technique == Technique::occlusion && config.prefilter_stage == PrefilterStage::compute;
 }
 
 } // namespace penumbra

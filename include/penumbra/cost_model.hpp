@@ -20,6 +20,12 @@
 //                  texels, so the clear's bytes are the least the pass moves).
 //   copy           the texel count read and written once.
 //   generate_mipmap each level read once and the next written: 4/3 of level 0's bytes read, 1/3 written.
+//   dispatch       (the compute prefilter) invocations = the workgroups' invocations; fetches = the
+//                  shared tile each workgroup loads (block and apron, one texelFetch per texel) — the
+//                  levels are then built from shared memory, not counted as fetches; bytes read = every
+//                  texel of the source level once (the aprons overlap the neighbours' blocks: a cache
+//                  holds them), at most the fetches' bytes; bytes written = every texel of every image
+//                  output once. `fragments` counts the invocations.
 // Fetches per fragment of the prefilter: an N-buffer level 4 texels, a Gaussian one 9; the atlas
 // packing 1, or the taps of level 1 where it writes level 1 too (a second colour output).
 // Fetches per fragment of the shading pass (occlusion textures) are an upper bound: every slice
@@ -41,7 +47,8 @@ namespace penumbra {
 
 struct PassCost {
     std::string name, phase;
-    long long fragments = 0;     // fragments shaded (fullscreen: the viewport; draw_scene: 0, geometry-dependent)
+    long long fragments = 0;     // fragments shaded (fullscreen: the viewport; draw_scene: 0, geometry-dependent;
+                                 // dispatch: compute invocations)
     long long texel_fetches = 0; // texels the fragments read (bilinear: 4, trilinear: 8 per fetch)
     long long bytes_read = 0;    // input texels read once each
     long long bytes_written = 0; // output texels written once each (draw_scene: the clear)
@@ -145,6 +152,28 @@ inline CostModel cost_model(const Layout& layout, int output_width, int output_h
             const long long bytes = pass.outputs.empty() ? 0 : output_bytes(pass.outputs.front());
             cost.bytes_read = cost.bytes_written = bytes;
             cost.fragments = w * h;
+        } else if (pass.action == "dispatch" && pass.dispatch) {
+            const DispatchDesc& d = *pass.dispatch;
+            const long long groups = 1LL * d.groups[0] * d.groups[1] * d.groups[2];
+            cost.fragments = groups * d.local_size[0] * d.local_size[1] * d.local_size[2];
+            // the tile a workgroup loads: its block (local_size) and the apron of its last level's windows
+            int levels = 0, step = 0;
+            for (const auto& [name, value] : pass.int_uniforms) {
+                if (name == "penumbra_levels") levels = value;
+                if (name == "penumbra_step") step = value;
+            }
+            const long long apron = ((1LL << levels) - 1) * step;
+            cost.texel_fetches = groups * (d.local_size[0] + apron) * (d.local_size[1] + apron);
+            long long fetched_bytes = 0, inputs = 0;
+            for (const BindingDesc& in : pass.inputs)
+                if (const TextureDesc* t = find_texture(layout, in.texture)) {
+                    inputs += detail::level_bytes(*t, std::max(in.level, 0), output_width, output_height, true);
+                    fetched_bytes = std::max<long long>(fetched_bytes, bytes_per_texel(t->internal_format));
+                }
+            cost.bytes_read = std::min(inputs, cost.texel_fetches * fetched_bytes);
+            for (const ImageBindingDesc& image : pass.image_outputs)
+                if (const TextureDesc* t = find_texture(layout, image.texture))
+                    cost.bytes_written += detail::level_bytes(*t, image.level, output_width, output_height, true);
         } else if (pass.action == "generate_mipmap") {
             if (!pass.outputs.empty())
                 if (const TextureDesc* t = find_texture(layout, pass.outputs.front().texture)) {

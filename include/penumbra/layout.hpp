@@ -147,6 +147,9 @@ inline std::string to_json(const Layout& layout) {
     field("    ", "level_format", json_string(to_string(c.level_format)));
     field("    ", "level_bound", std::to_string(c.level_bound));
     field("    ", "level_reduction", std::to_string(c.level_reduction));
+    // written when not the default (fragment), so that the fragment path's layouts read as before
+    if (c.prefilter_stage != PrefilterStage::fragment)
+        field("    ", "prefilter_stage", json_string(to_string(c.prefilter_stage)));
     auto real = [](double v) { return detail::format_float(v).str(); };
     field("    ", "tangent_clip_offset", real(c.tangent_clip_offset));
     field("    ", "clip_footprint", c.clip_footprint ? "true" : "false");
@@ -248,6 +251,23 @@ inline std::string to_json(const Layout& layout) {
         if (const std::optional<MipmapDesc>& m = p.mipmap)
             o += ", \"mipmap\": {\"base_level\": " + std::to_string(m->base_level) + ", \"levels\": " +
                  std::to_string(m->levels) + ", \"downsample\": " + json_string(m->downsample) + "}";
+        if (const std::optional<DispatchDesc>& d = p.dispatch) {
+            auto triple = [](const std::array<int, 3>& v) {
+                return "[" + std::to_string(v[0]) + ", " + std::to_string(v[1]) + ", " + std::to_string(v[2]) + "]";
+            };
+            o += ", \"dispatch\": {\"groups\": " + triple(d->groups) + ", \"local_size\": " + triple(d->local_size) +
+                 ", \"memory_barrier\": [";
+            for (std::size_t b = 0; b < d->memory_barrier.size(); ++b) o += (b ? ", " : "") + json_string(d->memory_barrier[b]);
+            o += "]}, \"image_outputs\": [";
+            for (std::size_t im = 0; im < p.image_outputs.size(); ++im) {
+                const ImageBindingDesc& img = p.image_outputs[im];
+                o += (im ? ", " : "") + std::string("{\"image\": ") + json_string(img.image) + ", \"texture\": " +
+                     json_string(img.texture) + ", \"level\": " + std::to_string(img.level) + ", \"layer\": " +
+                     std::to_string(img.layer) + ", \"unit\": " + std::to_string(img.unit) + ", \"format\": " +
+                     json_string(img.format) + ", \"access\": " + json_string(img.access) + "}";
+            }
+            o += "]";
+        }
         o += std::string("}") + (i + 1 < layout.passes.size() ? ",\n" : "\n");
     }
     o += "  ],\n";

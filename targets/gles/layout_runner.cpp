@@ -100,6 +100,12 @@ std::unique_ptr<LayoutRunner> LayoutRunner::create(const json& layout, const std
     std::vector<std::string> rendered;
     for (const json& pass : l["passes"])
         for (const json& out : pass["outputs"]) rendered.push_back(out["texture"]);
+    // compute dispatches (prefilter_stage compute, target glsl450) need OpenGL 4.3: refused before anything runs
+    for (const json& pass : l["passes"])
+        if (pass.value("action", "") == "dispatch")
+            return fail("pass " + pass.value("name", std::string()) +
+                        ": action 'dispatch' runs a compute shader (prefilter_stage compute), which this OpenGL 3.3 / "
+                        "ES 3.0 runner does not have; emit with prefilter_stage fragment");
     for (const json& t : l["textures"]) {
         const std::string name = t["name"], format = t["internal_format"];
         const Format* f = format_of(format);
@@ -440,7 +446,8 @@ std::string LayoutRunner::run_pass(const json& pass, const DrawScene& draw, int 
         return {};
     }
     if (action != "fullscreen" && action != "draw_scene")
-        return "pass " + name + ": action '" + action + "' unknown; allowed: draw_scene, fullscreen, generate_mipmap, copy";
+        return "pass " + name + ": action '" + action + "' unknown; allowed: draw_scene, fullscreen, generate_mipmap, copy" +
+               (action == "dispatch" ? " (no compute shaders here: emit with prefilter_stage fragment)" : "");
     auto program = programs_.find(pass["program"]);
     if (program == programs_.end()) return "pass " + name + ": no program " + std::string(pass["program"]);
     std::vector<bool> integer_buffers;

@@ -938,7 +938,8 @@ private:
         if (action == "generate_mipmap") return prepare_mipmaps(pass);
         if (action == "copy") return prepare_copy(pass);
         if (action != "draw_scene" && action != "fullscreen")
-            fail("pass " + name + ": action '" + action + "' is unknown; allowed: draw_scene, fullscreen, generate_mipmap, copy");
+            fail("pass " + name + ": action '" + action + "' is unknown; allowed: draw_scene, fullscreen, generate_mipmap, copy" +
+                 (action == "dispatch" ? " (this runner has no compute pipelines: emit with prefilter_stage fragment)" : ""));
 
         Program& prog = program(pass.at("program"));
         const std::string program_name = pass.at("program");

@@ -32,6 +32,9 @@ def references_errors(layout):
         for b in p["inputs"]:
             if b["texture"] not in textures:
                 errors.append(f"pass {i} ({p['name']}): input texture {b['texture']} does not exist")
+        for image in p.get("image_outputs", []):
+            if image["texture"] not in textures:
+                errors.append(f"pass {i} ({p['name']}): image texture {image['texture']} does not exist")
         for a in p["outputs"]:
             if a["texture"] not in textures:
                 errors.append(f"pass {i} ({p['name']}): output texture {a['texture']} does not exist")
@@ -84,6 +87,14 @@ def main():
                for packing, light, target in itertools.product(
                    ["atlas", "array"], ["rect", "sun"], ["glsl330", "glsl450", "essl300", "vulkan"])]
 
+    # The compute prefilter: dispatch passes with image outputs (N-buffers, atlas, glsl450 only; the
+    # other targets and packings are refused), RGBA8 and RGBA16F levels.
+    matrix += [(f"compute-{packing}-{target}-{fmt}",
+                ["--prefilter-stage", "compute", "--packing", packing, "--target", target, "--level-format", fmt,
+                 "--slices", "5", "--resolution", "128"])
+               for packing, target, fmt in itertools.product(
+                   ["atlas", "array"], ["glsl330", "glsl450", "essl300", "vulkan"], ["rgba8", "rgba16f"])]
+
     def generate(entry):
         """(name, layout or None when penumbra-gen refuses the combination, failure text)"""
         name, flags = entry
@@ -97,7 +108,7 @@ def main():
         shutil.rmtree(out)
         return name, layout, ""
 
-    checked, skipped, failures, sample = 0, 0, [], None
+    checked, skipped, failures, sample, compute_sample = 0, 0, [], None, None
     with concurrent.futures.ThreadPoolExecutor(max_workers=4) as pool:
         for name, layout, failure in pool.map(generate, matrix):
             if failure:
@@ -108,6 +119,8 @@ def main():
                 failures += [f"{name}: {e}" for e in all_errors(validator, layout)]
                 checked += 1
                 sample = sample or layout
+                if any(p["action"] == "dispatch" for p in layout["passes"]):
+                    compute_sample = compute_sample or layout
 
     # The check can fail: each of these breaks one rule and must be rejected.
     def broken(edit):
@@ -148,10 +161,32 @@ def main():
                                                                           "width": 1, "height": 1}),
         "slice in channel x": lambda d: d["slice_map"][0].update(channel="x"),
     }
+    def first_dispatch(doc):
+        return next(p for p in doc["passes"] if p["action"] == "dispatch")
+
+    compute_breakages = {
+        "dispatch without groups": lambda d: first_dispatch(d)["dispatch"].pop("groups"),
+        "dispatch without image_outputs": lambda d: first_dispatch(d).pop("image_outputs"),
+        "image with an unknown access": lambda d: first_dispatch(d)["image_outputs"][0].update(access="SOMETIMES"),
+        "unknown memory barrier": lambda d: first_dispatch(d)["dispatch"].update(memory_barrier=["ALL"]),
+        "dispatch details on a draw": lambda d: d["passes"][0].update(dispatch=first_dispatch(d)["dispatch"]),
+        "image of a missing texture": lambda d: first_dispatch(d)["image_outputs"][0].update(texture="penumbra_nothing"),
+    }
+    if compute_sample is None:
+        failures.append("no layout with a dispatch pass was generated")
+    else:
+        for label, edit in compute_breakages.items():
+            doc = copy.deepcopy(compute_sample)
+            edit(doc)
+            if not all_errors(validator, doc):
+                failures.append(f"a broken layout ({label}) was accepted")
+        breakages.update(compute_breakages)  # counted below
     if sample is None:
         failures.append("no layout was generated")
     else:
         for label, edit in breakages.items():
+            if label in compute_breakages:
+                continue
             if not all_errors(validator, broken(edit)):
                 failures.append(f"a broken layout ({label}) was accepted")
 

@@ -4,6 +4,7 @@
 
 #include "../program.hpp"
 #include "occlusion/emit_prefilter.hpp"
+#include "occlusion/emit_prefilter_compute.hpp"
 #include "emit_shading.hpp"
 #include "occlusion/emit_slice_placement.hpp"
 #include "occlusion/emit_slicing.hpp"
@@ -42,6 +43,7 @@ enum class Artifact : std::uint8_t {
     depth_bins_vert,       // adaptive slice placement: the depth-bin pre-pass (occlusion/emit_slice_placement.hpp)
     depth_bins_frag,
     slice_boundaries_frag, // adaptive slice placement: boundaries from the depth bins
+    nbuffer_levels_comp,   // compute prefilter: N-buffer levels, several per dispatch (occlusion/emit_prefilter_compute.hpp)
 };
 
 constexpr std::string_view file_name(Artifact artifact) {
@@ -72,6 +74,7 @@ constexpr std::string_view file_name(Artifact artifact) {
     case Artifact::depth_bins_vert: return "penumbra_depth_bins.vert";
     case Artifact::depth_bins_frag: return "penumbra_depth_bins.frag";
     case Artifact::slice_boundaries_frag: return "penumbra_slice_boundaries.frag";
+    case Artifact::nbuffer_levels_comp: return "penumbra_nbuffer_levels.comp";
     }
     return "";
 }
@@ -84,6 +87,7 @@ constexpr Stage artifact_stage(Artifact artifact) {
     case Artifact::fullscreen_vert:
     case Artifact::shading_vert:
     case Artifact::oim_shading_vert: return Stage::vertex;
+    case Artifact::nbuffer_levels_comp: return Stage::compute;
     default: return Stage::fragment;
     }
 }
@@ -119,6 +123,7 @@ constexpr Text artifact_text(const Config& config, Artifact artifact) {
     case Artifact::depth_bins_vert: return depth_bins_vertex(config);
     case Artifact::depth_bins_frag: return depth_bins_fragment(config);
     case Artifact::slice_boundaries_frag: return slice_boundaries_fragment(config);
+    case Artifact::nbuffer_levels_comp: return nbuffer_levels_compute(config);
     }
     return {};
 }

@@ -89,7 +89,8 @@ constexpr Text describe(const Config& config) {
                       cat(" | tangent clip on, offset ", format_float(config.tangent_clip_offset), " texels",
                           choose(config.clip_footprint, " + footprint", "")),
                       Text()),
-               choose(places_slices_adaptively(config), " | slice placement adaptive", ""), " | target ",
+               choose(places_slices_adaptively(config), " | slice placement adaptive", ""),
+               choose(prefilters_in_compute(config), " | prefilter compute", ""), " | target ",
                to_string(config.target));
 }
 

@@ -144,11 +144,33 @@ struct MipmapDesc {
     std::string downsample = "box"; // "box": the mean of the 2×2 texels below
 };
 
+// An image a "dispatch" pass writes (glBindImageTexture(unit, texture, level, layered, layer, access,
+// format)): the compute program's image uniform `image` at image unit `unit`.
+struct ImageBindingDesc {
+    std::string image;   // the image uniform in the program, e.g. penumbra_output0
+    std::string texture;
+    int level = 0;
+    int layer = -1;      // -1: a 2D texture (not layered)
+    int unit = 0;        // image unit (layout(binding = …) of the image uniform)
+    std::string format;  // the image format, the texture's internal format: "RGBA8", "RGBA16F"
+    std::string access = "WRITE_ONLY"; // "WRITE_ONLY", "READ_ONLY", "READ_WRITE"
+};
+
+// What a "dispatch" pass runs: glDispatchCompute(groups) of its compute program, then
+// glMemoryBarrier with the bits the passes after it need ("TEXTURE_FETCH": they sample what it
+// wrote; "TEXTURE_UPDATE": it may be read back or copied; "SHADER_IMAGE_ACCESS": images).
+struct DispatchDesc {
+    std::array<int, 3> groups{1, 1, 1};     // workgroups in x, y, z
+    std::array<int, 3> local_size{1, 1, 1}; // invocations per workgroup (the program's local_size, for information)
+    std::vector<std::string> memory_barrier;
+};
+
 struct PassDesc {
     std::string name;
     // "draw_scene": draw the caller's geometry with `program`; "fullscreen": draw 3 vertices
     // with `program`; "generate_mipmap": the mipmap chain of outputs[0] (mipmap); "copy": the region
-    // `copy` says, from inputs[0] into outputs[0].
+    // `copy` says, from inputs[0] into outputs[0]; "dispatch": run the compute `program` over
+    // dispatch.groups with `inputs` bound as samplers and image_outputs as images (no outputs).
     std::string action;
     std::string program;
     std::vector<BindingDesc> inputs;
@@ -162,6 +184,8 @@ struct PassDesc {
     std::string phase = "shadow";
     std::optional<CopyDesc> copy;     // action "copy"
     std::optional<MipmapDesc> mipmap; // action "generate_mipmap"
+    std::optional<DispatchDesc> dispatch;     // action "dispatch"
+    std::vector<ImageBindingDesc> image_outputs; // action "dispatch": the images it writes
 };
 
 // Where slice k of the occlusion textures is after the slicing (and unpack) passes: texture, layer

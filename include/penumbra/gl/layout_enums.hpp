@@ -1,5 +1,5 @@
 // penumbra/gl/layout_enums.hpp — the GL enum of each word layout.json uses for texture targets,
-// formats, filters, wraps and render state.
+// formats, filters, wraps, render state, image access and memory barriers.
 //
 // Header-only; includes <epoxy/gl.h>.
 #pragma once
@@ -11,7 +11,8 @@
 
 namespace penumbra::gl::detail {
 
-// The GL enum of a layout.json word (targets, formats, filters, wraps, state); 0 when unknown.
+// The GL enum of a layout.json word (targets, formats, filters, wraps, state, image access, barrier
+// bits); 0 when unknown.
 inline GLenum gl_enum(const std::string& name) {
     static const std::map<std::string, GLenum> names{
         {"2D", GL_TEXTURE_2D}, {"2D_ARRAY", GL_TEXTURE_2D_ARRAY}, {"3D", GL_TEXTURE_3D},
@@ -28,7 +29,11 @@ inline GLenum gl_enum(const std::string& name) {
         {"DST_COLOR", GL_DST_COLOR},
         {"NEVER", GL_NEVER}, {"LESS", GL_LESS}, {"EQUAL", GL_EQUAL}, {"LEQUAL", GL_LEQUAL}, {"GREATER", GL_GREATER},
         {"NOTEQUAL", GL_NOTEQUAL}, {"GEQUAL", GL_GEQUAL}, {"ALWAYS", GL_ALWAYS},
-        {"BACK", GL_BACK}, {"FRONT", GL_FRONT}, {"OR", GL_OR}};
+        {"BACK", GL_BACK}, {"FRONT", GL_FRONT}, {"OR", GL_OR},
+        // "dispatch" passes: image access and memory barrier bits
+        {"WRITE_ONLY", GL_WRITE_ONLY}, {"READ_ONLY", GL_READ_ONLY}, {"READ_WRITE", GL_READ_WRITE},
+        {"TEXTURE_FETCH", GL_TEXTURE_FETCH_BARRIER_BIT}, {"TEXTURE_UPDATE", GL_TEXTURE_UPDATE_BARRIER_BIT},
+        {"SHADER_IMAGE_ACCESS", GL_SHADER_IMAGE_ACCESS_BARRIER_BIT}, {"FRAMEBUFFER", GL_FRAMEBUFFER_BARRIER_BIT}};
     auto it = names.find(name);
     return it == names.end() ? 0 : it->second;
 }

@@ -52,7 +52,78 @@ inline std::pair<int, int> attachment_size(const PassContext& c, const Attachmen
     return {std::max(w >> out.level, 1), std::max(h >> out.level, 1)};
 }
 
-// Runs one pass: a copy, a mipmap generation, or a draw of `program` into the pass's outputs.
+// Binds a pass's inputs as samplers (a binding with a level reads that level only, restricted until
+// unbind_inputs) and sets its int_uniforms and computed uniforms on `program`, which is in use.
+inline std::string bind_inputs(const PassContext& c, const PassDesc& pass, GLuint program, std::vector<GLuint>& restricted) {
+    for (const BindingDesc& in : pass.inputs) {
+        const GLuint id = c.texture(in.texture);
+        if (!id) return "pass " + pass.name + ": no texture " + in.texture + " for " + in.sampler;
+        if (in.level >= 0) { // read one level only; the pass may render another level of it
+            glTextureParameteri(id, GL_TEXTURE_BASE_LEVEL, in.level);
+            glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, in.level);
+            restricted.push_back(id);
+        }
+        bind_sampler(program, in.sampler, in.binding, id, c.sampler(in.sampling));
+    }
+    for (const auto& [name, value] : pass.int_uniforms)
+        glProgramUniform1i(program, glGetUniformLocation(program, name.c_str()), value);
+    return set_computed_uniforms(c.layout, pass, program, c.uniforms);
+}
+
+// Undoes bind_inputs: every level readable again, no sampler objects, no program.
+inline void unbind_inputs(const PassContext& c, const PassDesc& pass, const std::vector<GLuint>& restricted) {
+    for (GLuint id : restricted) {
+        const TextureDesc* t = nullptr;
+        for (const BindingDesc& in : pass.inputs)
+            if (c.texture(in.texture) == id) t = find_texture(c.layout, in.texture);
+        glTextureParameteri(id, GL_TEXTURE_BASE_LEVEL, 0);
+        glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, t ? t->mip_levels - 1 : 1000);
+    }
+    for (const BindingDesc& in : pass.inputs) glBindSampler(static_cast<GLuint>(in.binding), 0);
+    glUseProgram(0);
+}
+
+// A "dispatch" pass: the compute program over dispatch.groups, its inputs bound as samplers and its
+// image_outputs as images, then the memory barrier the passes after it need.
+inline std::string run_dispatch(const PassContext& c, const PassDesc& pass) {
+    if (!pass.dispatch) return "pass " + pass.name + ": a dispatch pass needs \"dispatch\" (groups, memory_barrier)";
+    const DispatchDesc& dispatch = *pass.dispatch;
+    GLbitfield barrier = 0;
+    for (const std::string& bit : dispatch.memory_barrier) {
+        const GLenum value = detail::gl_enum(bit);
+        if (!value || bit == "WRITE_ONLY" || bit == "READ_ONLY" || bit == "READ_WRITE")
+            return "pass " + pass.name + ": memory_barrier '" + bit +
+                   "' unknown; allowed: TEXTURE_FETCH, TEXTURE_UPDATE, SHADER_IMAGE_ACCESS, FRAMEBUFFER";
+        barrier |= value;
+    }
+    const GLuint program = c.program(pass.program);
+    if (!program) return "pass " + pass.name + ": no program " + pass.program;
+    for (const ImageBindingDesc& image : pass.image_outputs) {
+        const GLuint id = c.texture(image.texture);
+        const GLenum format = detail::gl_enum(image.format), access = detail::gl_enum(image.access);
+        if (!id) return "pass " + pass.name + ": no texture " + image.texture + " for " + image.image;
+        if (!format || !access)
+            return "pass " + pass.name + ": image " + image.image + " has format '" + image.format + "' and access '" +
+                   image.access + "'; allowed: a texture format (RGBA8, RGBA16F, …), WRITE_ONLY, READ_ONLY, READ_WRITE";
+        glBindImageTexture(static_cast<GLuint>(image.unit), id, image.level, GL_FALSE, std::max(image.layer, 0), access,
+                           format);
+    }
+    glUseProgram(program);
+    std::vector<GLuint> restricted;
+    std::string diagnostic = bind_inputs(c, pass, program, restricted);
+    if (diagnostic.empty()) {
+        glDispatchCompute(static_cast<GLuint>(dispatch.groups[0]), static_cast<GLuint>(dispatch.groups[1]),
+                          static_cast<GLuint>(dispatch.groups[2]));
+        if (barrier) glMemoryBarrier(barrier);
+    }
+    unbind_inputs(c, pass, restricted);
+    for (const ImageBindingDesc& image : pass.image_outputs)
+        glBindImageTexture(static_cast<GLuint>(image.unit), 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
+    return diagnostic;
+}
+
+// Runs one pass: a copy, a mipmap generation, a compute dispatch, or a draw of `program` into the
+// pass's outputs.
 inline std::string run_pass(const PassContext& c, const PassDesc& pass, const DrawScene& draw) {
     if (pass.action == "generate_mipmap") { // every level above the base, each a 2x2 box of the one below
         if (!pass.mipmap || pass.mipmap->downsample != "box")
@@ -73,9 +144,10 @@ inline std::string run_pass(const PassContext& c, const PassDesc& pass, const Dr
                            copy.width, copy.height, 1);
         return {};
     }
+    if (pass.action == "dispatch") return run_dispatch(c, pass);
     if (pass.action != "draw_scene" && pass.action != "fullscreen")
         return "pass " + pass.name + ": unknown action '" + pass.action +
-               "'; allowed: draw_scene, fullscreen, generate_mipmap, copy";
+               "'; allowed: draw_scene, fullscreen, generate_mipmap, copy, dispatch";
     const GLuint program = c.program(pass.program);
     if (!program) return "pass " + pass.name + ": no program " + pass.program;
     glBindFramebuffer(GL_FRAMEBUFFER, c.framebuffer);
@@ -129,22 +201,7 @@ inline std::string run_pass(const PassContext& c, const PassDesc& pass, const Dr
 
     glUseProgram(program);
     std::vector<GLuint> restricted;
-    for (const BindingDesc& in : pass.inputs) {
-        const GLuint id = c.texture(in.texture);
-        if (!id) {
-            glUseProgram(0);
-            return "pass " + pass.name + ": no texture " + in.texture + " for " + in.sampler;
-        }
-        if (in.level >= 0) { // read one level only; the pass may render another level of it
-            glTextureParameteri(id, GL_TEXTURE_BASE_LEVEL, in.level);
-            glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, in.level);
-            restricted.push_back(id);
-        }
-        bind_sampler(program, in.sampler, in.binding, id, c.sampler(in.sampling));
-    }
-    for (const auto& [name, value] : pass.int_uniforms)
-        glProgramUniform1i(program, glGetUniformLocation(program, name.c_str()), value);
-    std::string diagnostic = set_computed_uniforms(c.layout, pass, program, c.uniforms);
+    std::string diagnostic = bind_inputs(c, pass, program, restricted);
     if (diagnostic.empty()) {
         if (pass.action == "draw_scene") {
             draw(program);
@@ -154,15 +211,7 @@ inline std::string run_pass(const PassContext& c, const PassDesc& pass, const Dr
             glBindVertexArray(0);
         }
     }
-    for (GLuint id : restricted) {
-        const TextureDesc* t = nullptr;
-        for (const BindingDesc& in : pass.inputs)
-            if (c.texture(in.texture) == id) t = find_texture(c.layout, in.texture);
-        glTextureParameteri(id, GL_TEXTURE_BASE_LEVEL, 0);
-        glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, t ? t->mip_levels - 1 : 1000);
-    }
-    for (const BindingDesc& in : pass.inputs) glBindSampler(static_cast<GLuint>(in.binding), 0);
-    glUseProgram(0);
+    unbind_inputs(c, pass, restricted);
     return diagnostic;
 }
 

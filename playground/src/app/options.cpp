@@ -27,7 +27,7 @@ using penumbra_gen::printable;
 constexpr std::string_view flag_list =
     "--headless, --scene, --no-ground, --size, --light-size, --out, --visibility, --reference, --samples, --metrics, "
     "--reference-out, --error-out, --slices, --resolution, --filter, --fusion, --packing, --light, --target, "
-    "--no-leak-fix, --no-fade, --tangent-clip, --no-tangent-clip, --slice-placement, --config, --watch, --frames, --screenshot, "
+    "--no-leak-fix, --no-fade, --tangent-clip, --no-tangent-clip, --slice-placement, --prefilter-stage, --config, --watch, --frames, --screenshot, "
     "--script, --help, --technique, --shadow-resolution, --shadow-bias, --shadow-slope-bias, --pcf-pattern, "
     "--pcf-grid, --pcf-taps, --pcf-radius, --pcss-blockers, --pcss-filter, --pcss-max-texels, --no-rotation, --no-receiver-plane-bias, "
     "--oim-resolution, --oim-intervals, --oim-samples, --sun-time, --sun-path, --bake-cache";
@@ -41,7 +41,7 @@ bool takes_value(std::string_view flag) {
     if (penumbra_gen::is_technique_flag(flag)) return true;
     for (std::string_view f : {"--scene", "--size", "--light-size", "--out", "--visibility", "--samples", "--metrics",
                                "--reference-out", "--error-out", "--slices", "--resolution", "--filter", "--fusion",
-                               "--packing", "--light", "--target", "--slice-placement", "--config", "--watch", "--frames", "--screenshot",
+                               "--packing", "--light", "--target", "--slice-placement", "--prefilter-stage", "--config", "--watch", "--frames", "--screenshot",
                                "--sun-time", "--sun-path", "--bake-cache",
                                "--script"})
         if (flag == f) return true;
@@ -167,6 +167,7 @@ ParsedOptions parse_options(const std::vector<std::string>& args) {
         else if (flag == "--light") error = parse_name(flag, value, flags.light);
         else if (flag == "--target") error = parse_name(flag, value, flags.target);
         else if (flag == "--slice-placement") error = parse_name(flag, value, flags.slice_placement);
+        else if (flag == "--prefilter-stage") error = parse_name(flag, value, flags.prefilter_stage);
         else if (flag == "--size") error = parse_size(value, options.width, options.height);
         else if (flag == "--samples") error = parse_int_in(flag, value, 1, 1024, options.samples);
         else if (flag == "--frames") error = parse_int_in(flag, value, 0, 1000000000, options.frames);
@@ -263,6 +264,9 @@ std::string usage() {
     out += line("--slice-placement P", names("slice boundaries: uniform, or adaptive (at the depths the geometry\n"
                                              "                        occupies, computed on the GPU; paper §5)",
                                              to_string(d.slice_placement)));
+    out += line("--prefilter-stage S", names("what builds the N-buffer levels above the packing pass: fragment passes, or\n"
+                                             "                        compute dispatches (nbuffer, atlas, glsl450 only)",
+                                             to_string(d.prefilter_stage)));
     out += "\ntechnique (occlusion: the flags above; shadowmap, pcf, pcss, erosion, oim: these, plus --light and --target):\n";
     out += penumbra_gen::technique_usage(25);
     out += line("--config FILE.json", "configuration from JSON (the keys of Config, or a layout.json); a regular\n"

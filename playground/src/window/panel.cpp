@@ -143,6 +143,8 @@ bool config_editor(const char* id, Config& config) {
     if (config.packing == Packing::atlas && (config.filter == Filter::nbuffer || config.filter == Filter::gaussian))
         changed |= ImGui::SliderInt("level reduction", &config.level_reduction, -1, resolution_levels(config),
                                     config.level_reduction < 0 ? "off" : "above %d");
+    if (config.packing == Packing::atlas && config.filter == Filter::nbuffer && config.target == Target::glsl450)
+        changed |= enum_combo("prefilter stage", config.prefilter_stage);
     ImGui::PopID();
     return changed;
 }

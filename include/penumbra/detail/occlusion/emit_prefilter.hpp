@@ -3,7 +3,7 @@
 // layout description asks for glGenerateMipmap.
 #pragma once
 
-#include "parameters.hpp"
+#include "prefilter_plan.hpp"
 
 namespace penumbra::detail {
 
@@ -170,17 +170,6 @@ constexpr Param slices_param() {
     return {"penumbra_slices", "sampler2DArray", "slicing output, one layer per RGBA texture", "", "penumbra_slices"};
 }
 constexpr std::vector<Param> pack_atlas_params() { return {slices_param()}; }
-
-// The highest filter level the atlas packing pass writes: level 0 (the slicing output as tiles),
-// and for N-buffer and Gaussian levels also level 1, whose taps it reads from the slices anyway
-// (one pass, two outputs of one size, instead of a copy and a level pass), where level 1 has level
-// 0's size (a pass's outputs share one size: not with level_reduction 0). Mip chains: 0.
-constexpr int packed_level(const Config& config) {
-    return config.packing == Packing::atlas && has_level_images(config) && max_level(config) >= 1 &&
-                   level_spacing(config, 1) == 1
-               ? 1
-               : 0;
-}
 
 // The atlas's level 0: the slicing output (a T-layer array) laid out as tiles side by side; with
 // packed_level 1 also level 1, from the same texels as the level pass would read from level 0 (the

@@ -22,7 +22,9 @@ constexpr std::vector<ProgramPlan> occlusion_programs(const Config& config) {
         plan.push_back({"pack_atlas", {Artifact::fullscreen_vert, Artifact::pack_atlas_frag}});
     // (the atlas packing pass writes levels 0 to packed_level; a level pass builds each one above:
     // the level program stays listed where there is none, as with level_bound 0 before)
-    if (config.filter == Filter::nbuffer)
+    if (prefilters_in_compute(config)) // compute dispatches, several levels each (emit_prefilter_compute.hpp)
+        plan.push_back({"nbuffer_levels", {Artifact::nbuffer_levels_comp}});
+    else if (config.filter == Filter::nbuffer)
         plan.push_back({"nbuffer_level", {Artifact::fullscreen_vert, Artifact::nbuffer_level_frag}});
     if (config.filter == Filter::gaussian)
         plan.push_back({"gaussian_level", {Artifact::fullscreen_vert, Artifact::gaussian_level_frag}});
@@ -46,6 +48,7 @@ inline std::vector<ParamGroup> occlusion_param_groups(const Config& config, std:
     if (program == "pack_atlas") params = pack_atlas_params();
     if (program == "unpack_slices") params = unpack_params();
     if (program == "nbuffer_level" || program == "gaussian_level") params = level_params(config);
+    if (program == "nbuffer_levels") params = nbuffer_compute_params();
     if (program == "sat_shift") params = sat_shift_params(config);
     if (program == "sat_pass") params = sat_pass_params(config);
     return {{"PenumbraPass", std::move(params)}};
@@ -73,6 +76,32 @@ inline void describe_slice_placement_passes(LayoutBuilder& b, const Config& conf
     b.pass("depth_bins_mipmaps", "generate_mipmap", "", {}, {{"penumbra_depthBins", 0, -1}}, {}, 0, 0);
     b.fullscreen("slice_boundaries", "slice_boundaries", {{"penumbra_depthBins", "penumbra_depthBins"}},
                  {"penumbra_sliceBoundaries", 0, -1}, {}, config.slices + 1, 1);
+}
+
+// The compute prefilter (prefilter_stage compute): one "dispatch" pass per group of levels of
+// compute_dispatches, reading the level it starts from as a sampler and writing its levels as images.
+inline void describe_compute_prefilter(LayoutBuilder& b, const Config& config) {
+    const int R = config.resolution, T = texture_count(config), N = compute_group_side;
+    const std::string format(level_format(config));
+    for (const ComputeDispatch& d : compute_dispatches(config)) {
+        const int source = d.source_level, spacing = level_spacing(config, source), tile = R / spacing;
+        int same_size = 0;
+        while (same_size < d.levels && level_spacing(config, source + 1 + same_size) == spacing) ++same_size;
+        const int groups = (tile + N - 1) / N;
+        const std::string name = "nbuffer_levels_" + std::to_string(source + 1) + "_" + std::to_string(source + d.levels);
+        b.pass(name, "dispatch", "nbuffer_levels", {{"penumbra_source", atlas_level_name(source).str()}}, {},
+               {{"penumbra_levels", d.levels},
+                {"penumbra_step", compute_step(config, source)},
+                {"penumbra_sourceTile", tile},
+                {"penumbra_sameSize", same_size},
+                {"penumbra_groupsPerTile", groups}},
+               T * tile, tile); // the viewport: the source level's texels the workgroups cover
+        PassDesc& pass = b.layout.passes.back();
+        pass.dispatch = DispatchDesc{{T * groups, groups, 1}, {N, N, 1}, {"TEXTURE_FETCH", "TEXTURE_UPDATE"}};
+        for (int i = 0; i < d.levels; ++i)
+            pass.image_outputs.push_back({compute_image_name(i).str(), atlas_level_name(source + 1 + i).str(), 0, -1, i,
+                                          format, "WRITE_ONLY"});
+    }
 }
 
 // Occlusion textures, phase "shadow": slicing into the slices' storage (beyond 32 slices: into bits,
@@ -197,6 +226,8 @@ inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
                     std::swap(from, to);
                 }
         }
+    } else if (prefilters_in_compute(config)) {
+        describe_compute_prefilter(b, config);
     } else {
         for (int l = packed_level(config) + 1; l <= L; ++l) {
             const std::pair<std::string, int> step{"penumbra_step", 1 << (l - 1)};

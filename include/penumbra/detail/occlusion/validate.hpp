@@ -4,6 +4,7 @@
 
 #include "../problem.hpp"
 #include "../target_limits.hpp"
+#include "prefilter_plan.hpp"
 
 #include <string_view>
 
@@ -37,6 +38,7 @@ constexpr std::vector<Problem> occlusion_problems(const Config& config) {
     check_known(problems, "target", config.target);
     check_known(problems, "slice_placement", config.slice_placement);
     check_known(problems, "level_format", config.level_format);
+    check_known(problems, "prefilter_stage", config.prefilter_stage);
     if (problems.empty() && (config.level_bound < -1 || config.level_bound > resolution_levels(config)))
         add("level_bound", format_int(config.level_bound),
             cat("is out of range; allowed: -1 (every level) or 0 to ", format_int(resolution_levels(config)),
@@ -104,6 +106,28 @@ constexpr std::vector<Problem> occlusion_problems(const Config& config) {
             cat("is too large for packing 'volume': target '", target, "' guarantees 3D textures of ",
                 format_int(limit.max_3d_texture_size), " texels; allowed: up to ",
                 format_int(limit.max_3d_texture_size), ", or packing atlas or array"));
+    if (config.prefilter_stage == PrefilterStage::compute) {
+        // compute dispatches (emit_prefilter_compute.hpp): N-buffer levels in the atlas, GLSL 4.50 compute
+        if (config.filter != Filter::nbuffer || config.packing != Packing::atlas)
+            add("prefilter_stage", Text("compute"),
+                cat("builds N-buffer levels in the atlas only, not filter '", filter, "' with packing '",
+                    to_string(config.packing), "'; allowed: fragment, or compute with filter nbuffer and packing atlas"));
+        else if (config.target != Target::glsl450)
+            add("prefilter_stage", Text("compute"),
+                cat("needs compute shaders (OpenGL 4.3+), which ",
+                    config.target == Target::vulkan ? Text("the Vulkan runner (targets/vulkan) does not run (it has no "
+                                                           "compute pipelines)")
+                                                    : cat("target '", target, "' does not have"),
+                    "; allowed for ", target, ": fragment; compute with target glsl450"));
+        else if (compute_source_step(config) > compute_max_step)
+            add("prefilter_stage", Text("compute"),
+                cat("needs level_reduction 0 to ", format_int(compute_max_level_reduction),
+                    " or level_bound 1 to ", format_int(compute_max_level_reduction + 1),
+                    " (one level's taps must fit a workgroup's shared tile, ", format_int(compute_group_side), " + ",
+                    format_int(compute_max_step), " texels per side); with level_reduction ",
+                    format_int(config.level_reduction), " and level_bound ", format_int(config.level_bound),
+                    " allowed: fragment"));
+    }
     return problems;
 }
 
