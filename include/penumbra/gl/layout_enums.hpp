@@ -11,8 +11,7 @@
 
 namespace penumbra::gl::detail {
 
-// The GL enum of a layout.json word (targets, formats, filters, wraps, state, image access, barrier
-// bits); 0 when unknown.
+// The GL enum of a layout.json word (targets, formats, filters, wraps, state); 0 when unknown.
 inline GLenum gl_enum(const std::string& name) {
     static const std::map<std::string, GLenum> names{
         {"2D", GL_TEXTURE_2D}, {"2D_ARRAY", GL_TEXTURE_2D_ARRAY}, {"3D", GL_TEXTURE_3D},
@@ -29,9 +28,22 @@ inline GLenum gl_enum(const std::string& name) {
         {"DST_COLOR", GL_DST_COLOR},
         {"NEVER", GL_NEVER}, {"LESS", GL_LESS}, {"EQUAL", GL_EQUAL}, {"LEQUAL", GL_LEQUAL}, {"GREATER", GL_GREATER},
         {"NOTEQUAL", GL_NOTEQUAL}, {"GEQUAL", GL_GEQUAL}, {"ALWAYS", GL_ALWAYS},
-        {"BACK", GL_BACK}, {"FRONT", GL_FRONT}, {"OR", GL_OR},
-        // "dispatch" passes: image access and memory barrier bits
-        {"WRITE_ONLY", GL_WRITE_ONLY}, {"READ_ONLY", GL_READ_ONLY}, {"READ_WRITE", GL_READ_WRITE},
+        {"BACK", GL_BACK}, {"FRONT", GL_FRONT}, {"OR", GL_OR}};
+    auto it = names.find(name);
+    return it == names.end() ? 0 : it->second;
+}
+
+// The access of a "dispatch" pass's image output (image_outputs[].access); 0 when unknown.
+inline GLenum image_access(const std::string& name) {
+    static const std::map<std::string, GLenum> names{
+        {"WRITE_ONLY", GL_WRITE_ONLY}, {"READ_ONLY", GL_READ_ONLY}, {"READ_WRITE", GL_READ_WRITE}};
+    auto it = names.find(name);
+    return it == names.end() ? 0 : it->second;
+}
+
+// A memory barrier bit of a "dispatch" pass (dispatch.memory_barrier[]); 0 when unknown.
+inline GLbitfield memory_barrier_bit(const std::string& name) {
+    static const std::map<std::string, GLbitfield> names{
         {"TEXTURE_FETCH", GL_TEXTURE_FETCH_BARRIER_BIT}, {"TEXTURE_UPDATE", GL_TEXTURE_UPDATE_BARRIER_BIT},
         {"SHADER_IMAGE_ACCESS", GL_SHADER_IMAGE_ACCESS_BARRIER_BIT}, {"FRAMEBUFFER", GL_FRAMEBUFFER_BARRIER_BIT}};
     auto it = names.find(name);

@@ -90,8 +90,8 @@ inline std::string run_dispatch(const PassContext& c, const PassDesc& pass) {
     const DispatchDesc& dispatch = *pass.dispatch;
     GLbitfield barrier = 0;
     for (const std::string& bit : dispatch.memory_barrier) {
-        const GLenum value = detail::gl_enum(bit);
-        if (!value || bit == "WRITE_ONLY" || bit == "READ_ONLY" || bit == "READ_WRITE")
+        const GLbitfield value = detail::memory_barrier_bit(bit);
+        if (!value)
             return "pass " + pass.name + ": memory_barrier '" + bit +
                    "' unknown; allowed: TEXTURE_FETCH, TEXTURE_UPDATE, SHADER_IMAGE_ACCESS, FRAMEBUFFER";
         barrier |= value;
@@ -100,7 +100,7 @@ inline std::string run_dispatch(const PassContext& c, const PassDesc& pass) {
     if (!program) return "pass " + pass.name + ": no program " + pass.program;
     for (const ImageBindingDesc& image : pass.image_outputs) {
         const GLuint id = c.texture(image.texture);
-        const GLenum format = detail::gl_enum(image.format), access = detail::gl_enum(image.access);
+        const GLenum format = detail::gl_enum(image.format), access = detail::image_access(image.access);
         if (!id) return "pass " + pass.name + ": no texture " + image.texture + " for " + image.image;
         if (!format || !access)
             return "pass " + pass.name + ": image " + image.image + " has format '" + image.format + "' and access '" +
