@@ -446,8 +446,7 @@ std::string LayoutRunner::run_pass(const json& pass, const DrawScene& draw, int 
         return {};
     }
     if (action != "fullscreen" && action != "draw_scene")
-        return "pass " + name + ": action '" + action + "' unknown; allowed: draw_scene, fullscreen, generate_mipmap, copy" +
-               (action == "dispatch" ? " (no compute shaders here: emit with prefilter_stage fragment)" : "");
+        return "pass " + name + ": action '" + action + "' unknown; allowed: draw_scene, fullscreen, generate_mipmap, copy";
     auto program = programs_.find(pass["program"]);
     if (program == programs_.end()) return "pass " + name + ": no program " + std::string(pass["program"]);
     std::vector<bool> integer_buffers;

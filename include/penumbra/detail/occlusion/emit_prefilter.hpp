@@ -57,6 +57,19 @@ constexpr std::vector<Param> level_params(const Config& config) {
     return params;
 }
 
+// penumbra_source_texel(origin, local) over an atlas level whose tiles are `tile` texels wide (a
+// literal, or a uniform where the level's size varies): 0 outside the tile, so the window sums treat
+// the outside as unoccluded. Shared by the fragment level passes and the compute prefilter.
+constexpr void write_atlas_source_texel(LineWriter& out, const Text& tile) {
+    out.comment("texel `local` of the previous level's tile that starts at `origin`, 0 outside the tile");
+    out.line("vec4 penumbra_source_texel(ivec2 origin, ivec2 local)");
+    out.line("{");
+    out.line("bool inside = all(greaterThanEqual(local, ivec2(0))) && all(lessThan(local, ivec2(", tile, ")));");
+    out.line("vec4 value = texelFetch(penumbra_source, origin + clamp(local, ivec2(0), ivec2(", tile, " - 1)), 0);");
+    out.line("return inside ? value : vec4(0.0);");
+    out.line("}");
+}
+
 // Declarations of a level-building pass and the texel read that returns 0 outside the occlusion
 // texture's tile (the window sums treat the outside as unoccluded). The read takes the tile's
 // origin in the source and a position inside the tile, so a fragment finds its tile once and each
@@ -72,20 +85,16 @@ constexpr void write_level_source(LineWriter& out, const Config& config) {
     out.chunk("level_source");
     if (config.packing == Packing::atlas) {
         // reduced levels: the previous level's tiles are penumbra_sourceTile texels wide
-        const Text tile = choose(reduces_levels(config), Text("penumbra_sourceTile"), R);
-        out.comment("texel `local` of the previous level's tile that starts at `origin`, 0 outside the tile");
-        out.line("vec4 penumbra_source_texel(ivec2 origin, ivec2 local)");
-        out.line("{");
-        out.line("bool inside = all(greaterThanEqual(local, ivec2(0))) && all(lessThan(local, ivec2(", tile, ")));");
-        out.line("vec4 value = texelFetch(penumbra_source, origin + clamp(local, ivec2(0), ivec2(", tile, " - 1)), 0);");
-    } else {
-        out.comment("texel `local` of the previous level, 0 outside the texture (origin: always 0)");
-        out.line("vec4 penumbra_source_texel(ivec2 origin, ivec2 local)");
-        out.line("{");
-        out.line("bool inside = all(greaterThanEqual(local, ivec2(0))) && all(lessThan(local, ivec2(", R, ")));");
-        out.line("ivec2 texel = origin + clamp(local, ivec2(0), ivec2(", format_int(config.resolution - 1), "));");
-        out.line("vec4 value = texelFetch(penumbra_source, ivec3(texel, penumbra_sourceLayer), 0);");
+        write_atlas_source_texel(out, choose(reduces_levels(config), Text("penumbra_sourceTile"), R));
+        out.blank();
+        return;
     }
+    out.comment("texel `local` of the previous level, 0 outside the texture (origin: always 0)");
+    out.line("vec4 penumbra_source_texel(ivec2 origin, ivec2 local)");
+    out.line("{");
+    out.line("bool inside = all(greaterThanEqual(local, ivec2(0))) && all(lessThan(local, ivec2(", R, ")));");
+    out.line("ivec2 texel = origin + clamp(local, ivec2(0), ivec2(", format_int(config.resolution - 1), "));");
+    out.line("vec4 value = texelFetch(penumbra_source, ivec3(texel, penumbra_sourceLayer), 0);");
     out.line("return inside ? value : vec4(0.0);");
     out.line("}");
     out.blank();

@@ -7,6 +7,7 @@
 // which levels: compute_dispatches (prefilter_plan.hpp).
 #pragma once
 
+#include "emit_prefilter.hpp"
 #include "prefilter_plan.hpp"
 
 namespace penumbra::detail {
@@ -79,13 +80,7 @@ constexpr Text nbuffer_levels_compute(const Config& config) {
     out.blank();
 
     out.chunk("compute_source");
-    out.comment("texel `local` of the source level's tile that starts at `origin`, 0 outside the tile");
-    out.line("vec4 penumbra_source_texel(ivec2 origin, ivec2 local)");
-    out.line("{");
-    out.line("bool inside = all(greaterThanEqual(local, ivec2(0))) && all(lessThan(local, ivec2(penumbra_sourceTile)));");
-    out.line("vec4 value = texelFetch(penumbra_source, origin + clamp(local, ivec2(0), ivec2(penumbra_sourceTile - 1)), 0);");
-    out.line("return inside ? value : vec4(0.0);");
-    out.line("}");
+    write_atlas_source_texel(out, "penumbra_sourceTile");
     out.blank();
     if (config.level_format == LevelFormat::rgba16f) {
         out.comment("what an RGBA16F level stores: half floats, so the next level is built from what the fragment");
