@@ -68,7 +68,7 @@ function print(where, result) {
 
 const size = fs.statSync(args.wasm).size;
 console.log(`penumbra_emitter.wasm: ${size} bytes (${(size / 1024).toFixed(0)} KiB); ${args.runs} warm runs per configuration`);
-const {loadEmitter} = await import(pathToFileURL(path.join(here, "../web/penumbra_emitter.js")));
+const {loadEmitter} = await import(pathToFileURL(path.join(here, "../web/three/penumbra_emitter.js")));
 print(`node ${process.version}`, await measure(loadEmitter, fs.readFileSync(args.wasm), CONFIGS, args.runs));
 
 if (!fs.existsSync(args.chromium)) {
@@ -76,16 +76,16 @@ if (!fs.existsSync(args.chromium)) {
     process.exit(0);
 }
 const {serve, launchChromium} = await import(pathToFileURL(path.join(here, "../targets/web/bundle_compare.mjs")));
-const server = await serve(path.join(here, "../web"), [], {"/web/penumbra_emitter.wasm": path.resolve(args.wasm)});
+const server = await serve(path.join(here, "../web"), [], {"/web/three/penumbra_emitter.wasm": path.resolve(args.wasm)});
 const userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), "penumbra-bench-"));
 const browser = await launchChromium(args.chromium, userDataDir);
 try {
     const page = await browser.newPage();
     await page.goto(`http://127.0.0.1:${server.address().port}/web/scenes/index.json`); // an origin for the module's import
     const result = await page.evaluate(async (measureText, configs, runs) => {
-        const {loadEmitter} = await import("/web/penumbra_emitter.js");
+        const {loadEmitter} = await import("/web/three/penumbra_emitter.js");
         const measure = eval(`(${measureText})`);
-        return measure(loadEmitter, "/web/penumbra_emitter.wasm", configs, runs);
+        return measure(loadEmitter, "/web/three/penumbra_emitter.wasm", configs, runs);
     }, measure.toString(), CONFIGS, args.runs);
     print(`chromium ${await browser.version()}`, result);
 } finally {

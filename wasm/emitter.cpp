@@ -1,7 +1,7 @@
 // emitter.cpp — the Penumbra emitter as a WebAssembly module (wasm32-wasi, reactor): the
 // `penumbra-gen --config` schema in, every file penumbra-gen writes out, from the same code
 // (generator/src/config_file.cpp parses, penumbra::emit emits, generator/src/output_files.cpp
-// names the files). web/penumbra_emitter.js is its JavaScript side; wasm/README.md the ABI.
+// names the files). web/three/penumbra_emitter.js is its JavaScript side; wasm/README.md the ABI.
 //
 // C ABI (all sizes in bytes, text UTF-8):
 //   char* penumbra_input(size)        a buffer of `size` bytes the caller fills with the

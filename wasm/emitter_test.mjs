@@ -1,5 +1,5 @@
 // emitter_test.mjs — the WebAssembly emitter against penumbra-gen, byte for byte (label "browser";
-// node only, through web/penumbra_emitter.js, as the page loads it; the module must import nothing).
+// node only, through web/three/penumbra_emitter.js, as the page loads it; the module must import nothing).
 //
 //   node wasm/emitter_test.mjs --gen build/generator/penumbra-gen --wasm build/wasm/penumbra_emitter.wasm
 //
@@ -17,7 +17,7 @@ import path from "node:path";
 import {fileURLToPath, pathToFileURL} from "node:url";
 
 const here = path.dirname(fileURLToPath(import.meta.url));
-const {loadEmitter} = await import(pathToFileURL(path.join(here, "../web/penumbra_emitter.js")));
+const {loadEmitter} = await import(pathToFileURL(path.join(here, "../web/three/penumbra_emitter.js")));
 const {FIELDS} = await import(pathToFileURL(path.join(here, "../web/config_panel.js")));
 
 function parseArguments(argv) {

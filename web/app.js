@@ -8,9 +8,11 @@
 //
 // URL parameters: ?bundle=DIR/, ?scene=NAME (a built-in scene), ?wasm=URL.
 // window.penumbra (for automation): ready (a promise), readVisibility(side), setLight(), info(), ...
-import {loadEmitter} from "./penumbra_emitter.js";
-import {LayoutRunner} from "./penumbra_runner.js";
-import {lightUniforms} from "./light_frame.js";
+// The emitter, the layout runner and the light frame are the three.js add-on's (three/, the npm
+// package penumbra-three): one copy, which the playground imports from there.
+import {loadEmitter} from "./three/penumbra_emitter.js";
+import {LayoutRunner} from "./three/penumbra_runner.js";
+import {lightUniforms} from "./three/light_frame.js";
 import {sunDirection, timeWindow} from "./sun_path.js";
 import {ConfigPanel} from "./config_panel.js";
 import {SceneGeometry, GBuffer, Composite, perspective, lookAt, multiply, SCENE_POSITION_LOCATION} from "./scene_view.js";
@@ -130,10 +132,11 @@ class App {
         if (!this.gl) throw new Error("this browser has no WebGL2");
         // The G-buffer is RGBA32F, as the layouts declare their caller textures.
         if (!this.gl.getExtension("EXT_color_buffer_float")) throw new Error("this browser lacks EXT_color_buffer_float (rendering the RGBA32F G-buffer)");
-        // The module beside the page (published), else the build folder's when the repository's
-        // root is served (python3 -m http.server, then /web/).
+        // The module beside three/penumbra_emitter.js (published), else the build folder's when the
+        // repository's root is served (python3 -m http.server, then /web/); a relative ?wasm= is
+        // relative to three/penumbra_emitter.js.
         this.emitter = await loadEmitter(params.get("wasm") || undefined)
-            .catch((first) => loadEmitter("../build/wasm/penumbra_emitter.wasm").catch(() => { throw first; }));
+            .catch((first) => loadEmitter("../../build/wasm/penumbra_emitter.wasm").catch(() => { throw first; }));
         // The emitter's defaults (Config{}), for WebGL2: target essl300, 256² occlusion textures.
         this.defaults = this.emitter.emit({target: "essl300"}).layout.config;
         // With ?bundle= the page starts at the bundle's camera (its G-buffers): what the desktop ran.

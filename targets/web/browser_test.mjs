@@ -374,7 +374,7 @@ async function main() {
         console.log(`error: no WebAssembly emitter at ${args.wasm} (cmake --build build --target penumbra-emitter-wasm)`);
         process.exit(1);
     }
-    const server = await serve(args.web, args.bundles, {"/web/penumbra_emitter.wasm": path.resolve(args.wasm)});
+    const server = await serve(args.web, args.bundles, {"/web/three/penumbra_emitter.wasm": path.resolve(args.wasm)});
     const userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), "penumbra-chromium-"));
     const browser = await launchChromium(args.chromium, userDataDir);
     let failures = 0;

@@ -1,7 +1,7 @@
 // penumbra_shadows.js — soft shadows for a three.js RectAreaLight (or a DirectionalLight used as a
 // sun with an angular size) from Penumbra's occlusion textures. An ES module add-on, no build step:
 //
-//   import {PenumbraShadows} from "penumbra-three";          // or "./web/three/penumbra_shadows.js"
+//   import {PenumbraShadows} from "penumbra-three";          // npm; or "./web/three/penumbra_shadows.js"
 //   const shadows = await PenumbraShadows.load(renderer, scene, rectLight);
 //   // each frame:
 //   shadows.update();
@@ -10,31 +10,26 @@
 // What it does:
 //   - the emission (essl300 GLSL + layout.json; a folder shipped in emissions/, one you emitted
 //     with `penumbra-gen --target essl300`, or an in-memory one) runs on the renderer's own WebGL2
-//     context through the page's layout runner (../penumbra_runner.js), which follows layout.json;
+//     context through the layout runner (penumbra_runner.js, beside this module; the playground
+//     in web/ uses the same one), which follows layout.json;
 //   - its "shadow" phase (slicing + prefilter) draws the casters (meshes with castShadow, their
 //     BufferGeometry positions placed by matrixWorld, InstancedMesh instances, skinned and morphed
 //     meshes skinned on the CPU) whenever the light, a caster or a receiver moved;
 //   - every MeshStandardMaterial / MeshPhysicalMaterial of a mesh with receiveShadow gets, through
 //     onBeforeCompile, the emitted visibility function (penumbra_visibility.glsl) and multiplies
 //     the light's contribution by it (RE_Direct_RectArea for the rectangle, directLight.color for
-//     the sun), leaving every other light alone;
+//     the sun), leaving every other light alone; several add-ons (one per light) share a material,
+//     each with its own names (penumbra<N>_…) and each scaling its own light's term only;
 //   - raw GL is bracketed by renderer.resetState(), so three's state cache stays right.
 import {Box3, Color, DoubleSide, ExternalTexture, FloatType, GLSL3, Matrix4, NoBlending, RGBAFormat, ShaderChunk,
         ShaderMaterial, Vector3, WebGLRenderTarget} from "three";
-import {LayoutRunner} from "../penumbra_runner.js";
-import {rectFrame, sunFrame} from "../light_frame.js";
+import {LayoutRunner} from "./penumbra_runner.js";
+import {rectFrame, sunFrame} from "./light_frame.js";
+import {EMISSIONS} from "./emissions.js";
 
-const MODULE_URL = import.meta.url;
-
-// The emissions shipped beside this module (penumbra-gen --target essl300 output; emissions/README.md).
-export const EMISSIONS = {
-    "rect-nbuffer-16x512": "emissions/rect-nbuffer-16x512/",
-    "rect-mipmap-16x512": "emissions/rect-mipmap-16x512/",
-    "rect-nbuffer-16x256": "emissions/rect-nbuffer-16x256/",
-    "rect-nbuffer-8x256": "emissions/rect-nbuffer-8x256/",
-    "sun-nbuffer-16x512": "emissions/sun-nbuffer-16x512/",
-    "sun-mipmap-16x512": "emissions/sun-mipmap-16x512/",
-};
+// The emissions shipped in emissions/ (penumbra-gen --target essl300 output, emissions/regenerate.sh):
+// key → {file name: URL}.
+export {EMISSIONS};
 
 const DEFAULTS = {
     emission: null,           // a key of EMISSIONS, a folder URL (ending in "/"), {layout, files}, or a configuration
@@ -42,7 +37,7 @@ const DEFAULTS = {
     angularDiameter: 0.0093,  // sun only: the DirectionalLight's angular diameter in radians (our sun: 0.53°)
     autoUpdate: true,         // re-run the shadow phase by itself when something moved (like shadowMap.autoUpdate)
     intensity: 1,             // 0: no shadow, 1: Penumbra's visibility (like LightShadow.intensity)
-    wasm: null,               // for a configuration object: the URL of penumbra_emitter.wasm (default: beside ../penumbra_emitter.js)
+    wasm: null,               // for a configuration object: the URL of penumbra_emitter.wasm (default: the one beside penumbra_emitter.js)
 };
 
 export class PenumbraError extends Error {}
@@ -53,16 +48,33 @@ function fail(message) {
 
 // ---- shader patches -------------------------------------------------------------------------
 
-// The RectAreaLight's contribution: only the loop iteration of our light is scaled, diffuse,
-// specular and clearcoat alike, by lerping from the value before it to the value after it.
+// Every add-on gets its own names: the emission's identifiers penumbra_x / penumbraX become
+// penumbra<N>_x / penumbra<N>X (N: the add-on's serial number), so that several add-ons (one per
+// light) can put their snippets into one material.
+let serial = 0;
+function renamer(prefix) {
+    return (text) => text.replace(/\bpenumbra(?=[_A-Z])/g, prefix);
+}
+
+// The calls of three's lights_fragment_begin that the patch wraps.
 const RECT_CALL = "RE_Direct_RectArea( rectAreaLight, geometryPosition, geometryNormal, geometryViewDir, geometryClearcoatNormal, material, reflectedLight );";
-const RECT_PATCH = `if ( UNROLLED_LOOP_INDEX == penumbraLightIndex ) {
+const DIR_CALL = "getDirectionalLightInfo( directionalLight, directLight );";
+
+// The RectAreaLight's contribution: only the loop iterations of shadowed lights are scaled,
+// diffuse, specular and clearcoat alike, by lerping from the value before the call to the value
+// after it by the product of the visibilities of the add-ons of that light (usually one).
+function rectPatch(addons) {
+    const factors = addons.map((a) => `if ( UNROLLED_LOOP_INDEX == ${a._names.lightIndex} ) penumbraV *= ${a._names.shadow}( geometryNormal );`);
+    // (a block of its own: three's loop unrolling puts the iterations side by side in one scope)
+    return `{
+		float penumbraV = 1.0;
+		${factors.join("\n\t\t")}
+		if ( penumbraV < 1.0 ) {
 			ReflectedLight penumbraBefore = reflectedLight;
 			#ifdef USE_CLEARCOAT
 			vec3 penumbraClearcoatBefore = clearcoatSpecularDirect;
 			#endif
 			${RECT_CALL}
-			float penumbraV = penumbraShadow( geometryNormal );
 			reflectedLight.directDiffuse = mix( penumbraBefore.directDiffuse, reflectedLight.directDiffuse, penumbraV );
 			reflectedLight.directSpecular = mix( penumbraBefore.directSpecular, reflectedLight.directSpecular, penumbraV );
 			#ifdef USE_CLEARCOAT
@@ -70,14 +82,17 @@ const RECT_PATCH = `if ( UNROLLED_LOOP_INDEX == penumbraLightIndex ) {
 			#endif
 		} else {
 			${RECT_CALL}
+		}
 		}`;
+}
 // The sun: the DirectionalLight's colour, as three's own shadow maps scale it.
-const DIR_CALL = "getDirectionalLightInfo( directionalLight, directLight );";
-const DIR_PATCH = `${DIR_CALL}
-		if ( UNROLLED_LOOP_INDEX == penumbraLightIndex ) directLight.color *= penumbraShadow( geometryNormal );`;
+function dirPatch(addons) {
+    return [DIR_CALL, ...addons.map((a) => `if ( UNROLLED_LOOP_INDEX == ${a._names.lightIndex} ) directLight.color *= ${a._names.shadow}( geometryNormal );`)]
+        .join("\n\t\t");
+}
 
 // World position of the fragment, as three's worldpos_vertex computes it (batching, instancing),
-// after skinning and morphing (`transformed`).
+// after skinning and morphing (`transformed`); one varying for every add-on of the material.
 const WORLD_VERTEX = `
 	vec4 penumbraWorld = vec4( transformed, 1.0 );
 	#ifdef USE_BATCHING
@@ -88,34 +103,61 @@ const WORLD_VERTEX = `
 	#endif
 	vPenumbraWorldPosition = ( modelMatrix * penumbraWorld ).xyz;`;
 
-// Visibility at this fragment: the world normal is the view-space one three lights with, turned
-// to the side the camera sees (the side whose light the tangent clip keeps); an emission without
-// the tangent clip looks up the whole light.
-const SHADOW_FUNCTION = `
-in vec3 vPenumbraWorldPosition;
-uniform int penumbraLightIndex;
-uniform float penumbraIntensity;
-float penumbraShadow( vec3 viewNormal ) {
+// Visibility of one add-on's light at this fragment: the world normal is the view-space one three
+// lights with, turned to the side the camera sees (the side whose light the tangent clip keeps);
+// an emission without the tangent clip looks up the whole light.
+function shadowFunction(names, tangentClip) {
+    return `
+uniform int ${names.lightIndex};
+uniform float ${names.intensity};
+float ${names.shadow}( vec3 viewNormal ) {
 	vec3 n = normalize( ( vec4( viewNormal, 0.0 ) * viewMatrix ).xyz );
 	if ( dot( n, cameraPosition - vPenumbraWorldPosition ) < 0.0 ) n = - n;
-	#ifdef PENUMBRA_TANGENT_CLIP
-	float v = penumbraVisibility( vPenumbraWorldPosition, n );
-	#else
-	float v = penumbraVisibility( vPenumbraWorldPosition );
-	#endif
-	return mix( 1.0, v, penumbraIntensity );
+	float v = ${names.visibility}( vPenumbraWorldPosition${tangentClip ? ", n" : ""} );
+	return mix( 1.0, v, ${names.intensity} );
 }
 `;
+}
 
 function patchChunk(chunk, call, patch, what) {
     if (!chunk.includes(call))
-        fail(`three.js's lights_fragment_begin has no '${call}' (${what}); this add-on supports three r187`);
-    return chunk.replace(call, patch);
+        fail(`three.js's lights_fragment_begin has no '${call}' (${what}); this add-on supports three r180 to r187`);
+    return chunk.replace(call, () => patch);
 }
 
-// The snippet without its header comment lines; the precision lines stay (ES 3.00 wants them).
+// The snippet without its #version line; the precision lines stay (ES 3.00 wants them).
 function snippetBody(text) {
     return text.replace(/^#version[^\n]*\n/, "");
+}
+
+// The uniforms of the visibility snippet, from layout.json: the parameters of the program of the
+// screen pass that writes the result (the deferred shading pass, which includes the snippet),
+// less the textures the caller fills (its G-buffer).
+function snippetParameters(layout) {
+    const pass = (layout.passes || []).find((p) => p.phase === "screen" && p.outputs.some((o) => o.texture === layout.result));
+    const program = pass && (layout.programs || []).find((p) => p.name === pass.program);
+    if (!program) fail(`layout.json: no screen pass writing '${layout.result}', so the visibility snippet's parameters are unknown`);
+    const caller = new Set(layout.textures.filter((t) => t.source === "caller").map((t) => t.name));
+    return program.parameters.filter((p) => !caller.has(p.name));
+}
+
+// Materials shadowed by add-ons: material → {previous: its own hooks, addons: the add-ons, in order}.
+// One onBeforeCompile per material puts in the snippets of all its add-ons.
+const shadowedMaterials = new WeakMap();
+
+function patchShader(shader, addons) {
+    for (const a of addons) Object.assign(shader.uniforms, a.uniforms);
+    shader.vertexShader = shader.vertexShader
+        .replace("#include <common>", "#include <common>\nout vec3 vPenumbraWorldPosition;")
+        .replace("#include <project_vertex>", `#include <project_vertex>${WORLD_VERTEX}`);
+    let lights = ShaderChunk.lights_fragment_begin;
+    const rects = addons.filter((a) => a.kind === "rect"), suns = addons.filter((a) => a.kind === "sun");
+    if (rects.length) lights = patchChunk(lights, RECT_CALL, rectPatch(rects), "the rect-area light loop");
+    if (suns.length) lights = patchChunk(lights, DIR_CALL, dirPatch(suns), "the directional light loop");
+    const snippets = addons.map((a) => `${a._snippet}\n${shadowFunction(a._names, a._tangentClip)}`).join("\n");
+    shader.fragmentShader = shader.fragmentShader
+        .replace("#include <common>", () => `#include <common>\nin vec3 vPenumbraWorldPosition;\n${snippets}`)
+        .replace("#include <lights_fragment_begin>", () => lights);
 }
 
 // ---- the add-on -----------------------------------------------------------------------------
@@ -149,6 +191,11 @@ export class PenumbraShadows {
         this.wasm = o.wasm;
         this.intensity = o.intensity;
         this.info = {shadowUpdates: 0, lastShadowMs: 0, casters: 0, receivers: 0, contained: true};
+        this.disposed = false;
+        this._serial = ++serial;
+        this._rename = renamer(`penumbra${this._serial}`);
+        this._names = {lightIndex: `penumbra${this._serial}LightIndex`, intensity: `penumbra${this._serial}Intensity`,
+                       shadow: `penumbra${this._serial}Shadow`, visibility: this._rename("penumbraVisibility")};
         this._geometries = new Map(); // BufferGeometry (or SkinnedMesh) → {vao, buffers, count, version}
         this._materials = new Set();  // materials we patched
         this._signature = null;
@@ -167,29 +214,31 @@ export class PenumbraShadows {
         this.runner = runner;
         this.config = layout.config;
         const snippet = runner.sources["penumbra_visibility.glsl"] || fail("the emission has no penumbra_visibility.glsl");
-        const clipped = /float penumbraVisibility\(vec3 worldPos, vec3 worldNormal\)/.test(snippet);
-        this._snippet = (clipped ? "#define PENUMBRA_TANGENT_CLIP\n" : "") + snippetBody(snippet);
-        // The snippet's parameters, shared by every patched material (same uniform objects).
-        this.uniforms = {penumbraLightIndex: {value: -1}, penumbraIntensity: {value: this.intensity}};
+        this._tangentClip = layout.config.tangent_clip !== false;
+        this._snippet = this._rename(snippetBody(snippet));
+        // The snippet's parameters (from layout.json), under this add-on's names, shared by every
+        // patched material (the same uniform objects).
+        this.uniforms = {[this._names.lightIndex]: {value: -1}, [this._names.intensity]: {value: this.intensity}};
+        this._uniformNames = {}; // the emission's name → ours
         this._samplers = [];
-        for (const line of this._snippet.split("\n")) {
-            const m = /^uniform\s+(\w+)\s+(\w+)\s*;/.exec(line);
-            if (!m) continue;
-            const [, type, name] = m;
+        const zeros = {float: 0, int: 0, vec2: [0, 0], vec3: [0, 0, 0], vec4: [0, 0, 0, 0],
+                       mat4: [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]};
+        for (const {name, type} of snippetParameters(layout)) {
+            const ours = this._rename(name);
+            if (!snippet.includes(name)) fail(`penumbra_visibility.glsl has no uniform '${name}' that layout.json lists`);
+            this._uniformNames[name] = ours;
             if (type.startsWith("sampler")) {
                 const id = runner.texture(name).id;
                 const texture = new ExternalTexture(id);
                 this._bindExternal(texture, id);
-                this.uniforms[name] = {value: texture};
+                this.uniforms[ours] = {value: texture};
                 this._samplers.push(texture);
             } else {
                 // a value of the right shape until the first update() (three cannot upload null)
-                const zeros = {float: 0, int: 0, vec2: [0, 0], vec3: [0, 0, 0], vec4: [0, 0, 0, 0],
-                               mat4: [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]};
-                this.uniforms[name] = {value: zeros[type] ?? 0};
+                this.uniforms[ours] = {value: zeros[type] ?? 0};
             }
         }
-        this._cacheKey = `penumbra:${this.kind}:${JSON.stringify(layout.config)}:${PenumbraShadows._generation = (PenumbraShadows._generation || 0) + 1}`;
+        this._cacheKey = `penumbra${this._serial}:${this.kind}:${JSON.stringify(layout.config)}:${PenumbraShadows._generation = (PenumbraShadows._generation || 0) + 1}`;
         this.needsUpdate = true;
         for (const material of this._materials) material.needsUpdate = true;
     }
@@ -204,6 +253,7 @@ export class PenumbraShadows {
     // Replaces the emission (a key of EMISSIONS, a folder URL, {layout, files} or a configuration); the old GPU
     // resources are freed once the new ones work.
     async setEmission(emission) {
+        this._alive("setEmission()");
         const runner = await loadRunner(this.renderer.getContext(), emission, this.kind, this.wasm);
         const old = this.runner;
         this._setRunner(runner);
@@ -220,6 +270,7 @@ export class PenumbraShadows {
     // Call once per frame before renderer.render(): patches new receivers' materials, re-runs the
     // shadow phase when the light or a caster or receiver changed, and sets the light's index.
     update() {
+        this._alive("update()");
         const scene = this.scene;
         scene.updateMatrixWorld();
         this.light.updateMatrixWorld();
@@ -235,8 +286,8 @@ export class PenumbraShadows {
         });
         this.info.casters = casters.length;
         this.info.receivers = receivers.length;
-        this.uniforms.penumbraLightIndex.value = this.enabled ? this._lightIndex() : -1;
-        this.uniforms.penumbraIntensity.value = this.intensity;
+        this.uniforms[this._names.lightIndex].value = this.enabled ? this._lightIndex() : -1;
+        this.uniforms[this._names.intensity].value = this.intensity;
         const signature = this._signatureOf(casters, receivers);
         const changed = !this._signature || signature.length !== this._signature.length || signature.some((v, i) => v !== this._signature[i]);
         if (this.needsUpdate || (this.autoUpdate && changed)) {
@@ -312,7 +363,10 @@ export class PenumbraShadows {
         if (!frame.contained && this.info.contained) console.warn("PenumbraShadows: the scene's bounds reach the light's plane; shadows above it are wrong (move the light up)");
         this.info.contained = frame.contained;
         this._frame = frame;
-        for (const [name, value] of Object.entries(frame.uniforms)) if (this.uniforms[name]) this.uniforms[name].value = value;
+        for (const [name, value] of Object.entries(frame.uniforms)) {
+            const ours = this._uniformNames[name];
+            if (ours) this.uniforms[ours].value = value;
+        }
         const renderer = this.renderer, gl = renderer.getContext(), runner = this.runner;
         renderer.resetState();
         // the runner reports any GL error after the phase: start from none (one three left behind
@@ -428,45 +482,57 @@ export class PenumbraShadows {
         this._geometries.delete(key);
     }
 
-    // onBeforeCompile on a MeshStandardMaterial / MeshPhysicalMaterial (others are left alone).
+    // onBeforeCompile on a MeshStandardMaterial / MeshPhysicalMaterial (others are left alone); a
+    // material shadowed by other add-ons (other lights) gets this one's snippet beside theirs.
     _patch(material) {
         if (this._materials.has(material) || !material || !material.isMeshStandardMaterial) return;
-        if (material._penumbraPrevious) { // another PenumbraShadows' (the emitted names would clash)
-            if (!this._warnedShared) console.warn("PenumbraShadows: a material is already shadowed by another PenumbraShadows; one add-on per material");
-            this._warnedShared = true;
-            return;
+        let shared = shadowedMaterials.get(material);
+        if (!shared) {
+            shared = {previous: {onBeforeCompile: material.onBeforeCompile, customProgramCacheKey: material.customProgramCacheKey}, addons: []};
+            shadowedMaterials.set(material, shared);
+            const {onBeforeCompile, customProgramCacheKey} = shared.previous;
+            material.onBeforeCompile = function (shader, renderer) {
+                onBeforeCompile.call(this, shader, renderer);
+                patchShader(shader, shared.addons);
+            };
+            material.customProgramCacheKey = function () {
+                return customProgramCacheKey.call(this) + shared.addons.map((a) => a._cacheKey).join("|");
+            };
         }
+        shared.addons.push(this);
         this._materials.add(material);
-        const previous = material.onBeforeCompile;
-        const previousKey = material.customProgramCacheKey;
-        const self = this;
-        material._penumbraPrevious = {onBeforeCompile: previous, customProgramCacheKey: previousKey};
-        material.onBeforeCompile = function (shader, renderer) {
-            previous.call(this, shader, renderer);
-            self._patchShader(shader);
-        };
-        material.customProgramCacheKey = function () {
-            return previousKey.call(this) + self._cacheKey;
-        };
+        const units = shared.addons.reduce((n, a) => n + a._samplers.length, 0);
+        const max = this.renderer.capabilities.maxTextures;
+        if (units + 4 > max && !this._warnedUnits) {
+            this._warnedUnits = true;
+            console.warn(`PenumbraShadows: a material shadowed by ${shared.addons.length} add-ons samples ${units} of their textures, ` +
+                         `and three needs some of the ${max} texture units too; use emissions with one texture ('…-mipmap-…')`);
+        }
         material.needsUpdate = true;
     }
 
-    _patchShader(shader) {
-        Object.assign(shader.uniforms, this.uniforms);
-        shader.vertexShader = shader.vertexShader
-            .replace("#include <common>", "#include <common>\nout vec3 vPenumbraWorldPosition;")
-            .replace("#include <project_vertex>", `#include <project_vertex>${WORLD_VERTEX}`);
-        let lights = ShaderChunk.lights_fragment_begin;
-        lights = this.kind === "sun" ? patchChunk(lights, DIR_CALL, DIR_PATCH, "the directional light loop")
-                                     : patchChunk(lights, RECT_CALL, RECT_PATCH, "the rect-area light loop");
-        shader.fragmentShader = shader.fragmentShader
-            .replace("#include <common>", `#include <common>\n${this._snippet}\n${SHADOW_FUNCTION}`)
-            .replace("#include <lights_fragment_begin>", lights);
+    // Takes this add-on out of a material; the last one out restores the material's own hooks.
+    _unpatch(material) {
+        const shared = shadowedMaterials.get(material);
+        if (shared) {
+            shared.addons = shared.addons.filter((a) => a !== this);
+            if (shared.addons.length === 0) {
+                material.onBeforeCompile = shared.previous.onBeforeCompile;
+                material.customProgramCacheKey = shared.previous.customProgramCacheKey;
+                shadowedMaterials.delete(material);
+            }
+        }
+        material.needsUpdate = true;
+    }
+
+    _alive(what) {
+        if (this.disposed) fail(`${what} after dispose(): this add-on freed its resources; make another with PenumbraShadows.load()`);
     }
 
     // The add-on's visibility (0 shadowed … 1 lit) as the camera sees the receivers, for debugging
     // and tests: Float32Array of width × height, bottom row first; 1 where no receiver is.
     renderVisibility(camera, width, height) {
+        this._alive("renderVisibility()");
         const renderer = this.renderer;
         if (!this._visibilityTarget) this._visibilityTarget = new WebGLRenderTarget(width, height, {type: FloatType, format: RGBAFormat, depthBuffer: true});
         const target = this._visibilityTarget;
@@ -526,11 +592,12 @@ void main() {
 }`,
             fragmentShader: `${this._snippet}
 #include <common>
-${SHADOW_FUNCTION}
+in vec3 vPenumbraWorldPosition;
+${shadowFunction(this._names, this._tangentClip)}
 in vec3 vPenumbraViewNormal;
 layout(location = 0) out vec4 penumbraOut;
 void main() {
-	float v = penumbraLightIndex >= 0 ? penumbraShadow( normalize( vPenumbraViewNormal ) ) : 1.0;
+	float v = ${this._names.lightIndex} >= 0 ? ${this._names.shadow}( normalize( vPenumbraViewNormal ) ) : 1.0;
 	penumbraOut = vec4( v, v, v, 1.0 );
 }`,
         });
@@ -538,18 +605,14 @@ void main() {
         return material;
     }
 
-    // Frees every GPU resource of the add-on and restores the patched materials.
+    // Frees every GPU resource of the add-on and restores the patched materials (other add-ons'
+    // shadows on them stay). Afterwards update(), setEmission() and renderVisibility() throw; a
+    // second dispose() does nothing.
     dispose() {
+        if (this.disposed) return;
+        this.disposed = true;
         for (const key of [...this._geometries.keys()]) this._dropGeometry(key);
-        for (const material of this._materials) {
-            const p = material._penumbraPrevious;
-            if (p) {
-                material.onBeforeCompile = p.onBeforeCompile;
-                material.customProgramCacheKey = p.customProgramCacheKey;
-                delete material._penumbraPrevious;
-            }
-            material.needsUpdate = true;
-        }
+        for (const material of this._materials) this._unpatch(material);
         this._materials.clear();
         for (const t of this._samplers) {
             this.renderer.properties.get(t).__webglTexture = undefined;
@@ -579,8 +642,17 @@ function positionVersion(geometry) {
 
 // The layout runner for an emission: a key of EMISSIONS, a folder URL, or {layout, files}.
 async function loadRunner(gl, emission, kind, wasm) {
+    if (typeof emission === "string" && Object.hasOwn(EMISSIONS, emission)) {
+        const files = {};
+        await Promise.all(Object.entries(EMISSIONS[emission]).map(async ([name, url]) => {
+            const response = await fetch(url);
+            if (!response.ok) fail(`emission '${emission}': ${url}: HTTP ${response.status}`);
+            files[name] = await response.text();
+        }));
+        return loadRunner(gl, {layout: JSON.parse(files["layout.json"]), files}, kind);
+    }
     if (typeof emission === "string") {
-        const folder = EMISSIONS[emission] ? new URL(EMISSIONS[emission], MODULE_URL).href : emission;
+        const folder = emission;
         if (!folder.endsWith("/")) fail(`emission '${emission}': not one of ${Object.keys(EMISSIONS).join(", ")} nor a folder URL ending in '/'`);
         const runner = await LayoutRunner.load(gl, folder);
         runner.sources = runner.sources || (await fetchSources(folder, runner.layout));
@@ -606,15 +678,16 @@ async function loadRunner(gl, emission, kind, wasm) {
     fail("options.emission: a key of EMISSIONS, a folder URL ending in '/', {layout, files}, or a configuration object");
 }
 
-// The WebAssembly emitter (../penumbra_emitter.js; its .wasm at `wasm`, default beside it), loaded once.
+// The WebAssembly emitter (penumbra_emitter.js; its .wasm at `wasm`, default the one beside it),
+// loaded once, on demand (bundlers split it and its .wasm off the main chunk).
 let emitterPromise = null;
 export function loadEmitter(wasm = null) {
     if (!emitterPromise)
-        emitterPromise = import(new URL("../penumbra_emitter.js", MODULE_URL).href)
+        emitterPromise = import("./penumbra_emitter.js")
             .then((m) => (wasm ? m.loadEmitter(wasm) : m.loadEmitter()))
             .catch((e) => {
                 emitterPromise = null;
-                fail(`a configuration needs the WebAssembly emitter (../penumbra_emitter.js and penumbra_emitter.wasm), which did not load: ${e.message}`);
+                fail(`a configuration needs the WebAssembly emitter (penumbra_emitter.js and penumbra_emitter.wasm), which did not load: ${e.message}`);
             });
     return emitterPromise;
 }

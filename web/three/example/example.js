@@ -11,11 +11,11 @@ import {OrbitControls} from "three/addons/controls/OrbitControls.js";
 import {RectAreaLightHelper} from "three/addons/helpers/RectAreaLightHelper.js";
 import {RectAreaLightUniformsLib} from "three/addons/lights/RectAreaLightUniformsLib.js";
 import GUI from "three/addons/libs/lil-gui.module.min.js";
-import {PenumbraShadows, EMISSIONS, loadEmitter} from "../penumbra_shadows.js";
+import {PenumbraShadows, EMISSIONS, loadEmitter} from "../penumbra_shadows.js"; // "penumbra-three" from npm
 
 const params = new URLSearchParams(location.search);
 const fixedSize = params.get("size") ? params.get("size").split("x").map(Number) : null;
-const wasm = params.get("wasm"); // the WebAssembly emitter's module, where it is not beside web/penumbra_emitter.js
+const wasm = params.get("wasm"); // the WebAssembly emitter's module, where it is not beside web/three/penumbra_emitter.js
 
 const renderer = new THREE.WebGLRenderer({antialias: true});
 renderer.setPixelRatio(fixedSize ? 1 : Math.min(window.devicePixelRatio, 2));
@@ -147,12 +147,23 @@ function applyMode() {
     if (shadows) shadows.enabled = state.mode === "penumbra";
 }
 
+// The add-on of the chosen light: the old one is disposed first and no frame uses it after that
+// (update() after dispose() throws); until the new one is loaded, frames render unshadowed.
 async function attach() {
-    if (shadows) shadows.dispose();
+    if (shadows) {
+        const old = shadows;
+        shadows = null;
+        old.dispose();
+    }
     const light = state.light === "rect" ? rect : sun;
     const keys = Object.keys(EMISSIONS).filter((k) => k.startsWith(state.light));
-    if (!keys.includes(state.emission)) state.emission = keys[0];
-    shadows = await PenumbraShadows.load(renderer, scene, light, {emission: state.emission, angularDiameter: state.diameter * Math.PI / 180, wasm});
+    if (!keys.includes(state.emission)) state.emission = `${state.light}-nbuffer-16x512`;
+    const loaded = await PenumbraShadows.load(renderer, scene, light, {emission: state.emission, angularDiameter: state.diameter * Math.PI / 180, wasm});
+    if (light !== (state.light === "rect" ? rect : sun)) { // switched again while loading
+        loaded.dispose();
+        return keys;
+    }
+    shadows = loaded;
     placeLights();
     applyMode();
     return keys;
@@ -164,6 +175,10 @@ function render() {
         state.x = 2.5 * Math.sin(0.5 * t);
         state.z = 2.0 * Math.cos(0.4 * t);
         placeLights();
+    }
+    if (!shadows) { // between two lights' add-ons
+        renderer.render(scene, camera);
+        return;
     }
     shadows.update();
     renderer.render(scene, camera);
@@ -177,7 +192,7 @@ function onResize() {
     camera.aspect = window.innerWidth / window.innerHeight;
     camera.updateProjectionMatrix();
     renderer.setSize(window.innerWidth, window.innerHeight);
-    shadows.setSize(window.innerWidth, window.innerHeight);
+    if (shadows) shadows.setSize(window.innerWidth, window.innerHeight);
 }
 
 let gui = null, emissionFolder = null, emissionController = null, folders = null;

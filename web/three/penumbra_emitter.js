@@ -2,7 +2,7 @@
 // C++ emitter and penumbra-gen's configuration parser compiled to WebAssembly (wasm/), behind the
 // same schema as `penumbra-gen --config` and the same files as `penumbra-gen --out`.
 //
-//   import {loadEmitter} from "./penumbra_emitter.js";
+//   import {loadEmitter} from "penumbra-three/emitter";  // or "./penumbra_emitter.js" (web/three/)
 //   const emitter = await loadEmitter();              // or loadEmitter(url | bytes | WebAssembly.Module)
 //   const r = emitter.emit({slices: 8, filter: "mipmap", target: "essl300"}); // or JSON text
 //   r.ok, r.files {"<name>": text, ..., "layout.json": text}, r.layout (parsed), r.diagnostics
@@ -17,7 +17,9 @@ const decoder = new TextDecoder();
 async function moduleFrom(source) {
     if (source instanceof WebAssembly.Module) return source;
     if (source instanceof ArrayBuffer || ArrayBuffer.isView(source)) return WebAssembly.compile(source);
-    const url = new URL(source ?? "./penumbra_emitter.wasm", import.meta.url);
+    // The default as a literal `new URL("./…", import.meta.url)`: bundlers (Vite, webpack) copy
+    // the module into the build only when they see that form.
+    const url = source == null ? new URL("./penumbra_emitter.wasm", import.meta.url) : new URL(source, import.meta.url);
     if (url.protocol === "file:") { // node: fetch() does not read files
         const {readFile} = await import("node:fs/promises");
         return WebAssembly.compile(await readFile(url));

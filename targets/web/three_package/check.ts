@@ -1,0 +1,25 @@
+// check.ts — compiled with tsc --noEmit against @types/three (r180 and r187) by the npm package
+// test: the package's declarations, reached through its "exports", as a TypeScript user sees them.
+import * as THREE from "three";
+import {PenumbraShadows, PenumbraError, EMISSIONS, type PenumbraShadowsOptions} from "penumbra-three";
+import {loadEmitter, type EmitResult} from "penumbra-three/emitter";
+
+export async function attach(renderer: THREE.WebGLRenderer, scene: THREE.Scene, camera: THREE.Camera): Promise<number> {
+    const rect = new THREE.RectAreaLight(0xffffff, 5, 3, 2);
+    const options: PenumbraShadowsOptions = {emission: "rect-mipmap-16x512", intensity: 0.8};
+    const shadows: PenumbraShadows = await PenumbraShadows.load(renderer, scene, rect, options);
+    const sun = await PenumbraShadows.load(renderer, scene, new THREE.DirectionalLight(), {angularDiameter: 0.0093});
+    shadows.update();
+    sun.enabled = false;
+    await shadows.setEmission({slices: 8, resolution: 256, filter: "mipmap"});
+    const visibility: Float32Array = shadows.renderVisibility(camera, 64, 64);
+    const files: Readonly<Record<string, URL>> = EMISSIONS["sun-nbuffer-16x512"];
+    // @ts-expect-error: a PointLight is neither a RectAreaLight nor a DirectionalLight
+    await PenumbraShadows.load(renderer, scene, new THREE.PointLight());
+    // @ts-expect-error: no such emission filter
+    await shadows.setEmission({filter: "box"});
+    const emitted: EmitResult = (await loadEmitter()).emit({slices: 4, target: "essl300"});
+    shadows.dispose();
+    try { shadows.update(); } catch (e) { if (!(e instanceof PenumbraError)) throw e; }
+    return visibility.length + Object.keys(files).length + shadows.info.shadowUpdates + (emitted.ok ? 1 : 0);
+}

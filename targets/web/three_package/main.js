@@ -1,0 +1,104 @@
+// main.js — the page of the npm package test (three_package_test.mjs): a fresh Vite project's
+// entry, importing "penumbra-three" and "three" as a user's project does. A ground lit by two
+// shadowed lights (two RectAreaLights, or a RectAreaLight and a sun), one add-on each, the same
+// material receiving both; a box that casts (on layer 1, which the camera does not see, so that
+// every pixel is ground). window.penumbraPackage.run(pair) returns the images the test compares.
+import * as THREE from "three";
+import {RectAreaLightUniformsLib} from "three/addons/lights/RectAreaLightUniformsLib.js";
+import {PenumbraShadows, PenumbraError, EMISSIONS} from "penumbra-three";
+
+const W = 96, H = 96;
+const renderer = new THREE.WebGLRenderer({antialias: false});
+renderer.setPixelRatio(1);
+renderer.setSize(W, H);
+document.body.appendChild(renderer.domElement);
+RectAreaLightUniformsLib.init();
+const target = new THREE.WebGLRenderTarget(W, H, {type: THREE.FloatType});
+
+// The light's radiance at each pixel (linear, the mean of r, g, b), bottom row first.
+function render(scene, camera) {
+    renderer.setRenderTarget(target);
+    renderer.setClearColor(0x000000, 1);
+    renderer.clear();
+    renderer.render(scene, camera);
+    renderer.setRenderTarget(null);
+    const rgba = new Float32Array(4 * W * H);
+    renderer.readRenderTargetPixels(target, 0, 0, W, H, rgba);
+    const out = new Array(W * H);
+    for (let i = 0; i < W * H; ++i) out[i] = (rgba[4 * i] + rgba[4 * i + 1] + rgba[4 * i + 2]) / 3;
+    return out;
+}
+
+function rectLight(x) {
+    const light = new THREE.RectAreaLight(0xffffff, 4, 1.2, 1.2);
+    light.position.set(x, 4, 0);
+    light.rotation.set(-Math.PI / 2, 0, 0); // facing down
+    return light;
+}
+
+// pair: "rect+rect" (the second with the one-texture mipmap emission: two default emissions
+// would sample 20 textures in one material, over WebGL2's 16 units) or "rect+sun".
+async function run(pair) {
+    const scene = new THREE.Scene();
+    const material = new THREE.MeshStandardMaterial({color: 0xffffff, roughness: 1, metalness: 0});
+    const ground = new THREE.Mesh(new THREE.PlaneGeometry(10, 10), material);
+    ground.rotation.x = -Math.PI / 2;
+    ground.receiveShadow = true;
+    const box = new THREE.Mesh(new THREE.BoxGeometry(1.2, 2, 1.2), new THREE.MeshStandardMaterial());
+    box.position.set(0, 1, 0);
+    box.castShadow = true;
+    box.layers.set(1); // casts (the add-ons take meshes whatever their layers), the camera does not see it
+    scene.add(ground, box);
+    const first = rectLight(-2);
+    let second, options;
+    if (pair === "rect+rect") {
+        second = rectLight(2);
+        options = {emission: "rect-mipmap-16x512"};
+    } else {
+        second = new THREE.DirectionalLight(0xffffff, 3);
+        second.position.set(4, 4, 0);
+        second.target.position.set(0, 0, 0);
+        scene.add(second.target);
+        options = {emission: "sun-mipmap-16x512", angularDiameter: 0.05};
+    }
+    scene.add(first, second);
+    const camera = new THREE.PerspectiveCamera(50, W / H, 0.1, 50);
+    camera.position.set(0, 7, 5);
+    camera.lookAt(0, 0, 0);
+    const a = await PenumbraShadows.load(renderer, scene, first);
+    const b = await PenumbraShadows.load(renderer, scene, second, options);
+    const intensities = [first.intensity, second.intensity];
+    const image = (lights, shadowed) => {
+        first.intensity = lights[0] ? intensities[0] : 0;
+        second.intensity = lights[1] ? intensities[1] : 0;
+        for (const s of [a, b]) {
+            if (s.disposed) continue;
+            s.enabled = shadowed;
+            s.update();
+        }
+        return render(scene, camera);
+    };
+    const out = {pair, width: W, height: H, three: THREE.REVISION, emissions: Object.keys(EMISSIONS),
+                 configs: [a.config, b.config].map((c) => `${c.light} ${c.filter} ${c.slices}x${c.resolution}`)};
+    out.unshadowed = [image([1, 0], false), image([0, 1], false)];
+    out.shadowed = [image([1, 0], true), image([0, 1], true)];
+    out.both = image([1, 1], true);
+    out.visibility = [Array.from(a.renderVisibility(camera, W, H)), Array.from(b.renderVisibility(camera, W, H))];
+    // dispose(): the other add-on keeps shadowing; update() afterwards throws
+    b.dispose();
+    try {
+        b.update();
+        out.updateAfterDispose = "no error";
+    } catch (e) {
+        out.updateAfterDispose = e instanceof PenumbraError ? e.message : `not a PenumbraError: ${e}`;
+    }
+    b.dispose(); // a second time: nothing
+    out.afterDispose = image([1, 0], true);
+    a.dispose();
+    out.restored = material.onBeforeCompile === THREE.Material.prototype.onBeforeCompile &&
+                   material.customProgramCacheKey === THREE.Material.prototype.customProgramCacheKey;
+    first.intensity = intensities[0];
+    return out;
+}
+
+window.penumbraPackage = {run, renderer: renderer.getContext().getParameter(renderer.getContext().RENDERER)};

@@ -1,0 +1,96 @@
+// Types of penumbra_shadows.js (import {PenumbraShadows} from "penumbra-three"), checked with tsc
+// against @types/three r180 and r187 (targets/web/three_package_test.mjs).
+import type {Camera, DirectionalLight, RectAreaLight, Scene, WebGLRenderer} from "three";
+import type {Emitter} from "./penumbra_emitter.js";
+
+/** The emissions shipped in the package (penumbra-gen --target essl300 output). */
+export type EmissionName =
+    | "rect-nbuffer-16x512" | "rect-mipmap-16x512" | "rect-nbuffer-16x256" | "rect-nbuffer-8x256"
+    | "sun-nbuffer-16x512" | "sun-mipmap-16x512";
+
+/** Shipped emission → its files (name → URL, each a literal `new URL(…, import.meta.url)` bundlers copy). */
+export const EMISSIONS: Readonly<Record<EmissionName, Readonly<Record<string, URL>>>>;
+
+/** An emission in memory: what the WebAssembly emitter's emit() returns (files by name, layout.json parsed). */
+export interface EmissionFiles {
+    layout: Record<string, any> | null;
+    files: Record<string, string>;
+}
+
+/** A configuration in `penumbra-gen --config`'s schema, emitted in the page by the WebAssembly emitter. */
+export interface EmissionConfig {
+    slices?: number;
+    resolution?: number;
+    filter?: "mipmap" | "nbuffer" | "gaussian" | "sat";
+    fusion?: "probabilistic" | "additive" | "maximum" | "average" | "chained";
+    packing?: "atlas" | "array" | "volume";
+    tangent_clip?: boolean;
+    [key: string]: unknown;
+}
+
+/**
+ * A shipped emission's name, a folder URL ending in "/" holding `penumbra-gen --target essl300`
+ * output, an emission in memory, or a configuration to emit.
+ */
+export type Emission = EmissionName | string | EmissionFiles | EmissionConfig;
+
+export interface PenumbraShadowsOptions {
+    /** Default "rect-nbuffer-16x512" (RectAreaLight) or "sun-nbuffer-16x512" (DirectionalLight). */
+    emission?: Emission;
+    /** Sun only: the angular diameter in radians (default 0.0093, 0.53°). */
+    angularDiameter?: number;
+    /** Re-run the shadow phase when the light, a caster or a receiver changed (default true). */
+    autoUpdate?: boolean;
+    /** 0 no shadow … 1 Penumbra's visibility (default 1). */
+    intensity?: number;
+    /** For a configuration object: the URL of penumbra_emitter.wasm (default: the package's). */
+    wasm?: string | URL | null;
+}
+
+export interface PenumbraShadowsInfo {
+    shadowUpdates: number;
+    lastShadowMs: number;
+    casters: number;
+    receivers: number;
+    /** false when the scene's bounds reach the light's plane (shadows above it are wrong). */
+    contained: boolean;
+}
+
+/** Thrown with a message naming what is wrong ("PenumbraShadows: …"). */
+export class PenumbraError extends Error {}
+
+export class PenumbraShadows {
+    /** Loads the emission and attaches an add-on to `light`: one add-on per shadowed light. */
+    static load(renderer: WebGLRenderer, scene: Scene, light: RectAreaLight | DirectionalLight,
+                options?: PenumbraShadowsOptions): Promise<PenumbraShadows>;
+    private constructor();
+
+    readonly renderer: WebGLRenderer;
+    readonly scene: Scene;
+    readonly light: RectAreaLight | DirectionalLight;
+    readonly kind: "rect" | "sun";
+    /** false: the light is unshadowed (nothing recompiles). */
+    enabled: boolean;
+    intensity: number;
+    angularDiameter: number;
+    autoUpdate: boolean;
+    needsUpdate: boolean;
+    /** true after dispose(). */
+    readonly disposed: boolean;
+    /** The emission's configuration (layout.json's "config"). */
+    readonly config: Record<string, any>;
+    readonly info: PenumbraShadowsInfo;
+
+    /** Once per frame before renderer.render(); throws a PenumbraError after dispose(). */
+    update(): void;
+    /** Another emission; the materials recompile. */
+    setEmission(emission: Emission): Promise<void>;
+    setSize(width: number, height: number): void;
+    /** The visibility the receivers get (0 shadowed … 1 lit), width × height, bottom row first. */
+    renderVisibility(camera: Camera, width: number, height: number): Float32Array;
+    /** Frees the add-on's GPU resources and takes it out of the materials; a second call does nothing. */
+    dispose(): void;
+}
+
+/** The WebAssembly emitter, loaded once (wasm: its URL; default the package's penumbra_emitter.wasm). */
+export function loadEmitter(wasm?: string | URL | null): Promise<Emitter>;
