@@ -41,3 +41,18 @@ if(TARGET penumbra-gen)
                      ${PROJECT_SOURCE_DIR}/web/three/emissions)
     set_tests_properties(three-emissions PROPERTIES LABELS browser TIMEOUT 60)
 endif()
+# "three-package": the add-on as a user installs it (three_package_test.mjs): `npm pack` of web/three
+# with the WebAssembly emitter it ships, installed offline into a fresh project beside vite,
+# typescript, @types/three and three r180/r187 from targets/web/node_modules (scripts/setup.sh),
+# tsc against @types/three r180 and r187, a Vite build with each three, and in chromium two
+# shadowed lights on one material (two RectAreaLights; a RectAreaLight and a sun) and the example's
+# light switch. The images of the two lights go to three-package/images.
+if(three_emitter_wasm)
+    add_test(NAME three-package
+             COMMAND ${PENUMBRA_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/three_package_test.mjs --three ${PROJECT_SOURCE_DIR}/web/three
+                     --work ${CMAKE_CURRENT_BINARY_DIR}/three-package --wasm ${three_emitter_wasm} --chromium ${PENUMBRA_CHROMIUM}
+                     --images ${CMAKE_CURRENT_BINARY_DIR}/three-package/images)
+    set_tests_properties(three-package PROPERTIES LABELS "browser;web" SKIP_RETURN_CODE 77 TIMEOUT 300)
+else()
+    message(STATUS "penumbra: no WebAssembly emitter, so no test of the npm package penumbra-three (it ships the emitter)")
+endif()
