@@ -13,13 +13,15 @@
 //      (lit without) is that light's visibility (so the other add-on leaves its term alone);
 //      both lights on is the sum of the two; each light casts a shadow of its own, somewhere the
 //      other does not; after dispose(), update() throws and the other add-on still shadows.
+//      The same page from Vite's dev server (three r187; the package excluded from pre-bundling, as
+//      web/three/README.md says) for the two RectAreaLights.
 //   5. The example (web/three/example/, served from the repository) switches from the
 //      RectAreaLight to the sun and back, its shadows there after each switch.
 //
 //   node targets/web/three_package_test.mjs --three web/three --work DIR [--wasm FILE] [--chromium PATH] [--images DIR]
 //
 // Exit 0 pass, 1 fail, 77 skip (no chromium), 2 bad arguments.
-import {execFileSync} from "node:child_process";
+import {execFileSync, spawn} from "node:child_process";
 import fs from "node:fs";
 import path from "node:path";
 import {fileURLToPath} from "node:url";
@@ -96,6 +98,7 @@ function project(work, tarball) {
 export default {
     base: "./",
     logLevel: "warn",
+    optimizeDeps: {exclude: ["penumbra-three"]}, // the dev server's pre-bundling would lose the new URL(…) assets (README)
     build: {outDir: process.env.OUT_DIR, emptyOutDir: true, minify: false}, // (minifying three takes longer than the rest)
     resolve: {alias: three ? [{find: /^three$/, replacement: three + "/build/three.module.js"},
                               {find: /^three\\/addons\\//, replacement: three + "/examples/jsm/"}] : []},
@@ -136,6 +139,27 @@ function build(app, name, threeDir) {
     console.log(`${failures.length ? "FAIL" : "ok  "} vite build with three ${name}: ${files.length} assets, ${(bytes / 1024).toFixed(0)} KiB, ${seconds.toFixed(1)} s` +
                 (stdout.trim() ? `\n     ${stdout.trim().split("\n").join("\n     ")}` : ""));
     return {out, failures};
+}
+
+// Vite's dev server on the fresh project; resolves to {url, stop}.
+function devServer(app) {
+    const child = spawn(process.execPath, [path.join(modules, "vite/bin/vite.js"), "--host", "127.0.0.1", "--logLevel", "info"],
+                        {cwd: app, env: {...process.env, THREE_DIR: ""}, stdio: ["ignore", "pipe", "pipe"]});
+    let output = "";
+    return new Promise((resolve, reject) => {
+        const timer = setTimeout(() => { child.kill(); reject(new Error(`vite dev server: no URL after 60 s:\n${output}`)); }, 60000);
+        const read = (chunk) => {
+            output += chunk;
+            const m = /(http:\/\/127\.0\.0\.1:\d+\/)/.exec(output.replace(/\x1b\[[0-9;]*m/g, ""));
+            if (m) {
+                clearTimeout(timer);
+                resolve({url: m[1], stop: () => child.kill()});
+            }
+        };
+        child.stdout.on("data", read);
+        child.stderr.on("data", read);
+        child.on("exit", (code) => { clearTimeout(timer); reject(new Error(`vite dev server exited (${code}):\n${output}`)); });
+    });
 }
 
 // 4. the two-light checks on one page's results
@@ -256,6 +280,15 @@ async function main() {
             }
             failures.push(...problems);
             await page.close();
+        }
+        const dev = await devServer(app);
+        try {
+            const {page, problems} = await openPage(browser, `${dev.url}index.html`, "penumbraPackage");
+            failures.push(...checkPair(await page.evaluate(() => window.penumbraPackage.run("rect+rect")), "Vite dev server"));
+            failures.push(...problems);
+            await page.close();
+        } finally {
+            dev.stop();
         }
         failures.push(...(await checkExample(browser, port)));
     } catch (e) {
