@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs Penumbra's build and test dependencies from Debian (the platform notes say what each
 # is for; clang-16 and the wasm32 libraries build the WebAssembly emitter, wasm/) and
-# puppeteer-core for the browser test (npm, into targets/web/node_modules). Idempotent:
+# the browser tests' npm packages (into targets/web/node_modules: puppeteer-core, and vite,
+# typescript, @types/three and three r180/r187 for the npm package test). Idempotent:
 # does nothing when every package is installed and node_modules matches package-lock.json.
 set -euo pipefail
 
@@ -33,7 +34,9 @@ else
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-# puppeteer-core (never `puppeteer`, which downloads a browser), pinned by package-lock.json.
+# puppeteer-core (never `puppeteer`, which downloads a browser), vite, typescript, @types/three and
+# three r180/r187 (three-package installs the add-on's tarball into a fresh project offline beside
+# them), pinned by package-lock.json.
 web="$(cd "$(dirname "$0")/.." && pwd)/targets/web"
 if [ ! -f "$web/node_modules/.package-lock.json" ] || [ "$web/package-lock.json" -nt "$web/node_modules/.package-lock.json" ]; then
     echo "setup: npm ci in targets/web"

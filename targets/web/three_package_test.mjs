@@ -12,7 +12,8 @@
 //      RectAreaLights; a RectAreaLight and a sun): with one light on, (lit with the add-ons) /
 //      (lit without) is that light's visibility (so the other add-on leaves its term alone);
 //      both lights on is the sum of the two; each light casts a shadow of its own, somewhere the
-//      other does not; after dispose(), update() throws and the other add-on still shadows.
+//      other does not; after dispose(), update() throws and the other add-on still shadows; a
+//      configuration emitted in the page by the package's WebAssembly emitter shadows too.
 //      The same page from Vite's dev server (three r187; the package excluded from pre-bundling, as
 //      web/three/README.md says) for the two RectAreaLights.
 //   5. The example (web/three/example/, served from the repository) switches from the
@@ -195,8 +196,14 @@ function checkPair(r, label) {
     for (let i = 0; i < n; ++i) after = Math.max(after, Math.abs(r.afterDispose[i] - r.shadowed[0][i]));
     if (!(after <= 1e-4 * Math.max(...r.shadowed[0]))) failures.push(`after the second add-on's dispose() the first light's image changed by ${after}`);
     if (!r.restored) failures.push("after both dispose() calls the material's hooks are not its own");
+    let emitted = "";
+    if (r.emitted) {
+        emitted = `; emitted in the page (WebAssembly): ${r.emitted.config}, ${r.emitted.shadowed} pixels in shadow`;
+        if (r.emitted.config !== "rect mipmap 8x256" || r.emitted.shadowed < SHADOW_PIXELS * n)
+            failures.push(`the configuration emitted by the package's WebAssembly emitter gave ${r.emitted.config} with ${r.emitted.shadowed} pixels in shadow`);
+    }
     console.log(`${failures.length ? "FAIL" : "ok  "} ${label} ${r.pair}: ${stats.join("; ")}; both on vs sum max |Δ| ${sumWorst.toExponential(1)}; ` +
-                `update() after dispose(): "${r.updateAfterDispose}"`);
+                `update() after dispose(): "${r.updateAfterDispose}"${emitted}`);
     return failures;
 }
 

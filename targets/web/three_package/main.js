@@ -94,6 +94,14 @@ async function run(pair) {
     }
     b.dispose(); // a second time: nothing
     out.afterDispose = image([1, 0], true);
+    // a configuration emitted in the page by the WebAssembly emitter the package ships
+    if (pair === "rect+rect") {
+        await a.setEmission({slices: 8, resolution: 256, filter: "mipmap"});
+        a.update();
+        const c = a.config;
+        out.emitted = {config: `${c.light} ${c.filter} ${c.slices}x${c.resolution}`,
+                       shadowed: Array.from(a.renderVisibility(camera, W, H)).filter((v) => v < 0.5).length};
+    }
     a.dispose();
     out.restored = material.onBeforeCompile === THREE.Material.prototype.onBeforeCompile &&
                    material.customProgramCacheKey === THREE.Material.prototype.customProgramCacheKey;
