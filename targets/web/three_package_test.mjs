@@ -22,7 +22,7 @@
 //   node targets/web/three_package_test.mjs --three web/three --work DIR [--wasm FILE] [--chromium PATH] [--images DIR]
 //
 // Exit 0 pass, 1 fail, 77 skip (no chromium), 2 bad arguments.
-import {execFileSync, spawn} from "node:child_process";
+import {execFile, execFileSync, spawn} from "node:child_process";
 import fs from "node:fs";
 import path from "node:path";
 import {fileURLToPath} from "node:url";
@@ -64,6 +64,15 @@ function run(command, args, options = {}) {
     }
 }
 
+// The same, without blocking: the type checks and the builds run side by side.
+function runAsync(command, args, options = {}) {
+    const started = Date.now();
+    return new Promise((resolve, reject) => execFile(command, args, {encoding: "utf8", maxBuffer: 1 << 26, ...options}, (e, stdout, stderr) => {
+        if (e) reject(new Error(`${[command, ...args].join(" ")} failed (exit ${e.code}):\n${stdout || ""}${stderr || ""}`));
+        else resolve({stdout, seconds: (Date.now() - started) / 1000});
+    }));
+}
+
 // 2. npm pack: the tarball and its file list
 function pack(three, work, wasm) {
     const env = {...process.env};
@@ -82,7 +91,7 @@ function pack(three, work, wasm) {
     return {tarball: path.join(work, info.filename), failures};
 }
 
-// 3. a fresh project with the tarball installed, and tsc
+// 3. a fresh project with the tarball installed
 function project(work, tarball) {
     const app = path.join(work, "app");
     fs.rmSync(app, {recursive: true, force: true});
@@ -105,6 +114,12 @@ export default {
                               {find: /^three\\/addons\\//, replacement: three + "/examples/jsm/"}] : []},
 };
 `);
+    console.log(`ok   npm install --offline of the tarball into a fresh project (${installed.seconds.toFixed(1)} s)`);
+    return app;
+}
+
+// tsc --noEmit over check.ts against @types/three r187 and r180
+async function typecheck(app) {
     const tsconfig = (types) => ({
         compilerOptions: {strict: true, noEmit: true, target: "es2022", module: "esnext", moduleResolution: "bundler",
                           lib: ["es2022", "dom"], skipLibCheck: true, types: [],
@@ -113,24 +128,24 @@ export default {
     });
     const failures = [];
     const tsc = path.join(modules, "typescript/bin/tsc");
-    const checks = [];
-    for (const [name, types] of [["r187", null], ["r180", path.join(modules, "@types/three-r180")]]) {
+    const checks = await Promise.all([["r187", null], ["r180", path.join(modules, "@types/three-r180")]].map(async ([name, types]) => {
         fs.writeFileSync(path.join(app, `tsconfig.${name}.json`), JSON.stringify(tsconfig(types), null, 2));
         try {
-            const {seconds} = run(process.execPath, [tsc, "-p", `tsconfig.${name}.json`], {cwd: app});
-            checks.push(`@types/three ${name} ok (${seconds.toFixed(1)} s)`);
+            const {seconds} = await runAsync(process.execPath, [tsc, "-p", `tsconfig.${name}.json`], {cwd: app});
+            return `@types/three ${name} ok (${seconds.toFixed(1)} s)`;
         } catch (e) {
             failures.push(`tsc against @types/three ${name}: ${e.message}`);
+            return `@types/three ${name} FAILED`;
         }
-    }
-    console.log(`${failures.length ? "FAIL" : "ok  "} npm install --offline of the tarball into a fresh project (${installed.seconds.toFixed(1)} s); tsc --noEmit check.ts: ${checks.join(", ")}`);
-    return {app, failures};
+    }));
+    console.log(`${failures.length ? "FAIL" : "ok  "} tsc --noEmit check.ts: ${checks.join(", ")}`);
+    return failures;
 }
 
-function build(app, name, threeDir) {
+async function build(app, name, threeDir) {
     const out = path.join(app, `dist-${name}`);
-    const {stdout, seconds} = run(process.execPath, [path.join(modules, "vite/bin/vite.js"), "build"],
-                                  {cwd: app, env: {...process.env, THREE_DIR: threeDir, OUT_DIR: out}});
+    const {stdout, seconds} = await runAsync(process.execPath, [path.join(modules, "vite/bin/vite.js"), "build"],
+                                             {cwd: app, env: {...process.env, THREE_DIR: threeDir, OUT_DIR: out}});
     const files = fs.readdirSync(path.join(out, "assets"));
     const failures = [];
     // the add-on's assets were copied (or inlined): layout.json and the wasm at least
@@ -259,9 +274,12 @@ async function main() {
     console.log(`${table ? "ok  " : "FAIL"} web/three/emissions.js lists the files of web/three/emissions/`);
     const packed = pack(three, work, args.wasm);
     failures.push(...packed.failures);
-    const {app, failures: tscFailures} = project(work, packed.tarball);
+    const app = project(work, packed.tarball);
+    const [tscFailures, ...builds] = await Promise.all([
+        typecheck(app),
+        ...[["r187", path.join(modules, "three")], ["r180", path.join(modules, "three-r180")]].map(async ([name, dir]) => ({name, ...(await build(app, name, dir))})),
+    ]);
     failures.push(...tscFailures);
-    const builds = [["r187", path.join(modules, "three")], ["r180", path.join(modules, "three-r180")]].map(([name, dir]) => ({name, ...build(app, name, dir)}));
     for (const b of builds) failures.push(...b.failures);
 
     const {browser, close} = await launchChromium(args.chromium);
