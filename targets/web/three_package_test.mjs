@@ -114,8 +114,19 @@ export default {
                               {find: /^three\\/addons\\//, replacement: three + "/examples/jsm/"}] : []},
 };
 `);
-    console.log(`ok   npm install --offline of the tarball into a fresh project (${installed.seconds.toFixed(1)} s)`);
-    return app;
+    // the exports resolve in node too: "." and "./emitter", whose default module file is in the tarball
+    const probe = `const {PenumbraShadows, EMISSIONS} = await import("penumbra-three");
+const {loadEmitter} = await import("penumbra-three/emitter");
+const r = (await loadEmitter()).emit({slices: 4, target: "essl300"});
+console.log(typeof PenumbraShadows.load, Object.keys(EMISSIONS).length, r.ok, Object.keys(r.files).length);`;
+    const {stdout} = run(process.execPath, ["--input-type=module", "-e", probe], {cwd: app});
+    const [load, emissions, ok] = stdout.trim().split(" ");
+    const failures = [];
+    if (load !== "function" || emissions !== "6" || ok !== "true")
+        failures.push(`in node, import("penumbra-three") and import("penumbra-three/emitter") gave: ${stdout.trim()}`);
+    console.log(`${failures.length ? "FAIL" : "ok  "} npm install --offline of the tarball into a fresh project (${installed.seconds.toFixed(1)} s); ` +
+                `in node its exports resolve and the emitter emits (${stdout.trim().split(" ")[3]} files)`);
+    return {app, failures};
 }
 
 // tsc --noEmit over check.ts against @types/three r187 and r180
@@ -274,7 +285,8 @@ async function main() {
     console.log(`${table ? "ok  " : "FAIL"} web/three/emissions.js lists the files of web/three/emissions/`);
     const packed = pack(three, work, args.wasm);
     failures.push(...packed.failures);
-    const app = project(work, packed.tarball);
+    const {app, failures: installFailures} = project(work, packed.tarball);
+    failures.push(...installFailures);
     const [tscFailures, ...builds] = await Promise.all([
         typecheck(app),
         ...[["r187", path.join(modules, "three")], ["r180", path.join(modules, "three-r180")]].map(async ([name, dir]) => ({name, ...(await build(app, name, dir))})),

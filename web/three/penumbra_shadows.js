@@ -166,6 +166,7 @@ export class PenumbraShadows {
     // Loads the emission (options.emission: a key of EMISSIONS, a folder URL, or {layout, files})
     // and returns the add-on attached to `renderer`, `scene` and `light`.
     static async load(renderer, scene, light, options = {}) {
+        if (!renderer || !renderer.isWebGLRenderer) fail("the first argument must be a THREE.WebGLRenderer");
         const o = {...DEFAULTS, ...options};
         const gl = renderer.getContext();
         const kind = kindOf(light);
