@@ -196,7 +196,7 @@ function onResize() {
 }
 
 let gui = null, emissionFolder = null, emissionController = null, folders = null;
-const onEmission = async (v) => { await shadows.setEmission(v); state.emitted = false; };
+const onEmission = async (v) => { if (shadows) { await shadows.setEmission(v); state.emitted = false; } };
 
 // The emissions of the light's kind in the GUI, and the light's own folder.
 function showLight(keys) {
