@@ -593,6 +593,36 @@ TEST_CASE("layout v3: vertex inputs as data, and the vertex stages declare exact
     }
 }
 
+TEST_CASE("layout: every program file states its stage, the emitted file's own") {
+    std::vector<Config> configs = convention_configs();
+    configs.push_back(Config{.filter = Filter::nbuffer, .packing = Packing::atlas, .target = Target::glsl450,
+                             .prefilter_stage = PrefilterStage::compute});
+    for (const Config& config : configs) {
+        CAPTURE(to_string(config.technique));
+        CAPTURE(to_string(config.target));
+        const Emission e = *emit(config).value;
+        REQUIRE(e.layout.programs.size() == e.programs.size());
+        for (std::size_t i = 0; i < e.programs.size(); ++i) {
+            const ProgramDesc& desc = e.layout.programs[i];
+            const Program& program = e.programs[i];
+            CAPTURE(desc.name);
+            REQUIRE(desc.stages.size() == desc.files.size());
+            REQUIRE(program.stages.size() == desc.files.size());
+            for (std::size_t f = 0; f < desc.files.size(); ++f) {
+                CHECK(desc.files[f] == program.stages[f].file_name);
+                CHECK(desc.stages[f] == program.stages[f].stage);
+                CHECK(desc.files[f].ends_with("." + std::string(stage_extension(desc.stages[f]))));
+            }
+        }
+    }
+    // in layout.json, next to the files
+    const Layout compute = describe_layout(configs.back());
+    CHECK(to_json(compute).find("\"files\": [\"penumbra_nbuffer_levels.comp\"], \"stages\": [\"compute\"]") !=
+          std::string::npos);
+    CHECK(to_json(compute).find("\"files\": [\"penumbra_slicing.vert\", \"penumbra_slicing.frag\"], \"stages\": "
+                                "[\"vertex\", \"fragment\"]") != std::string::npos);
+}
+
 TEST_CASE("layout v3: every binding states its sampling; only shadow samplers compare") {
     for (const Config& config : convention_configs()) {
         CAPTURE(to_string(config.technique));

@@ -4,7 +4,7 @@
 //   penumbra::Layout layout = penumbra::describe_layout(config);
 //   std::string json = penumbra::to_json(layout); // the same, as layout.json
 //
-// layout_version 2; the JSON schema is docs/layout.schema.json and README.md ("Using it from an
+// layout_version 3; the JSON schema is docs/layout.schema.json and README.md ("Using it from an
 // engine") walks through it. Run time only (it is data for an engine, not text for a compiler).
 // The structs (TextureDesc, ProgramDesc, PassDesc, Layout, …) and the builder are in
 // detail/layout_builder.hpp; each technique's programs, textures and passes in its folder,
@@ -35,8 +35,11 @@ inline Layout describe_layout(const Config& config) {
 
     // Programs with their parameters, in pass order.
     for (const ProgramPlan& plan : technique.programs(config)) {
-        ProgramDesc program{std::string(plan.name), {}, describe_params(config, technique.param_groups(config, plan.name)), {}};
-        for (Artifact a : plan.stages) program.files.emplace_back(file_name(a));
+        ProgramDesc program{std::string(plan.name), {}, {}, describe_params(config, technique.param_groups(config, plan.name)), {}};
+        for (Artifact a : plan.stages) {
+            program.files.emplace_back(file_name(a));
+            program.stages.push_back(artifact_stage(a));
+        }
         if (!plan.stages.empty()) program.vertex_inputs = vertex_inputs(plan.stages.front());
         layout.programs.push_back(std::move(program));
     }
@@ -199,6 +202,8 @@ inline std::string to_json(const Layout& layout) {
         const ProgramDesc& p = layout.programs[i];
         o += "    {\"name\": " + json_string(p.name) + ", \"files\": [";
         for (std::size_t f = 0; f < p.files.size(); ++f) o += (f ? ", " : "") + json_string(p.files[f]);
+        o += "], \"stages\": [";
+        for (std::size_t f = 0; f < p.stages.size(); ++f) o += (f ? ", " : "") + json_string(stage_name(p.stages[f]));
         o += "], \"vertex_inputs\": [";
         for (std::size_t v = 0; v < p.vertex_inputs.size(); ++v) {
             const VertexInputDesc& in = p.vertex_inputs[v];

@@ -4,6 +4,7 @@
 // textures and passes (detail/<technique>/layout.hpp). Nothing here knows a technique's programs.
 #pragma once
 
+#include "../program.hpp"
 #include "glsl_common.hpp"
 #include "target_limits.hpp"
 #include "uniform_compute.hpp"
@@ -87,6 +88,7 @@ struct VertexInputDesc {
 struct ProgramDesc {
     std::string name;
     std::vector<std::string> files; // stage files, in pipeline order
+    std::vector<Stage> stages;      // the stage of each file: stages[i] is that of files[i]
     std::vector<ParamDesc> parameters;
     std::vector<VertexInputDesc> vertex_inputs; // empty for full-screen programs (no attributes)
 };
