@@ -11,6 +11,18 @@
 // detail/<technique>/layout.hpp.
 #pragma once
 
+#include "detail/api.hpp"
+#include "layout_types.hpp"
+
+#if PENUMBRA_DECLARATIONS_ONLY
+// PENUMBRA_SEPARATE_IMPLEMENTATION: defined in the PENUMBRA_IMPLEMENTATION translation unit
+// (detail/api.hpp).
+namespace penumbra {
+Layout describe_layout(const Config& config);
+std::string to_json(const Layout& layout);
+} // namespace penumbra
+#else
+
 #include "detail/layout_builder.hpp"
 #include "detail/techniques.hpp"
 #include "detail/vertex_inputs.hpp"
@@ -26,7 +38,7 @@
 namespace penumbra {
 
 // The layout of a valid configuration. Precondition: is_valid(config).
-inline Layout describe_layout(const Config& config) {
+PENUMBRA_ENTRY_POINT Layout describe_layout(const Config& config) {
     using namespace detail;
     const TechniqueFunctions technique = technique_functions(config.technique);
     Layout layout;
@@ -125,7 +137,7 @@ inline std::string json_sampling(const Sampling& s) {
 } // namespace detail
 
 // layout.json: the layout as JSON (two-space indentation, keys as in the C++ structs).
-inline std::string to_json(const Layout& layout) {
+PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
     using detail::json_string;
     const Config& c = layout.config;
     std::string o = "{\n";
@@ -300,3 +312,5 @@ inline std::string to_json(const Layout& layout) {
 }
 
 } // namespace penumbra
+
+#endif // PENUMBRA_DECLARATIONS_ONLY

@@ -11,6 +11,13 @@ function(penumbra_consumer_checks)
     endforeach()
 endfunction()
 
-add_executable(app ${CMAKE_CURRENT_LIST_DIR}/main.cpp)
+# PENUMBRA_CONSUMER_SEPARATE: the emitter compiled once, in implementation.cpp, and only declared in
+# main.cpp (PENUMBRA_SEPARATE_IMPLEMENTATION); otherwise header-only.
+if(PENUMBRA_CONSUMER_SEPARATE)
+    add_executable(app ${CMAKE_CURRENT_LIST_DIR}/main.cpp ${CMAKE_CURRENT_LIST_DIR}/implementation.cpp)
+    target_compile_definitions(app PRIVATE PENUMBRA_SEPARATE_IMPLEMENTATION)
+else()
+    add_executable(app ${CMAKE_CURRENT_LIST_DIR}/main.cpp)
+endif()
 target_link_libraries(app PRIVATE penumbra::penumbra)
 penumbra_consumer_checks()
