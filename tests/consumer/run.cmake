@@ -39,17 +39,19 @@ if(MODE STREQUAL "add_subdirectory")
     list(APPEND options -DPENUMBRA_SOURCE_DIR=${SOURCE_DIR})
 else()
     # The source tree as a release archive would hold it: the files git knows (tracked, and new
-    # ones not ignored), so no build directory comes along.
+    # ones not ignored), so no build directory comes along; without git, what the library needs.
     find_package(Git QUIET)
-    if(NOT Git_FOUND)
-        message(FATAL_ERROR "run.cmake: fetch_content needs git to list the source files")
+    set(result 1)
+    if(Git_FOUND)
+        execute_process(COMMAND ${GIT_EXECUTABLE} ls-files --cached --others --exclude-standard
+            WORKING_DIRECTORY ${SOURCE_DIR} OUTPUT_VARIABLE listed RESULT_VARIABLE result ERROR_QUIET)
+        string(REPLACE "\n" ";" listed "${listed}")
     endif()
-    execute_process(COMMAND ${GIT_EXECUTABLE} ls-files --cached --others --exclude-standard
-        WORKING_DIRECTORY ${SOURCE_DIR} OUTPUT_VARIABLE listed RESULT_VARIABLE result)
     if(NOT result EQUAL 0)
-        message(FATAL_ERROR "run.cmake: git ls-files failed in ${SOURCE_DIR}")
+        file(GLOB_RECURSE listed RELATIVE ${SOURCE_DIR} ${SOURCE_DIR}/include/* ${SOURCE_DIR}/cmake/*
+            ${SOURCE_DIR}/docs/*)
+        list(APPEND listed CMakeLists.txt LICENSE README.md)
     endif()
-    string(REPLACE "\n" ";" listed "${listed}")
     set(files "")
     foreach(file IN LISTS listed)
         if(file AND EXISTS ${SOURCE_DIR}/${file})
