@@ -187,9 +187,53 @@ TEST_CASE("layout v2: every plain uniform says where its value comes from, and t
     CHECK(to_light.x == doctest::Approx(1.0));
     CHECK(to_light.y == doctest::Approx(5.0));
     CHECK(to_light.w == 1.0f);
-    CHECK(std::get<glm::vec2>(*uniform_value("penumbra_sliceDepths", rect)) == rect.frame.slice_depths);
-    CHECK_FALSE(uniform_value("penumbra_clipFromWorld", rect).has_value()); // no camera given
-    CHECK_FALSE(uniform_value("penumbra_noSuchUniform", rect).has_value());
+    CHECK(std::get<glm::vec2>(*uniform_value("penumbra_sliceDepths", rect)) == rect.frame->slice_depths);
+    CHECK(uniform_value("penumbra_sliceDepths", rect).error.empty());
+}
+
+TEST_CASE("uniform values: a missing input is an error naming what to set, never a value of zeros") {
+    RectLight light;
+    light.center = {1.0, 5.0, 2.0};
+    const UniformInputs frame_only{.frame = slice_frame(light, {-1, 0, -1}, {1, 1, 1}, 4)};
+    const UniformInputs shadow_only{.shadow = shadow_frame(light, {-1, 0, -1}, {1, 1, 1})};
+    const UniformInputs nothing{};
+    struct Row {
+        std::string_view uniform;
+        const UniformInputs* inputs;
+        std::string_view error; // "" when there is a value
+    };
+    const Row rows[] = {
+        {"penumbra_shadowDepthRange", &frame_only,
+         "penumbra_shadowDepthRange: UniformInputs::shadow is not set; set it to penumbra::shadow_frame(light, "
+         "bounds_min, bounds_max)"},
+        {"penumbra_shadowClipFromWorld", &frame_only, "UniformInputs::shadow is not set"},
+        {"penumbra_lightSizeUV", &frame_only, "UniformInputs::shadow is not set"},
+        {"penumbra_sliceDepths", &shadow_only,
+         "penumbra_sliceDepths: UniformInputs::frame is not set; set it to penumbra::slice_frame(light, bounds_min, "
+         "bounds_max, slices)"},
+        {"penumbra_copDistance", &shadow_only, "UniformInputs::frame is not set"},
+        {"penumbra_lightFromWorld", &nothing, "neither UniformInputs::frame nor UniformInputs::shadow is set"},
+        {"penumbra_toLight", &nothing, "neither UniformInputs::frame nor UniformInputs::shadow is set"},
+        {"penumbra_clipFromWorld", &frame_only, "UniformInputs::clip_from_world is not set"},
+        {"penumbra_timeWindow", &frame_only, "UniformInputs::time_window is not set"},
+        {"penumbra_noSuchUniform", &frame_only, "penumbra_noSuchUniform: no rule computes this uniform"},
+        // the light frame and size are the same in both frames: either one will do
+        {"penumbra_lightFromWorld", &shadow_only, ""},
+        {"penumbra_toLight", &shadow_only, ""},
+        {"penumbra_lightSize", &frame_only, ""},
+        {"penumbra_shadowTanHalfFov", &shadow_only, ""},
+    };
+    for (const Row& row : rows) {
+        CAPTURE(row.uniform);
+        const UniformResult result = uniform_value(row.uniform, *row.inputs);
+        CHECK(result.value.has_value() == row.error.empty());
+        if (!row.error.empty()) CHECK(result.error.find(row.error) != std::string::npos);
+        else CHECK(result.error.empty());
+    }
+    // the light's centre from the shadow frame is the one from the slice frame
+    const UniformInputs both{.frame = frame_only.frame, .shadow = shadow_only.shadow};
+    CHECK(std::get<glm::vec4>(*uniform_value("penumbra_toLight", shadow_only)).y == doctest::Approx(5.0));
+    CHECK(std::get<glm::vec4>(*uniform_value("penumbra_toLight", both)).y == doctest::Approx(5.0));
 }
 
 TEST_CASE("layout v2: more than 32 slices are sliced as OR-ed bits, then unpacked into the occlusion textures") {
@@ -547,6 +591,37 @@ TEST_CASE("layout v3: vertex inputs as data, and the vertex stages declare exact
             }
         }
     }
+}
+
+TEST_CASE("layout: every program file states its stage, the emitted file's own") {
+    std::vector<Config> configs = convention_configs();
+    configs.push_back(Config{.filter = Filter::nbuffer, .packing = Packing::atlas, .target = Target::glsl450,
+                             .prefilter_stage = PrefilterStage::compute});
+    for (const Config& config : configs) {
+        CAPTURE(to_string(config.technique));
+        CAPTURE(to_string(config.target));
+        const Emission e = *emit(config).value;
+        REQUIRE(e.layout.programs.size() == e.programs.size());
+        for (std::size_t i = 0; i < e.programs.size(); ++i) {
+            const ProgramDesc& desc = e.layout.programs[i];
+            const Program& program = e.programs[i];
+            CAPTURE(desc.name);
+            REQUIRE(desc.stages.size() == desc.files.size());
+            REQUIRE(program.stages.size() == desc.files.size());
+            for (std::size_t f = 0; f < desc.files.size(); ++f) {
+                CHECK(desc.files[f] == program.stages[f].file_name);
+                CHECK(desc.stages[f] == program.stages[f].stage);
+                const std::string& file = desc.files[f];
+                CHECK(std::string_view(file).substr(file.rfind('.') + 1) == stage_extension(desc.stages[f]));
+            }
+        }
+    }
+    // in layout.json, next to the files
+    const Layout compute = describe_layout(configs.back());
+    CHECK(to_json(compute).find("\"files\": [\"penumbra_nbuffer_levels.comp\"], \"stages\": [\"compute\"]") !=
+          std::string::npos);
+    CHECK(to_json(compute).find("\"files\": [\"penumbra_slicing.vert\", \"penumbra_slicing.frag\"], \"stages\": "
+                                "[\"vertex\", \"fragment\"]") != std::string::npos);
 }
 
 TEST_CASE("layout v3: every binding states its sampling; only shadow samplers compare") {

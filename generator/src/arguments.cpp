@@ -8,11 +8,14 @@
 namespace penumbra_gen {
 namespace {
 
-constexpr std::string_view flag_list =
-    "--slices, --resolution, --filter, --fusion, --packing, --light, --target, --no-leak-fix, --no-fade, "
-    "--tangent-clip, --no-tangent-clip, --slice-placement, --level-bound, --level-format, --level-reduction, --prefilter-stage, --tangent-clip-offset, --no-clip-footprint, --fade-ramp, --config, --validate, --out, --help, --technique, --shadow-resolution, "
-    "--shadow-bias, --shadow-slope-bias, --pcf-pattern, --pcf-grid, --pcf-taps, --pcf-radius, --pcss-blockers, "
-    "--pcss-filter, --pcss-max-texels, --no-rotation, --no-receiver-plane-bias";
+// Every flag, for the messages: the configuration flags, then the technique flags (technique_flags.cpp).
+std::string flag_list() {
+    return "--slices, --resolution, --filter, --fusion, --packing, --light, --target, --no-leak-fix, --no-fade, "
+           "--tangent-clip, --no-tangent-clip, --slice-placement, --level-bound, --level-format, --level-reduction, "
+           "--prefilter-stage, --tangent-clip-offset, --no-clip-footprint, --fade-ramp, --config, --validate, --out, "
+           "--help, " +
+           std::string(technique_flag_list);
+}
 
 } // namespace
 
@@ -58,10 +61,10 @@ Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
                                  is_technique_flag(flag);
         if (!takes_value) {
             if (arg.starts_with("-"))
-                return {{}, "unknown flag '" + printable(flag) + "'; allowed: " + std::string(flag_list)};
+                return {{}, "unknown flag '" + printable(flag) + "'; allowed: " + flag_list()};
             return {{},
                     "unexpected argument '" + printable(arg) +
-                        "'; every value follows its flag (allowed flags: " + std::string(flag_list) + ")"};
+                        "'; every value follows its flag (allowed flags: " + flag_list() + ")"};
         }
         std::string_view value;
         if (inline_value) {

@@ -19,6 +19,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <string_view>
 
 namespace penumbra {
@@ -369,5 +370,12 @@ constexpr int level_spacing(const Config& config, int level) {
 constexpr bool prefilters_in_compute(const Config& config) {
     return config.technique == Technique::occlusion && config.prefilter_stage == PrefilterStage::compute;
 }
+
+// One reason a configuration cannot be emitted (penumbra::validate, emit's Result::errors).
+struct ConfigError {
+    std::string field;   // "slices", "resolution", "filter", …
+    std::string value;   // the value given, as text
+    std::string message; // "<field>: <value> <what is wrong>; allowed: <what is allowed>"
+};
 
 } // namespace penumbra

@@ -3,11 +3,17 @@
 //   penumbra::Result<penumbra::Emission> result = penumbra::emit(config);
 //   if (!result.errors.empty()) { /* show result.errors[i].message */ }
 //   for (const penumbra::Program& program : result.value->programs) { /* compile program.stages */ }
+//
+// Header-only by default; with PENUMBRA_SEPARATE_IMPLEMENTATION one translation unit compiles the
+// emitter (#define PENUMBRA_IMPLEMENTATION before this include) and the others only declare it
+// (detail/api.hpp, README.md "Compile cost").
 #pragma once
 
+#include "detail/api.hpp"
 #include "layout.hpp"
 
 #include <optional>
+#include <vector>
 
 namespace penumbra {
 
@@ -36,13 +42,17 @@ template <class T> struct Result {
     std::vector<ConfigError> errors; // why there is no value
 };
 
+#if PENUMBRA_DECLARATIONS_ONLY
+Result<Emission> emit(const Config& config);
+#else
+
 // The text of one file for a configuration; the same function the compile-time API runs.
-// Precondition: is_valid(config).
+// Precondition: is_valid(config). Header-only (not declared with PENUMBRA_SEPARATE_IMPLEMENTATION).
 inline ShaderFile emit_file(const Config& config, Artifact artifact) {
     return {std::string(file_name(artifact)), artifact_stage(artifact), detail::artifact_text(config, artifact).str()};
 }
 
-inline Result<Emission> emit(const Config& config) {
+PENUMBRA_ENTRY_POINT Result<Emission> emit(const Config& config) {
     Result<Emission> result;
     result.errors = validate(config);
     if (!result.errors.empty()) return result;
@@ -57,5 +67,7 @@ inline Result<Emission> emit(const Config& config) {
     result.value = std::move(emission);
     return result;
 }
+
+#endif // PENUMBRA_DECLARATIONS_ONLY
 
 } // namespace penumbra

@@ -16,6 +16,7 @@
 
 #include "detail/occlusion/emit_generic.hpp"
 #include "emit.hpp"
+#include "validate.hpp"
 
 #include <cassert>
 #include <iterator>

@@ -4,12 +4,24 @@
 //   penumbra::Layout layout = penumbra::describe_layout(config);
 //   std::string json = penumbra::to_json(layout); // the same, as layout.json
 //
-// layout_version 2; the JSON schema is docs/layout.schema.json and README.md ("Using it from an
+// layout_version 3; the JSON schema is docs/layout.schema.json and README.md ("Using it from an
 // engine") walks through it. Run time only (it is data for an engine, not text for a compiler).
 // The structs (TextureDesc, ProgramDesc, PassDesc, Layout, …) and the builder are in
 // detail/layout_builder.hpp; each technique's programs, textures and passes in its folder,
 // detail/<technique>/layout.hpp.
 #pragma once
+
+#include "detail/api.hpp"
+#include "layout_types.hpp"
+
+#if PENUMBRA_DECLARATIONS_ONLY
+// PENUMBRA_SEPARATE_IMPLEMENTATION: defined in the PENUMBRA_IMPLEMENTATION translation unit
+// (detail/api.hpp).
+namespace penumbra {
+Layout describe_layout(const Config& config);
+std::string to_json(const Layout& layout);
+} // namespace penumbra
+#else
 
 #include "detail/layout_builder.hpp"
 #include "detail/techniques.hpp"
@@ -26,7 +38,7 @@
 namespace penumbra {
 
 // The layout of a valid configuration. Precondition: is_valid(config).
-inline Layout describe_layout(const Config& config) {
+PENUMBRA_ENTRY_POINT Layout describe_layout(const Config& config) {
     using namespace detail;
     const TechniqueFunctions technique = technique_functions(config.technique);
     Layout layout;
@@ -35,8 +47,11 @@ inline Layout describe_layout(const Config& config) {
 
     // Programs with their parameters, in pass order.
     for (const ProgramPlan& plan : technique.programs(config)) {
-        ProgramDesc program{std::string(plan.name), {}, describe_params(config, technique.param_groups(config, plan.name)), {}};
-        for (Artifact a : plan.stages) program.files.emplace_back(file_name(a));
+        ProgramDesc program{std::string(plan.name), {}, {}, describe_params(config, technique.param_groups(config, plan.name)), {}};
+        for (Artifact a : plan.stages) {
+            program.files.emplace_back(file_name(a));
+            program.stages.push_back(artifact_stage(a));
+        }
         if (!plan.stages.empty()) program.vertex_inputs = vertex_inputs(plan.stages.front());
         layout.programs.push_back(std::move(program));
     }
@@ -122,7 +137,7 @@ inline std::string json_sampling(const Sampling& s) {
 } // namespace detail
 
 // layout.json: the layout as JSON (two-space indentation, keys as in the C++ structs).
-inline std::string to_json(const Layout& layout) {
+PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
     using detail::json_string;
     const Config& c = layout.config;
     std::string o = "{\n";
@@ -199,6 +214,8 @@ inline std::string to_json(const Layout& layout) {
         const ProgramDesc& p = layout.programs[i];
         o += "    {\"name\": " + json_string(p.name) + ", \"files\": [";
         for (std::size_t f = 0; f < p.files.size(); ++f) o += (f ? ", " : "") + json_string(p.files[f]);
+        o += "], \"stages\": [";
+        for (std::size_t f = 0; f < p.stages.size(); ++f) o += (f ? ", " : "") + json_string(stage_name(p.stages[f]));
         o += "], \"vertex_inputs\": [";
         for (std::size_t v = 0; v < p.vertex_inputs.size(); ++v) {
             const VertexInputDesc& in = p.vertex_inputs[v];
@@ -295,3 +312,5 @@ inline std::string to_json(const Layout& layout) {
 }
 
 } // namespace penumbra
+
+#endif // PENUMBRA_DECLARATIONS_ONLY

@@ -20,6 +20,16 @@ constexpr std::string_view stage_extension(Stage stage) {
     return "";
 }
 
+// The stage's name in layout.json ("stages"): "vertex", "fragment", "compute".
+constexpr std::string_view stage_name(Stage stage) {
+    switch (stage) {
+    case Stage::vertex: return "vertex";
+    case Stage::fragment: return "fragment";
+    case Stage::compute: return "compute";
+    }
+    return "";
+}
+
 // One complete shader stage.
 struct ShaderFile {
     std::string file_name; // e.g. "penumbra_slicing.frag"; unique within an emission

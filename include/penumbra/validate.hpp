@@ -16,11 +16,7 @@ namespace penumbra {
 
 // allowed_slices, the slice counts a configuration may have: detail/occlusion/validate.hpp.
 
-struct ConfigError {
-    std::string field;   // "slices", "resolution", "filter", …
-    std::string value;   // the value given, as text
-    std::string message; // "<field>: <value> <what is wrong>; allowed: <what is allowed>"
-};
+// ConfigError (one error: field, value, message): config.hpp.
 
 namespace detail {
 

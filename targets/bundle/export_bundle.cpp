@@ -196,9 +196,9 @@ nlohmann::ordered_json floats(const float* values, int count) {
 }
 
 // Every "light" uniform the emission's programs declare, by its GLSL name (penumbra/uniform_values.hpp's
-// table; matrices column-major), from the frame the GL run used. Uniforms the table cannot compute
-// without a camera are left out.
-nlohmann::ordered_json uniforms_json(const UniformInputs& inputs, const Layout& layout) {
+// table; matrices column-major), from the frame the GL run used ("camera" uniforms are not "light"
+// ones: left out). A declared uniform without a value (an input the run did not set) is an error.
+nlohmann::ordered_json uniforms_json(const UniformInputs& inputs, const Layout& layout, std::string& error) {
     auto declared = [&](std::string_view name) {
         for (const ProgramDesc& program : layout.programs)
             for (const ParamDesc& p : program.parameters)
@@ -208,8 +208,11 @@ nlohmann::ordered_json uniforms_json(const UniformInputs& inputs, const Layout& 
     nlohmann::ordered_json out = nlohmann::ordered_json::object();
     for (const UniformRule& rule : uniform_rules()) {
         if (!declared(rule.name)) continue;
-        const std::optional<UniformValue> value = rule.value(inputs);
-        if (!value) continue;
+        const UniformResult value = rule.value(inputs);
+        if (!value) {
+            error = value.error;
+            return out;
+        }
         std::visit(
             [&](const auto& v) {
                 using T = std::decay_t<decltype(v)>;
@@ -311,6 +314,9 @@ int run(const std::vector<std::string>& args) {
     std::error_code ec;
     std::filesystem::remove_all(emission_dir, ec);
     if (std::string e = penumbra_gen::write_files(emission_dir.string(), files); !e.empty()) return fail(e);
+    std::string uniform_error;
+    const nlohmann::ordered_json uniform_values = uniforms_json(inputs, emitted.value->layout, uniform_error);
+    if (!uniform_error.empty()) return fail("uniform " + uniform_error);
 
     nlohmann::ordered_json uniforms = {
         {"width", a.width},
@@ -330,7 +336,7 @@ int run(const std::vector<std::string>& args) {
           {"near", scene.camera.z_near},
           {"far", scene.camera.z_far}}},
         {"renderer", context->renderer()},
-        {"uniforms", uniforms_json(inputs, emitted.value->layout)},
+        {"uniforms", uniform_values},
         {"caller_textures", {{"penumbra_worldPositions", "positions.f32"}, {"penumbra_worldNormals", "normals.f32"}}},
     };
     nlohmann::ordered_json bake = nlohmann::ordered_json::object();

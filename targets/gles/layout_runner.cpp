@@ -262,7 +262,13 @@ std::string LayoutRunner::allocate_output_sized(int width, int height) {
 std::string LayoutRunner::link(const json& desc, const std::map<std::string, std::string>& sources) {
     const std::string name = desc["name"];
     const std::vector<std::string> files = desc["files"];
-    if (files.size() != 2) return "program " + name + ": " + std::to_string(files.size()) + " files; expected vertex + fragment";
+    // layout.json states each file's stage (stages[i] of files[i]); this runner links vertex + fragment
+    const std::vector<std::string> file_stages = desc["stages"];
+    if (files.size() != 2 || file_stages != std::vector<std::string>{"vertex", "fragment"}) {
+        std::string listed;
+        for (const std::string& stage : file_stages) listed += (listed.empty() ? "" : ", ") + stage;
+        return "program " + name + ": stages [" + listed + "]; expected vertex, fragment";
+    }
     const GLuint program = glCreateProgram();
     const GLenum stages[2] = {GL_VERTEX_SHADER, GL_FRAGMENT_SHADER};
     for (std::size_t i = 0; i < 2; ++i) {

@@ -41,10 +41,19 @@ def references_errors(layout):
             writes_result |= p["phase"] == "screen" and a["texture"] == layout["result"]
     if not writes_result:
         errors.append("no screen pass writes the result texture")
+    extension_stage = {".vert": "vertex", ".frag": "fragment", ".comp": "compute"}
     for program in layout["programs"]:
         for f in program["files"]:
             if f not in layout["files"]:
                 errors.append(f"program {program['name']}: file {f} not in files")
+        # stages[i] is the stage of files[i]: as many, and the one the file's extension says
+        if len(program["stages"]) != len(program["files"]):
+            errors.append(f"program {program['name']}: {len(program['stages'])} stages for "
+                          f"{len(program['files'])} files")
+        for f, stage in zip(program["files"], program["stages"]):
+            expected = extension_stage.get(pathlib.PurePath(f).suffix)
+            if stage != expected:
+                errors.append(f"program {program['name']}: file {f} has stage {stage}, its extension says {expected}")
     return errors
 
 
@@ -160,6 +169,11 @@ def main():
                                                                           "target_level": 0, "target_layer": -1,
                                                                           "width": 1, "height": 1}),
         "slice in channel x": lambda d: d["slice_map"][0].update(channel="x"),
+        # every program file states its stage
+        "program without stages": lambda d: d["programs"][0].pop("stages"),
+        "unknown stage": lambda d: d["programs"][0].update(stages=["geometry"] * len(d["programs"][0]["files"])),
+        "one stage short": lambda d: d["programs"][0].update(stages=d["programs"][0]["stages"][:-1]),
+        "stages swapped": lambda d: d["programs"][0].update(stages=list(reversed(d["programs"][0]["stages"]))),
     }
     def first_dispatch(doc):
         return next(p for p in doc["passes"] if p["action"] == "dispatch")

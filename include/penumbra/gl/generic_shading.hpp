@@ -133,7 +133,7 @@ private:
         auto location = [&](const std::string& name) { return glGetUniformLocation(program_, name.c_str()); };
         const UniformInputs inputs = runtime.uniform_inputs();
         for (const UniformRule& rule : uniform_rules())
-            if (const std::optional<UniformValue> v = rule.value(inputs))
+            if (const UniformResult v = rule.value(inputs))
                 detail::set_uniform(program_, location(std::string(rule.name)), *v);
         for (const GenericValue& v : generic_values(runtime.config())) {
             if (v.type == "int") glProgramUniform1i(program_, location(v.name), static_cast<GLint>(v.value));

@@ -388,7 +388,7 @@ public:
         UniformInputs inputs = uniform_inputs();
         inputs.clip_from_world = clip_from_world;
         for (const UniformRule& rule : uniform_rules())
-            if (const std::optional<UniformValue> v = rule.value(inputs))
+            if (const UniformResult v = rule.value(inputs)) // the camera's only when given
                 detail::set_uniform(program, glGetUniformLocation(program, std::string(rule.name).c_str()), *v);
     }
 

@@ -87,11 +87,10 @@ inline std::string set_computed_uniforms(const Layout& layout, const PassDesc& p
         if (p.name != pass.program) continue;
         for (const ParamDesc& param : p.parameters) {
             if (param.source != "light" && param.source != "camera") continue;
-            const std::optional<UniformValue> v = uniform_value(param.name, inputs);
+            const UniformResult v = uniform_value(param.name, inputs);
             if (!v) {
                 if (param.source == "camera") continue; // no camera in the runtime's own passes
-                return "pass " + pass.name + ": no value for uniform " + param.name +
-                       " (penumbra/uniform_values.hpp has no rule for it)";
+                return "pass " + pass.name + ": no value for uniform " + v.error;
             }
             set_uniform(program, glGetUniformLocation(program, param.name.c_str()), *v);
         }
