@@ -335,21 +335,21 @@ std::string decode_draco(Output& out, const Prepared& prepared, const std::map<i
 
 } // namespace
 
-Prepared prepare(const std::string& json) {
-    Prepared out;
-    out.json = json;
-    nlohmann::json j = nlohmann::json::parse(json, nullptr, /*allow_exceptions=*/false);
-    if (!j.is_object()) return out;
+namespace {
+
+void prepare_json(Prepared& out) {
+    nlohmann::json j = nlohmann::json::parse(out.json, nullptr, /*allow_exceptions=*/false);
+    if (!j.is_object()) return;
     std::string problem;
 
     if (j.contains("bufferViews") && j["bufferViews"].is_array())
         for (std::size_t i = 0; i < j["bufferViews"].size(); ++i) {
             const std::string what = "buffer view " + std::to_string(i) + "'s " + meshopt_name;
             const nlohmann::json* ext = extension(j["bufferViews"][i], meshopt_name, what, &problem);
-            if (!problem.empty()) return out.problem = problem, out;
+            if (!problem.empty()) return void(out.problem = problem);
             if (!ext) continue;
             MeshoptView m;
-            if (std::string p = read_meshopt_view(*ext, what, &m); !p.empty()) return out.problem = p, out;
+            if (std::string p = read_meshopt_view(*ext, what, &m); !p.empty()) return void(out.problem = p);
             out.meshopt_views[static_cast<int>(i)] = m;
         }
 
@@ -357,7 +357,7 @@ Prepared prepare(const std::string& json) {
         for (std::size_t i = 0; i < j["buffers"].size(); ++i) {
             nlohmann::json& b = j["buffers"][i];
             const nlohmann::json* ext = extension(b, meshopt_name, "buffer " + std::to_string(i), &problem);
-            if (!problem.empty()) return out.problem = problem, out;
+            if (!problem.empty()) return void(out.problem = problem);
             if (!ext || !ext->contains("fallback") || (*ext)["fallback"] != true || b.contains("uri")) continue;
             out.fallback_buffers[static_cast<int>(i)] =
                 b.contains("byteLength") && b["byteLength"].is_number_unsigned() ? b["byteLength"].get<std::uint64_t>() : 0;
@@ -374,12 +374,12 @@ Prepared prepare(const std::string& json) {
                 nlohmann::json& primitive = mesh["primitives"][p];
                 const std::string what = "mesh " + std::to_string(m) + " primitive " + std::to_string(p) + "'s " + draco_name;
                 const nlohmann::json* ext = extension(primitive, draco_name, what, &problem);
-                if (!problem.empty()) return out.problem = problem, out;
+                if (!problem.empty()) return void(out.problem = problem);
                 if (!ext) continue;
                 DracoPrimitive d;
                 d.mesh = static_cast<int>(m);
                 d.primitive = static_cast<int>(p);
-                if (std::string e = read_draco_primitive(*ext, what, &d); !e.empty()) return out.problem = e, out;
+                if (std::string e = read_draco_primitive(*ext, what, &d); !e.empty()) return void(out.problem = e);
                 // The decoded faces replace the index accessor, which has no buffer view (tinygltf
                 // refuses that for indices).
                 if (primitive.contains("indices")) {
@@ -392,6 +392,18 @@ Prepared prepare(const std::string& json) {
             }
         }
     if (out.changed) out.json = j.dump();
+}
+
+} // namespace
+
+Prepared prepare(const std::string& json) {
+    Prepared out;
+    out.json = json;
+    try {
+        prepare_json(out);
+    } catch (const std::exception& e) { // std::bad_alloc
+        out.problem = std::string("out of memory or internal error while reading the compression extensions: ") + e.what();
+    }
     return out;
 }
 

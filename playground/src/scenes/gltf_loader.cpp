@@ -34,6 +34,7 @@ constexpr double coordinate_limit = 1e9;
 // A node may be reached along several paths (instancing); this bounds what a small file can expand to.
 constexpr std::size_t vertex_budget = std::size_t(64) << 20;
 constexpr std::size_t node_visit_budget = std::size_t(1) << 20;
+static_assert(gltf_compression::decoded_vertex_limit == vertex_budget, "decoded data keeps to the same limit");
 
 // A failure inside the loader: the problem, without the file name.
 struct Problem {
