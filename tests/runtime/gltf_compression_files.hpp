@@ -31,7 +31,7 @@ inline void write_binary(const std::string& path, const std::string& bytes) {
     std::ofstream(path, std::ios::binary) << bytes;
 }
 
-inline constexpr float torus_major = 1.0f; // ring radius
+inline constexpr float torus_major = 1.0f;  // ring radius
 inline constexpr float torus_minor = 0.35f; // tube radius
 
 // A torus around +y with analytic normals, `rings` × `sides` quads, as OBJ text (no materials).
@@ -87,23 +87,26 @@ inline std::string glb_bin(const std::string& glb) {
 inline std::pair<nlohmann::json, std::string> draco_seed(const std::string& buffer_uri) {
     nlohmann::json j = nlohmann::json::parse(read_binary(draco_engine));
     const std::string all = read_binary(
-        (std::filesystem::path(draco_engine).parent_path() / j["buffers"][0]["uri"].get<std::string>()).string());
+        (std::filesystem::path(draco_engine).parent_path() / j["buffers"][0]["uri"].get<std::string>())
+            .string());
     nlohmann::json primitive = j["meshes"][0]["primitives"][0];
     primitive.erase("material");
-    const nlohmann::json view = j["bufferViews"][primitive["extensions"]["KHR_draco_mesh_compression"]["bufferView"].get<int>()];
+    const nlohmann::json view =
+        j["bufferViews"][primitive["extensions"]["KHR_draco_mesh_compression"]["bufferView"].get<int>()];
     std::string bin = all.substr(view.value("byteOffset", 0), view["byteLength"].get<std::size_t>());
     while (bin.size() % 4) bin += '\0';
     primitive["extensions"]["KHR_draco_mesh_compression"]["bufferView"] = 0;
-    nlohmann::json out = {{"asset", j["asset"]},
-                          {"extensionsUsed", {"KHR_draco_mesh_compression"}},
-                          {"extensionsRequired", {"KHR_draco_mesh_compression"}},
-                          {"scene", 0},
-                          {"scenes", {{{"nodes", {0}}}}},
-                          {"nodes", {{{"mesh", 0}}}},
-                          {"meshes", {{{"primitives", {primitive}}}}},
-                          {"accessors", j["accessors"]},
-                          {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", view["byteLength"]}}}},
-                          {"buffers", {{{"byteLength", bin.size()}}}}};
+    nlohmann::json out = {
+        {"asset", j["asset"]},
+        {"extensionsUsed", {"KHR_draco_mesh_compression"}},
+        {"extensionsRequired", {"KHR_draco_mesh_compression"}},
+        {"scene", 0},
+        {"scenes", {{{"nodes", {0}}}}},
+        {"nodes", {{{"mesh", 0}}}},
+        {"meshes", {{{"primitives", {primitive}}}}},
+        {"accessors", j["accessors"]},
+        {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", view["byteLength"]}}}},
+        {"buffers", {{{"byteLength", bin.size()}}}}};
     if (!buffer_uri.empty()) out["buffers"][0]["uri"] = buffer_uri;
     return {out, bin};
 }
@@ -135,16 +138,19 @@ inline std::vector<BrokenCompressedFile> broken_compressed_files(const std::stri
         write_binary(path, j.dump());
         out.push_back({name, path, expected});
     };
-    draco_case("draco-cut-short", "mesh 0 primitive 0's Draco stream (KHR_draco_mesh_compression, buffer view 0) does not decode",
-               [](nlohmann::json& j) { j["bufferViews"][0]["byteLength"] = 1000; });
-    draco_case("draco-wrong-attribute-id", "'s POSITION is Draco attribute id 7, which the stream does not have (its ids: 1, 0)",
+    draco_case(
+        "draco-cut-short",
+        "mesh 0 primitive 0's Draco stream (KHR_draco_mesh_compression, buffer view 0) does not decode",
+        [](nlohmann::json& j) { j["bufferViews"][0]["byteLength"] = 1000; });
+    draco_case("draco-wrong-attribute-id",
+               "'s POSITION is Draco attribute id 7, which the stream does not have (its ids: 1, 0)",
                [](nlohmann::json& j) {
-                   j["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]["attributes"]["POSITION"] = 7;
+                   j["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]["attributes"]
+                    ["POSITION"] = 7;
                });
-    draco_case("draco-no-such-buffer-view", "buffer view 4000): the file has",
-               [](nlohmann::json& j) {
-                   j["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]["bufferView"] = 4000;
-               });
+    draco_case("draco-no-such-buffer-view", "buffer view 4000): the file has", [](nlohmann::json& j) {
+        j["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]["bufferView"] = 4000;
+    });
     const int engine_points = engine["accessors"][2]["count"].get<int>(); // mesh 0's POSITION
     draco_case("draco-count-lies",
                "POSITION decodes " + std::to_string(engine_points) + " elements but its accessor 2 says " +
@@ -152,7 +158,8 @@ inline std::vector<BrokenCompressedFile> broken_compressed_files(const std::stri
                [&](nlohmann::json& j) { j["accessors"][2]["count"] = engine_points + 1; });
     draco_case("draco-malformed", "mesh 0 primitive 0's KHR_draco_mesh_compression has no bufferView",
                [](nlohmann::json& j) {
-                   j["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"].erase("bufferView");
+                   j["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"].erase(
+                       "bufferView");
                });
 
     // meshopt: gltfpack -cc of the torus as .gltf + .bin; buffer view 0 holds the positions
@@ -167,7 +174,8 @@ inline std::vector<BrokenCompressedFile> broken_compressed_files(const std::stri
         for (std::size_t i = 0; i < j["bufferViews"].size(); ++i) {
             const auto& ext = j["bufferViews"][i]["extensions"]["EXT_meshopt_compression"];
             if (ext["mode"] == "TRIANGLES") indices = i;
-            if (ext["mode"] == "ATTRIBUTES" && ext["byteStride"] == 8 && !ext.contains("filter")) positions = i;
+            if (ext["mode"] == "ATTRIBUTES" && ext["byteStride"] == 8 && !ext.contains("filter"))
+                positions = i;
         }
         change(j, j["bufferViews"][positions], j["bufferViews"][indices]);
         const std::string path = (d / (name + ".gltf")).string();
@@ -177,7 +185,8 @@ inline std::vector<BrokenCompressedFile> broken_compressed_files(const std::stri
     using J = nlohmann::json;
     const std::string does_not_decode = "does not decode (meshopt_decode";
     meshopt_case("meshopt-count-lies", "but its buffer view has", [](J&, J& p, J&) {
-        p["extensions"]["EXT_meshopt_compression"]["count"] = p["extensions"]["EXT_meshopt_compression"]["count"].get<int>() + 1;
+        p["extensions"]["EXT_meshopt_compression"]["count"] =
+            p["extensions"]["EXT_meshopt_compression"]["count"].get<int>() + 1;
     });
     meshopt_case("meshopt-count-lies-consistently", does_not_decode, [](J&, J& p, J&) {
         J& e = p["extensions"]["EXT_meshopt_compression"];
@@ -190,9 +199,10 @@ inline std::vector<BrokenCompressedFile> broken_compressed_files(const std::stri
         p["byteStride"] = 12;
         p["byteLength"] = e["count"].get<int>() * 12;
     });
-    meshopt_case("meshopt-stride-not-allowed", "byteStride is 6; allowed for ATTRIBUTES: a multiple of 4 from 4 to 256",
-                 [](J&, J& p, J&) {
-                     p["extensions"]["EXT_meshopt_compression"]["byteStride"] = 6; // (tinygltf checks the view's)
+    meshopt_case("meshopt-stride-not-allowed",
+                 "byteStride is 6; allowed for ATTRIBUTES: a multiple of 4 from 4 to 256", [](J&, J& p, J&) {
+                     p["extensions"]["EXT_meshopt_compression"]["byteStride"] =
+                         6; // (tinygltf checks the view's)
                  });
     meshopt_case("meshopt-index-count-lies", does_not_decode, [](J&, J&, J& i) {
         J& e = i["extensions"]["EXT_meshopt_compression"];
@@ -203,22 +213,22 @@ inline std::vector<BrokenCompressedFile> broken_compressed_files(const std::stri
         J& e = p["extensions"]["EXT_meshopt_compression"];
         e["byteLength"] = e["byteLength"].get<int>() / 2;
     });
-    meshopt_case("meshopt-past-the-vertex-limit", "decodes 67108865 vertices; allowed: up to 67108864", [](J&, J& p, J&) {
-        J& e = p["extensions"]["EXT_meshopt_compression"];
-        e["count"] = 67108865;
-        p["byteLength"] = 67108865ull * 8;
-    });
-    meshopt_case("meshopt-claims-too-much", "a meshopt stream decodes to at most 64 times its size", [](J&, J& p, J&) {
-        J& e = p["extensions"]["EXT_meshopt_compression"];
-        e["count"] = 60000000;
-        p["byteLength"] = 480000000ull;
-    });
-    meshopt_case("meshopt-unknown-filter", "filter 'SPIRAL' is not known", [](J&, J& p, J&) {
-        p["extensions"]["EXT_meshopt_compression"]["filter"] = "SPIRAL";
-    });
-    meshopt_case("meshopt-khr-required", "KHR_meshopt_compression, which is not supported", [](J& j, J&, J&) {
-        j["extensionsRequired"].push_back("KHR_meshopt_compression");
-    });
+    meshopt_case("meshopt-past-the-vertex-limit", "decodes 67108865 vertices; allowed: up to 67108864",
+                 [](J&, J& p, J&) {
+                     J& e = p["extensions"]["EXT_meshopt_compression"];
+                     e["count"] = 67108865;
+                     p["byteLength"] = 67108865ull * 8;
+                 });
+    meshopt_case("meshopt-claims-too-much", "a meshopt stream decodes to at most 64 times its size",
+                 [](J&, J& p, J&) {
+                     J& e = p["extensions"]["EXT_meshopt_compression"];
+                     e["count"] = 60000000;
+                     p["byteLength"] = 480000000ull;
+                 });
+    meshopt_case("meshopt-unknown-filter", "filter 'SPIRAL' is not known",
+                 [](J&, J& p, J&) { p["extensions"]["EXT_meshopt_compression"]["filter"] = "SPIRAL"; });
+    meshopt_case("meshopt-khr-required", "KHR_meshopt_compression, which is not supported",
+                 [](J& j, J&, J&) { j["extensionsRequired"].push_back("KHR_meshopt_compression"); });
     return out;
 }
 

@@ -33,7 +33,8 @@ namespace {
 double farthest_nearest(const std::vector<glm::vec3>& from, const std::vector<glm::vec3>& to, double cell) {
     auto key = [&](glm::dvec3 p) {
         const glm::dvec3 c = glm::floor(p / cell);
-        return (std::uint64_t(std::int64_t(c.x) & 0x1fffff) << 42) | (std::uint64_t(std::int64_t(c.y) & 0x1fffff) << 21) |
+        return (std::uint64_t(std::int64_t(c.x) & 0x1fffff) << 42) |
+               (std::uint64_t(std::int64_t(c.y) & 0x1fffff) << 21) |
                std::uint64_t(std::int64_t(c.z) & 0x1fffff);
     };
     std::unordered_map<std::uint64_t, std::vector<glm::vec3>> grid;
@@ -46,7 +47,8 @@ double farthest_nearest(const std::vector<glm::vec3>& from, const std::vector<gl
                 for (int dz = -1; dz <= 1; ++dz) {
                     const auto it = grid.find(key(glm::dvec3(p) + glm::dvec3(dx, dy, dz) * cell));
                     if (it == grid.end()) continue;
-                    for (const glm::vec3& q : it->second) best = std::min(best, glm::length(glm::dvec3(p) - glm::dvec3(q)));
+                    for (const glm::vec3& q : it->second)
+                        best = std::min(best, glm::length(glm::dvec3(p) - glm::dvec3(q)));
                 }
         worst = std::max(worst, best);
     }
@@ -69,7 +71,8 @@ std::size_t proper_triangles(const Mesh& mesh, std::vector<glm::vec3>* corners) 
 // The largest position quantization step of the file's Draco streams (range / (2^bits − 1)).
 double draco_position_step(const fs::path& gltf) {
     const nlohmann::json j = nlohmann::json::parse(t::read_binary(gltf.string()));
-    const std::string bin = t::read_binary((gltf.parent_path() / j["buffers"][0]["uri"].get<std::string>()).string());
+    const std::string bin =
+        t::read_binary((gltf.parent_path() / j["buffers"][0]["uri"].get<std::string>()).string());
     double step = 0;
     for (const auto& mesh : j["meshes"])
         for (const auto& p : mesh["primitives"]) {
@@ -78,7 +81,8 @@ double draco_position_step(const fs::path& gltf) {
             draco::DecoderBuffer buffer;
             buffer.Init(bin.data() + view.value("byteOffset", 0), view["byteLength"].get<std::size_t>());
             draco::Decoder decoder;
-            decoder.SetSkipAttributeTransform(draco::GeometryAttribute::POSITION); // keeps the quantization data
+            decoder.SetSkipAttributeTransform(
+                draco::GeometryAttribute::POSITION); // keeps the quantization data
             auto decoded = decoder.DecodeMeshFromBuffer(&buffer);
             REQUIRE(decoded.ok());
             const draco::PointAttribute* position =
@@ -100,7 +104,8 @@ TEST_CASE("glTF compression: Draco 2CylinderEngine of assimp-testmodels matches 
         return;
     }
     const LoadResult draco = load_gltf_scene((root / "draco/2CylinderEngine.gltf").string());
-    const LoadResult plain = load_gltf_scene((root / "2CylinderEngine-glTF-Binary/2CylinderEngine.glb").string());
+    const LoadResult plain =
+        load_gltf_scene((root / "2CylinderEngine-glTF-Binary/2CylinderEngine.glb").string());
     REQUIRE_MESSAGE(draco.scene, draco.error);
     REQUIRE_MESSAGE(plain.scene, plain.error);
     CHECK(draco.warnings.empty());
@@ -119,8 +124,9 @@ TEST_CASE("glTF compression: Draco 2CylinderEngine of assimp-testmodels matches 
     const double tolerance = step * std::sqrt(3.0) / 2 + 1e-4; // + float rounding of the world transform
     const double draco_to_plain = farthest_nearest(draco.scene->mesh.positions, plain_corners, 1.0);
     const double plain_to_draco = farthest_nearest(plain_corners, draco.scene->mesh.positions, 1.0);
-    MESSAGE("2CylinderEngine Draco: " << draco.scene->mesh.triangle_count() << " triangles; largest position step "
-                                      << step << "; farthest vertex " << draco_to_plain << " / " << plain_to_draco);
+    MESSAGE("2CylinderEngine Draco: " << draco.scene->mesh.triangle_count()
+                                      << " triangles; largest position step " << step << "; farthest vertex "
+                                      << draco_to_plain << " / " << plain_to_draco);
     CHECK(step > 0);
     CHECK(step < 0.5); // the engine is 743 units long: at least 11 bits
     CHECK(draco_to_plain <= tolerance);
@@ -141,7 +147,8 @@ TEST_CASE("glTF compression: gltfpack -cc (meshopt, quantized) files match their
         REQUIRE(t::run_gltfpack(obj, dir.file(name)));
         // What the file declares: meshopt streams, and positions as 14-bit integers scaled by the node.
         std::string json = t::read_binary(dir.file(name));
-        if (json.starts_with("glTF")) json = json.substr(20, *reinterpret_cast<const std::uint32_t*>(json.data() + 12));
+        if (json.starts_with("glTF"))
+            json = json.substr(20, *reinterpret_cast<const std::uint32_t*>(json.data() + 12));
         const nlohmann::json j = nlohmann::json::parse(json);
         CHECK(j["extensionsRequired"].dump().find("EXT_meshopt_compression") != std::string::npos);
         CHECK(j["extensionsRequired"].dump().find("KHR_mesh_quantization") != std::string::npos);
@@ -157,7 +164,8 @@ TEST_CASE("glTF compression: gltfpack -cc (meshopt, quantized) files match their
         const double tolerance = step * std::sqrt(3.0) / 2 * 1.001;
         const double ab = farthest_nearest(a.positions, b.positions, 0.1);
         const double ba = farthest_nearest(b.positions, a.positions, 0.1);
-        MESSAGE(name << ": " << b.triangle_count() << " triangles; step " << step << "; farthest vertex " << ab << " / " << ba);
+        MESSAGE(name << ": " << b.triangle_count() << " triangles; step " << step << "; farthest vertex "
+                     << ab << " / " << ba);
         CHECK(ab <= tolerance);
         CHECK(ba <= tolerance);
         // Normals: 8-bit octahedral (the OCTAHEDRAL filter); each within a few degrees of the
@@ -168,7 +176,8 @@ TEST_CASE("glTF compression: gltfpack -cc (meshopt, quantized) files match their
             const glm::vec3 ring = glm::normalize(glm::vec3(p.x, 0, p.z)) * t::torus_major;
             worst_cos = std::min(worst_cos, double(glm::dot(b.normals[i], glm::normalize(p - ring))));
         }
-        MESSAGE(name << ": largest normal error " << std::acos(std::min(1.0, worst_cos)) * 180 / M_PI << " degrees");
+        MESSAGE(name << ": largest normal error " << std::acos(std::min(1.0, worst_cos)) * 180 / M_PI
+                     << " degrees");
         CHECK(worst_cos > std::cos(3.0 * M_PI / 180));
     }
 }

@@ -48,15 +48,15 @@ struct MeshoptView {
 struct DracoPrimitive {
     int mesh = 0;
     int primitive = 0;
-    std::uint64_t buffer_view = 0;                     // the Draco stream
-    std::map<std::string, std::uint64_t> attributes;   // glTF attribute name → Draco unique id
-    std::int64_t indices = -1;                         // the index accessor the file names (-1: none)
+    std::uint64_t buffer_view = 0;                   // the Draco stream
+    std::map<std::string, std::uint64_t> attributes; // glTF attribute name → Draco unique id
+    std::int64_t indices = -1;                       // the index accessor the file names (-1: none)
 };
 
 struct Prepared {
-    std::string json;          // what tinygltf should parse: the file's JSON, or the rewritten copy
-    bool changed = false;      // json differs from the file's
-    std::string problem;       // a malformed extension object: the file is refused with this line
+    std::string json;     // what tinygltf should parse: the file's JSON, or the rewritten copy
+    bool changed = false; // json differs from the file's
+    std::string problem;  // a malformed extension object: the file is refused with this line
     std::map<int, MeshoptView> meshopt_views; // by buffer view
     std::vector<DracoPrimitive> draco_primitives;
     std::map<int, std::uint64_t> fallback_buffers; // meshopt fallback buffers without data: their byteLength
@@ -69,7 +69,8 @@ Prepared prepare(const std::string& json);
 // Decodes every compressed buffer view and Draco primitive of `model` (parsed from prepared.json).
 // `missing_buffers`: buffers whose external file does not exist; what is compressed in them stays
 // undecoded, for the loader to skip with a warning. Returns "" or the one-line problem.
-std::string decode(tinygltf::Model& model, const Prepared& prepared, const std::map<int, std::string>& missing_buffers);
+std::string decode(tinygltf::Model& model, const Prepared& prepared,
+                   const std::map<int, std::string>& missing_buffers);
 
 // The .glb `bytes` (already checked) with its JSON chunk replaced by `json`.
 std::string rewrap_glb(const std::string& bytes, const std::string& json);
