@@ -12,6 +12,7 @@
 
 #include <draco/attributes/attribute_quantization_transform.h>
 #include <draco/compression/decode.h>
+#include <meshoptimizer.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -196,6 +197,90 @@ TEST_CASE("glTF compression: animation rotations (QUATERNION filter) decode; the
     REQUIRE_MESSAGE(packed.scene, packed.error);
     REQUIRE_MESSAGE(plain.scene, plain.error);
     CHECK(packed.scene->mesh.triangle_count() == plain.scene->mesh.triangle_count());
+}
+
+// gltfpack 0.18 writes no EXPONENTIAL filter, no INDICES mode and no 4-byte indices: a .glb
+// written here with libmeshoptimizer's encoder has all three (float positions through
+// meshopt_encodeFilterExp, 15-bit mantissas), and a fallback buffer without data.
+TEST_CASE("glTF compression: EXPONENTIAL-filtered positions and INDICES-mode 32-bit indices decode") {
+    std::vector<float> positions;
+    std::vector<unsigned int> indices;
+    const int n = 12;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) // magnitudes from 1e-3 to 1e3, so the exponents differ
+            positions.insert(
+                positions.end(),
+                {float(i - 5) * 100.0f, std::sin(float(i * j)) * 1e-3f + float(j) * 0.01f, float(j) * 37.5f});
+    for (int i = 0; i + 1 < n; ++i)
+        for (int j = 0; j + 1 < n; ++j) {
+            const unsigned int a = unsigned(i * n + j), b = a + 1, c = a + unsigned(n), d = c + 1;
+            indices.insert(indices.end(), {a, c, b, b, c, d});
+        }
+    const std::size_t count = positions.size() / 3;
+    std::vector<unsigned char> filtered(count * 12);
+    meshopt_encodeFilterExp(filtered.data(), count, 12, 15, positions.data());
+    std::string vertex_stream(meshopt_encodeVertexBufferBound(count, 12), '\0');
+    vertex_stream.resize(meshopt_encodeVertexBuffer(reinterpret_cast<unsigned char*>(vertex_stream.data()),
+                                                    vertex_stream.size(), filtered.data(), count, 12));
+    std::string index_stream(meshopt_encodeIndexSequenceBound(indices.size(), count), '\0');
+    index_stream.resize(meshopt_encodeIndexSequence(reinterpret_cast<unsigned char*>(index_stream.data()),
+                                                    index_stream.size(), indices.data(), indices.size()));
+    while (vertex_stream.size() % 4) vertex_stream += '\0';
+    std::string bin = vertex_stream + index_stream;
+    while (bin.size() % 4) bin += '\0';
+    using J = nlohmann::json;
+    auto meshopt = [](std::size_t offset, std::size_t length, std::size_t stride, std::size_t n_,
+                      const char* mode) {
+        J e = {{"buffer", 0},          {"byteOffset", offset}, {"byteLength", length},
+               {"byteStride", stride}, {"count", n_},          {"mode", mode}};
+        return e;
+    };
+    J vertex_ext = meshopt(0, vertex_stream.size(), 12, count, "ATTRIBUTES");
+    vertex_ext["filter"] = "EXPONENTIAL";
+    const J json = {
+        {"asset", {{"version", "2.0"}}},
+        {"extensionsUsed", {"EXT_meshopt_compression"}},
+        {"extensionsRequired", {"EXT_meshopt_compression"}},
+        {"scenes", {{{"nodes", {0}}}}},
+        {"nodes", {{{"mesh", 0}}}},
+        {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}}}}}}},
+        {"accessors",
+         {{{"bufferView", 0}, {"componentType", 5126}, {"count", count}, {"type", "VEC3"}},
+          {{"bufferView", 1}, {"componentType", 5125}, {"count", indices.size()}, {"type", "SCALAR"}}}},
+        {"bufferViews",
+         {{{"buffer", 1},
+           {"byteOffset", 0},
+           {"byteLength", count * 12},
+           {"byteStride", 12},
+           {"extensions", {{"EXT_meshopt_compression", vertex_ext}}}},
+          {{"buffer", 1},
+           {"byteOffset", count * 12},
+           {"byteLength", indices.size() * 4},
+           {"extensions",
+            {{"EXT_meshopt_compression",
+              meshopt(vertex_stream.size(), index_stream.size(), 4, indices.size(), "INDICES")}}}}}},
+        {"buffers",
+         {{{"byteLength", bin.size()}},
+          {{"byteLength", count * 12 + indices.size() * 4},
+           {"extensions", {{"EXT_meshopt_compression", {{"fallback", true}}}}}}}}};
+    TempDir dir;
+    const std::string path = dir.write("exp.glb", t::make_glb(json.dump(), bin));
+    const LoadResult r = load_gltf_scene(path);
+    REQUIRE_MESSAGE(r.scene, r.error);
+    const Mesh& mesh = r.scene->mesh;
+    REQUIRE(mesh.positions.size() == count);
+    CHECK(mesh.indices == std::vector<std::uint32_t>(indices.begin(), indices.end()));
+    // 15-bit mantissas under one exponent per vector (libmeshoptimizer 0.18): errors relative to
+    // the vector's largest component.
+    double worst = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+        const glm::dvec3 want(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
+        const double scale = std::max({std::abs(want.x), std::abs(want.y), std::abs(want.z)});
+        for (int c = 0; c < 3; ++c)
+            worst = std::max(worst, std::abs(double(mesh.positions[i][c]) - want[c]) / scale);
+    }
+    MESSAGE("EXPONENTIAL (15-bit mantissa): largest relative position error " << worst);
+    CHECK(worst < 1.0 / (1 << 13));
 }
 
 // Broken streams, each one line naming the stream and what is wrong (the same files go through
