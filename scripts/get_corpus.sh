@@ -31,7 +31,7 @@
 #                             (Debian drops assimp's test/models-nonbsd). 2CylinderEngine comes from
 #                             Khronos' glTF-Sample-Models, whose index lists it without a licence.
 #                             The package's other glTF2 files are importer tests (boxes, broken files,
-#                             draco, skins), not objects; glTF/CesiumMilkTruck is glTF 1.0.
+#                             skins, the Draco copy of the engine), not objects; glTF/CesiumMilkTruck is glTF 1.0.
 # The converter is scripts/corpus_convert.js (node's standard library only): PLY and the
 # {positions, cells} modules to OBJ, every index and coordinate checked, written atomically.
 set -euo pipefail

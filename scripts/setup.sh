@@ -11,6 +11,7 @@ packages=(
     libglm-dev glslang-dev glslang-tools spirv-tools doctest-dev nlohmann-json3-dev
     libglfw3-dev libepoxy-dev libgl1-mesa-dri libegl1-mesa-dev mesa-utils xvfb xauth
     libimgui-dev libstb-dev libtinyobjloader-dev libtinygltf-dev libembree-dev
+    libdraco-dev libmeshoptimizer-dev gltfpack
     assimp-testmodels
     libvulkan-dev libvulkan-volk-dev mesa-vulkan-drivers vulkan-validationlayers
     python3 python3-jsonschema python3-matplotlib

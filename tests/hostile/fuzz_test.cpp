@@ -12,6 +12,7 @@
 
 #include "../../generator/src/config_file.hpp"
 #include "app/options.hpp"
+#include "../runtime/gltf_compression_files.hpp"
 #include "../runtime/gltf_test_file.hpp"
 #include "scenes/gltf_loader.hpp"
 #include "scenes/mesh_builder.hpp"
@@ -451,6 +452,123 @@ TEST_CASE("fuzz: glTF files") {
         fs::remove(bin_path);
     }
     MESSAGE("gltf: " << children << " rejected files also run through the tool");
+}
+
+// Compressed glTF: mutations of two seeds nobody here wrote, each as .glb and as .gltf + .bin: a
+// Draco primitive of assimp-testmodels' 2CylinderEngine (2,750 triangles) and a torus packed by
+// Debian's gltfpack -cc (meshopt). Stream bytes changed in place (so the decoders see them), a
+// number of the extension objects, buffer views or accessors replaced by a hostile one, the
+// stream cut short, the JSON text or the file's bytes changed.
+TEST_CASE("fuzz: compressed glTF files") {
+    namespace t = penumbra::playground::testing;
+    if (!t::have_gltfpack() || !fs::is_regular_file(t::draco_engine)) {
+        MESSAGE("gltfpack or assimp-testmodels is not installed (scripts/setup.sh installs them): skipped");
+        return;
+    }
+    Tally tally{"compressed-gltf"};
+    Tally through{"compressed-gltf-through-tool"};
+    Random r(8);
+    struct Seed {
+        std::string name;
+        nlohmann::json json; // buffer 0 without uri
+        std::string bin;
+    };
+    std::vector<Seed> seeds;
+    {
+        auto [json, bin] = t::draco_seed("");
+        seeds.push_back({"draco", json, bin});
+        const fs::path obj = scratch().write("torus.obj", t::torus_obj(16, 8));
+        const fs::path glb = scratch().fresh("torus.glb");
+        REQUIRE(t::run_gltfpack(obj.string(), glb.string()));
+        const std::string bytes = t::read_binary(glb.string());
+        seeds.push_back({"meshopt", nlohmann::json::parse(t::glb_json(bytes)), t::glb_bin(bytes)});
+        for (const Seed& seed : seeds) { // both seeds load as they are
+            const fs::path file = scratch().write("seed.glb", t::make_glb(seed.json.dump(), seed.bin));
+            const penumbra::playground::LoadResult loaded = penumbra::playground::load_gltf_scene(file.string());
+            REQUIRE_MESSAGE(loaded.scene, loaded.error);
+            fs::remove(file);
+        }
+    }
+    const std::vector<nlohmann::json> hostile{0, 1, 2, 3, 4, 5, 6, 7, 8, 12, 16, 255, 256, 257, 65535, 65536,
+                                              67108864, 67108865, 4294967295ull, 4294967296ull, -1, 1e20, 2.5,
+                                              "x", nullptr, nlohmann::json::array(), nlohmann::json::object()};
+    // Every number under the compression extensions, buffer views, accessors and buffers.
+    auto numbers = [](const nlohmann::json& j) {
+        std::vector<nlohmann::json::json_pointer> out;
+        const nlohmann::json flat = j.flatten();
+        for (const auto& [key, value] : flat.items())
+            if (value.is_number() && (key.find("/extensions/") != std::string::npos || key.starts_with("/bufferViews/") ||
+                                      key.starts_with("/accessors/") || key.starts_with("/buffers/")))
+                out.emplace_back(key);
+        return out;
+    };
+    int children = 0, decoder_refusals = 0;
+    for (int i = 0; i < scaled(1200); ++i) {
+        const Seed& seed = seeds[std::size_t(r.below(int(seeds.size())))];
+        const bool binary = r.chance(0.5);
+        nlohmann::json json = seed.json;
+        std::string bin = seed.bin, text;
+        const int kind = r.below(5);
+        switch (kind) {
+        case 0: // stream bytes changed in place
+            for (int n = 1 + r.below(8); n > 0; --n) bin[std::size_t(r.below(int(bin.size())))] = char(r.below(256));
+            break;
+        case 1: { // a number replaced
+            const auto pointers = numbers(json);
+            const auto& at = pointers[std::size_t(r.below(int(pointers.size())))];
+            if (r.chance(0.3) && json[at].is_number_unsigned()) // near the truth: off by a little
+                json[at] = json[at].get<std::int64_t>() + (r.chance(0.5) ? 1 : -1) * (1 + r.below(16));
+            else
+                json[at] = r.pick(hostile);
+            break;
+        }
+        case 2: { // the stream cut short, the buffer's length saying so
+            bin.resize(std::size_t(r.below(int(bin.size()))) & ~std::size_t(3));
+            json["buffers"][0]["byteLength"] = bin.size();
+            break;
+        }
+        default: break; // 3: the JSON text, 4: the file's bytes (below)
+        }
+        const fs::path bin_path = scratch().write("fuzz-compressed.bin", bin);
+        if (!binary) json["buffers"][0]["uri"] = bin_path.filename().string();
+        text = json.dump();
+        if (kind == 3) text = r.mutate(text, "{}[]\":,0123456789.e-");
+        text = binary ? t::make_glb(text, bin) : text;
+        if (kind == 4) text = r.mutate(text, std::string("\0\x01\x02\x04\xff{}[]\":,0123456789", 23));
+        const fs::path file = scratch().write("fuzz-compressed", text);
+        fs::path path = file;
+        path += binary ? ".glb" : ".gltf";
+        fs::rename(file, path);
+        const penumbra::playground::LoadResult loaded = penumbra::playground::load_gltf_scene(path.string());
+        CAPTURE(seed.name);
+        CAPTURE(binary);
+        CAPTURE(kind);
+        CAPTURE(penumbra_gen::printable(json.dump(), 600));
+        if (loaded.scene) {
+            tally.add("accepted");
+            const auto& s = *loaded.scene;
+            CHECK(penumbra::playground::validate_mesh(s.mesh).empty());
+            for (const glm::vec3& p : s.mesh.positions) CHECK((std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)));
+        } else {
+            const bool decoder = loaded.error.find("does not decode") != std::string::npos;
+            decoder_refusals += decoder;
+            tally.add(decoder ? "rejected by a decoder" : "rejected");
+            CHECK(loaded.error.find('\n') == std::string::npos);
+            CHECK(loaded.error.find(path.string()) != std::string::npos);
+            if (i % 20 == 0) { // and through the tool
+                ++children;
+                const fs::path png = scratch().fresh("compressed.png");
+                const std::vector<std::string> args{"--headless", "--scene", path.string(), "--out", png.string()};
+                const ChildRun run = run_child(playground, args);
+                check_promise(through, run, args, {png});
+                CHECK(run.exit_code == 2);
+            }
+        }
+        fs::remove(path);
+        fs::remove(bin_path);
+    }
+    CHECK(decoder_refusals > 50); // the mutations reach the decoders, not only the JSON checks
+    MESSAGE("compressed gltf: " << children << " rejected files also run through the tool");
 }
 
 TEST_CASE("fuzz: window scripts") {

@@ -236,7 +236,10 @@ std::string usage() {
                                      "                        primitive of the default scene, node transforms applied; "
                                      "points, lines, sparse\n"
                                      "                        accessors and primitives whose .bin is missing are "
-                                     "skipped with a warning");
+                                     "skipped with a warning;\n"
+                                     "                        Draco (KHR_draco_mesh_compression) and meshopt "
+                                     "(EXT_meshopt_compression,\n"
+                                     "                        KHR_mesh_quantization) compressed geometry is decoded");
     out += line("--no-ground", "no floor under a mesh file (default: a square receiver twice the footprint,\n"
                                "                        just below the lowest point; the light and camera are "
                                "framed from the bounds\n"

@@ -5,6 +5,7 @@
 
 #include "scenes/gltf_loader.hpp"
 
+#include "scenes/gltf_compression.hpp"
 #include "scenes/mesh_builder.hpp"
 #include "scenes/scene_defaults.hpp"
 
@@ -33,6 +34,7 @@ constexpr double coordinate_limit = 1e9;
 // A node may be reached along several paths (instancing); this bounds what a small file can expand to.
 constexpr std::size_t vertex_budget = std::size_t(64) << 20;
 constexpr std::size_t node_visit_budget = std::size_t(1) << 20;
+static_assert(gltf_compression::decoded_vertex_limit == vertex_budget, "decoded data keeps to the same limit");
 
 // A failure inside the loader: the problem, without the file name.
 struct Problem {
@@ -431,8 +433,8 @@ struct Loader {
         if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
             mode != TINYGLTF_MODE_TRIANGLE_FAN)
             return skip(where, mode_name(mode) + ", not triangles");
-        if (p.extensions.count("KHR_draco_mesh_compression"))
-            return skip(where, "Draco-compressed (KHR_draco_mesh_compression is not supported)");
+        if (p.extensions.count("KHR_draco_mesh_compression")) // decoded unless its buffer's file is missing
+            return skip(where, "its Draco data (KHR_draco_mesh_compression) is in a buffer whose file does not exist");
         const auto position_at = p.attributes.find("POSITION");
         if (position_at == p.attributes.end()) return skip(where, "no POSITION attribute");
         const ViewResult positions = accessor_view(model, missing, position_at->second, where + "'s POSITION", TINYGLTF_TYPE_VEC3,
@@ -590,17 +592,24 @@ LoadResult load_gltf_scene(const std::string& path) {
     if (base_dir.empty()) base_dir = ".";
     tinygltf::TinyGLTF parser;
     FileAccess access;
-    access.missing_buffers = missing_buffer_files(binary ? bytes.substr(20, read_u32(bytes, 12)) : bytes, base_dir);
+    const std::string json = binary ? bytes.substr(20, read_u32(bytes, 12)) : bytes;
+    access.missing_buffers = missing_buffer_files(json, base_dir);
+    // Compressed geometry: what tinygltf would refuse is rewritten first, decoded after the parse.
+    const gltf_compression::Prepared compressed = gltf_compression::prepare(json);
+    if (!compressed.problem.empty()) return failure(compressed.problem);
+    const std::string prepared_bytes =
+        !compressed.changed ? std::string() : binary ? gltf_compression::rewrap_glb(bytes, compressed.json) : compressed.json;
+    const std::string& parsed = compressed.changed ? prepared_bytes : bytes;
     parser.SetFsCallbacks({&file_exists, &expand_nothing, &read_whole_file, &write_nothing, &access});
     parser.SetImageLoader(&skip_image, nullptr);
     tinygltf::Model model;
     std::string err, warn;
     bool ok = false;
     try {
-        ok = binary ? parser.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
-                                                  static_cast<unsigned int>(bytes.size()), base_dir)
-                    : parser.LoadASCIIFromString(&model, &err, &warn, bytes.data(),
-                                                 static_cast<unsigned int>(bytes.size()), base_dir);
+        ok = binary ? parser.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(parsed.data()),
+                                                  static_cast<unsigned int>(parsed.size()), base_dir)
+                    : parser.LoadASCIIFromString(&model, &err, &warn, parsed.data(),
+                                                 static_cast<unsigned int>(parsed.size()), base_dir);
     } catch (const std::exception& e) {
         return failure(std::string("parser failed: ") + first_line(e.what()));
     }
@@ -608,24 +617,23 @@ LoadResult load_gltf_scene(const std::string& path) {
         for (const std::string& missing : access.missing)
             if (err.find(std::filesystem::path(missing).filename().string()) != std::string::npos)
                 return failure("its buffer file '" + penumbra_gen::printable(missing, 200) + "' does not exist");
-        // tinygltf refuses accessors without a buffer view, which is how Draco-compressed primitives look.
-        if (bytes.find("\"KHR_draco_mesh_compression\"") != std::string::npos)
-            return failure("it uses Draco compression (KHR_draco_mesh_compression), which is not supported (" +
-                           (err.empty() ? std::string("parse error") : first_line(err)) + ")");
         return failure(err.empty() ? "parse error" : first_line(err));
     }
     if (!model.asset.version.starts_with("2"))
         return failure("glTF version '" + penumbra_gen::printable(model.asset.version, 20) +
                        "' is not supported; allowed: 2.0");
     for (const std::string& ext : model.extensionsRequired)
-        if (ext == "EXT_meshopt_compression" || ext == "KHR_meshopt_compression")
-            return failure("it requires " + penumbra_gen::printable(ext, 60) + ", which is not supported");
+        if (ext == "KHR_meshopt_compression")
+            return failure("it requires " + penumbra_gen::printable(ext, 60) +
+                           ", which is not supported; allowed: EXT_meshopt_compression, KHR_draco_mesh_compression");
 
     std::map<int, std::string> missing;
     for (const auto& [file, buffer] : access.missing_buffers)
         missing[buffer.buffer] = penumbra_gen::printable(file, 200);
     Loader loader{model, missing, {}, {}};
     try {
+        if (const std::string problem = gltf_compression::decode(model, compressed, missing); !problem.empty())
+            return failure(problem);
         if (model.defaultScene >= 0 && static_cast<std::size_t>(model.defaultScene) >= model.scenes.size())
             return failure("the default scene is " + std::to_string(model.defaultScene) + " but the file has " +
                            std::to_string(model.scenes.size()) + " scenes");

@@ -17,10 +17,12 @@ namespace penumbra::playground {
 // data is read: the .glb header and chunk lengths against the file size, every accessor and buffer
 // view against its buffer, component types and accessor types, index values against the vertex
 // count, finite positions within ±1e9, node cycles, the total size after instancing.
-// Primitives that are points or lines, use sparse accessors, are Draco-compressed, have no buffer
-// data or whose buffer's file is missing are skipped, each with a line in `warnings`; a file with
-// nothing left is an error. (tinygltf itself refuses a file whose Draco primitives have accessors
-// without buffer views: that is an error naming Draco.)
+// Compressed geometry is decoded first (scenes/gltf_compression.hpp): KHR_draco_mesh_compression
+// with libdraco, EXT_meshopt_compression (with KHR_mesh_quantization) with libmeshoptimizer; a
+// stream that does not decode, or whose counts, strides or attribute ids do not match the file,
+// is an error.
+// Primitives that are points or lines, use sparse accessors, have no buffer data or whose buffer's
+// file is missing are skipped, each with a line in `warnings`; a file with nothing left is an error.
 // Never throws on bad input; every failure is one line in `error` naming the file and the problem.
 LoadResult load_gltf_scene(const std::string& path);
 

@@ -3,6 +3,7 @@
 // the built executable.
 #ifdef PENUMBRA_PLAYGROUND_PATH
 
+#include "../gltf_compression_files.hpp"
 #include "../gltf_test_file.hpp"
 #include "../temp_dir.hpp"
 #include "app/image_io.hpp"
@@ -250,6 +251,71 @@ TEST_CASE("playground cli: a .glb written by the test stands on a floor; --no-gr
     // The triangles alone cast no shadow on anything the camera sees; on the floor their shadows are.
     CHECK(shadowed[0] == 0.0);
     CHECK(shadowed[1] > 0.002);
+}
+
+TEST_CASE("playground cli: a gltfpack -cc (meshopt, quantized) file renders like the OBJ it was made from") {
+    namespace t = penumbra::playground::testing;
+    if (!t::have_gltfpack()) {
+        MESSAGE("gltfpack is not installed (scripts/setup.sh installs it): skipped");
+        return;
+    }
+    TempDir dir;
+    dir.write("torus.obj", t::torus_obj());
+    REQUIRE(t::run_gltfpack(dir.file("torus.obj"), dir.file("torus.glb")));
+    std::vector<penumbra::playground::FloatImage> visibility;
+    std::vector<double> shadowed;
+    for (const std::string scene : {"torus.obj", "torus.glb"}) {
+        CAPTURE(scene);
+        const Run run = run_playground(dir, {"--headless", "--scene", scene, "--size", "48x48", "--slices", "4",
+                                             "--resolution", "64", "--out", scene + ".png", "--visibility",
+                                             scene + ".pfm", "--metrics", scene + ".json"});
+        REQUIRE_MESSAGE(run.exit_code == 0, run.err);
+        std::string error;
+        const auto image = penumbra::playground::read_pfm(dir.file(scene + ".pfm"), &error);
+        REQUIRE_MESSAGE(image, error);
+        visibility.push_back(*image);
+        shadowed.push_back(read_json(dir.file(scene + ".json"))["shadowed_fraction"].get<double>());
+    }
+    REQUIRE(visibility[0].pixels.size() == visibility[1].pixels.size());
+    double difference = 0;
+    for (std::size_t i = 0; i < visibility[0].pixels.size(); ++i)
+        difference += std::abs(visibility[0].pixels[i] - visibility[1].pixels[i]);
+    difference /= double(visibility[0].pixels.size());
+    MESSAGE("torus OBJ vs gltfpack -cc: shadowed " << shadowed[0] << " / " << shadowed[1]
+                                                  << ", mean visibility difference " << difference);
+    CHECK(shadowed[0] > 0.01); // the torus shadows its floor
+    CHECK(std::abs(shadowed[0] - shadowed[1]) < 0.005);
+    CHECK(difference < 0.01);
+}
+
+TEST_CASE("playground cli: assimp-testmodels' Draco 2CylinderEngine renders like the uncompressed .glb") {
+    const std::string root = "/usr/share/assimp/models/glTF2/";
+    if (!fs::is_regular_file(root + "draco/2CylinderEngine.gltf")) {
+        MESSAGE("assimp-testmodels is not installed (scripts/setup.sh installs it): skipped");
+        return;
+    }
+    TempDir dir;
+    std::vector<penumbra::playground::FloatImage> visibility;
+    for (const std::string scene : {"draco/2CylinderEngine.gltf", "2CylinderEngine-glTF-Binary/2CylinderEngine.glb"}) {
+        CAPTURE(scene);
+        const Run run = run_playground(dir, {"--headless", "--scene", root + scene, "--size", "48x48", "--slices", "4",
+                                             "--resolution", "64", "--out", "engine.png", "--visibility", "engine.pfm"});
+        REQUIRE_MESSAGE(run.exit_code == 0, run.err);
+        std::string error;
+        const auto image = penumbra::playground::read_pfm(dir.file("engine.pfm"), &error);
+        REQUIRE_MESSAGE(image, error);
+        visibility.push_back(*image);
+    }
+    REQUIRE(visibility[0].pixels.size() == visibility[1].pixels.size());
+    double difference = 0, shadow = 0;
+    for (std::size_t i = 0; i < visibility[0].pixels.size(); ++i) {
+        difference += std::abs(visibility[0].pixels[i] - visibility[1].pixels[i]);
+        shadow += 1.0 - visibility[1].pixels[i];
+    }
+    difference /= double(visibility[0].pixels.size());
+    MESSAGE("2CylinderEngine Draco vs .glb: mean visibility difference " << difference);
+    CHECK(shadow > 1.0); // something is shadowed
+    CHECK(difference < 0.01);
 }
 
 TEST_CASE("playground cli: --technique renders any technique; metrics.json has one schema, warm pass times") {
