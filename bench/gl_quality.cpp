@@ -7,6 +7,9 @@
 //
 //   penumbra-bench-quality [--scenes planes,boxes] [FILE ...] [--corpus [DIR]] [--no-ground] [--filters sat,nbuffer]
 //                          [--configs 16x512,4x128] [--size 256x256] [--samples 16] [--repeat 1]
+//                          [--light-scales 1,2,4,8,16,32]
+// After the rows, a summary: per variant, setting and light scale, the mean fair (oriented) penumbra
+// MAE and mean signed error (estimate − truth), the built-in scenes and the mesh files apart.
 #include "arguments.hpp"
 #include "corpus/manifest.hpp"
 
@@ -18,6 +21,7 @@
 #include <penumbra/config.hpp>
 #include <penumbra/validate.hpp>
 
+#include <algorithm>
 #include <charconv>
 #include <filesystem>
 #include <chrono>
@@ -70,6 +74,7 @@ std::string variant_name(const Variant& v) {
 // A scene to measure: a built-in name or a mesh file, and the name its rows carry.
 struct SceneInput {
     std::string name_or_path, name;
+    bool file = false; // a mesh file (or the corpus): summarised apart from the built-in scenes
 };
 
 struct Options {
@@ -78,6 +83,7 @@ struct Options {
     std::vector<penumbra::Filter> filters{penumbra::Filter::mipmap, penumbra::Filter::nbuffer, penumbra::Filter::sat};
     std::vector<SliceSetting> settings{{16, 512}, {4, 128}};
     std::vector<int> level_reductions{penumbra::Config{}.level_reduction}; // --level-reductions
+    std::vector<double> light_scales{1.0}; // --light-scales: multiples of each scene's rectangle
     int width = 256, height = 256, samples = 16, repeat = 3;
     bool ground = true; // --no-ground: no floor under the mesh files
 };
@@ -85,7 +91,7 @@ struct Options {
 constexpr const char* usage_text =
     "usage: penumbra-bench-quality [--scenes a,b,...] [FILE ...] [--corpus [DIR]] [--no-ground] [--filters f,g,...]\n"
     "                              [--configs SxR,...] [--size WxH] [--samples N] [--repeat N] [--variants v,w,...]\n"
-    "                              [--level-reductions N,M,...]\n"
+    "                              [--level-reductions N,M,...] [--light-scales X,Y,...]\n"
     "  --scenes    built-in scenes (default all: planes, boxes, tree, butterfly, terrain, crowd, box; '' for none)\n"
     "  FILE        mesh files (what penumbra-playground --scene loads), measured after the built-in scenes\n"
     "  --corpus    every mesh of the corpus in DIR (default ~/.cache/penumbra/corpus; scripts/get_corpus.sh)\n"
@@ -101,7 +107,10 @@ constexpr const char* usage_text =
     "              probabilistic,chained+clip,chained+clip+offset3+nofootprint+ramp1,chained+clip+adaptive\n"
     "              (default: Config{}'s)\n"
     "  --level-reductions  level_reduction values to measure, each a row (-1: every level at full\n"
-    "              resolution; default: Config{}'s); rows of another value than the default say 'rN'\n";
+    "              resolution; default: Config{}'s); rows of another value than the default say 'rN'\n"
+    "  --light-scales  multiples of each scene's default rectangle (both sides), each a row 'xK'\n"
+    "              (default 1; e.g. 1,2,4,8,16,32); a summary per scale follows the rows: mean fair\n"
+    "              penumbra MAE and mean signed error (estimate - truth), built-in scenes and files apart\n";
 
 bool parse_pair(std::string_view text, int& a, int& b) {
     const std::size_t x = text.find('x');
@@ -116,7 +125,7 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
     for (int i = 1; i < argc; ++i) {
         const std::string_view flag = argv[i];
         if (!flag.starts_with("--")) { // a mesh file, named after its stem
-            files.push_back({std::string(flag), std::filesystem::path(flag).stem().string()});
+            files.push_back({std::string(flag), std::filesystem::path(flag).stem().string(), true});
             continue;
         }
         if (flag == "--no-ground") {
@@ -127,7 +136,7 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
             const std::optional<std::vector<penumbra::bench::CorpusMesh>> corpus =
                 penumbra::bench::read_corpus(penumbra::bench::corpus_dir_argument(argc, argv, i), &error);
             if (!corpus) return std::nullopt;
-            for (const penumbra::bench::CorpusMesh& m : *corpus) files.push_back({m.path, m.name});
+            for (const penumbra::bench::CorpusMesh& m : *corpus) files.push_back({m.path, m.name, true});
             continue;
         }
         if (i + 1 >= argc) {
@@ -175,7 +184,7 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                     parts.empty() ? std::nullopt : penumbra::parse_enum<penumbra::Fusion>(parts.front());
                 if (!fusion) {
                     error = "--variants: '" + std::string(name) + "' does not start with a fusion rule; allowed: "
-                            "probabilistic, additive, maximum, average, chained";
+                            "probabilistic, additive, maximum, average, chained, correlated";
                     return std::nullopt;
                 }
                 v.fusion = *fusion;
@@ -208,6 +217,20 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                 }
                 o.level_reductions.push_back(negative ? -1 : n);
             }
+        } else if (flag == "--light-scales") {
+            o.light_scales.clear();
+            for (std::string_view item : split(value)) {
+                double scale = 0;
+                if (!parse_number(item, scale) || !(scale > 0.0) || scale > 64.0) {
+                    error = "--light-scales: '" + std::string(item) + "' is not allowed; allowed: numbers above 0, at most 64";
+                    return std::nullopt;
+                }
+                o.light_scales.push_back(scale);
+            }
+            if (o.light_scales.empty()) {
+                error = "--light-scales: empty; allowed: numbers above 0, at most 64";
+                return std::nullopt;
+            }
         } else if (flag == "--size") {
             if (!parse_pair(value, o.width, o.height) || o.width < 1 || o.height < 1 || o.width > 4096 || o.height > 4096) {
                 error = "--size: expected WxH, 1 to 4096 each";
@@ -225,7 +248,7 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
             }
         } else {
             error = "unknown flag '" + std::string(flag) + "'; allowed: --scenes, --corpus, --no-ground, --filters, --configs, --size, "
-                    "--samples, --repeat, --variants, --level-reductions, --help, FILE";
+                    "--samples, --repeat, --variants, --level-reductions, --light-scales, --help, FILE";
             return std::nullopt;
         }
     }
@@ -287,6 +310,14 @@ int main(int argc, char** argv) {
         scenes.push_back(std::move(*loaded.scene));
         scenes.back().name = input.name;
     }
+    // The summary: per row label without the scene (and light scale), mean fair penumbra MAE and signed error.
+    struct Summary {
+        double mae = 0, bias = 0, worst = 0;
+        int count = 0;
+        std::string worst_scene;
+    };
+    std::map<std::pair<std::string, double>, Summary> summaries[2]; // [0] built-in scenes, [1] mesh files
+    std::vector<std::string> summary_order;
     std::optional<HeadlessContext> context = HeadlessContext::create(&error);
     if (!context) {
         std::cerr << "error: no OpenGL 4.5 context: " << error << "\n";
@@ -303,9 +334,18 @@ int main(int argc, char** argv) {
                 "| slicing ms | prefilter ms | shading ms |\n");
     std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     std::vector<std::string> pass_lines;
-    for (const Scene& scene : scenes) {
-        const std::string& scene_name = scene.name;
-        std::optional<HeadlessResult> reference_gbuffer;
+    for (std::size_t scene_index = 0; scene_index < scenes.size(); ++scene_index)
+    for (double light_scale : options->light_scales) {
+        Scene& scene = scenes[scene_index];
+        const bool file = options->scenes[scene_index].file;
+        const penumbra::RectLight default_light = scene.light;
+        scene.light.width *= light_scale;
+        scene.light.height *= light_scale;
+        const bool scaled = options->light_scales.size() > 1 || light_scale != 1.0;
+        char scale_words[32];
+        std::snprintf(scale_words, sizeof scale_words, " x%g", light_scale);
+        const std::string scene_name = scene.name + (scaled ? scale_words : "");
+        std::optional<HeadlessResult> reference_gbuffer; // the truth depends on the light: one per scale
         References truth;
         double truth_ms = 0;
         for (const SliceSetting& setting : options->settings)
@@ -321,9 +361,10 @@ int main(int argc, char** argv) {
                 config.fade_ramp = variant.fade_ramp;
                 const std::string reduced =
                     reduction == penumbra::Config{}.level_reduction ? "" : " r" + std::to_string(reduction);
-                const std::string label = scene_name + " | " + std::string(penumbra::to_string(filter)) + " " +
-                                          variant_name(variant) + reduced + " | " + std::to_string(setting.slices) + "/" +
-                                          std::to_string(setting.resolution);
+                const std::string setting_label = std::string(penumbra::to_string(filter)) + " " + variant_name(variant) +
+                                                  reduced + " | " + std::to_string(setting.slices) + "/" +
+                                                  std::to_string(setting.resolution);
+                const std::string label = scene_name + " | " + setting_label;
                 if (const auto problems = penumbra::validate(config); !problems.empty()) {
                     std::printf("| %s | invalid: %s |\n", label.c_str(), problems.front().message.c_str());
                     continue;
@@ -347,6 +388,16 @@ int main(int argc, char** argv) {
                 }
                 const QualityMetrics q = compare_quality(result, truth);
                 const Metrics& m = q.visibility;
+                if (std::find(summary_order.begin(), summary_order.end(), setting_label) == summary_order.end())
+                    summary_order.push_back(setting_label);
+                Summary& sum = summaries[file ? 1 : 0][{setting_label, light_scale}];
+                sum.mae += q.oriented.penumbra.mae;
+                sum.bias += q.oriented.penumbra.bias;
+                ++sum.count;
+                if (q.oriented.penumbra.mae >= sum.worst) {
+                    sum.worst = q.oriented.penumbra.mae;
+                    sum.worst_scene = scene.name;
+                }
                 const std::vector<PassTotal> totals = pass_totals(fastest);
                 double slicing = 0, prefilter = 0, shading = 0;
                 std::string line = label + ":";
@@ -370,6 +421,31 @@ int main(int argc, char** argv) {
                 std::fflush(stdout);
             }
         std::printf("|   (%s ground truth: %.0f ms CPU, Embree) |\n", scene_name.c_str(), truth_ms);
+        scene.light = default_light;
+    }
+    std::printf("\nfair (oriented) penumbra error by light scale: mean MAE / mean signed error (estimate - truth) "
+                "/ worst scene's MAE, over the scenes measured\n");
+    for (int group = 0; group < 2; ++group) {
+        if (summaries[group].empty()) continue;
+        std::printf("\n%s\n\n| filter | S/R |", group == 0 ? "built-in scenes" : "mesh files");
+        for (double scale : options->light_scales) std::printf(" x%g |", scale);
+        std::printf("\n|---|---|");
+        for (std::size_t k = 0; k < options->light_scales.size(); ++k) std::printf("---|");
+        std::printf("\n");
+        for (const std::string& label : summary_order) {
+            std::printf("| %s |", label.c_str());
+            for (double scale : options->light_scales) {
+                const auto it = summaries[group].find({label, scale});
+                if (it == summaries[group].end() || it->second.count == 0) {
+                    std::printf(" - |");
+                    continue;
+                }
+                const Summary& sum = it->second;
+                std::printf(" %.4f / %+.4f / %.3f %s (%d) |", sum.mae / sum.count, sum.bias / sum.count, sum.worst,
+                            sum.worst_scene.c_str(), sum.count);
+            }
+            std::printf("\n");
+        }
     }
     std::printf("\nper-pass GPU ms (xN: N instances of the pass, summed):\n");
     for (const std::string& line : pass_lines) std::printf("  %s\n", line.c_str());
