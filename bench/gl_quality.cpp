@@ -55,6 +55,7 @@ struct Variant {
     double tangent_clip_offset = penumbra::Config{}.tangent_clip_offset;
     double fade_ramp = penumbra::Config{}.fade_ramp;
     bool clip_footprint = penumbra::Config{}.clip_footprint;
+    bool leak_fix = penumbra::Config{}.leak_fix;
 };
 
 std::string variant_name(const Variant& v) {
@@ -67,7 +68,7 @@ std::string variant_name(const Variant& v) {
     return std::string(penumbra::to_string(v.fusion)) + (v.tangent_clip ? "+clip" : "") +
            (v.tangent_clip && v.tangent_clip_offset != d.tangent_clip_offset ? "+offset" + number(v.tangent_clip_offset) : "") +
            (v.tangent_clip && v.clip_footprint != d.clip_footprint ? (v.clip_footprint ? "+footprint" : "+nofootprint") : "") +
-           (v.fade_ramp != d.fade_ramp ? "+ramp" + number(v.fade_ramp) : "") +
+           (v.fade_ramp != d.fade_ramp ? "+ramp" + number(v.fade_ramp) : "") + (v.leak_fix ? "" : "+noleak") +
            (v.placement == penumbra::SlicePlacement::adaptive ? "+adaptive" : "");
 }
 
@@ -103,7 +104,7 @@ constexpr const char* usage_text =
     "  --repeat    render each configuration N times and keep each pass's fastest time (default 3)\n"
     "  --variants  model variants: a fusion rule, optionally +clip for the tangent clip, +offsetT for its offset\n"
     "              (slicing texels), +nofootprint / +footprint for its footprint move, +rampF for the fade's ramp\n"
-    "              (fraction of a slice) and +adaptive for adaptive slice placement, e.g.\n"
+    "              (fraction of a slice), +noleak for the leak fix off and +adaptive for adaptive slice placement, e.g.\n"
     "              probabilistic,chained+clip,chained+clip+offset3+nofootprint+ramp1,chained+clip+adaptive\n"
     "              (default: Config{}'s)\n"
     "  --level-reductions  level_reduction values to measure, each a row (-1: every level at full\n"
@@ -194,11 +195,12 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                     if (part == "clip") v.tangent_clip = true;
                     else if (part == "adaptive") v.placement = penumbra::SlicePlacement::adaptive;
                     else if (part == "footprint" || part == "nofootprint") v.clip_footprint = part == "footprint";
+                    else if (part == "noleak") v.leak_fix = false;
                     else if (part.starts_with("offset") && parse_number(part.substr(6), number)) v.tangent_clip_offset = number;
                     else if (part.starts_with("ramp") && parse_number(part.substr(4), number)) v.fade_ramp = number;
                     else {
                         error = "--variants: '" + std::string(part) + "' in '" + std::string(name) +
-                                "' is not allowed; allowed after the fusion rule: +clip, +adaptive, +[no]footprint, +offsetT "
+                                "' is not allowed; allowed after the fusion rule: +clip, +adaptive, +[no]footprint, +noleak, +offsetT "
                                 "(tangent clip offset, texels), +rampF (fade ramp, fraction of a slice)";
                         return std::nullopt;
                     }
@@ -359,6 +361,7 @@ int main(int argc, char** argv) {
                 config.tangent_clip_offset = variant.tangent_clip_offset;
                 config.clip_footprint = variant.clip_footprint;
                 config.fade_ramp = variant.fade_ramp;
+                config.leak_fix = variant.leak_fix;
                 const std::string reduced =
                     reduction == penumbra::Config{}.level_reduction ? "" : " r" + std::to_string(reduction);
                 const std::string setting_label = std::string(penumbra::to_string(filter)) + " " + variant_name(variant) +

@@ -379,7 +379,7 @@ double correlated_step(double q, glm::dvec3 kernel, double previous, glm::dvec3 
     const glm::dvec2 parallax = glm::dvec2(kernel) - glm::dvec2(previous_kernel);
     const double grow = kernel.z - previous_kernel.z;
     const glm::dvec2 shift = glm::sqrt(parallax * parallax + glm::dvec2(grow * grow / 12.0));
-    const double feature = std::sqrt(std::min(q * kernel.z * kernel.z, previous * previous_kernel.z * previous_kernel.z));
+    const double feature = std::sqrt(std::max(q * kernel.z * kernel.z, previous * previous_kernel.z * previous_kernel.z));
     const glm::dvec2 overlap = glm::clamp(1.0 - shift / std::max(feature, 1e-12), 0.0, 1.0);
     const double rho = overlap.x * overlap.y;
     const double both = q * previous + rho * (std::min(q, previous) - q * previous);

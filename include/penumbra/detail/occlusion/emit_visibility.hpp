@@ -347,8 +347,8 @@ constexpr void write_correlated_step_function(LineWriter& out) {
     out.line("vec2 parallax = kernel.xy - prevKernel.xy;");
     out.line("float grow = kernel.z - prevKernel.z;");
     out.line("vec2 shift = sqrt(parallax * parallax + vec2(grow * grow / 12.0));");
-    out.comment("the size of the occluder both kernels see (uv): the smaller covered area");
-    out.line("float feature = sqrt(min(q * kernel.z * kernel.z, prev * prevKernel.z * prevKernel.z));");
+    out.comment("the size of the occluder both kernels see (uv): at least the larger area either kernel sees covered");
+    out.line("float feature = sqrt(max(q * kernel.z * kernel.z, prev * prevKernel.z * prevKernel.z));");
     out.line("vec2 overlap = clamp(1.0 - shift / max(feature, 1e-12), 0.0, 1.0);");
     out.comment("blocked by both: nested (the smaller) when the occluder overlaps itself, independent (product) when not");
     out.line("float both = mix(q * prev, min(q, prev), overlap.x * overlap.y);");
