@@ -9,7 +9,9 @@
 //                          [--configs 16x512,4x128] [--size 256x256] [--samples 16] [--repeat 1]
 //                          [--light-scales 1,2,4,8,16,32]
 // After the rows, a summary: per variant, setting and light scale, the mean fair (oriented) penumbra
-// MAE and mean signed error (estimate − truth), the built-in scenes and the mesh files apart.
+// MAE and mean signed error (estimate − truth), and near the terminator (pixels within 3 of where a
+// surface turns away from the light's centre) the p95 of |error| and the total variation of the
+// error (sawtooth and seams), the built-in scenes and the mesh files apart.
 #include "arguments.hpp"
 #include "corpus/manifest.hpp"
 
@@ -111,7 +113,9 @@ constexpr const char* usage_text =
     "              resolution; default: Config{}'s); rows of another value than the default say 'rN'\n"
     "  --light-scales  multiples of each scene's default rectangle (both sides), each a row 'xK'\n"
     "              (default 1; e.g. 1,2,4,8,16,32); a summary per scale follows the rows: mean fair\n"
-    "              penumbra MAE and mean signed error (estimate - truth), built-in scenes and files apart\n";
+    "              penumbra MAE and mean signed error (estimate - truth), built-in scenes and files apart,\n"
+    "              then near the terminator (within 3 pixels of where a surface turns away from the light's\n"
+    "              centre): p95 of |error| and the error's total variation (sawtooth, seams)\n";
 
 bool parse_pair(std::string_view text, int& a, int& b) {
     const std::size_t x = text.find('x');
@@ -288,6 +292,70 @@ std::vector<PassTotal> pass_totals(const std::vector<penumbra::gl::PassTiming>& 
     return totals;
 }
 
+// The error near the terminator, what the eye sees of a sawtooth or a seam there: the geometry pixels
+// with a fair (oriented) truth within `radius` pixels of a pair of neighbouring geometry pixels on
+// which the side the light's centre lies on (the sign of n·(C − X)) changes: a surface turning away
+// from the light, whatever the light's size. p95 of |estimate − truth| over them, and the total variation of the signed
+// error: the mean |e_i − e_j| over horizontally and vertically adjacent pairs of them (a smooth error
+// has little, a texel-aliased one much).
+struct BoundaryStats {
+    double p95 = 0, total_variation = 0;
+    std::size_t count = 0;
+};
+
+BoundaryStats terminator_error(const HeadlessResult& result, const std::vector<float>& oriented, glm::dvec3 light_centre,
+                               int radius = 3) {
+    const int w = result.width, h = result.height;
+    auto index = [w](int x, int y) { return static_cast<std::size_t>(y) * w + x; };
+    auto facing = [&](std::size_t i) {
+        return glm::dot(glm::dvec3(result.normals[i]), light_centre - glm::dvec3(result.positions[i])) > 0.0;
+    };
+    std::vector<unsigned char> turn(result.geometry.size(), 0); // the side changes towards the next pixel
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = index(x, y);
+            if (!result.geometry[i]) continue;
+            if (x + 1 < w && result.geometry[index(x + 1, y)] && facing(i) != facing(index(x + 1, y))) turn[i] = 1;
+            if (y + 1 < h && result.geometry[index(x, y + 1)] && facing(i) != facing(index(x, y + 1))) turn[i] = 1;
+        }
+    auto dark = [&](int x, int y) { return turn[index(x, y)] != 0; };
+    std::vector<unsigned char> near(result.geometry.size(), 0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = index(x, y);
+            if (!result.geometry[i] || std::isnan(oriented[i])) continue;
+            for (int dy = -radius; dy <= radius && !near[i]; ++dy)
+                for (int dx = -radius; dx <= radius; ++dx) {
+                    const int u = x + dx, v = y + dy;
+                    if (u >= 0 && v >= 0 && u < w && v < h && dark(u, v)) {
+                        near[i] = 1;
+                        break;
+                    }
+                }
+        }
+    BoundaryStats b;
+    std::vector<double> errors;
+    double variation = 0;
+    std::size_t pairs = 0;
+    auto error = [&](std::size_t i) { return static_cast<double>(result.visibility[i]) - oriented[i]; };
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = index(x, y);
+            if (!near[i]) continue;
+            errors.push_back(std::abs(error(i)));
+            if (x + 1 < w && near[index(x + 1, y)]) variation += std::abs(error(i) - error(index(x + 1, y))), ++pairs;
+            if (y + 1 < h && near[index(x, y + 1)]) variation += std::abs(error(i) - error(index(x, y + 1))), ++pairs;
+        }
+    b.count = errors.size();
+    if (!errors.empty()) {
+        const std::size_t k = std::min(errors.size() - 1, static_cast<std::size_t>(std::ceil(0.95 * errors.size())) - 1);
+        std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(k), errors.end());
+        b.p95 = errors[k];
+    }
+    b.total_variation = pairs ? variation / pairs : 0.0;
+    return b;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -314,7 +382,7 @@ int main(int argc, char** argv) {
     }
     // The summary: per row label without the scene (and light scale), mean fair penumbra MAE and signed error.
     struct Summary {
-        double mae = 0, bias = 0, worst = 0;
+        double mae = 0, bias = 0, worst = 0, terminator_p95 = 0, terminator_variation = 0;
         int count = 0;
         std::string worst_scene;
     };
@@ -333,8 +401,8 @@ int main(int argc, char** argv) {
                 options->repeat);
     std::printf("| scene | filter | S/R | MAE | RMSE | p95 | penumbra MAE | penumbra RMSE | penumbra p95 | penumbra px "
                 "| oriented penumbra MAE | oriented p95 | irradiance penumbra MAE | irradiance p95 "
-                "| slicing ms | prefilter ms | shading ms |\n");
-    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+                "| slicing ms | prefilter ms | shading ms | terminator p95 | terminator TV | terminator px |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     std::vector<std::string> pass_lines;
     for (std::size_t scene_index = 0; scene_index < scenes.size(); ++scene_index)
     for (double light_scale : options->light_scales) {
@@ -396,6 +464,9 @@ int main(int argc, char** argv) {
                 Summary& sum = summaries[file ? 1 : 0][{setting_label, light_scale}];
                 sum.mae += q.oriented.penumbra.mae;
                 sum.bias += q.oriented.penumbra.bias;
+                const BoundaryStats terminator = terminator_error(result, truth.oriented, scene.light.center);
+                sum.terminator_p95 += terminator.p95;
+                sum.terminator_variation += terminator.total_variation;
                 ++sum.count;
                 if (q.oriented.penumbra.mae >= sum.worst) {
                     sum.worst = q.oriented.penumbra.mae;
@@ -417,10 +488,11 @@ int main(int argc, char** argv) {
                 }
                 pass_lines.push_back(line);
                 std::printf("| %s | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %zu | %.4f | %.4f | %.4f | %.4f | %.1f | %.1f "
-                            "| %.1f |\n",
+                            "| %.1f | %.4f | %.4f | %zu |\n",
                             label.c_str(), m.all.mae, m.all.rmse, m.all.p95, m.penumbra.mae, m.penumbra.rmse,
                             m.penumbra.p95, m.penumbra.count, q.oriented.penumbra.mae, q.oriented.penumbra.p95,
-                            q.irradiance.penumbra.mae, q.irradiance.penumbra.p95, slicing, prefilter, shading);
+                            q.irradiance.penumbra.mae, q.irradiance.penumbra.p95, slicing, prefilter, shading,
+                            terminator.p95, terminator.total_variation, terminator.count);
                 std::fflush(stdout);
             }
         std::printf("|   (%s ground truth: %.0f ms CPU, Embree) |\n", scene_name.c_str(), truth_ms);
@@ -446,6 +518,25 @@ int main(int argc, char** argv) {
                 const Summary& sum = it->second;
                 std::printf(" %.4f / %+.4f / %.3f %s (%d) |", sum.mae / sum.count, sum.bias / sum.count, sum.worst,
                             sum.worst_scene.c_str(), sum.count);
+            }
+            std::printf("\n");
+        }
+        std::printf("\nnear the terminator (%s): mean p95 of |error| / mean total variation of the error\n\n| filter | S/R |",
+                    group == 0 ? "built-in scenes" : "mesh files");
+        for (double scale : options->light_scales) std::printf(" x%g |", scale);
+        std::printf("\n|---|---|");
+        for (std::size_t k = 0; k < options->light_scales.size(); ++k) std::printf("---|");
+        std::printf("\n");
+        for (const std::string& label : summary_order) {
+            std::printf("| %s |", label.c_str());
+            for (double scale : options->light_scales) {
+                const auto it = summaries[group].find({label, scale});
+                if (it == summaries[group].end() || it->second.count == 0) {
+                    std::printf(" - |");
+                    continue;
+                }
+                const Summary& sum = it->second;
+                std::printf(" %.4f / %.4f |", sum.terminator_p95 / sum.count, sum.terminator_variation / sum.count);
             }
             std::printf("\n");
         }
