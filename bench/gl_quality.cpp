@@ -7,6 +7,11 @@
 //
 //   penumbra-bench-quality [--scenes planes,boxes] [FILE ...] [--corpus [DIR]] [--no-ground] [--filters sat,nbuffer]
 //                          [--configs 16x512,4x128] [--size 256x256] [--samples 16] [--repeat 1]
+//                          [--light-scales 1,2,4,8,16,32]
+// After the rows, a summary: per variant, setting and light scale, the mean fair (oriented) penumbra
+// MAE and mean signed error (estimate − truth), and near the terminator (pixels within 3 of where a
+// surface turns away from the light's centre) the p95 of |error| and the total variation of the
+// error (sawtooth and seams), the built-in scenes and the mesh files apart.
 #include "arguments.hpp"
 #include "corpus/manifest.hpp"
 
@@ -18,6 +23,7 @@
 #include <penumbra/config.hpp>
 #include <penumbra/validate.hpp>
 
+#include <algorithm>
 #include <charconv>
 #include <filesystem>
 #include <chrono>
@@ -51,6 +57,7 @@ struct Variant {
     double tangent_clip_offset = penumbra::Config{}.tangent_clip_offset;
     double fade_ramp = penumbra::Config{}.fade_ramp;
     bool clip_footprint = penumbra::Config{}.clip_footprint;
+    bool leak_fix = penumbra::Config{}.leak_fix;
 };
 
 std::string variant_name(const Variant& v) {
@@ -63,13 +70,14 @@ std::string variant_name(const Variant& v) {
     return std::string(penumbra::to_string(v.fusion)) + (v.tangent_clip ? "+clip" : "") +
            (v.tangent_clip && v.tangent_clip_offset != d.tangent_clip_offset ? "+offset" + number(v.tangent_clip_offset) : "") +
            (v.tangent_clip && v.clip_footprint != d.clip_footprint ? (v.clip_footprint ? "+footprint" : "+nofootprint") : "") +
-           (v.fade_ramp != d.fade_ramp ? "+ramp" + number(v.fade_ramp) : "") +
+           (v.fade_ramp != d.fade_ramp ? "+ramp" + number(v.fade_ramp) : "") + (v.leak_fix ? "" : "+noleak") +
            (v.placement == penumbra::SlicePlacement::adaptive ? "+adaptive" : "");
 }
 
 // A scene to measure: a built-in name or a mesh file, and the name its rows carry.
 struct SceneInput {
     std::string name_or_path, name;
+    bool file = false; // a mesh file (or the corpus): summarised apart from the built-in scenes
 };
 
 struct Options {
@@ -78,6 +86,7 @@ struct Options {
     std::vector<penumbra::Filter> filters{penumbra::Filter::mipmap, penumbra::Filter::nbuffer, penumbra::Filter::sat};
     std::vector<SliceSetting> settings{{16, 512}, {4, 128}};
     std::vector<int> level_reductions{penumbra::Config{}.level_reduction}; // --level-reductions
+    std::vector<double> light_scales{1.0}; // --light-scales: multiples of each scene's rectangle
     int width = 256, height = 256, samples = 16, repeat = 3;
     bool ground = true; // --no-ground: no floor under the mesh files
 };
@@ -85,7 +94,7 @@ struct Options {
 constexpr const char* usage_text =
     "usage: penumbra-bench-quality [--scenes a,b,...] [FILE ...] [--corpus [DIR]] [--no-ground] [--filters f,g,...]\n"
     "                              [--configs SxR,...] [--size WxH] [--samples N] [--repeat N] [--variants v,w,...]\n"
-    "                              [--level-reductions N,M,...]\n"
+    "                              [--level-reductions N,M,...] [--light-scales X,Y,...]\n"
     "  --scenes    built-in scenes (default all: planes, boxes, tree, butterfly, terrain, crowd, box; '' for none)\n"
     "  FILE        mesh files (what penumbra-playground --scene loads), measured after the built-in scenes\n"
     "  --corpus    every mesh of the corpus in DIR (default ~/.cache/penumbra/corpus; scripts/get_corpus.sh)\n"
@@ -97,11 +106,16 @@ constexpr const char* usage_text =
     "  --repeat    render each configuration N times and keep each pass's fastest time (default 3)\n"
     "  --variants  model variants: a fusion rule, optionally +clip for the tangent clip, +offsetT for its offset\n"
     "              (slicing texels), +nofootprint / +footprint for its footprint move, +rampF for the fade's ramp\n"
-    "              (fraction of a slice) and +adaptive for adaptive slice placement, e.g.\n"
+    "              (fraction of a slice), +noleak for the leak fix off and +adaptive for adaptive slice placement, e.g.\n"
     "              probabilistic,chained+clip,chained+clip+offset3+nofootprint+ramp1,chained+clip+adaptive\n"
     "              (default: Config{}'s)\n"
     "  --level-reductions  level_reduction values to measure, each a row (-1: every level at full\n"
-    "              resolution; default: Config{}'s); rows of another value than the default say 'rN'\n";
+    "              resolution; default: Config{}'s); rows of another value than the default say 'rN'\n"
+    "  --light-scales  multiples of each scene's default rectangle (both sides), each a row 'xK'\n"
+    "              (default 1; e.g. 1,2,4,8,16,32); a summary per scale follows the rows: mean fair\n"
+    "              penumbra MAE and mean signed error (estimate - truth), built-in scenes and files apart,\n"
+    "              then near the terminator (within 3 pixels of where a surface turns away from the light's\n"
+    "              centre): p95 of |error| and the error's total variation (sawtooth, seams)\n";
 
 bool parse_pair(std::string_view text, int& a, int& b) {
     const std::size_t x = text.find('x');
@@ -116,7 +130,7 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
     for (int i = 1; i < argc; ++i) {
         const std::string_view flag = argv[i];
         if (!flag.starts_with("--")) { // a mesh file, named after its stem
-            files.push_back({std::string(flag), std::filesystem::path(flag).stem().string()});
+            files.push_back({std::string(flag), std::filesystem::path(flag).stem().string(), true});
             continue;
         }
         if (flag == "--no-ground") {
@@ -127,7 +141,7 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
             const std::optional<std::vector<penumbra::bench::CorpusMesh>> corpus =
                 penumbra::bench::read_corpus(penumbra::bench::corpus_dir_argument(argc, argv, i), &error);
             if (!corpus) return std::nullopt;
-            for (const penumbra::bench::CorpusMesh& m : *corpus) files.push_back({m.path, m.name});
+            for (const penumbra::bench::CorpusMesh& m : *corpus) files.push_back({m.path, m.name, true});
             continue;
         }
         if (i + 1 >= argc) {
@@ -175,7 +189,7 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                     parts.empty() ? std::nullopt : penumbra::parse_enum<penumbra::Fusion>(parts.front());
                 if (!fusion) {
                     error = "--variants: '" + std::string(name) + "' does not start with a fusion rule; allowed: "
-                            "probabilistic, additive, maximum, average, chained";
+                            "probabilistic, additive, maximum, average, chained, correlated";
                     return std::nullopt;
                 }
                 v.fusion = *fusion;
@@ -185,11 +199,12 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                     if (part == "clip") v.tangent_clip = true;
                     else if (part == "adaptive") v.placement = penumbra::SlicePlacement::adaptive;
                     else if (part == "footprint" || part == "nofootprint") v.clip_footprint = part == "footprint";
+                    else if (part == "noleak") v.leak_fix = false;
                     else if (part.starts_with("offset") && parse_number(part.substr(6), number)) v.tangent_clip_offset = number;
                     else if (part.starts_with("ramp") && parse_number(part.substr(4), number)) v.fade_ramp = number;
                     else {
                         error = "--variants: '" + std::string(part) + "' in '" + std::string(name) +
-                                "' is not allowed; allowed after the fusion rule: +clip, +adaptive, +[no]footprint, +offsetT "
+                                "' is not allowed; allowed after the fusion rule: +clip, +adaptive, +[no]footprint, +noleak, +offsetT "
                                 "(tangent clip offset, texels), +rampF (fade ramp, fraction of a slice)";
                         return std::nullopt;
                     }
@@ -208,6 +223,20 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                 }
                 o.level_reductions.push_back(negative ? -1 : n);
             }
+        } else if (flag == "--light-scales") {
+            o.light_scales.clear();
+            for (std::string_view item : split(value)) {
+                double scale = 0;
+                if (!parse_number(item, scale) || !(scale > 0.0) || scale > 64.0) {
+                    error = "--light-scales: '" + std::string(item) + "' is not allowed; allowed: numbers above 0, at most 64";
+                    return std::nullopt;
+                }
+                o.light_scales.push_back(scale);
+            }
+            if (o.light_scales.empty()) {
+                error = "--light-scales: empty; allowed: numbers above 0, at most 64";
+                return std::nullopt;
+            }
         } else if (flag == "--size") {
             if (!parse_pair(value, o.width, o.height) || o.width < 1 || o.height < 1 || o.width > 4096 || o.height > 4096) {
                 error = "--size: expected WxH, 1 to 4096 each";
@@ -225,7 +254,7 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
             }
         } else {
             error = "unknown flag '" + std::string(flag) + "'; allowed: --scenes, --corpus, --no-ground, --filters, --configs, --size, "
-                    "--samples, --repeat, --variants, --level-reductions, --help, FILE";
+                    "--samples, --repeat, --variants, --level-reductions, --light-scales, --help, FILE";
             return std::nullopt;
         }
     }
@@ -263,6 +292,70 @@ std::vector<PassTotal> pass_totals(const std::vector<penumbra::gl::PassTiming>& 
     return totals;
 }
 
+// The error near the terminator, what the eye sees of a sawtooth or a seam there: the geometry pixels
+// with a fair (oriented) truth within `radius` pixels of a pair of neighbouring geometry pixels on
+// which the side the light's centre lies on (the sign of n·(C − X)) changes: a surface turning away
+// from the light, whatever the light's size. p95 of |estimate − truth| over them, and the total variation of the signed
+// error: the mean |e_i − e_j| over horizontally and vertically adjacent pairs of them (a smooth error
+// has little, a texel-aliased one much).
+struct BoundaryStats {
+    double p95 = 0, total_variation = 0;
+    std::size_t count = 0;
+};
+
+BoundaryStats terminator_error(const HeadlessResult& result, const std::vector<float>& oriented, glm::dvec3 light_centre,
+                               int radius = 3) {
+    const int w = result.width, h = result.height;
+    auto index = [w](int x, int y) { return static_cast<std::size_t>(y) * w + x; };
+    auto facing = [&](std::size_t i) {
+        return glm::dot(glm::dvec3(result.normals[i]), light_centre - glm::dvec3(result.positions[i])) > 0.0;
+    };
+    std::vector<unsigned char> turn(result.geometry.size(), 0); // the side changes towards the next pixel
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = index(x, y);
+            if (!result.geometry[i]) continue;
+            if (x + 1 < w && result.geometry[index(x + 1, y)] && facing(i) != facing(index(x + 1, y))) turn[i] = 1;
+            if (y + 1 < h && result.geometry[index(x, y + 1)] && facing(i) != facing(index(x, y + 1))) turn[i] = 1;
+        }
+    auto dark = [&](int x, int y) { return turn[index(x, y)] != 0; };
+    std::vector<unsigned char> near(result.geometry.size(), 0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = index(x, y);
+            if (!result.geometry[i] || std::isnan(oriented[i])) continue;
+            for (int dy = -radius; dy <= radius && !near[i]; ++dy)
+                for (int dx = -radius; dx <= radius; ++dx) {
+                    const int u = x + dx, v = y + dy;
+                    if (u >= 0 && v >= 0 && u < w && v < h && dark(u, v)) {
+                        near[i] = 1;
+                        break;
+                    }
+                }
+        }
+    BoundaryStats b;
+    std::vector<double> errors;
+    double variation = 0;
+    std::size_t pairs = 0;
+    auto error = [&](std::size_t i) { return static_cast<double>(result.visibility[i]) - oriented[i]; };
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = index(x, y);
+            if (!near[i]) continue;
+            errors.push_back(std::abs(error(i)));
+            if (x + 1 < w && near[index(x + 1, y)]) variation += std::abs(error(i) - error(index(x + 1, y))), ++pairs;
+            if (y + 1 < h && near[index(x, y + 1)]) variation += std::abs(error(i) - error(index(x, y + 1))), ++pairs;
+        }
+    b.count = errors.size();
+    if (!errors.empty()) {
+        const std::size_t k = std::min(errors.size() - 1, static_cast<std::size_t>(std::ceil(0.95 * errors.size())) - 1);
+        std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(k), errors.end());
+        b.p95 = errors[k];
+    }
+    b.total_variation = pairs ? variation / pairs : 0.0;
+    return b;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -287,6 +380,14 @@ int main(int argc, char** argv) {
         scenes.push_back(std::move(*loaded.scene));
         scenes.back().name = input.name;
     }
+    // The summary: per row label without the scene (and light scale), mean fair penumbra MAE and signed error.
+    struct Summary {
+        double mae = 0, bias = 0, worst = 0, terminator_p95 = 0, terminator_variation = 0;
+        int count = 0;
+        std::string worst_scene;
+    };
+    std::map<std::pair<std::string, double>, Summary> summaries[2]; // [0] built-in scenes, [1] mesh files
+    std::vector<std::string> summary_order;
     std::optional<HeadlessContext> context = HeadlessContext::create(&error);
     if (!context) {
         std::cerr << "error: no OpenGL 4.5 context: " << error << "\n";
@@ -300,12 +401,21 @@ int main(int argc, char** argv) {
                 options->repeat);
     std::printf("| scene | filter | S/R | MAE | RMSE | p95 | penumbra MAE | penumbra RMSE | penumbra p95 | penumbra px "
                 "| oriented penumbra MAE | oriented p95 | irradiance penumbra MAE | irradiance p95 "
-                "| slicing ms | prefilter ms | shading ms |\n");
-    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+                "| slicing ms | prefilter ms | shading ms | terminator p95 | terminator TV | terminator px |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     std::vector<std::string> pass_lines;
-    for (const Scene& scene : scenes) {
-        const std::string& scene_name = scene.name;
-        std::optional<HeadlessResult> reference_gbuffer;
+    for (std::size_t scene_index = 0; scene_index < scenes.size(); ++scene_index)
+    for (double light_scale : options->light_scales) {
+        Scene& scene = scenes[scene_index];
+        const bool file = options->scenes[scene_index].file;
+        const penumbra::RectLight default_light = scene.light;
+        scene.light.width *= light_scale;
+        scene.light.height *= light_scale;
+        const bool scaled = options->light_scales.size() > 1 || light_scale != 1.0;
+        char scale_words[32];
+        std::snprintf(scale_words, sizeof scale_words, " x%g", light_scale);
+        const std::string scene_name = scene.name + (scaled ? scale_words : "");
+        std::optional<HeadlessResult> reference_gbuffer; // the truth depends on the light: one per scale
         References truth;
         double truth_ms = 0;
         for (const SliceSetting& setting : options->settings)
@@ -319,11 +429,13 @@ int main(int argc, char** argv) {
                 config.tangent_clip_offset = variant.tangent_clip_offset;
                 config.clip_footprint = variant.clip_footprint;
                 config.fade_ramp = variant.fade_ramp;
+                config.leak_fix = variant.leak_fix;
                 const std::string reduced =
                     reduction == penumbra::Config{}.level_reduction ? "" : " r" + std::to_string(reduction);
-                const std::string label = scene_name + " | " + std::string(penumbra::to_string(filter)) + " " +
-                                          variant_name(variant) + reduced + " | " + std::to_string(setting.slices) + "/" +
-                                          std::to_string(setting.resolution);
+                const std::string setting_label = std::string(penumbra::to_string(filter)) + " " + variant_name(variant) +
+                                                  reduced + " | " + std::to_string(setting.slices) + "/" +
+                                                  std::to_string(setting.resolution);
+                const std::string label = scene_name + " | " + setting_label;
                 if (const auto problems = penumbra::validate(config); !problems.empty()) {
                     std::printf("| %s | invalid: %s |\n", label.c_str(), problems.front().message.c_str());
                     continue;
@@ -347,6 +459,19 @@ int main(int argc, char** argv) {
                 }
                 const QualityMetrics q = compare_quality(result, truth);
                 const Metrics& m = q.visibility;
+                if (std::find(summary_order.begin(), summary_order.end(), setting_label) == summary_order.end())
+                    summary_order.push_back(setting_label);
+                Summary& sum = summaries[file ? 1 : 0][{setting_label, light_scale}];
+                sum.mae += q.oriented.penumbra.mae;
+                sum.bias += q.oriented.penumbra.bias;
+                const BoundaryStats terminator = terminator_error(result, truth.oriented, scene.light.center);
+                sum.terminator_p95 += terminator.p95;
+                sum.terminator_variation += terminator.total_variation;
+                ++sum.count;
+                if (q.oriented.penumbra.mae >= sum.worst) {
+                    sum.worst = q.oriented.penumbra.mae;
+                    sum.worst_scene = scene.name;
+                }
                 const std::vector<PassTotal> totals = pass_totals(fastest);
                 double slicing = 0, prefilter = 0, shading = 0;
                 std::string line = label + ":";
@@ -363,13 +488,58 @@ int main(int argc, char** argv) {
                 }
                 pass_lines.push_back(line);
                 std::printf("| %s | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %zu | %.4f | %.4f | %.4f | %.4f | %.1f | %.1f "
-                            "| %.1f |\n",
+                            "| %.1f | %.4f | %.4f | %zu |\n",
                             label.c_str(), m.all.mae, m.all.rmse, m.all.p95, m.penumbra.mae, m.penumbra.rmse,
                             m.penumbra.p95, m.penumbra.count, q.oriented.penumbra.mae, q.oriented.penumbra.p95,
-                            q.irradiance.penumbra.mae, q.irradiance.penumbra.p95, slicing, prefilter, shading);
+                            q.irradiance.penumbra.mae, q.irradiance.penumbra.p95, slicing, prefilter, shading,
+                            terminator.p95, terminator.total_variation, terminator.count);
                 std::fflush(stdout);
             }
         std::printf("|   (%s ground truth: %.0f ms CPU, Embree) |\n", scene_name.c_str(), truth_ms);
+        scene.light = default_light;
+    }
+    std::printf("\nfair (oriented) penumbra error by light scale: mean MAE / mean signed error (estimate - truth) "
+                "/ worst scene's MAE, over the scenes measured\n");
+    for (int group = 0; group < 2; ++group) {
+        if (summaries[group].empty()) continue;
+        std::printf("\n%s\n\n| filter | S/R |", group == 0 ? "built-in scenes" : "mesh files");
+        for (double scale : options->light_scales) std::printf(" x%g |", scale);
+        std::printf("\n|---|---|");
+        for (std::size_t k = 0; k < options->light_scales.size(); ++k) std::printf("---|");
+        std::printf("\n");
+        for (const std::string& label : summary_order) {
+            std::printf("| %s |", label.c_str());
+            for (double scale : options->light_scales) {
+                const auto it = summaries[group].find({label, scale});
+                if (it == summaries[group].end() || it->second.count == 0) {
+                    std::printf(" - |");
+                    continue;
+                }
+                const Summary& sum = it->second;
+                std::printf(" %.4f / %+.4f / %.3f %s (%d) |", sum.mae / sum.count, sum.bias / sum.count, sum.worst,
+                            sum.worst_scene.c_str(), sum.count);
+            }
+            std::printf("\n");
+        }
+        std::printf("\nnear the terminator (%s): mean p95 of |error| / mean total variation of the error\n\n| filter | S/R |",
+                    group == 0 ? "built-in scenes" : "mesh files");
+        for (double scale : options->light_scales) std::printf(" x%g |", scale);
+        std::printf("\n|---|---|");
+        for (std::size_t k = 0; k < options->light_scales.size(); ++k) std::printf("---|");
+        std::printf("\n");
+        for (const std::string& label : summary_order) {
+            std::printf("| %s |", label.c_str());
+            for (double scale : options->light_scales) {
+                const auto it = summaries[group].find({label, scale});
+                if (it == summaries[group].end() || it->second.count == 0) {
+                    std::printf(" - |");
+                    continue;
+                }
+                const Summary& sum = it->second;
+                std::printf(" %.4f / %.4f |", sum.terminator_p95 / sum.count, sum.terminator_variation / sum.count);
+            }
+            std::printf("\n");
+        }
     }
     std::printf("\nper-pass GPU ms (xN: N instances of the pass, summed):\n");
     for (const std::string& line : pass_lines) std::printf("  %s\n", line.c_str());

@@ -499,6 +499,8 @@ def write_light(results, directory, thresholds, figures, w, title):
             w(f"| {family_name(f)} | {threshold:g} | " + " | ".join(cells_text) + " |")
     w("")
 
+    write_quality_by_light_size(results, measurements, scales, w, title)
+
     # Flicker.
     w(f"## Temporal stability{title}\n")
     flicker = results["flicker"]
@@ -614,6 +616,34 @@ def write_light(results, directory, thresholds, figures, w, title):
             w(f"| {b['scene']} | {b['label']} | {b['resolution']}² | {b['intervals']} | {b['samples']} | "
               f"{b['bake_ms'] / 1000:.2f} | {'yes' if b['from_cache'] else 'no'} | {b['rays']} | "
               f"{b['file_bytes'] / 2**20:.2f} |")
+        w("")
+
+
+def write_quality_by_light_size(results, measurements, scales, w, title=""):
+    """Mean penumbra MAE and mean signed error per setting and light size, built-in scenes and meshes apart."""
+    kinds = {s["name"]: s.get("kind", "built-in") == "built-in" for s in results["scenes"]}
+    w(f"## Quality by light size{title}\n")
+    w(f"Per setting, the mean over scenes of the penumbra MAE / the mean signed error (estimate − truth; "
+      f"positive: too bright) against the {metric_name()} reference at each light size, the built-in scenes and the "
+      "meshes (files and the corpus) apart.\n")
+    for group_title, built_in in (("Built-in scenes", True), ("Meshes (files and the corpus)", False)):
+        group = [m for m in measurements if kinds.get(m["scene"], True) == built_in]
+        if not group:
+            continue
+        w(f"{group_title}:\n")
+        w("| setting | technique | " + " | ".join(fmt_scale(s) for s in scales) + " |")
+        w("|---|---|" + "---|" * len(scales))
+        acc = defaultdict(lambda: defaultdict(list))
+        family = {}
+        for m in group:
+            acc[m["label"]][m["light_scale"]].append(m)
+            family[m["label"]] = m["family"]
+        for label in sorted(acc, key=lambda l: (family[l], mean(pen(x) for x in acc[l][min(scales)]))):
+            cells_text = []
+            for s in scales:
+                ms = acc[label][s]
+                cells_text.append(f"{mean(pen(x) for x in ms):.3f} / {mean(bias(x) for x in ms):+.3f}" if ms else "–")
+            w(f"| {label} | {family_name(family[label])} | " + " | ".join(cells_text) + " |")
         w("")
 
 

@@ -36,7 +36,7 @@ mkdir -p "$DIR"
 DIR=$(realpath "$DIR")
 
 filters=(mipmap nbuffer sat gaussian)
-fusions=(probabilistic additive maximum average chained)
+fusions=(probabilistic additive maximum average chained correlated)
 packings=(atlas array volume)
 targets=(glsl330 glsl450 essl300 vulkan)
 lights=(rect sun)
@@ -54,7 +54,8 @@ list_configurations() {
     done; done; done
     for f in "${filters[@]}"; do for p in "${packings[@]}"; do for t in "${targets[@]}"; do for l in "${lights[@]}"; do
         for s in 5 16; do
-            echo "tangent_clip/$f-$p-$t-$l-S$s --slices $s --resolution 256 --filter $f --fusion chained" \
+            u=chained; if ((s == 5)); then u=correlated; fi
+            echo "tangent_clip/$f-$p-$t-$l-S$s --slices $s --resolution 256 --filter $f --fusion $u" \
                  "--packing $p --target $t --light $l --tangent-clip"
         done
         for s in 64 128; do # the fusion, leak fix and tangent clip rotate as in matrix_test.cpp
@@ -62,7 +63,7 @@ list_configurations() {
             if ((i % 3 == 0)); then leak=--no-leak-fix; fi
             if ((i % 2 == 0)); then clip=--tangent-clip; fi
             echo "slices_64_128/$f-$p-$t-$l-S$s --slices $s --resolution 32 --filter $f" \
-                 "--fusion ${fusions[$((i % 5))]} --packing $p --target $t --light $l $leak $clip"
+                 "--fusion ${fusions[$((i % ${#fusions[@]}))]} --packing $p --target $t --light $l $leak $clip"
             i=$((i + 1))
         done
         for switches in 0 1; do

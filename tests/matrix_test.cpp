@@ -100,7 +100,8 @@ Row occlusion_row() {
 }
 
 // The tangent clip changes the visibility function, the kernel and the deferred pass's inputs:
-// every filter × packing × light × target with it on (chained fusion, two slice counts).
+// every filter × packing × light × target with it on (two slice counts: 5 with correlated fusion, whose
+// step reads each slice's kernel, 16 with chained).
 Row tangent_clip_row() {
     std::vector<Config> configs;
     for (Filter filter : all_values<Filter>())
@@ -109,8 +110,8 @@ Row tangent_clip_row() {
                 for (Light light : all_values<Light>())
                     for (int slices : {5, 16})
                         configs.push_back({.slices = slices, .resolution = 256, .filter = filter,
-                                           .fusion = Fusion::chained, .packing = packing, .light = light,
-                                           .tangent_clip = true, .target = target});
+                                           .fusion = slices == 5 ? Fusion::correlated : Fusion::chained, .packing = packing,
+                                           .light = light, .tangent_clip = true, .target = target});
     return {.name = "occlusion, tangent clip",
             .configurations = configs,
             .check_emission = [](const Config&, const Emitted& e) {
@@ -131,7 +132,7 @@ Row many_slices_row() {
             for (Target target : all_values<Target>())
                 for (Light light : all_values<Light>())
                     for (int slices : {64, 128}) {
-                        const Fusion fusion = all_values<Fusion>()[static_cast<std::size_t>(index % 5)];
+                        const Fusion fusion = all_values<Fusion>()[static_cast<std::size_t>(index) % all_values<Fusion>().size()];
                         configs.push_back({.slices = slices, .resolution = 32, .filter = filter, .fusion = fusion,
                                            .packing = packing, .light = light, .leak_fix = index % 3 != 0,
                                            .self_shadow_fade = true, .tangent_clip = index % 2 == 0, .target = target});

@@ -40,6 +40,8 @@ enum class Fusion : std::uint8_t {
     average,       // Soler & Sillion: 1 − (min(1, Σ q_k) + max q_k) / 2
     chained,       // Π (1 − max(q_k, q_k+1)) / Π (1 − q_k) over inner slices: neighbours fused by maximum,
                    // slices further apart by product (the leak fix and solids make neighbours correlated)
+    correlated,    // neighbours blended between nested (chained) and independent (product) by the overlap of
+                   // the occluder the two kernels see, displaced by the parallax between them (docs/model.md §1.7)
 };
 
 // How the filtered occlusion textures are stored (paper §3.6–3.7, docs/model.md §3).
@@ -227,8 +229,8 @@ template <> struct EnumNames<Filter> {
     static constexpr std::array<std::string_view, 4> names{"mipmap", "nbuffer", "sat", "gaussian"};
 };
 template <> struct EnumNames<Fusion> {
-    static constexpr std::array<std::string_view, 5> names{"probabilistic", "additive", "maximum", "average",
-                                                           "chained"};
+    static constexpr std::array<std::string_view, 6> names{"probabilistic", "additive", "maximum", "average",
+                                                           "chained", "correlated"};
 };
 template <> struct EnumNames<Packing> {
     static constexpr std::array<std::string_view, 3> names{"atlas", "array", "volume"};

@@ -105,6 +105,9 @@ TEST_CASE("fair reference: metrics leave out pixels that see none of the light")
     CHECK(m.all.count == 2);
     CHECK(m.all.mae == doctest::Approx(0.05));
     CHECK(m.penumbra.count == 2);
+    CHECK(m.all.bias == doctest::Approx(0.05)); // signed: estimate − truth, 0 and +0.1
+    CHECK(compare(std::vector<float>{0.2f, 1.0f}, std::vector<unsigned char>{1, 1}, std::vector<float>{0.6f, 1.0f})
+              .penumbra.bias == doctest::Approx(-0.4)); // too dark; the lit pixel is no penumbra pixel
     const QualityMetrics q = compare_quality(estimate, geometry, estimate, truth, truth);
     CHECK(q.visibility.all.mae == 0.0);
     CHECK(q.visibility.all.count == 3);

@@ -81,8 +81,8 @@ def main():
                for technique, light, target in itertools.product(
                    ["shadowmap", "pcf", "pcss", "oim", "erosion"], ["rect", "sun"],
                    ["glsl330", "glsl450", "essl300", "vulkan"])]
-    matrix += [(f"occlusion-chained-clip-{target}", ["--fusion", "chained", "--tangent-clip", "--target", target])
-               for target in ["glsl330", "glsl450", "essl300", "vulkan"]]
+    matrix += [(f"occlusion-{fusion}-clip-{target}", ["--fusion", fusion, "--tangent-clip", "--target", target])
+               for fusion in ["chained", "correlated"] for target in ["glsl330", "glsl450", "essl300", "vulkan"]]
     # More than 32 slices: the slicing as bits (logic op OR) and the unpack passes.
     matrix += [(f"bits-{filt}-{packing}-{target}-S{slices}",
                 ["--filter", filt, "--packing", packing, "--target", target, "--slices", str(slices),

@@ -8,7 +8,7 @@ namespace penumbra::playground {
 
 namespace {
 
-ErrorStats stats(std::vector<double> errors) {
+ErrorStats stats(std::vector<double> errors, double signed_sum) {
     ErrorStats s;
     s.count = errors.size();
     if (errors.empty()) return s;
@@ -18,6 +18,7 @@ ErrorStats stats(std::vector<double> errors) {
         sq += e * e;
     }
     s.mae = sum / errors.size();
+    s.bias = signed_sum / errors.size();
     s.rmse = std::sqrt(sq / errors.size());
     const std::size_t k = std::min(errors.size() - 1, static_cast<std::size_t>(std::ceil(0.95 * errors.size())) - 1);
     std::nth_element(errors.begin(), errors.begin() + static_cast<std::ptrdiff_t>(k), errors.end());
@@ -30,13 +31,19 @@ ErrorStats stats(std::vector<double> errors) {
 Metrics compare(std::span<const float> estimate, std::span<const unsigned char> geometry,
                 std::span<const float> reference) {
     std::vector<double> all, pen;
+    double signed_all = 0, signed_pen = 0;
     for (std::size_t i = 0; i < estimate.size(); ++i) {
         if (!geometry[i] || std::isnan(reference[i])) continue;
-        const double e = std::abs(static_cast<double>(estimate[i]) - reference[i]);
+        const double signed_error = static_cast<double>(estimate[i]) - reference[i];
+        const double e = std::abs(signed_error);
         all.push_back(e);
-        if (reference[i] < 0.98f || estimate[i] < 0.98f) pen.push_back(e);
+        signed_all += signed_error;
+        if (reference[i] < 0.98f || estimate[i] < 0.98f) {
+            pen.push_back(e);
+            signed_pen += signed_error;
+        }
     }
-    return {stats(std::move(all)), stats(std::move(pen))};
+    return {stats(std::move(all), signed_all), stats(std::move(pen), signed_pen)};
 }
 
 QualityMetrics compare_quality(std::span<const float> estimate, std::span<const unsigned char> geometry,

@@ -8,6 +8,7 @@ namespace penumbra::playground {
 
 struct ErrorStats {
     double mae = 0, rmse = 0, p95 = 0;
+    double bias = 0; // mean signed error, estimate − reference: > 0 too bright, < 0 too dark
     std::size_t count = 0;
 };
 

@@ -372,10 +372,26 @@ std::vector<double> Oracle::occlusions(glm::vec3 world) const {
     return q;
 }
 
+// Correlated fusion (docs/model.md §1.7, penumbra_correlatedStep in detail/occlusion/emit_visibility.hpp): the
+// light this slice (q, kernel centre and side) lets through given the one visited before.
+namespace {
+double correlated_step(double q, glm::dvec3 kernel, double previous, glm::dvec3 previous_kernel) {
+    const glm::dvec2 parallax = glm::dvec2(kernel) - glm::dvec2(previous_kernel);
+    const double grow = kernel.z - previous_kernel.z;
+    const glm::dvec2 shift = glm::sqrt(parallax * parallax + glm::dvec2(grow * grow / 12.0));
+    const double feature = std::sqrt(std::max(q * kernel.z * kernel.z, previous * previous_kernel.z * previous_kernel.z));
+    const glm::dvec2 overlap = glm::clamp(1.0 - shift / std::max(feature, 1e-12), 0.0, 1.0);
+    const double rho = overlap.x * overlap.y;
+    const double both = q * previous + rho * (std::min(q, previous) - q * previous);
+    return (1.0 - q - previous + both) / std::max(1.0 - previous, 1e-6);
+}
+} // namespace
+
 OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion) const {
     glm::dvec3 p = glm::dvec3(light_from_world_ * glm::dvec4(glm::dvec3(world), 1.0));
     p.z = std::max(p.z, 1e-6); // points on or behind the light plane
-    double lit = 1.0, sum = 0.0, maximum = 0.0, bound = 0.0, chain = 1.0, previous = 0.0;
+    double lit = 1.0, sum = 0.0, maximum = 0.0, bound = 0.0, chain = 1.0, previous = 0.0, correlated = 1.0;
+    glm::dvec3 previous_kernel(0.0); // centre and side of the slice visited before (correlated fusion)
     bool beyond = false;
     // Tangent clip (detail/occlusion/emit_visibility.hpp): the part of the light above the tangent plane, in the
     // light's unit square, cut along the axis the plane crosses most steeply; then the point
@@ -435,7 +451,9 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
         maximum = std::max(maximum, q);
         // chained: the neighbour visited before is nested with this slice, the others independent
         chain *= (1.0 - std::max(q, previous)) / std::max(1.0 - previous, 1e-6);
+        correlated *= correlated_step(q, {centre, side}, previous, previous_kernel);
         previous = q;
+        previous_kernel = {centre, side};
     }
     double v = lit;
     switch (fusion) {
@@ -444,6 +462,7 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
     case Fusion::maximum: v = 1.0 - maximum; break;
     case Fusion::average: v = 1.0 - 0.5 * (std::min(1.0, sum) + maximum); break; // Soler & Sillion
     case Fusion::chained: v = std::clamp(chain, 0.0, 1.0); break;
+    case Fusion::correlated: v = std::clamp(correlated, 0.0, 1.0); break;
     }
     return {v, bound, beyond};
 }

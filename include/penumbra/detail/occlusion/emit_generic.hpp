@@ -42,7 +42,7 @@ constexpr std::vector<Param> generic_value_params() {
         {"penumbra_maxLevel", "int", "highest filter level L = log2(R)", ""},
         {"penumbra_tileCount", "int", "RGBA occlusion textures T = ceil(S / 4)", ""},
         {"penumbra_invTileCount", "float", "1 / T: width of one tile in an atlas", "uv"},
-        {"penumbra_fusion", "int", "fusion rule: 0 probabilistic, 1 additive, 2 maximum, 3 average, 4 chained", ""},
+        {"penumbra_fusion", "int", "fusion rule: 0 probabilistic, 1 additive, 2 maximum, 3 average, 4 chained, 5 correlated", ""},
         {"penumbra_fade", "int", "paper §3.4.2 self-shadow fade: 1 on, 0 off", ""},
         {"penumbra_fadeRamp", "float", "the fade's ramp, as a fraction of a slice's thickness", ""},
         {"penumbra_tangentClipOffset", "float", "the tangent clip's sideways offset along the normal", "slicing texels"},
@@ -247,8 +247,9 @@ constexpr void write_generic_level_read(LineWriter& out, const Config& config) {
 constexpr void write_generic_fusion(LineWriter& out) {
     out.chunk("fusion_result");
     out.comment("every rule's accumulator is kept; the uniform picks the result (paper §3.3)");
-    out.line("float penumbra_fused(float lit, float sum, float maximum, float chain)");
+    out.line("float penumbra_fused(float lit, float sum, float maximum, float chain, float correlated)");
     out.line("{");
+    out.line("if (penumbra_fusion == ", format_int(static_cast<int>(Fusion::correlated)), ") return clamp(correlated, 0.0, 1.0);");
     out.line("if (penumbra_fusion == ", format_int(static_cast<int>(Fusion::chained)), ") return clamp(chain, 0.0, 1.0);");
     out.line("if (penumbra_fusion == ", format_int(static_cast<int>(Fusion::probabilistic)), ") return lit;");
     out.line("if (penumbra_fusion == ", format_int(static_cast<int>(Fusion::additive)), ") return max(0.0, 1.0 - sum);");
@@ -264,7 +265,10 @@ constexpr void write_generic_accumulate(LineWriter& out) {
     out.line("penumbra_max = max(penumbra_max, q);");
     out.comment("chained: neighbours fused by maximum, slices further apart by product");
     out.line("penumbra_chain *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);");
+    out.comment("correlated: neighbours between nested and independent by the parallax between their kernels");
+    out.line("penumbra_correlated *= penumbra_correlatedStep(q, kernel, penumbra_prev, penumbra_prevKernel);");
     out.line("penumbra_prev = q;");
+    out.line("penumbra_prevKernel = kernel;");
 }
 
 // A `for` loop over the slices, from the bottom one up to the light, one lookup each.
@@ -308,6 +312,7 @@ constexpr Text generic_fragment(const Config& config) {
     write_generic_kernel(out, config);
     if (uses_generic_level_loop(config)) write_generic_level_read(out, config);
     else write_generic_lookup(out, config);
+    write_correlated_step_function(out);
     write_generic_fusion(out);
     out.chunk("visibility");
     const bool clip = clips_to_tangent_plane(config);
@@ -328,10 +333,12 @@ constexpr Text generic_fragment(const Config& config) {
     out.line("float penumbra_sum = 0.0;");
     out.line("float penumbra_max = 0.0;");
     out.line("float penumbra_chain = 1.0;");
+    out.line("float penumbra_correlated = 1.0;");
     out.line("float penumbra_prev = 0.0;");
+    out.line("vec4 penumbra_prevKernel = vec4(0.0);");
     if (uses_generic_level_loop(config)) write_generic_level_loop(out, config);
     else write_generic_slice_loop(out, config);
-    out.line("return penumbra_fused(penumbra_lit, penumbra_sum, penumbra_max, penumbra_chain);");
+    out.line("return penumbra_fused(penumbra_lit, penumbra_sum, penumbra_max, penumbra_chain, penumbra_correlated);");
     out.line("}");
     out.blank();
     write_deferred_main(out, clip);

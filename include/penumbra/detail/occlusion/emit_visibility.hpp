@@ -330,6 +330,33 @@ constexpr void write_lookup_function(LineWriter& out, const Config& config) {
     out.blank();
 }
 
+// Correlated fusion (docs/model.md §1.7): the step of the chain from the slice visited before (q, kernel
+// `prev`, `prevKernel`) to this one. The two slices block the light point t of the kernel's unit square
+// where their masks cover c + side·t; for one occluder seen in both, the same point of it is hit by light
+// points displaced by the parallax between the kernels, whose RMS over the light is
+// sqrt(dc² + dside²/12) per axis. The occluder's size in the kernel is at least sqrt(q side²) (the smaller
+// of the two slices), so the fraction of it both slices still share is (1 - shift/size) per axis: the
+// weight between nested slices (the union is the larger one, chained fusion) and independent ones (the
+// product). Generic program and oracle share it.
+constexpr void write_correlated_step_function(LineWriter& out) {
+    out.chunk("fusion");
+    out.comment("correlated fusion: light let through by this slice given the one visited before, docs/model.md §1.7");
+    out.line("float penumbra_correlatedStep(float q, vec4 kernel, float prev, vec4 prevKernel)");
+    out.line("{");
+    out.comment("parallax between the two kernels, RMS over the light's points, per axis (uv)");
+    out.line("vec2 parallax = kernel.xy - prevKernel.xy;");
+    out.line("float grow = kernel.z - prevKernel.z;");
+    out.line("vec2 shift = sqrt(parallax * parallax + vec2(grow * grow / 12.0));");
+    out.comment("the size of the occluder both kernels see (uv): at least the larger area either kernel sees covered");
+    out.line("float feature = sqrt(max(q * kernel.z * kernel.z, prev * prevKernel.z * prevKernel.z));");
+    out.line("vec2 overlap = clamp(1.0 - shift / max(feature, 1e-12), 0.0, 1.0);");
+    out.comment("blocked by both: nested (the smaller) when the occluder overlaps itself, independent (product) when not");
+    out.line("float both = mix(q * prev, min(q, prev), overlap.x * overlap.y);");
+    out.line("return (1.0 - q - prev + both) / max(1.0 - prev, 1e-6);");
+    out.line("}");
+    out.blank();
+}
+
 constexpr void write_fusion_start(LineWriter& out, const Config& config) {
     out.chunk("fusion");
     switch (config.fusion) {
@@ -348,6 +375,13 @@ constexpr void write_fusion_start(LineWriter& out, const Config& config) {
         out.line("float penumbra_lit = 1.0;");
         out.line("float penumbra_prev = 0.0; // q of the slice visited before (its neighbour)");
         break;
+    case Fusion::correlated:
+        out.comment("correlated fusion: neighbours between nested (chained) and independent (product), weighted by");
+        out.comment("how much of the occluder the two kernels see survives the parallax between them");
+        out.line("float penumbra_lit = 1.0;");
+        out.line("float penumbra_prev = 0.0; // q of the slice visited before (its neighbour)");
+        out.line("vec4 penumbra_prevKernel = vec4(0.0); // and its kernel");
+        break;
     }
 }
 
@@ -364,6 +398,11 @@ constexpr void write_accumulate(LineWriter& out, const Config& config) {
         out.line("penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);");
         out.line("penumbra_prev = q;");
         break;
+    case Fusion::correlated:
+        out.line("penumbra_lit *= penumbra_correlatedStep(q, kernel, penumbra_prev, penumbra_prevKernel);");
+        out.line("penumbra_prev = q;");
+        out.line("penumbra_prevKernel = kernel;");
+        break;
     }
 }
 
@@ -377,7 +416,8 @@ constexpr void write_fusion_result(LineWriter& out, const Config& config) {
         out.comment("Soler & Sillion: halfway between the additive and the maximum estimate");
         out.line("return 1.0 - 0.5 * (min(1.0, penumbra_sum) + penumbra_max);");
         break;
-    case Fusion::chained: out.line("return clamp(penumbra_lit, 0.0, 1.0);"); break;
+    case Fusion::chained:
+    case Fusion::correlated: out.line("return clamp(penumbra_lit, 0.0, 1.0);"); break;
     }
 }
 
@@ -495,6 +535,7 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
     write_weight_function(out, config);
     if (!uses_level_loop(config)) write_lookup_function(out, config);
     if (config.tangent_clip) write_tangent_clip_function(out, config);
+    if (config.fusion == Fusion::correlated) write_correlated_step_function(out);
     out.chunk("visibility");
     if (config.tangent_clip) {
         out.comment("The fused visibility at light-frame point p of the part of the light that penumbra_clip keeps.");
