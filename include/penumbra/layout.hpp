@@ -37,7 +37,7 @@ inline Layout describe_layout(const Config& config) {
     for (const ProgramPlan& plan : technique.programs(config)) {
         ProgramDesc program{std::string(plan.name), {}, describe_params(config, technique.param_groups(config, plan.name)), {}};
         for (Artifact a : plan.stages) program.files.emplace_back(file_name(a));
-        if (!plan.stages.empty()) program.vertex_inputs = vertex_inputs(plan.stages.front());
+        if (!plan.stages.empty()) program.vertex_inputs = vertex_inputs(plan.stages.front(), config);
         layout.programs.push_back(std::move(program));
     }
     // The technique's textures and passes: shadow phase, then the screen phase over the caller's
@@ -176,7 +176,9 @@ inline std::string to_json(const Layout& layout) {
           "{\"max_search_radius\": " + std::to_string(c.erosion.max_search_radius) + ", \"edge_threshold\": " +
               real(c.erosion.edge_threshold) + ", \"search_taps\": " + std::to_string(c.erosion.search_taps) +
               ", \"blur_taps\": " + std::to_string(c.erosion.blur_taps) + "}",
-          false);
+          c.alpha_test);
+    // written when on, so that the layouts of solid casters read as before
+    if (c.alpha_test) field("    ", "alpha_test", "true", false);
     o += "  },\n";
     field("  ", "textures_per_layer", std::to_string(layout.textures_per_layer));
     field("  ", "max_level", std::to_string(layout.max_level));
@@ -212,9 +214,9 @@ inline std::string to_json(const Layout& layout) {
             o += "      {\"name\": " + json_string(d.name) + ", \"type\": " + json_string(d.type) +
                  ", \"meaning\": " + json_string(d.meaning) + ", \"units\": " + json_string(d.units);
             if (!d.source.empty()) o += ", \"source\": " + json_string(d.source) + ", \"compute\": " + json_string(d.compute);
-            if (d.binding >= 0)
-                o += ", \"binding\": " + std::to_string(d.binding) + ", \"texture\": " + json_string(d.texture) +
-                     ", \"sampling\": " + detail::json_sampling(d.sampling);
+            if (d.binding >= 0) o += ", \"binding\": " + std::to_string(d.binding);
+            if (d.binding >= 0 && d.source != "draw") // a draw's sampler: the caller's texture and sampler
+                o += ", \"texture\": " + json_string(d.texture) + ", \"sampling\": " + detail::json_sampling(d.sampling);
             if (d.offset >= 0)
                 o += ", \"block\": " + json_string(d.block) + ", \"block_binding\": " + std::to_string(d.block_binding) +
                      ", \"offset\": " + std::to_string(d.offset);
