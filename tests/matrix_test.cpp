@@ -330,8 +330,9 @@ Row alpha_test_row() {
                 c.alpha_test = true;
                 configs.push_back(c);
             };
-            with({});
-            with({.slices = 5, .resolution = 64, .filter = Filter::sat, .packing = Packing::array});
+            with({.resolution = 256}); // the default but for the resolution (glsl330's atlas holds 16 x 256)
+            with({.slices = 5, .resolution = 64, .filter = target == Target::essl300 ? Filter::mipmap : Filter::sat,
+                  .packing = Packing::array});
             with({.slices = 16, .resolution = 256, .slice_placement = SlicePlacement::adaptive});
             if (target != Target::essl300) with({.slices = 64, .resolution = 32}); // bits of an RGBA32UI target
             with({.technique = Technique::shadowmap});
