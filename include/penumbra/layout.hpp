@@ -63,7 +63,9 @@ inline Layout describe_layout(const Config& config) {
     // The configuration is implied everywhere: a new one is a new layout.
     bool has_shadow = false;
     for (const PassDesc& p : layout.passes) has_shadow = has_shadow || p.phase == "shadow";
-    if (has_shadow) layout.phase_inputs.push_back({"shadow", {"light", "geometry"}});
+    // alpha_test: the casters' materials (alpha textures, cutoffs) decide the shadow phase too
+    if (has_shadow && config.alpha_test) layout.phase_inputs.push_back({"shadow", {"light", "geometry", "materials"}});
+    else if (has_shadow) layout.phase_inputs.push_back({"shadow", {"light", "geometry"}});
     layout.phase_inputs.push_back({"screen", build.screen_inputs});
     layout.phase_inputs.push_back({"example", {"light", "geometry", "camera"}});
     return layout;

@@ -5,8 +5,11 @@
 
 #include "temp_dir.hpp"
 
+#include "bake/oim_bake.hpp"
+#include "bake/oim_cache.hpp"
 #include "reference/ground_truth.hpp"
 #include "reference/slice_coverage.hpp"
+#include "scenes/charts.hpp"
 #include "scenes/gltf_loader.hpp"
 #include "scenes/mesh_builder.hpp"
 #include "scenes/obj_loader.hpp"
@@ -28,9 +31,12 @@ namespace {
 // A PNG of `width` x `height` texels with `channels` channels (1 grey … 4 RGBA), as bytes.
 std::string png(int width, int height, int channels, const std::vector<std::uint8_t>& texels) {
     std::string out;
-    stbi_write_png_to_func([](void* context, void* data, int size) {
-        static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
-    }, &out, width, height, channels, texels.data(), width * channels);
+    stbi_write_png_to_func(
+        [](void* context, void* data, int size) {
+            static_cast<std::string*>(context)->append(static_cast<const char*>(data),
+                                                       static_cast<std::size_t>(size));
+        },
+        &out, width, height, channels, texels.data(), width * channels);
     return out;
 }
 
@@ -54,7 +60,8 @@ std::string masked_gltf(const std::string& image_uri) {
     {"name": "stone"}
   ],
   "textures": [{"source": 0}],
-  "images": [{"uri": ")" + image_uri + R"("}],
+  "images": [{"uri": ")" +
+           image_uri + R"("}],
   "accessors": [
     {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 0, 1]},
     {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
@@ -98,8 +105,8 @@ TEST_CASE("cut materials: the alpha texture is read nearest with repeat, and the
     CHECK(m.texture.at({0.75f, 0.25f}) == 100);
     CHECK(m.texture.at({0.25f, 0.75f}) == 200);
     CHECK(m.texture.at({1.75f, -0.25f}) == 255); // repeat: (0.75, 0.75)
-    CHECK_FALSE(m.solid_at({0.75f, 0.25f}));      // 100 / 255 < 0.5
-    CHECK(m.solid_at({0.25f, 0.75f}));            // 200 / 255 >= 0.5
+    CHECK_FALSE(m.solid_at({0.75f, 0.25f}));     // 100 / 255 < 0.5
+    CHECK(m.solid_at({0.25f, 0.75f}));           // 200 / 255 >= 0.5
     Mesh bad = half_cut_quad(0, 0.5f);
     CHECK(validate_mesh(bad).empty());
     bad.triangle_materials[1] = 3;
@@ -152,8 +159,8 @@ TEST_CASE("the cutout scene: cut materials well formed, deterministic, and the c
         CHECK(holes < static_cast<long>(m.texture.alpha.size()));
     }
     const Config config{.slices = 8, .resolution = 128};
-    const SliceFrame frame = slice_frame(scene->light, glm::dvec3(scene->bounds_min), glm::dvec3(scene->bounds_max),
-                                         config.slices);
+    const SliceFrame frame = slice_frame(scene->light, glm::dvec3(scene->bounds_min),
+                                         glm::dvec3(scene->bounds_max), config.slices);
     const SliceCoverage with = cpu_slice_coverage(mesh, config, frame, 1, true);
     const SliceCoverage without = cpu_slice_coverage(mesh, config, frame, 1, false);
     std::size_t covered_with = 0, covered_without = 0, gained = 0, removed = 0;
@@ -163,9 +170,10 @@ TEST_CASE("the cutout scene: cut materials well formed, deterministic, and the c
         gained += with.texels[i] == Coverage::covered && without.texels[i] == Coverage::empty;
         removed += with.texels[i] == Coverage::empty && without.texels[i] == Coverage::covered;
     }
-    MESSAGE("covered texels: ", covered_with, " with the cut, ", covered_without, " without (", removed, " cut away)");
-    CHECK(gained == 0);    // the cut only removes coverage
-    CHECK(removed > 300);  // the holes of the grilles, between the pickets and around the leaves
+    MESSAGE("covered texels: ", covered_with, " with the cut, ", covered_without, " without (", removed,
+            " cut away)");
+    CHECK(gained == 0);   // the cut only removes coverage
+    CHECK(removed > 300); // the holes of the grilles, between the pickets and around the leaves
 }
 
 TEST_CASE("glTF: MASK and BLEND materials cut (factor x texture alpha, cutoff), OPAQUE ones do not") {
@@ -208,14 +216,15 @@ TEST_CASE("glTF: MASK and BLEND materials cut (factor x texture alpha, cutoff), 
 
 TEST_CASE("OBJ: map_d and map_Kd with alpha cut at 0.5, an opaque map_Kd does not; v is flipped") {
     TempDir dir;
-    dir.write("dissolve.png", png(1, 2, 1, {255, 0}));                // grey: top row solid, bottom cut
-    dir.write("leaf.png", png(1, 1, 4, {10, 200, 10, 0}));           // RGBA, alpha 0
-    dir.write("bark.png", png(1, 1, 3, {90, 60, 30}));               // RGB: no alpha, never decoded
+    dir.write("dissolve.png", png(1, 2, 1, {255, 0}));     // grey: top row solid, bottom cut
+    dir.write("leaf.png", png(1, 1, 4, {10, 200, 10, 0})); // RGBA, alpha 0
+    dir.write("bark.png", png(1, 1, 3, {90, 60, 30}));     // RGB: no alpha, never decoded
     dir.write("quad.mtl", "newmtl fence\nmap_d dissolve.png\nnewmtl leaf\nmap_Kd leaf.png\n"
                           "newmtl bark\nmap_Kd bark.png\nnewmtl plain\nKd 1 1 1\n");
-    const std::string obj = "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
-                            "usemtl fence\nf 1/1 2/2 3/3\nusemtl leaf\nf 1/1 3/3 4/4\nusemtl bark\nf 1/1 2/2 3/3\n"
-                            "usemtl plain\nf 1/1 3/3 4/4\n";
+    const std::string obj =
+        "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+        "usemtl fence\nf 1/1 2/2 3/3\nusemtl leaf\nf 1/1 3/3 4/4\nusemtl bark\nf 1/1 2/2 3/3\n"
+        "usemtl plain\nf 1/1 3/3 4/4\n";
     const LoadResult r = load_obj_scene(dir.write("quad.obj", obj));
     REQUIRE_MESSAGE(r.scene.has_value(), r.error);
     const Mesh& mesh = r.scene->mesh;
@@ -232,4 +241,33 @@ TEST_CASE("OBJ: map_d and map_Kd with alpha cut at 0.5, an opaque map_Kd does no
     CHECK_FALSE(mesh.cut_materials[0].solid_at(mesh.material_uvs[mesh.indices[0]] * 0.999f));
     CHECK(mesh.cut_materials[0].solid_at({0.5f, 0.25f}));
     CHECK(r.warnings.empty());
+}
+
+TEST_CASE("oim: the bake casts through the cut with alpha_test on (its cache key says so)") {
+    Scene scene = *make_scene("cutout");
+    const int R = 64;
+    REQUIRE(generate_charts(scene.mesh, R) == ""); // the charts keep the cut materials
+    CHECK(validate_mesh(scene.mesh).empty());
+    CHECK(scene.mesh.cuts());
+    OimBakeSettings settings;
+    settings.resolution = R;
+    settings.samples = 256;
+    settings.intervals = 16;
+    const OimBake cut = bake_occlusion_intervals(scene.mesh, settings);
+    const Mesh solid_mesh = without_cuts(scene.mesh);
+    const OimBake solid = bake_occlusion_intervals(solid_mesh, settings);
+    CHECK(oim_cache_key(scene.mesh, settings) != oim_cache_key(solid_mesh, settings));
+    // over the day, texels see the sun longer through the cut than under solid casters (never shorter,
+    // but where the intervals beyond 16 are merged)
+    std::size_t longer = 0, shorter = 0;
+    for (std::size_t texel = 0; texel < cut.covered.size(); ++texel) {
+        if (!cut.covered[texel]) continue;
+        const float a = cut.visibility(texel, 0.0, 1.0), b = solid.visibility(texel, 0.0, 1.0);
+        longer += a > b + 1e-6f;
+        shorter += a < b - 1e-6f;
+    }
+    MESSAGE("oim bake of cutout at 64x64: ", longer, " texels see the sun longer through the cut, ", shorter,
+            " shorter");
+    CHECK(longer > 50);
+    CHECK(shorter * 10 < longer);
 }

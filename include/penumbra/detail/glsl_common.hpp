@@ -93,12 +93,15 @@ constexpr Text describe_occlusion(const Config& config) {
 
 // The configuration line of every file's header: only the fields the technique reads, then the
 // alpha test of cut-out casters when it is on.
+constexpr Text describe_technique(const Config& config) {
+    if (uses_shadow_map(config)) return describe_shadow_map(config);
+    if (config.technique == Technique::oim) return describe_oim(config);
+    return describe_occlusion(config);
+}
+
 constexpr Text describe(const Config& config) {
-    Text out = uses_shadow_map(config)                ? describe_shadow_map(config)
-               : config.technique == Technique::oim ? describe_oim(config)
-                                                    : describe_occlusion(config);
-    if (config.alpha_test) out += " | alpha test (cut-out casters)";
-    return out;
+    if (!config.alpha_test) return describe_technique(config);
+    return cat(describe_technique(config), " | alpha test (cut-out casters)");
 }
 
 // The version directive of the target: the first line of every stage.

@@ -211,7 +211,8 @@ struct Layout {
     std::vector<PassDesc> passes;
     std::string result; // the texture holding the visibility after the screen phase
     std::vector<std::string> files; // every file an emission writes, layout.json included
-    // What each phase's output depends on ("light", "geometry", "camera", "caller_textures", "bake"):
+    // What each phase's output depends on ("light", "geometry", "camera", "caller_textures", "bake";
+    // "materials": the casters' alpha textures and cutoffs, with alpha_test):
     // an engine reruns a phase only when one of them changed (a camera-only change skips "shadow").
     std::vector<std::pair<std::string, std::vector<std::string>>> phase_inputs;
     std::vector<SliceLocation> slice_map; // occlusion: where each slice is (empty for other techniques)

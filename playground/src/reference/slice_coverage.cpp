@@ -45,13 +45,15 @@ Coverage cut_at(const CutMaterial& m, glm::dvec2 uv) {
 
 } // namespace
 
-SliceCoverage cpu_slice_coverage(const Mesh& mesh, const Config& config, const SliceFrame& frame, int reach, bool cut) {
+SliceCoverage cpu_slice_coverage(const Mesh& mesh, const Config& config, const SliceFrame& frame, int reach,
+                                 bool cut) {
     const int R = config.resolution, S = config.slices;
     SliceCoverage out{R, S, std::vector<Coverage>(static_cast<std::size_t>(S) * R * R, Coverage::empty)};
     const double z0 = frame.slice_depths.x, thickness = frame.slice_depths.y;
     for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
         Projected v[3];
-        for (int k = 0; k < 3; ++k) v[k] = project(config, frame, glm::dvec3(mesh.positions[mesh.indices[3 * t + k]]));
+        for (int k = 0; k < 3; ++k)
+            v[k] = project(config, frame, glm::dvec3(mesh.positions[mesh.indices[3 * t + k]]));
         const CutMaterial* material = cut ? mesh.material_of(t) : nullptr;
         // Signed edge functions in texels; the triangle's orientation does not matter.
         const glm::dvec2 a0 = v[0].texel, a1 = v[1].texel, a2 = v[2].texel;
@@ -80,7 +82,8 @@ SliceCoverage cpu_slice_coverage(const Mesh& mesh, const Config& config, const S
                 for (double& w : weight) w /= sum;
                 if (material) {
                     glm::dvec2 uv(0.0);
-                    for (int k = 0; k < 3; ++k) uv += weight[k] * glm::dvec2(mesh.material_uvs[mesh.indices[3 * t + k]]);
+                    for (int k = 0; k < 3; ++k)
+                        uv += weight[k] * glm::dvec2(mesh.material_uvs[mesh.indices[3 * t + k]]);
                     const Coverage alpha = cut_at(*material, uv);
                     if (alpha == Coverage::empty) continue; // the alpha test discards the fragment
                     if (alpha == Coverage::either) mark = Coverage::either;
@@ -92,7 +95,8 @@ SliceCoverage cpu_slice_coverage(const Mesh& mesh, const Config& config, const S
                 for (int s = slice; s <= std::min(slice + (on_boundary ? 1 : 0), S - 1); ++s) {
                     const Coverage m = on_boundary ? Coverage::either : mark;
                     // paper §3.4.1 leak fix: a fragment of slice k also marks slices k+1 to k+reach
-                    for (int j = 0; j <= reach && s + j < S; ++j) out.at(s + j, x, y) = std::max(out.at(s + j, x, y), m);
+                    for (int j = 0; j <= reach && s + j < S; ++j)
+                        out.at(s + j, x, y) = std::max(out.at(s + j, x, y), m);
                 }
             }
     }

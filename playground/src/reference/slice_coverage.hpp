@@ -35,6 +35,7 @@ struct SliceCoverage {
 // penumbra::leak_fix_reach). Depth and texture coordinates are interpolated perspective-correctly,
 // as the rasteriser does. With `cut`, a triangle of a cut material covers a texel centre only where
 // its texture's alpha there is at least the cutoff (nearest texel, repeat).
-SliceCoverage cpu_slice_coverage(const Mesh& mesh, const Config& config, const SliceFrame& frame, int reach, bool cut);
+SliceCoverage cpu_slice_coverage(const Mesh& mesh, const Config& config, const SliceFrame& frame, int reach,
+                                 bool cut);
 
 } // namespace penumbra::playground

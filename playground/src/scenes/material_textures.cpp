@@ -21,8 +21,8 @@ std::uint8_t scaled(int alpha, double factor) {
 
 } // namespace
 
-std::optional<AlphaTexture> decode_alpha_texture(const unsigned char* bytes, std::size_t size, AlphaChannel channel,
-                                                 double factor, std::string* error) {
+std::optional<AlphaTexture> decode_alpha_texture(const unsigned char* bytes, std::size_t size,
+                                                 AlphaChannel channel, double factor, std::string* error) {
     auto fail = [&](std::string why) -> std::optional<AlphaTexture> {
         if (error) *error = std::move(why);
         return std::nullopt;
@@ -34,11 +34,11 @@ std::optional<AlphaTexture> decode_alpha_texture(const unsigned char* bytes, std
     if (!stbi_info_from_memory(bytes, length, &width, &height, &channels))
         return fail(std::string("not an image stb_image reads (") + stbi_failure_reason() + ")");
     if (width < 1 || height < 1 || width > alpha_texture_side_limit || height > alpha_texture_side_limit)
-        return fail("the image is " + std::to_string(width) + "x" + std::to_string(height) + "; allowed: 1 to " +
-                    std::to_string(alpha_texture_side_limit) + " texels per side");
+        return fail("the image is " + std::to_string(width) + "x" + std::to_string(height) +
+                    "; allowed: 1 to " + std::to_string(alpha_texture_side_limit) + " texels per side");
     const bool has_alpha = channels == 2 || channels == 4;
-    std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_memory(bytes, length, &width, &height, &channels, 4),
-                                                     stbi_image_free);
+    std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
+        stbi_load_from_memory(bytes, length, &width, &height, &channels, 4), stbi_image_free);
     if (!pixels) return fail(std::string("the image does not decode (") + stbi_failure_reason() + ")");
     AlphaTexture out{width, height, std::vector<std::uint8_t>(static_cast<std::size_t>(width) * height)};
     for (std::size_t i = 0; i < out.alpha.size(); ++i) {

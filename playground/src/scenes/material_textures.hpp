@@ -23,8 +23,8 @@ enum class AlphaChannel {
 // The alpha of an encoded image, times `factor` (glTF baseColorFactor.a; 1 otherwise), rows in the
 // image's order (row 0 at v = 0, glTF's convention). nullopt with a one-line *error when the bytes
 // are not an image stb_image reads or it is larger than alpha_texture_side_limit.
-std::optional<AlphaTexture> decode_alpha_texture(const unsigned char* bytes, std::size_t size, AlphaChannel channel,
-                                                 double factor, std::string* error);
+std::optional<AlphaTexture> decode_alpha_texture(const unsigned char* bytes, std::size_t size,
+                                                 AlphaChannel channel, double factor, std::string* error);
 
 // True when the encoded image has an alpha channel (only its header is read).
 bool image_has_alpha(const unsigned char* bytes, std::size_t size);

@@ -3,11 +3,11 @@
 // the GPU's visibility equals the oracle's within its bound; the G-buffer has no surface where the
 // receivers are cut; and against the Embree truth, which honours the cut, each technique is
 // measurably closer with alpha_test on than with the casters solid. Label "gl".
-#include "rendering/egl_context.hpp"
-#include "rendering/headless_render.hpp"
 #include "reference/ground_truth.hpp"
 #include "reference/oracle.hpp"
 #include "reference/slice_coverage.hpp"
+#include "rendering/egl_context.hpp"
+#include "rendering/headless_render.hpp"
 #include "scenes/mesh_builder.hpp"
 #include "scenes/scenes.hpp"
 
@@ -29,8 +29,8 @@ namespace {
 std::string name_of(const Config& c) {
     std::string name = std::string(to_string(c.technique)) + " " + std::string(to_string(c.light));
     if (c.technique == Technique::occlusion)
-        name += " " + std::string(to_string(c.filter)) + " " + std::string(to_string(c.packing)) + " S=" +
-                std::to_string(c.slices) + " R=" + std::to_string(c.resolution);
+        name += " " + std::string(to_string(c.filter)) + " " + std::string(to_string(c.packing)) +
+                " S=" + std::to_string(c.slices) + " R=" + std::to_string(c.resolution);
     return name + (c.alpha_test ? " alpha test" : " solid");
 }
 
@@ -54,7 +54,8 @@ TEST_CASE("cut-out casters: the slicing pass covers only where the materials' al
                 frame = runtime.frame();
             }};
             HeadlessResult result;
-            REQUIRE_MESSAGE(render_headless(*scene, config, 16, 16, result, &error, options), name, ": ", error);
+            REQUIRE_MESSAGE(render_headless(*scene, config, 16, 16, result, &error, options), name, ": ",
+                            error);
             REQUIRE_MESSAGE(read, name, ": ", error);
             const int reach = leak_fix_reach(config);
             const SliceCoverage expected = cpu_slice_coverage(scene->mesh, config, frame, reach, alpha_test);
@@ -68,14 +69,17 @@ TEST_CASE("cut-out casters: the slicing pass covers only where the materials' al
                         const Coverage e = expected.at(s, x, y), o = other.at(s, x, y);
                         covered += e == Coverage::covered;
                         wrong += (e == Coverage::covered && g != 1.0f) || (e == Coverage::empty && g != 0.0f);
-                        if ((e == Coverage::covered && o == Coverage::empty) || (e == Coverage::empty && o == Coverage::covered)) {
+                        if ((e == Coverage::covered && o == Coverage::empty) ||
+                            (e == Coverage::empty && o == Coverage::covered)) {
                             ++cut_texels;
                             cut_followed += (e == Coverage::covered) == (g == 1.0f);
                         }
                     }
-            std::printf("cutout slicing %-40s covered %zu, wrong %zu, texels the cut decides %zu (as configured %zu)\n",
+            std::printf("cutout slicing %-40s covered %zu, wrong %zu, texels the cut decides %zu (as "
+                        "configured %zu)\n",
                         name.c_str(), covered, wrong, cut_texels, cut_followed);
-            CHECK_MESSAGE(wrong == 0, name, ": ", wrong, " texels disagree with the CPU's coverage away from edges");
+            CHECK_MESSAGE(wrong == 0, name, ": ", wrong,
+                          " texels disagree with the CPU's coverage away from edges");
             CHECK_MESSAGE(cut_texels > 500, name, ": the cut should decide many texels");
             CHECK_MESSAGE(cut_followed == cut_texels, name, ": the slicing does not follow alpha_test");
         }
@@ -91,11 +95,24 @@ TEST_CASE("cut-out casters: the GPU's visibility equals the oracle's within its 
     scene->sun.angular_diameter = 0.35;
     const std::vector<Config> configs{
         {.slices = 16, .resolution = 256, .alpha_test = true}, // the default, cut
-        {.slices = 8, .resolution = 128, .filter = Filter::sat, .packing = Packing::array, .light = Light::sun,
+        {.slices = 8,
+         .resolution = 128,
+         .filter = Filter::sat,
+         .packing = Packing::array,
+         .light = Light::sun,
          .alpha_test = true},
-        {.slices = 16, .resolution = 128, .filter = Filter::mipmap, .fusion = Fusion::probabilistic,
-         .packing = Packing::array, .tangent_clip = false, .alpha_test = true},
-        {.slices = 16, .resolution = 128, .filter = Filter::gaussian, .packing = Packing::volume, .light = Light::sun,
+        {.slices = 16,
+         .resolution = 128,
+         .filter = Filter::mipmap,
+         .fusion = Fusion::probabilistic,
+         .packing = Packing::array,
+         .tangent_clip = false,
+         .alpha_test = true},
+        {.slices = 16,
+         .resolution = 128,
+         .filter = Filter::gaussian,
+         .packing = Packing::volume,
+         .light = Light::sun,
          .alpha_test = true},
     };
     for (const Config& config : configs) {
@@ -117,16 +134,19 @@ TEST_CASE("cut-out casters: the GPU's visibility equals the oracle's within its 
         double max_difference = 0;
         for (std::size_t i = 0; i < result.visibility.size(); ++i) {
             if (!result.geometry[i]) continue;
-            const OracleValue expected = oracle.visibility(result.positions[i], result.normals[i], config.fusion);
+            const OracleValue expected =
+                oracle.visibility(result.positions[i], result.normals[i], config.fusion);
             const double difference = std::abs(result.visibility[i] - expected.visibility);
             ++pixels;
             beyond += difference > expected.bound;
             max_difference = std::max(max_difference, difference);
             penumbra += expected.visibility > 0.02 && expected.visibility < 0.98;
         }
-        std::printf("cutout oracle %-40s max |GPU - oracle| %.2e, beyond the bound %zu of %zu, penumbra %zu\n",
-                    name.c_str(), max_difference, beyond, pixels, penumbra);
-        CHECK_MESSAGE(beyond == 0, name, ": ", beyond, " pixels beyond the bound, max |diff| ", max_difference);
+        std::printf(
+            "cutout oracle %-40s max |GPU - oracle| %.2e, beyond the bound %zu of %zu, penumbra %zu\n",
+            name.c_str(), max_difference, beyond, pixels, penumbra);
+        CHECK_MESSAGE(beyond == 0, name, ": ", beyond, " pixels beyond the bound, max |diff| ",
+                      max_difference);
         CHECK_MESSAGE(penumbra > 100, name, ": too few penumbra pixels for a meaningful comparison");
     }
 }
@@ -179,13 +199,17 @@ TEST_CASE("cut-out casters: every technique is closer to the truth with the cut 
             Config config = base;
             config.alpha_test = alpha_test;
             HeadlessResult result;
-            REQUIRE_MESSAGE(render_headless(*scene, config, size, size, result, &error), name_of(config), ": ", error);
+            REQUIRE_MESSAGE(render_headless(*scene, config, size, size, result, &error), name_of(config),
+                            ": ", error);
             if (truth.oriented.empty()) truth = reference_all(*scene, result, 8);
             const QualityMetrics m = compare_quality(result, truth);
             mae[alpha_test ? 0 : 1] = m.oriented.all.mae;
-            std::printf("cutout %-32s MAE %.4f (penumbra %.4f over %zu pixels) against the fair truth with the cut\n",
-                        name_of(config).c_str(), m.oriented.all.mae, m.oriented.penumbra.mae, m.oriented.penumbra.count);
+            std::printf(
+                "cutout %-32s MAE %.4f (penumbra %.4f over %zu pixels) against the fair truth with the cut\n",
+                name_of(config).c_str(), m.oriented.all.mae, m.oriented.penumbra.mae,
+                m.oriented.penumbra.count);
         }
-        CHECK_MESSAGE(mae[0] < share * mae[1], name_of(base), ": with the cut ", mae[0], ", solid casters ", mae[1]);
+        CHECK_MESSAGE(mae[0] < share * mae[1], name_of(base), ": with the cut ", mae[0], ", solid casters ",
+                      mae[1]);
     }
 }
