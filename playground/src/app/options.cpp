@@ -275,10 +275,10 @@ std::string usage() {
                                     "alphaMode MASK (baseColorFactor.a\n"
                                     "                        x baseColorTexture.a below alphaCutoff, default 0.5), "
                                     "BLEND cast as a cut-out at 0.5,\n"
-                                    "                        OBJ map_d (or map_Kd's alpha) at 0.5; the Embree truth "
-                                    "and the oim bake cut the same.\n"
-                                    "                        Receivers are cut either way (cut-out pixels are not "
-                                    "surfaces)");
+                                    "                        OBJ map_d (or map_Kd's alpha) at 0.5; the oim bake cuts the "
+                                    "same. The Embree\n"
+                                    "                        truth and the receivers are cut either way (cut-out "
+                                    "pixels are not surfaces)");
     out += "\ntechnique (occlusion: the flags above; shadowmap, pcf, pcss, erosion, oim: these, plus --light and --target):\n";
     out += penumbra_gen::technique_usage(25);
     out += line("--config FILE.json", "configuration from JSON (the keys of Config, or a layout.json); a regular\n"
