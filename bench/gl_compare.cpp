@@ -621,6 +621,7 @@ int main(int argc, char** argv) {
                 a.entry = &entry;
                 Config config = entry.config;
                 config.light = light_kind;
+                config.alpha_test = scene.mesh.cuts(); // cut-out casters cast as their materials cut
                 const bool oim = config.technique == Technique::oim;
                 if (oim) { // the bake (or its cache), on the scene with the charts it needs
                     progress.step("bake", scene.name + ": occlusion interval maps, bake of " + entry.label);

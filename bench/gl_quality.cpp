@@ -95,7 +95,7 @@ constexpr const char* usage_text =
     "usage: penumbra-bench-quality [--scenes a,b,...] [FILE ...] [--corpus [DIR]] [--no-ground] [--filters f,g,...]\n"
     "                              [--configs SxR,...] [--size WxH] [--samples N] [--repeat N] [--variants v,w,...]\n"
     "                              [--level-reductions N,M,...] [--light-scales X,Y,...]\n"
-    "  --scenes    built-in scenes (default all: planes, boxes, tree, butterfly, terrain, crowd, box; '' for none)\n"
+    "  --scenes    built-in scenes (default all: planes, boxes, tree, butterfly, terrain, crowd, box, cutout; '' for none)\n"
     "  FILE        mesh files (what penumbra-playground --scene loads), measured after the built-in scenes\n"
     "  --corpus    every mesh of the corpus in DIR (default ~/.cache/penumbra/corpus; scripts/get_corpus.sh)\n"
     "  --no-ground no floor under the mesh files (default: each stands on one, as in penumbra-playground)\n"

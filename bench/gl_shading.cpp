@@ -163,7 +163,10 @@ int main(int argc, char** argv) {
                 return 1;
             }
             runtime->set_light(scene->light, glm::dvec3(scene->bounds_min), glm::dvec3(scene->bounds_max));
-            if (std::string d = runtime->build([&](GLuint) { mesh.draw(); }); !d.empty()) {
+            if (std::string d = runtime->build([&](GLuint program) {
+                    mesh.draw_materials(
+                        [&](GLuint alpha, float cutoff) { runtime->bind_caster_material(program, alpha, 0, cutoff); }, true);
+                }); !d.empty()) {
                 std::fprintf(stderr, "error: %s\n", d.c_str());
                 return 1;
             }

@@ -14,6 +14,7 @@
 #                penumbra-gen does not emit the generic program itself)
 #   tangent_clip/, slices_64_128/, adaptive/   the other occlusion rows
 #   shadow_map/, erosion/, oim/                 the rows of those techniques
+#   alpha_test/  the cut-out casters' row (every technique with --alpha-test)
 #   snippet/     matrix_snippet_test.cpp
 # Not covered: the generic reference program (penumbra::emit_generic), which penumbra-gen cannot
 # write. --no-rotation turns off both pcf.rotate and pcss.rotate (the tests turn off only the
@@ -43,7 +44,7 @@ lights=(rect sun)
 
 # One line per configuration: its name (a path under DIR), then its penumbra-gen flags.
 list_configurations() {
-    local f u p t l s r n k bf fade switches leak clip b i=0
+    local f u p t l s r n k bf fade switches leak clip b cut i=0
     for f in "${filters[@]}"; do for u in "${fusions[@]}"; do for p in "${packings[@]}"; do
         for t in "${targets[@]}"; do for l in "${lights[@]}"; do for fade in on off; do
             for s in 1 4 5 8 16 32; do for r in 32 256 2048; do
@@ -99,6 +100,15 @@ list_configurations() {
     for t in "${targets[@]}"; do for n in 4 8 12 16; do for r in 32 256 2048; do
         echo "oim/$t-I$n-R$r --technique oim --target $t --oim-intervals $n --oim-resolution $r"
     done; done; done
+    for t in "${targets[@]}"; do for l in "${lights[@]}"; do # matrix_test.cpp's alpha_test_row
+        local cut="--alpha-test --target $t --light $l"
+        echo "alpha_test/$t-$l-R256 --resolution 256 $cut"
+        f=sat; [[ $t == essl300 ]] && f=mipmap
+        echo "alpha_test/$t-$l-${f}_array --slices 5 --resolution 64 --filter $f --packing array $cut"
+        echo "alpha_test/$t-$l-adaptive --slices 16 --resolution 256 --slice-placement adaptive $cut"
+        [[ $t != essl300 ]] && echo "alpha_test/$t-$l-S64 --slices 64 --resolution 32 $cut"
+        for k in shadowmap pcf pcss erosion oim; do echo "alpha_test/$t-$l-$k --technique $k $cut"; done
+    done; done
     for f in "${filters[@]}"; do for p in "${packings[@]}"; do for l in "${lights[@]}"; do
         echo "snippet/$f-$p-$l --slices 6 --resolution 64 --filter $f --packing $p --light $l --target essl300"
     done; done; done

@@ -237,6 +237,28 @@ TEST_CASE("--config reads a config object or a whole layout.json; flags override
     const Run wrong = run_gen(with_out({"--slice-placement", "quantile"}, scratch().fresh("wrong-placement")));
     CHECK(wrong.exit_code == 2);
     CHECK(wrong.err.find("--slice-placement: 'quantile' is not allowed; allowed: uniform, adaptive") != std::string::npos);
+
+    // --alpha-test and the JSON key alpha_test (cut-out casters): layout.json says so only when on,
+    // the caster programs take penumbra_uv and the per-draw parameters, and the file reads back
+    const fs::path cut = scratch().fresh("alpha-test");
+    REQUIRE(run_gen(with_out({"--alpha-test", "--technique", "pcss"}, cut)).exit_code == 0);
+    const nlohmann::json cut_layout = nlohmann::json::parse(read_text(cut / "layout.json"));
+    CHECK(cut_layout.at("config").at("alpha_test") == true);
+    CHECK(read_text(cut / "penumbra_shadow_depth.frag").find("penumbra_alphaCutoff) discard;") != std::string::npos);
+    bool draw_sampler = false;
+    for (const nlohmann::json& program : cut_layout.at("programs"))
+        for (const nlohmann::json& param : program.at("parameters"))
+            if (param.at("name") == "penumbra_alphaTexture")
+                draw_sampler = param.at("source") == "draw" && !param.contains("texture") && program.at("name") == "shadow_depth";
+    CHECK(draw_sampler);
+    const fs::path cut_again = scratch().fresh("alpha-test-again");
+    REQUIRE(run_gen(with_out({"--config", (cut / "layout.json").string()}, cut_again)).exit_code == 0);
+    CHECK(read_text(cut_again / "layout.json") == read_text(cut / "layout.json"));
+    CHECK_FALSE(nlohmann::json::parse(read_text(adaptive / "layout.json")).at("config").contains("alpha_test"));
+    const Run not_bool = run_gen(with_out({"--config", write_text("cut.json", R"({"alpha_test": 1})").string()},
+                                          scratch().fresh("alpha-test-wrong")));
+    CHECK(not_bool.exit_code == 2);
+    CHECK(not_bool.err.find("alpha_test") != std::string::npos);
 }
 
 namespace {

@@ -550,6 +550,15 @@ std::vector<Config> convention_configs() {
         Config adaptive{.slices = 8, .resolution = 64, .slice_placement = SlicePlacement::adaptive, .target = target};
         for (const Config& c : {bits, adaptive})
             if (is_valid(c)) configs.push_back(c);
+        // cut-out casters: penumbra_uv on the caster programs, the draw's material parameters
+        for (Technique technique : all_values<Technique>()) {
+            Config cut{.technique = technique, .slices = 5, .resolution = 64, .target = target, .alpha_test = true};
+            cut.shadow_map.resolution = 64;
+            configs.push_back(cut);
+        }
+        Config adaptive_cut = adaptive;
+        adaptive_cut.alpha_test = true;
+        configs.push_back(adaptive_cut);
     }
     return configs;
 }
@@ -635,6 +644,12 @@ TEST_CASE("layout v3: every binding states its sampling; only shadow samplers co
                 if (p.binding < 0) continue;
                 CAPTURE(p.name);
                 sampler_types[program.name + "/" + p.name] = p.type;
+                if (p.source == "draw") { // alpha_test: the caller's texture with the caller's sampler, per draw
+                    CHECK(config.alpha_test);
+                    CHECK(p.name == "penumbra_alphaTexture");
+                    CHECK(p.texture.empty());
+                    continue;
+                }
                 CHECK_FALSE(p.sampling.min_filter.empty());
                 CHECK_FALSE(p.sampling.wrap.empty());
                 CHECK((p.sampling.compare == "LEQUAL") == p.type.ends_with("Shadow"));

@@ -317,6 +317,61 @@ Row oim_row() {
             }};
 }
 
+// Cut-out casters (alpha_test): every technique × target × light, the occlusion textures with the slices
+// as channels and as bits, and with adaptive slice placement. Each program that draws the casters from
+// the light (slicing, depth_bins, shadow_depth) reads penumbra_uv, penumbra_alphaTexture and
+// penumbra_alphaCutoff and discards; the other programs are those of the configuration without the cut.
+Row alpha_test_row() {
+    std::vector<Config> configs;
+    for (Target target : all_values<Target>())
+        for (Light light : all_values<Light>()) {
+            auto with = [&](Config c) {
+                c.light = light;
+                c.target = target;
+                c.alpha_test = true;
+                configs.push_back(c);
+            };
+            with({.resolution = 256}); // the default but for the resolution (glsl330's atlas holds 16 x 256)
+            with({.slices = 5, .resolution = 64, .filter = target == Target::essl300 ? Filter::mipmap : Filter::sat,
+                  .packing = Packing::array});
+            with({.slices = 16, .resolution = 256, .slice_placement = SlicePlacement::adaptive});
+            if (target != Target::essl300) with({.slices = 64, .resolution = 32}); // bits of an RGBA32UI target
+            with({.technique = Technique::shadowmap});
+            with({.technique = Technique::pcf});
+            with({.technique = Technique::pcss});
+            with({.technique = Technique::erosion});
+            with({.technique = Technique::oim});
+        }
+    return {.name = "alpha test (cut-out casters)",
+            .configurations = configs,
+            .expect = [](const Config&) { return Expect::valid; },
+            .check_emission = [](const Config& c, const Emitted& e) {
+                Config solid = c;
+                solid.alpha_test = false;
+                const Emitted without = emit_all(solid);
+                REQUIRE(without.programs.size() == e.programs.size());
+                int casters = 0;
+                for (std::size_t i = 0; i < e.programs.size(); ++i) {
+                    const Program& p = e.programs[i];
+                    const bool caster = p.name == "slicing" || p.name == "depth_bins" || p.name == "shadow_depth";
+                    casters += caster;
+                    const std::string vertex = p.stages.front().text, fragment = p.stages.back().text;
+                    if (caster) {
+                        CHECK_MESSAGE(vertex.find("in vec2 penumbra_uv;") != std::string::npos, name_of(c), " ", p.name);
+                        CHECK_MESSAGE(fragment.find("uniform sampler2D penumbra_alphaTexture;") != std::string::npos,
+                                      name_of(c), " ", p.name);
+                        CHECK_MESSAGE(fragment.find("penumbra_alphaCutoff) discard;") != std::string::npos, name_of(c),
+                                      " ", p.name);
+                    } else {
+                        CHECK_MESSAGE(fragment.find("penumbra_alpha") == std::string::npos, name_of(c), " ", p.name);
+                    }
+                }
+                CHECK_MESSAGE(casters == (c.technique == Technique::oim ? 0 : places_slices_adaptively(c) ? 2 : 1),
+                              name_of(c));
+            },
+            .check_row = [](const RowResult& r) { CHECK(r.valid == 4 * 2 * 8 + 3 * 2); }};
+}
+
 // --- the one check -------------------------------------------------------------------------------
 
 // Emits every configuration of `row` and compiles and links each program with glslang for its
@@ -359,7 +414,7 @@ RowResult run_row(const Row& row) {
 
 TEST_CASE("the glslang matrix: every program of every valid configuration of each technique compiles and links") {
     const Row rows[] = {occlusion_row(), tangent_clip_row(), many_slices_row(), adaptive_row(), compute_prefilter_row(),
-                        generic_row(), shadow_map_row(), erosion_row(), oim_row()};
+                        generic_row(), shadow_map_row(), erosion_row(), oim_row(), alpha_test_row()};
     int configurations = 0, programs = 0, compiled = 0;
     for (const Row& row : rows) {
         CAPTURE(row.name);

@@ -83,7 +83,12 @@ inline bool run_frame(gl::Runtime& runtime, const MeshBuffers& mesh, const Pixel
                std::string* error) {
     out.passes.clear();
     const auto start = std::chrono::steady_clock::now();
-    if (std::string d = runtime.build([&](GLuint) { mesh.draw(); }, &out.passes); !d.empty()) {
+    if (std::string d = runtime.build(
+            [&](GLuint program) { // each material's casters with its alpha texture and cutoff (alpha_test)
+                mesh.draw_materials(
+                    [&](GLuint alpha, float cutoff) { runtime.bind_caster_material(program, alpha, 0, cutoff); }, true);
+            },
+            &out.passes); !d.empty()) {
         if (error) *error = d;
         return false;
     }

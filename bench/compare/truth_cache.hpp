@@ -1,8 +1,8 @@
 // bench/compare/truth_cache.hpp — Embree ground truth cached on disk. The truth depends on the
 // pixels (world positions and normals of the G-buffer), the light and the ray count, never on the
 // technique, so it is computed once per scene, light and image and read back on later runs.
-// The file name is a hash of exactly those inputs (pixels, light, camera position, rays): a
-// changed scene, camera or light misses the cache.
+// The file name is a hash of exactly those inputs (pixels, light, camera position, rays, and the
+// cut materials of cut-out casters): a changed scene, camera or light misses the cache.
 #pragma once
 
 #include "app/image_io.hpp"
@@ -76,6 +76,13 @@ inline std::optional<CachedTruth> cached_truth(const std::string& directory, con
     hash.add(&eye, sizeof eye);
     const int sizes[] = {frame.width, frame.height, samples_per_axis};
     hash.add(sizes, sizeof sizes);
+    // the truth's rays pass where cut materials are cut (alpha test): those decide it too
+    for (const playground::CutMaterial& m : scene.mesh.cut_materials) {
+        hash.add(&m.cutoff, sizeof m.cutoff);
+        hash.add_values(std::span<const std::uint8_t>(m.texture.alpha));
+    }
+    hash.add_values(std::span<const glm::vec2>(scene.mesh.material_uvs));
+    hash.add_values(std::span<const std::int32_t>(scene.mesh.triangle_materials));
 
     CachedTruth out;
     out.file = (std::filesystem::path(directory) / (scene.name + (light_kind == Light::sun ? "-sun-" : "-") + hash.hex() + ".pfm")).string();

@@ -13,7 +13,7 @@ std::string flag_list() {
     return "--slices, --resolution, --filter, --fusion, --packing, --light, --target, --no-leak-fix, --no-fade, "
            "--tangent-clip, --no-tangent-clip, --slice-placement, --level-bound, --level-format, --level-reduction, "
            "--prefilter-stage, --tangent-clip-offset, --no-clip-footprint, --fade-ramp, --config, --validate, --out, "
-           "--help, " +
+           "--alpha-test, --help, " +
            std::string(technique_flag_list);
 }
 
@@ -40,7 +40,7 @@ Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
         // Flags without a value.
         const bool is_switch = flag == "--no-leak-fix" || flag == "--no-fade" || flag == "--validate" ||
                                flag == "--tangent-clip" || flag == "--no-tangent-clip" || flag == "--no-clip-footprint" ||
-                               is_technique_switch(flag);
+                               flag == "--alpha-test" || is_technique_switch(flag);
         if (is_switch) {
             if (inline_value)
                 return {{}, std::string(flag) + ": takes no value (got '" + printable(*inline_value) + "')"};
@@ -49,6 +49,7 @@ Parsed<Arguments> parse_arguments(const std::vector<std::string>& args) {
             if (flag == "--tangent-clip") out.flags.tangent_clip = true;
             if (flag == "--no-tangent-clip") out.flags.tangent_clip = false;
             if (flag == "--no-clip-footprint") out.flags.no_clip_footprint = true;
+            if (flag == "--alpha-test") out.flags.alpha_test = true;
             if (flag == "--validate") out.validate = true;
             set_technique_switch(flag, out.flags.technique);
             continue;
@@ -137,6 +138,7 @@ penumbra::Config apply(const ConfigFlags& flags, penumbra::Config config) {
     if (flags.no_clip_footprint) config.clip_footprint = false;
     if (flags.level_reduction) config.level_reduction = *flags.level_reduction;
     if (flags.prefilter_stage) config.prefilter_stage = *flags.prefilter_stage;
+    if (flags.alpha_test) config.alpha_test = true;
     return apply(flags.technique, config);
 }
 
@@ -156,7 +158,7 @@ std::string usage() {
                       "[--packing P] [--light L]\n"
                       "                    [--target T] [--no-leak-fix] [--no-fade] [--[no-]tangent-clip] [--slice-placement P]\n"
                       "                    [--level-bound N] [--level-format F] [--level-reduction N] [--prefilter-stage S]\n"
-                      "                    [--tangent-clip-offset T] [--no-clip-footprint] [--fade-ramp F]\n"
+                      "                    [--tangent-clip-offset T] [--no-clip-footprint] [--fade-ramp F] [--alpha-test]\n"
                       "                    [technique flags] [--config FILE.json] [--validate] --out DIR\n"
                       "\n"
                       "Writes the GLSL of one Penumbra configuration and its layout.json into DIR.\n"
@@ -207,6 +209,10 @@ std::string usage() {
                           "\n                      (compute: dispatches that build several levels each in shared memory;\n"
                           "                      filter nbuffer, packing atlas, target glsl450 only)",
                       to_string(d.prefilter_stage)));
+    out += line("--alpha-test", std::string("cut-out casters, every technique: the passes that draw casters from the\n"
+                                            "                      light discard fragments whose alpha (the draw's penumbra_alphaTexture\n"
+                                            "                      at its penumbra_uv) is below its penumbra_alphaCutoff (default ") +
+                                    (d.alpha_test ? "on" : "off") + ")");
     out += "\ntechnique (occlusion: the flags above; shadowmap, pcf, pcss, erosion, oim: these, plus --light and --target):\n";
     out += technique_usage(25);
     out +=
@@ -214,8 +220,8 @@ std::string usage() {
              "read the configuration from JSON: an object with the keys technique, slices, resolution,\n"
              "                      filter, fusion, packing, light, leak_fix, self_shadow_fade, tangent_clip,\n"
              "                      slice_placement, level_format, level_bound, level_reduction, prefilter_stage,\n"
-             "                      tangent_clip_offset, clip_footprint, fade_ramp, target, and the objects shadow_map, pcf,\n"
-             "                      pcss (all optional), or a\n"
+             "                      tangent_clip_offset, clip_footprint, fade_ramp, target, alpha_test, and the objects\n"
+             "                      shadow_map, pcf, pcss (all optional), or a\n"
              "                      layout.json, whose \"config\" object is read; a regular file of at most 1 MiB");
     out += "\noutput:\n";
     out += line("--out DIR", "directory to write into, created with its parents (required); all files or\n"

@@ -31,6 +31,7 @@ struct ConfigFlags {
     std::optional<double> fade_ramp;                          // --fade-ramp
     std::optional<int> level_reduction;                       // --level-reduction
     std::optional<penumbra::PrefilterStage> prefilter_stage;  // --prefilter-stage
+    bool alpha_test = false;                                  // --alpha-test
     TechniqueFlags technique; // --technique and each technique's flags (technique_flags.hpp)
 };
 

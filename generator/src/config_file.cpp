@@ -16,7 +16,7 @@ using nlohmann::json;
 constexpr std::string_view key_list =
     "slices, resolution, filter, fusion, packing, light, leak_fix, self_shadow_fade, tangent_clip, slice_placement, "
     "level_format, level_bound, level_reduction, prefilter_stage, tangent_clip_offset, clip_footprint, fade_ramp, target, "
-    "technique, shadow_map, pcf, pcss, oim, erosion";
+    "technique, shadow_map, pcf, pcss, oim, erosion, alpha_test";
 
 std::string type_of(const json& value) {
     if (value.is_number_float()) return "a number with a fraction";
@@ -196,7 +196,8 @@ std::string allowed_for(const std::string& key) {
     if (key == "packing") return "one of " + allowed_names<penumbra::Packing>();
     if (key == "light") return "one of " + allowed_names<penumbra::Light>();
     if (key == "target") return "one of " + allowed_names<penumbra::Target>();
-    if (key == "leak_fix" || key == "self_shadow_fade" || key == "clip_footprint") return "true or false";
+    if (key == "leak_fix" || key == "self_shadow_fade" || key == "clip_footprint" || key == "alpha_test")
+        return "true or false";
     if (key == "level_bound") return "-1 (every level) or 0 to log2(resolution)";
     if (key == "tangent_clip_offset") return "0 to 8 slicing texels";
     if (key == "fade_ramp") return "more than 0 to 4 (fraction of a slice's thickness)";
@@ -322,6 +323,8 @@ Parsed<penumbra::Config> parse_config_json(std::string_view text, std::string_vi
             error = store(read_int(key, value, allowed_for(key)), config.level_reduction);
         else if (key == "prefilter_stage")
             error = store(read_enum<penumbra::PrefilterStage>(key, value), config.prefilter_stage);
+        else if (key == "alpha_test")
+            error = store(read_bool(key, value), config.alpha_test);
         else
             error = "unknown key '" + printable(key) + "'; allowed keys: " + std::string(key_list);
         if (!error.empty()) return {{}, where + ": " + error};

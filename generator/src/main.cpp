@@ -35,7 +35,8 @@ std::string describe(const penumbra::Config& c) {
            std::string(to_string(c.packing)) + ", " + std::string(to_string(c.light)) + ", " +
            std::string(to_string(c.target)) + (c.leak_fix ? "" : ", no leak fix") +
            (c.self_shadow_fade ? "" : ", no fade") + (c.tangent_clip ? ", tangent clip" : "") +
-           (c.slice_placement == penumbra::SlicePlacement::adaptive ? ", adaptive slices" : "");
+           (c.slice_placement == penumbra::SlicePlacement::adaptive ? ", adaptive slices" : "") +
+           (c.alpha_test ? ", alpha test" : "");
 }
 
 int run(const std::vector<std::string>& args) {

@@ -212,6 +212,11 @@ struct Config {
     PcssParams pcss{};                      // pcss: blocker search and filter
     OimParams oim{};                        // oim: the interval maps (the sun's path: penumbra/sun_path.hpp)
     ErosionParams erosion{};                // erosion: edge search and blur (screen space)
+    bool alpha_test = false;                // cut-out casters (leaf cards, fences, grilles), every technique: the
+                                            // passes that draw the casters from the light (slicing, depth bins,
+                                            // shadow-map depth) discard fragments whose alpha, read from the draw's
+                                            // penumbra_alphaTexture at its penumbra_uv, is below the draw's
+                                            // penumbra_alphaCutoff (per-draw caller parameters; oim: its bake)
 
     friend constexpr bool operator==(const Config&, const Config&) = default;
 };

@@ -52,7 +52,7 @@ PENUMBRA_ENTRY_POINT Layout describe_layout(const Config& config) {
             program.files.emplace_back(file_name(a));
             program.stages.push_back(artifact_stage(a));
         }
-        if (!plan.stages.empty()) program.vertex_inputs = vertex_inputs(plan.stages.front());
+        if (!plan.stages.empty()) program.vertex_inputs = vertex_inputs(plan.stages.front(), config);
         layout.programs.push_back(std::move(program));
     }
     // The technique's textures and passes: shadow phase, then the screen phase over the caller's
@@ -78,7 +78,9 @@ PENUMBRA_ENTRY_POINT Layout describe_layout(const Config& config) {
     // The configuration is implied everywhere: a new one is a new layout.
     bool has_shadow = false;
     for (const PassDesc& p : layout.passes) has_shadow = has_shadow || p.phase == "shadow";
-    if (has_shadow) layout.phase_inputs.push_back({"shadow", {"light", "geometry"}});
+    // alpha_test: the casters' materials (alpha textures, cutoffs) decide the shadow phase too
+    if (has_shadow && config.alpha_test) layout.phase_inputs.push_back({"shadow", {"light", "geometry", "materials"}});
+    else if (has_shadow) layout.phase_inputs.push_back({"shadow", {"light", "geometry"}});
     layout.phase_inputs.push_back({"screen", build.screen_inputs});
     layout.phase_inputs.push_back({"example", {"light", "geometry", "camera"}});
     return layout;
@@ -191,7 +193,9 @@ PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
           "{\"max_search_radius\": " + std::to_string(c.erosion.max_search_radius) + ", \"edge_threshold\": " +
               real(c.erosion.edge_threshold) + ", \"search_taps\": " + std::to_string(c.erosion.search_taps) +
               ", \"blur_taps\": " + std::to_string(c.erosion.blur_taps) + "}",
-          false);
+          c.alpha_test);
+    // written when on, so that the layouts of solid casters read as before
+    if (c.alpha_test) field("    ", "alpha_test", "true", false);
     o += "  },\n";
     field("  ", "textures_per_layer", std::to_string(layout.textures_per_layer));
     field("  ", "max_level", std::to_string(layout.max_level));
@@ -229,9 +233,9 @@ PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
             o += "      {\"name\": " + json_string(d.name) + ", \"type\": " + json_string(d.type) +
                  ", \"meaning\": " + json_string(d.meaning) + ", \"units\": " + json_string(d.units);
             if (!d.source.empty()) o += ", \"source\": " + json_string(d.source) + ", \"compute\": " + json_string(d.compute);
-            if (d.binding >= 0)
-                o += ", \"binding\": " + std::to_string(d.binding) + ", \"texture\": " + json_string(d.texture) +
-                     ", \"sampling\": " + detail::json_sampling(d.sampling);
+            if (d.binding >= 0) o += ", \"binding\": " + std::to_string(d.binding);
+            if (d.binding >= 0 && d.source != "draw") // a draw's sampler: the caller's texture and sampler
+                o += ", \"texture\": " + json_string(d.texture) + ", \"sampling\": " + detail::json_sampling(d.sampling);
             if (d.offset >= 0)
                 o += ", \"block\": " + json_string(d.block) + ", \"block_binding\": " + std::to_string(d.block_binding) +
                      ", \"offset\": " + std::to_string(d.offset);

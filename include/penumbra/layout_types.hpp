@@ -63,7 +63,8 @@ struct TextureDesc {
 
 struct ParamDesc {
     std::string name, type, meaning, units;
-    std::string source;          // plain uniforms: "light" (uniform_values.hpp), "pass" (int_uniforms), "camera"
+    std::string source;          // plain uniforms: "light" (uniform_values.hpp), "pass" (int_uniforms), "camera";
+                                 // "draw" (also samplers): set by the caller per draw (alpha_test's material)
     std::string compute;         // plain uniforms: how to compute the value (formula, light_frame.hpp field)
     int binding = -1;            // sampler: texture unit / Vulkan binding; -1 for plain uniforms
     std::string texture;         // sampler: the texture bound to it when the program runs its usual pass
@@ -208,7 +209,8 @@ struct Layout {
     std::vector<PassDesc> passes;
     std::string result; // the texture holding the visibility after the screen phase
     std::vector<std::string> files; // every file an emission writes, layout.json included
-    // What each phase's output depends on ("light", "geometry", "camera", "caller_textures", "bake"):
+    // What each phase's output depends on ("light", "geometry", "camera", "caller_textures", "bake";
+    // "materials": the casters' alpha textures and cutoffs, with alpha_test):
     // an engine reruns a phase only when one of them changed (a camera-only change skips "shadow").
     std::vector<std::pair<std::string, std::vector<std::string>>> phase_inputs;
     std::vector<SliceLocation> slice_map; // occlusion: where each slice is (empty for other techniques)

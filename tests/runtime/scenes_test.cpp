@@ -20,10 +20,10 @@ bool bitwise_equal(const std::vector<T>& a, const std::vector<T>& b) {
 
 } // namespace
 
-TEST_CASE("scene_names lists the six procedural scenes of docs/model.md §5") {
+TEST_CASE("scene_names lists the procedural scenes of docs/model.md §5 and the cut-out scene") {
     const auto names = scene_names();
     const std::set<std::string_view> got(names.begin(), names.end());
-    CHECK(got == std::set<std::string_view>{"planes", "boxes", "tree", "butterfly", "terrain", "crowd", "box"});
+    CHECK(got == std::set<std::string_view>{"planes", "boxes", "tree", "butterfly", "terrain", "crowd", "box", "cutout"});
     CHECK(names.size() == got.size());
     CHECK_FALSE(make_scene("no-such-scene").has_value());
     CHECK_FALSE(make_scene("").has_value());

@@ -104,6 +104,15 @@ def main():
                for packing, target, fmt in itertools.product(
                    ["atlas", "array"], ["glsl330", "glsl450", "essl300", "vulkan"], ["rgba8", "rgba16f"])]
 
+    # Cut-out casters (alpha_test): the caster programs' penumbra_uv and per-draw ("draw") parameters,
+    # every technique and target, the adaptive depth bins too.
+    matrix += [(f"alpha-test-{technique}-{target}", ["--alpha-test", "--technique", technique, "--target", target])
+               for technique, target in itertools.product(
+                   ["occlusion", "shadowmap", "pcf", "pcss", "oim", "erosion"], ["glsl330", "glsl450", "essl300", "vulkan"])]
+    matrix += [(f"alpha-test-adaptive-{target}", ["--alpha-test", "--slice-placement", "adaptive", "--target", target,
+                                                  "--slices", "5", "--resolution", "64"])
+               for target in ["glsl330", "glsl450", "essl300", "vulkan"]]
+
     def generate(entry):
         """(name, layout or None when penumbra-gen refuses the combination, failure text)"""
         name, flags = entry
@@ -117,7 +126,7 @@ def main():
         shutil.rmtree(out)
         return name, layout, ""
 
-    checked, skipped, failures, sample, compute_sample = 0, 0, [], None, None
+    checked, skipped, failures, sample, compute_sample, cut_sample = 0, 0, [], None, None, None
     with concurrent.futures.ThreadPoolExecutor(max_workers=4) as pool:
         for name, layout, failure in pool.map(generate, matrix):
             if failure:
@@ -130,6 +139,8 @@ def main():
                 sample = sample or layout
                 if any(p["action"] == "dispatch" for p in layout["passes"]):
                     compute_sample = compute_sample or layout
+                if layout["config"].get("alpha_test") and layout["config"]["technique"] == "occlusion":
+                    cut_sample = cut_sample or layout
 
     # The check can fail: each of these breaks one rule and must be rejected.
     def broken(edit):
@@ -195,11 +206,31 @@ def main():
             if not all_errors(validator, doc):
                 failures.append(f"a broken layout ({label}) was accepted")
         breakages.update(compute_breakages)  # counted below
+    def draw_param(doc, name):
+        return next(u for p in doc["programs"] for u in p["parameters"] if u["name"] == name)
+
+    cut_breakages = {
+        "draw sampler with a layout texture": lambda d: draw_param(d, "penumbra_alphaTexture").update(
+            texture="penumbra_level0"),
+        "draw sampler without a binding": lambda d: draw_param(d, "penumbra_alphaTexture").pop("binding"),
+        "layout sampler with a draw source": lambda d: next(u for p in d["programs"] for u in p["parameters"]
+                                                            if "texture" in u).update(source="draw", compute="x"),
+        "alpha_test not a boolean": lambda d: d["config"].update(alpha_test="yes"),
+    }
+    if cut_sample is None:
+        failures.append("no layout with alpha_test was generated")
+    else:
+        for label, edit in cut_breakages.items():
+            doc = copy.deepcopy(cut_sample)
+            edit(doc)
+            if not all_errors(validator, doc):
+                failures.append(f"a broken layout ({label}) was accepted")
+        breakages.update(cut_breakages)  # counted below
     if sample is None:
         failures.append("no layout was generated")
     else:
         for label, edit in breakages.items():
-            if label in compute_breakages:
+            if label in compute_breakages or label in cut_breakages:
                 continue
             if not all_errors(validator, broken(edit)):
                 failures.append(f"a broken layout ({label}) was accepted")

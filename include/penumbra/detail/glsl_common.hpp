@@ -74,10 +74,7 @@ constexpr Text describe_oim(const Config& config) {
                format_int(o.samples), " bake samples along the path | target ", to_string(config.target));
 }
 
-// The configuration line of every file's header: only the fields the technique reads.
-constexpr Text describe(const Config& config) {
-    if (uses_shadow_map(config)) return describe_shadow_map(config);
-    if (config.technique == Technique::oim) return describe_oim(config);
+constexpr Text describe_occlusion(const Config& config) {
     return cat("slices ", format_int(config.slices), " | resolution ", format_int(config.resolution), "x",
                format_int(config.resolution), " | filter ", to_string(config.filter), " | fusion ",
                to_string(config.fusion), " | packing ", to_string(config.packing), " | light ",
@@ -92,6 +89,19 @@ constexpr Text describe(const Config& config) {
                choose(places_slices_adaptively(config), " | slice placement adaptive", ""),
                choose(prefilters_in_compute(config), " | prefilter compute", ""), " | target ",
                to_string(config.target));
+}
+
+// The configuration line of every file's header: only the fields the technique reads, then the
+// alpha test of cut-out casters when it is on.
+constexpr Text describe_technique(const Config& config) {
+    if (uses_shadow_map(config)) return describe_shadow_map(config);
+    if (config.technique == Technique::oim) return describe_oim(config);
+    return describe_occlusion(config);
+}
+
+constexpr Text describe(const Config& config) {
+    if (!config.alpha_test) return describe_technique(config);
+    return cat(describe_technique(config), " | alpha test (cut-out casters)");
 }
 
 // The version directive of the target: the first line of every stage.

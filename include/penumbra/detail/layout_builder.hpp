@@ -4,6 +4,7 @@
 #pragma once
 
 #include "../layout_types.hpp"
+#include "alpha_test.hpp"
 #include "glsl_common.hpp"
 #include "target_limits.hpp"
 #include "uniform_compute.hpp"
@@ -57,6 +58,15 @@ inline std::vector<ParamGroup> shading_param_groups(std::string_view program, st
     return {{"PenumbraVisibility", std::move(visibility)}, {"PenumbraDeferred", std::move(deferred)}};
 }
 
+// The groups of the programs that draw the casters from the light (slicing, depth bins, shadow-map
+// depth): the program's own, then with alpha_test the draw's material (detail/alpha_test.hpp).
+inline std::vector<ParamGroup> caster_param_groups(const Config& config, std::string_view block,
+                                                   std::vector<Param> own) {
+    std::vector<ParamGroup> groups{{block, std::move(own)}};
+    if (config.alpha_test) groups.push_back({alpha_test_block, alpha_test_params(config)});
+    return groups;
+}
+
 // The parameters of a program from its declaration groups: blocks and samplers numbered as they appear.
 inline std::vector<ParamDesc> describe_params(const Config& config, const std::vector<ParamGroup>& groups) {
     std::vector<ParamDesc> out;
@@ -74,7 +84,7 @@ inline std::vector<ParamDesc> describe_params(const Config& config, const std::v
             desc.units = std::string(p.units);
             desc.binding = bindings[i];
             desc.texture = p.texture.str();
-            if (!is_sampler(p)) {
+            if (!is_sampler(p) || p.source == "draw") {
                 desc.source = std::string(p.source);
                 desc.compute = p.source == "pass" ? "the value in int_uniforms of the pass that runs this program"
                                                   : std::string(uniform_compute(p.name.view(), config.light));

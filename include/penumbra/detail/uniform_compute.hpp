@@ -79,6 +79,15 @@ inline constexpr UniformCompute uniform_computes[] = {
      "(start, end, 1/dt, t) of penumbra::sun_window(SunPath, t, angular_diameter) (sun_path.hpp): "
      "dt = max(angular_diameter / sun_speed(path, t), 1e-6), the time the sun takes to move by its diameter; "
      "start = t - dt/2, end = t + dt/2"},
+    // alpha_test: per-draw caller parameters of the caster programs (detail/alpha_test.hpp)
+    {"penumbra_alphaTexture",
+     "per draw: the caster's material texture whose alpha cuts it (glTF baseColorTexture, OBJ map_d or map_Kd; "
+     "its .a is compared), bound with the engine's own sampler; a solid draw binds a 1x1 opaque texture",
+     ""},
+    {"penumbra_alphaCutoff",
+     "per draw: the caster's material alpha cutoff (glTF alphaCutoff, 0.5 when absent; 0.5 for a blended "
+     "material cast as a cut-out; 0 for a solid draw)",
+     ""},
 };
 
 // The "compute" text of uniform `name` for `light`; empty when the table has none.

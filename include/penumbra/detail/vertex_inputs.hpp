@@ -17,13 +17,20 @@ inline VertexInputDesc normal_input() { return {"penumbra_normal", 1, "vec3", "v
 inline VertexInputDesc uv_input() {
     return {"penumbra_uv", 2, "vec2", "unique texture coordinates (those of the occlusion interval map's bake)"};
 }
+// alpha_test: the caster draw's material texture coordinates, at which penumbra_alphaTexture is read.
+inline VertexInputDesc material_uv_input() {
+    return {"penumbra_uv", alpha_test_uv_location, "vec2",
+            "alpha_test: the caster's material texture coordinates, where its penumbra_alphaTexture is read"};
+}
 
 // The attributes a vertex stage reads; none for the full-screen triangle.
-inline std::vector<VertexInputDesc> vertex_inputs(Artifact vertex_stage) {
+inline std::vector<VertexInputDesc> vertex_inputs(Artifact vertex_stage, const Config& config) {
     switch (vertex_stage) {
     case Artifact::slicing_vert:
     case Artifact::depth_bins_vert:
-    case Artifact::shadow_depth_vert: return {position_input()};
+    case Artifact::shadow_depth_vert:
+        if (config.alpha_test) return {position_input(), material_uv_input()};
+        return {position_input()};
     case Artifact::shading_vert: return {position_input(), normal_input()};
     case Artifact::oim_shading_vert: return {position_input(), normal_input(), uv_input()};
     default: return {};

@@ -306,6 +306,27 @@ public:
         return upload(name, texels.data(), texels.size(), GL_UNSIGNED_INT, true, level);
     }
 
+    // alpha_test (cut-out casters): inside a draw_scene pass's `draw`, the material of the next draw of
+    // `program` — its alpha texture, bound at the unit the layout gives penumbra_alphaTexture with
+    // `sampler` (0: the texture's own filtering and wrap), and its cutoff (penumbra_alphaCutoff). A
+    // program without those parameters (alpha_test off, or one that draws no casters) is left alone.
+    void bind_caster_material(GLuint program, GLuint alpha_texture, GLuint sampler, float cutoff) const {
+        for (const auto& [name, id] : programs_) {
+            if (id != program) continue;
+            for (const ProgramDesc& p : emission_.layout.programs) {
+                if (p.name != name) continue;
+                for (const ParamDesc& param : p.parameters) {
+                    if (param.source != "draw") continue;
+                    if (param.name == "penumbra_alphaTexture" && param.binding >= 0)
+                        detail::bind_sampler(program, param.name, param.binding, alpha_texture, sampler);
+                    if (param.name == "penumbra_alphaCutoff")
+                        if (const GLint at = glGetUniformLocation(program, param.name.c_str()); at >= 0)
+                            glProgramUniform1f(program, at, cutoff);
+                }
+            }
+        }
+    }
+
     // Runs the layout's passes of phase "shadow" in order (draw_scene passes call `draw`).
     // Returns an empty string on success, else a diagnostic (GL errors raised inside `draw` included).
     // With `timings`, one entry per pass (GL_TIME_ELAPSED queries; waits for the results).

@@ -30,11 +30,12 @@ constexpr std::string_view flag_list =
     "--no-leak-fix, --no-fade, --tangent-clip, --no-tangent-clip, --slice-placement, --prefilter-stage, --config, --watch, --frames, --screenshot, "
     "--script, --help, --technique, --shadow-resolution, --shadow-bias, --shadow-slope-bias, --pcf-pattern, "
     "--pcf-grid, --pcf-taps, --pcf-radius, --pcss-blockers, --pcss-filter, --pcss-max-texels, --no-rotation, --no-receiver-plane-bias, "
-    "--oim-resolution, --oim-intervals, --oim-samples, --sun-time, --sun-path, --bake-cache";
+    "--oim-resolution, --oim-intervals, --oim-samples, --sun-time, --sun-path, --bake-cache, --alpha-test";
 
 bool is_switch(std::string_view flag) {
     return flag == "--headless" || flag == "--reference" || flag == "--no-ground" || flag == "--no-leak-fix" || flag == "--no-fade" ||
-           flag == "--tangent-clip" || flag == "--no-tangent-clip" || penumbra_gen::is_technique_switch(flag);
+           flag == "--tangent-clip" || flag == "--no-tangent-clip" || flag == "--alpha-test" ||
+           penumbra_gen::is_technique_switch(flag);
 }
 
 bool takes_value(std::string_view flag) {
@@ -138,6 +139,7 @@ ParsedOptions parse_options(const std::vector<std::string>& args) {
             if (flag == "--no-fade") flags.no_fade = true;
             if (flag == "--tangent-clip") flags.tangent_clip = true;
             if (flag == "--no-tangent-clip") flags.tangent_clip = false;
+            if (flag == "--alpha-test") flags.alpha_test = true;
             penumbra_gen::set_technique_switch(flag, flags.technique);
             continue;
         }
@@ -228,9 +230,9 @@ std::string usage() {
         "visibility with an Embree ray-traced ground truth. Without --headless: the interactive window.\n"
         "\n"
         "scene and light:\n";
-    out += line("--scene NAME|FILE", "planes, boxes, tree, butterfly, terrain, crowd, box (default boxes), or a mesh\n"
-                                     "                        file: Wavefront OBJ (.obj) or glTF 2.0 (.gltf with its "
-                                     "buffers, .glb); a regular\n"
+    out += line("--scene NAME|FILE", "planes, boxes, tree, butterfly, terrain, crowd, box, cutout (default boxes), or\n"
+                                     "                        a mesh file: Wavefront OBJ (.obj) or glTF 2.0 (.gltf with "
+                                     "its buffers, .glb); a regular\n"
                                      "                        file of at most 256 MiB, coordinates finite and within "
                                      "±1e9. glTF: every triangle\n"
                                      "                        primitive of the default scene, node transforms applied; "
@@ -270,6 +272,16 @@ std::string usage() {
     out += line("--prefilter-stage S", names("what builds the N-buffer levels above the packing pass: fragment passes, or\n"
                                              "                        compute dispatches (nbuffer, atlas, glsl450 only)",
                                              to_string(d.prefilter_stage)));
+    out += line("--alpha-test", std::string("cut-out casters, every technique (default ") + (d.alpha_test ? "on" : "off") +
+                                    "): materials that cut cast the shadow\n"
+                                    "                        of their texture's alpha, not of their triangles: glTF "
+                                    "alphaMode MASK (baseColorFactor.a\n"
+                                    "                        x baseColorTexture.a below alphaCutoff, default 0.5), "
+                                    "BLEND cast as a cut-out at 0.5,\n"
+                                    "                        OBJ map_d (or map_Kd's alpha) at 0.5; the oim bake cuts the "
+                                    "same. The Embree\n"
+                                    "                        truth and the receivers are cut either way (cut-out "
+                                    "pixels are not surfaces)");
     out += "\ntechnique (occlusion: the flags above; shadowmap, pcf, pcss, erosion, oim: these, plus --light and --target):\n";
     out += penumbra_gen::technique_usage(25);
     out += line("--config FILE.json", "configuration from JSON (the keys of Config, or a layout.json); a regular\n"

@@ -52,6 +52,16 @@ std::string oim_cache_key(const Mesh& mesh, const OimBakeSettings& settings) {
     h.array(mesh.normals);
     h.array(mesh.uvs);
     h.array(mesh.indices);
+    if (mesh.cuts()) { // the bake's rays pass where the cut materials are cut
+        h.array(mesh.material_uvs);
+        h.array(mesh.triangle_materials);
+        for (const CutMaterial& m : mesh.cut_materials) {
+            h.value(m.cutoff);
+            h.value(m.texture.width);
+            h.value(m.texture.height);
+            h.array(m.texture.alpha);
+        }
+    }
     h.value(settings.resolution);
     h.value(settings.intervals);
     h.value(settings.samples);

@@ -2,6 +2,7 @@
 #include "bake/oim_scene.hpp"
 
 #include "scenes/charts.hpp"
+#include "scenes/mesh_builder.hpp"
 #include "scenes/uv_coverage.hpp"
 
 #include <penumbra/detail/oim/emit_oim.hpp>
@@ -46,7 +47,9 @@ std::optional<OimSetup> prepare_oim(Scene& scene, const penumbra::Config& config
     scene.sun.direction = -penumbra::sun_direction(path, t);
 
     OimSetup setup;
-    setup.cached = bake_with_cache(scene.mesh, oim_bake_settings(config, path), cache_dir);
+    // alpha_test: the bake's rays pass where the cut materials are cut; off, the casters are solid
+    setup.cached = bake_with_cache(config.alpha_test ? scene.mesh : without_cuts(scene.mesh),
+                                   oim_bake_settings(config, path), cache_dir);
     for (int p = 0; p < penumbra::oim_pairs(config.oim); ++p) {
         setup.textures.push_back({penumbra::detail::oim_rise_name(p).str(), setup.cached.bake.texture(p, false)});
         setup.textures.push_back({penumbra::detail::oim_fall_name(p).str(), setup.cached.bake.texture(p, true)});

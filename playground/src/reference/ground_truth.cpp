@@ -61,6 +61,21 @@ struct GroundTruth::Impl {
     RTCScene scene = nullptr;
     float offset = 0.0f;
     unsigned threads = 1;
+    // The cut materials, their texture coordinates and the triangles' indices and materials (no
+    // positions): what the occlusion filter reads. Empty when nothing cuts.
+    Mesh cuts;
+
+    // Embree's occlusion filter: a hit on a cut material where its texture's alpha at the hit's
+    // texture coordinate is below the cutoff is no hit (the alpha test of cut-out casters).
+    static void pass_cut_out(const RTCFilterFunctionNArguments* args) {
+        const Mesh& mesh = *static_cast<const Mesh*>(args->geometryUserPtr);
+        for (unsigned i = 0; i < args->N; ++i) {
+            if (args->valid[i] != -1) continue;
+            const unsigned triangle = RTCHitN_primID(args->hit, args->N, i);
+            const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+            if (!mesh.solid_at(triangle, u, v)) args->valid[i] = 0;
+        }
+    }
 
     // Embree reports errors through a callback (possibly from its own threads); we record the
     // first one and throw it from our own code, never through Embree's C frames.
@@ -168,6 +183,15 @@ GroundTruth::GroundTruth(const Mesh& mesh, float ray_offset, unsigned thread_cou
             vertices[3 * i + 2] = mesh.positions[i].z;
         }
         std::copy(mesh.indices.begin(), mesh.indices.end(), indices);
+        if (mesh.cuts()) {
+            impl_->cuts.indices = mesh.indices;
+            impl_->cuts.material_uvs = mesh.material_uvs;
+            impl_->cuts.triangle_materials = mesh.triangle_materials;
+            impl_->cuts.cut_materials = mesh.cut_materials;
+            rtcSetGeometryUserData(geometry, &impl_->cuts);
+            rtcSetGeometryOccludedFilterFunction(geometry, &Impl::pass_cut_out);
+            rtcSetGeometryIntersectFilterFunction(geometry, &Impl::pass_cut_out);
+        }
         rtcCommitGeometry(geometry);
         rtcAttachGeometry(impl_->scene, geometry);
         rtcReleaseGeometry(geometry); // the scene holds its own reference

@@ -26,7 +26,9 @@ public:
 
 class GroundTruth {
 public:
-    // Builds the acceleration structure over `mesh` (copied into Embree's buffers).
+    // Builds the acceleration structure over `mesh` (copied into Embree's buffers). Its cut materials
+    // cut (an occlusion filter): a ray passes where the texture's alpha at the hit's texture
+    // coordinate is below the cutoff (the truth of cut-out casters; without_cuts() for solid ones).
     // `ray_offset`: distance by which ray origins are pushed off the surface along the normal to
     // avoid self-intersection; a negative value selects 1e-4 × the mesh's bounding-box diagonal.
     // `thread_count` 0 uses std::thread::hardware_concurrency().

@@ -2,6 +2,7 @@
 
 #include <penumbra/gl/link_program.hpp>
 
+#include <cstdint>
 #include <memory>
 #include <utility>
 
@@ -13,14 +14,17 @@ constexpr const char* gbuffer_vertex = R"(#version 450 core
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
 layout(location = 2) in vec2 uv;
+layout(location = 3) in vec2 materialUV;
 uniform mat4 clipFromWorld;
 out vec3 worldPos;
 out vec3 worldNormal;
 out vec2 texCoord;
+out vec2 materialTexCoord;
 void main() {
     worldPos = position;
     worldNormal = normal;
     texCoord = uv;
+    materialTexCoord = materialUV;
     gl_Position = clipFromWorld * vec4(position, 1.0);
 }
 )";
@@ -29,10 +33,15 @@ constexpr const char* gbuffer_fragment = R"(#version 450 core
 in vec3 worldPos;
 in vec3 worldNormal;
 in vec2 texCoord;
+in vec2 materialTexCoord;
+uniform sampler2D alphaTexture; // the draw's cut material (a 1x1 opaque texture for solid ones)
+uniform float alphaCutoff;
 layout(location = 0) out vec4 outPosition;
 layout(location = 1) out vec4 outNormal;
 layout(location = 2) out vec4 outTexCoord;
 void main() {
+    // cut-out pixels are not surfaces (the same test as the casters' alpha test)
+    if (texture(alphaTexture, materialTexCoord).a < alphaCutoff) discard;
     outPosition = vec4(worldPos, 1.0);
     // the normal of the side the camera sees (two-sided surfaces, back faces of sheets)
     outNormal = vec4(normalize(gl_FrontFacing ? worldNormal : -worldNormal), 0.0);
@@ -51,15 +60,59 @@ GLuint build_program(const std::string& name, std::string vertex, std::string fr
     return id;
 }
 
+namespace {
+
+// An RGBA8 texture whose alpha is `alpha` (rgb white), nearest filtering, repeat wrapping: what the
+// CPU's AlphaTexture::at reads.
+GLuint alpha_texture(int width, int height, const std::uint8_t* alpha) {
+    std::vector<std::uint8_t> rgba(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4, 255);
+    for (std::size_t i = 0; i < rgba.size() / 4; ++i) rgba[4 * i + 3] = alpha[i];
+    GLuint t = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &t);
+    glTextureStorage2D(t, 1, GL_RGBA8, width, height);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage2D(t, 0, 0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data()); // row 0 at v = 0
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    return t;
+}
+
+} // namespace
+
 MeshBuffers::MeshBuffers(const Mesh& mesh) {
     glCreateVertexArrays(1, &vao_);
+    glCreateVertexArrays(1, &caster_vao_);
     glCreateBuffers(1, &positions_);
     glCreateBuffers(1, &normals_);
     glCreateBuffers(1, &indices_);
     glCreateBuffers(1, &uvs_);
+    glCreateBuffers(1, &material_uvs_);
+    // The triangles grouped by material, solid (-1) first; one range per material.
+    std::vector<std::uint32_t> indices;
+    indices.reserve(mesh.indices.size());
+    const std::uint8_t opaque = 255;
+    textures_.push_back(alpha_texture(1, 1, &opaque));
+    for (int m = -1; m < static_cast<int>(mesh.cut_materials.size()); ++m) {
+        Range range{static_cast<GLsizei>(indices.size()), 0, textures_.front(), 0.0f};
+        if (m >= 0) {
+            const CutMaterial& material = mesh.cut_materials[static_cast<std::size_t>(m)];
+            textures_.push_back(alpha_texture(material.texture.width, material.texture.height, material.texture.alpha.data()));
+            range.texture = textures_.back();
+            range.cutoff = material.cutoff;
+        }
+        for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
+            if ((mesh.triangle_materials.empty() ? -1 : mesh.triangle_materials[t]) == m)
+                indices.insert(indices.end(), mesh.indices.begin() + static_cast<std::ptrdiff_t>(3 * t),
+                               mesh.indices.begin() + static_cast<std::ptrdiff_t>(3 * t + 3));
+        range.count = static_cast<GLsizei>(indices.size()) - range.first;
+        if (range.count > 0) ranges_.push_back(range);
+    }
     glNamedBufferStorage(positions_, static_cast<GLsizeiptr>(mesh.positions.size() * sizeof(glm::vec3)), mesh.positions.data(), 0);
     glNamedBufferStorage(normals_, static_cast<GLsizeiptr>(mesh.normals.size() * sizeof(glm::vec3)), mesh.normals.data(), 0);
-    glNamedBufferStorage(indices_, static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)), mesh.indices.data(), 0);
+    glNamedBufferStorage(indices_, static_cast<GLsizeiptr>(indices.size() * sizeof(std::uint32_t)), indices.data(), 0);
     glVertexArrayVertexBuffer(vao_, 0, positions_, 0, sizeof(glm::vec3));
     glVertexArrayVertexBuffer(vao_, 1, normals_, 0, sizeof(glm::vec3));
     for (GLuint a : {0u, 1u}) {
@@ -74,19 +127,48 @@ MeshBuffers::MeshBuffers(const Mesh& mesh) {
         glVertexArrayAttribFormat(vao_, 2, 2, GL_FLOAT, GL_FALSE, 0);
         glVertexArrayAttribBinding(vao_, 2, 2);
     }
+    // The casters' vertex array: position, and the material texture coordinates as penumbra_uv (2).
+    glVertexArrayVertexBuffer(caster_vao_, 0, positions_, 0, sizeof(glm::vec3));
+    glEnableVertexArrayAttrib(caster_vao_, 0);
+    glVertexArrayAttribFormat(caster_vao_, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(caster_vao_, 0, 0);
+    if (mesh.cuts()) {
+        glNamedBufferStorage(material_uvs_, static_cast<GLsizeiptr>(mesh.material_uvs.size() * sizeof(glm::vec2)),
+                             mesh.material_uvs.data(), 0);
+        for (const auto& [vao, attribute] : {std::pair{vao_, 3u}, std::pair{caster_vao_, 2u}}) {
+            glVertexArrayVertexBuffer(vao, attribute, material_uvs_, 0, sizeof(glm::vec2));
+            glEnableVertexArrayAttrib(vao, attribute);
+            glVertexArrayAttribFormat(vao, attribute, 2, GL_FLOAT, GL_FALSE, 0);
+            glVertexArrayAttribBinding(vao, attribute, attribute);
+        }
+    }
     glVertexArrayElementBuffer(vao_, indices_);
-    count_ = static_cast<GLsizei>(mesh.indices.size());
+    glVertexArrayElementBuffer(caster_vao_, indices_);
+    count_ = static_cast<GLsizei>(indices.size());
 }
 
 MeshBuffers::~MeshBuffers() {
     glDeleteVertexArrays(1, &vao_);
-    const GLuint buffers[4] = {positions_, normals_, indices_, uvs_};
-    glDeleteBuffers(4, buffers);
+    glDeleteVertexArrays(1, &caster_vao_);
+    const GLuint buffers[5] = {positions_, normals_, indices_, uvs_, material_uvs_};
+    glDeleteBuffers(5, buffers);
+    glDeleteTextures(static_cast<GLsizei>(textures_.size()), textures_.data());
 }
 
 void MeshBuffers::draw() const {
     glBindVertexArray(vao_);
     glDrawElements(GL_TRIANGLES, count_, GL_UNSIGNED_INT, nullptr);
+    glBindVertexArray(0);
+}
+
+void MeshBuffers::draw_materials(const std::function<void(GLuint alpha_texture, float cutoff)>& material,
+                                 bool caster) const {
+    glBindVertexArray(caster ? caster_vao_ : vao_);
+    for (const Range& r : ranges_) {
+        material(r.texture, r.cutoff);
+        glDrawElements(GL_TRIANGLES, r.count, GL_UNSIGNED_INT,
+                       reinterpret_cast<const void*>(static_cast<std::uintptr_t>(r.first) * sizeof(std::uint32_t)));
+    }
     glBindVertexArray(0);
 }
 
@@ -140,7 +222,13 @@ void GBuffer::render(const MeshBuffers& mesh, const glm::mat4& clip_from_world) 
     glDisable(GL_BLEND);
     glUseProgram(program_);
     glUniformMatrix4fv(glGetUniformLocation(program_, "clipFromWorld"), 1, GL_FALSE, &clip_from_world[0][0]);
-    mesh.draw();
+    glUniform1i(glGetUniformLocation(program_, "alphaTexture"), 0);
+    mesh.draw_materials([&](GLuint alpha, float cutoff) {
+        glBindTextureUnit(0, alpha);
+        glBindSampler(0, 0);
+        glUniform1f(glGetUniformLocation(program_, "alphaCutoff"), cutoff);
+    }, false);
+    glBindTextureUnit(0, 0);
     glUseProgram(0);
     glDisable(GL_DEPTH_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -9,6 +9,7 @@
 
 #include <epoxy/gl.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -28,18 +29,33 @@ void main() {
 GLuint build_program(const std::string& name, std::string vertex, std::string fragment, std::string* error);
 
 // Vertex buffers of a Mesh: attribute 0 = position, 1 = normal (what the slicing pass expects),
-// 2 = texture coordinates when the mesh has them (otherwise the attribute stays disabled: (0, 0)).
+// 2 = texture coordinates when the mesh has them (otherwise the attribute stays disabled: (0, 0)),
+// 3 = the cut materials' texture coordinates when a material cuts. The triangles are stored grouped
+// by material (solid first), one draw range per material, each with its alpha texture (RGBA8, the
+// alpha in .a; nearest, repeat) and cutoff; solid ranges use a 1x1 opaque texture and cutoff 0.
 class MeshBuffers {
 public:
     explicit MeshBuffers(const Mesh& mesh);
     ~MeshBuffers();
     MeshBuffers(const MeshBuffers&) = delete;
     MeshBuffers& operator=(const MeshBuffers&) = delete;
+    // Every triangle in one draw (attributes 0 to 3).
     void draw() const;
+    // Each material's triangles in a draw of its own, `material(alpha_texture, cutoff)` called before
+    // each. `caster`: the layout's caster convention, the material texture coordinates as attribute 2
+    // (penumbra_uv; detail/alpha_test.hpp) instead of the unique ones.
+    void draw_materials(const std::function<void(GLuint alpha_texture, float cutoff)>& material, bool caster) const;
 
 private:
-    GLuint vao_ = 0, positions_ = 0, normals_ = 0, indices_ = 0, uvs_ = 0;
+    struct Range {
+        GLsizei first = 0, count = 0; // indices
+        GLuint texture = 0;
+        float cutoff = 0.0f;
+    };
+    GLuint vao_ = 0, caster_vao_ = 0, positions_ = 0, normals_ = 0, indices_ = 0, uvs_ = 0, material_uvs_ = 0;
     GLsizei count_ = 0;
+    std::vector<Range> ranges_;
+    std::vector<GLuint> textures_; // [0]: the 1x1 opaque texture, then one per cut material
 };
 
 // World positions (RGBA32F, w = 1 on geometry, 0 on background), unit normals (RGBA32F) and
@@ -52,7 +68,8 @@ public:
     GBuffer(const GBuffer&) = delete;
     GBuffer& operator=(const GBuffer&) = delete;
 
-    // Clears and rasterises `mesh` with clip_from_world; restores framebuffer 0 afterwards.
+    // Clears and rasterises `mesh` with clip_from_world; restores framebuffer 0 afterwards. Cut-out
+    // pixels (a cut material's alpha below its cutoff) are not surfaces: background (w = 0).
     void render(const MeshBuffers& mesh, const glm::mat4& clip_from_world);
 
     int width() const { return width_; }

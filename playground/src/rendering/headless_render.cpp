@@ -23,6 +23,12 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
     std::unique_ptr<GBuffer> gbuffer = GBuffer::create(width, height, error);
     if (!gbuffer) return false;
     MeshBuffers mesh(scene.mesh);
+    // The casters, each material's triangles with its alpha texture and cutoff (alpha_test; a program
+    // without the parameters ignores them).
+    const penumbra::gl::Runtime& rt = *runtime;
+    const auto draw_casters = [&](GLuint program) {
+        mesh.draw_materials([&](GLuint alpha, float cutoff) { rt.bind_caster_material(program, alpha, 0, cutoff); }, true);
+    };
     gbuffer->render(mesh, scene.camera.projection_matrix(static_cast<float>(width) / height) * scene.camera.view_matrix());
 
     // Penumbra passes.
@@ -39,7 +45,7 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
                                                              {"penumbra_worldNormals", gbuffer->normals()},
                                                              {"penumbra_texCoords", gbuffer->tex_coords()}};
     if (options.warm_up) {
-        if (std::string d = runtime->build([&](GLuint) { mesh.draw(); }); !d.empty()) {
+        if (std::string d = runtime->build(draw_casters); !d.empty()) {
             if (error) *error = d;
             return false;
         }
@@ -52,7 +58,7 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
     out.warm = options.warm_up;
     out.texture_bytes = penumbra::texture_bytes(runtime->layout(), width, height);
     out.timings.clear();
-    if (std::string d = runtime->build([&](GLuint) { mesh.draw(); }, &out.timings); !d.empty()) {
+    if (std::string d = runtime->build(draw_casters, &out.timings); !d.empty()) {
         if (error) *error = d;
         return false;
     }

@@ -153,6 +153,7 @@ std::string generate_charts(Mesh& mesh, int resolution) {
                 chart.hi = glm::max(chart.hi, q);
                 out.positions.push_back(mesh.positions[old]);
                 out.normals.push_back(mesh.normals[old]);
+                if (mesh.cuts()) out.material_uvs.push_back(mesh.material_uvs[old]);
                 local.push_back(q);
                 vertex_chart.push_back(chart_of[t]);
             }
@@ -181,6 +182,8 @@ std::string generate_charts(Mesh& mesh, int resolution) {
     }
     pack(charts, order, lo, resolution);
 
+    out.cut_materials = std::move(mesh.cut_materials); // triangles keep their order
+    out.triangle_materials = std::move(mesh.triangle_materials);
     out.uvs.resize(out.positions.size());
     for (std::size_t i = 0; i < out.positions.size(); ++i) {
         const Chart& c = charts[vertex_chart[i]];

@@ -6,6 +6,7 @@
 #include "scenes/gltf_loader.hpp"
 
 #include "scenes/gltf_compression.hpp"
+#include "scenes/material_textures.hpp"
 #include "scenes/mesh_builder.hpp"
 #include "scenes/scene_defaults.hpp"
 
@@ -17,6 +18,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -171,8 +173,12 @@ bool write_nothing(std::string* err, const std::string&, const std::vector<unsig
     return false;
 }
 
-// Images only matter for materials; they are neither decoded nor required.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+// Images only matter for the materials that cut (alpha test): their encoded bytes are kept, by image
+// index, and decoded later for those materials only; none is required.
+using EncodedImages = std::map<int, std::vector<unsigned char>>;
+bool keep_encoded_image(tinygltf::Image*, const int index, std::string*, std::string*, int, int,
+                        const unsigned char* bytes, int size, void* user) {
+    if (bytes && size > 0) static_cast<EncodedImages*>(user)->insert_or_assign(index, std::vector<unsigned char>(bytes, bytes + size));
     return true;
 }
 
@@ -372,6 +378,63 @@ struct Loader {
     std::vector<std::string> warnings;
     bool all_have_uvs = true;
     std::size_t triangles_skipped_primitives = 0;
+    const EncodedImages* images = nullptr;
+    std::map<int, int> material_slots; // glTF material → its index in mesh.cut_materials, -1: it does not cut
+
+    // The slot in mesh.cut_materials of glTF material `index` when it cuts (alpha test), else -1:
+    // alphaMode MASK (baseColorFactor.a × baseColorTexture.a below alphaCutoff), or BLEND, cast as a
+    // cut-out at 0.5. Its texture is decoded on first use; one that cannot be read leaves the factor
+    // alone to cut, with a warning.
+    int cut_slot(int index) {
+        if (index < 0 || static_cast<std::size_t>(index) >= model.materials.size()) return -1;
+        if (const auto it = material_slots.find(index); it != material_slots.end()) return it->second;
+        material_slots[index] = -1;
+        const tinygltf::Material& m = model.materials[static_cast<std::size_t>(index)];
+        const bool mask = m.alphaMode == "MASK";
+        if (!mask && m.alphaMode != "BLEND") return -1;
+        const std::vector<double>& color = m.pbrMetallicRoughness.baseColorFactor;
+        const double factor = color.size() == 4 && std::isfinite(color[3]) ? color[3] : 1.0;
+        const double cutoff = mask && std::isfinite(m.alphaCutoff) ? std::clamp(m.alphaCutoff, 0.0, 1.0) : 0.5;
+        CutMaterial cut{"material " + std::to_string(index) +
+                            (m.name.empty() ? "" : " '" + penumbra_gen::printable(m.name, 60) + "'"),
+                        uniform_alpha_texture(factor), static_cast<float>(cutoff)};
+        if (const std::string problem = read_base_color_alpha(m.pbrMetallicRoughness.baseColorTexture, factor, cut.texture);
+            !problem.empty())
+            warnings.push_back(cut.name + " (alphaMode " + m.alphaMode + "): " + problem + "; its alpha factor alone cuts");
+        mesh.cut_materials.push_back(std::move(cut));
+        return material_slots[index] = static_cast<int>(mesh.cut_materials.size()) - 1;
+    }
+
+    // The base colour texture's alpha times `factor` into `out`; "" when there is none or it was read,
+    // else why it could not be.
+    std::string read_base_color_alpha(const tinygltf::TextureInfo& info, double factor, AlphaTexture& out) const {
+        if (info.index < 0) return {};
+        if (info.texCoord != 0)
+            return "its base colour texture uses TEXCOORD_" + std::to_string(info.texCoord) + " (only TEXCOORD_0 is read)";
+        if (static_cast<std::size_t>(info.index) >= model.textures.size())
+            return "its base colour texture " + std::to_string(info.index) + " does not exist";
+        const int source = model.textures[static_cast<std::size_t>(info.index)].source;
+        const auto bytes = images ? images->find(source) : EncodedImages::const_iterator{};
+        if (!images || bytes == images->end()) return "image " + std::to_string(source) + " has no data";
+        std::string error;
+        std::optional<AlphaTexture> decoded =
+            decode_alpha_texture(bytes->second.data(), bytes->second.size(), AlphaChannel::alpha, factor, &error);
+        if (!decoded) return "image " + std::to_string(source) + ": " + error;
+        out = std::move(*decoded);
+        return {};
+    }
+
+    // After a part's vertices and triangles were appended: its material texture coordinates (its
+    // TEXCOORD_0) and its triangles' cut material `slot`, when anything in the mesh cuts. Call
+    // complete_cut_materials(mesh) before appending the part.
+    void append_cuts(int slot, const Mesh& part, const std::string& where) {
+        if (!mesh.cuts()) return;
+        if (slot >= 0 && part.uvs.empty())
+            warnings.push_back(where + ": no TEXCOORD_0, so its material's texture is read at (0, 0)");
+        if (part.uvs.empty()) mesh.material_uvs.resize(mesh.material_uvs.size() + part.positions.size(), glm::vec2(0.0f));
+        else mesh.material_uvs.insert(mesh.material_uvs.end(), part.uvs.begin(), part.uvs.end());
+        mesh.triangle_materials.resize(mesh.triangle_materials.size() + part.triangle_count(), slot);
+    }
 
     void skip(const std::string& where, const std::string& why) {
         warnings.push_back(where + " skipped: " + why);
@@ -518,12 +581,15 @@ struct Loader {
             all_have_uvs = false;
         }
         // Append.
+        const int slot = cut_slot(p.material);
+        complete_cut_materials(mesh);
         const std::uint32_t base = static_cast<std::uint32_t>(mesh.positions.size());
         if (!all_have_uvs) mesh.uvs.clear();
         mesh.positions.insert(mesh.positions.end(), part.positions.begin(), part.positions.end());
         mesh.normals.insert(mesh.normals.end(), part.normals.begin(), part.normals.end());
         if (all_have_uvs) mesh.uvs.insert(mesh.uvs.end(), part.uvs.begin(), part.uvs.end());
         for (std::uint32_t i : part.indices) mesh.indices.push_back(base + i);
+        append_cuts(slot, part, where);
     }
 
     void add_mesh(int index, int node, const glm::dmat4& world) {
@@ -601,7 +667,8 @@ LoadResult load_gltf_scene(const std::string& path) {
         !compressed.changed ? std::string() : binary ? gltf_compression::rewrap_glb(bytes, compressed.json) : compressed.json;
     const std::string& parsed = compressed.changed ? prepared_bytes : bytes;
     parser.SetFsCallbacks({&file_exists, &expand_nothing, &read_whole_file, &write_nothing, &access});
-    parser.SetImageLoader(&skip_image, nullptr);
+    EncodedImages images;
+    parser.SetImageLoader(&keep_encoded_image, &images);
     tinygltf::Model model;
     std::string err, warn;
     bool ok = false;
@@ -631,6 +698,7 @@ LoadResult load_gltf_scene(const std::string& path) {
     for (const auto& [file, buffer] : access.missing_buffers)
         missing[buffer.buffer] = penumbra_gen::printable(file, 200);
     Loader loader{model, missing, {}, {}};
+    loader.images = &images;
     try {
         if (const std::string problem = gltf_compression::decode(model, compressed, missing); !problem.empty())
             return failure(problem);

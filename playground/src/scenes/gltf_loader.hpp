@@ -13,6 +13,10 @@ namespace penumbra::playground {
 // translation × rotation × scale, composed down the node tree). Positions, normals and TEXCOORD_0
 // are read (normals transformed by the inverse transpose; computed, smooth, when a primitive has
 // none or has unusable ones; texture coordinates kept in mesh.uvs when every primitive has them).
+// Materials that cut (alpha test) become mesh.cut_materials: alphaMode MASK (baseColorFactor.a ×
+// baseColorTexture.a below alphaCutoff, default 0.5) and BLEND (cast as a cut-out at 0.5), their
+// texture's alpha decoded with stb_image (material_textures.hpp) and read at TEXCOORD_0; no other
+// image is decoded. A texture that cannot be read leaves the factor alone to cut, with a warning.
 // The parser is Debian's libtinygltf; everything it does not check is validated here before any
 // data is read: the .glb header and chunk lengths against the file size, every accessor and buffer
 // view against its buffer, component types and accessor types, index values against the vertex

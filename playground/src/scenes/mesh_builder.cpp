@@ -42,6 +42,27 @@ void add_quad(Mesh& mesh, glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec3 p3
     mesh.indices.insert(mesh.indices.end(), {i0, i1, i2, i0, i2, i3});
 }
 
+void complete_cut_materials(Mesh& mesh) {
+    if (!mesh.cuts()) return;
+    mesh.material_uvs.resize(mesh.positions.size(), glm::vec2(0.0f));
+    mesh.triangle_materials.resize(mesh.triangle_count(), -1);
+}
+
+Mesh without_cuts(Mesh mesh) {
+    mesh.cut_materials.clear();
+    mesh.material_uvs.clear();
+    mesh.triangle_materials.clear();
+    return mesh;
+}
+
+void add_cut_quad(Mesh& mesh, glm::vec3 p0, glm::vec3 p1, glm::vec3 p2, glm::vec3 p3, int material, glm::vec2 uv0,
+                  glm::vec2 uv1, glm::vec2 uv2, glm::vec2 uv3) {
+    complete_cut_materials(mesh);
+    add_quad(mesh, p0, p1, p2, p3);
+    mesh.material_uvs.insert(mesh.material_uvs.end(), {uv0, uv1, uv2, uv3});
+    mesh.triangle_materials.insert(mesh.triangle_materials.end(), {material, material});
+}
+
 void add_horizontal_rect(Mesh& mesh, float cx, float y, float cz, float size_x, float size_z) {
     const float hx = 0.5f * size_x;
     const float hz = 0.5f * size_z;
@@ -117,6 +138,49 @@ std::pair<glm::vec3, glm::vec3> compute_bounds(const Mesh& mesh) {
     return {lo, hi};
 }
 
+std::string validate_cut_materials(const Mesh& mesh) {
+    if (!mesh.cuts()) {
+        if (!mesh.material_uvs.empty() || !mesh.triangle_materials.empty())
+            return "material texture coordinates or triangle materials without a cut material";
+        return {};
+    }
+    std::ostringstream out;
+    if (mesh.material_uvs.size() != mesh.positions.size()) {
+        out << mesh.material_uvs.size() << " material texture coordinates for " << mesh.positions.size() << " vertices";
+        return out.str();
+    }
+    if (mesh.triangle_materials.size() != mesh.triangle_count()) {
+        out << mesh.triangle_materials.size() << " triangle materials for " << mesh.triangle_count() << " triangles";
+        return out.str();
+    }
+    for (std::size_t i = 0; i < mesh.material_uvs.size(); ++i)
+        if (!std::isfinite(mesh.material_uvs[i].x) || !std::isfinite(mesh.material_uvs[i].y)) {
+            out << "vertex " << i << " has non-finite material texture coordinates";
+            return out.str();
+        }
+    for (std::size_t t = 0; t < mesh.triangle_materials.size(); ++t)
+        if (mesh.triangle_materials[t] < -1 ||
+            mesh.triangle_materials[t] >= static_cast<std::int32_t>(mesh.cut_materials.size())) {
+            out << "triangle " << t << " has material " << mesh.triangle_materials[t] << "; allowed: -1 to "
+                << mesh.cut_materials.size() - 1;
+            return out.str();
+        }
+    for (const CutMaterial& m : mesh.cut_materials) {
+        const std::size_t texels = static_cast<std::size_t>(std::max(m.texture.width, 0)) *
+                                   static_cast<std::size_t>(std::max(m.texture.height, 0));
+        if (m.texture.width < 1 || m.texture.height < 1 || m.texture.alpha.size() != texels) {
+            out << "cut material '" << m.name << "' has a " << m.texture.width << "x" << m.texture.height
+                << " texture with " << m.texture.alpha.size() << " texels";
+            return out.str();
+        }
+        if (!(m.cutoff >= 0.0f && m.cutoff <= 1.0f)) {
+            out << "cut material '" << m.name << "' has alpha cutoff " << m.cutoff << "; allowed: 0 to 1";
+            return out.str();
+        }
+    }
+    return {};
+}
+
 std::string validate_mesh(const Mesh& mesh) {
     std::ostringstream out;
     if (mesh.indices.size() % 3 != 0) {
@@ -136,6 +200,7 @@ std::string validate_mesh(const Mesh& mesh) {
             out << "vertex " << i << " has non-finite texture coordinates";
             return out.str();
         }
+    if (const std::string problem = validate_cut_materials(mesh); !problem.empty()) return problem;
     for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
         if (mesh.indices[i] >= mesh.positions.size()) {
             out << "index " << mesh.indices[i] << " (triangle " << i / 3 << ") is out of range ("

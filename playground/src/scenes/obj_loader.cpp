@@ -4,6 +4,7 @@
 
 #include "scenes/obj_loader.hpp"
 
+#include "scenes/material_textures.hpp"
 #include "scenes/mesh_builder.hpp"
 #include "scenes/scene_defaults.hpp"
 
@@ -129,6 +130,75 @@ std::string check_obj_text(std::string_view text) {
     return {};
 }
 
+// The material libraries (mtllib) of an OBJ file, next to it, read through the bounded reader. One
+// that cannot be read leaves its materials out (tinyobjloader warns; nothing cuts then).
+class BoundedMaterialReader : public tinyobj::MaterialReader {
+public:
+    explicit BoundedMaterialReader(std::filesystem::path dir) : dir_(std::move(dir)) {}
+    bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                    std::map<std::string, int>* map, std::string* warn, std::string* err) override {
+        const penumbra_gen::BoundedRead file = penumbra_gen::read_bounded_file((dir_ / name).string(), penumbra_gen::obj_file_limit);
+        if (!file.text) return false;
+        std::istringstream stream(*file.text);
+        tinyobj::LoadMtl(map, materials, &stream, warn, err);
+        return true;
+    }
+
+private:
+    std::filesystem::path dir_;
+};
+
+// The cut material of each OBJ material (alpha test), appended to `out`: its slot there, or -1
+// when it does not cut. map_d cuts at 0.5 by its image's alpha (or grey level); map_Kd cuts by its
+// alpha channel when its image has one (only the header is read to know). Only those images are
+// decoded; one that cannot be read is a warning and the material stays solid.
+std::vector<int> cut_slots(const std::vector<tinyobj::material_t>& materials, const std::filesystem::path& dir,
+                           std::vector<CutMaterial>& out, std::vector<std::string>& warnings) {
+    std::vector<int> slots(materials.size(), -1);
+    for (std::size_t i = 0; i < materials.size(); ++i) {
+        const tinyobj::material_t& m = materials[i];
+        const bool dissolve = !m.alpha_texname.empty();
+        const std::string& texture = dissolve ? m.alpha_texname : m.diffuse_texname;
+        if (texture.empty()) continue;
+        const std::string what = "material '" + penumbra_gen::printable(m.name, 60) + "' " +
+                                 (dissolve ? "map_d" : "map_Kd") + " '" + penumbra_gen::printable(texture, 100) + "'";
+        const penumbra_gen::BoundedRead file = penumbra_gen::read_bounded_file((dir / texture).string(), penumbra_gen::obj_file_limit);
+        if (!file.text) {
+            if (dissolve) warnings.push_back(what + " not read (" + file.problem + "); it does not cut");
+            continue;
+        }
+        const auto* bytes = reinterpret_cast<const unsigned char*>(file.text->data());
+        if (!dissolve && !image_has_alpha(bytes, file.text->size())) continue; // an opaque diffuse texture
+        std::string error;
+        std::optional<AlphaTexture> alpha = decode_alpha_texture(
+            bytes, file.text->size(), dissolve ? AlphaChannel::alpha_or_grey : AlphaChannel::alpha, 1.0, &error);
+        if (!alpha) {
+            warnings.push_back(what + ": " + error + "; it does not cut");
+            continue;
+        }
+        out.push_back({"material '" + penumbra_gen::printable(m.name, 60) + "'", std::move(*alpha), 0.5f});
+        slots[i] = static_cast<int>(out.size()) - 1;
+    }
+    return slots;
+}
+
+// The cut materials onto the finished mesh: `slots` per OBJ material, `triangle_material` the OBJ
+// material of each triangle (-1: none); the materials' texture coordinates are the file's, v
+// flipped (OBJ's v = 0 is the image's bottom row).
+void attach_cuts(Mesh& mesh, std::vector<CutMaterial> cuts, const std::vector<int>& slots,
+                 const std::vector<int>& triangle_material, std::vector<std::string>& warnings) {
+    if (cuts.empty()) return;
+    mesh.cut_materials = std::move(cuts);
+    if (mesh.uvs.empty()) warnings.push_back("faces without texture coordinates (vt): cut materials read their texture at (0, 0)");
+    mesh.material_uvs.assign(mesh.positions.size(), glm::vec2(0.0f));
+    for (std::size_t i = 0; i < mesh.uvs.size(); ++i) mesh.material_uvs[i] = {mesh.uvs[i].x, 1.0f - mesh.uvs[i].y};
+    mesh.triangle_materials.assign(mesh.triangle_count(), -1);
+    for (std::size_t t = 0; t < mesh.triangle_count() && t < triangle_material.size(); ++t) {
+        const int m = triangle_material[t];
+        if (m >= 0 && static_cast<std::size_t>(m) < slots.size()) mesh.triangle_materials[t] = slots[static_cast<std::size_t>(m)];
+    }
+}
+
 } // namespace
 
 LoadResult load_obj_scene(const std::string& path) {
@@ -141,13 +211,15 @@ LoadResult load_obj_scene(const std::string& path) {
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> materials;
     std::string warn, err;
-    // No material reader (materials are irrelevant to visibility) and triangulate = false: the
-    // library's own quad triangulation reads vertex positions through unchecked face indices, so
-    // we validate the indices first and fan-triangulate ourselves.
+    // Materials are read for the ones that cut (alpha test: map_d, map_Kd with alpha). triangulate =
+    // false: the library's own quad triangulation reads vertex positions through unchecked face
+    // indices, so we validate the indices first and fan-triangulate ourselves.
+    const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+    BoundedMaterialReader material_reader(dir);
     bool ok = false;
     try {
-        ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &stream,
-                              /*readMatFn=*/nullptr, /*triangulate=*/false);
+        ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &stream, &material_reader,
+                              /*triangulate=*/false);
     } catch (const std::exception& e) {
         return failure(path, std::string("parser failed: ") + e.what());
     }
@@ -163,6 +235,7 @@ LoadResult load_obj_scene(const std::string& path) {
     // Validate every corner of every polygon, then fan-triangulate (fine for the convex
     // polygons OBJ exporters write). `corners` holds three validated corners per triangle.
     std::vector<tinyobj::index_t> corners;
+    std::vector<int> triangle_material; // the OBJ material of each triangle, -1 for none
     bool all_corners_have_normals = true;
     bool all_corners_have_texcoords = texcoord_count > 0;
     std::size_t face_number = 0;
@@ -206,9 +279,11 @@ LoadResult load_obj_scene(const std::string& path) {
                 }
                 if (idx.texcoord_index < 0) all_corners_have_texcoords = false;
             }
-            for (std::size_t c = 1; c + 1 < count; ++c)
+            for (std::size_t c = 1; c + 1 < count; ++c) {
                 corners.insert(corners.end(), {shape.mesh.indices[offset], shape.mesh.indices[offset + c],
                                                shape.mesh.indices[offset + c + 1]});
+                triangle_material.push_back(f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1);
+            }
             offset += count;
         }
     }
@@ -274,12 +349,18 @@ LoadResult load_obj_scene(const std::string& path) {
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
             return failure(path, "a vertex position is not a finite number");
 
+    std::vector<std::string> warnings;
+    std::vector<CutMaterial> cuts;
+    const std::vector<int> slots = cut_slots(materials, dir, cuts, warnings);
+    attach_cuts(mesh, std::move(cuts), slots, triangle_material, warnings);
+
     Scene scene;
     scene.name = std::filesystem::path(path).stem().string();
     scene.mesh = std::move(mesh);
     finish_scene(scene);
     if (const std::string problem = validate_mesh(scene.mesh); !problem.empty()) return failure(path, problem);
-    return {std::move(scene), {}, {}};
+    for (std::string& w : warnings) w = penumbra_gen::printable(path, 200) + ": " + w;
+    return {std::move(scene), {}, std::move(warnings)};
 }
 
 } // namespace penumbra::playground

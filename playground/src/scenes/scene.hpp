@@ -9,12 +9,40 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 namespace penumbra::playground {
+
+// The alpha of a cut-out material's texture (alpha test), one byte per texel, row-major, the first
+// row at texture coordinate v = 0 (glTF's convention: v = 0 is the image's top row). Read with
+// nearest filtering and repeat wrapping, on the GPU (GL_NEAREST, GL_REPEAT) and on the CPU alike.
+struct AlphaTexture {
+    int width = 0, height = 0;
+    std::vector<std::uint8_t> alpha; // width * height; the material's alpha factor already applied
+
+    // The texel under texture coordinate `uv` (nearest, repeat), 0 to 255.
+    std::uint8_t at(glm::vec2 uv) const {
+        const float fu = uv.x - std::floor(uv.x), fv = uv.y - std::floor(uv.y);
+        const int x = std::min(width - 1, static_cast<int>(fu * static_cast<float>(width)));
+        const int y = std::min(height - 1, static_cast<int>(fv * static_cast<float>(height)));
+        return alpha[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
+    }
+};
+
+// A material that cuts its triangles: where its texture's alpha is below the cutoff there is no
+// surface (glTF alphaMode MASK, a BLEND material cast as a cut-out, OBJ map_d).
+struct CutMaterial {
+    std::string name;
+    AlphaTexture texture;
+    float cutoff = 0.5f; // alpha / 255 below this is cut; 0 to 1
+
+    // True where the material has a surface at texture coordinate `uv`.
+    bool solid_at(glm::vec2 uv) const { return static_cast<float>(texture.at(uv)) >= cutoff * 255.0f; }
+};
 
 // An indexed triangle mesh with one normal per vertex. Faces that must look flat (boxes, quads)
 // get their own vertices so that their normals are not averaged across edges.
@@ -24,8 +52,29 @@ struct Mesh {
     std::vector<std::uint32_t> indices;  // three per triangle, each < positions.size()
     std::vector<glm::vec2> uvs;          // texture coordinates in [0,1]², same size as positions; empty
                                          // when the mesh has none (scenes/charts.hpp makes unique ones)
+    // Cut-out materials (alpha test). Empty when nothing cuts; otherwise material_uvs has one texture
+    // coordinate per vertex (the materials' own, not the unique charts of `uvs`) and
+    // triangle_materials one entry per triangle: an index into cut_materials, or -1 for a solid one.
+    std::vector<CutMaterial> cut_materials;
+    std::vector<glm::vec2> material_uvs;
+    std::vector<std::int32_t> triangle_materials;
 
     std::size_t triangle_count() const { return indices.size() / 3; }
+    bool cuts() const { return !cut_materials.empty(); }
+    // The cut material of triangle `t`, or nullptr when it is solid.
+    const CutMaterial* material_of(std::size_t t) const {
+        if (triangle_materials.empty() || triangle_materials[t] < 0) return nullptr;
+        return &cut_materials[static_cast<std::size_t>(triangle_materials[t])];
+    }
+    // True where triangle `t` has a surface at barycentric (u, v) (Embree's: weight u on its second
+    // corner, v on its third).
+    bool solid_at(std::size_t t, float u, float v) const {
+        const CutMaterial* m = material_of(t);
+        if (!m) return true;
+        const glm::vec2 uv = (1.0f - u - v) * material_uvs[indices[3 * t]] + u * material_uvs[indices[3 * t + 1]] +
+                             v * material_uvs[indices[3 * t + 2]];
+        return m->solid_at(uv);
+    }
 };
 
 // A camera orbiting `target`: right-handed, +y up, GL clip depth −1..1 (GLM's defaults).

@@ -47,6 +47,7 @@ OrbitCamera default_camera(glm::vec3 bounds_min, glm::vec3 bounds_max) {
 }
 
 void finish_scene(Scene& scene) {
+    complete_cut_materials(scene.mesh); // a floor added under cut-out casters is solid
     std::tie(scene.bounds_min, scene.bounds_max) = compute_bounds(scene.mesh);
     scene.light = default_rect_light(scene.bounds_min, scene.bounds_max);
     scene.sun = default_sun_light();

@@ -264,12 +264,96 @@ Mesh build_box() {
     return mesh;
 }
 
+// Alpha textures of the cut-out scene, generated in code (v = 0 is row 0).
+// A grille cell: solid bars along the edges of the texture, a square hole in the middle; repeated
+// over a panel it is a lattice of square holes.
+AlphaTexture grille_texture() {
+    AlphaTexture t{32, 32, std::vector<std::uint8_t>(32 * 32, 0)};
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) {
+            const bool bar = x < 6 || x >= 26 || y < 6 || y >= 26;
+            t.alpha[static_cast<std::size_t>(y * 32 + x)] = bar ? 255 : 0;
+        }
+    return t;
+}
+
+// A fence: one picket per texture width (the middle half of it) and a rail across the lower third;
+// alpha ramps linearly at the picket's sides, so the cutoff decides where the picket ends.
+AlphaTexture fence_texture() {
+    AlphaTexture t{32, 32, std::vector<std::uint8_t>(32 * 32, 0)};
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) {
+            const float across = std::abs((static_cast<float>(x) + 0.5f) / 32.0f - 0.5f); // 0 at the picket's middle
+            const float picket = std::clamp((0.3f - across) / 0.1f, 0.0f, 1.0f);
+            const bool rail = y >= 20 && y < 24;
+            t.alpha[static_cast<std::size_t>(y * 32 + x)] =
+                static_cast<std::uint8_t>(std::lround(255.0f * (rail ? 1.0f : picket)));
+        }
+    return t;
+}
+
+// A leaf card: an ellipse with a notch along its midrib, alpha falling to 0 at its rim.
+AlphaTexture leaf_texture() {
+    AlphaTexture t{64, 64, std::vector<std::uint8_t>(64 * 64, 0)};
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) {
+            const float u = (static_cast<float>(x) + 0.5f) / 32.0f - 1.0f, v = (static_cast<float>(y) + 0.5f) / 32.0f - 1.0f;
+            const float r = std::sqrt(u * u / 0.36f + v * v);                         // the ellipse: r < 1
+            const float inside = std::clamp((1.0f - r) / 0.2f, 0.0f, 1.0f);
+            const bool midrib_gap = std::abs(u) < 0.04f && v > -0.2f && v < 0.6f; // a slit along the midrib
+            t.alpha[static_cast<std::size_t>(y * 64 + x)] =
+                static_cast<std::uint8_t>(std::lround(255.0f * (midrib_gap ? 0.0f : inside)));
+        }
+    return t;
+}
+
+// Cut-out casters under a wide light (the alpha test, Config::alpha_test): a horizontal grille
+// panel of square holes at two heights, a fence of pickets standing on the ground, and a bush of
+// leaf cards: quads whose shadows are their textures' alpha, not their rectangles.
+Mesh build_cutout() {
+    Mesh mesh;
+    add_ground(mesh);
+    mesh.cut_materials = {{"grille", grille_texture(), 0.5f}, {"fence", fence_texture(), 0.5f},
+                          {"leaf", leaf_texture(), 0.5f}};
+    complete_cut_materials(mesh);
+    // The grille: 3 x 2 units at height 1.4, 0.5-unit cells (texture repeated 6 x 4 times).
+    add_cut_quad(mesh, {-3.0f, 1.4f, 1.6f}, {0.0f, 1.4f, 1.6f}, {0.0f, 1.4f, -0.4f}, {-3.0f, 1.4f, -0.4f}, 0,
+                 {0.0f, 0.0f}, {6.0f, 0.0f}, {6.0f, 4.0f}, {0.0f, 4.0f});
+    // A smaller, finer grille above it (a second cut-out layer over the first).
+    add_cut_quad(mesh, {-2.4f, 2.6f, 1.0f}, {-1.0f, 2.6f, 1.0f}, {-1.0f, 2.6f, -0.2f}, {-2.4f, 2.6f, -0.2f}, 0,
+                 {0.0f, 0.0f}, {5.6f, 0.0f}, {5.6f, 4.8f}, {0.0f, 4.8f});
+    // The fence: 4 units long, 1.6 tall, along x at z = -1.8, eight pickets; both sides face out.
+    add_cut_quad(mesh, {-1.0f, 0.0f, -1.8f}, {3.0f, 0.0f, -1.8f}, {3.0f, 1.6f, -1.8f}, {-1.0f, 1.6f, -1.8f}, 1,
+                 {0.0f, 1.0f}, {8.0f, 1.0f}, {8.0f, 0.0f}, {0.0f, 0.0f});
+    // The bush: leaf cards in a ball around (1.6, 2.0, 0.9), randomly oriented.
+    DeterministicRandom rng(0xc07u);
+    for (int i = 0; i < 120; ++i) {
+        glm::vec3 offset;
+        do {
+            offset = glm::vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+        } while (glm::dot(offset, offset) > 1.0f);
+        const glm::vec3 centre = glm::vec3(1.6f, 2.0f, 0.9f) + glm::vec3(0.9f, 0.6f, 0.9f) * offset;
+        const float yaw = rng.uniform(0.0f, 2.0f * glm::pi<float>());
+        const float pitch = rng.uniform(-0.9f, 0.9f);
+        const glm::vec3 across(std::cos(yaw), 0.0f, std::sin(yaw));
+        const glm::vec3 flat_along(-std::sin(yaw), 0.0f, std::cos(yaw));
+        const glm::vec3 along = std::cos(pitch) * flat_along + std::sin(pitch) * glm::vec3(0, 1, 0);
+        const glm::vec3 a = 0.22f * across, b = 0.22f * along;
+        add_cut_quad(mesh, centre - a - b, centre + a - b, centre + a + b, centre - a + b, 2, {0.0f, 0.0f},
+                     {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f});
+    }
+    // A trunk under the bush (solid).
+    add_box(mesh, box_transform({1.6f, 0.75f, 0.9f}, {0.15f, 1.5f, 0.15f}));
+    complete_cut_materials(mesh);
+    return mesh;
+}
+
 struct SceneEntry {
     std::string_view name;
     Mesh (*build)();
 };
 
-constexpr std::array<SceneEntry, 7> scene_table{{
+constexpr std::array<SceneEntry, 8> scene_table{{
     {"planes", build_planes},
     {"boxes", build_boxes},
     {"tree", build_tree},
@@ -277,6 +361,7 @@ constexpr std::array<SceneEntry, 7> scene_table{{
     {"terrain", build_terrain},
     {"crowd", build_crowd},
     {"box", build_box},
+    {"cutout", build_cutout},
 }};
 
 } // namespace

@@ -14,7 +14,8 @@
 
 namespace penumbra::playground {
 
-// "planes", "boxes", "tree", "butterfly", "terrain", "crowd", "box".
+// "planes", "boxes", "tree", "butterfly", "terrain", "crowd", "box", "cutout" (cut-out casters: a
+// grille, a fence and leaf cards whose materials cut, for the alpha test).
 std::vector<std::string_view> scene_names();
 
 // The named scene, or nullopt for an unknown name.

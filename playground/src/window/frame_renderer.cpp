@@ -109,6 +109,7 @@ bool FrameRenderer::update_meshes(const std::optional<glm::mat4>& moving_object)
         // One buffer for scene + object: both the G-buffer and the slicing pass draw it at once.
         Mesh combined = scene_->mesh;
         add_box(combined, *moving_object);
+        complete_cut_materials(combined); // the object is solid
         mesh_ = std::make_unique<MeshBuffers>(combined);
     }
     mesh_object_ = moving_object;
@@ -147,7 +148,12 @@ std::string FrameRenderer::render(penumbra::gl::Runtime& left, penumbra::gl::Run
         // The passes from the light run only when the light, the geometry or the configuration
         // changed (layout.json "phase_inputs"): a camera-only change reuses the occlusion textures.
         std::vector<penumbra::gl::PassTiming> timings;
-        if (std::string d = runtime->update([&](GLuint) { mesh_->draw(); }, geometry_changed, nullptr, &timings); !d.empty())
+        if (std::string d = runtime->update(
+                [&](GLuint program) { // each material's casters with its alpha texture and cutoff (alpha_test)
+                    mesh_->draw_materials(
+                        [&](GLuint alpha, float cutoff) { runtime->bind_caster_material(program, alpha, 0, cutoff); }, true);
+                },
+                geometry_changed, nullptr, &timings); !d.empty())
             return prefix + d;
         // A pass that runs once per level (nbuffer_level, …) counts as one entry: its total.
         std::vector<std::pair<std::string, double>> totals;

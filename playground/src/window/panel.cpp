@@ -97,6 +97,7 @@ bool shadow_map_editor(Config& config) {
 bool config_editor(const char* id, Config& config) {
     ImGui::PushID(id);
     bool changed = enum_combo("technique", config.technique);
+    changed |= ImGui::Checkbox("alpha test (cut-out casters)", &config.alpha_test);
     if (config.technique != Technique::occlusion) {
         if (uses_shadow_map(config)) changed |= shadow_map_editor(config);
         changed |= enum_combo("light", config.light);

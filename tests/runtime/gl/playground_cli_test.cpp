@@ -102,7 +102,7 @@ TEST_CASE("playground cli: bad arguments exit 2 with a message naming what is al
         {{"--headless", "--out", "a.png", "--filter", "box"},
          "error: --filter: 'box' is not allowed; allowed: mipmap, nbuffer, sat, gaussian"},
         {{"--headless", "--out", "a.png", "--scene", "nope"},
-         "error: --scene: unknown scene 'nope'; allowed: planes, boxes, tree, butterfly, terrain, crowd, box, or a"},
+         "error: --scene: unknown scene 'nope'; allowed: planes, boxes, tree, butterfly, terrain, crowd, box, cutout, or a"},
         {{"--headless", "--scene", "planes"}, "error: --out: missing"},
         {{"--headless", "--out", "a.png", "--slices", "40"}, "error: slices: 40 is out of range; allowed: 1 to 32, 64 or 128"},
         {{"--headless", "--out", "a.png", "--slices", "many"}, "error: --slices: 'many' is not an integer"},

@@ -1,10 +1,12 @@
 // The slicing pass on the "planes" scene (docs/model.md §1, paper §3.4), where the expected occlusion
 // textures are known exactly: each triangle, projected from the slicing camera, covers the texel
-// centres inside it, in the slice of its depth (and the next one with the leak fix). The oracle
+// centres inside it, in the slice of its depth (and the next one with the leak fix; the CPU's
+// slicing, reference/slice_coverage.hpp). The oracle
 // test builds on this output, so it is checked on its own here. Label "gl".
 #include "rendering/egl_context.hpp"
 #include "rendering/headless_render.hpp"
 #include "reference/oracle.hpp"
+#include "reference/slice_coverage.hpp"
 #include "scenes/scenes.hpp"
 
 #include <penumbra/gl/runtime.hpp>
@@ -22,78 +24,11 @@ using namespace penumbra::playground;
 
 namespace {
 
-// What a texel of one slice must hold. Texels whose centre lies within a texel of a triangle's
-// edge, or whose depth is within rounding of a slice boundary, may go either way.
-enum class Expect : unsigned char { empty, either, covered };
+// The CPU's slicing (reference/slice_coverage.hpp): texels near an edge or a slice boundary may go either way.
+using Expect = Coverage;
 
-Expect merge(Expect a, Expect b) { return std::max(a, b); }
-
-struct ExpectedSlices {
-    int resolution = 0, slices = 0;
-    std::vector<Expect> texels; // slice-major, rows from v = 0 up
-
-    Expect& at(int slice, int x, int y) {
-        return texels[(static_cast<std::size_t>(slice) * resolution + y) * resolution + x];
-    }
-};
-
-// Texture coordinates (in texels) and depth of a world point, from docs/model.md §1 (rect: perspective
-// from E = C − d·N; sun: orthographic along the light), not from the slicing camera's matrix.
-glm::dvec3 project(const Config& config, const SliceFrame& frame, glm::dvec3 world) {
-    const glm::dvec3 p = glm::dvec3(glm::dmat4(frame.light_from_world) * glm::dvec4(world, 1.0));
-    glm::dvec2 uv;
-    if (config.light == Light::rect) {
-        const double d = frame.cop_distance;
-        uv = 0.5 + glm::dvec2(p) * d / ((d + p.z) * glm::dvec2(frame.light_size));
-    } else {
-        uv = 0.5 + glm::dvec2(p) / (2.0 * static_cast<double>(frame.window_half_size));
-    }
-    return {uv * static_cast<double>(config.resolution), p.z};
-}
-
-// `reach`: the slices beyond its own that a fragment also marks (penumbra::leak_fix_reach).
-ExpectedSlices expected_slices(const Mesh& mesh, const Config& config, const SliceFrame& frame, int reach) {
-    const int R = config.resolution, S = config.slices;
-    ExpectedSlices out{R, S, std::vector<Expect>(static_cast<std::size_t>(S) * R * R, Expect::empty)};
-    const double z0 = frame.slice_depths.x, thickness = frame.slice_depths.y;
-    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-        glm::dvec3 v[3];
-        for (int k = 0; k < 3; ++k) v[k] = project(config, frame, glm::dvec3(mesh.positions[mesh.indices[3 * t + k]]));
-        // Signed edge functions in texels; the triangle's orientation does not matter.
-        const double area = (v[1].x - v[0].x) * (v[2].y - v[0].y) - (v[2].x - v[0].x) * (v[1].y - v[0].y);
-        if (std::abs(area) < 1e-12) continue;
-        const int x0 = std::max(0, static_cast<int>(std::floor(std::min({v[0].x, v[1].x, v[2].x}))) - 1);
-        const int x1 = std::min(R - 1, static_cast<int>(std::ceil(std::max({v[0].x, v[1].x, v[2].x}))) + 1);
-        const int y0 = std::max(0, static_cast<int>(std::floor(std::min({v[0].y, v[1].y, v[2].y}))) - 1);
-        const int y1 = std::min(R - 1, static_cast<int>(std::ceil(std::max({v[0].y, v[1].y, v[2].y}))) + 1);
-        for (int y = y0; y <= y1; ++y)
-            for (int x = x0; x <= x1; ++x) {
-                const glm::dvec2 c(x + 0.5, y + 0.5);
-                double barycentric[3], nearest_edge = 1e30;
-                for (int k = 0; k < 3; ++k) {
-                    const glm::dvec3 a = v[(k + 1) % 3], b = v[(k + 2) % 3];
-                    const double edge = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
-                    barycentric[k] = edge / area;
-                    nearest_edge = std::min(nearest_edge, std::abs(edge) / glm::length(glm::dvec2(b - a)));
-                }
-                const bool inside = barycentric[0] >= 0 && barycentric[1] >= 0 && barycentric[2] >= 0;
-                if (!inside && nearest_edge >= 1.0) continue;
-                const Expect mark = inside && nearest_edge >= 1.0 ? Expect::covered : Expect::either;
-                // Depth is affine over the projected triangle: constant for planes parallel to a
-                // rect light, affine under the sun's orthographic projection.
-                const double z = barycentric[0] * v[0].z + barycentric[1] * v[1].z + barycentric[2] * v[2].z;
-                const double position = (z - z0) / thickness;
-                const int slice = std::clamp(static_cast<int>(std::ceil(position)) - 1, 0, S - 1);
-                const bool on_boundary = std::abs(position - std::round(position)) < 1e-4;
-                for (int s = slice; s <= std::min(slice + (on_boundary ? 1 : 0), S - 1); ++s) {
-                    const Expect m = on_boundary ? Expect::either : mark;
-                    out.at(s, x, y) = merge(out.at(s, x, y), m);
-                    // paper §3.4.1 leak fix: a fragment of slice k also marks slices k+1 to k+reach
-                    for (int j = 1; j <= reach && s + j < S; ++j) out.at(s + j, x, y) = merge(out.at(s + j, x, y), m);
-                }
-            }
-    }
-    return out;
+SliceCoverage expected_slices(const Mesh& mesh, const Config& config, const SliceFrame& frame, int reach) {
+    return cpu_slice_coverage(mesh, config, frame, reach, /*cut=*/false);
 }
 
 } // namespace
@@ -152,11 +87,11 @@ TEST_CASE("slicing: planes, the occlusion textures are the analytic coverage of 
         HeadlessResult result;
         REQUIRE_MESSAGE(render_headless(*scene, config, 16, 16, result, &error, options), name, ": ", error);
         REQUIRE_MESSAGE(read, name, ": ", error);
-        ExpectedSlices expected = expected_slices(scene->mesh, config, frame, leak_fix_reach(config));
+        SliceCoverage expected = expected_slices(scene->mesh, config, frame, leak_fix_reach(config));
         // The texels where the leak fix makes a difference: they must follow the configuration.
         Config toggled = config;
         toggled.leak_fix = !config.leak_fix;
-        ExpectedSlices other = expected_slices(scene->mesh, config, frame, leak_fix_reach(toggled));
+        SliceCoverage other = expected_slices(scene->mesh, config, frame, leak_fix_reach(toggled));
 
         const int R = config.resolution;
         std::size_t non_binary = 0, wrong = 0, covered = 0, leak_texels = 0, leak_marked = 0;

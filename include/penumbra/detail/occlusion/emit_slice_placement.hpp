@@ -33,15 +33,18 @@ constexpr Text depth_bins_fragment(const Config& config) {
     write_preamble(out, config, "adaptive slice placement, depth-bin pre-pass, fragment stage (blend MAX, clear to 0)");
     out.chunk("depth_bins_outputs");
     out.line(varying(config, "in", 0, "float", "penumbra_depth"));
+    write_alpha_test_fragment_inputs(out, config);
     for (int t = 0; t < depth_bins_per_draw / 4; ++t)
         out.line("layout(location = ", format_int(t), ") out vec4 penumbra_bins", format_int(t),
                  "; // bins penumbra_firstBin + ", format_int(4 * t), " to + ", format_int(4 * t + 3));
     out.blank();
     int binding = 0;
     write_params(out, config, depth_bins_params(), "PenumbraPass", binding);
+    write_alpha_test_params(out, config, binding);
     out.chunk("depth_bins_main");
     out.line("void main()");
     out.line("{");
+    write_alpha_test_discard(out, config);
     out.comment(cat("paper §5, slice placement: the uniform slices' depth range in ", format_int(depth_bins),
                     " bins; bin b holds (z0 + b * w, z0 + (b + 1) * w]"));
     out.line("float width = penumbra_sliceDepths.y * ", format_float(double(config.slices) / depth_bins), ";");

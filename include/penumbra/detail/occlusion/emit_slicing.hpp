@@ -5,6 +5,7 @@
 // a logical OR, and the unpack pass (emit_unpack.hpp) writes the RGBA occlusion textures.
 #pragma once
 
+#include "../alpha_test.hpp"
 #include "parameters.hpp"
 
 namespace penumbra::detail {
@@ -19,6 +20,7 @@ constexpr Text slicing_camera_vertex(const Config& config, std::string_view titl
     out.chunk("slicing_inputs");
     out.line("layout(location = 0) in vec3 penumbra_position; // world space (scene units)");
     out.line(varying(config, "out", 0, "float", "penumbra_depth"), " // depth along the light normal (scene units)");
+    write_alpha_test_vertex_inputs(out, config);
     out.blank();
     int binding = 0;
     write_params(out, config, params, block, binding);
@@ -29,8 +31,9 @@ void main()
     vec4 world = vec4(penumbra_position, 1.0);
     penumbra_depth = (penumbra_lightFromWorld * world).z;
     gl_Position = penumbra_sliceClipFromWorld * world;
-}
 )");
+    write_alpha_test_vertex_copy(out, config);
+    out.line("}");
     return out.take();
 }
 
@@ -47,6 +50,7 @@ constexpr Text slicing_fragment(const Config& config) {
                         : "slicing pass, fragment stage (blend equation MAX, clear to 0)");
     out.chunk("slicing_outputs");
     out.line(varying(config, "in", 0, "float", "penumbra_depth"));
+    write_alpha_test_fragment_inputs(out, config);
     if (bits) {
         out.comment("paper §3.7: more slices than colour channels (eight RGBA targets hold 32) from one geometry pass,");
         out.comment("as in bitmask voxelization [ED06a]: bit k % 32 of component k / 32 marks slice k, and the unpack");
@@ -62,6 +66,7 @@ constexpr Text slicing_fragment(const Config& config) {
     out.blank();
     int binding = 0;
     write_params(out, config, slicing_params(config), "PenumbraSlicing", binding);
+    write_alpha_test_params(out, config, binding);
     if (bits) {
         out.chunk("slice_bit");
         out.comment("the uvec4 with only the bit of slice `slice` set");
@@ -76,6 +81,7 @@ constexpr Text slicing_fragment(const Config& config) {
     out.chunk("slicing_fragment_main");
     out.line("void main()");
     out.line("{");
+    write_alpha_test_discard(out, config);
     if (places_slices_adaptively(config)) {
         out.comment("slice k holds the depths in (boundary k, boundary k + 1]: k counts the inner boundaries above");
         write_boundary_search(out, "inner", "penumbra_depth", config.slices - 1);

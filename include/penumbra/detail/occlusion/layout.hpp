@@ -41,9 +41,9 @@ inline std::vector<ParamGroup> occlusion_param_groups(const Config& config, std:
     if (program == "shading_example" || program == "shading_deferred")
         return shading_param_groups(program, visibility_params(config), deferred_params(config),
                                     example_fragment_params(), example_vertex_params());
-    if (program == "slicing") return {{"PenumbraSlicing", slicing_params(config)}};
+    if (program == "slicing") return caster_param_groups(config, "PenumbraSlicing", slicing_params(config));
+    if (program == "depth_bins") return caster_param_groups(config, "PenumbraPass", depth_bins_params());
     std::vector<Param> params;
-    if (program == "depth_bins") params = depth_bins_params();
     if (program == "slice_boundaries") params = slice_boundaries_params();
     if (program == "pack_atlas") params = pack_atlas_params();
     if (program == "unpack_slices") params = unpack_params();

@@ -16,7 +16,7 @@ constexpr std::vector<ProgramPlan> shadow_map_programs(const Config&) {
 }
 
 inline std::vector<ParamGroup> shadow_map_param_groups(const Config& config, std::string_view program) {
-    if (program == "shadow_depth") return {{"PenumbraShadowDepth", shadow_depth_params()}};
+    if (program == "shadow_depth") return caster_param_groups(config, "PenumbraShadowDepth", shadow_depth_params());
     return shading_param_groups(program, shadow_visibility_params(config), deferred_params(config),
                                 example_fragment_params(), example_vertex_params());
 }

@@ -1,0 +1,67 @@
+// penumbra/detail/alpha_test.hpp — cut-out casters (Config::alpha_test): what the passes that draw the
+// caster geometry from the light (slicing, depth bins, shadow-map depth) add, so that leaf cards,
+// fences and grilles cast the shadow of their alpha-tested texture, not of their quads.
+//
+// The convention (layout.json states it): the caster draw feeds its material's texture coordinates
+// as the vertex input penumbra_uv (location 2) and sets two per-draw caller parameters, the sampler
+// penumbra_alphaTexture (its material's texture, the engine's own sampler) and the float
+// penumbra_alphaCutoff; a fragment whose alpha is below the cutoff is discarded. A solid draw binds
+// a 1x1 opaque texture (or sets the cutoff to 0). With alpha_test off nothing here is written.
+#pragma once
+
+#include "glsl_common.hpp"
+
+namespace penumbra::detail {
+
+// The declaration group of the per-draw material parameters (a uniform block on Vulkan).
+inline constexpr std::string_view alpha_test_block = "PenumbraMaterial";
+// Location of penumbra_uv, as in the occlusion interval maps' programs (vertex_inputs.hpp).
+inline constexpr int alpha_test_uv_location = 2;
+// Location of the texture coordinates passed from the vertex to the fragment stage (penumbra_depth is 0).
+inline constexpr int alpha_test_varying_location = 1;
+
+// The per-draw parameters of the caster programs; none with alpha_test off.
+constexpr std::vector<Param> alpha_test_params(const Config& config) {
+    if (!config.alpha_test) return {};
+    return {
+        {"penumbra_alphaTexture", "sampler2D",
+         "the caster draw's material texture: where its alpha (.a) is below penumbra_alphaCutoff the caster is cut "
+         "out; bound by the caller per draw with its own sampler",
+         "", {}, "draw"},
+        {"penumbra_alphaCutoff", "float",
+         "the caster draw's alpha cutoff (glTF alphaCutoff, 0.5 by default; 0 for a solid draw)", "", {}, "draw"},
+    };
+}
+
+// Vertex stage: the caster's texture coordinates in, passed on to the fragment stage.
+constexpr void write_alpha_test_vertex_inputs(LineWriter& out, const Config& config) {
+    if (!config.alpha_test) return;
+    out.line("layout(location = ", format_int(alpha_test_uv_location),
+             ") in vec2 penumbra_uv; // the caster's material texture coordinates (alpha test)");
+    out.line(varying(config, "out", alpha_test_varying_location, "vec2", "penumbra_texCoord"));
+}
+
+constexpr void write_alpha_test_vertex_copy(LineWriter& out, const Config& config) {
+    if (config.alpha_test) out.line("penumbra_texCoord = penumbra_uv;");
+}
+
+// Fragment stage: the texture coordinates in.
+constexpr void write_alpha_test_fragment_inputs(LineWriter& out, const Config& config) {
+    if (!config.alpha_test) return;
+    out.line(varying(config, "in", alpha_test_varying_location, "vec2", "penumbra_texCoord"),
+             " // the caster's material texture coordinates (alpha test)");
+}
+
+// Both stages: the material's parameters, after the program's own (so the bindings follow them).
+constexpr void write_alpha_test_params(LineWriter& out, const Config& config, int& binding) {
+    if (config.alpha_test) write_params(out, config, alpha_test_params(config), alpha_test_block, binding);
+}
+
+// Fragment stage, first in main(): the cut.
+constexpr void write_alpha_test_discard(LineWriter& out, const Config& config) {
+    if (!config.alpha_test) return;
+    out.comment("alpha test: where the material's alpha is below the cutoff there is no caster (leaf cards, fences)");
+    out.line("if (texture(penumbra_alphaTexture, penumbra_texCoord).a < penumbra_alphaCutoff) discard;");
+}
+
+} // namespace penumbra::detail

@@ -1,0 +1,106 @@
+// playground/src/reference/slice_coverage.cpp
+#include "reference/slice_coverage.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace penumbra::playground {
+
+namespace {
+
+// Texture coordinates (texels), depth along the light and clip w of a world point, from docs/model.md §1
+// (rect: perspective from E = C − d·N; sun: orthographic along the light), not from the slicing
+// camera's matrix.
+struct Projected {
+    glm::dvec2 texel;
+    double depth = 0, w = 1;
+};
+
+Projected project(const Config& config, const SliceFrame& frame, glm::dvec3 world) {
+    const glm::dvec3 p = glm::dvec3(glm::dmat4(frame.light_from_world) * glm::dvec4(world, 1.0));
+    Projected out;
+    out.depth = p.z;
+    glm::dvec2 uv;
+    if (config.light == Light::rect) {
+        const double d = frame.cop_distance;
+        out.w = d + p.z;
+        uv = 0.5 + glm::dvec2(p) * d / (out.w * glm::dvec2(frame.light_size));
+    } else {
+        uv = 0.5 + glm::dvec2(p) / (2.0 * static_cast<double>(frame.window_half_size));
+    }
+    out.texel = uv * static_cast<double>(config.resolution);
+    return out;
+}
+
+// The cut at texture coordinate `uv`: covered, empty, or either when a neighbour within rounding
+// of the texture's texel grid decides otherwise.
+Coverage cut_at(const CutMaterial& m, glm::dvec2 uv) {
+    const double margin_u = 0.01 / m.texture.width, margin_v = 0.01 / m.texture.height;
+    const bool solid = m.solid_at(glm::vec2(uv));
+    for (const glm::dvec2 d : {glm::dvec2(margin_u, 0), glm::dvec2(-margin_u, 0), glm::dvec2(0, margin_v),
+                               glm::dvec2(0, -margin_v)})
+        if (m.solid_at(glm::vec2(uv + d)) != solid) return Coverage::either;
+    return solid ? Coverage::covered : Coverage::empty;
+}
+
+} // namespace
+
+SliceCoverage cpu_slice_coverage(const Mesh& mesh, const Config& config, const SliceFrame& frame, int reach,
+                                 bool cut) {
+    const int R = config.resolution, S = config.slices;
+    SliceCoverage out{R, S, std::vector<Coverage>(static_cast<std::size_t>(S) * R * R, Coverage::empty)};
+    const double z0 = frame.slice_depths.x, thickness = frame.slice_depths.y;
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+        Projected v[3];
+        for (int k = 0; k < 3; ++k)
+            v[k] = project(config, frame, glm::dvec3(mesh.positions[mesh.indices[3 * t + k]]));
+        const CutMaterial* material = cut ? mesh.material_of(t) : nullptr;
+        // Signed edge functions in texels; the triangle's orientation does not matter.
+        const glm::dvec2 a0 = v[0].texel, a1 = v[1].texel, a2 = v[2].texel;
+        const double area = (a1.x - a0.x) * (a2.y - a0.y) - (a2.x - a0.x) * (a1.y - a0.y);
+        if (std::abs(area) < 1e-12) continue;
+        const int x0 = std::max(0, static_cast<int>(std::floor(std::min({a0.x, a1.x, a2.x}))) - 1);
+        const int x1 = std::min(R - 1, static_cast<int>(std::ceil(std::max({a0.x, a1.x, a2.x}))) + 1);
+        const int y0 = std::max(0, static_cast<int>(std::floor(std::min({a0.y, a1.y, a2.y}))) - 1);
+        const int y1 = std::min(R - 1, static_cast<int>(std::ceil(std::max({a0.y, a1.y, a2.y}))) + 1);
+        for (int y = y0; y <= y1; ++y)
+            for (int x = x0; x <= x1; ++x) {
+                const glm::dvec2 c(x + 0.5, y + 0.5);
+                double barycentric[3], nearest_edge = 1e30;
+                for (int k = 0; k < 3; ++k) {
+                    const glm::dvec2 a = v[(k + 1) % 3].texel, b = v[(k + 2) % 3].texel;
+                    const double edge = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+                    barycentric[k] = edge / area;
+                    nearest_edge = std::min(nearest_edge, std::abs(edge) / glm::length(b - a));
+                }
+                const bool inside = barycentric[0] >= 0 && barycentric[1] >= 0 && barycentric[2] >= 0;
+                if (!inside && nearest_edge >= 1.0) continue;
+                Coverage mark = inside && nearest_edge >= 1.0 ? Coverage::covered : Coverage::either;
+                // Perspective-correct weights (the rasteriser divides by clip w).
+                double weight[3], sum = 0;
+                for (int k = 0; k < 3; ++k) sum += weight[k] = barycentric[k] / v[k].w;
+                for (double& w : weight) w /= sum;
+                if (material) {
+                    glm::dvec2 uv(0.0);
+                    for (int k = 0; k < 3; ++k)
+                        uv += weight[k] * glm::dvec2(mesh.material_uvs[mesh.indices[3 * t + k]]);
+                    const Coverage alpha = cut_at(*material, uv);
+                    if (alpha == Coverage::empty) continue; // the alpha test discards the fragment
+                    if (alpha == Coverage::either) mark = Coverage::either;
+                }
+                const double z = weight[0] * v[0].depth + weight[1] * v[1].depth + weight[2] * v[2].depth;
+                const double position = (z - z0) / thickness;
+                const int slice = std::clamp(static_cast<int>(std::ceil(position)) - 1, 0, S - 1);
+                const bool on_boundary = std::abs(position - std::round(position)) < 1e-4;
+                for (int s = slice; s <= std::min(slice + (on_boundary ? 1 : 0), S - 1); ++s) {
+                    const Coverage m = on_boundary ? Coverage::either : mark;
+                    // paper §3.4.1 leak fix: a fragment of slice k also marks slices k+1 to k+reach
+                    for (int j = 0; j <= reach && s + j < S; ++j)
+                        out.at(s + j, x, y) = std::max(out.at(s + j, x, y), m);
+                }
+            }
+    }
+    return out;
+}
+
+} // namespace penumbra::playground
