@@ -170,11 +170,10 @@ int std140_size(const std::string& type) {
     return it->second;
 }
 
-std::optional<Stage> stage_of(const std::string& file) {
+// layout.json's "stages" word of a file ("vertex", "fragment", "compute").
+std::optional<Stage> stage_named(const std::string& word) {
     for (Stage s : {Stage::vertex, Stage::fragment, Stage::compute})
-        if (file.ends_with(stage_extension(s)) && file.size() > stage_extension(s).size() &&
-            file[file.size() - stage_extension(s).size() - 1] == '.')
-            return s;
+        if (word == stage_name(s)) return s;
     return std::nullopt;
 }
 
@@ -678,10 +677,18 @@ private:
             if (p.at("name") == name) desc = &p;
         if (!desc) fail("program '" + name + "' is used by a pass but not listed in programs");
         penumbra::Program source{name, {}};
-        for (const json& f : desc->at("files")) {
-            const std::string file = f.get<std::string>();
-            const std::optional<Stage> stage = stage_of(file);
-            if (!stage) fail("program " + name + ": cannot tell the stage of '" + file + "' (.vert, .frag, .comp)");
+        // layout.json states each file's stage: stages[i] is the stage of files[i].
+        const json& files = desc->at("files");
+        const json& stages = desc->at("stages");
+        if (stages.size() != files.size())
+            fail("program " + name + ": " + std::to_string(files.size()) + " files but " + std::to_string(stages.size()) +
+                 " stages; layout.json lists one stage per file");
+        for (std::size_t i = 0; i < files.size(); ++i) {
+            const std::string file = files[i].get<std::string>();
+            const std::optional<Stage> stage = stage_named(stages[i].get<std::string>());
+            if (!stage)
+                fail("program " + name + ": stage '" + stages[i].get<std::string>() + "' of '" + file +
+                     "'; allowed: vertex, fragment, compute");
             source.stages.push_back({file, *stage, read_text(in_.emission_dir / file)});
         }
         std::vector<std::vector<unsigned int>> spirv;
