@@ -500,46 +500,37 @@ int main(int argc, char** argv) {
     }
     std::printf("\nfair (oriented) penumbra error by light scale: mean MAE / mean signed error (estimate - truth) "
                 "/ worst scene's MAE, over the scenes measured\n");
+    // One table per group: a row per setting, a column per light scale, each cell written by `cell`.
+    const auto print_by_scale = [&](int group, const auto& cell) {
+        for (double scale : options->light_scales) std::printf(" x%g |", scale);
+        std::printf("\n|---|---|");
+        for (std::size_t k = 0; k < options->light_scales.size(); ++k) std::printf("---|");
+        std::printf("\n");
+        for (const std::string& label : summary_order) {
+            std::printf("| %s |", label.c_str());
+            for (double scale : options->light_scales) {
+                const auto it = summaries[group].find({label, scale});
+                if (it == summaries[group].end() || it->second.count == 0)
+                    std::printf(" - |");
+                else
+                    cell(it->second);
+            }
+            std::printf("\n");
+        }
+    };
     for (int group = 0; group < 2; ++group) {
         if (summaries[group].empty()) continue;
-        std::printf("\n%s\n\n| filter | S/R |", group == 0 ? "built-in scenes" : "mesh files");
-        for (double scale : options->light_scales) std::printf(" x%g |", scale);
-        std::printf("\n|---|---|");
-        for (std::size_t k = 0; k < options->light_scales.size(); ++k) std::printf("---|");
-        std::printf("\n");
-        for (const std::string& label : summary_order) {
-            std::printf("| %s |", label.c_str());
-            for (double scale : options->light_scales) {
-                const auto it = summaries[group].find({label, scale});
-                if (it == summaries[group].end() || it->second.count == 0) {
-                    std::printf(" - |");
-                    continue;
-                }
-                const Summary& sum = it->second;
-                std::printf(" %.4f / %+.4f / %.3f %s (%d) |", sum.mae / sum.count, sum.bias / sum.count, sum.worst,
-                            sum.worst_scene.c_str(), sum.count);
-            }
-            std::printf("\n");
-        }
+        const char* group_name = group == 0 ? "built-in scenes" : "mesh files";
+        std::printf("\n%s\n\n| filter | S/R |", group_name);
+        print_by_scale(group, [](const Summary& sum) {
+            std::printf(" %.4f / %+.4f / %.3f %s (%d) |", sum.mae / sum.count, sum.bias / sum.count, sum.worst,
+                        sum.worst_scene.c_str(), sum.count);
+        });
         std::printf("\nnear the terminator (%s): mean p95 of |error| / mean total variation of the error\n\n| filter | S/R |",
-                    group == 0 ? "built-in scenes" : "mesh files");
-        for (double scale : options->light_scales) std::printf(" x%g |", scale);
-        std::printf("\n|---|---|");
-        for (std::size_t k = 0; k < options->light_scales.size(); ++k) std::printf("---|");
-        std::printf("\n");
-        for (const std::string& label : summary_order) {
-            std::printf("| %s |", label.c_str());
-            for (double scale : options->light_scales) {
-                const auto it = summaries[group].find({label, scale});
-                if (it == summaries[group].end() || it->second.count == 0) {
-                    std::printf(" - |");
-                    continue;
-                }
-                const Summary& sum = it->second;
-                std::printf(" %.4f / %.4f |", sum.terminator_p95 / sum.count, sum.terminator_variation / sum.count);
-            }
-            std::printf("\n");
-        }
+                    group_name);
+        print_by_scale(group, [](const Summary& sum) {
+            std::printf(" %.4f / %.4f |", sum.terminator_p95 / sum.count, sum.terminator_variation / sum.count);
+        });
     }
     std::printf("\nper-pass GPU ms (xN: N instances of the pass, summed):\n");
     for (const std::string& line : pass_lines) std::printf("  %s\n", line.c_str());
