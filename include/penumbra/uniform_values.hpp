@@ -48,7 +48,10 @@ struct UniformResult {
 
 struct UniformRule {
     std::string_view name;
-    UniformResult (*value)(const UniformInputs&);
+    // Computes the value; gets the rule's name for its error message.
+    UniformResult (*compute)(std::string_view name, const UniformInputs&);
+
+    UniformResult value(const UniformInputs& in) const { return compute(name, in); }
 };
 
 namespace detail {
@@ -103,75 +106,72 @@ inline const std::vector<UniformRule>& uniform_rules() {
         // the same in both frames: penumbra_lightFromWorld, penumbra_lightSize, penumbra_windowHalfSize,
         // penumbra_tanAngularRadius
         {"penumbra_lightFromWorld",
-         [](const UniformInputs& in) -> R {
-             return from_either("penumbra_lightFromWorld", in, [](const SliceFrame& f) { return f.light_from_world; },
+         [](std::string_view name, const UniformInputs& in) -> R {
+             return from_either(name, in, [](const SliceFrame& f) { return f.light_from_world; },
                                 [](const ShadowFrame& s) { return s.light_from_world; });
          }},
         {"penumbra_sliceClipFromWorld",
-         [](const UniformInputs& in) -> R {
-             return from_frame("penumbra_sliceClipFromWorld", in, [](const SliceFrame& f) { return f.slice_clip_from_world; });
+         [](std::string_view name, const UniformInputs& in) -> R {
+             return from_frame(name, in, [](const SliceFrame& f) { return f.slice_clip_from_world; });
          }},
         {"penumbra_sliceDepths",
-         [](const UniformInputs& in) -> R {
-             return from_frame("penumbra_sliceDepths", in, [](const SliceFrame& f) { return f.slice_depths; });
+         [](std::string_view name, const UniformInputs& in) -> R {
+             return from_frame(name, in, [](const SliceFrame& f) { return f.slice_depths; });
          }},
         {"penumbra_lightSize",
-         [](const UniformInputs& in) -> R {
-             return from_either("penumbra_lightSize", in, [](const SliceFrame& f) { return f.light_size; },
+         [](std::string_view name, const UniformInputs& in) -> R {
+             return from_either(name, in, [](const SliceFrame& f) { return f.light_size; },
                                 [](const ShadowFrame& s) { return s.light_size; });
          }},
         {"penumbra_copDistance",
-         [](const UniformInputs& in) -> R {
-             return from_frame("penumbra_copDistance", in, [](const SliceFrame& f) { return f.cop_distance; });
+         [](std::string_view name, const UniformInputs& in) -> R {
+             return from_frame(name, in, [](const SliceFrame& f) { return f.cop_distance; });
          }},
         {"penumbra_windowHalfSize",
-         [](const UniformInputs& in) -> R {
-             return from_either("penumbra_windowHalfSize", in, [](const SliceFrame& f) { return f.window_half_size; },
+         [](std::string_view name, const UniformInputs& in) -> R {
+             return from_either(name, in, [](const SliceFrame& f) { return f.window_half_size; },
                                 [](const ShadowFrame& s) { return s.window_half_size; });
          }},
         {"penumbra_tanAngularRadius",
-         [](const UniformInputs& in) -> R {
-             return from_either("penumbra_tanAngularRadius", in, [](const SliceFrame& f) { return f.tan_angular_radius; },
+         [](std::string_view name, const UniformInputs& in) -> R {
+             return from_either(name, in, [](const SliceFrame& f) { return f.tan_angular_radius; },
                                 [](const ShadowFrame& s) { return s.tan_angular_radius; });
          }},
         // shadow map techniques (shadow_frame)
         {"penumbra_shadowClipFromWorld",
-         [](const UniformInputs& in) -> R {
-             return from_shadow("penumbra_shadowClipFromWorld", in, [](const ShadowFrame& s) { return s.shadow_clip_from_world; });
+         [](std::string_view name, const UniformInputs& in) -> R {
+             return from_shadow(name, in, [](const ShadowFrame& s) { return s.shadow_clip_from_world; });
          }},
         {"penumbra_shadowDepthRange",
-         [](const UniformInputs& in) -> R {
-             return from_shadow("penumbra_shadowDepthRange", in, [](const ShadowFrame& s) { return s.depth_range; });
+         [](std::string_view name, const UniformInputs& in) -> R {
+             return from_shadow(name, in, [](const ShadowFrame& s) { return s.depth_range; });
          }},
         {"penumbra_shadowTanHalfFov",
-         [](const UniformInputs& in) -> R {
-             return from_shadow("penumbra_shadowTanHalfFov", in, [](const ShadowFrame& s) { return s.tan_half_fov; });
+         [](std::string_view name, const UniformInputs& in) -> R {
+             return from_shadow(name, in, [](const ShadowFrame& s) { return s.tan_half_fov; });
          }},
         {"penumbra_lightSizeUV",
-         [](const UniformInputs& in) -> R {
-             return from_shadow("penumbra_lightSizeUV", in, [](const ShadowFrame& s) { return s.light_size_uv; });
+         [](std::string_view name, const UniformInputs& in) -> R {
+             return from_shadow(name, in, [](const ShadowFrame& s) { return s.light_size_uv; });
          }},
-        // rect: the light's centre (the light frame's origin), w = 1; sun: the direction towards the
-        // sun (minus the light frame's z axis), w = 0
-        {"penumbra_toLight",
-         [](const UniformInputs& in) -> R {
+        {"penumbra_toLight", // detail::to_light
+         [](std::string_view name, const UniformInputs& in) -> R {
              const bool sun = in.light == Light::sun;
-             return from_either(
-                 "penumbra_toLight", in,
+             return from_either(name, in,
                  [sun](const SliceFrame& f) { return detail::to_light(f.light_from_world, sun); },
                  [sun](const ShadowFrame& s) { return detail::to_light(s.light_from_world, sun); });
          }},
         {"penumbra_timeWindow",
-         [](const UniformInputs& in) -> R {
+         [](std::string_view name, const UniformInputs& in) -> R {
              if (!in.time_window)
-                 return detail::missing_input("penumbra_timeWindow", "time_window",
+                 return detail::missing_input(name, "time_window",
                                               "penumbra::sun_window(...) of the sun's path (penumbra/sun_path.hpp)");
              return {*in.time_window, {}};
          }},
         {"penumbra_clipFromWorld",
-         [](const UniformInputs& in) -> R {
+         [](std::string_view name, const UniformInputs& in) -> R {
              if (!in.clip_from_world)
-                 return detail::missing_input("penumbra_clipFromWorld", "clip_from_world",
+                 return detail::missing_input(name, "clip_from_world",
                                               "the viewer's clip-from-world matrix (projection * view)");
              return {*in.clip_from_world, {}};
          }},

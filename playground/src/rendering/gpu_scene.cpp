@@ -91,6 +91,13 @@ MeshBuffers::MeshBuffers(const Mesh& mesh) {
     glCreateBuffers(1, &uvs_);
     glCreateBuffers(1, &material_uvs_);
     // The triangles grouped by material, solid (-1) first; one range per material.
+    std::vector<std::vector<std::uint32_t>> groups(mesh.cut_materials.size() + 1); // material m in groups[m + 1]
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+        const int m = mesh.triangle_materials.empty() ? -1 : mesh.triangle_materials[t];
+        std::vector<std::uint32_t>& group = groups[static_cast<std::size_t>(m + 1)];
+        group.insert(group.end(), mesh.indices.begin() + static_cast<std::ptrdiff_t>(3 * t),
+                     mesh.indices.begin() + static_cast<std::ptrdiff_t>(3 * t + 3));
+    }
     std::vector<std::uint32_t> indices;
     indices.reserve(mesh.indices.size());
     const std::uint8_t opaque = 255;
@@ -103,11 +110,9 @@ MeshBuffers::MeshBuffers(const Mesh& mesh) {
             range.texture = textures_.back();
             range.cutoff = material.cutoff;
         }
-        for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
-            if ((mesh.triangle_materials.empty() ? -1 : mesh.triangle_materials[t]) == m)
-                indices.insert(indices.end(), mesh.indices.begin() + static_cast<std::ptrdiff_t>(3 * t),
-                               mesh.indices.begin() + static_cast<std::ptrdiff_t>(3 * t + 3));
-        range.count = static_cast<GLsizei>(indices.size()) - range.first;
+        const std::vector<std::uint32_t>& group = groups[static_cast<std::size_t>(m + 1)];
+        indices.insert(indices.end(), group.begin(), group.end());
+        range.count = static_cast<GLsizei>(group.size());
         if (range.count > 0) ranges_.push_back(range);
     }
     glNamedBufferStorage(positions_, static_cast<GLsizeiptr>(mesh.positions.size() * sizeof(glm::vec3)), mesh.positions.data(), 0);
@@ -223,10 +228,11 @@ void GBuffer::render(const MeshBuffers& mesh, const glm::mat4& clip_from_world) 
     glUseProgram(program_);
     glUniformMatrix4fv(glGetUniformLocation(program_, "clipFromWorld"), 1, GL_FALSE, &clip_from_world[0][0]);
     glUniform1i(glGetUniformLocation(program_, "alphaTexture"), 0);
+    const GLint cutoff_location = glGetUniformLocation(program_, "alphaCutoff");
     mesh.draw_materials([&](GLuint alpha, float cutoff) {
         glBindTextureUnit(0, alpha);
         glBindSampler(0, 0);
-        glUniform1f(glGetUniformLocation(program_, "alphaCutoff"), cutoff);
+        glUniform1f(cutoff_location, cutoff);
     }, false);
     glBindTextureUnit(0, 0);
     glUseProgram(0);

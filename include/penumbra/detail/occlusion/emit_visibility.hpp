@@ -334,8 +334,8 @@ constexpr void write_lookup_function(LineWriter& out, const Config& config) {
 // `prev`, `prevKernel`) to this one. The two slices block the light point t of the kernel's unit square
 // where their masks cover c + side·t; for one occluder seen in both, the same point of it is hit by light
 // points displaced by the parallax between the kernels, whose RMS over the light is
-// sqrt(dc² + dside²/12) per axis. The occluder's size in the kernel is at least sqrt(q side²) (the smaller
-// of the two slices), so the fraction of it both slices still share is (1 - shift/size) per axis: the
+// sqrt(dc² + dside²/12) per axis. The occluder's size is taken as sqrt(q side²) of whichever slice sees the
+// larger covered area, so the fraction of it both slices still share is (1 - shift/size) per axis: the
 // weight between nested slices (the union is the larger one, chained fusion) and independent ones (the
 // product). Generic program and oracle share it.
 constexpr void write_correlated_step_function(LineWriter& out) {
