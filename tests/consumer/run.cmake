@@ -4,22 +4,11 @@
 # core is shown to need only a C++20 compiler; then run it.
 #   -DMODE=add_subdirectory|fetch_content -DSOURCE_DIR -DWORK_DIR -DCMAKE_GENERATOR
 #   [-DCXX_COMPILER] [-DLAUNCHER]
-foreach(var IN ITEMS MODE SOURCE_DIR WORK_DIR CMAKE_GENERATOR)
-    if(NOT ${var})
-        message(FATAL_ERROR "run.cmake: ${var} not set")
-    endif()
-endforeach()
+include(${CMAKE_CURRENT_LIST_DIR}/../script_steps.cmake)
+require_variables(MODE SOURCE_DIR WORK_DIR CMAKE_GENERATOR)
 if(NOT MODE MATCHES "^(add_subdirectory|fetch_content)$")
     message(FATAL_ERROR "run.cmake: MODE '${MODE}'; allowed: add_subdirectory, fetch_content")
 endif()
-
-function(step)
-    execute_process(COMMAND ${ARGN} RESULT_VARIABLE result)
-    if(NOT result EQUAL 0)
-        string(JOIN " " line ${ARGN})
-        message(FATAL_ERROR "failed (${result}): ${line}")
-    endif()
-endfunction()
 
 file(REMOVE_RECURSE ${WORK_DIR})
 file(MAKE_DIRECTORY ${WORK_DIR})

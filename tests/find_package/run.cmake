@@ -1,22 +1,11 @@
 # Driver of the "find_package" test (cmake -P): install the build tree into a fresh prefix,
 # configure and build tests/find_package against it, check that the shaders were generated.
 #   -DBUILD_DIR -DCONFIG -DCONSUMER_SOURCE_DIR -DWORK_DIR -DCMAKE_GENERATOR -DCXX_COMPILER
-foreach(var IN ITEMS BUILD_DIR CONSUMER_SOURCE_DIR WORK_DIR CMAKE_GENERATOR)
-    if(NOT ${var})
-        message(FATAL_ERROR "run.cmake: ${var} not set")
-    endif()
-endforeach()
+include(${CMAKE_CURRENT_LIST_DIR}/../script_steps.cmake)
+require_variables(BUILD_DIR CONSUMER_SOURCE_DIR WORK_DIR CMAKE_GENERATOR)
 if(NOT CONFIG)
     set(CONFIG Release)
 endif()
-
-function(step)
-    execute_process(COMMAND ${ARGN} RESULT_VARIABLE result)
-    if(NOT result EQUAL 0)
-        string(JOIN " " line ${ARGN})
-        message(FATAL_ERROR "failed (${result}): ${line}")
-    endif()
-endfunction()
 
 set(prefix ${WORK_DIR}/prefix)
 set(consumer ${WORK_DIR}/consumer)

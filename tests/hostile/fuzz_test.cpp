@@ -120,6 +120,15 @@ void check_promise(Tally& tally, const ChildRun& run, const std::vector<std::str
     }
 }
 
+// A mesh file the loader refused, run through penumbra-playground --headless: the promise, and exit 2.
+void check_refused_by_playground(Tally& through, const fs::path& scene, const std::string& png_name) {
+    const fs::path png = scratch().fresh(png_name);
+    const std::vector<std::string> args{"--headless", "--scene", scene.string(), "--out", png.string()};
+    const ChildRun run = run_child(playground, args);
+    check_promise(through, run, args, {png});
+    CHECK(run.exit_code == 2);
+}
+
 // Runs of one tool, started in batches (as many at a time as there are processors), each checked
 // against the promise; their outputs are removed afterwards.
 struct Batch {
@@ -364,11 +373,7 @@ TEST_CASE("fuzz: OBJ files") {
             CHECK(loaded.error.find(obj.string()) != std::string::npos);
             if (i % 5 == 0) { // and through the tool
                 ++children;
-                const fs::path png = scratch().fresh("obj.png");
-                const std::vector<std::string> args{"--headless", "--scene", obj.string(), "--out", png.string()};
-                const ChildRun run = run_child(playground, args);
-                check_promise(through, run, args, {png});
-                CHECK(run.exit_code == 2);
+                check_refused_by_playground(through, obj, "obj.png");
             }
         }
         fs::remove(obj);
@@ -441,11 +446,7 @@ TEST_CASE("fuzz: glTF files") {
             CHECK(loaded.error.find(path.string()) != std::string::npos);
             if (i % 6 == 0) { // and through the tool
                 ++children;
-                const fs::path png = scratch().fresh("gltf.png");
-                const std::vector<std::string> args{"--headless", "--scene", path.string(), "--out", png.string()};
-                const ChildRun run = run_child(playground, args);
-                check_promise(through, run, args, {png});
-                CHECK(run.exit_code == 2);
+                check_refused_by_playground(through, path, "gltf.png");
             }
         }
         fs::remove(path);
@@ -557,11 +558,7 @@ TEST_CASE("fuzz: compressed glTF files") {
             CHECK(loaded.error.find(path.string()) != std::string::npos);
             if (i % 20 == 0) { // and through the tool
                 ++children;
-                const fs::path png = scratch().fresh("compressed.png");
-                const std::vector<std::string> args{"--headless", "--scene", path.string(), "--out", png.string()};
-                const ChildRun run = run_child(playground, args);
-                check_promise(through, run, args, {png});
-                CHECK(run.exit_code == 2);
+                check_refused_by_playground(through, path, "compressed.png");
             }
         }
         fs::remove(path);

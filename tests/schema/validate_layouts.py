@@ -142,11 +142,16 @@ def main():
                 if layout["config"].get("alpha_test") and layout["config"]["technique"] == "occlusion":
                     cut_sample = cut_sample or layout
 
-    # The check can fail: each of these breaks one rule and must be rejected.
-    def broken(edit):
-        doc = copy.deepcopy(sample)
-        edit(doc)
-        return doc
+    # The check can fail: each of these breaks one rule of a layout of its kind and must be rejected.
+    def check_rejected(kind, base, edits):
+        if base is None:
+            failures.append(f"no {kind} was generated")
+            return
+        for label, edit in edits.items():
+            doc = copy.deepcopy(base)
+            edit(doc)
+            if not all_errors(validator, doc):
+                failures.append(f"a broken layout ({label}) was accepted")
 
     def first_border_texture(doc):
         return next(t for t in doc["textures"] if t["wrap"] == "CLAMP_TO_BORDER")
@@ -197,15 +202,7 @@ def main():
         "dispatch details on a draw": lambda d: d["passes"][0].update(dispatch=first_dispatch(d)["dispatch"]),
         "image of a missing texture": lambda d: first_dispatch(d)["image_outputs"][0].update(texture="penumbra_nothing"),
     }
-    if compute_sample is None:
-        failures.append("no layout with a dispatch pass was generated")
-    else:
-        for label, edit in compute_breakages.items():
-            doc = copy.deepcopy(compute_sample)
-            edit(doc)
-            if not all_errors(validator, doc):
-                failures.append(f"a broken layout ({label}) was accepted")
-        breakages.update(compute_breakages)  # counted below
+    check_rejected("layout with a dispatch pass", compute_sample, compute_breakages)
     def draw_param(doc, name):
         return next(u for p in doc["programs"] for u in p["parameters"] if u["name"] == name)
 
@@ -217,26 +214,12 @@ def main():
                                                             if "texture" in u).update(source="draw", compute="x"),
         "alpha_test not a boolean": lambda d: d["config"].update(alpha_test="yes"),
     }
-    if cut_sample is None:
-        failures.append("no layout with alpha_test was generated")
-    else:
-        for label, edit in cut_breakages.items():
-            doc = copy.deepcopy(cut_sample)
-            edit(doc)
-            if not all_errors(validator, doc):
-                failures.append(f"a broken layout ({label}) was accepted")
-        breakages.update(cut_breakages)  # counted below
-    if sample is None:
-        failures.append("no layout was generated")
-    else:
-        for label, edit in breakages.items():
-            if label in compute_breakages or label in cut_breakages:
-                continue
-            if not all_errors(validator, broken(edit)):
-                failures.append(f"a broken layout ({label}) was accepted")
+    check_rejected("layout with alpha_test", cut_sample, cut_breakages)
+    check_rejected("layout", sample, breakages)
 
+    rejected = len(breakages) + len(compute_breakages) + len(cut_breakages)
     print(f"layout.schema.json: {checked} layouts valid, {skipped} combinations refused by penumbra-gen, "
-          f"{len(breakages)} broken layouts rejected")
+          f"{rejected} broken layouts rejected")
     for f in failures[:20]:
         print("FAIL:", f)
     return 1 if failures or checked < 140 else 0
