@@ -9,8 +9,8 @@
 #include "scenes/obj_loader.hpp"
 #include "scenes/scenes.hpp"
 
-#include "../../../generator/src/file_transaction.hpp"
-#include "../../../generator/src/printable.hpp"
+#include <penumbra_tools/file_transaction.hpp>
+#include <penumbra_tools/printable.hpp>
 #include <penumbra/layout.hpp>
 
 #include <nlohmann/json.hpp>
@@ -150,7 +150,7 @@ int run_headless(const PlaygroundOptions& options) {
     render_options.warm_up = true; // timings of a second run: the first compiles the shaders on llvmpipe
     if (!render_headless(scene, options.config, width, height, result, &error, render_options)) return fail(error);
     const double render_ms = milliseconds_since(render_start);
-    // Every output file of the run is one transaction (generator/src/file_transaction.hpp): all
+    // Every output file of the run is one transaction (tools/include/penumbra_tools/file_transaction.hpp): all
     // written, or none and the directory as it was; "wrote" is printed only after it succeeded.
     penumbra_gen::FileChanges files;
     std::vector<std::string> wrote;
