@@ -202,7 +202,7 @@ nlohmann::ordered_json uniforms_json(const UniformInputs& inputs, const Layout& 
     auto declared = [&](std::string_view name) {
         for (const ProgramDesc& program : layout.programs)
             for (const ParamDesc& p : program.parameters)
-                if (p.name == name && p.source == "light") return true;
+                if (p.name == name && p.source == UniformSource::light) return true;
         return false;
     };
     nlohmann::ordered_json out = nlohmann::ordered_json::object();
