@@ -1,8 +1,8 @@
 // bench/arguments.hpp — the benchmarks' command-line pieces: comma-separated lists, and the
-// project's number parsing, --help and "error: …" (generator/src/cli.hpp).
+// project's number parsing, --help and "error: …" (tools/include/penumbra_tools/cli.hpp).
 #pragma once
 
-#include "../generator/src/cli.hpp"
+#include <penumbra_tools/cli.hpp>
 
 #include <string_view>
 #include <vector>

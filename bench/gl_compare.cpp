@@ -39,6 +39,8 @@
 #include "rendering/headless_render.hpp"
 #include "scenes/scenes.hpp"
 
+#include <penumbra_tools/file_transaction.hpp>
+
 #include <penumbra/cost_model.hpp>
 #include <penumbra/gl/runtime.hpp>
 #include <penumbra/layout.hpp>
@@ -54,7 +56,6 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -449,78 +450,84 @@ struct Active {
 
 using penumbra::cli::fail;
 
-} // namespace
+// The settings of the ladder that --settings keeps (all without it).
+std::vector<bench::LadderEntry> selected_ladder(const Options& options) {
+    std::vector<bench::LadderEntry> ladder = bench::technique_ladder(options.set);
+    if (!options.settings.empty())
+        std::erase_if(ladder, [&](const bench::LadderEntry& e) {
+            return std::find(options.settings.begin(), options.settings.end(), e.label) == options.settings.end();
+        });
+    return ladder;
+}
 
-int main(int argc, char** argv) {
-    if (penumbra::cli::asks_for_help(std::vector<std::string>(argv + 1, argv + argc)))
-        return penumbra::cli::print_usage(usage_text);
-    std::string error;
-    const std::optional<Options> options = parse(argc, argv, error);
-    if (!options) return penumbra::cli::fail_with_usage(error, usage_text);
+// Every scene of the run, named for the report, with the time its loading took.
+struct LoadedScenes {
     std::vector<Scene> scenes;
     std::vector<double> load_ms;
-    for (const SceneInput& input : options->scenes) {
+};
+
+// The scenes, or the loader's error (bad input: exit status 2).
+std::optional<LoadedScenes> load_scenes(const Options& options, std::string* error) {
+    LoadedScenes out;
+    for (const SceneInput& input : options.scenes) {
         const auto load_start = std::chrono::steady_clock::now();
-        SceneLoad loaded = load_scene(input.name_or_path, options->ground);
-        if (!loaded.scene) return fail(loaded.error, 2);
-        load_ms.push_back(milliseconds_since(load_start));
+        SceneLoad loaded = load_scene(input.name_or_path, options.ground);
+        if (!loaded.scene) {
+            *error = loaded.error;
+            return std::nullopt;
+        }
+        out.load_ms.push_back(milliseconds_since(load_start));
         if (input.corpus) loaded.scene->name = input.corpus->name;
         else if (input.kind == "file") loaded.scene->name = std::filesystem::path(input.name_or_path).stem().string();
-        scenes.push_back(std::move(*loaded.scene));
+        out.scenes.push_back(std::move(*loaded.scene));
     }
-    std::optional<HeadlessContext> context = HeadlessContext::create(&error);
-    if (!context) return fail("no OpenGL 4.5 context: " + error);
+    return out;
+}
 
-    std::vector<bench::LadderEntry> ladder = bench::technique_ladder(options->set);
-    if (!options->settings.empty())
-        std::erase_if(ladder, [&](const bench::LadderEntry& e) {
-            return std::find(options->settings.begin(), options->settings.end(), e.label) == options->settings.end();
-        });
-    const std::string out_dir = options->out_dir, cache_dir = out_dir + "/cache", image_dir = out_dir + "/images";
-    std::error_code ec;
-    std::filesystem::create_directories(out_dir, ec);
-    if (ec) return fail("cannot create " + out_dir + ": " + ec.message());
-    const auto run_start = std::chrono::steady_clock::now();
-
+// How many steps of each kind the run takes, for the progress lines and their time estimate.
+void plan_progress(bench::Progress& progress, const Options& options, std::size_t scene_count,
+                   const std::vector<bench::LadderEntry>& ladder) {
     int representatives = 0, oim_settings = 0;
     for (const bench::LadderEntry& e : ladder) {
         representatives += e.representative;
         oim_settings += e.config.technique == Technique::oim;
     }
-    const int scale_count = static_cast<int>(options->light_scales.size());
-    const int runs_of_ladder = static_cast<int>(scenes.size() * options->lights.size()); // scene × light
-    bench::Progress progress;
-    progress.plan("truth", runs_of_ladder * (scale_count + options->flicker_frames));
+    const int scale_count = static_cast<int>(options.light_scales.size());
+    const int runs_of_ladder = static_cast<int>(scene_count * options.lights.size()); // scene × light
+    progress.plan("truth", runs_of_ladder * (scale_count + options.flicker_frames));
     progress.plan("warm-up", runs_of_ladder * static_cast<int>(ladder.size()) * scale_count);
-    progress.plan("timed round", runs_of_ladder * scale_count * options->runs);
+    progress.plan("timed round", runs_of_ladder * scale_count * options.runs);
     progress.plan("flicker", runs_of_ladder * representatives);
-    if (std::find(options->lights.begin(), options->lights.end(), Light::sun) != options->lights.end())
-        progress.plan("bake", static_cast<int>(scenes.size()) * oim_settings);
+    if (std::find(options.lights.begin(), options.lights.end(), Light::sun) != options.lights.end())
+        progress.plan("bake", static_cast<int>(scene_count) * oim_settings);
+}
 
+// results.json before the first measurement: how the run was made, and empty lists.
+json results_skeleton(int argc, char** argv, const Options& options, const HeadlessContext& context) {
     std::string command;
     for (int i = 0; i < argc; ++i) command += (i ? " " : "") + std::string(argv[i]);
     json light_scales = json::array(), lights = json::array();
-    for (double s : options->light_scales) light_scales.push_back(s);
-    for (Light l : options->lights) lights.push_back(std::string(to_string(l)));
-    json results = {
+    for (double s : options.light_scales) light_scales.push_back(s);
+    for (Light l : options.lights) lights.push_back(std::string(to_string(l)));
+    return {
         {"meta",
          {{"tool", "penumbra-bench-compare"},
           {"command", command},
-          {"set", options->set == bench::LadderSet::quick ? "quick" : options->set == bench::LadderSet::full ? "full" : "standard"},
+          {"set", options.set == bench::LadderSet::quick ? "quick" : options.set == bench::LadderSet::full ? "full" : "standard"},
           {"started", utc_now()},
-          {"renderer", context->renderer()},
-          {"gl_version", context->version()},
-          {"egl_platform", context->platform()},
-          {"image", {options->width, options->height}},
-          {"truth_rays_per_axis", options->samples},
-          {"timed_runs", options->runs},
+          {"renderer", context.renderer()},
+          {"gl_version", context.version()},
+          {"egl_platform", context.platform()},
+          {"image", {options.width, options.height}},
+          {"truth_rays_per_axis", options.samples},
+          {"timed_runs", options.runs},
           {"warmup_runs", 1},
           {"lights", lights},
           {"light_scales", light_scales},
-          {"settings", options->settings.empty() ? json("all") : json(options->settings)},
+          {"settings", options.settings.empty() ? json("all") : json(options.settings)},
           {"penumbra_threshold", 0.98},
-          {"flicker_frames", options->flicker_frames},
-          {"flicker_step_of_ground_span", options->flicker_step},
+          {"flicker_frames", options.flicker_frames},
+          {"flicker_step_of_ground_span", options.flicker_step},
           {"sun_flicker_step_t", sun_flicker_step},
           {"sun_path", "through each scene's sun at t = 0.5, from 80 degrees of azimuth before it to 80 after, "
                        "10 degrees up at both ends"},
@@ -531,266 +538,405 @@ int main(int argc, char** argv) {
         {"bakes", json::array()},
         {"skipped", json::array()},
     };
+}
 
-    for (std::size_t scene_index = 0; scene_index < scenes.size(); ++scene_index) {
-        const SceneInput& input = options->scenes[scene_index];
-        json scene_record = {{"name", scenes[scene_index].name},
-                             {"kind", input.kind},
-                             {"ground", scenes[scene_index].ground},
-                             {"triangles", scenes[scene_index].mesh.triangle_count()},
-                             {"load_ms", load_ms[scene_index]},
-                             {"default_light", {{"width", scenes[scene_index].light.width},
-                                                {"height", scenes[scene_index].light.height}}},
-                             {"truth", json::array()}};
-        if (input.kind != "built-in") scene_record["file"] = input.name_or_path;
-        if (input.corpus)
-            scene_record["corpus"] = {{"triangles_in_file", input.corpus->triangles},
-                                      {"source", input.corpus->source},
-                                      {"licence", input.corpus->licence}};
+// A scene's entry in results.json; each light's run adds its truth, pixels and light to it.
+json scene_json(const SceneInput& input, const Scene& scene, double load_ms) {
+    json record = {{"name", scene.name},
+                   {"kind", input.kind},
+                   {"ground", scene.ground},
+                   {"triangles", scene.mesh.triangle_count()},
+                   {"load_ms", load_ms},
+                   {"default_light", {{"width", scene.light.width}, {"height", scene.light.height}}},
+                   {"truth", json::array()}};
+    if (input.kind != "built-in") record["file"] = input.name_or_path;
+    if (input.corpus)
+        record["corpus"] = {{"triangles_in_file", input.corpus->triangles},
+                            {"source", input.corpus->source},
+                            {"licence", input.corpus->licence}};
+    return record;
+}
 
-        for (const Light light_kind : options->lights) {
-            // The scene of this light's run: under the sun, its sun on the path through it at t = 0.5.
-            Scene scene = scenes[scene_index];
-            const SunPath path = path_through(scene.sun);
-            if (light_kind == Light::sun) scene.sun.direction = -sun_direction(path, 0.5);
-            const std::string lit_by(to_string(light_kind));
-            const std::string light_dir = light_kind == Light::sun ? "/sun" : ""; // images/<scene>[/sun]/x<scale>
-            const MeshBuffers mesh(scene.mesh);
-            std::optional<Pixels> pixels = render_pixels(scene, mesh, options->width, options->height, &error);
-            if (!pixels) return fail(scene.name + ": " + error);
-            std::size_t geometry_pixels = 0;
-            for (unsigned char g : pixels->frame.geometry) geometry_pixels += g;
-            scene_record["geometry_pixels"] = geometry_pixels;
+// Where the run writes: results.json in `out`, the truth and the bakes in `cache`, the images in `images`.
+struct OutputDirs {
+    std::string out, cache, images;
+};
 
-            // The truth for every light size and every flicker frame, from the cache where it can be.
-            Scene lit = scene; // the scene under the light being traced
-            auto truth_for = [&](const LightAt& light, const std::string& what) -> std::optional<bench::CachedTruth> {
-                progress.step("truth", scene.name + ": ground truth, " + lit_by + " " + what);
-                lit.light = light.rect;
-                lit.sun = light.sun;
-                std::optional<bench::CachedTruth> t =
-                    bench::cached_truth(cache_dir, lit, pixels->frame, options->samples, &error, light_kind);
-                if (t) scene_record["truth"].push_back({{"light", lit_by}, {"for", what},
-                                                        {"file", std::filesystem::relative(t->file, out_dir).string()},
-                                                        {"cached", t->from_cache}, {"ms", t->milliseconds}});
-                return t;
-            };
-            const double step = options->flicker_step * ground_span(scene);
-            std::vector<References> truths;
-            for (double scale : options->light_scales) {
-                std::optional<bench::CachedTruth> t = truth_for(light_at(scene, path, scale, step, 0), "light x" + scale_text(scale));
-                if (!t) return fail(scene.name + ": " + error);
-                if (!write_visibility_images(image_dir + "/" + scene.name + light_dir + "/x" + scale_text(scale), "truth",
-                                             *pixels, t->references.visibility, nullptr, &error))
-                    return fail(error);
-                truths.push_back(std::move(t->references));
+// One run of the ladder: one scene under one kind of light. Its steps, in order (run()): the
+// G-buffer, the truth for every light size and flicker frame, a runtime for every setting that can
+// run under the light, every light size measured, then the flicker of the representative settings.
+// Each step returns "" or the message that ends the program.
+class LightRun {
+public:
+    LightRun(const Options& options, const OutputDirs& dirs, bench::Progress& progress, json& results,
+             json& scene_record, const Scene& scene, Light light_kind)
+        : options_(options), dirs_(dirs), progress_(progress), results_(results), scene_record_(scene_record),
+          scene_(scene), path_(path_through(scene.sun)), light_kind_(light_kind), lit_by_(to_string(light_kind)),
+          light_dir_(light_kind == Light::sun ? "/sun" : "") {
+        // Under the sun: the scene's sun on the path through it at t = 0.5.
+        if (light_kind_ == Light::sun) scene_.sun.direction = -sun_direction(path_, 0.5);
+        mesh_ = std::make_unique<MeshBuffers>(scene_.mesh);
+        step_ = options_.flicker_step * ground_span(scene_);
+    }
+
+    std::string run(const std::vector<bench::LadderEntry>& ladder) {
+        if (std::string e = render_gbuffer(); !e.empty()) return e;
+        if (std::string e = trace_truths(); !e.empty()) return e;
+        if (std::string e = start_settings(ladder); !e.empty()) return e;
+        for (std::size_t s = 0; s < options_.light_scales.size(); ++s)
+            if (std::string e = measure_light_size(s); !e.empty()) return e;
+        if (std::string e = measure_flicker(); !e.empty()) return e;
+        progress_.finish();
+        return {};
+    }
+
+private:
+    // The positions and normals every setting shades, and the geometry mask every metric counts.
+    std::string render_gbuffer() {
+        std::string error;
+        pixels_ = render_pixels(scene_, *mesh_, options_.width, options_.height, &error);
+        if (!pixels_) return scene_.name + ": " + error;
+        std::size_t geometry_pixels = 0;
+        for (unsigned char g : pixels_->frame.geometry) geometry_pixels += g;
+        scene_record_["geometry_pixels"] = geometry_pixels;
+        return {};
+    }
+
+    // The truth for every light size and every flicker frame, from the cache where it can be.
+    std::string trace_truths() {
+        std::string error;
+        Scene lit = scene_; // the scene under the light being traced
+        auto truth_for = [&](const LightAt& light, const std::string& what) -> std::optional<bench::CachedTruth> {
+            progress_.step("truth", scene_.name + ": ground truth, " + lit_by_ + " " + what);
+            lit.light = light.rect;
+            lit.sun = light.sun;
+            std::optional<bench::CachedTruth> t =
+                bench::cached_truth(dirs_.cache, lit, pixels_->frame, options_.samples, &error, light_kind_);
+            if (t) scene_record_["truth"].push_back({{"light", lit_by_}, {"for", what},
+                                                     {"file", std::filesystem::relative(t->file, dirs_.out).string()},
+                                                     {"cached", t->from_cache}, {"ms", t->milliseconds}});
+            return t;
+        };
+        for (double scale : options_.light_scales) {
+            std::optional<bench::CachedTruth> t =
+                truth_for(light_at(scene_, path_, scale, step_, 0), "light x" + scale_text(scale));
+            if (!t) return scene_.name + ": " + error;
+            if (!write_visibility_images(dirs_.images + "/" + scene_.name + light_dir_ + "/x" + scale_text(scale),
+                                         "truth", *pixels_, t->references.visibility, nullptr, &error))
+                return error;
+            truths_.push_back(std::move(t->references));
+        }
+        for (int f = 0; f < options_.flicker_frames; ++f) {
+            std::optional<bench::CachedTruth> t =
+                truth_for(light_at(scene_, path_, 1.0, step_, f), "flicker frame " + std::to_string(f + 1));
+            if (!t) return scene_.name + ": " + error;
+            truth_frames_.push_back(std::move(t->references.visibility));
+        }
+        progress_.finish();
+        truth_delta_ = mean_frame_delta(truth_frames_, pixels_->frame.geometry);
+        if (light_kind_ == Light::sun) {
+            json points = json::array();
+            for (const SunPathPoint& p : path_.points) points.push_back({p.azimuth_degrees, p.elevation_degrees});
+            scene_record_["sun"] = {{"direction", {scene_.sun.direction.x, scene_.sun.direction.y, scene_.sun.direction.z}},
+                                    {"angular_diameter", scene_.sun.angular_diameter},
+                                    {"path_azimuth_elevation_degrees", points},
+                                    {"flicker_step_t", sun_flicker_step},
+                                    {"truth_flicker", truth_delta_}};
+        } else {
+            scene_record_["flicker_step"] = step_;
+            scene_record_["truth_flicker"] = truth_delta_;
+        }
+        return {};
+    }
+
+    void skip(const bench::LadderEntry& entry, const std::string& where, const std::string& why) {
+        std::printf("skip: %s: %s\n", where.c_str(), why.c_str());
+        results_["skipped"].push_back({{"scene", scene_.name}, {"light", lit_by_}, {"label", entry.label}, {"reason", why}});
+    }
+
+    // Occlusion interval maps: the bake (or its cache) on the scene with the charts it needs, and
+    // the mesh and G-buffer of those charts. False with *why when the bake fails (the setting is
+    // skipped); a G-buffer that fails ends the program (*fatal).
+    bool bake(Active& a, const Config& config, const std::string& where, std::string* why, std::string* fatal) {
+        progress_.step("bake", scene_.name + ": occlusion interval maps, bake of " + a.entry->label);
+        Scene charted = scene_;
+        std::string error;
+        a.oim = prepare_oim(charted, config, path_, 0.5, dirs_.cache + "/oim", &error);
+        if (!a.oim) {
+            *why = "no bake: " + error;
+            return false;
+        }
+        progress_.finish();
+        const OimBake& b = a.oim->cached.bake;
+        std::printf("bake: %s: %dx%d, %d intervals, %d samples, %s %s (%.0f ms to bake, %llu rays)\n", where.c_str(),
+                    b.resolution, b.resolution, b.intervals, b.samples, a.oim->cached.from_cache ? "read" : "baked into",
+                    a.oim->cached.file.string().c_str(), b.bake_ms, static_cast<unsigned long long>(b.rays));
+        if (!a.oim->cached.warning.empty()) std::cerr << "warning: " << a.oim->cached.warning << "\n";
+        results_["bakes"].push_back({{"scene", scene_.name}, {"light", lit_by_}, {"label", a.entry->label},
+                                     {"resolution", b.resolution}, {"intervals", b.intervals}, {"samples", b.samples},
+                                     {"from_cache", a.oim->cached.from_cache}, {"bake_ms", b.bake_ms},
+                                     {"rays", b.rays}, {"merged_texels", b.merged_texels},
+                                     {"file", std::filesystem::relative(a.oim->cached.file, dirs_.out).string()},
+                                     {"file_bytes", a.oim->cached.file_bytes}});
+        a.oim_mesh = std::make_unique<MeshBuffers>(charted.mesh);
+        a.oim_pixels = render_pixels(charted, *a.oim_mesh, options_.width, options_.height, &error);
+        if (!a.oim_pixels) *fatal = where + ": " + error;
+        return true;
+    }
+
+    // One runtime per setting that can run under this light, alive together, so that the timed
+    // runs can be interleaved; the others skipped with their reason.
+    std::string start_settings(const std::vector<bench::LadderEntry>& ladder) {
+        std::string error;
+        for (const bench::LadderEntry& entry : ladder) {
+            const std::string where = scene_.name + ", " + lit_by_ + " light, " + entry.label;
+            if (const std::string why = bench::refusal(entry, light_kind_); !why.empty()) {
+                skip(entry, where, why);
+                continue;
             }
-            std::vector<std::vector<float>> truth_frames;
-            for (int f = 0; f < options->flicker_frames; ++f) {
-                std::optional<bench::CachedTruth> t =
-                    truth_for(light_at(scene, path, 1.0, step, f), "flicker frame " + std::to_string(f + 1));
-                if (!t) return fail(scene.name + ": " + error);
-                truth_frames.push_back(std::move(t->references.visibility));
-            }
-            progress.finish();
-            const double truth_delta = mean_frame_delta(truth_frames, pixels->frame.geometry);
-            if (light_kind == Light::sun) {
-                json points = json::array();
-                for (const SunPathPoint& p : path.points) points.push_back({p.azimuth_degrees, p.elevation_degrees});
-                scene_record["sun"] = {{"direction", {scene.sun.direction.x, scene.sun.direction.y, scene.sun.direction.z}},
-                                       {"angular_diameter", scene.sun.angular_diameter},
-                                       {"path_azimuth_elevation_degrees", points},
-                                       {"flicker_step_t", sun_flicker_step},
-                                       {"truth_flicker", truth_delta}};
-            } else {
-                scene_record["flicker_step"] = step;
-                scene_record["truth_flicker"] = truth_delta;
-            }
-
-            // One runtime per setting that can run under this light, alive together, so that the timed
-            // runs can be interleaved; the others skipped with their reason.
-            std::vector<Active> active;
-            for (const bench::LadderEntry& entry : ladder) {
-                const std::string where = scene.name + ", " + lit_by + " light, " + entry.label;
-                if (const std::string why = bench::refusal(entry, light_kind); !why.empty()) {
-                    std::printf("skip: %s: %s\n", where.c_str(), why.c_str());
-                    results["skipped"].push_back({{"scene", scene.name}, {"light", lit_by}, {"label", entry.label}, {"reason", why}});
+            Active a;
+            a.entry = &entry;
+            Config config = entry.config;
+            config.light = light_kind_;
+            config.alpha_test = scene_.mesh.cuts(); // cut-out casters cast as their materials cut
+            const bool oim = config.technique == Technique::oim;
+            if (oim) {
+                std::string why, fatal;
+                if (!bake(a, config, where, &why, &fatal)) {
+                    skip(entry, where, why);
                     continue;
                 }
-                Active a;
-                a.entry = &entry;
-                Config config = entry.config;
-                config.light = light_kind;
-                config.alpha_test = scene.mesh.cuts(); // cut-out casters cast as their materials cut
-                const bool oim = config.technique == Technique::oim;
-                if (oim) { // the bake (or its cache), on the scene with the charts it needs
-                    progress.step("bake", scene.name + ": occlusion interval maps, bake of " + entry.label);
-                    Scene charted = scene;
-                    a.oim = prepare_oim(charted, config, path, 0.5, cache_dir + "/oim", &error);
-                    if (!a.oim) {
-                        const std::string why = "no bake: " + error;
-                        std::printf("skip: %s: %s\n", where.c_str(), why.c_str());
-                        results["skipped"].push_back({{"scene", scene.name}, {"light", lit_by}, {"label", entry.label}, {"reason", why}});
-                        continue;
-                    }
-                    progress.finish();
-                    const OimBake& b = a.oim->cached.bake;
-                    std::printf("bake: %s: %dx%d, %d intervals, %d samples, %s %s (%.0f ms to bake, %llu rays)\n", where.c_str(),
-                                b.resolution, b.resolution, b.intervals, b.samples, a.oim->cached.from_cache ? "read" : "baked into",
-                                a.oim->cached.file.string().c_str(), b.bake_ms, static_cast<unsigned long long>(b.rays));
-                    if (!a.oim->cached.warning.empty()) std::cerr << "warning: " << a.oim->cached.warning << "\n";
-                    results["bakes"].push_back({{"scene", scene.name}, {"light", lit_by}, {"label", entry.label},
-                                                {"resolution", b.resolution}, {"intervals", b.intervals}, {"samples", b.samples},
-                                                {"from_cache", a.oim->cached.from_cache}, {"bake_ms", b.bake_ms},
-                                                {"rays", b.rays}, {"merged_texels", b.merged_texels},
-                                                {"file", std::filesystem::relative(a.oim->cached.file, out_dir).string()},
-                                                {"file_bytes", a.oim->cached.file_bytes}});
-                    a.oim_mesh = std::make_unique<MeshBuffers>(charted.mesh);
-                    a.oim_pixels = render_pixels(charted, *a.oim_mesh, options->width, options->height, &error);
-                    if (!a.oim_pixels) return fail(where + ": " + error);
-                }
-                a.runtime = gl::Runtime::create(config, &error);
-                if (!a.runtime) return fail(where + ": " + error);
-                if (oim)
-                    for (const auto& [name, texels] : a.oim->textures)
-                        if (std::string d = a.runtime->supply_texture(name, texels); !d.empty()) return fail(where + ": " + d);
-                const Layout& layout = a.runtime->layout();
-                for (const TextureDesc& t : layout.textures)
-                    if (bytes_per_texel(t.internal_format) == 0)
-                        return fail(entry.label + ": texture " + t.name + " has a format of unknown size, " + t.internal_format);
-                a.texture_bytes = static_cast<std::uint64_t>(penumbra::texture_bytes(layout, options->width, options->height));
-                a.config = json::parse(to_json(layout))["config"];
-                active.push_back(std::move(a));
+                if (!fatal.empty()) return fatal;
             }
-            // Occlusion interval maps draw their own mesh (with the charts' texture coordinates) into their own G-buffer.
-            auto mesh_of = [&](const Active& a) -> const MeshBuffers& { return a.oim_mesh ? *a.oim_mesh : mesh; };
-            auto pixels_of = [&](const Active& a) -> const Pixels& { return a.oim_pixels ? *a.oim_pixels : *pixels; };
+            a.runtime = gl::Runtime::create(config, &error);
+            if (!a.runtime) return where + ": " + error;
+            if (oim)
+                for (const auto& [name, texels] : a.oim->textures)
+                    if (std::string d = a.runtime->supply_texture(name, texels); !d.empty()) return where + ": " + d;
+            const Layout& layout = a.runtime->layout();
+            for (const TextureDesc& t : layout.textures)
+                if (bytes_per_texel(t.internal_format) == 0)
+                    return entry.label + ": texture " + t.name + " has a format of unknown size, " + t.internal_format;
+            a.texture_bytes = static_cast<std::uint64_t>(penumbra::texture_bytes(layout, options_.width, options_.height));
+            a.config = json::parse(to_json(layout))["config"];
+            active_.push_back(std::move(a));
+        }
+        return {};
+    }
 
-            for (std::size_t s = 0; s < options->light_scales.size(); ++s) {
-                const double scale = options->light_scales[s];
-                const std::string where = scene.name + ", " + lit_by + " x" + scale_text(scale);
-                const std::string image_cell = scene.name + light_dir + "/x" + scale_text(scale);
-                std::vector<QualityMetrics> quality(active.size());
-                std::vector<double> bias(active.size()), bias_oriented(active.size());
-                std::vector<std::vector<FrameTimes>> timed(active.size());
-                std::vector<CostModel> costs(active.size());
-                for (std::size_t e = 0; e < active.size(); ++e) {
-                    Active& a = active[e];
-                    const bench::LadderEntry& entry = *a.entry;
-                    progress.step("warm-up", where + ": warm-up and quality, " + entry.label);
-                    set_light(*a.runtime, scene, light_kind, path, light_at(scene, path, scale, step, 0), a.oim.has_value());
-                    FrameTimes warmup;
-                    if (!run_frame(*a.runtime, mesh_of(a), pixels_of(a), warmup, &error)) return fail(entry.label + ": " + error);
-                    // set_light fitted level_bound to this light: memory, configuration and cost as they run
-                    a.texture_bytes = static_cast<std::uint64_t>(penumbra::texture_bytes(a.runtime->layout(), options->width, options->height));
-                    a.config = json::parse(to_json(a.runtime->layout()))["config"];
-                    costs[e] = cost_model(a.runtime->layout(), options->width, options->height);
-                    const std::vector<float> visibility = read_visibility(*a.runtime, pixels_of(a));
-                    quality[e] = compare_quality(visibility, pixels->frame.geometry, truths[s].visibility,
-                                                 truths[s].oriented, truths[s].irradiance);
-                    bias[e] = penumbra_bias(visibility, pixels->frame.geometry, truths[s].visibility);
-                    bias_oriented[e] = penumbra_bias(visibility, pixels->frame.geometry, truths[s].oriented);
-                    if (entry.representative &&
-                        !write_visibility_images(image_dir + "/" + image_cell, slug(entry.label), *pixels, visibility,
-                                                 &truths[s].visibility, &error))
-                        return fail(error);
-                }
-                // Round-robin: run r of every setting, then run r + 1. A burst of load from other
-                // processes then slows every setting of the cell alike, and the ratios survive it.
-                for (int r = 0; r < options->runs; ++r) {
-                    progress.step("timed round", where + ": timed run " + std::to_string(r + 1) + "/" +
-                                                     std::to_string(options->runs) + " of every setting");
-                    for (std::size_t e = 0; e < active.size(); ++e) {
-                        FrameTimes t;
-                        if (!run_frame(*active[e].runtime, mesh_of(active[e]), pixels_of(active[e]), t, &error))
-                            return fail(active[e].entry->label + ": " + error);
-                        timed[e].push_back(std::move(t));
-                    }
-                }
-                for (std::size_t e = 0; e < active.size(); ++e) {
-                    const Active& a = active[e];
-                    const bench::LadderEntry& entry = *a.entry;
-                    json record = {{"scene", scene.name}, {"ground", scene.ground},
-                                   {"light", lit_by},
-                                   {"family", entry.family},
-                                   {"label", entry.label},
-                                   {"representative", entry.representative},
-                                   {"light_scale", scale}};
-                    if (light_kind == Light::sun) record["sun_angular_diameter"] = scene.sun.angular_diameter * scale;
-                    else record["light_size"] = {scene.light.width * scale, scene.light.height * scale};
-                    record["config"] = a.config;
-                    record["texture_bytes"] = a.texture_bytes;
-                    if (a.oim) // a precomputation, like the truth: not in the frame's cost
-                        record["bake"] = {{"ms", a.oim->cached.bake.bake_ms}, {"from_cache", a.oim->cached.from_cache}};
-                    record.update(cost_json(timed[e]));
-                    std::vector<double> light_ms;
-                    for (const FrameTimes& t : timed[e]) light_ms.push_back(light_pass_ms(t));
-                    record["light_passes_gpu_ms"] = median(light_ms);
-                    record["cost_model"] = {{"shadow", phase_cost_json(costs[e].shadow)}, {"screen", phase_cost_json(costs[e].screen)}};
-                    // "all"/"penumbra": against the visibility of the whole light (rays behind the
-                    // receiver's tangent plane blocked); the fair references beside it.
-                    const QualityMetrics& q = quality[e];
-                    record["quality"] = {{"all", stats_json(q.visibility.all)},
-                                         {"penumbra", stats_json(q.visibility.penumbra)},
-                                         {"penumbra_bias", bias[e]},
-                                         {"oriented", {{"all", stats_json(q.oriented.all)}, {"penumbra", stats_json(q.oriented.penumbra)},
-                                                       {"penumbra_bias", bias_oriented[e]}}},
-                                         {"irradiance", {{"all", stats_json(q.irradiance.all)}, {"penumbra", stats_json(q.irradiance.penumbra)}}}};
-                    if (entry.representative) {
-                        const std::string dir = "images/" + image_cell;
-                        record["images"] = {{"visibility", dir + "/" + slug(entry.label) + ".png"},
-                                            {"error", dir + "/" + slug(entry.label) + ".error.png"},
-                                            {"truth", dir + "/truth.png"}};
-                    }
-                    std::printf("%-10s %-4s x%-4s %-20s GPU %8.2f ms  wall %8.2f ms  textures %7.1f MiB  penumbra MAE %.4f  "
-                                "oriented %.4f  light passes %7.2f ms, model %6.1f MB %6.1f Mfetch; shading model %6.1f Mfetch\n",
-                                scene.name.c_str(), lit_by.c_str(), scale_text(scale).c_str(), entry.label.c_str(),
-                                record["gpu_ms"].get<double>(), record["wall_ms"]["total"].get<double>(),
-                                a.texture_bytes / 1048576.0, q.visibility.penumbra.mae, q.oriented.penumbra.mae,
-                                record["light_passes_gpu_ms"].get<double>(), costs[e].shadow.bytes() / 1e6,
-                                costs[e].shadow.texel_fetches / 1e6, costs[e].screen.texel_fetches / 1e6);
-                    std::fflush(stdout);
-                    results["measurements"].push_back(std::move(record));
-                }
-            }
+    // Occlusion interval maps draw their own mesh (with the charts' texture coordinates) into their own G-buffer.
+    const MeshBuffers& mesh_of(const Active& a) const { return a.oim_mesh ? *a.oim_mesh : *mesh_; }
+    const Pixels& pixels_of(const Active& a) const { return a.oim_pixels ? *a.oim_pixels : *pixels_; }
 
-            for (Active& a : active) {
-                const bench::LadderEntry& entry = *a.entry;
-                if (!entry.representative) continue;
-                progress.step("flicker", scene.name + ": flicker, " + std::to_string(options->flicker_frames) +
-                                             " frames of a moving " + lit_by + " light: " + entry.label);
-                std::vector<std::vector<float>> frames;
-                for (int f = 0; f < options->flicker_frames; ++f) {
-                    set_light(*a.runtime, scene, light_kind, path, light_at(scene, path, 1.0, step, f), a.oim.has_value());
-                    FrameTimes times;
-                    if (!run_frame(*a.runtime, mesh_of(a), pixels_of(a), times, &error)) return fail(entry.label + ": " + error);
-                    frames.push_back(read_visibility(*a.runtime, pixels_of(a)));
-                }
-                double error_sum = 0;
-                for (int f = 0; f < options->flicker_frames; ++f)
-                    error_sum += compare(frames[f], pixels->frame.geometry, truth_frames[f]).all.mae;
-                const double delta = mean_frame_delta(frames, pixels->frame.geometry);
-                results["flicker"].push_back({{"scene", scene.name},
-                                              {"light", lit_by},
-                                              {"family", entry.family},
-                                              {"label", entry.label},
-                                              {"light_scale", 1.0},
-                                              {"frames", options->flicker_frames},
-                                              {"estimate_delta", delta},
-                                              {"truth_delta", truth_delta},
-                                              {"excess", delta - truth_delta},
-                                              {"mean_mae", error_sum / options->flicker_frames}});
+    // What one light size measured for every active setting.
+    struct Cell {
+        double scale = 1.0;
+        std::string where, image_cell; // "boxes, rect x4"; "boxes/x4" (images/<scene>[/sun]/x<scale>)
+        std::vector<QualityMetrics> quality;
+        std::vector<double> bias, bias_oriented;
+        std::vector<std::vector<FrameTimes>> timed;
+        std::vector<CostModel> costs;
+    };
+
+    // One light size: the warm-up run of every setting (its quality, cost model and images), the
+    // timed runs, then one measurement record per setting.
+    std::string measure_light_size(std::size_t s) {
+        Cell cell;
+        cell.scale = options_.light_scales[s];
+        cell.where = scene_.name + ", " + lit_by_ + " x" + scale_text(cell.scale);
+        cell.image_cell = scene_.name + light_dir_ + "/x" + scale_text(cell.scale);
+        cell.quality.resize(active_.size());
+        cell.bias.resize(active_.size());
+        cell.bias_oriented.resize(active_.size());
+        cell.timed.resize(active_.size());
+        cell.costs.resize(active_.size());
+        if (std::string e = warm_up(cell, truths_[s]); !e.empty()) return e;
+        if (std::string e = timed_rounds(cell); !e.empty()) return e;
+        for (std::size_t e = 0; e < active_.size(); ++e) record_measurement(cell, e);
+        return {};
+    }
+
+    std::string warm_up(Cell& cell, const References& truth) {
+        std::string error;
+        for (std::size_t e = 0; e < active_.size(); ++e) {
+            Active& a = active_[e];
+            const bench::LadderEntry& entry = *a.entry;
+            progress_.step("warm-up", cell.where + ": warm-up and quality, " + entry.label);
+            set_light(*a.runtime, scene_, light_kind_, path_, light_at(scene_, path_, cell.scale, step_, 0), a.oim.has_value());
+            FrameTimes warmup;
+            if (!run_frame(*a.runtime, mesh_of(a), pixels_of(a), warmup, &error)) return entry.label + ": " + error;
+            // set_light fitted level_bound to this light: memory, configuration and cost as they run
+            a.texture_bytes = static_cast<std::uint64_t>(penumbra::texture_bytes(a.runtime->layout(), options_.width, options_.height));
+            a.config = json::parse(to_json(a.runtime->layout()))["config"];
+            cell.costs[e] = cost_model(a.runtime->layout(), options_.width, options_.height);
+            const std::vector<float> visibility = read_visibility(*a.runtime, pixels_of(a));
+            const std::vector<unsigned char>& geometry = pixels_->frame.geometry;
+            cell.quality[e] = compare_quality(visibility, geometry, truth.visibility, truth.oriented, truth.irradiance);
+            cell.bias[e] = penumbra_bias(visibility, geometry, truth.visibility);
+            cell.bias_oriented[e] = penumbra_bias(visibility, geometry, truth.oriented);
+            if (entry.representative &&
+                !write_visibility_images(dirs_.images + "/" + cell.image_cell, slug(entry.label), *pixels_, visibility,
+                                         &truth.visibility, &error))
+                return error;
+        }
+        return {};
+    }
+
+    // Round-robin: run r of every setting, then run r + 1. A burst of load from other processes
+    // then slows every setting of the cell alike, and the ratios survive it.
+    std::string timed_rounds(Cell& cell) {
+        std::string error;
+        for (int r = 0; r < options_.runs; ++r) {
+            progress_.step("timed round", cell.where + ": timed run " + std::to_string(r + 1) + "/" +
+                                              std::to_string(options_.runs) + " of every setting");
+            for (std::size_t e = 0; e < active_.size(); ++e) {
+                FrameTimes t;
+                if (!run_frame(*active_[e].runtime, mesh_of(active_[e]), pixels_of(active_[e]), t, &error))
+                    return active_[e].entry->label + ": " + error;
+                cell.timed[e].push_back(std::move(t));
             }
-            progress.finish();
-        } // lights
+        }
+        return {};
+    }
+
+    // Setting e's record of the cell in results.json, and its line on stdout.
+    void record_measurement(const Cell& cell, std::size_t e) {
+        const Active& a = active_[e];
+        const bench::LadderEntry& entry = *a.entry;
+        const double scale = cell.scale;
+        json record = {{"scene", scene_.name}, {"ground", scene_.ground},
+                       {"light", lit_by_},
+                       {"family", entry.family},
+                       {"label", entry.label},
+                       {"representative", entry.representative},
+                       {"light_scale", scale}};
+        if (light_kind_ == Light::sun) record["sun_angular_diameter"] = scene_.sun.angular_diameter * scale;
+        else record["light_size"] = {scene_.light.width * scale, scene_.light.height * scale};
+        record["config"] = a.config;
+        record["texture_bytes"] = a.texture_bytes;
+        if (a.oim) // a precomputation, like the truth: not in the frame's cost
+            record["bake"] = {{"ms", a.oim->cached.bake.bake_ms}, {"from_cache", a.oim->cached.from_cache}};
+        record.update(cost_json(cell.timed[e]));
+        std::vector<double> light_ms;
+        for (const FrameTimes& t : cell.timed[e]) light_ms.push_back(light_pass_ms(t));
+        record["light_passes_gpu_ms"] = median(light_ms);
+        const CostModel& cost = cell.costs[e];
+        record["cost_model"] = {{"shadow", phase_cost_json(cost.shadow)}, {"screen", phase_cost_json(cost.screen)}};
+        // "all"/"penumbra": against the visibility of the whole light (rays behind the
+        // receiver's tangent plane blocked); the fair references beside it.
+        const QualityMetrics& q = cell.quality[e];
+        record["quality"] = {{"all", stats_json(q.visibility.all)},
+                             {"penumbra", stats_json(q.visibility.penumbra)},
+                             {"penumbra_bias", cell.bias[e]},
+                             {"oriented", {{"all", stats_json(q.oriented.all)}, {"penumbra", stats_json(q.oriented.penumbra)},
+                                           {"penumbra_bias", cell.bias_oriented[e]}}},
+                             {"irradiance", {{"all", stats_json(q.irradiance.all)}, {"penumbra", stats_json(q.irradiance.penumbra)}}}};
+        if (entry.representative) {
+            const std::string dir = "images/" + cell.image_cell;
+            record["images"] = {{"visibility", dir + "/" + slug(entry.label) + ".png"},
+                                {"error", dir + "/" + slug(entry.label) + ".error.png"},
+                                {"truth", dir + "/truth.png"}};
+        }
+        std::printf("%-10s %-4s x%-4s %-20s GPU %8.2f ms  wall %8.2f ms  textures %7.1f MiB  penumbra MAE %.4f  "
+                    "oriented %.4f  light passes %7.2f ms, model %6.1f MB %6.1f Mfetch; shading model %6.1f Mfetch\n",
+                    scene_.name.c_str(), lit_by_.c_str(), scale_text(scale).c_str(), entry.label.c_str(),
+                    record["gpu_ms"].get<double>(), record["wall_ms"]["total"].get<double>(),
+                    a.texture_bytes / 1048576.0, q.visibility.penumbra.mae, q.oriented.penumbra.mae,
+                    record["light_passes_gpu_ms"].get<double>(), cost.shadow.bytes() / 1e6,
+                    cost.shadow.texel_fetches / 1e6, cost.screen.texel_fetches / 1e6);
+        std::fflush(stdout);
+        results_["measurements"].push_back(std::move(record));
+    }
+
+    // The representative settings under a slowly moving light: excess flicker over the truth's.
+    std::string measure_flicker() {
+        std::string error;
+        for (Active& a : active_) {
+            const bench::LadderEntry& entry = *a.entry;
+            if (!entry.representative) continue;
+            progress_.step("flicker", scene_.name + ": flicker, " + std::to_string(options_.flicker_frames) +
+                                          " frames of a moving " + lit_by_ + " light: " + entry.label);
+            std::vector<std::vector<float>> frames;
+            for (int f = 0; f < options_.flicker_frames; ++f) {
+                set_light(*a.runtime, scene_, light_kind_, path_, light_at(scene_, path_, 1.0, step_, f), a.oim.has_value());
+                FrameTimes times;
+                if (!run_frame(*a.runtime, mesh_of(a), pixels_of(a), times, &error)) return entry.label + ": " + error;
+                frames.push_back(read_visibility(*a.runtime, pixels_of(a)));
+            }
+            double error_sum = 0;
+            for (int f = 0; f < options_.flicker_frames; ++f)
+                error_sum += compare(frames[f], pixels_->frame.geometry, truth_frames_[f]).all.mae;
+            const double delta = mean_frame_delta(frames, pixels_->frame.geometry);
+            results_["flicker"].push_back({{"scene", scene_.name},
+                                           {"light", lit_by_},
+                                           {"family", entry.family},
+                                           {"label", entry.label},
+                                           {"light_scale", 1.0},
+                                           {"frames", options_.flicker_frames},
+                                           {"estimate_delta", delta},
+                                           {"truth_delta", truth_delta_},
+                                           {"excess", delta - truth_delta_},
+                                           {"mean_mae", error_sum / options_.flicker_frames}});
+        }
+        return {};
+    }
+
+    const Options& options_;
+    const OutputDirs& dirs_;
+    bench::Progress& progress_;
+    json& results_;
+    json& scene_record_;
+    Scene scene_;
+    SunPath path_;
+    Light light_kind_;
+    std::string lit_by_, light_dir_;
+    std::unique_ptr<MeshBuffers> mesh_;
+    std::optional<Pixels> pixels_;
+    double step_ = 0; // the rectangle's motion per flicker frame
+    std::vector<References> truths_;            // per light size
+    std::vector<std::vector<float>> truth_frames_; // per flicker frame
+    double truth_delta_ = 0;
+    std::vector<Active> active_;
+};
+
+} // namespace
+
+// arguments → scenes → GL context → for every scene and light: LightRun → results.json.
+int main(int argc, char** argv) {
+    if (penumbra::cli::asks_for_help(std::vector<std::string>(argv + 1, argv + argc)))
+        return penumbra::cli::print_usage(usage_text);
+    std::string error;
+    const std::optional<Options> options = parse(argc, argv, error);
+    if (!options) return penumbra::cli::fail_with_usage(error, usage_text);
+    const std::optional<LoadedScenes> loaded = load_scenes(*options, &error);
+    if (!loaded) return fail(error, 2);
+    std::optional<HeadlessContext> context = HeadlessContext::create(&error);
+    if (!context) return fail("no OpenGL 4.5 context: " + error);
+
+    const std::vector<bench::LadderEntry> ladder = selected_ladder(*options);
+    const OutputDirs dirs{options->out_dir, options->out_dir + "/cache", options->out_dir + "/images"};
+    std::error_code ec;
+    std::filesystem::create_directories(dirs.out, ec);
+    if (ec) return fail("cannot create " + dirs.out + ": " + ec.message());
+    const auto run_start = std::chrono::steady_clock::now();
+    bench::Progress progress;
+    plan_progress(progress, *options, loaded->scenes.size(), ladder);
+
+    json results = results_skeleton(argc, argv, *options, *context);
+    for (std::size_t i = 0; i < loaded->scenes.size(); ++i) {
+        json scene_record = scene_json(options->scenes[i], loaded->scenes[i], loaded->load_ms[i]);
+        for (const Light light_kind : options->lights) {
+            LightRun run(*options, dirs, progress, results, scene_record, loaded->scenes[i], light_kind);
+            if (std::string e = run.run(ladder); !e.empty()) return fail(e);
+        }
         results["scenes"].push_back(std::move(scene_record));
     }
     results["meta"]["wall_s"] = milliseconds_since(run_start) / 1000.0;
 
-    const std::string path = out_dir + "/results.json";
-    std::ofstream file(path);
-    file << results.dump(1) << "\n";
-    if (!file) return fail("cannot write " + path);
+    // All or nothing, as every other output of the project: a failed write leaves the previous
+    // results.json as it was (tools/include/penumbra_tools/file_transaction.hpp).
+    const std::string path = dirs.out + "/results.json";
+    if (std::string e = penumbra_gen::write_file_atomically(path, results.dump(1) + "\n"); !e.empty()) return fail(e);
     std::printf("wrote %s (%zu measurements, %zu flicker runs) in %.0f s\n", path.c_str(), results["measurements"].size(),
                 results["flicker"].size(), milliseconds_since(run_start) / 1000.0);
     return 0;

@@ -32,6 +32,8 @@
 #include "rendering/egl_context.hpp"
 #include "scenes/scenes.hpp"
 
+#include <penumbra_tools/file_transaction.hpp>
+
 #include <penumbra/layout.hpp>
 #include <penumbra/texture_memory.hpp>
 
@@ -508,13 +510,9 @@ int main(int argc, char** argv) {
     }
     results["growth"] = growth;
     if (!options->json_path.empty()) {
-        const std::string tmp = options->json_path + ".tmp";
-        std::ofstream file(tmp);
-        file << results.dump(1) << "\n";
-        file.close();
-        std::error_code ec;
-        if (!file || (std::filesystem::rename(tmp, options->json_path, ec), ec))
-            return fail("cannot write " + options->json_path);
+        // all or nothing, as every other output (tools/include/penumbra_tools/file_transaction.hpp)
+        if (std::string e = penumbra_gen::write_file_atomically(options->json_path, results.dump(1) + "\n"); !e.empty())
+            return fail(e);
         std::printf("\nwrote %s\n", options->json_path.c_str());
     }
     return 0;

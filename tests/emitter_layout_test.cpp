@@ -154,14 +154,19 @@ TEST_CASE("layout v2: every plain uniform says where its value comes from, and t
             CAPTURE(program.name);
             for (const ParamDesc& p : program.parameters) {
                 CAPTURE(p.name);
+                if (const UniformDef* def = find_uniform(p.name)) { // declared as its registry row says
+                    CHECK(p.type == to_string(def->type));
+                    CHECK(p.source == def->source);
+                    CHECK(p.compute == def->compute(config.light));
+                }
                 if (p.binding >= 0) {
-                    CHECK(p.source.empty());
+                    CHECK(!p.source);
                     continue;
                 }
-                CHECK((p.source == "light" || p.source == "pass" || p.source == "camera"));
+                CHECK((p.source == UniformSource::light || p.source == UniformSource::pass || p.source == UniformSource::camera));
                 CHECK(p.compute.size() > 10); // layout.json says how to compute every plain uniform
-                if (p.source != "pass") CHECK(has_uniform_rule(p.name));
-                if (p.source != "pass") continue;
+                if (p.source != UniformSource::pass) CHECK(has_uniform_rule(p.name));
+                if (p.source != UniformSource::pass) continue;
                 // every pass running this program sets it
                 for (const PassDesc& pass : layout.passes) {
                     if (pass.program != program.name) continue;
@@ -172,13 +177,15 @@ TEST_CASE("layout v2: every plain uniform says where its value comes from, and t
             }
         }
     }
-    // the compute texts and the value table name the same uniforms
+    // every uniform with a value is a registry row that says how to compute it, for both lights
     for (const UniformRule& rule : uniform_rules()) {
         CAPTURE(rule.name);
-        CHECK(!detail::uniform_compute(rule.name, Light::rect).empty());
-        CHECK(!detail::uniform_compute(rule.name, Light::sun).empty());
+        const UniformDef* def = find_uniform(rule.name);
+        REQUIRE(def != nullptr);
+        CHECK(!def->compute(Light::rect).empty());
+        CHECK(!def->compute(Light::sun).empty());
     }
-    CHECK(detail::uniform_compute("penumbra_windowHalfSize", Light::sun).find("1.001") != std::string_view::npos);
+    CHECK(find_uniform("penumbra_windowHalfSize")->compute(Light::sun).find("1.001") != std::string_view::npos);
     // the table computes from the frame: rect origin at the light centre, sun direction towards the sun
     RectLight light;
     light.center = {1.0, 5.0, 2.0};
@@ -644,7 +651,7 @@ TEST_CASE("layout v3: every binding states its sampling; only shadow samplers co
                 if (p.binding < 0) continue;
                 CAPTURE(p.name);
                 sampler_types[program.name + "/" + p.name] = p.type;
-                if (p.source == "draw") { // alpha_test: the caller's texture with the caller's sampler, per draw
+                if (p.source == UniformSource::draw) { // alpha_test: the caller's texture with the caller's sampler, per draw
                     CHECK(config.alpha_test);
                     CHECK(p.name == "penumbra_alphaTexture");
                     CHECK(p.texture.empty());

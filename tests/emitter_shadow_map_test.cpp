@@ -312,7 +312,7 @@ TEST_CASE("shadow map layouts in the layout vocabulary: phases, depth attachment
             for (const ParamDesc& p : program.parameters) {
                 CAPTURE(p.name);
                 if (p.binding >= 0) continue;
-                if (p.source == "light" || p.source == "camera") CHECK(has_uniform_rule(p.name));
+                if (p.source == UniformSource::light || p.source == UniformSource::camera) CHECK(has_uniform_rule(p.name));
             }
     }
     // the table's shadow values come from shadow_frame

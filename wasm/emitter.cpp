@@ -1,6 +1,6 @@
 // emitter.cpp — the Penumbra emitter as a WebAssembly module (wasm32-wasi, reactor): the
 // `penumbra-gen --config` schema in, every file penumbra-gen writes out, from the same code
-// (generator/src/config_file.cpp parses, penumbra::emit emits, generator/src/output_files.cpp
+// (tools/src/config_file.cpp parses, penumbra::emit emits, tools/src/output_files.cpp
 // names the files). web/three/penumbra_emitter.js is its JavaScript side; wasm/README.md the ABI.
 //
 // C ABI (all sizes in bytes, text UTF-8):
@@ -13,8 +13,8 @@
 // Result: {"ok": bool, "files": {"<name>": "<text>", ...} (penumbra-gen's order, layout.json
 // last), "diagnostics": [{"severity": "error", "field": "...", "message": "..."}],
 // "error": "error: ..." (the line penumbra-gen prints, empty when ok)}.
-#include "../generator/src/config_file.hpp"
-#include "../generator/src/output_files.hpp"
+#include <penumbra_tools/config_file.hpp>
+#include <penumbra_tools/output_files.hpp>
 
 #include <nlohmann/json.hpp>
 #include <penumbra/emit.hpp>

@@ -7,10 +7,10 @@
 // Exit status: 0 written; 1 glslang rejected emitted code (a Penumbra bug; the files are still
 // written so the failing file can be inspected at the reported line); 2 bad arguments, bad config
 // file, invalid configuration or unwritable output (nothing written); 3 internal error.
-#include "arguments.hpp"
-#include "cli.hpp"
-#include "config_file.hpp"
-#include "write_files.hpp"
+#include <penumbra_tools/arguments.hpp>
+#include <penumbra_tools/cli.hpp>
+#include <penumbra_tools/config_file.hpp>
+#include <penumbra_tools/write_files.hpp>
 
 #include <penumbra/emit.hpp>
 #include <penumbra/validation.hpp>

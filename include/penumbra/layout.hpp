@@ -232,9 +232,10 @@ PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
             const ParamDesc& d = p.parameters[u];
             o += "      {\"name\": " + json_string(d.name) + ", \"type\": " + json_string(d.type) +
                  ", \"meaning\": " + json_string(d.meaning) + ", \"units\": " + json_string(d.units);
-            if (!d.source.empty()) o += ", \"source\": " + json_string(d.source) + ", \"compute\": " + json_string(d.compute);
+            if (d.source)
+                o += ", \"source\": " + json_string(to_string(*d.source)) + ", \"compute\": " + json_string(d.compute);
             if (d.binding >= 0) o += ", \"binding\": " + std::to_string(d.binding);
-            if (d.binding >= 0 && d.source != "draw") // a draw's sampler: the caller's texture and sampler
+            if (d.binding >= 0 && d.source != UniformSource::draw) // a draw's sampler: the caller's texture and sampler
                 o += ", \"texture\": " + json_string(d.texture) + ", \"sampling\": " + detail::json_sampling(d.sampling);
             if (d.offset >= 0)
                 o += ", \"block\": " + json_string(d.block) + ", \"block_binding\": " + std::to_string(d.block_binding) +

@@ -5,6 +5,7 @@
 
 #include "config.hpp"
 #include "program.hpp"
+#include "uniforms.hpp"
 
 #include <array>
 #include <optional>
@@ -63,8 +64,8 @@ struct TextureDesc {
 
 struct ParamDesc {
     std::string name, type, meaning, units;
-    std::string source;          // plain uniforms: "light" (uniform_values.hpp), "pass" (int_uniforms), "camera";
-                                 // "draw" (also samplers): set by the caller per draw (alpha_test's material)
+    std::optional<UniformSource> source; // plain uniforms, and samplers set per draw: where the value comes
+                                         // from (penumbra/uniforms.hpp); none for the layout's own samplers
     std::string compute;         // plain uniforms: how to compute the value (formula, light_frame.hpp field)
     int binding = -1;            // sampler: texture unit / Vulkan binding; -1 for plain uniforms
     std::string texture;         // sampler: the texture bound to it when the program runs its usual pass

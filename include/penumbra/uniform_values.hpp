@@ -1,6 +1,8 @@
 // penumbra/uniform_values.hpp — the value of every uniform whose layout.json "source" is "light"
-// (and "camera" when the camera is given), by name: one table, no technique branches. A new
-// technique adds names to the table; the runtime sets whatever the layout's programs declare.
+// (and "camera" when the camera is given), by name: the registry's rows (penumbra/uniforms.hpp) say
+// what each is read from, and one reader per row here reads it (GLM lives here, not in the
+// registry). A new uniform is a row there and a reader here; the runtime sets whatever the
+// layout's programs declare.
 //
 //   penumbra::UniformInputs in{.frame = penumbra::slice_frame(light, lo, hi, config.slices), .light = config.light};
 //   penumbra::UniformResult v = penumbra::uniform_value("penumbra_sliceDepths", in);
@@ -11,6 +13,7 @@
 
 #include "config.hpp"
 #include "light_frame.hpp"
+#include "uniforms.hpp"
 
 #include <glm/glm.hpp>
 
@@ -73,109 +76,99 @@ inline glm::vec4 to_light(const glm::mat4& light_from_world, bool sun) {
 constexpr std::string_view slice_frame_how = "penumbra::slice_frame(light, bounds_min, bounds_max, slices)";
 constexpr std::string_view shadow_frame_how = "penumbra::shadow_frame(light, bounds_min, bounds_max)";
 
-// A value read from the slice frame (occlusion textures), or the error naming it.
-template <class F> UniformResult from_frame(std::string_view name, const UniformInputs& in, F read) {
-    if (!in.frame) return missing_input(name, "frame", slice_frame_how);
-    return {UniformValue(read(*in.frame)), {}};
-}
+// How each registry row's value is read from the frame its UniformDef::input names, indexed by
+// penumbra::Uniform: from_frame for slice_frame and either_frame, from_shadow for shadow_frame and
+// either_frame; the time window, the camera and per-draw values need no reader.
+struct UniformReader {
+    Uniform id;
+    UniformValue (*from_frame)(const SliceFrame&, Light) = nullptr;
+    UniformValue (*from_shadow)(const ShadowFrame&, Light) = nullptr;
+};
 
-// A value read from the shadow-map camera (shadow map techniques), or the error naming it.
-template <class F> UniformResult from_shadow(std::string_view name, const UniformInputs& in, F read) {
-    if (!in.shadow) return missing_input(name, "shadow", shadow_frame_how);
-    return {UniformValue(read(*in.shadow)), {}};
-}
+inline constexpr UniformReader uniform_readers[] = {
+    {Uniform::light_from_world, [](const SliceFrame& f, Light) -> UniformValue { return f.light_from_world; },
+     [](const ShadowFrame& s, Light) -> UniformValue { return s.light_from_world; }},
+    {Uniform::slice_clip_from_world, [](const SliceFrame& f, Light) -> UniformValue { return f.slice_clip_from_world; }},
+    {Uniform::slice_depths, [](const SliceFrame& f, Light) -> UniformValue { return f.slice_depths; }},
+    {Uniform::light_size, [](const SliceFrame& f, Light) -> UniformValue { return f.light_size; },
+     [](const ShadowFrame& s, Light) -> UniformValue { return s.light_size; }},
+    {Uniform::cop_distance, [](const SliceFrame& f, Light) -> UniformValue { return f.cop_distance; }},
+    {Uniform::window_half_size, [](const SliceFrame& f, Light) -> UniformValue { return f.window_half_size; },
+     [](const ShadowFrame& s, Light) -> UniformValue { return s.window_half_size; }},
+    {Uniform::tan_angular_radius, [](const SliceFrame& f, Light) -> UniformValue { return f.tan_angular_radius; },
+     [](const ShadowFrame& s, Light) -> UniformValue { return s.tan_angular_radius; }},
+    {Uniform::to_light, // detail::to_light
+     [](const SliceFrame& f, Light light) -> UniformValue { return to_light(f.light_from_world, light == Light::sun); },
+     [](const ShadowFrame& s, Light light) -> UniformValue { return to_light(s.light_from_world, light == Light::sun); }},
+    {Uniform::clip_from_world},
+    {Uniform::shadow_clip_from_world, nullptr,
+     [](const ShadowFrame& s, Light) -> UniformValue { return s.shadow_clip_from_world; }},
+    {Uniform::shadow_depth_range, nullptr, [](const ShadowFrame& s, Light) -> UniformValue { return s.depth_range; }},
+    {Uniform::shadow_tan_half_fov, nullptr, [](const ShadowFrame& s, Light) -> UniformValue { return s.tan_half_fov; }},
+    {Uniform::light_size_uv, nullptr, [](const ShadowFrame& s, Light) -> UniformValue { return s.light_size_uv; }},
+    {Uniform::time_window},
+    {Uniform::alpha_texture},
+    {Uniform::alpha_cutoff},
+};
 
-// A value both frames carry the same (the light frame, the light's size): from whichever is set.
-template <class F, class G>
-UniformResult from_either(std::string_view name, const UniformInputs& in, F read_frame, G read_shadow) {
-    if (in.frame) return {UniformValue(read_frame(*in.frame)), {}};
-    if (in.shadow) return {UniformValue(read_shadow(*in.shadow)), {}};
-    return {std::nullopt, std::string(name) + ": neither UniformInputs::frame nor UniformInputs::shadow is set; set " +
-                              "frame to " + std::string(slice_frame_how) + " or shadow to " + std::string(shadow_frame_how)};
+constexpr bool readers_match_registry() {
+    if (std::size(uniform_readers) != std::size(uniform_defs)) return false;
+    for (std::size_t i = 0; i < std::size(uniform_readers); ++i) {
+        const UniformReader& r = uniform_readers[i];
+        const UniformInput input = uniform_defs[i].input;
+        const bool frame = input == UniformInput::slice_frame || input == UniformInput::either_frame;
+        const bool shadow = input == UniformInput::shadow_frame || input == UniformInput::either_frame;
+        if (r.id != uniform_defs[i].id || (r.from_frame != nullptr) != frame || (r.from_shadow != nullptr) != shadow)
+            return false;
+    }
+    return true;
+}
+static_assert(readers_match_registry(),
+              "uniform_readers: one row per uniform_defs row, in the same order, with a reader for each frame its input names");
+
+// The value of registry uniform `def` from `in`, or the error naming the input to set.
+inline UniformResult registry_value(const UniformDef& def, const UniformInputs& in) {
+    const UniformReader& read = uniform_readers[static_cast<std::size_t>(def.id)];
+    switch (def.input) {
+    case UniformInput::slice_frame:
+        if (!in.frame) return missing_input(def.name, "frame", slice_frame_how);
+        return {read.from_frame(*in.frame, in.light), {}};
+    case UniformInput::shadow_frame:
+        if (!in.shadow) return missing_input(def.name, "shadow", shadow_frame_how);
+        return {read.from_shadow(*in.shadow, in.light), {}};
+    case UniformInput::either_frame:
+        if (in.frame) return {read.from_frame(*in.frame, in.light), {}};
+        if (in.shadow) return {read.from_shadow(*in.shadow, in.light), {}};
+        return {std::nullopt, std::string(def.name) + ": neither UniformInputs::frame nor UniformInputs::shadow is set; " +
+                                  "set frame to " + std::string(slice_frame_how) + " or shadow to " +
+                                  std::string(shadow_frame_how)};
+    case UniformInput::time_window:
+        if (!in.time_window)
+            return missing_input(def.name, "time_window",
+                                 "penumbra::sun_window(...) of the sun's path (penumbra/sun_path.hpp)");
+        return {*in.time_window, {}};
+    case UniformInput::clip_from_world:
+        if (!in.clip_from_world)
+            return missing_input(def.name, "clip_from_world", "the viewer's clip-from-world matrix (projection * view)");
+        return {*in.clip_from_world, {}};
+    case UniformInput::per_draw: break;
+    }
+    return {std::nullopt, std::string(def.name) + ": set by the caller for every draw, not computed"};
 }
 
 } // namespace detail
 
-// The table: name → how to compute it.
+// The registry's uniforms that have a value here (every source but "draw"), name → how to compute it.
 inline const std::vector<UniformRule>& uniform_rules() {
-    using R = UniformResult;
-    using detail::from_either;
-    using detail::from_frame;
-    using detail::from_shadow;
-    static const std::vector<UniformRule> rules{
-        // the same in both frames: penumbra_lightFromWorld, penumbra_lightSize, penumbra_windowHalfSize,
-        // penumbra_tanAngularRadius
-        {"penumbra_lightFromWorld",
-         [](std::string_view name, const UniformInputs& in) -> R {
-             return from_either(name, in, [](const SliceFrame& f) { return f.light_from_world; },
-                                [](const ShadowFrame& s) { return s.light_from_world; });
-         }},
-        {"penumbra_sliceClipFromWorld",
-         [](std::string_view name, const UniformInputs& in) -> R {
-             return from_frame(name, in, [](const SliceFrame& f) { return f.slice_clip_from_world; });
-         }},
-        {"penumbra_sliceDepths",
-         [](std::string_view name, const UniformInputs& in) -> R {
-             return from_frame(name, in, [](const SliceFrame& f) { return f.slice_depths; });
-         }},
-        {"penumbra_lightSize",
-         [](std::string_view name, const UniformInputs& in) -> R {
-             return from_either(name, in, [](const SliceFrame& f) { return f.light_size; },
-                                [](const ShadowFrame& s) { return s.light_size; });
-         }},
-        {"penumbra_copDistance",
-         [](std::string_view name, const UniformInputs& in) -> R {
-             return from_frame(name, in, [](const SliceFrame& f) { return f.cop_distance; });
-         }},
-        {"penumbra_windowHalfSize",
-         [](std::string_view name, const UniformInputs& in) -> R {
-             return from_either(name, in, [](const SliceFrame& f) { return f.window_half_size; },
-                                [](const ShadowFrame& s) { return s.window_half_size; });
-         }},
-        {"penumbra_tanAngularRadius",
-         [](std::string_view name, const UniformInputs& in) -> R {
-             return from_either(name, in, [](const SliceFrame& f) { return f.tan_angular_radius; },
-                                [](const ShadowFrame& s) { return s.tan_angular_radius; });
-         }},
-        // shadow map techniques (shadow_frame)
-        {"penumbra_shadowClipFromWorld",
-         [](std::string_view name, const UniformInputs& in) -> R {
-             return from_shadow(name, in, [](const ShadowFrame& s) { return s.shadow_clip_from_world; });
-         }},
-        {"penumbra_shadowDepthRange",
-         [](std::string_view name, const UniformInputs& in) -> R {
-             return from_shadow(name, in, [](const ShadowFrame& s) { return s.depth_range; });
-         }},
-        {"penumbra_shadowTanHalfFov",
-         [](std::string_view name, const UniformInputs& in) -> R {
-             return from_shadow(name, in, [](const ShadowFrame& s) { return s.tan_half_fov; });
-         }},
-        {"penumbra_lightSizeUV",
-         [](std::string_view name, const UniformInputs& in) -> R {
-             return from_shadow(name, in, [](const ShadowFrame& s) { return s.light_size_uv; });
-         }},
-        {"penumbra_toLight", // detail::to_light
-         [](std::string_view name, const UniformInputs& in) -> R {
-             const bool sun = in.light == Light::sun;
-             return from_either(name, in,
-                 [sun](const SliceFrame& f) { return detail::to_light(f.light_from_world, sun); },
-                 [sun](const ShadowFrame& s) { return detail::to_light(s.light_from_world, sun); });
-         }},
-        {"penumbra_timeWindow",
-         [](std::string_view name, const UniformInputs& in) -> R {
-             if (!in.time_window)
-                 return detail::missing_input(name, "time_window",
-                                              "penumbra::sun_window(...) of the sun's path (penumbra/sun_path.hpp)");
-             return {*in.time_window, {}};
-         }},
-        {"penumbra_clipFromWorld",
-         [](std::string_view name, const UniformInputs& in) -> R {
-             if (!in.clip_from_world)
-                 return detail::missing_input(name, "clip_from_world",
-                                              "the viewer's clip-from-world matrix (projection * view)");
-             return {*in.clip_from_world, {}};
-         }},
-    };
+    static const std::vector<UniformRule> rules = [] {
+        std::vector<UniformRule> out;
+        for (const UniformDef& def : uniform_defs)
+            if (def.input != UniformInput::per_draw)
+                out.push_back({def.name, [](std::string_view name, const UniformInputs& in) {
+                                   return detail::registry_value(*find_uniform(name), in);
+                               }});
+        return out;
+    }();
     return rules;
 }
 

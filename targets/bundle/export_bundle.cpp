@@ -9,10 +9,10 @@
 // The configuration flags are penumbra-gen's (the same parser); the GL run uses the same
 // configuration (with target glsl450 when the target is vulkan). Exit status: 0 written,
 // 1 rendering or writing failed, 2 bad arguments.
-#include "../../generator/src/arguments.hpp"
-#include "../../generator/src/cli.hpp"
-#include "../../generator/src/config_file.hpp"
-#include "../../generator/src/write_files.hpp"
+#include <penumbra_tools/arguments.hpp>
+#include <penumbra_tools/cli.hpp>
+#include <penumbra_tools/config_file.hpp>
+#include <penumbra_tools/write_files.hpp>
 
 #include "app/headless_job.hpp"
 #include "bake/oim_scene.hpp"
@@ -202,7 +202,7 @@ nlohmann::ordered_json uniforms_json(const UniformInputs& inputs, const Layout& 
     auto declared = [&](std::string_view name) {
         for (const ProgramDesc& program : layout.programs)
             for (const ParamDesc& p : program.parameters)
-                if (p.name == name && p.source == "light") return true;
+                if (p.name == name && p.source == UniformSource::light) return true;
         return false;
     };
     nlohmann::ordered_json out = nlohmann::ordered_json::object();

@@ -21,7 +21,7 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
-#include "../../generator/src/cli.hpp"
+#include <penumbra_tools/cli.hpp>
 #include "bundle_reader.hpp"
 #include "layout_runner.hpp"
 #include "rendering/egl_context.hpp"

@@ -17,7 +17,7 @@
 // nothing. Exit status: 0 pass; 1 a difference beyond the bound, a validation message, or a
 // failure; 2 bad arguments; 77 no Vulkan device (the test is skipped).
 #include "bundle_reader.hpp"
-#include "../../generator/src/cli.hpp"
+#include <penumbra_tools/cli.hpp>
 #include "layout_runner.hpp"
 #include "vulkan_context.hpp"
 

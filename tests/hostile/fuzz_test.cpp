@@ -10,7 +10,7 @@
 //   PENUMBRA_FUZZ_SEED=N     another seed (default 13)
 #include "child_process.hpp"
 
-#include "../../generator/src/config_file.hpp"
+#include <penumbra_tools/config_file.hpp>
 #include "app/options.hpp"
 #include "../runtime/gltf_compression_files.hpp"
 #include "../runtime/gltf_test_file.hpp"

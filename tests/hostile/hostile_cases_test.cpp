@@ -5,7 +5,7 @@
 
 #include "../runtime/gltf_compression_files.hpp"
 
-#include "../../generator/src/printable.hpp"
+#include <penumbra_tools/printable.hpp>
 #include "shader_diagnostics.hpp"
 #include "shader_folder.hpp"
 #include "script.hpp"

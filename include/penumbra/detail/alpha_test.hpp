@@ -10,6 +10,7 @@
 #pragma once
 
 #include "glsl_common.hpp"
+#include "uniform_params.hpp"
 
 namespace penumbra::detail {
 
@@ -23,14 +24,7 @@ inline constexpr int alpha_test_varying_location = 1;
 // The per-draw parameters of the caster programs; none with alpha_test off.
 constexpr std::vector<Param> alpha_test_params(const Config& config) {
     if (!config.alpha_test) return {};
-    return {
-        {"penumbra_alphaTexture", "sampler2D",
-         "the caster draw's material texture: where its alpha (.a) is below penumbra_alphaCutoff the caster is cut "
-         "out; bound by the caller per draw with its own sampler",
-         "", {}, "draw"},
-        {"penumbra_alphaCutoff", "float",
-         "the caster draw's alpha cutoff (glTF alphaCutoff, 0.5 by default; 0 for a solid draw)", "", {}, "draw"},
-    };
+    return {uniform_param(Uniform::alpha_texture, config.light), uniform_param(Uniform::alpha_cutoff, config.light)};
 }
 
 // Vertex stage: the caster's texture coordinates in, passed on to the fragment stage.

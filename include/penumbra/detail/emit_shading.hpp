@@ -4,6 +4,7 @@
 #pragma once
 
 #include "glsl_common.hpp"
+#include "uniform_params.hpp"
 
 namespace penumbra::detail {
 
@@ -27,12 +28,10 @@ constexpr Text fullscreen_vertex(const Config& config) {
 
 
 constexpr std::vector<Param> example_fragment_params() {
-    return {{"penumbra_toLight", "vec4",
-             "light for the Lambert term: xyz position and w = 1, or xyz direction towards the light and w = 0",
-             "scene units"}};
+    return {uniform_param(Uniform::to_light, Light::rect)};
 }
 constexpr std::vector<Param> example_vertex_params() {
-    return {{"penumbra_clipFromWorld", "mat4", "world to clip space of the viewer's camera", "", {}, "camera"}};
+    return {uniform_param(Uniform::clip_from_world, Light::rect)};
 }
 constexpr std::vector<Param> deferred_params(const Config& config) {
     std::vector<Param> params{{"penumbra_worldPositions", "sampler2D",

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "../config.hpp"
+#include "../uniforms.hpp"
 #include "technique.hpp"
 #include "text.hpp"
 
@@ -21,10 +22,8 @@ struct Param {
     std::string_view meaning; // one line, for the declaration comment and layout.json
     std::string_view units;   // "scene units", "texels", "" when unitless
     Text texture = {};        // samplers: the layout texture bound to it
-    // Plain uniforms: where the value comes from. "light": computed from the light frame
-    // (penumbra::uniform_value, penumbra/uniform_values.hpp); "pass": the pass's int_uniforms;
-    // "camera": the engine's camera (also in uniform_value when the camera is given).
-    std::string_view source = "light";
+    // Plain uniforms (and per-draw samplers): where the value comes from (penumbra/uniforms.hpp).
+    UniformSource source = UniformSource::light;
     // Samplers: the filter this binding reads its texture with when it is not the texture's own
     // (layout.json's "sampling"); "" for the texture's filters.
     std::string_view filter = {};

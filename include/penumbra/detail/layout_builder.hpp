@@ -7,7 +7,6 @@
 #include "alpha_test.hpp"
 #include "glsl_common.hpp"
 #include "target_limits.hpp"
-#include "uniform_compute.hpp"
 
 #include <algorithm>
 #include <array>
@@ -84,10 +83,11 @@ inline std::vector<ParamDesc> describe_params(const Config& config, const std::v
             desc.units = std::string(p.units);
             desc.binding = bindings[i];
             desc.texture = p.texture.str();
-            if (!is_sampler(p) || p.source == "draw") {
-                desc.source = std::string(p.source);
-                desc.compute = p.source == "pass" ? "the value in int_uniforms of the pass that runs this program"
-                                                  : std::string(uniform_compute(p.name.view(), config.light));
+            if (!is_sampler(p) || p.source == UniformSource::draw) {
+                desc.source = p.source;
+                const UniformDef* def = find_uniform(p.name.view());
+                desc.compute = p.source == UniformSource::pass ? "the value in int_uniforms of the pass that runs this program"
+                               : def ? std::string(def->compute(config.light)) : std::string();
             }
             if (is_sampler(p)) { // completed from the texture by finish_sampling
                 desc.sampling.min_filter = desc.sampling.mag_filter = std::string(p.filter);
@@ -95,15 +95,13 @@ inline std::vector<ParamDesc> describe_params(const Config& config, const std::v
             }
             if (is_vulkan(config)) desc.set = vulkan_descriptor_set;
             if (!is_sampler(p) && is_vulkan(config)) {
-                // std140: scalars align to 4, vec2 to 8, vec3/vec4/mat4 to 16
-                const int size = p.type == "mat4" ? 64 : p.type == "vec4" ? 16 : p.type == "vec3" ? 12
-                                 : p.type == "vec2" ? 8 : 4;
-                const int align = size >= 12 ? 16 : size;
-                offset = (offset + align - 1) / align * align;
+                const std::optional<GlslType> type = parse_enum<GlslType>(p.type);
+                const Std140 layout = std140(type.value_or(GlslType::float_)); // std140 layout rules
+                offset = (offset + layout.align - 1) / layout.align * layout.align;
                 desc.block = std::string(block);
                 desc.block_binding = block_binding;
                 desc.offset = offset;
-                offset += size;
+                offset += layout.size;
             }
             out.push_back(std::move(desc));
         }

@@ -316,10 +316,10 @@ public:
             for (const ProgramDesc& p : emission_.layout.programs) {
                 if (p.name != name) continue;
                 for (const ParamDesc& param : p.parameters) {
-                    if (param.source != "draw") continue;
-                    if (param.name == "penumbra_alphaTexture" && param.binding >= 0)
+                    if (param.source != UniformSource::draw) continue;
+                    if (param.name == uniform_def(Uniform::alpha_texture).name && param.binding >= 0)
                         detail::bind_sampler(program, param.name, param.binding, alpha_texture, sampler);
-                    if (param.name == "penumbra_alphaCutoff")
+                    if (param.name == uniform_def(Uniform::alpha_cutoff).name)
                         if (const GLint at = glGetUniformLocation(program, param.name.c_str()); at >= 0)
                             glProgramUniform1f(program, at, cutoff);
                 }

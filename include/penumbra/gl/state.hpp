@@ -86,10 +86,10 @@ inline std::string set_computed_uniforms(const Layout& layout, const PassDesc& p
     for (const ProgramDesc& p : layout.programs) {
         if (p.name != pass.program) continue;
         for (const ParamDesc& param : p.parameters) {
-            if (param.source != "light" && param.source != "camera") continue;
+            if (param.source != UniformSource::light && param.source != UniformSource::camera) continue;
             const UniformResult v = uniform_value(param.name, inputs);
             if (!v) {
-                if (param.source == "camera") continue; // no camera in the runtime's own passes
+                if (param.source == UniformSource::camera) continue; // no camera in the runtime's own passes
                 return "pass " + pass.name + ": no value for uniform " + v.error;
             }
             set_uniform(program, glGetUniformLocation(program, param.name.c_str()), *v);

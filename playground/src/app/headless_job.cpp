@@ -9,8 +9,8 @@
 #include "scenes/obj_loader.hpp"
 #include "scenes/scenes.hpp"
 
-#include "../../../generator/src/file_transaction.hpp"
-#include "../../../generator/src/printable.hpp"
+#include <penumbra_tools/file_transaction.hpp>
+#include <penumbra_tools/printable.hpp>
 #include <penumbra/layout.hpp>
 
 #include <nlohmann/json.hpp>
@@ -114,63 +114,71 @@ double shadowed_fraction(const HeadlessResult& result) {
     return geometry ? static_cast<double>(shadowed) / static_cast<double>(geometry) : 0.0;
 }
 
-int run_headless(const PlaygroundOptions& options) {
-    SceneLoad loaded = load_scene(options.scene, options.ground);
-    if (!loaded.scene) return fail(loaded.error, 2);
-    Scene& scene = *loaded.scene;
-    if (options.light_size) apply_light_size(scene, shading_light(options.config), *options.light_size);
-    const int width = options.width > 0 ? options.width : 512;
-    const int height = options.height > 0 ? options.height : 512;
+namespace {
 
-    std::string error;
-    std::optional<HeadlessContext> context = HeadlessContext::create(&error);
-    if (!context) return fail("no OpenGL 4.5 context: " + error);
-    // Occlusion interval maps: unique texture coordinates, the sun at --sun-time, the bake (or its cache).
-    RenderOptions render_options;
-    std::optional<OimSetup> oim;
-    if (options.config.technique == Technique::oim) {
-        penumbra::SunPath path;
-        if (!options.sun_path.empty()) path = *parse_sun_path(options.sun_path, &error);
-        const std::filesystem::path cache = options.bake_cache.empty() ? default_oim_cache_dir()
-                                                                        : std::filesystem::path(options.bake_cache);
-        oim = prepare_oim(scene, options.config, path, options.sun_time, cache, &error);
-        if (!oim) return fail(error, 2);
-        const OimBake& b = oim->cached.bake;
-        std::printf("oim bake %dx%d, %d intervals, %d samples: %s %s (%.0f ms to bake, %llu rays, %zu texels merged, "
-                    "%.1f MiB on disk)\n",
-                    b.resolution, b.resolution, b.intervals, b.samples, oim->cached.from_cache ? "read" : "baked into",
-                    oim->cached.file.string().c_str(), b.bake_ms, static_cast<unsigned long long>(b.rays),
-                    b.merged_texels, static_cast<double>(oim->cached.file_bytes) / (1024.0 * 1024.0));
-        if (!oim->cached.warning.empty()) std::cerr << "warning: " << oim->cached.warning << "\n";
-        render_options.bake_textures = oim->textures;
-        render_options.time_window = oim->time_window;
-    }
-    HeadlessResult result;
-    const auto render_start = std::chrono::steady_clock::now();
-    render_options.warm_up = true; // timings of a second run: the first compiles the shaders on llvmpipe
-    if (!render_headless(scene, options.config, width, height, result, &error, render_options)) return fail(error);
-    const double render_ms = milliseconds_since(render_start);
-    // Every output file of the run is one transaction (generator/src/file_transaction.hpp): all
-    // written, or none and the directory as it was; "wrote" is printed only after it succeeded.
+// Every output file of the run is one transaction (tools/include/penumbra_tools/file_transaction.hpp):
+// all written, or none and the directory as it was; "wrote" is printed only after it succeeded.
+struct RunOutputs {
     penumbra_gen::FileChanges files;
     std::vector<std::string> wrote;
-    auto add_file = [&](const std::string& path, std::optional<std::string> bytes) {
+
+    // Adds the file when its bytes could be encoded (the encoder's error stays in its *error).
+    bool add(const std::string& path, std::optional<std::string> bytes) {
         if (!bytes) return false;
         files.writes.push_back({path, std::move(*bytes)});
         return true;
-    };
-    if (!add_file(options.out_path, encode_png_rgb(width, height, result.rgb, RowOrder::top_down, &error))) return fail(error);
-    wrote.push_back(options.out_path + " (" + scene.name + ", " + std::to_string(width) + "x" + std::to_string(height) +
-                    ", " + context->renderer() + ")");
-    if (!options.visibility_path.empty()) {
-        if (!add_file(options.visibility_path, encode_pfm({width, height, 1, result.visibility}, &error))) return fail(error);
-        wrote.push_back(options.visibility_path);
     }
+    // Writes them all; the message of the first failure, nothing written, or "" and the "wrote" lines.
+    std::string commit() {
+        if (std::string e = penumbra_gen::commit(files); !e.empty()) return e;
+        for (const std::string& line : wrote) std::cout << "wrote " << line << "\n";
+        return {};
+    }
+};
 
+// Occlusion interval maps: unique texture coordinates, the sun at --sun-time, the bake (or its
+// cache), handed to the renderer through `render_options`; nullopt and *error when it fails.
+std::optional<OimSetup> bake_oim(const PlaygroundOptions& options, Scene& scene, RenderOptions& render_options,
+                                 std::string* error) {
+    penumbra::SunPath path;
+    if (!options.sun_path.empty()) path = *parse_sun_path(options.sun_path, error);
+    const std::filesystem::path cache = options.bake_cache.empty() ? default_oim_cache_dir()
+                                                                    : std::filesystem::path(options.bake_cache);
+    std::optional<OimSetup> oim = prepare_oim(scene, options.config, path, options.sun_time, cache, error);
+    if (!oim) return std::nullopt;
+    const OimBake& b = oim->cached.bake;
+    std::printf("oim bake %dx%d, %d intervals, %d samples: %s %s (%.0f ms to bake, %llu rays, %zu texels merged, "
+                "%.1f MiB on disk)\n",
+                b.resolution, b.resolution, b.intervals, b.samples, oim->cached.from_cache ? "read" : "baked into",
+                oim->cached.file.string().c_str(), b.bake_ms, static_cast<unsigned long long>(b.rays),
+                b.merged_texels, static_cast<double>(oim->cached.file_bytes) / (1024.0 * 1024.0));
+    if (!oim->cached.warning.empty()) std::cerr << "warning: " << oim->cached.warning << "\n";
+    render_options.bake_textures = oim->textures;
+    render_options.time_window = oim->time_window;
+    return oim;
+}
+
+// The rendered image (--out) and, with --visibility-out, the visibility as a PFM.
+bool add_render_files(RunOutputs& out, const PlaygroundOptions& options, const Scene& scene,
+                      const HeadlessContext& context, const HeadlessResult& result, int width, int height,
+                      std::string* error) {
+    if (!out.add(options.out_path, encode_png_rgb(width, height, result.rgb, RowOrder::top_down, error))) return false;
+    out.wrote.push_back(options.out_path + " (" + scene.name + ", " + std::to_string(width) + "x" +
+                        std::to_string(height) + ", " + context.renderer() + ")");
+    if (options.visibility_path.empty()) return true;
+    if (!out.add(options.visibility_path, encode_pfm({width, height, 1, result.visibility}, error))) return false;
+    out.wrote.push_back(options.visibility_path);
+    return true;
+}
+
+// --metrics-out's object, without the reference's part (add_reference adds it).
+nlohmann::ordered_json run_metrics(const PlaygroundOptions& options, const Scene& scene,
+                                   const HeadlessContext& context, const HeadlessResult& result, int width,
+                                   int height, double render_ms, const std::optional<OimSetup>& oim) {
     nlohmann::ordered_json metrics = {
         {"scene", scene.name},
         {"ground", scene.ground},
-        {"renderer", context->renderer()},
+        {"renderer", context.renderer()},
         {"width", width},
         {"height", height},
         {"technique", to_string(options.config.technique)},
@@ -193,74 +201,116 @@ int run_headless(const PlaygroundOptions& options) {
                            {"cache_bytes", oim->cached.file_bytes}};
     metrics["timing"] = result.warm ? "warm: GPU times of a second run (the first compiles the shaders)" : "cold";
     metrics["texture_bytes"] = result.texture_bytes;
+    return metrics;
+}
 
-    if (options.reference) {
-        const auto reference_start = std::chrono::steady_clock::now();
-        const References references = reference_all(scene, result, options.samples, shading_light(options.config));
-        const double reference_ms = milliseconds_since(reference_start);
-        const QualityMetrics q = compare_quality(result, references);
-        // The headline is the fair reference, `oriented`: the visibility of the part of the light
-        // above each surface's tangent plane, which is what the default model (tangent clip)
-        // estimates and what a viewer sees. The whole light's visibility (the paper's kernels)
-        // follows under its own name: against it, correct pixels on faces turned away from part
-        // of the light count as errors.
-        const Metrics& headline = q.oriented;
-        const Metrics& whole = q.visibility;
-        const std::string truth_path =
-            options.reference_path.empty() ? sibling_path(options.out_path, ".reference.pfm") : options.reference_path;
-        const std::string error_path =
-            options.error_image_path.empty() ? sibling_path(options.out_path, ".error.png") : options.error_image_path;
-        // estimate − oriented truth; NaN (green) where a pixel sees none of the light.
-        std::vector<float> signed_error(references.oriented.size());
-        for (std::size_t i = 0; i < signed_error.size(); ++i)
-            signed_error[i] = result.geometry[i] ? result.visibility[i] - references.oriented[i] : 0.0f;
-        // The whole-light truth at --reference-out, the fair one beside it.
-        const std::string oriented_path = sibling_path(truth_path, ".oriented.pfm");
-        if (!add_file(truth_path, encode_pfm({width, height, 1, references.visibility}, &error)) ||
-            !add_file(oriented_path, encode_pfm({width, height, 1, references.oriented}, &error)) ||
-            !add_file(error_path, encode_png_rgb(width, height, signed_error_colors(signed_error, error_image_range),
-                                                 RowOrder::top_down, &error)))
-            return fail(error);
-        wrote.push_back(truth_path + " (whole-light visibility), " + oriented_path + " (oriented) and " + error_path +
+// --reference: the ray-traced truth, its files (truth, oriented truth, error image), the printed
+// comparison and metrics["reference"].
+bool add_reference(RunOutputs& out, nlohmann::ordered_json& metrics, const PlaygroundOptions& options,
+                   const Scene& scene, const HeadlessResult& result, int width, int height, std::string* error) {
+    const auto reference_start = std::chrono::steady_clock::now();
+    const References references = reference_all(scene, result, options.samples, shading_light(options.config));
+    const double reference_ms = milliseconds_since(reference_start);
+    const QualityMetrics q = compare_quality(result, references);
+    // The headline is the fair reference, `oriented`: the visibility of the part of the light
+    // above each surface's tangent plane, which is what the default model (tangent clip)
+    // estimates and what a viewer sees. The whole light's visibility (the paper's kernels)
+    // follows under its own name: against it, correct pixels on faces turned away from part
+    // of the light count as errors.
+    const Metrics& headline = q.oriented;
+    const Metrics& whole = q.visibility;
+    const std::string truth_path =
+        options.reference_path.empty() ? sibling_path(options.out_path, ".reference.pfm") : options.reference_path;
+    const std::string error_path =
+        options.error_image_path.empty() ? sibling_path(options.out_path, ".error.png") : options.error_image_path;
+    // estimate − oriented truth; NaN (green) where a pixel sees none of the light.
+    std::vector<float> signed_error(references.oriented.size());
+    for (std::size_t i = 0; i < signed_error.size(); ++i)
+        signed_error[i] = result.geometry[i] ? result.visibility[i] - references.oriented[i] : 0.0f;
+    // The whole-light truth at --reference-out, the fair one beside it.
+    const std::string oriented_path = sibling_path(truth_path, ".oriented.pfm");
+    if (!out.add(truth_path, encode_pfm({width, height, 1, references.visibility}, error)) ||
+        !out.add(oriented_path, encode_pfm({width, height, 1, references.oriented}, error)) ||
+        !out.add(error_path, encode_png_rgb(width, height, signed_error_colors(signed_error, error_image_range),
+                                            RowOrder::top_down, error)))
+        return false;
+    out.wrote.push_back(truth_path + " (whole-light visibility), " + oriented_path + " (oriented) and " + error_path +
                         " (against oriented; red: estimate too bright, blue: too dark, saturating at ±" +
                         std::to_string(error_image_range).substr(0, 4) + ", green: sees none of the light)");
-        std::printf("ground truth %dx%d rays/pixel, %.0f ms; oriented (the part of the light above each surface's "
-                    "tangent plane):\n"
-                    "  all:      MAE %.4f  RMSE %.4f  p95 %.4f  (%zu px)\n"
-                    "  penumbra: MAE %.4f  RMSE %.4f  p95 %.4f  (%zu px)\n",
-                    options.samples, options.samples, reference_ms, headline.all.mae, headline.all.rmse,
-                    headline.all.p95, headline.all.count, headline.penumbra.mae, headline.penumbra.rmse,
-                    headline.penumbra.p95, headline.penumbra.count);
-        auto print_other = [](const char* name, const Metrics& f) {
-            std::printf("  %-24s all MAE %.4f  p95 %.4f  (%zu px); penumbra MAE %.4f  RMSE %.4f  p95 %.4f  (%zu px)\n",
-                        name, f.all.mae, f.all.p95, f.all.count, f.penumbra.mae, f.penumbra.rmse, f.penumbra.p95,
-                        f.penumbra.count);
-        };
-        print_other("irradiance:", q.irradiance);
-        print_other("whole-light visibility:", whole);
-        auto metrics_json = [](const Metrics& f) {
-            return nlohmann::ordered_json{{"all", stats_json(f.all)}, {"penumbra", stats_json(f.penumbra)}};
-        };
-        metrics["reference"] = {{"samples_per_axis", options.samples},
-                                {"ms", reference_ms},
-                                {"headline", "oriented"},
-                                {"all", stats_json(headline.all)},
-                                {"penumbra", stats_json(headline.penumbra)},
-                                {"oriented", metrics_json(q.oriented)},
-                                {"irradiance", metrics_json(q.irradiance)},
-                                {"whole_light_visibility", metrics_json(whole)}};
-    }
+    std::printf("ground truth %dx%d rays/pixel, %.0f ms; oriented (the part of the light above each surface's "
+                "tangent plane):\n"
+                "  all:      MAE %.4f  RMSE %.4f  p95 %.4f  (%zu px)\n"
+                "  penumbra: MAE %.4f  RMSE %.4f  p95 %.4f  (%zu px)\n",
+                options.samples, options.samples, reference_ms, headline.all.mae, headline.all.rmse,
+                headline.all.p95, headline.all.count, headline.penumbra.mae, headline.penumbra.rmse,
+                headline.penumbra.p95, headline.penumbra.count);
+    auto print_other = [](const char* name, const Metrics& f) {
+        std::printf("  %-24s all MAE %.4f  p95 %.4f  (%zu px); penumbra MAE %.4f  RMSE %.4f  p95 %.4f  (%zu px)\n",
+                    name, f.all.mae, f.all.p95, f.all.count, f.penumbra.mae, f.penumbra.rmse, f.penumbra.p95,
+                    f.penumbra.count);
+    };
+    print_other("irradiance:", q.irradiance);
+    print_other("whole-light visibility:", whole);
+    auto metrics_json = [](const Metrics& f) {
+        return nlohmann::ordered_json{{"all", stats_json(f.all)}, {"penumbra", stats_json(f.penumbra)}};
+    };
+    metrics["reference"] = {{"samples_per_axis", options.samples},
+                            {"ms", reference_ms},
+                            {"headline", "oriented"},
+                            {"all", stats_json(headline.all)},
+                            {"penumbra", stats_json(headline.penumbra)},
+                            {"oriented", metrics_json(q.oriented)},
+                            {"irradiance", metrics_json(q.irradiance)},
+                            {"whole_light_visibility", metrics_json(whole)}};
+    return true;
+}
+
+void print_pass_times(const HeadlessResult& result) {
     std::printf("passes (GPU ms, %s):", result.warm ? "warm" : "cold");
     for (const penumbra::gl::PassTiming& t : result.timings) std::printf(" %s %.2f", t.name.c_str(), t.milliseconds);
     std::printf("\ntexture memory: %lld bytes (%.2f MiB)\n", result.texture_bytes,
                 static_cast<double>(result.texture_bytes) / (1024.0 * 1024.0));
     std::fflush(stdout);
-    if (!options.metrics_path.empty()) {
-        files.writes.push_back({options.metrics_path, metrics.dump(2) + "\n"});
-        wrote.push_back(options.metrics_path);
+}
+
+} // namespace
+
+// scene → context → (bake) → render → files and metrics → (reference) → one transaction.
+int run_headless(const PlaygroundOptions& options) {
+    SceneLoad loaded = load_scene(options.scene, options.ground);
+    if (!loaded.scene) return fail(loaded.error, 2);
+    Scene& scene = *loaded.scene;
+    if (options.light_size) apply_light_size(scene, shading_light(options.config), *options.light_size);
+    const int width = options.width > 0 ? options.width : 512;
+    const int height = options.height > 0 ? options.height : 512;
+
+    std::string error;
+    std::optional<HeadlessContext> context = HeadlessContext::create(&error);
+    if (!context) return fail("no OpenGL 4.5 context: " + error);
+    RenderOptions render_options;
+    std::optional<OimSetup> oim;
+    if (options.config.technique == Technique::oim) {
+        oim = bake_oim(options, scene, render_options, &error);
+        if (!oim) return fail(error, 2);
     }
-    if (std::string e = penumbra_gen::commit(files); !e.empty()) return fail(e);
-    for (const std::string& line : wrote) std::cout << "wrote " << line << "\n";
+
+    HeadlessResult result;
+    const auto render_start = std::chrono::steady_clock::now();
+    render_options.warm_up = true; // timings of a second run: the first compiles the shaders on llvmpipe
+    if (!render_headless(scene, options.config, width, height, result, &error, render_options)) return fail(error);
+    const double render_ms = milliseconds_since(render_start);
+
+    RunOutputs out;
+    if (!add_render_files(out, options, scene, *context, result, width, height, &error)) return fail(error);
+    nlohmann::ordered_json metrics = run_metrics(options, scene, *context, result, width, height, render_ms, oim);
+    if (options.reference && !add_reference(out, metrics, options, scene, result, width, height, &error))
+        return fail(error);
+    print_pass_times(result);
+    if (!options.metrics_path.empty()) {
+        out.files.writes.push_back({options.metrics_path, metrics.dump(2) + "\n"});
+        out.wrote.push_back(options.metrics_path);
+    }
+    if (std::string e = out.commit(); !e.empty()) return fail(e);
     return 0;
 }
 

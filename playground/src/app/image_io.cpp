@@ -5,7 +5,7 @@
 #include "app/image_io.hpp"
 #include "app/palette.hpp"
 
-#include "../../../generator/src/file_transaction.hpp"
+#include <penumbra_tools/file_transaction.hpp>
 
 #include <glm/glm.hpp>
 

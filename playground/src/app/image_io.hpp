@@ -34,7 +34,7 @@ struct FloatImage {
 bool write_pfm(const std::string& path, const FloatImage& image, std::string* error = nullptr);
 
 // The same files' bytes, for a caller that writes several files as one transaction
-// (generator/src/file_transaction.hpp); nullopt (and *error) when the size does not match.
+// (tools/include/penumbra_tools/file_transaction.hpp); nullopt (and *error) when the size does not match.
 std::optional<std::string> encode_png_rgb(int width, int height, std::span<const float> rgb,
                                           RowOrder order = RowOrder::top_down, std::string* error = nullptr);
 std::optional<std::string> encode_pfm(const FloatImage& image, std::string* error = nullptr);

@@ -3,7 +3,7 @@
 #include "app/headless_job.hpp"
 #include "app/options.hpp"
 
-#include "../../../generator/src/cli.hpp"
+#include <penumbra_tools/cli.hpp>
 
 #include <string>
 #include <vector>

@@ -1,13 +1,13 @@
 // playground/src/app/options.cpp — penumbra-playground's command line, parsed into PlaygroundOptions.
 //
 // The configuration flags are exactly penumbra-gen's and go through its own parsing helpers
-// (generator/src/arguments.hpp, config_file.hpp), so both tools accept and reject the same text
+// (tools/include/penumbra_tools/arguments.hpp, config_file.hpp), so both tools accept and reject the same text
 // with the same messages.
 #include "app/options.hpp"
 
-#include "../../../generator/src/arguments.hpp"
-#include "../../../generator/src/cli.hpp"
-#include "../../../generator/src/config_file.hpp"
+#include <penumbra_tools/arguments.hpp>
+#include <penumbra_tools/cli.hpp>
+#include <penumbra_tools/config_file.hpp>
 
 #include "bake/oim_scene.hpp"
 

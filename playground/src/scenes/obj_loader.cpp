@@ -8,8 +8,8 @@
 #include "scenes/mesh_builder.hpp"
 #include "scenes/scene_defaults.hpp"
 
-#include "../../../generator/src/bounded_read.hpp"
-#include "../../../generator/src/printable.hpp"
+#include <penumbra_tools/bounded_read.hpp>
+#include <penumbra_tools/printable.hpp>
 
 #include <algorithm>
 #include <charconv>

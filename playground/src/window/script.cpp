@@ -1,7 +1,7 @@
 #include "script.hpp"
 
-#include "../../../generator/src/bounded_read.hpp"
-#include "../../../generator/src/printable.hpp"
+#include <penumbra_tools/bounded_read.hpp>
+#include <penumbra_tools/printable.hpp>
 
 #include <charconv>
 #include <cmath>

@@ -1,10 +1,10 @@
 #include "script_runner.hpp"
 
-#include "../../../generator/src/technique_flags.hpp"
+#include <penumbra_tools/technique_flags.hpp>
 
 #include <penumbra/config.hpp>
 
-#include "../../../generator/src/printable.hpp"
+#include <penumbra_tools/printable.hpp>
 
 #include <charconv>
 #include <cstdlib>

@@ -1,6 +1,6 @@
 #include "shader_diagnostics.hpp"
 
-#include "../../../generator/src/printable.hpp"
+#include <penumbra_tools/printable.hpp>
 
 #include <algorithm>
 #include <cstdio>

@@ -1,7 +1,7 @@
 #include "shader_folder.hpp"
 
-#include "../../../generator/src/bounded_read.hpp"
-#include "../../../generator/src/file_transaction.hpp"
+#include <penumbra_tools/bounded_read.hpp>
+#include <penumbra_tools/file_transaction.hpp>
 
 #include <algorithm>
 #include <functional>

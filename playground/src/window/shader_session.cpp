@@ -2,7 +2,7 @@
 
 #include "shader_diagnostics.hpp"
 
-#include "../../../generator/src/printable.hpp"
+#include <penumbra_tools/printable.hpp>
 
 #include <penumbra/validate.hpp>
 

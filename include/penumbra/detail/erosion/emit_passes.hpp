@@ -35,13 +35,11 @@ constexpr Param world_positions_param() {
 constexpr std::vector<Param> erosion_params(const Config& config, std::string_view program) {
     if (program == "erosion_hard") {
         std::vector<Param> params{light_from_world_param(), projection_param(config), depth_range_param()};
-        if (config.light == Light::rect)
-            params.push_back({"penumbra_lightSize", "vec2", "light rectangle width, height", "scene units"});
-        else
-            params.push_back({"penumbra_tanAngularRadius", "float", "tangent of the sun's angular radius", ""});
+        params.push_back(uniform_param(config.light == Light::rect ? Uniform::light_size : Uniform::tan_angular_radius,
+                                       config.light));
         // the shadow map itself, through a sampler without comparison
         params.push_back({"penumbra_shadowDepth", "sampler2D", "shadow map read as depth (no comparison)", "",
-                          Text(shadow_map_texture), "light", "NEAREST"});
+                          Text(shadow_map_texture), UniformSource::light, "NEAREST"});
         params.push_back(world_positions_param());
         return params;
     }

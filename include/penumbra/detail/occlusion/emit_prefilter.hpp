@@ -9,17 +9,17 @@
 namespace penumbra::detail {
 
 constexpr Param step_param() {
-    return {"penumbra_step", "int", "offset between the windows combined by this pass, in texels of the texture it reads", "texels", {}, "pass"};
+    return {"penumbra_step", "int", "offset between the windows combined by this pass, in texels of the texture it reads", "texels", {}, UniformSource::pass};
 }
 // Reduced levels (reduces_levels): the previous level's tile side and how many of its texels one
 // texel of the level being built steps over (2 where this level halves the resolution, else 1).
 constexpr Param source_tile_param() {
-    return {"penumbra_sourceTile", "int", "side of one tile of the previous level", "texels", {}, "pass"};
+    return {"penumbra_sourceTile", "int", "side of one tile of the previous level", "texels", {}, UniformSource::pass};
 }
 constexpr Param scale_param() {
-    return {"penumbra_scale", "int", "texels of the previous level per texel of this one, per axis (1 or 2)", "", {}, "pass"};
+    return {"penumbra_scale", "int", "texels of the previous level per texel of this one, per axis (1 or 2)", "", {}, UniformSource::pass};
 }
-constexpr Param layer_param(std::string_view meaning) { return {"penumbra_sourceLayer", "int", meaning, "", {}, "pass"}; }
+constexpr Param layer_param(std::string_view meaning) { return {"penumbra_sourceLayer", "int", meaning, "", {}, UniformSource::pass}; }
 
 // Parameters of a level-building pass (N-buffer or Gaussian): the window step and the source.
 constexpr std::vector<Param> level_params(const Config& config) {
@@ -240,7 +240,7 @@ constexpr std::vector<Param> sat_shift_params(const Config& config) {
 }
 
 constexpr std::vector<Param> sat_pass_params(const Config& config) {
-    std::vector<Param> params{step_param(), {"penumbra_vertical", "int", "0: pass along x, 1: pass along y", "", {}, "pass"}};
+    std::vector<Param> params{step_param(), {"penumbra_vertical", "int", "0: pass along x, 1: pass along y", "", {}, UniformSource::pass}};
     if (config.packing == Packing::atlas) {
         params.push_back({"penumbra_source", "sampler2D", "partial sums of the previous pass", ""});
     } else {

@@ -15,13 +15,13 @@ namespace penumbra::detail {
 // Plain uniforms of a dispatch (its int_uniforms) and the level it starts from.
 constexpr std::vector<Param> nbuffer_compute_params() {
     return {
-        {"penumbra_levels", "int", "levels this dispatch builds, image outputs 0 to penumbra_levels - 1", "", {}, "pass"},
+        {"penumbra_levels", "int", "levels this dispatch builds, image outputs 0 to penumbra_levels - 1", "", {}, UniformSource::pass},
         {"penumbra_step", "int", "offset between the taps of the first level built, in texels of the source level",
-         "texels", {}, "pass"},
-        {"penumbra_sourceTile", "int", "side of one tile of the source level", "texels", {}, "pass"},
+         "texels", {}, UniformSource::pass},
+        {"penumbra_sourceTile", "int", "side of one tile of the source level", "texels", {}, UniformSource::pass},
         {"penumbra_sameSize", "int",
-         "levels of this dispatch stored at the source level's resolution; each one after it halves it", "", {}, "pass"},
-        {"penumbra_groupsPerTile", "int", "workgroups across one tile of the source level, per axis", "", {}, "pass"},
+         "levels of this dispatch stored at the source level's resolution; each one after it halves it", "", {}, UniformSource::pass},
+        {"penumbra_groupsPerTile", "int", "workgroups across one tile of the source level, per axis", "", {}, UniformSource::pass},
         {"penumbra_source", "sampler2D", "filter level the dispatch starts from (atlas)", ""},
     };
 }

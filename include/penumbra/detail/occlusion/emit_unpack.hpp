@@ -24,7 +24,7 @@ constexpr int unpack_draws(const Config& config) {
 
 constexpr std::vector<Param> unpack_params() {
     return {{"penumbra_firstSlice", "int", "first slice this draw unpacks (a multiple of four times the outputs)", "",
-             {}, "pass"},
+             {}, UniformSource::pass},
             {"penumbra_sliceBits", "usampler2D", "slicing output: bit k % 32 of component k / 32 marks slice k", "",
              "penumbra_sliceBits"}};
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "../glsl_common.hpp"
+#include "../uniform_params.hpp"
 
 namespace penumbra::detail {
 
@@ -59,23 +60,15 @@ constexpr Param slice_boundaries_sampler() {
 // Parameters of penumbraVisibility(): the light frame and the slices, then the storage.
 constexpr std::vector<Param> visibility_params(const Config& config) {
     std::vector<Param> params;
-    params.push_back({"penumbra_lightFromWorld", "mat4",
-                      config.light == Light::rect
-                          ? "world to light frame: x, y lateral, z depth along the light normal, origin at the light centre"
-                          : "world to light frame: x, y lateral, z depth along the sun's direction, origin above the "
-                            "scene on the axis through the bounds' centre",
-                      "scene units"});
+    params.push_back(uniform_param(Uniform::light_from_world, config.light));
     if (config.light == Light::rect) {
-        params.push_back({"penumbra_lightSize", "vec2", "light rectangle width, height", "scene units"});
-        params.push_back({"penumbra_copDistance", "float",
-                          "distance d of the slicing centre of projection behind the light", "scene units"});
+        params.push_back(uniform_param(Uniform::light_size, config.light));
+        params.push_back(uniform_param(Uniform::cop_distance, config.light));
     } else {
-        params.push_back({"penumbra_windowHalfSize", "float",
-                          "half side of the square orthographic slicing window", "scene units"});
-        params.push_back({"penumbra_tanAngularRadius", "float", "tangent of the sun's angular radius", ""});
+        params.push_back(uniform_param(Uniform::window_half_size, config.light));
+        params.push_back(uniform_param(Uniform::tan_angular_radius, config.light));
     }
-    params.push_back({"penumbra_sliceDepths", "vec2", "x: depth z0 of the first slice's top, y: slice thickness",
-                      "scene units"});
+    params.push_back(uniform_param(Uniform::slice_depths, config.light));
     if (places_slices_adaptively(config)) params.push_back(slice_boundaries_sampler());
     for (Param& sampler : storage_samplers(config)) params.push_back(std::move(sampler));
     return params;
@@ -84,12 +77,9 @@ constexpr std::vector<Param> visibility_params(const Config& config) {
 // The slicing pass's vertex stage (and the depth-bin pre-pass's): the slicing camera.
 constexpr std::vector<Param> slicing_camera_params() {
     return {
-        {"penumbra_sliceClipFromWorld", "mat4",
-         "world to clip space of the slicing camera (perspective from the centre of projection, or orthographic)",
-         ""},
-        {"penumbra_lightFromWorld", "mat4", "world to light frame (z = depth along the light normal)",
-         "scene units"},
-        {"penumbra_sliceDepths", "vec2", "x: depth z0 of the first slice's top, y: slice thickness", "scene units"},
+        uniform_param(Uniform::slice_clip_from_world, Light::rect),
+        uniform_param(Uniform::light_from_world, "world to light frame (z = depth along the light normal)"),
+        uniform_param(Uniform::slice_depths, Light::rect),
     };
 }
 
@@ -104,15 +94,14 @@ constexpr std::vector<Param> slicing_params(const Config& config) {
 constexpr std::vector<Param> depth_bins_params() {
     std::vector<Param> params = slicing_camera_params();
     params.push_back({"penumbra_firstBin", "int", "depth bin written to channel r of the first render target", "",
-                      {}, "pass"});
+                      {}, UniformSource::pass});
     return params;
 }
 
 // The pass that turns the depth bins into slice boundaries.
 constexpr std::vector<Param> slice_boundaries_params() {
     return {
-        {"penumbra_sliceDepths", "vec2", "x: depth z0 of the uniform slices' top, y: uniform slice thickness",
-         "scene units"},
+        uniform_param(Uniform::slice_depths, "x: depth z0 of the uniform slices' top, y: uniform slice thickness"),
         {"penumbra_depthBins", "sampler2DArray", "depth-bin coverage, four bins per layer, mip chain", "",
          "penumbra_depthBins"},
     };

@@ -8,6 +8,7 @@
 #pragma once
 
 #include "../glsl_common.hpp"
+#include "../uniform_params.hpp"
 
 namespace penumbra::detail {
 
@@ -17,10 +18,7 @@ constexpr Text oim_fall_name(int pair) { return cat("penumbra_fall", format_int(
 // Parameters of penumbraVisibility(): the window, then one rise and one fall texture per pair.
 constexpr std::vector<Param> oim_visibility_params(const Config& config) {
     std::vector<Param> params;
-    params.push_back({"penumbra_timeWindow", "vec4",
-                      "time window of the sun's disk along its path (penumbra/sun_path.hpp): x = start, y = end, "
-                      "z = 1 / (end - start), w = its centre t (path times)",
-                      ""});
+    params.push_back(uniform_param(Uniform::time_window, config.light));
     for (int p = 0; p < oim_pairs(config.oim); ++p) {
         params.push_back({oim_rise_name(p), "sampler2D", "rise times of four visibility intervals (path time t)", "",
                           oim_rise_name(p)});
@@ -98,10 +96,10 @@ void main()
 }
 
 constexpr std::vector<Param> oim_example_fragment_params() {
-    return {{"penumbra_toLight", "vec4", "direction towards the sun (xyz, w = 0) for the Lambert term", ""}};
+    return {uniform_param(Uniform::to_light, "direction towards the sun (xyz, w = 0) for the Lambert term", "")};
 }
 constexpr std::vector<Param> oim_example_vertex_params() {
-    return {{"penumbra_clipFromWorld", "mat4", "world to clip space of the viewer's camera", "", {}, "camera"}};
+    return {uniform_param(Uniform::clip_from_world, Light::sun)};
 }
 
 constexpr Text oim_example_fragment(const Config& config) {

@@ -1,9 +1,8 @@
 // cli.hpp — the command-line pieces every program of the project repeats: a number parsed from a
 // flag's text with a message that names the flag, the text and what is allowed; --help; the
 // one-line "error: …" and its exit status; and the main that turns an escaped exception into an
-// internal error. Header-only, so that the generator, the playground, the benchmarks and the
-// target runners share it without one more library (parse_int and parse_real call printable(),
-// printable.cpp, which the programs that use them already link).
+// internal error. Part of penumbra_tools (tools/), which every program links; parse_int and
+// parse_real call printable() (printable.cpp).
 #pragma once
 
 #include "printable.hpp"
