@@ -655,9 +655,6 @@ int main(int argc, char** argv) {
                     for (const auto& [name, texels] : a.oim->textures)
                         if (std::string d = a.runtime->supply_texture(name, texels); !d.empty()) return fail(where + ": " + d);
                 const Layout& layout = a.runtime->layout();
-                for (const TextureDesc& t : layout.textures)
-                    if (bytes_per_texel(t.internal_format) == 0)
-                        return fail(entry.label + ": texture " + t.name + " has a format of unknown size, " + t.internal_format);
                 a.texture_bytes = static_cast<std::uint64_t>(penumbra::texture_bytes(layout, options->width, options->height));
                 a.config = json::parse(to_json(layout))["config"];
                 active.push_back(std::move(a));

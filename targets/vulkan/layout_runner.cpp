@@ -1,5 +1,7 @@
 #include "layout_runner.hpp"
 
+#include <penumbra/detail/problem.hpp>
+#include <penumbra/formats.hpp>
 #include <penumbra/program.hpp>
 #include <penumbra/validation.hpp>
 
@@ -28,7 +30,8 @@ void check(VkResult result, const std::string& what) {
     if (result != VK_SUCCESS) fail(what + ": " + result_name(result));
 }
 
-// layout.json's internal formats: the Vulkan format and the floats a texel holds.
+// layout.json's internal formats: the Vulkan format, and what penumbra/formats.hpp says of the
+// floats a texel holds.
 struct FormatInfo {
     VkFormat format = VK_FORMAT_UNDEFINED;
     int channels = 0;
@@ -41,23 +44,35 @@ struct FormatInfo {
 
 // DEPTH_COMPONENT24 is X8_D24_UNORM_PACK32, which Vulkan does not require (it requires depth
 // attachments of X8_D24_UNORM_PACK32 or D32_SFLOAT): the caller checks the device's support.
-FormatInfo format_info(const std::string& name) {
-    static const std::map<std::string, FormatInfo> formats{
-        {"RGBA8", {VK_FORMAT_R8G8B8A8_UNORM, 4, 1, true}},       {"R8", {VK_FORMAT_R8_UNORM, 1, 1, true}},
-        {"RGBA16F", {VK_FORMAT_R16G16B16A16_SFLOAT, 4, 2, false}}, {"R16F", {VK_FORMAT_R16_SFLOAT, 1, 2, false}},
-        {"RG16F", {VK_FORMAT_R16G16_SFLOAT, 2, 2, false}},        {"RGBA32F", {VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4, false}},
-        {"R32F", {VK_FORMAT_R32_SFLOAT, 1, 4, false}},            {"RG32F", {VK_FORMAT_R32G32_SFLOAT, 2, 4, false}},
-        {"RGBA32UI", {VK_FORMAT_R32G32B32A32_UINT, 4, 4, false, false, true}}, // the slicing bits of 64 / 128 slices
-        {"R32UI", {VK_FORMAT_R32_UINT, 1, 4, false, false, true}},             // adaptive slice boundaries
-        {"DEPTH_COMPONENT32F", {VK_FORMAT_D32_SFLOAT, 1, 4, false, true}},     // shadow maps
-        {"DEPTH_COMPONENT24", {VK_FORMAT_X8_D24_UNORM_PACK32, 1, 4, false, true}}};
-    auto it = formats.find(name);
-    if (it == formats.end()) {
-        std::string allowed;
-        for (const auto& [n, f] : formats) allowed += (allowed.empty() ? "" : ", ") + n;
-        fail("internal format '" + name + "' is not supported by this runner; allowed: " + allowed);
+VkFormat vk_format(TextureFormat f) {
+    switch (f) {
+    case TextureFormat::rgba8: return VK_FORMAT_R8G8B8A8_UNORM;
+    case TextureFormat::rgba16f: return VK_FORMAT_R16G16B16A16_SFLOAT;
+    case TextureFormat::rgba32f: return VK_FORMAT_R32G32B32A32_SFLOAT;
+    case TextureFormat::r8: return VK_FORMAT_R8_UNORM;
+    case TextureFormat::r16f: return VK_FORMAT_R16_SFLOAT;
+    case TextureFormat::r32f: return VK_FORMAT_R32_SFLOAT;
+    case TextureFormat::rg16f: return VK_FORMAT_R16G16_SFLOAT;
+    case TextureFormat::rg32f: return VK_FORMAT_R32G32_SFLOAT;
+    case TextureFormat::rgba32ui: return VK_FORMAT_R32G32B32A32_UINT; // the slicing bits of 64 / 128 slices
+    case TextureFormat::r32ui: return VK_FORMAT_R32_UINT;             // adaptive slice boundaries
+    case TextureFormat::depth24: return VK_FORMAT_X8_D24_UNORM_PACK32;
+    case TextureFormat::depth32f: return VK_FORMAT_D32_SFLOAT; // shadow maps
     }
-    return it->second;
+    return VK_FORMAT_UNDEFINED;
+}
+
+FormatInfo format_info(const std::string& name) {
+    const std::optional<TextureFormat> f = parse_enum<TextureFormat>(name);
+    if (!f)
+        fail("internal format '" + name + "' is not supported by this runner; allowed: " +
+             penumbra::detail::joined_names<TextureFormat>().str());
+    return {vk_format(*f),
+            channels(*f),
+            bytes_per_channel(*f),
+            penumbra::format_info(*f).kind == FormatKind::unorm,
+            is_depth(*f),
+            is_integer(*f)};
 }
 
 VkFilter filter_of(const std::string& name) {

@@ -55,7 +55,7 @@ bool read_slice_textures(const penumbra::gl::Runtime& runtime, SliceTextures& ou
     out.slices = config.slices;
     out.coverage.assign(static_cast<std::size_t>(config.slices) * R * R, 0.0f);
     for (const PassDesc& pass : runtime.emission().layout.passes) {
-        if (pass.action != "draw_scene" || pass.program != "slicing") continue;
+        if (pass.action != PassAction::draw_scene || pass.program != "slicing") continue;
         std::vector<float> rgba(static_cast<std::size_t>(4) * R * R);
         if (slices_as_bits(config)) { // paper §3.7: slice k is bit k % 32 of component k / 32 of one RGBA32UI target
             const AttachmentDesc& target = pass.outputs.at(0);
