@@ -261,7 +261,7 @@ TEST_CASE("layout v2: more than 32 slices are sliced as OR-ed bits, then unpacke
                     const TextureDesc* bits = find_texture(layout, slicing.outputs[0].texture);
                     REQUIRE(bits);
                     CHECK(bits->format == TextureFormat::rgba32ui);
-                    CHECK(bits->min_filter == "NEAREST");
+                    CHECK(bits->min_filter == TextureFilter::nearest);
                     CHECK(slicing.state.logic_op == LogicOp::bitwise_or);
                     CHECK_FALSE(slicing.state.blend);
                     CHECK(slicing.state.clear_color == std::array<float, 4>{0.0f, 0.0f, 0.0f, 0.0f});
