@@ -834,3 +834,68 @@ TEST_CASE("validate: the compute prefilter is refused outside N-buffers in the a
     // the other techniques do not read it
     CHECK(is_valid({.technique = Technique::pcf, .prefilter_stage = PrefilterStage::compute}));
 }
+
+TEST_CASE("layout enums: every name round-trips, and the names are layout.json's words") {
+    auto round_trips = [](auto values) {
+        for (auto v : values) CHECK(parse_enum<decltype(v)>(to_string(v)) == v);
+    };
+    round_trips(all_values<TextureFormat>());
+    round_trips(all_values<TextureTarget>());
+    round_trips(all_values<TextureFilter>());
+    round_trips(all_values<Wrap>());
+    round_trips(all_values<CompareFunc>());
+    round_trips(all_values<PassAction>());
+    round_trips(all_values<Phase>());
+    round_trips(all_values<BlendEquation>());
+    round_trips(all_values<BlendFactor>());
+    round_trips(all_values<LogicOp>());
+    round_trips(all_values<MemoryBarrierBit>());
+    CHECK(to_string(TextureFormat::depth32f) == "DEPTH_COMPONENT32F");
+    CHECK(to_string(TextureTarget::texture_2d_array) == "2D_ARRAY");
+    CHECK(to_string(LogicOp::bitwise_or) == "OR");
+    CHECK_FALSE(parse_enum<PassAction>("draw"));
+    // formats.hpp: one row per format
+    for (TextureFormat f : all_values<TextureFormat>()) {
+        CAPTURE(to_string(f));
+        CHECK(bytes_per_texel(f) == channels(f) * bytes_per_channel(f));
+        CHECK(is_depth(f) == to_string(f).starts_with("DEPTH_COMPONENT"));
+        CHECK(is_integer(f) == to_string(f).ends_with("UI"));
+        CHECK(channels(f) == (is_depth(f) ? 1 : to_string(f).starts_with("RGBA") ? 4 : to_string(f).starts_with("RG") ? 2 : 1));
+    }
+}
+
+TEST_CASE("layout builder: designated initializers, bindings from the program, sampling from the texture") {
+    // a layout as a technique folder builds it (detail/layout_builder.hpp's header comment)
+    Layout layout;
+    ProgramDesc blur{.name = "blur"};
+    blur.parameters.push_back({.name = "penumbra_source", .type = "sampler2D", .binding = 3,
+                               .filter = TextureFilter::nearest});
+    layout.programs.push_back(blur);
+    detail::LayoutBuilder b{layout};
+    b.texture({.name = "moments", .format = TextureFormat::rgba16f, .width = 64, .height = 64,
+               .min_filter = TextureFilter::linear, .mag_filter = TextureFilter::linear, .purpose = "moments"});
+    b.texture({.name = "blurred", .format = TextureFormat::rgba16f, .width = 64, .height = 64, .purpose = "blurred"});
+    b.pass({.name = "blur", .program = "blur", .inputs = {{"penumbra_source", "moments"}}, .outputs = {{"blurred"}},
+            .viewport_width = 64, .viewport_height = 64});
+    b.pass({.name = "copy", .action = PassAction::copy, .inputs = {{"", "blurred"}}, .outputs = {{"moments"}},
+            .viewport_width = 64, .viewport_height = 64});
+    detail::finish_sampling(layout);
+    const PassDesc& pass = layout.passes.front();
+    CHECK(pass.action == PassAction::fullscreen);
+    CHECK(pass.phase == Phase::shadow);
+    REQUIRE(pass.inputs.size() == 1);
+    CHECK(pass.inputs[0].binding == 3);
+    // the parameter's filter wins over the texture's; the wrap is the texture's
+    CHECK(pass.inputs[0].sampling.min_filter == TextureFilter::nearest);
+    CHECK(pass.inputs[0].sampling.wrap == Wrap::clamp_to_edge);
+    CHECK_FALSE(pass.inputs[0].sampling.compare);
+    REQUIRE(layout.programs[0].parameters[0].sampling); // no texture of its own: its first pass's sampling
+    CHECK(*layout.programs[0].parameters[0].sampling == pass.inputs[0].sampling);
+    CHECK(attachment_kind(layout, pass.outputs[0]) == AttachmentKind::color);
+    CHECK(to_string(initial_contents(layout.textures[0])) == "zero");
+    const CopyDesc copy = copy_region(layout.passes[1]);
+    CHECK(copy.width == 64);
+    CHECK(copy.target_layer == -1);
+    CHECK(to_json(layout).find("\"copy\": {\"source_level\": 0, \"source_layer\": -1, \"target_level\": 0, "
+                               "\"target_layer\": -1, \"width\": 64, \"height\": 64}") != std::string::npos);
+}

@@ -531,7 +531,7 @@ private:
             if (p.name == name) return &p;
         return nullptr;
     }
-    const TextureDesc* find_texture(const std::string& name) const { return detail::find_texture(emission_.layout, name); }
+    const TextureDesc* find_texture(const std::string& name) const { return penumbra::find_texture(emission_.layout, name); }
 
     std::string check_bake(const std::string& name) const {
         const TextureDesc* t = find_texture(name);
