@@ -179,7 +179,7 @@ struct Sampling {
 //   {.name = "penumbra_scratch", .format = TextureFormat::rgba16f, .width = R, .height = R,
 //    .purpose = "level being built"}
 struct TextureDesc {
-    std::string name;
+    std::string name{};
     TextureTarget target = TextureTarget::texture_2d;
     TextureFormat format = TextureFormat::rgba8; // layout.json "internal_format"
     int width = 0, height = 0; // 0 × 0 when size is output
@@ -190,7 +190,7 @@ struct TextureDesc {
     std::array<float, 4> border_color{0.0f, 0.0f, 0.0f, 0.0f}; // used when wrap is clamp_to_border
     TextureSize size = TextureSize::fixed;
     TextureSource source = TextureSource::passes;
-    std::string purpose;
+    std::string purpose{};
 };
 
 struct ParamDesc {
@@ -230,14 +230,14 @@ struct ProgramDesc {
 // Where a pass renders: level `level` (and layer `layer` of an array / depth slice of a 3D texture;
 // -1 for a 2D texture) of `texture`, as a colour or the depth attachment (attachment_kind).
 struct AttachmentDesc {
-    std::string texture;
+    std::string texture{};
     int level = 0;
     int layer = -1;
 };
 
 struct BindingDesc {
-    std::string sampler; // parameter name in the program
-    std::string texture;
+    std::string sampler{}; // parameter name in the program
+    std::string texture{};
     int binding = 0;     // filled by LayoutBuilder::pass from the program's parameters
     int level = -1;      // -1: all levels; n: the pass reads only level n (base = max level = n while it
                          // runs), so it may render another level of the same texture (min-max mip chains)
@@ -255,8 +255,8 @@ struct RenderState {
     bool depth_write = false;
     std::array<bool, 4> color_mask{true, true, true, true};
     Cull cull = Cull::none;
-    std::optional<std::array<float, 4>> clear_color; // cleared before drawing when set
-    std::optional<float> clear_depth;
+    std::optional<std::array<float, 4>> clear_color{}; // cleared before drawing when set
+    std::optional<float> clear_depth{};
     float polygon_offset_factor = 0.0f, polygon_offset_units = 0.0f; // slope-scaled depth bias
     // a logical operation combines each fragment with the (integer) target instead of blending
     // (glLogicOp / VkPipelineColorBlendStateCreateInfo::logicOp); blend is then false
@@ -266,8 +266,8 @@ struct RenderState {
 // An image a dispatch pass writes (glBindImageTexture(unit, texture, level, layered, layer, access,
 // format)): the compute program's image uniform `image` at image unit `unit`, in the texture's format.
 struct ImageBindingDesc {
-    std::string image;   // the image uniform in the program, e.g. penumbra_output0
-    std::string texture;
+    std::string image{}; // the image uniform in the program, e.g. penumbra_output0
+    std::string texture{};
     int level = 0;
     int layer = -1;      // -1: a 2D texture (not layered)
     int unit = 0;        // image unit (layout(binding = …) of the image uniform)
@@ -279,20 +279,22 @@ struct ImageBindingDesc {
 struct DispatchDesc {
     std::array<int, 3> groups{1, 1, 1};     // workgroups in x, y, z
     std::array<int, 3> local_size{1, 1, 1}; // invocations per workgroup (the program's local_size, for information)
-    std::vector<MemoryBarrierBit> memory_barrier;
-    std::vector<ImageBindingDesc> images;   // layout.json "image_outputs": the images it writes
+    std::vector<MemoryBarrierBit> memory_barrier{};
+    std::vector<ImageBindingDesc> images{}; // layout.json "image_outputs": the images it writes
 };
 
 // A pass; fill it with designated initializers (LayoutBuilder::pass), e.g.
 //   {.name = "copy_level", .action = PassAction::copy, .inputs = {{"", "penumbra_scratch"}},
 //    .outputs = {{storage, 0, layer}}, .viewport_width = R, .viewport_height = R}
+// (Every member has a default member initializer, so that GCC's -Wmissing-field-initializers
+// leaves designated initializers that name only some of them alone.)
 struct PassDesc {
-    std::string name;
+    std::string name{};
     PassAction action = PassAction::fullscreen;
-    std::string program; // "" for generate_mipmap and copy
-    std::vector<BindingDesc> inputs;
-    std::vector<AttachmentDesc> outputs;
-    std::vector<std::pair<std::string, int>> int_uniforms;
+    std::string program{}; // "" for generate_mipmap and copy
+    std::vector<BindingDesc> inputs{};
+    std::vector<AttachmentDesc> outputs{};
+    std::vector<std::pair<std::string, int>> int_uniforms{};
     int viewport_width = 0, viewport_height = 0; // 0 × 0: the size of outputs[0] (phase screen: the output size)
     RenderState state{};
     Phase phase = Phase::shadow;
