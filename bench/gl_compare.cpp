@@ -714,9 +714,6 @@ private:
                 for (const auto& [name, texels] : a.oim->textures)
                     if (std::string d = a.runtime->supply_texture(name, texels); !d.empty()) return where + ": " + d;
             const Layout& layout = a.runtime->layout();
-            for (const TextureDesc& t : layout.textures)
-                if (bytes_per_texel(t.internal_format) == 0)
-                    return entry.label + ": texture " + t.name + " has a format of unknown size, " + t.internal_format;
             a.texture_bytes = static_cast<std::uint64_t>(penumbra::texture_bytes(layout, options_.width, options_.height));
             a.config = json::parse(to_json(layout))["config"];
             active_.push_back(std::move(a));

@@ -193,7 +193,7 @@ struct PassGroups {
 
 PassGroups group_passes(const Layout& layout, const std::vector<bench::FrameTimes>& runs) {
     std::map<std::string, std::string> action;
-    for (const PassDesc& p : layout.passes) action[p.name] = p.phase == "screen" ? "screen" : p.action;
+    for (const PassDesc& p : layout.passes) action[p.name] = p.phase == Phase::screen ? "screen" : std::string(to_string(p.action));
     std::vector<int> instances;
     const auto names = bench::pass_totals(runs.front().passes, &instances);
     PassGroups g;

@@ -179,7 +179,7 @@ TEST_CASE("generic: samplers read the layout's textures, the same ones the speci
                     std::set<std::string> layout_textures, specialized_reads, generic_reads;
                     for (const TextureDesc& t : layout.textures) layout_textures.insert(t.name);
                     for (const PassDesc& pass : layout.passes)
-                        if (pass.phase == "example")
+                        if (pass.phase == Phase::example)
                             for (const BindingDesc& b : pass.inputs) specialized_reads.insert(b.texture);
                     std::set<int> units;
                     const std::vector<GenericSampler> samplers = generic_samplers(config);

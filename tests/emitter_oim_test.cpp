@@ -73,15 +73,15 @@ TEST_CASE("oim: the layout marks the maps as baked, nearest, one rise and one fa
     REQUIRE(layout.textures.size() == 8); // 3 pairs, the caller's texture coordinates, the visibility
     for (int i = 0; i < 6; ++i) {
         const TextureDesc& t = layout.textures[static_cast<std::size_t>(i)];
-        CHECK(t.internal_format == "RGBA16F");
+        CHECK(t.format == TextureFormat::rgba16f);
         CHECK(t.width == 256);
-        CHECK(t.min_filter == "NEAREST");
-        CHECK(t.source == "bake");
+        CHECK(t.min_filter == TextureFilter::nearest);
+        CHECK(t.source == TextureSource::bake);
     }
-    CHECK(layout.textures[6].source == "caller");
-    CHECK(layout.textures[6].size == "output");
+    CHECK(layout.textures[6].source == TextureSource::caller);
+    CHECK(layout.textures[6].size == TextureSize::output);
     CHECK(layout.result == "penumbra_visibility");
-    CHECK(layout.passes.front().phase == "screen");
+    CHECK(layout.passes.front().phase == Phase::screen);
     CHECK(layout.textures[4].name == "penumbra_rise2");
     CHECK(layout.textures[5].name == "penumbra_fall2");
     REQUIRE(layout.programs.size() == 2);

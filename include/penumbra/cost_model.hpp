@@ -43,7 +43,8 @@
 namespace penumbra {
 
 struct PassCost {
-    std::string name, phase;
+    std::string name;
+    Phase phase = Phase::shadow;
     long long fragments = 0;     // fragments shaded (fullscreen: the viewport; draw_scene: 0, geometry-dependent;
                                  // dispatch: compute invocations)
     long long texel_fetches = 0; // texels the fragments read (bilinear: 4, trilinear: 8 per fetch)
@@ -58,7 +59,7 @@ struct PhaseCost {
 };
 
 struct CostModel {
-    std::vector<PassCost> passes; // in layout order, phases "shadow" and "screen"
+    std::vector<PassCost> passes; // in layout order, phases shadow and screen
     PhaseCost shadow;             // the passes from the light (slicing, prefilter): when the light or geometry moves
     PhaseCost screen;             // every frame, at the output size
 };
@@ -76,29 +77,29 @@ inline long long level_bytes(const TextureDesc& t, int level, int output_width, 
     w = std::max(1LL, w >> level);
     h = std::max(1LL, h >> level);
     const long long d = one_layer ? 1 : t.depth;
-    return w * h * d * bytes_per_texel(t.internal_format);
+    return w * h * d * bytes_per_texel(t.format);
 }
 
 } // namespace detail
 
 inline CostModel cost_model(const Layout& layout, int output_width, int output_height) {
-    using detail::find_texture;
     CostModel model;
     for (const PassDesc& pass : layout.passes) {
-        if (pass.phase != "shadow" && pass.phase != "screen") continue;
+        if (pass.phase == Phase::example) continue;
         PassCost cost{pass.name, pass.phase};
-        const bool screen = pass.phase == "screen";
+        const bool screen = pass.phase == Phase::screen;
         const long long w = screen ? output_width : pass.viewport_width, h = screen ? output_height : pass.viewport_height;
         auto output_bytes = [&](const AttachmentDesc& a) {
             const TextureDesc* t = find_texture(layout, a.texture);
             return t ? detail::level_bytes(*t, a.level, output_width, output_height, true) : 0LL;
         };
-        if (pass.action == "fullscreen") {
+        switch (pass.action) {
+        case PassAction::fullscreen: {
             cost.fragments = w * h;
             cost.texel_fetches = cost.fragments * detail::texels_per_fragment(layout, pass);
             long long per_texel_written = 0;
             for (const AttachmentDesc& a : pass.outputs)
-                if (const TextureDesc* t = find_texture(layout, a.texture)) per_texel_written += bytes_per_texel(t->internal_format);
+                if (const TextureDesc* t = find_texture(layout, a.texture)) per_texel_written += bytes_per_texel(t->format);
             cost.bytes_written = cost.fragments * per_texel_written;
             // a pass with penumbra_sourceLayer reads one layer (array) or depth slice (volume) of its source
             bool one_layer = false;
@@ -113,21 +114,26 @@ inline CostModel cost_model(const Layout& layout, int output_width, int output_h
                 if (!t) continue;
                 inputs += detail::level_bytes(*t, std::max(in.level, 0), output_width, output_height, one_layer) /
                           (scale * scale);
-                fetched_bytes = std::max<long long>(fetched_bytes, bytes_per_texel(t->internal_format));
+                fetched_bytes = std::max<long long>(fetched_bytes, bytes_per_texel(t->format));
             }
             // every input texel once, but never more than the fetches bring in
             cost.bytes_read = std::min(inputs, cost.texel_fetches * fetched_bytes);
-        } else if (pass.action == "draw_scene") {
+            break;
+        }
+        case PassAction::draw_scene:
             for (const AttachmentDesc& a : pass.outputs) cost.bytes_written += output_bytes(a);
             for (const BindingDesc& in : pass.inputs)
                 if (const TextureDesc* t = find_texture(layout, in.texture))
                     cost.bytes_read += detail::level_bytes(*t, 0, output_width, output_height, false);
-        } else if (pass.action == "copy") {
+            break;
+        case PassAction::copy: {
             const long long bytes = pass.outputs.empty() ? 0 : output_bytes(pass.outputs.front());
             cost.bytes_read = cost.bytes_written = bytes;
             cost.fragments = w * h;
-        } else if (pass.action == "dispatch" && pass.dispatch) {
-            const DispatchDesc& d = *pass.dispatch;
+            break;
+        }
+        case PassAction::dispatch: {
+            const DispatchDesc& d = pass.dispatch;
             const long long groups = 1LL * d.groups[0] * d.groups[1] * d.groups[2];
             cost.fragments = groups * d.local_size[0] * d.local_size[1] * d.local_size[2];
             // the tile a workgroup loads: its block (local_size) and the apron of its last level's windows
@@ -142,19 +148,22 @@ inline CostModel cost_model(const Layout& layout, int output_width, int output_h
             for (const BindingDesc& in : pass.inputs)
                 if (const TextureDesc* t = find_texture(layout, in.texture)) {
                     inputs += detail::level_bytes(*t, std::max(in.level, 0), output_width, output_height, true);
-                    fetched_bytes = std::max<long long>(fetched_bytes, bytes_per_texel(t->internal_format));
+                    fetched_bytes = std::max<long long>(fetched_bytes, bytes_per_texel(t->format));
                 }
             cost.bytes_read = std::min(inputs, cost.texel_fetches * fetched_bytes);
-            for (const ImageBindingDesc& image : pass.image_outputs)
+            for (const ImageBindingDesc& image : d.images)
                 if (const TextureDesc* t = find_texture(layout, image.texture))
                     cost.bytes_written += detail::level_bytes(*t, image.level, output_width, output_height, true);
-        } else if (pass.action == "generate_mipmap") {
+            break;
+        }
+        case PassAction::generate_mipmap:
             if (!pass.outputs.empty())
                 if (const TextureDesc* t = find_texture(layout, pass.outputs.front().texture)) {
                     const long long base = detail::level_bytes(*t, 0, output_width, output_height, false);
                     cost.bytes_read = base * 4 / 3;
                     cost.bytes_written = base / 3;
                 }
+            break;
         }
         PhaseCost& phase = screen ? model.screen : model.shadow;
         ++phase.passes;

@@ -6,8 +6,9 @@
 //
 // layout_version 3; the JSON schema is docs/layout.schema.json and README.md ("Using it from an
 // engine") walks through it. Run time only (it is data for an engine, not text for a compiler).
-// The structs (TextureDesc, ProgramDesc, PassDesc, Layout, …) and the builder are in
-// detail/layout_builder.hpp; each technique's programs, textures and passes in its folder,
+// The structs (TextureDesc, ProgramDesc, PassDesc, Layout, …) and the enums of their words are in
+// penumbra/layout_types.hpp, the texture formats in penumbra/formats.hpp; the builder is
+// detail/layout_builder.hpp, each technique's programs, textures and passes in its folder,
 // detail/<technique>/layout.hpp.
 #pragma once
 
@@ -43,7 +44,6 @@ PENUMBRA_ENTRY_POINT Layout describe_layout(const Config& config) {
     const TechniqueDescriptor technique = technique_descriptor(config.technique);
     Layout layout;
     layout.config = config;
-    layout.technique = std::string(to_string(config.technique));
 
     // Programs with their parameters, in pass order.
     for (const ProgramPlan& plan : technique.programs(config)) {
@@ -57,19 +57,20 @@ PENUMBRA_ENTRY_POINT Layout describe_layout(const Config& config) {
     }
     // The technique's textures and passes: shadow phase, then the screen phase over the caller's
     // G-buffer at the output size.
-    LayoutBuilder build{layout, border_wrap(config)};
+    LayoutBuilder build{layout};
     technique.describe_layout(build, config);
 
     // Example phase: the engine draws its scene with shading_example (or its own shader including
     // penumbra_visibility.glsl, binding the same storage samplers) into its own framebuffer.
-    std::vector<BindingDesc> example_inputs;
-    for (const ParamDesc& p : build.params_of("shading_example"))
-        if (p.binding >= 0) example_inputs.push_back({p.name, p.texture, p.binding});
-    RenderState depth_tested;
-    depth_tested.depth_test = depth_tested.depth_write = true;
-    depth_tested.clear_color = std::array<float, 4>{0.0f, 0.0f, 0.0f, 1.0f};
-    depth_tested.clear_depth = 1.0f;
-    build.pass("shading_example", "draw_scene", "shading_example", example_inputs, {}, {}, 0, 0, depth_tested, "example");
+    build.pass({.name = "shading_example",
+                .action = PassAction::draw_scene,
+                .program = "shading_example",
+                .inputs = build.own_inputs("shading_example"),
+                .state = {.depth_test = true,
+                          .depth_write = true,
+                          .clear_color = std::array<float, 4>{0.0f, 0.0f, 0.0f, 1.0f},
+                          .clear_depth = 1.0f},
+                .phase = Phase::example});
 
     finish_sampling(layout);
 
@@ -77,12 +78,12 @@ PENUMBRA_ENTRY_POINT Layout describe_layout(const Config& config) {
     layout.files.emplace_back("layout.json");
     // The configuration is implied everywhere: a new one is a new layout.
     bool has_shadow = false;
-    for (const PassDesc& p : layout.passes) has_shadow = has_shadow || p.phase == "shadow";
+    for (const PassDesc& p : layout.passes) has_shadow = has_shadow || p.phase == Phase::shadow;
     // alpha_test: the casters' materials (alpha textures, cutoffs) decide the shadow phase too
-    if (has_shadow && config.alpha_test) layout.phase_inputs.push_back({"shadow", {"light", "geometry", "materials"}});
-    else if (has_shadow) layout.phase_inputs.push_back({"shadow", {"light", "geometry"}});
-    layout.phase_inputs.push_back({"screen", build.screen_inputs});
-    layout.phase_inputs.push_back({"example", {"light", "geometry", "camera"}});
+    if (has_shadow && config.alpha_test) layout.phase_inputs.push_back({Phase::shadow, {"light", "geometry", "materials"}});
+    else if (has_shadow) layout.phase_inputs.push_back({Phase::shadow, {"light", "geometry"}});
+    layout.phase_inputs.push_back({Phase::screen, build.screen_inputs});
+    layout.phase_inputs.push_back({Phase::example, {"light", "geometry", "camera"}});
     return layout;
 }
 
@@ -113,33 +114,37 @@ inline std::string json_floats(const std::array<float, 4>& values) {
     return out + "]";
 }
 
+// A layout enum as a JSON string: its name (EnumNames), the word layout.json uses.
+template <class Enum> std::string json_name(Enum value) { return json_string(to_string(value)); }
+
 inline std::string json_state(const RenderState& s) {
     auto b = [](bool v) { return std::string(v ? "true" : "false"); };
-    std::string o = "{\"blend\": " + b(s.blend) + ", \"blend_equation\": " + json_string(s.blend_equation) +
-                    ", \"blend_src\": " + json_string(s.blend_src) + ", \"blend_dst\": " + json_string(s.blend_dst) +
-                    ", \"depth_test\": " + b(s.depth_test) + ", \"depth_func\": " + json_string(s.depth_func) +
+    std::string o = "{\"blend\": " + b(s.blend) + ", \"blend_equation\": " + json_name(s.blend_equation) +
+                    ", \"blend_src\": " + json_name(s.blend_src) + ", \"blend_dst\": " + json_name(s.blend_dst) +
+                    ", \"depth_test\": " + b(s.depth_test) + ", \"depth_func\": " + json_name(s.depth_func) +
                     ", \"depth_write\": " + b(s.depth_write) + ", \"color_mask\": [" + b(s.color_mask[0]) + ", " +
                     b(s.color_mask[1]) + ", " + b(s.color_mask[2]) + ", " + b(s.color_mask[3]) +
-                    "], \"cull\": " + json_string(s.cull) + ", \"clear_color\": " +
+                    "], \"cull\": " + json_name(s.cull) + ", \"clear_color\": " +
                     (s.clear_color ? json_floats(*s.clear_color) : "null") +
                     ", \"clear_depth\": " + (s.clear_depth ? json_number(*s.clear_depth) : "null") +
                     ", \"polygon_offset_factor\": " + json_number(s.polygon_offset_factor) +
                     ", \"polygon_offset_units\": " + json_number(s.polygon_offset_units) +
-                    ", \"logic_op\": " + json_string(s.logic_op) + "}";
+                    ", \"logic_op\": " + json_name(s.logic_op) + "}";
     return o;
 }
 
 inline std::string json_sampling(const Sampling& s) {
-    std::string o = "{\"min_filter\": " + json_string(s.min_filter) + ", \"mag_filter\": " + json_string(s.mag_filter) +
-                    ", \"wrap\": " + json_string(s.wrap);
-    if (s.wrap == "CLAMP_TO_BORDER") o += ", \"border_color\": " + json_floats(s.border_color);
-    return o + ", \"compare\": " + json_string(s.compare) + "}";
+    std::string o = "{\"min_filter\": " + json_name(s.min_filter) + ", \"mag_filter\": " + json_name(s.mag_filter) +
+                    ", \"wrap\": " + json_name(s.wrap);
+    if (s.wrap == Wrap::clamp_to_border) o += ", \"border_color\": " + json_floats(s.border_color);
+    return o + ", \"compare\": " + (s.compare ? json_name(*s.compare) : json_string("")) + "}";
 }
 
 } // namespace detail
 
 // layout.json: the layout as JSON (two-space indentation, keys as in the C++ structs).
 PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
+    using detail::json_name;
     using detail::json_string;
     const Config& c = layout.config;
     std::string o = "{\n";
@@ -148,7 +153,7 @@ PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
     };
     o += "  \"generator\": \"penumbra " + std::string(detail::version_string) + "\",\n";
     field("  ", "layout_version", std::to_string(layout.version));
-    field("  ", "technique", json_string(layout.technique));
+    field("  ", "technique", json_name(c.technique));
     o += "  \"config\": {\n";
     field("    ", "technique", json_string(to_string(c.technique)));
     field("    ", "slices", std::to_string(c.slices));
@@ -199,18 +204,18 @@ PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
     o += "  },\n";
     field("  ", "textures_per_layer", std::to_string(layout.textures_per_layer));
     field("  ", "max_level", std::to_string(layout.max_level));
-    field("  ", "max_kernel_texels", std::to_string(layout.technique == "occlusion" ? 1 << layout.max_level : 0));
+    field("  ", "max_kernel_texels", std::to_string(c.technique == Technique::occlusion ? 1 << layout.max_level : 0));
     o += "  \"textures\": [\n";
     for (std::size_t i = 0; i < layout.textures.size(); ++i) {
         const TextureDesc& t = layout.textures[i];
-        o += "    {\"name\": " + json_string(t.name) + ", \"target\": " + json_string(t.target) +
-             ", \"internal_format\": " + json_string(t.internal_format) + ", \"width\": " + std::to_string(t.width) +
+        o += "    {\"name\": " + json_string(t.name) + ", \"target\": " + json_name(t.target) +
+             ", \"internal_format\": " + json_name(t.format) + ", \"width\": " + std::to_string(t.width) +
              ", \"height\": " + std::to_string(t.height) + ", \"depth\": " + std::to_string(t.depth) +
-             ", \"mip_levels\": " + std::to_string(t.mip_levels) + ", \"min_filter\": " + json_string(t.min_filter) +
-             ", \"mag_filter\": " + json_string(t.mag_filter) + ", \"wrap\": " + json_string(t.wrap);
-        if (t.wrap == "CLAMP_TO_BORDER") o += ", \"border_color\": " + detail::json_floats(t.border_color);
-        o += ", \"size\": " + json_string(t.size) + ", \"source\": " + json_string(t.source) +
-             ", \"initial\": " + json_string(t.initial) + ", \"purpose\": " + json_string(t.purpose) + "}" +
+             ", \"mip_levels\": " + std::to_string(t.mip_levels) + ", \"min_filter\": " + json_name(t.min_filter) +
+             ", \"mag_filter\": " + json_name(t.mag_filter) + ", \"wrap\": " + json_name(t.wrap);
+        if (t.wrap == Wrap::clamp_to_border) o += ", \"border_color\": " + detail::json_floats(t.border_color);
+        o += ", \"size\": " + json_name(t.size) + ", \"source\": " + json_name(t.source) +
+             ", \"initial\": " + json_name(initial_contents(t)) + ", \"purpose\": " + json_string(t.purpose) + "}" +
              (i + 1 < layout.textures.size() ? ",\n" : "\n");
     }
     o += "  ],\n  \"programs\": [\n";
@@ -236,7 +241,8 @@ PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
                 o += ", \"source\": " + json_string(to_string(*d.source)) + ", \"compute\": " + json_string(d.compute);
             if (d.binding >= 0) o += ", \"binding\": " + std::to_string(d.binding);
             if (d.binding >= 0 && d.source != UniformSource::draw) // a draw's sampler: the caller's texture and sampler
-                o += ", \"texture\": " + json_string(d.texture) + ", \"sampling\": " + detail::json_sampling(d.sampling);
+                o += ", \"texture\": " + json_string(d.texture) + ", \"sampling\": " +
+                     detail::json_sampling(d.sampling.value_or(Sampling{}));
             if (d.offset >= 0)
                 o += ", \"block\": " + json_string(d.block) + ", \"block_binding\": " + std::to_string(d.block_binding) +
                      ", \"offset\": " + std::to_string(d.offset);
@@ -248,8 +254,8 @@ PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
     o += "  ],\n  \"passes\": [\n";
     for (std::size_t i = 0; i < layout.passes.size(); ++i) {
         const PassDesc& p = layout.passes[i];
-        o += "    {\"name\": " + json_string(p.name) + ", \"phase\": " + json_string(p.phase) +
-             ", \"action\": " + json_string(p.action) + ", \"program\": " + json_string(p.program) + ", \"inputs\": [";
+        o += "    {\"name\": " + json_string(p.name) + ", \"phase\": " + json_name(p.phase) +
+             ", \"action\": " + json_name(p.action) + ", \"program\": " + json_string(p.program) + ", \"inputs\": [";
         for (std::size_t b = 0; b < p.inputs.size(); ++b)
             o += (b ? ", " : "") + std::string("{\"sampler\": ") + json_string(p.inputs[b].sampler) +
                  ", \"texture\": " + json_string(p.inputs[b].texture) + ", \"binding\": " +
@@ -258,35 +264,41 @@ PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
         o += "], \"outputs\": [";
         for (std::size_t a = 0; a < p.outputs.size(); ++a)
             o += (a ? ", " : "") + std::string("{\"texture\": ") + json_string(p.outputs[a].texture) +
-                 ", \"kind\": " + json_string(p.outputs[a].kind) + ", \"level\": " + std::to_string(p.outputs[a].level) +
+                 ", \"kind\": " + json_name(attachment_kind(layout, p.outputs[a])) + ", \"level\": " + std::to_string(p.outputs[a].level) +
                  ", \"layer\": " + std::to_string(p.outputs[a].layer) + "}";
         o += "], \"int_uniforms\": {";
         for (std::size_t u = 0; u < p.int_uniforms.size(); ++u)
             o += (u ? ", " : "") + json_string(p.int_uniforms[u].first) + ": " + std::to_string(p.int_uniforms[u].second);
         o += "}, \"viewport\": [" + std::to_string(p.viewport_width) + ", " + std::to_string(p.viewport_height) +
              "], \"state\": " + detail::json_state(p.state);
-        if (const std::optional<CopyDesc>& c = p.copy)
+        if (p.action == PassAction::copy && !p.inputs.empty() && !p.outputs.empty()) {
+            const std::optional<CopyDesc> c = copy_region(p);
             o += ", \"copy\": {\"source_level\": " + std::to_string(c->source_level) + ", \"source_layer\": " +
                  std::to_string(c->source_layer) + ", \"target_level\": " + std::to_string(c->target_level) +
                  ", \"target_layer\": " + std::to_string(c->target_layer) + ", \"width\": " + std::to_string(c->width) +
                  ", \"height\": " + std::to_string(c->height) + "}";
-        if (const std::optional<MipmapDesc>& m = p.mipmap)
-            o += ", \"mipmap\": {\"base_level\": " + std::to_string(m->base_level) + ", \"levels\": " +
-                 std::to_string(m->levels) + ", \"downsample\": " + json_string(m->downsample) + "}";
-        if (const std::optional<DispatchDesc>& d = p.dispatch) {
+        }
+        if (p.action == PassAction::generate_mipmap && !p.outputs.empty()) {
+            const MipmapDesc m = mipmap_range(layout, p);
+            o += ", \"mipmap\": {\"base_level\": " + std::to_string(m.base_level) + ", \"levels\": " +
+                 std::to_string(m.levels) + ", \"downsample\": \"box\"}"; // the only downsample there is
+        }
+        if (p.action == PassAction::dispatch) {
+            const DispatchDesc* d = &p.dispatch;
             auto triple = [](const std::array<int, 3>& v) {
                 return "[" + std::to_string(v[0]) + ", " + std::to_string(v[1]) + ", " + std::to_string(v[2]) + "]";
             };
             o += ", \"dispatch\": {\"groups\": " + triple(d->groups) + ", \"local_size\": " + triple(d->local_size) +
                  ", \"memory_barrier\": [";
-            for (std::size_t b = 0; b < d->memory_barrier.size(); ++b) o += (b ? ", " : "") + json_string(d->memory_barrier[b]);
+            for (std::size_t b = 0; b < d->memory_barrier.size(); ++b) o += (b ? ", " : "") + json_name(d->memory_barrier[b]);
             o += "]}, \"image_outputs\": [";
-            for (std::size_t im = 0; im < p.image_outputs.size(); ++im) {
-                const ImageBindingDesc& img = p.image_outputs[im];
+            for (std::size_t im = 0; im < d->images.size(); ++im) {
+                const ImageBindingDesc& img = d->images[im];
+                const TextureDesc* texture = find_texture(layout, img.texture); // the image's format is its texture's
                 o += (im ? ", " : "") + std::string("{\"image\": ") + json_string(img.image) + ", \"texture\": " +
                      json_string(img.texture) + ", \"level\": " + std::to_string(img.level) + ", \"layer\": " +
                      std::to_string(img.layer) + ", \"unit\": " + std::to_string(img.unit) + ", \"format\": " +
-                     json_string(img.format) + ", \"access\": " + json_string(img.access) + "}";
+                     (texture ? json_name(texture->format) : json_string("")) + ", \"access\": " + json_name(img.access) + "}";
             }
             o += "]";
         }
@@ -296,7 +308,7 @@ PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
     field("  ", "result", json_string(layout.result));
     o += "  \"phase_inputs\": {";
     for (std::size_t p = 0; p < layout.phase_inputs.size(); ++p) {
-        o += (p ? ", " : "") + json_string(layout.phase_inputs[p].first) + ": [";
+        o += (p ? ", " : "") + json_name(layout.phase_inputs[p].first) + ": [";
         const std::vector<std::string>& inputs = layout.phase_inputs[p].second;
         for (std::size_t i = 0; i < inputs.size(); ++i) o += (i ? ", " : "") + json_string(inputs[i]);
         o += "]";
@@ -307,7 +319,7 @@ PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
         const SliceLocation& at = layout.slice_map[k];
         o += (k ? ", " : "") + std::string("{\"slice\": ") + std::to_string(at.slice) + ", \"texture\": " +
              json_string(at.texture) + ", \"layer\": " + std::to_string(at.layer) + ", \"channel\": " +
-             json_string(at.channel) + "}";
+             json_string(std::string(1, slice_channel(at))) + "}";
     }
     o += "],\n";
     o += "  \"files\": [";

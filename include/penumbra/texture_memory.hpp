@@ -10,21 +10,7 @@
 
 namespace penumbra {
 
-// Bytes per texel of a layout internal format ("RGBA16F" → 8); 0 for a name it does not know.
-constexpr int bytes_per_texel(std::string_view format) {
-    struct Entry {
-        std::string_view name;
-        int bytes;
-    };
-    constexpr Entry table[] = {{"R8", 1},       {"R16F", 2},     {"R32F", 4},
-                               {"RG16F", 4},    {"RG32F", 8},    {"RGBA8", 4},
-                               {"RGBA16F", 8},  {"RGBA32F", 16}, {"RGBA32UI", 16},
-                               {"R32UI", 4},
-                               {"DEPTH_COMPONENT16", 2}, {"DEPTH_COMPONENT24", 4}, {"DEPTH_COMPONENT32F", 4}};
-    for (const Entry& e : table)
-        if (e.name == format) return e.bytes;
-    return 0;
-}
+// Bytes per texel of a format: bytes_per_texel(TextureFormat), penumbra/formats.hpp.
 
 // One texture with its whole mip chain; a texture sized like the output (width 0) takes the
 // output's size.
@@ -36,17 +22,17 @@ inline long long texture_bytes(const TextureDesc& t, int output_width, int outpu
         texels += w * h * d;
         w = w > 1 ? w / 2 : 1;
         h = h > 1 ? h / 2 : 1;
-        if (t.target == "3D") d = d > 1 ? d / 2 : 1; // array layers stay, 3D depth shrinks
+        if (t.target == TextureTarget::texture_3d) d = d > 1 ? d / 2 : 1; // array layers stay, 3D depth shrinks
     }
-    return texels * bytes_per_texel(t.internal_format);
+    return texels * bytes_per_texel(t.format);
 }
 
 // Every texture the layout allocates, output-sized ones at output_width × output_height; textures
-// the caller supplies (source "caller", e.g. the G-buffer) are the engine's and not counted.
+// the caller supplies (source caller, e.g. the G-buffer) are the engine's and not counted.
 inline long long texture_bytes(const Layout& layout, int output_width = 0, int output_height = 0) {
     long long total = 0;
     for (const TextureDesc& t : layout.textures)
-        if (t.source != "caller") total += texture_bytes(t, output_width, output_height);
+        if (t.source != TextureSource::caller) total += texture_bytes(t, output_width, output_height);
     return total;
 }
 

@@ -108,7 +108,7 @@ Outcome check_bundle(const fs::path& dir, std::map<std::string, HeadlessContext>
     std::map<std::string, std::string> sources;
     if (!penumbra::targets::read_emission_sources(bundle, sources, &error)) return fail(error);
     const auto start = std::chrono::steady_clock::now();
-    std::unique_ptr<LayoutRunner> runner = LayoutRunner::create(layout, sources, &error, {"shadow", "screen"});
+    std::unique_ptr<LayoutRunner> runner = LayoutRunner::create(layout, sources, &error, {penumbra::Phase::shadow, penumbra::Phase::screen});
     if (!runner) return fail(error);
     for (const auto& [name, value] : bundle.uniforms) runner->set_uniform(name, value);
     // Textures baked offline (oim's interval maps), once, from the bundle's files.
@@ -140,7 +140,7 @@ Outcome check_bundle(const fs::path& dir, std::map<std::string, HeadlessContext>
         glBindVertexArray(0);
     };
     const int width = bundle.width, height = bundle.height;
-    error = runner->run_phase("shadow", draw, width, height);
+    error = runner->run_phase(penumbra::Phase::shadow, draw, width, height);
     // Every texture the layout leaves to the caller, from the bundle's G-buffer file for it.
     for (const json& t : layout["textures"]) {
         if (!error.empty() || t.value("source", "passes") != "caller") continue;
@@ -152,7 +152,7 @@ Outcome check_bundle(const fs::path& dir, std::map<std::string, HeadlessContext>
         }
         error = runner->fill_texture(name, width, height, texels->second.data());
     }
-    if (error.empty()) error = runner->run_phase("screen", nullptr, width, height);
+    if (error.empty()) error = runner->run_phase(penumbra::Phase::screen, nullptr, width, height);
     const std::vector<float> visibility = runner->read_result();
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     runner.reset();

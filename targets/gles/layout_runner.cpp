@@ -1,9 +1,14 @@
 // targets/gles/layout_runner.cpp — see layout_runner.hpp.
 #include "layout_runner.hpp"
 
+#include <penumbra/detail/problem.hpp>
+#include <penumbra/gl/layout_enums.hpp>
+
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <optional>
+#include <string_view>
 
 namespace penumbra::targets {
 
@@ -11,60 +16,36 @@ namespace {
 
 using nlohmann::json;
 
-struct Format {
-    GLenum internal, format, type;
-    int bytes;       // per texel
-    bool is_float;   // rendering to it needs EXT_color_buffer_float on ES 3.0
-    bool filterable; // LINEAR filtering without OES_texture_float_linear
-    bool integer = false; // cleared with glClearBufferuiv, never filtered
-    bool depth = false;   // ES 3.0: read without comparison only through NEAREST filters
-};
+using penumbra::gl::detail::gl_enum;
+using penumbra::gl::detail::gl_format;
 
-const std::map<std::string, Format>& formats() {
-    static const std::map<std::string, Format> formats{
-        {"RGBA8", {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE, 4, false, true}},
-        {"R8", {GL_R8, GL_RED, GL_UNSIGNED_BYTE, 1, false, true}},
-        {"RGBA16F", {GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT, 8, true, true}},
-        {"RG16F", {GL_RG16F, GL_RG, GL_HALF_FLOAT, 4, true, true}},
-        {"R16F", {GL_R16F, GL_RED, GL_HALF_FLOAT, 2, true, true}},
-        {"RGBA32F", {GL_RGBA32F, GL_RGBA, GL_FLOAT, 16, true, false}},
-        {"RG32F", {GL_RG32F, GL_RG, GL_FLOAT, 8, true, false}},
-        {"R32F", {GL_R32F, GL_RED, GL_FLOAT, 4, true, false}},
-        {"RGBA32UI", {GL_RGBA32UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT, 16, false, false, true}},
-        {"R32UI", {GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, 4, false, false, true}}, // adaptive slice boundaries
-        {"DEPTH_COMPONENT24", {GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, 4, false, true, false, true}},
-        {"DEPTH_COMPONENT32F", {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT, 4, false, true, false, true}},
-    };
-    return formats;
+// The layout enum layout.json spells `key` of `object` with (`fallback` when absent): strings end
+// here. Empty on success, else "<key> '<word>' unknown; allowed: …".
+template <class Enum> std::string read_word(const json& object, const char* key, std::string_view fallback, Enum* out) {
+    const std::string word = object.value(key, std::string(fallback));
+    if (const std::optional<Enum> value = parse_enum<Enum>(word)) {
+        *out = *value;
+        return {};
+    }
+    return std::string(key) + " '" + word + "' unknown; allowed: " + penumbra::detail::joined_names<Enum>().str();
 }
 
-const Format* format_of(const std::string& name) {
-    auto it = formats().find(name);
-    return it == formats().end() ? nullptr : &it->second;
-}
-
-std::string format_names() {
-    std::string names;
-    for (const auto& [name, format] : formats()) names += (names.empty() ? "" : ", ") + name;
-    return names;
-}
-
-// GL_<name> for the enum strings layout.json uses; 0 when unknown.
-GLenum gl_enum(const std::string& name) {
-    static const std::map<std::string, GLenum> names{
-        {"2D", GL_TEXTURE_2D}, {"2D_ARRAY", GL_TEXTURE_2D_ARRAY}, {"3D", GL_TEXTURE_3D},
-        {"NEAREST", GL_NEAREST}, {"LINEAR", GL_LINEAR}, {"LINEAR_MIPMAP_LINEAR", GL_LINEAR_MIPMAP_LINEAR},
-        {"NEAREST_MIPMAP_NEAREST", GL_NEAREST_MIPMAP_NEAREST}, {"LINEAR_MIPMAP_NEAREST", GL_LINEAR_MIPMAP_NEAREST},
-        {"NEAREST_MIPMAP_LINEAR", GL_NEAREST_MIPMAP_LINEAR},
-        {"CLAMP_TO_EDGE", GL_CLAMP_TO_EDGE}, {"CLAMP_TO_BORDER", GL_CLAMP_TO_BORDER}, {"REPEAT", GL_REPEAT},
-        {"ADD", GL_FUNC_ADD}, {"MAX", GL_MAX}, {"MIN", GL_MIN},
-        {"ZERO", GL_ZERO}, {"ONE", GL_ONE}, {"SRC_ALPHA", GL_SRC_ALPHA}, {"ONE_MINUS_SRC_ALPHA", GL_ONE_MINUS_SRC_ALPHA},
-        {"NEVER", GL_NEVER}, {"LESS", GL_LESS}, {"LEQUAL", GL_LEQUAL}, {"EQUAL", GL_EQUAL}, {"GREATER", GL_GREATER},
-        {"GEQUAL", GL_GEQUAL}, {"NOTEQUAL", GL_NOTEQUAL}, {"ALWAYS", GL_ALWAYS},
-        {"BACK", GL_BACK}, {"FRONT", GL_FRONT},
-    };
-    auto it = names.find(name);
-    return it == names.end() ? 0 : it->second;
+// A binding's "sampling" (filters, wrap, border, comparison; compare "" is none).
+std::string read_sampling(const json& j, Sampling* s) {
+    std::string e = read_word(j, "min_filter", "", &s->min_filter);
+    if (e.empty()) e = read_word(j, "mag_filter", "", &s->mag_filter);
+    if (e.empty()) e = read_word(j, "wrap", "", &s->wrap);
+    if (e.empty() && !j.value("compare", std::string()).empty()) {
+        CompareFunc func{};
+        e = read_word(j, "compare", "", &func);
+        s->compare = func;
+    }
+    if (e.empty() && j.contains("border_color")) {
+        const std::vector<float> border = j["border_color"];
+        if (border.size() != 4) return "border_color " + j["border_color"].dump() + " is not 4 numbers";
+        std::copy(border.begin(), border.end(), s->border_color.begin());
+    }
+    return e;
 }
 
 std::string gl_error_text(const std::string& where) {
@@ -82,7 +63,7 @@ bool has_binding(const json& param) { return param.contains("binding") && param[
 } // namespace
 
 std::unique_ptr<LayoutRunner> LayoutRunner::create(const json& layout, const std::map<std::string, std::string>& sources,
-                                                   std::string* error, const std::vector<std::string>& phases) {
+                                                   std::string* error, const std::vector<Phase>& phases) {
     auto fail = [&](std::string message) -> std::unique_ptr<LayoutRunner> {
         if (error) *error = std::move(message);
         return nullptr;
@@ -92,6 +73,7 @@ std::unique_ptr<LayoutRunner> LayoutRunner::create(const json& layout, const std
         return fail("layout.json: layout_version " + layout["layout_version"].dump() + "; this runner reads version 3");
     std::unique_ptr<LayoutRunner> runner(new LayoutRunner());
     runner->layout_ = layout;
+    for (Phase phase : phases) runner->phases_.insert(phase);
     const bool es = !epoxy_is_desktop_gl();
     const json& l = runner->layout_;
 
@@ -100,27 +82,33 @@ std::unique_ptr<LayoutRunner> LayoutRunner::create(const json& layout, const std
     std::vector<std::string> rendered;
     for (const json& pass : l["passes"])
         for (const json& out : pass["outputs"]) rendered.push_back(out["texture"]);
-    // compute dispatches (prefilter_stage compute, target glsl450) need OpenGL 4.3: refused before anything runs
-    for (const json& pass : l["passes"])
-        if (pass.value("action", "") == "dispatch")
-            return fail("pass " + pass.value("name", std::string()) +
-                        ": action 'dispatch' runs a compute shader (prefilter_stage compute), which this OpenGL 3.3 / "
-                        "ES 3.0 runner does not have; emit with prefilter_stage fragment");
+    for (const json& pass : l["passes"]) {
+        const std::string where = "pass " + pass.value("name", std::string()) + ": ";
+        PassAction action{};
+        Phase phase{};
+        if (std::string e = read_word(pass, "action", "", &action); !e.empty()) return fail(where + e);
+        if (std::string e = read_word(pass, "phase", "shadow", &phase); !e.empty()) return fail(where + e);
+        // compute dispatches (prefilter_stage compute, target glsl450) need OpenGL 4.3: refused before anything runs
+        if (action == PassAction::dispatch)
+            return fail(where + "action 'dispatch' runs a compute shader (prefilter_stage compute), which this OpenGL "
+                                "3.3 / ES 3.0 runner does not have; emit with prefilter_stage fragment");
+    }
     for (const json& t : l["textures"]) {
-        const std::string name = t["name"], format = t["internal_format"];
-        const Format* f = format_of(format);
-        if (!f) return fail("texture " + name + ": internal_format '" + format + "' unknown; allowed: " + format_names());
+        const std::string name = t["name"];
+        TextureDesc d; // what this runner keeps of the description
+        TextureInitial initial{};
+        for (std::string e : {read_word(t, "internal_format", "", &d.format), read_word(t, "target", "", &d.target),
+                              read_word(t, "min_filter", "", &d.min_filter), read_word(t, "mag_filter", "", &d.mag_filter),
+                              read_word(t, "wrap", "", &d.wrap), read_word(t, "size", "fixed", &d.size),
+                              read_word(t, "source", "passes", &d.source), read_word(t, "initial", "zero", &initial)})
+            if (!e.empty()) return fail("texture " + name + ": " + e);
         // layout.json "initial": zero (cleared at allocation, as here), caller (filled every run
         // with fill_texture) or bake (uploaded once with fill_bake); a pass reading a caller or bake
         // texture that was never filled fails with its name.
-        const std::string source = t.value("source", "passes"), initial = t.value("initial", "zero");
-        if (source != "passes" && source != "caller" && source != "bake")
-            return fail("texture " + name + ": source '" + source + "' unknown; allowed: passes, caller, bake");
-        if (initial != "zero" && initial != "caller" && initial != "bake")
-            return fail("texture " + name + ": initial '" + initial + "' unknown; allowed: zero, caller, bake");
-        if ((source == "passes") != (initial == "zero"))
-            return fail("texture " + name + ": initial '" + initial + "' with source '" + source +
-                        "'; allowed: initial zero exactly for source passes");
+        if (initial != initial_contents(d))
+            return fail("texture " + name + ": initial '" + std::string(to_string(initial)) + "' with source '" +
+                        std::string(to_string(d.source)) + "'; allowed: initial zero exactly for source passes");
+        const std::string format(to_string(d.format));
         auto need = [&](const std::string& extension, const std::string& why) {
             if (!es || std::find(runner->extensions_.begin(), runner->extensions_.end(), extension) != runner->extensions_.end())
                 return std::string();
@@ -129,19 +117,22 @@ std::unique_ptr<LayoutRunner> LayoutRunner::create(const json& layout, const std
             return std::string();
         };
         std::string missing;
-        if (f->is_float && std::find(rendered.begin(), rendered.end(), name) != rendered.end())
+        if (is_float(d.format) && std::find(rendered.begin(), rendered.end(), name) != rendered.end())
             missing = need("GL_EXT_color_buffer_float", "rendering to " + name + " (" + format + ")");
-        const bool linear = t["mag_filter"] == "LINEAR" || std::string(t["min_filter"]).starts_with("LINEAR");
-        if (missing.empty() && f->is_float && !f->filterable && linear)
+        // 32-bit floats filter linearly only with OES_texture_float_linear (16-bit ones always)
+        const bool linear = filters_linearly(d.mag_filter) || filters_linearly(d.min_filter);
+        if (missing.empty() && is_float(d.format) && bytes_per_channel(d.format) == 4 && linear)
             missing = need("GL_OES_texture_float_linear", "LINEAR filtering of " + name + " (" + format + ")");
         if (!missing.empty()) return fail(missing);
-        if (t.value("size", "fixed") != "output")
+        if (d.size == TextureSize::fixed)
             if (std::string e = runner->allocate(t, t["width"], t["height"]); !e.empty()) return fail(e);
     }
     std::vector<std::string> used;
-    for (const json& pass : l["passes"])
-        if (std::find(phases.begin(), phases.end(), pass.value("phase", "shadow")) != phases.end())
-            used.push_back(pass.value("program", ""));
+    for (const json& pass : l["passes"]) {
+        Phase phase{};
+        read_word(pass, "phase", "shadow", &phase); // checked above
+        if (runner->phases_.count(phase)) used.push_back(pass.value("program", ""));
+    }
     for (const json& p : l["programs"])
         if (std::find(used.begin(), used.end(), p["name"]) != used.end())
             if (std::string e = runner->link(p, sources); !e.empty()) return fail(e);
@@ -164,40 +155,32 @@ LayoutRunner::~LayoutRunner() {
 // The sampler object of one binding's "sampling" (filters, wrap, border, comparison), made once:
 // bindings read through samplers, so one texture may be read two ways (PCSS's shadow map).
 std::string LayoutRunner::sampler(const json& sampling, const std::string& where, GLuint* id, bool depth_texture) {
-    const std::string key = sampling.dump();
+    Sampling s;
+    if (std::string e = read_sampling(sampling, &s); !e.empty()) return where + ": sampling " + e;
     // OpenGL ES 3.0 (§3.8.13): a depth texture read without comparison is incomplete unless both
     // filters are NEAREST (desktop GL 3.3 filters it); it would read as zero, silently.
-    if (depth_texture && !epoxy_is_desktop_gl() && sampling.value("compare", "").empty() &&
-        (sampling.value("min_filter", "") != "NEAREST" || sampling.value("mag_filter", "") != "NEAREST"))
-        return where + ": a depth texture read without comparison through " + sampling.value("min_filter", "?") + "/" +
-               sampling.value("mag_filter", "?") + " filters, which OpenGL ES 3.0 cannot (incomplete texture); allowed: "
-               "NEAREST filters, or a compare function";
-    if (auto it = samplers_.find(key); it != samplers_.end()) {
+    if (depth_texture && !epoxy_is_desktop_gl() && !s.compare &&
+        (s.min_filter != TextureFilter::nearest || s.mag_filter != TextureFilter::nearest))
+        return where + ": a depth texture read without comparison through " + std::string(to_string(s.min_filter)) +
+               "/" + std::string(to_string(s.mag_filter)) +
+               " filters, which OpenGL ES 3.0 cannot (incomplete texture); allowed: NEAREST filters, or a compare function";
+    if (auto it = samplers_.find(s); it != samplers_.end()) {
         *id = it->second;
         return {};
     }
-    const std::string wrap_name = sampling.value("wrap", ""), compare = sampling.value("compare", "");
-    const GLenum min = gl_enum(sampling.value("min_filter", "")), mag = gl_enum(sampling.value("mag_filter", ""));
-    const GLenum wrap = gl_enum(wrap_name);
-    if (!min || !mag || !wrap) return where + ": sampling " + key + " has an unknown filter or wrap";
-    if (wrap == GL_CLAMP_TO_BORDER && !epoxy_is_desktop_gl())
+    if (s.wrap == Wrap::clamp_to_border && !epoxy_is_desktop_gl())
         return where + ": wrap CLAMP_TO_BORDER does not exist in OpenGL ES 3.0";
     glGenSamplers(1, id);
-    glSamplerParameteri(*id, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(min));
-    glSamplerParameteri(*id, GL_TEXTURE_MAG_FILTER, static_cast<GLint>(mag));
+    glSamplerParameteri(*id, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(gl_enum(s.min_filter)));
+    glSamplerParameteri(*id, GL_TEXTURE_MAG_FILTER, static_cast<GLint>(gl_enum(s.mag_filter)));
     for (GLenum axis : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
-        glSamplerParameteri(*id, axis, static_cast<GLint>(wrap));
-    if (wrap == GL_CLAMP_TO_BORDER) {
-        std::vector<float> border = sampling.value("border_color", std::vector<float>{0, 0, 0, 0});
-        glSamplerParameterfv(*id, GL_TEXTURE_BORDER_COLOR, border.data());
-    }
-    if (!compare.empty()) {
-        const GLenum func = gl_enum(compare);
-        if (!func) return where + ": compare '" + compare + "' unknown";
+        glSamplerParameteri(*id, axis, static_cast<GLint>(gl_enum(s.wrap)));
+    if (s.wrap == Wrap::clamp_to_border) glSamplerParameterfv(*id, GL_TEXTURE_BORDER_COLOR, s.border_color.data());
+    if (s.compare) {
         glSamplerParameteri(*id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-        glSamplerParameteri(*id, GL_TEXTURE_COMPARE_FUNC, static_cast<GLint>(func));
+        glSamplerParameteri(*id, GL_TEXTURE_COMPARE_FUNC, static_cast<GLint>(gl_enum(*s.compare)));
     }
-    samplers_[key] = *id;
+    samplers_[s] = *id;
     return gl_error_text(where + ": sampler");
 }
 
@@ -211,38 +194,42 @@ int LayoutRunner::vertex_location(const std::string& input) const {
 // glTexImage per level with zeros (GL 3.3 has no glTexStorage; both APIs take sized formats).
 std::string LayoutRunner::allocate(const json& desc, int width, int height) {
     const std::string name = desc["name"];
-    const GLenum target = gl_enum(desc["target"]);
-    const Format* f = format_of(desc["internal_format"]);
-    if (target == 0) return "texture " + name + ": target '" + std::string(desc["target"]) + "' unknown; allowed: 2D, 2D_ARRAY, 3D";
-    const std::string wrap_name = desc["wrap"];
-    const GLenum wrap = gl_enum(wrap_name);
-    if (wrap == 0) return "texture " + name + ": wrap '" + wrap_name + "' unknown";
-    if (wrap == GL_CLAMP_TO_BORDER && !epoxy_is_desktop_gl())
+    Texture t{0, 0, width, height, &desc};
+    TextureTarget target{};
+    TextureFilter min{}, mag{};
+    Wrap wrap{};
+    for (std::string e : {read_word(desc, "target", "", &target), read_word(desc, "internal_format", "", &t.format),
+                          read_word(desc, "min_filter", "", &min), read_word(desc, "mag_filter", "", &mag),
+                          read_word(desc, "wrap", "", &wrap), read_word(desc, "source", "passes", &t.source),
+                          read_word(desc, "size", "fixed", &t.size)})
+        if (!e.empty()) return "texture " + name + ": " + e;
+    if (wrap == Wrap::clamp_to_border && !epoxy_is_desktop_gl())
         return "texture " + name + ": wrap CLAMP_TO_BORDER does not exist in OpenGL ES 3.0";
+    t.target = gl_enum(target);
     const int depth = desc.value("depth", 1), levels = desc.value("mip_levels", 1);
-    Texture t{0, target, width, height, &desc};
+    const penumbra::gl::detail::GlFormat f = gl_format(t.format);
     glGenTextures(1, &t.id);
-    glBindTexture(target, t.id);
-    std::vector<std::uint8_t> zeros(static_cast<std::size_t>(width) * height * depth * f->bytes, 0);
+    glBindTexture(t.target, t.id);
+    std::vector<std::uint8_t> zeros(static_cast<std::size_t>(width) * height * depth * bytes_per_texel(t.format), 0);
     for (int level = 0; level < levels; ++level) {
         const int w = std::max(width >> level, 1), h = std::max(height >> level, 1);
-        const int d = target == GL_TEXTURE_3D ? std::max(depth >> level, 1) : depth;
-        if (target == GL_TEXTURE_2D)
-            glTexImage2D(target, level, static_cast<GLint>(f->internal), w, h, 0, f->format, f->type, zeros.data());
+        const int d = target == TextureTarget::texture_3d ? std::max(depth >> level, 1) : depth;
+        if (target == TextureTarget::texture_2d)
+            glTexImage2D(t.target, level, static_cast<GLint>(f.internal), w, h, 0, f.format, f.type, zeros.data());
         else
-            glTexImage3D(target, level, static_cast<GLint>(f->internal), w, h, d, 0, f->format, f->type, zeros.data());
+            glTexImage3D(t.target, level, static_cast<GLint>(f.internal), w, h, d, 0, f.format, f.type, zeros.data());
     }
-    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(gl_enum(desc["min_filter"])));
-    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, static_cast<GLint>(gl_enum(desc["mag_filter"])));
+    glTexParameteri(t.target, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(gl_enum(min)));
+    glTexParameteri(t.target, GL_TEXTURE_MAG_FILTER, static_cast<GLint>(gl_enum(mag)));
     for (GLenum axis : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
-        glTexParameteri(target, axis, static_cast<GLint>(wrap));
-    if (wrap == GL_CLAMP_TO_BORDER) {
+        glTexParameteri(t.target, axis, static_cast<GLint>(gl_enum(wrap)));
+    if (wrap == Wrap::clamp_to_border) {
         std::vector<float> border = desc.value("border_color", std::vector<float>{0, 0, 0, 0});
-        glTexParameterfv(target, GL_TEXTURE_BORDER_COLOR, border.data());
+        glTexParameterfv(t.target, GL_TEXTURE_BORDER_COLOR, border.data());
     }
-    glTexParameteri(target, GL_TEXTURE_BASE_LEVEL, 0);
-    glTexParameteri(target, GL_TEXTURE_MAX_LEVEL, levels - 1);
-    glBindTexture(target, 0);
+    glTexParameteri(t.target, GL_TEXTURE_BASE_LEVEL, 0);
+    glTexParameteri(t.target, GL_TEXTURE_MAX_LEVEL, levels - 1);
+    glBindTexture(t.target, 0);
     if (auto it = textures_.find(name); it != textures_.end()) glDeleteTextures(1, &it->second.id);
     textures_[name] = t;
     filled_.erase(name); // caller and bake textures hold zeros until filled again
@@ -251,9 +238,12 @@ std::string LayoutRunner::allocate(const json& desc, int width, int height) {
 
 std::string LayoutRunner::allocate_output_sized(int width, int height) {
     if (width == output_width_ && height == output_height_) return {};
-    for (const json& t : layout_["textures"])
-        if (t.value("size", "fixed") == "output")
+    for (const json& t : layout_["textures"]) {
+        TextureSize size{};
+        if (std::string e = read_word(t, "size", "fixed", &size); !e.empty()) return e;
+        if (size == TextureSize::output)
             if (std::string e = allocate(t, width, height); !e.empty()) return e;
+    }
     output_width_ = width;
     output_height_ = height;
     return {};
@@ -331,26 +321,26 @@ std::string LayoutRunner::apply_state(const json& s) {
     auto on = [](GLenum cap, bool enabled) { enabled ? glEnable(cap) : glDisable(cap); };
     // Logical operations: OpenGL 3.3 has them (more than 32 slices OR their bits into RGBA32UI);
     // ES 3.0 has no glLogicOp (penumbra emits none for essl300).
-    const std::string logic_op = s.value("logic_op", "NONE");
-    if (logic_op != "NONE") {
+    RenderState r; // the words of `s`; absent ones are RenderState's defaults (off)
+    for (std::string e : {read_word(s, "logic_op", "NONE", &r.logic_op), read_word(s, "blend_equation", "ADD", &r.blend_equation),
+                          read_word(s, "blend_src", "ONE", &r.blend_src), read_word(s, "blend_dst", "ZERO", &r.blend_dst),
+                          read_word(s, "depth_func", "LESS", &r.depth_func), read_word(s, "cull", "NONE", &r.cull)})
+        if (!e.empty()) return "state: " + e;
+    if (r.logic_op != LogicOp::none) {
         if (!epoxy_is_desktop_gl())
-            return "state: logic_op " + logic_op + " is not available on OpenGL ES; allowed: NONE";
-        if (logic_op != "OR") return "state: logic_op '" + logic_op + "' unknown; allowed: NONE, OR";
-        glLogicOp(GL_OR);
+            return "state: logic_op " + std::string(to_string(r.logic_op)) + " is not available on OpenGL ES; allowed: NONE";
+        glLogicOp(gl_enum(r.logic_op));
     }
-    if (epoxy_is_desktop_gl()) on(GL_COLOR_LOGIC_OP, logic_op != "NONE");
+    if (epoxy_is_desktop_gl()) on(GL_COLOR_LOGIC_OP, r.logic_op != LogicOp::none);
     on(GL_BLEND, s.value("blend", false));
     if (s.value("blend", false)) {
-        const GLenum equation = gl_enum(s["blend_equation"]), src = gl_enum(s["blend_src"]), dst = gl_enum(s["blend_dst"]);
-        if (!equation || !src || !dst) return "state: blend " + s.dump() + " unknown";
-        glBlendEquation(equation);
-        glBlendFunc(src, dst);
+        glBlendEquation(gl_enum(r.blend_equation));
+        glBlendFunc(gl_enum(r.blend_src), gl_enum(r.blend_dst));
     }
     on(GL_DEPTH_TEST, s.value("depth_test", false));
-    if (s.value("depth_test", false)) glDepthFunc(gl_enum(s["depth_func"]));
-    const std::string cull = s.value("cull", "NONE");
-    on(GL_CULL_FACE, cull != "NONE");
-    if (cull != "NONE") glCullFace(gl_enum(cull));
+    if (s.value("depth_test", false)) glDepthFunc(gl_enum(r.depth_func));
+    on(GL_CULL_FACE, r.cull != Cull::none);
+    if (r.cull != Cull::none) glCullFace(gl_enum(r.cull));
     const std::vector<bool> mask = s.value("color_mask", std::vector<bool>{true, true, true, true});
     glColorMask(mask[0], mask[1], mask[2], mask[3]);
     const float factor = s.value("polygon_offset_factor", 0.0f), units = s.value("polygon_offset_units", 0.0f);
@@ -402,9 +392,12 @@ std::string LayoutRunner::bind_outputs(const json& pass, std::vector<bool>& inte
     for (const json& out : pass["outputs"]) {
         const std::string texture = out["texture"];
         if (!textures_.count(texture)) return "pass " + std::string(pass["name"]) + ": no texture " + texture;
-        const Format* f = format_of((*textures_.at(texture).desc)["internal_format"]);
-        if (out.value("kind", "color") == "depth") {
-            if (!f->depth) return "pass " + std::string(pass["name"]) + ": depth output " + texture + " has a colour format";
+        const TextureFormat format = textures_.at(texture).format;
+        AttachmentKind kind{};
+        if (std::string e = read_word(out, "kind", "color", &kind); !e.empty())
+            return "pass " + std::string(pass["name"]) + ": " + e;
+        if (kind == AttachmentKind::depth) {
+            if (!is_depth(format)) return "pass " + std::string(pass["name"]) + ": depth output " + texture + " has a colour format";
             attach(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, texture, out["level"], out["layer"]);
             has_depth = true;
             continue;
@@ -412,7 +405,7 @@ std::string LayoutRunner::bind_outputs(const json& pass, std::vector<bool>& inte
         const GLenum attachment = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(buffers.size());
         attach(GL_FRAMEBUFFER, attachment, texture, out["level"], out["layer"]);
         buffers.push_back(attachment);
-        integer_buffers.push_back(f->integer);
+        integer_buffers.push_back(is_integer(format));
     }
     glReadBuffer(buffers.empty() ? GL_NONE : GL_COLOR_ATTACHMENT0);
     if (buffers.empty()) buffers.push_back(GL_NONE); // a depth-only pass (the shadow map)
@@ -423,8 +416,10 @@ std::string LayoutRunner::bind_outputs(const json& pass, std::vector<bool>& inte
 }
 
 std::string LayoutRunner::run_pass(const json& pass, const DrawScene& draw, int width, int height) {
-    const std::string name = pass["name"], action = pass["action"];
-    if (action == "generate_mipmap") { // 2x2 box levels ("mipmap": downsample box)
+    const std::string name = pass["name"];
+    PassAction action{};
+    if (std::string e = read_word(pass, "action", "", &action); !e.empty()) return "pass " + name + ": " + e;
+    if (action == PassAction::generate_mipmap) { // 2x2 box levels ("mipmap": downsample box)
         if (pass.value("mipmap", json::object()).value("downsample", "") != "box")
             return "pass " + name + ": generate_mipmap needs \"mipmap\" with downsample \"box\"";
         const Texture& t = textures_.at(pass["outputs"][0]["texture"]);
@@ -433,7 +428,7 @@ std::string LayoutRunner::run_pass(const json& pass, const DrawScene& draw, int 
         glBindTexture(t.target, 0);
         return {};
     }
-    if (action == "copy") { // the region "copy" names, through a read framebuffer (texel for texel)
+    if (action == PassAction::copy) { // the region "copy" names, through a read framebuffer (texel for texel)
         if (!pass.contains("copy")) return "pass " + name + ": a copy pass needs \"copy\" (levels, layers, size)";
         const json& copy = pass["copy"];
         const Texture& t = textures_.at(pass["outputs"][0]["texture"]);
@@ -451,8 +446,6 @@ std::string LayoutRunner::run_pass(const json& pass, const DrawScene& draw, int 
         glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
         return {};
     }
-    if (action != "fullscreen" && action != "draw_scene")
-        return "pass " + name + ": action '" + action + "' unknown; allowed: draw_scene, fullscreen, generate_mipmap, copy";
     auto program = programs_.find(pass["program"]);
     if (program == programs_.end()) return "pass " + name + ": no program " + std::string(pass["program"]);
     std::vector<bool> integer_buffers;
@@ -482,16 +475,16 @@ std::string LayoutRunner::run_pass(const json& pass, const DrawScene& draw, int 
     for (const json& input : pass["inputs"]) {
         auto t = textures_.find(input["texture"]);
         if (t == textures_.end()) return "pass " + name + ": no texture " + std::string(input["texture"]);
-        const std::string source = t->second.desc->value("source", "passes");
-        if (source != "passes" && !filled_.count(t->first))
-            return "pass " + name + ": texture " + t->first + " (source " + source + ") was never filled" +
-                   (source == "bake" ? " (a bake: uniforms.json bake_textures names its file)"
-                                     : " (a caller G-buffer: uniforms.json caller_textures names its file)");
-        const Format* f = format_of((*t->second.desc)["internal_format"]);
+        const TextureSource source = t->second.source;
+        if (source != TextureSource::passes && !filled_.count(t->first))
+            return "pass " + name + ": texture " + t->first + " (source " + std::string(to_string(source)) +
+                   ") was never filled" +
+                   (source == TextureSource::bake ? " (a bake: uniforms.json bake_textures names its file)"
+                                                  : " (a caller G-buffer: uniforms.json caller_textures names its file)");
         GLuint sampler_id = 0;
         if (input.contains("sampling"))
             if (std::string e = sampler(input["sampling"], "pass " + name + " input " + std::string(input["texture"]),
-                                        &sampler_id, f->depth);
+                                        &sampler_id, is_depth(t->second.format));
                 !e.empty())
                 return e;
         glActiveTexture(GL_TEXTURE0 + input["binding"].get<GLenum>());
@@ -504,7 +497,7 @@ std::string LayoutRunner::run_pass(const json& pass, const DrawScene& draw, int 
         }
     }
     if (std::string e = apply_state(pass["state"]); !e.empty()) return "pass " + name + ": " + e;
-    if (action == "draw_scene") {
+    if (action == PassAction::draw_scene) {
         if (!draw) return "pass " + name + ": draws the scene, and the caller gave no scene for phase " + pass.value("phase", "shadow");
         draw(program->second.id);
     } else {
@@ -529,11 +522,13 @@ std::string LayoutRunner::run_pass(const json& pass, const DrawScene& draw, int 
     return gl_error_text("pass " + name);
 }
 
-std::string LayoutRunner::run_phase(const std::string& phase, const DrawScene& draw, int width, int height) {
-    if (phase == "screen")
+std::string LayoutRunner::run_phase(Phase phase, const DrawScene& draw, int width, int height) {
+    if (phase == Phase::screen)
         if (std::string e = allocate_output_sized(width, height); !e.empty()) return e;
     for (const json& pass : layout_["passes"]) {
-        if (pass.value("phase", "shadow") != phase) continue;
+        Phase pass_phase{};
+        read_word(pass, "phase", "shadow", &pass_phase); // checked by create
+        if (pass_phase != phase) continue;
         if (std::string e = run_pass(pass, draw, width, height); !e.empty()) return e;
     }
     return {};
@@ -544,8 +539,12 @@ std::string LayoutRunner::fill_texture(const std::string& name, int width, int h
     for (const json& t : layout_["textures"])
         if (t["name"] == name) desc = &t;
     if (!desc) return "no texture " + name + " in layout.json";
-    if (desc->value("source", "passes") != "caller") return "texture " + name + " is not filled by the caller";
-    if (desc->value("size", "fixed") == "output")
+    TextureSource source{};
+    TextureSize size{};
+    read_word(*desc, "source", "passes", &source); // checked by create
+    read_word(*desc, "size", "fixed", &size);
+    if (source != TextureSource::caller) return "texture " + name + " is not filled by the caller";
+    if (size == TextureSize::output)
         if (std::string e = allocate_output_sized(width, height); !e.empty()) return e;
     const Texture& t = textures_.at(name);
     glBindTexture(t.target, t.id);
@@ -558,18 +557,15 @@ std::string LayoutRunner::fill_texture(const std::string& name, int width, int h
 }
 
 std::string LayoutRunner::fill_bake(const std::string& name, const std::vector<float>& rgba) {
-    const json* desc = nullptr;
     std::string bakes;
-    for (const json& t : layout_["textures"]) {
-        if (t["name"] == name) desc = &t;
-        if (t.value("source", "passes") == "bake") bakes += (bakes.empty() ? "" : ", ") + std::string(t["name"]);
-    }
-    if (!desc || desc->value("source", "passes") != "bake")
+    for (const auto& [texture, t] : textures_)
+        if (t.source == TextureSource::bake) bakes += (bakes.empty() ? "" : ", ") + texture;
+    auto it = textures_.find(name);
+    if (it == textures_.end() || it->second.source != TextureSource::bake)
         return "texture " + name + " is not a bake texture of this layout; bake textures: " + (bakes.empty() ? "none" : bakes);
-    const Texture& t = textures_.at(name);
-    const Format* f = format_of((*desc)["internal_format"]);
-    if (t.target != GL_TEXTURE_2D || f->format != GL_RGBA || f->integer || f->depth)
-        return "bake texture " + name + ": " + std::string((*desc)["internal_format"]) + " " + std::string((*desc)["target"]) +
+    const Texture& t = it->second;
+    if (t.target != GL_TEXTURE_2D || channels(t.format) != 4 || is_integer(t.format) || is_depth(t.format))
+        return "bake texture " + name + ": " + std::string(to_string(t.format)) + " " + std::string((*t.desc)["target"]) +
                "; this runner uploads RGBA floats into 2D RGBA textures only";
     const std::size_t expected = 4 * static_cast<std::size_t>(t.width) * t.height;
     if (rgba.size() != expected)
@@ -588,7 +584,6 @@ std::string LayoutRunner::fill_bake(const std::string& name, const std::vector<f
 }
 
 std::vector<float> LayoutRunner::read_texture(const Texture& t) {
-    const Format* f = format_of((*t.desc)["internal_format"]);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, read_framebuffer_);
     attach(GL_READ_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, (*t.desc)["name"], 0, -1);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
@@ -596,7 +591,7 @@ std::vector<float> LayoutRunner::read_texture(const Texture& t) {
     std::vector<float> rgba(4 * n);
     // RGBA/UNSIGNED_BYTE (normalised) and RGBA/FLOAT (float buffers) are readable on both APIs.
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    if (f->is_float) {
+    if (is_float(t.format)) {
         glReadPixels(0, 0, t.width, t.height, GL_RGBA, GL_FLOAT, rgba.data());
     } else {
         std::vector<std::uint8_t> bytes(4 * n);

@@ -18,6 +18,8 @@
 //   std::vector<float> visibility = runner->read_result();              // bottom row first
 #pragma once
 
+#include <penumbra/layout_types.hpp>
+
 #include <epoxy/gl.h>
 #include <nlohmann/json.hpp>
 
@@ -39,7 +41,7 @@ public:
     // program or file.
     static std::unique_ptr<LayoutRunner> create(const nlohmann::json& layout,
                                                 const std::map<std::string, std::string>& sources, std::string* error,
-                                                const std::vector<std::string>& phases = {"shadow", "screen", "example"});
+                                                const std::vector<Phase>& phases = {Phase::shadow, Phase::screen, Phase::example});
     ~LayoutRunner();
     LayoutRunner(const LayoutRunner&) = delete;
     LayoutRunner& operator=(const LayoutRunner&) = delete;
@@ -56,7 +58,7 @@ public:
 
     // Runs the passes of `phase` ("shadow", "screen", "example") in layout order; width × height
     // is the output size (passes with a 0 × 0 viewport). Empty on success, else a diagnostic.
-    std::string run_phase(const std::string& phase, const DrawScene& draw, int width, int height);
+    std::string run_phase(Phase phase, const DrawScene& draw, int width, int height);
 
     // The layout's result texture (visibility) as floats, bottom row first.
     std::vector<float> read_result();
@@ -73,6 +75,9 @@ private:
         GLenum target = 0;
         int width = 0, height = 0;
         const nlohmann::json* desc = nullptr;
+        TextureFormat format = TextureFormat::rgba8;
+        TextureSource source = TextureSource::passes;
+        TextureSize size = TextureSize::fixed;
     };
     struct Program {
         GLuint id = 0;
@@ -98,7 +103,8 @@ private:
     std::map<std::string, std::vector<float>> values_;
     std::vector<std::string> extensions_;
     std::set<std::string> filled_; // caller and bake textures filled since their allocation
-    std::map<std::string, GLuint> samplers_; // by the sampling's JSON text
+    std::map<Sampling, GLuint> samplers_; // one per distinct sampling
+    std::set<Phase> phases_;             // the phases create linked programs for
     GLuint framebuffer_ = 0, read_framebuffer_ = 0, empty_vao_ = 0;
     int output_width_ = 0, output_height_ = 0;
 };

@@ -1,5 +1,7 @@
 #include "layout_runner.hpp"
 
+#include <penumbra/detail/problem.hpp>
+#include <penumbra/layout_types.hpp>
 #include <penumbra/program.hpp>
 #include <penumbra/validation.hpp>
 
@@ -8,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <array>
 #include <functional>
 #include <optional>
 #include <sstream>
@@ -28,7 +31,8 @@ void check(VkResult result, const std::string& what) {
     if (result != VK_SUCCESS) fail(what + ": " + result_name(result));
 }
 
-// layout.json's internal formats: the Vulkan format and the floats a texel holds.
+// layout.json's internal formats: the Vulkan format, and what penumbra/formats.hpp says of the
+// floats a texel holds.
 struct FormatInfo {
     VkFormat format = VK_FORMAT_UNDEFINED;
     int channels = 0;
@@ -41,124 +45,121 @@ struct FormatInfo {
 
 // DEPTH_COMPONENT24 is X8_D24_UNORM_PACK32, which Vulkan does not require (it requires depth
 // attachments of X8_D24_UNORM_PACK32 or D32_SFLOAT): the caller checks the device's support.
+VkFormat vk_format(TextureFormat f) {
+    switch (f) {
+    case TextureFormat::rgba8: return VK_FORMAT_R8G8B8A8_UNORM;
+    case TextureFormat::rgba16f: return VK_FORMAT_R16G16B16A16_SFLOAT;
+    case TextureFormat::rgba32f: return VK_FORMAT_R32G32B32A32_SFLOAT;
+    case TextureFormat::r8: return VK_FORMAT_R8_UNORM;
+    case TextureFormat::r16f: return VK_FORMAT_R16_SFLOAT;
+    case TextureFormat::r32f: return VK_FORMAT_R32_SFLOAT;
+    case TextureFormat::rg16f: return VK_FORMAT_R16G16_SFLOAT;
+    case TextureFormat::rg32f: return VK_FORMAT_R32G32_SFLOAT;
+    case TextureFormat::rgba32ui: return VK_FORMAT_R32G32B32A32_UINT; // the slicing bits of 64 / 128 slices
+    case TextureFormat::r32ui: return VK_FORMAT_R32_UINT;             // adaptive slice boundaries
+    case TextureFormat::depth24: return VK_FORMAT_X8_D24_UNORM_PACK32;
+    case TextureFormat::depth32f: return VK_FORMAT_D32_SFLOAT; // shadow maps
+    }
+    return VK_FORMAT_UNDEFINED;
+}
+
 FormatInfo format_info(const std::string& name) {
-    static const std::map<std::string, FormatInfo> formats{
-        {"RGBA8", {VK_FORMAT_R8G8B8A8_UNORM, 4, 1, true}},       {"R8", {VK_FORMAT_R8_UNORM, 1, 1, true}},
-        {"RGBA16F", {VK_FORMAT_R16G16B16A16_SFLOAT, 4, 2, false}}, {"R16F", {VK_FORMAT_R16_SFLOAT, 1, 2, false}},
-        {"RG16F", {VK_FORMAT_R16G16_SFLOAT, 2, 2, false}},        {"RGBA32F", {VK_FORMAT_R32G32B32A32_SFLOAT, 4, 4, false}},
-        {"R32F", {VK_FORMAT_R32_SFLOAT, 1, 4, false}},            {"RG32F", {VK_FORMAT_R32G32_SFLOAT, 2, 4, false}},
-        {"RGBA32UI", {VK_FORMAT_R32G32B32A32_UINT, 4, 4, false, false, true}}, // the slicing bits of 64 / 128 slices
-        {"R32UI", {VK_FORMAT_R32_UINT, 1, 4, false, false, true}},             // adaptive slice boundaries
-        {"DEPTH_COMPONENT32F", {VK_FORMAT_D32_SFLOAT, 1, 4, false, true}},     // shadow maps
-        {"DEPTH_COMPONENT24", {VK_FORMAT_X8_D24_UNORM_PACK32, 1, 4, false, true}}};
-    auto it = formats.find(name);
-    if (it == formats.end()) {
-        std::string allowed;
-        for (const auto& [n, f] : formats) allowed += (allowed.empty() ? "" : ", ") + n;
-        fail("internal format '" + name + "' is not supported by this runner; allowed: " + allowed);
+    const std::optional<TextureFormat> f = parse_enum<TextureFormat>(name);
+    if (!f)
+        fail("internal format '" + name + "' is not supported by this runner; allowed: " +
+             penumbra::detail::joined_names<TextureFormat>().str());
+    return {vk_format(*f),
+            channels(*f),
+            bytes_per_channel(*f),
+            penumbra::format_info(*f).kind == FormatKind::unorm,
+            is_depth(*f),
+            is_integer(*f)};
+}
+
+// The layout enum layout.json spells `key` of `j` with (`fallback` when absent and not empty):
+// strings end here. Fails with "<what>: <key> '<word>' is unknown; allowed: …".
+template <class Enum> Enum word(const json& j, const char* key, const std::string& what, std::string_view fallback = {}) {
+    if (!j.contains(key) && fallback.empty()) fail(what + ": no " + key);
+    const std::string name = j.contains(key) ? j.at(key).get<std::string>() : std::string(fallback);
+    if (const std::optional<Enum> value = parse_enum<Enum>(name)) return *value;
+    fail(what + ": " + key + " '" + name + "' is unknown; allowed: " + penumbra::detail::joined_names<Enum>().str());
+}
+
+VkFilter filter_of(TextureFilter f) { return filters_linearly(f) ? VK_FILTER_LINEAR : VK_FILTER_NEAREST; }
+
+VkCompareOp compare_op(CompareFunc f) {
+    switch (f) {
+    case CompareFunc::never: return VK_COMPARE_OP_NEVER;
+    case CompareFunc::less: return VK_COMPARE_OP_LESS;
+    case CompareFunc::equal: return VK_COMPARE_OP_EQUAL;
+    case CompareFunc::lequal: return VK_COMPARE_OP_LESS_OR_EQUAL;
+    case CompareFunc::greater: return VK_COMPARE_OP_GREATER;
+    case CompareFunc::notequal: return VK_COMPARE_OP_NOT_EQUAL;
+    case CompareFunc::gequal: return VK_COMPARE_OP_GREATER_OR_EQUAL;
+    case CompareFunc::always: return VK_COMPARE_OP_ALWAYS;
     }
-    return it->second;
+    return VK_COMPARE_OP_NEVER;
 }
 
-VkFilter filter_of(const std::string& name) {
-    return name.starts_with("LINEAR") ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
-}
-
-VkCompareOp compare_op(const std::string& name, const std::string& what) {
-    static const std::map<std::string, VkCompareOp> ops{
-        {"NEVER", VK_COMPARE_OP_NEVER},     {"LESS", VK_COMPARE_OP_LESS},         {"EQUAL", VK_COMPARE_OP_EQUAL},
-        {"LEQUAL", VK_COMPARE_OP_LESS_OR_EQUAL}, {"GREATER", VK_COMPARE_OP_GREATER}, {"NOTEQUAL", VK_COMPARE_OP_NOT_EQUAL},
-        {"GEQUAL", VK_COMPARE_OP_GREATER_OR_EQUAL}, {"ALWAYS", VK_COMPARE_OP_ALWAYS}};
-    auto it = ops.find(name);
-    if (it == ops.end())
-        fail(what + ": compare function '" + name + "' is unknown; allowed: NEVER, LESS, EQUAL, LEQUAL, GREATER, NOTEQUAL, GEQUAL, ALWAYS");
-    return it->second;
-}
-
-// How one binding reads its texture: layout.json's "sampling" (layout_version 3: per pass input and
-// per sampler parameter), or for version 2 the texture's own filters, wrap and compare.
-struct Sampling {
-    std::string min_filter = "NEAREST", mag_filter = "NEAREST", wrap = "CLAMP_TO_EDGE", compare;
-    std::vector<float> border_color{0, 0, 0, 0};
-    bool mipmapped() const { return min_filter.find("_MIPMAP_") != std::string::npos; }
-    bool linear() const { return filter_of(min_filter) == VK_FILTER_LINEAR || filter_of(mag_filter) == VK_FILTER_LINEAR; }
-    std::string key() const {
-        std::string k = min_filter;
-        for (const std::string* part : {&mag_filter, &wrap, &compare}) k.append("|").append(*part);
-        for (float c : border_color) k.append("|").append(std::to_string(c));
-        return k;
-    }
-};
-
+// How one binding reads its texture (penumbra::Sampling): layout.json's "sampling" (layout_version
+// 3: per pass input and per sampler parameter), or for version 2 the texture's own filters, wrap
+// and compare.
 Sampling parse_sampling(const json& j, const std::string& what) {
-    static const std::vector<std::string> min_filters{"NEAREST", "LINEAR", "NEAREST_MIPMAP_NEAREST", "LINEAR_MIPMAP_NEAREST",
-                                                      "NEAREST_MIPMAP_LINEAR", "LINEAR_MIPMAP_LINEAR"};
     Sampling s;
-    s.min_filter = j.at("min_filter").get<std::string>();
-    s.mag_filter = j.at("mag_filter").get<std::string>();
-    s.wrap = j.at("wrap").get<std::string>();
-    s.compare = j.value("compare", std::string());
-    if (std::find(min_filters.begin(), min_filters.end(), s.min_filter) == min_filters.end())
-        fail(what + ": min_filter '" + s.min_filter + "' is unknown; allowed: NEAREST, LINEAR, NEAREST_MIPMAP_NEAREST, "
-             "LINEAR_MIPMAP_NEAREST, NEAREST_MIPMAP_LINEAR, LINEAR_MIPMAP_LINEAR");
-    if (s.mag_filter != "NEAREST" && s.mag_filter != "LINEAR")
-        fail(what + ": mag_filter '" + s.mag_filter + "' is unknown; allowed: NEAREST, LINEAR");
-    if (s.wrap == "CLAMP_TO_BORDER") {
+    s.min_filter = word<TextureFilter>(j, "min_filter", what);
+    s.mag_filter = word<TextureFilter>(j, "mag_filter", what);
+    if (s.mag_filter != TextureFilter::nearest && s.mag_filter != TextureFilter::linear)
+        fail(what + ": mag_filter '" + std::string(to_string(s.mag_filter)) + "' is unknown; allowed: NEAREST, LINEAR");
+    s.wrap = word<Wrap>(j, "wrap", what);
+    if (s.wrap == Wrap::clamp_to_border) {
         if (!j.contains("border_color")) fail(what + ": wrap CLAMP_TO_BORDER without a border_color");
-        s.border_color = j.at("border_color").get<std::vector<float>>();
+        const std::vector<float> border = j.at("border_color").get<std::vector<float>>();
+        if (border.size() != 4) fail(what + ": border_color is not 4 numbers");
+        std::copy(border.begin(), border.end(), s.border_color.begin());
     }
-    if (!s.compare.empty()) compare_op(s.compare, what); // checks the name
+    if (!j.value("compare", std::string()).empty()) s.compare = word<CompareFunc>(j, "compare", what);
     return s;
 }
+bool linear(const Sampling& s) { return filters_linearly(s.min_filter) || filters_linearly(s.mag_filter); }
+bool mipmapped(const Sampling& s) {
+    return s.min_filter != TextureFilter::nearest && s.min_filter != TextureFilter::linear;
+}
 
-VkSamplerAddressMode address_mode(const std::string& wrap) {
-    if (wrap == "CLAMP_TO_BORDER") return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
-    if (wrap == "CLAMP_TO_EDGE") return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    if (wrap == "REPEAT") return VK_SAMPLER_ADDRESS_MODE_REPEAT;
-    if (wrap == "MIRRORED_REPEAT") return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
-    fail("wrap mode '" + wrap + "' is unknown; allowed: CLAMP_TO_BORDER, CLAMP_TO_EDGE, REPEAT, MIRRORED_REPEAT");
+VkSamplerAddressMode address_mode(Wrap wrap) {
+    return wrap == Wrap::clamp_to_border ? VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER : VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
 }
 
 // Core Vulkan has three border colours; others need VK_EXT_custom_border_color.
 // `integer`: the sampler reads an integer texture (usampler), whose border is an integer colour.
-VkBorderColor border_color(const std::vector<float>& c, bool integer) {
-    if (c == std::vector<float>{0, 0, 0, 0}) return integer ? VK_BORDER_COLOR_INT_TRANSPARENT_BLACK : VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK;
-    if (c == std::vector<float>{0, 0, 0, 1}) return integer ? VK_BORDER_COLOR_INT_OPAQUE_BLACK : VK_BORDER_COLOR_FLOAT_OPAQUE_BLACK;
-    if (c == std::vector<float>{1, 1, 1, 1}) return integer ? VK_BORDER_COLOR_INT_OPAQUE_WHITE : VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
+VkBorderColor border_color(const std::array<float, 4>& c, bool integer) {
+    if (c == std::array<float, 4>{0, 0, 0, 0}) return integer ? VK_BORDER_COLOR_INT_TRANSPARENT_BLACK : VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK;
+    if (c == std::array<float, 4>{0, 0, 0, 1}) return integer ? VK_BORDER_COLOR_INT_OPAQUE_BLACK : VK_BORDER_COLOR_FLOAT_OPAQUE_BLACK;
+    if (c == std::array<float, 4>{1, 1, 1, 1}) return integer ? VK_BORDER_COLOR_INT_OPAQUE_WHITE : VK_BORDER_COLOR_FLOAT_OPAQUE_WHITE;
     fail("border colour is not one of core Vulkan's (0,0,0,0), (0,0,0,1), (1,1,1,1)");
 }
 
-VkBlendOp blend_op(const std::string& name) {
-    if (name == "ADD") return VK_BLEND_OP_ADD;
-    if (name == "MAX") return VK_BLEND_OP_MAX;
-    if (name == "MIN") return VK_BLEND_OP_MIN;
-    if (name == "SUBTRACT") return VK_BLEND_OP_SUBTRACT;
-    if (name == "REVERSE_SUBTRACT") return VK_BLEND_OP_REVERSE_SUBTRACT;
-    fail("blend equation '" + name + "' is unknown");
+VkBlendOp blend_op(BlendEquation e) {
+    switch (e) {
+    case BlendEquation::add: return VK_BLEND_OP_ADD;
+    case BlendEquation::max: return VK_BLEND_OP_MAX;
+    case BlendEquation::min: return VK_BLEND_OP_MIN;
+    }
+    return VK_BLEND_OP_ADD;
 }
 
-VkBlendFactor blend_factor(const std::string& name) {
-    static const std::map<std::string, VkBlendFactor> factors{
-        {"ZERO", VK_BLEND_FACTOR_ZERO},
-        {"ONE", VK_BLEND_FACTOR_ONE},
-        {"SRC_COLOR", VK_BLEND_FACTOR_SRC_COLOR},
-        {"ONE_MINUS_SRC_COLOR", VK_BLEND_FACTOR_ONE_MINUS_SRC_COLOR},
-        {"DST_COLOR", VK_BLEND_FACTOR_DST_COLOR},
-        {"ONE_MINUS_DST_COLOR", VK_BLEND_FACTOR_ONE_MINUS_DST_COLOR},
-        {"SRC_ALPHA", VK_BLEND_FACTOR_SRC_ALPHA},
-        {"ONE_MINUS_SRC_ALPHA", VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA},
-        {"DST_ALPHA", VK_BLEND_FACTOR_DST_ALPHA},
-        {"ONE_MINUS_DST_ALPHA", VK_BLEND_FACTOR_ONE_MINUS_DST_ALPHA}};
-    auto it = factors.find(name);
-    if (it == factors.end()) fail("blend factor '" + name + "' is unknown");
-    return it->second;
+VkBlendFactor blend_factor(BlendFactor f) {
+    switch (f) {
+    case BlendFactor::zero: return VK_BLEND_FACTOR_ZERO;
+    case BlendFactor::one: return VK_BLEND_FACTOR_ONE;
+    case BlendFactor::src_alpha: return VK_BLEND_FACTOR_SRC_ALPHA;
+    case BlendFactor::one_minus_src_alpha: return VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+    case BlendFactor::dst_color: return VK_BLEND_FACTOR_DST_COLOR;
+    }
+    return VK_BLEND_FACTOR_ZERO;
 }
 
-VkCullModeFlags cull_mode(const std::string& name) {
-    if (name == "NONE") return VK_CULL_MODE_NONE;
-    if (name == "BACK") return VK_CULL_MODE_BACK_BIT;
-    if (name == "FRONT") return VK_CULL_MODE_FRONT_BIT;
-    fail("cull mode '" + name + "' is unknown; allowed: NONE, BACK, FRONT");
+VkCullModeFlags cull_mode(Cull c) {
+    return c == Cull::back ? VK_CULL_MODE_BACK_BIT : c == Cull::front ? VK_CULL_MODE_FRONT_BIT : VK_CULL_MODE_NONE;
 }
 
 // std140 sizes of the plain uniform types an emission declares.
@@ -207,19 +208,22 @@ struct RequiredLimits {
 void check_required_limits(const json& layout) {
     using L = RequiredLimits;
     for (const json& t : layout.at("textures")) {
-        const std::string name = t.at("name"), target = t.at("target");
+        const std::string name = t.at("name");
+        const TextureTarget target = word<TextureTarget>(t, "target", "texture " + name);
         const int w = t.at("width"), h = t.at("height"), d = t.at("depth");
-        const int max_side = target == "3D" ? L::image_dimension_3d : L::image_dimension_2d;
-        if (w > max_side || h > max_side || (target == "3D" && d > L::image_dimension_3d) ||
-            (target == "2D_ARRAY" && d > L::image_array_layers))
+        const bool volume = target == TextureTarget::texture_3d;
+        const int max_side = volume ? L::image_dimension_3d : L::image_dimension_2d;
+        if (w > max_side || h > max_side || (volume && d > L::image_dimension_3d) ||
+            (target == TextureTarget::texture_2d_array && d > L::image_array_layers))
             fail("texture " + name + ": " + std::to_string(w) + "x" + std::to_string(h) + "x" + std::to_string(d) +
-                 " exceeds what Vulkan guarantees for a " + target + " image (2D " + std::to_string(L::image_dimension_2d) +
+                 " exceeds what Vulkan guarantees for a " + std::string(to_string(target)) + " image (2D " + std::to_string(L::image_dimension_2d) +
                  ", 3D " + std::to_string(L::image_dimension_3d) + ", layers " + std::to_string(L::image_array_layers) + ")");
     }
     for (const json& p : layout.at("passes")) {
         const std::string name = p.at("name");
         std::size_t colour = 0;
-        for (const json& o : p.at("outputs")) colour += o.value("kind", "color") == "color";
+        for (const json& o : p.at("outputs"))
+            colour += word<AttachmentKind>(o, "kind", "pass " + name, "color") == AttachmentKind::color;
         if (colour > static_cast<std::size_t>(L::color_attachments))
             fail("pass " + name + ": " + std::to_string(colour) + " colour attachments; Vulkan guarantees " +
                  std::to_string(L::color_attachments));
@@ -258,14 +262,16 @@ void check_required_limits(const json& layout) {
 
 struct Texture {
     std::string name;
-    std::string target; // 2D, 2D_ARRAY, 3D
+    TextureTarget target = TextureTarget::texture_2d;
     FormatInfo format;
     std::uint32_t width = 0, height = 0, depth = 1, levels = 1;
-    std::string initial; // zero, undefined, caller, bake (layout_version 3; else from "source")
+    // zero, caller, bake (layout_version 3; else from "source"); none: "undefined", this runner's
+    // own word for a texture it need not clear (every texel the passes read is written first)
+    std::optional<TextureInitial> initial;
     const json* desc = nullptr;
     VkImage image = VK_NULL_HANDLE;
-    std::uint32_t layers() const { return target == "2D_ARRAY" ? depth : 1; }
-    std::uint32_t extent_depth() const { return target == "3D" ? depth : 1; }
+    std::uint32_t layers() const { return target == TextureTarget::texture_2d_array ? depth : 1; }
+    std::uint32_t extent_depth() const { return target == TextureTarget::texture_3d ? depth : 1; }
 };
 
 struct Block {
@@ -312,14 +318,14 @@ public:
             fail("layout.json has layout_version " + std::to_string(version) +
                  "; this runner follows versions 2 (structured render state, pass phases, texture sizes and sources) "
                  "and 3 (per-binding sampling, vertex inputs, descriptor sets, initial contents, copy and mipmap details)");
-        if (layout.at("config").at("target") != "vulkan")
+        if (parse_enum<Target>(layout.at("config").at("target").get<std::string>()) != Target::vulkan)
             fail("layout.json is for target '" + layout.at("config").at("target").get<std::string>() +
                  "'; this runner needs the vulkan target's");
         check_required_limits(layout);
         std::vector<const json*> passes;
-        for (const char* phase : {"shadow", "screen"})
+        for (const Phase phase : {Phase::shadow, Phase::screen})
             for (const json& pass : layout.at("passes"))
-                if (pass.at("phase") == phase) passes.push_back(&pass);
+                if (word<Phase>(pass, "phase", "pass " + pass.value("name", std::string())) == phase) passes.push_back(&pass);
         for (const json& t : layout.at("textures")) create_texture(t, passes);
         vertices_ = create_buffer(std::max<std::size_t>(2 * in_.triangles.size() * sizeof(float), 16),
                                   VK_BUFFER_USAGE_VERTEX_BUFFER_BIT);
@@ -441,7 +447,6 @@ private:
         Texture tex;
         tex.desc = &t;
         tex.name = t.at("name").get<std::string>();
-        tex.target = t.at("target").get<std::string>();
         const std::string format_name = t.at("internal_format").get<std::string>();
         const std::string what = "texture " + tex.name;
         try {
@@ -449,21 +454,18 @@ private:
         } catch (const Failure& f) {
             fail(what + ": " + f.message);
         }
-        if (tex.target != "2D" && tex.target != "2D_ARRAY" && tex.target != "3D")
-            fail(what + ": target '" + tex.target + "' is unknown; allowed: 2D, 2D_ARRAY, 3D");
-        if (tex.format.depth && tex.target != "2D")
-            fail(what + ": a " + tex.target + " depth texture; this runner has 2D depth textures only");
-        const bool output_sized = t.at("size") == "output";
+        tex.target = word<TextureTarget>(t, "target", what);
+        if (tex.format.depth && tex.target != TextureTarget::texture_2d)
+            fail(what + ": a " + std::string(to_string(tex.target)) + " depth texture; this runner has 2D depth textures only");
+        const bool output_sized = word<TextureSize>(t, "size", what) == TextureSize::output;
         tex.width = static_cast<std::uint32_t>(output_sized ? in_.width : t.at("width").get<int>());
         tex.height = static_cast<std::uint32_t>(output_sized ? in_.height : t.at("height").get<int>());
         tex.depth = static_cast<std::uint32_t>(t.at("depth").get<int>());
         tex.levels = static_cast<std::uint32_t>(t.at("mip_levels").get<int>());
-        const std::string source = t.value("source", std::string("passes"));
-        tex.initial = t.value("initial", source == "caller" ? std::string("caller")
-                                         : source == "bake" ? std::string("bake")
-                                                            : std::string("zero"));
-        if (tex.initial != "zero" && tex.initial != "undefined" && tex.initial != "caller" && tex.initial != "bake")
-            fail(what + ": initial '" + tex.initial + "' is unknown; allowed: zero, undefined, caller, bake");
+        // layout_version 2 has no "initial": it follows from the source
+        const TextureDesc source{.source = word<TextureSource>(t, "source", what, "passes")};
+        if (t.value("initial", std::string()) != "undefined")
+            tex.initial = word<TextureInitial>(t, "initial", what, to_string(initial_contents(source)));
 
         // DEPTH_COMPONENT24: X8_D24_UNORM_PACK32 where the device has it, else D32_SFLOAT (Vulkan
         // requires one of the two as a depth attachment; 32-bit float holds every 24-bit value).
@@ -478,27 +480,28 @@ private:
         VkFormatFeatureFlags features = VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
         bool attachment = false, compared = false;
         for (const json* pass : passes) {
-            const std::string action = pass->at("action"), pass_name = pass->at("name");
+            const std::string pass_name = pass->at("name");
+            const PassAction action = word<PassAction>(*pass, "action", "pass " + pass_name);
             for (const json& o : pass->at("outputs")) {
                 if (o.at("texture") != tex.name) continue;
-                const std::string kind = o.value("kind", "color");
-                if (action == "generate_mipmap") {
+                const AttachmentKind kind = word<AttachmentKind>(o, "kind", "pass " + pass_name, "color");
+                if (action == PassAction::generate_mipmap) {
                     if (tex.format.depth || tex.format.integer)
                         fail("pass " + pass_name + ": generate_mipmap of " + format_name + " texture " + tex.name +
                              ": its box downsample is a linear blit, which Vulkan does not allow for depth or integer formats");
                     usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
                     features |= VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT |
                                 VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
-                } else if (action == "copy") {
+                } else if (action == PassAction::copy) {
                     // TRANSFER_DST already
-                } else if (kind == "depth") {
+                } else if (kind == AttachmentKind::depth) {
                     if (!tex.format.depth)
                         fail("pass " + pass_name + ": depth output " + tex.name + " has the colour format " + format_name +
                              "; allowed: DEPTH_COMPONENT32F, DEPTH_COMPONENT24");
                     attachment = true;
                     usage |= VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
                     features |= VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT;
-                } else if (kind == "color") {
+                } else {
                     if (tex.format.depth)
                         fail("pass " + pass_name + ": colour output " + tex.name + " has the depth format " + format_name +
                              "; a depth texture is written as an output of kind \"depth\"");
@@ -509,13 +512,11 @@ private:
                     usage |= VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
                     features |= VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT;
                     if (pass->at("state").at("blend").get<bool>()) features |= VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT;
-                } else {
-                    fail("pass " + pass_name + ": output kind '" + kind + "' is unknown; allowed: color, depth");
                 }
             }
             for (const json& i : pass->at("inputs")) {
                 if (i.at("texture") != tex.name) continue;
-                if (action == "copy") {
+                if (action == PassAction::copy) {
                     usage |= VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
                     features |= VK_FORMAT_FEATURE_TRANSFER_SRC_BIT;
                     continue;
@@ -526,18 +527,18 @@ private:
                     check_sampler_type(sampling, param->at("type"), reading);
                 usage |= VK_IMAGE_USAGE_SAMPLED_BIT;
                 features |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT;
-                if (sampling.linear()) {
+                if (linear(sampling)) {
                     if (tex.format.integer)
                         fail(reading + ": LINEAR filtering of the integer texture " + tex.name + " (" + format_name +
                              "); Vulkan filters integer formats with NEAREST only");
                     // With depth comparison, LINEAR needs no FILTER_LINEAR feature (the specification
                     // allows it wherever comparison is supported, filtered "in an implementation-
                     // dependent manner" without the feature; lavapipe lacks it for D32_SFLOAT).
-                    if (sampling.compare.empty()) features |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+                    if (!sampling.compare) features |= VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
                 }
-                if (!sampling.compare.empty()) {
+                if (sampling.compare) {
                     if (!tex.format.depth)
-                        fail(reading + ": compare '" + sampling.compare + "' on the colour texture " + tex.name + " (" +
+                        fail(reading + ": compare '" + std::string(to_string(*sampling.compare)) + "' on the colour texture " + tex.name + " (" +
                              format_name + "); hardware comparison needs a depth format");
                     compared = true;
                 }
@@ -566,8 +567,8 @@ private:
 
         VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
         // A depth slice of a 3D image is rendered through a 2D view of it.
-        if (tex.target == "3D" && attachment) info.flags = VK_IMAGE_CREATE_2D_ARRAY_COMPATIBLE_BIT;
-        info.imageType = tex.target == "3D" ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
+        if (tex.target == TextureTarget::texture_3d && attachment) info.flags = VK_IMAGE_CREATE_2D_ARRAY_COMPATIBLE_BIT;
+        info.imageType = tex.target == TextureTarget::texture_3d ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
         info.format = tex.format.format;
         info.extent = {tex.width, tex.height, tex.extent_depth()};
         info.mipLevels = tex.levels;
@@ -582,7 +583,7 @@ private:
             tex.width > limits.maxExtent.width || tex.height > limits.maxExtent.height ||
             tex.extent_depth() > limits.maxExtent.depth || tex.levels > limits.maxMipLevels ||
             tex.layers() > limits.maxArrayLayers)
-            fail(what + ": the device cannot create a " + tex.target + " " + format_name + " image of " +
+            fail(what + ": the device cannot create a " + std::string(to_string(tex.target)) + " " + format_name + " image of " +
                  std::to_string(tex.width) + "x" + std::to_string(tex.height) + "x" + std::to_string(tex.depth) + " with " +
                  std::to_string(tex.levels) + " levels");
         check(vkCreateImage(device_, &info, nullptr, &tex.image), what + ": vkCreateImage");
@@ -599,23 +600,23 @@ private:
     // (sampler2DShadow, ...) must be read with a compare function, and any other without one.
     static void check_sampler_type(const Sampling& sampling, const std::string& type, const std::string& what) {
         const bool shadow_type = type.find("Shadow") != std::string::npos;
-        if (shadow_type && sampling.compare.empty())
+        if (shadow_type && !sampling.compare)
             fail(what + ": the program declares a " + type + ", but its sampling has no compare function");
-        if (!shadow_type && !sampling.compare.empty())
-            fail(what + ": compare '" + sampling.compare + "' on a " + type + "; hardware comparison needs a shadow sampler type");
+        if (!shadow_type && sampling.compare)
+            fail(what + ": compare '" + std::string(to_string(*sampling.compare)) + "' on a " + type + "; hardware comparison needs a shadow sampler type");
     }
 
     VkSampler sampler(const Sampling& sampling, const std::string& type, const std::string& what) {
         check_sampler_type(sampling, type, what);
         const bool integer = type.starts_with("usampler") || type.starts_with("isampler");
-        const std::string key = sampling.key() + (integer ? "|integer" : "");
+        const std::pair<Sampling, bool> key{sampling, integer};
         if (auto it = samplers_.find(key); it != samplers_.end()) return it->second;
         VkSamplerCreateInfo s{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
         s.magFilter = filter_of(sampling.mag_filter);
         s.minFilter = filter_of(sampling.min_filter);
-        s.mipmapMode = sampling.min_filter.ends_with("MIPMAP_LINEAR") ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
+        s.mipmapMode = blends_levels(sampling.min_filter) ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
         s.addressModeU = s.addressModeV = s.addressModeW = address_mode(sampling.wrap);
-        if (sampling.wrap == "CLAMP_TO_BORDER") {
+        if (sampling.wrap == Wrap::clamp_to_border) {
             try {
                 s.borderColor = border_color(sampling.border_color, integer);
             } catch (const Failure& f) {
@@ -623,10 +624,10 @@ private:
             }
         }
         s.minLod = 0.0f;
-        s.maxLod = sampling.mipmapped() ? VK_LOD_CLAMP_NONE : 0.25f; // 0.25: a GL non-mipmap filter (Vulkan spec, "Samplers")
-        if (!sampling.compare.empty()) {
+        s.maxLod = mipmapped(sampling) ? VK_LOD_CLAMP_NONE : 0.25f; // 0.25: a GL non-mipmap filter (Vulkan spec, "Samplers")
+        if (sampling.compare) {
             s.compareEnable = VK_TRUE;
-            s.compareOp = compare_op(sampling.compare, what);
+            s.compareOp = compare_op(*sampling.compare);
         }
         VkSampler handle = VK_NULL_HANDLE;
         check(vkCreateSampler(device_, &s, nullptr, &handle), what + ": vkCreateSampler");
@@ -653,9 +654,9 @@ private:
 
     // What a sampler reads: the whole texture, or only level `level` (>= 0).
     VkImageView sampled_view(const Texture& t, int level) {
-        const VkImageViewType type = t.target == "3D"       ? VK_IMAGE_VIEW_TYPE_3D
-                                     : t.target == "2D_ARRAY" ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
-                                                              : VK_IMAGE_VIEW_TYPE_2D;
+        const VkImageViewType type = t.target == TextureTarget::texture_3d       ? VK_IMAGE_VIEW_TYPE_3D
+                                     : t.target == TextureTarget::texture_2d_array ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
+                                                                                   : VK_IMAGE_VIEW_TYPE_2D;
         if (level >= static_cast<int>(t.levels)) fail("texture " + t.name + ": input level " + std::to_string(level) + " does not exist");
         return level < 0 ? view(t, type, 0, t.levels, 0, t.layers())
                          : view(t, type, static_cast<std::uint32_t>(level), 1, 0, t.layers());
@@ -844,7 +845,7 @@ private:
 
         // draw_scene: the vertex buffer holds position and face normal (fill_vertices); each is fed
         // to the location the program's vertex_inputs name.
-        const bool scene = pass.at("action") == "draw_scene";
+        const bool scene = word<PassAction>(pass, "action", "pass " + pass_name) == PassAction::draw_scene;
         if (!scene && (prog.vertex_inputs.position >= 0 || prog.vertex_inputs.normal >= 0) && prog.desc->contains("vertex_inputs"))
             fail("pass " + pass_name + ": program " + program_name + " has vertex inputs, but a fullscreen pass draws no vertices");
         if (scene && prog.vertex_inputs.position < 0)
@@ -868,7 +869,8 @@ private:
         VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
         depth.depthTestEnable = depth_test ? VK_TRUE : VK_FALSE;
         depth.depthWriteEnable = depth_test && depth_write ? VK_TRUE : VK_FALSE; // GL writes depth only where it tests
-        depth.depthCompareOp = compare_op(state.value("depth_func", std::string("LESS")), "pass " + pass_name + ": depth_func");
+        const std::string where = "pass " + pass_name + ": state";
+        depth.depthCompareOp = compare_op(word<CompareFunc>(state, "depth_func", where, "LESS"));
         depth.minDepthBounds = 0.0f;
         depth.maxDepthBounds = 1.0f;
         VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
@@ -878,7 +880,7 @@ private:
         viewport.scissorCount = 1;
         VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
         raster.polygonMode = VK_POLYGON_MODE_FILL;
-        raster.cullMode = cull_mode(state.at("cull"));
+        raster.cullMode = cull_mode(word<Cull>(state, "cull", where));
         raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
         raster.lineWidth = 1.0f;
         const float offset_factor = state.value("polygon_offset_factor", 0.0f), offset_units = state.value("polygon_offset_units", 0.0f);
@@ -891,22 +893,20 @@ private:
         }
         VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
         multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-        const std::string logic_op = state.value("logic_op", "NONE");
-        if (logic_op != "NONE" && logic_op != "OR")
-            fail("pass state: logic_op " + logic_op + " is not supported by this runner; allowed: NONE, OR");
-        if (logic_op == "OR" && !c_.logic_op())
+        const LogicOp logic_op = word<LogicOp>(state, "logic_op", where, "NONE");
+        if (logic_op == LogicOp::bitwise_or && !c_.logic_op())
             fail("pass state: logic_op OR needs the device feature logicOp, which this device lacks");
         VkPipelineColorBlendAttachmentState blend{};
         blend.blendEnable = state.at("blend").get<bool>() ? VK_TRUE : VK_FALSE;
-        blend.colorBlendOp = blend.alphaBlendOp = blend_op(state.at("blend_equation"));
-        blend.srcColorBlendFactor = blend.srcAlphaBlendFactor = blend_factor(state.at("blend_src"));
-        blend.dstColorBlendFactor = blend.dstAlphaBlendFactor = blend_factor(state.at("blend_dst"));
+        blend.colorBlendOp = blend.alphaBlendOp = blend_op(word<BlendEquation>(state, "blend_equation", where));
+        blend.srcColorBlendFactor = blend.srcAlphaBlendFactor = blend_factor(word<BlendFactor>(state, "blend_src", where));
+        blend.dstColorBlendFactor = blend.dstAlphaBlendFactor = blend_factor(word<BlendFactor>(state, "blend_dst", where));
         const std::vector<bool> mask = state.at("color_mask").get<std::vector<bool>>();
         for (std::size_t i = 0; i < 4 && i < mask.size(); ++i)
             if (mask[i]) blend.colorWriteMask |= VK_COLOR_COMPONENT_R_BIT << i;
         const std::vector<VkPipelineColorBlendAttachmentState> blends(formats.size(), blend);
         VkPipelineColorBlendStateCreateInfo blending{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-        blending.logicOpEnable = logic_op == "OR" ? VK_TRUE : VK_FALSE; // integer targets: fragments OR-ed in
+        blending.logicOpEnable = logic_op == LogicOp::bitwise_or ? VK_TRUE : VK_FALSE; // integer targets: fragments OR-ed in
         blending.logicOp = VK_LOGIC_OP_OR;
         blending.attachmentCount = static_cast<std::uint32_t>(blends.size());
         blending.pAttachments = blends.data();
@@ -941,12 +941,17 @@ private:
 
     // Creates what one pass needs and returns the function that records it.
     std::function<void(VkCommandBuffer)> prepare_pass(const json& pass) {
-        const std::string name = pass.at("name"), action = pass.at("action");
-        if (action == "generate_mipmap") return prepare_mipmaps(pass);
-        if (action == "copy") return prepare_copy(pass);
-        if (action != "draw_scene" && action != "fullscreen")
-            fail("pass " + name + ": action '" + action + "' is unknown; allowed: draw_scene, fullscreen, generate_mipmap, copy" +
-                 (action == "dispatch" ? " (this runner has no compute pipelines: emit with prefilter_stage fragment)" : ""));
+        const std::string name = pass.at("name");
+        const PassAction action = word<PassAction>(pass, "action", "pass " + name);
+        switch (action) {
+        case PassAction::generate_mipmap: return prepare_mipmaps(pass);
+        case PassAction::copy: return prepare_copy(pass);
+        case PassAction::dispatch:
+            fail("pass " + name + ": action 'dispatch' runs a compute shader, which this runner has no pipelines for; "
+                 "emit with prefilter_stage fragment");
+        case PassAction::draw_scene:
+        case PassAction::fullscreen: break;
+        }
 
         Program& prog = program(pass.at("program"));
         const std::string program_name = pass.at("program");
@@ -981,7 +986,8 @@ private:
         if (clears)
             for (int i = 0; i < 4; ++i) clear.color.float32[i] = state.at("clear_color").at(i).get<float>();
         std::size_t colour_outputs = 0;
-        for (const json& o : pass.at("outputs")) colour_outputs += o.value("kind", "color") == "color";
+        auto kind_of = [&](const json& o) { return word<AttachmentKind>(o, "kind", "pass " + name, "color"); };
+        for (const json& o : pass.at("outputs")) colour_outputs += kind_of(o) == AttachmentKind::color;
         if (colour_outputs > c_.properties().limits.maxColorAttachments)
             fail("pass " + name + ": " + std::to_string(colour_outputs) + " colour attachments; the device has " +
                  std::to_string(c_.properties().limits.maxColorAttachments));
@@ -993,7 +999,7 @@ private:
             a.imageView = attachment_view(t, o.at("level").get<int>(), o.at("layer").get<int>());
             a.imageLayout = VK_IMAGE_LAYOUT_GENERAL;
             a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-            if (o.value("kind", "color") == "depth") { // create_texture checked the kinds and formats
+            if (kind_of(o) == AttachmentKind::depth) { // create_texture checked the kinds and formats
                 if (depth_attachment) fail("pass " + name + ": more than one output of kind \"depth\"");
                 const bool clears_depth = state.contains("clear_depth") && !state.at("clear_depth").is_null();
                 a.loadOp = clears_depth ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
@@ -1083,7 +1089,7 @@ private:
         }
         vkUpdateDescriptorSets(device_, static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
 
-        const bool scene = action == "draw_scene";
+        const bool scene = action == PassAction::draw_scene;
         const auto vertex_count = static_cast<std::uint32_t>(in_.triangles.size() / 3);
         const VkPipelineLayout pipeline_layout = prog.pipeline_layout;
         const VkBuffer vertices = vertices_.buffer;
@@ -1202,11 +1208,13 @@ private:
                  "); Vulkan copies between identical formats here");
         const VkImageAspectFlags aspect = src.format.aspect();
         VkImageCopy region{};
-        const auto layer_of = [](const Texture& t, int layer) { return t.target == "2D_ARRAY" ? static_cast<std::uint32_t>(layer) : 0u; };
+        const auto layer_of = [](const Texture& t, int layer) {
+            return t.target == TextureTarget::texture_2d_array ? static_cast<std::uint32_t>(layer) : 0u;
+        };
         region.srcSubresource = {aspect, static_cast<std::uint32_t>(src_level), layer_of(src, src_layer), 1};
         region.dstSubresource = {aspect, static_cast<std::uint32_t>(dst_level), layer_of(dst, dst_layer), 1};
-        if (src.target == "3D") region.srcOffset.z = src_layer;
-        if (dst.target == "3D") region.dstOffset.z = dst_layer;
+        if (src.target == TextureTarget::texture_3d) region.srcOffset.z = src_layer;
+        if (dst.target == TextureTarget::texture_3d) region.dstOffset.z = dst_layer;
         region.extent = {static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height), 1};
         const VkImage from = src.image, to = dst.image;
         const VkImageSubresourceRange from_range{aspect, region.srcSubresource.mipLevel, 1, region.srcSubresource.baseArrayLayer, 1};
@@ -1228,8 +1236,8 @@ private:
     std::vector<Buffer> stage_caller_textures() {
         std::vector<Buffer> out;
         for (const auto& [name, t] : textures_) {
-            if (t.initial != "caller" && t.initial != "bake") continue;
-            const bool bake = t.initial == "bake";
+            if (t.initial != TextureInitial::caller && t.initial != TextureInitial::bake) continue;
+            const bool bake = t.initial == TextureInitial::bake;
             const auto& given = bake ? in_.bake_textures : in_.caller_textures;
             auto it = given.find(name);
             if (it == given.end())
@@ -1294,7 +1302,7 @@ private:
         const VkClearColorValue zero{};
         const VkClearDepthStencilValue zero_depth{0.0f, 0};
         for (const auto& [name, t] : textures_) {
-            if (t.initial != "zero") continue;
+            if (t.initial != TextureInitial::zero) continue;
             const VkImageSubresourceRange range = all(t);
             if (t.format.depth) vkCmdClearDepthStencilImage(cmd, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero_depth, 1, &range);
             else vkCmdClearColorImage(cmd, t.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
@@ -1357,7 +1365,7 @@ private:
     std::map<std::string, VkImageView> views_;
     std::map<std::string, Program> programs_;
     std::map<std::string, VkPipeline> pipelines_;
-    std::map<std::string, VkSampler> samplers_; // by Sampling::key
+    std::map<std::pair<Sampling, bool>, VkSampler> samplers_; // by sampling, and whether it reads integers
     VkDescriptorPool pool_ = VK_NULL_HANDLE;
     Buffer vertices_;
 };

@@ -1,6 +1,25 @@
-// penumbra/detail/layout_builder.hpp — how a layout is built (its structs: penumbra/layout_types.hpp):
-// declaration groups of parameters turned into bindings and block offsets, and the builder with which each technique folder describes its
-// textures and passes (detail/<technique>/layout.hpp). Nothing here knows a technique's programs.
+// penumbra/detail/layout_builder.hpp — how a layout is built (its structs and enums:
+// penumbra/layout_types.hpp): declaration groups of parameters turned into bindings and block
+// offsets, and the builder with which each technique folder describes its textures and passes
+// (detail/<technique>/layout.hpp). Nothing here knows a technique's programs.
+//
+// A technique's describe_layout(LayoutBuilder& b, const Config& config) adds, in pass order:
+//
+//   b.texture({.name = "penumbra_moments", .format = TextureFormat::rgba16f, .width = R, .height = R,
+//              .min_filter = TextureFilter::linear, .mag_filter = TextureFilter::linear,
+//              .purpose = "what a texel holds"});
+//   b.pass({.name = "moments", .action = PassAction::draw_scene, .program = "moments",
+//           .outputs = {{"penumbra_moments"}}, .viewport_width = R, .viewport_height = R,
+//           .state = {.clear_color = std::array<float, 4>{}}});
+//   b.pass({.name = "blur", .program = "blur",                  // action fullscreen by default
+//           .inputs = {{"penumbra_source", "penumbra_moments"}}, // sampler, texture
+//           .outputs = {{"penumbra_blurred"}}, .viewport_width = R, .viewport_height = R});
+//
+// then, for the screen phase, describe_screen_textures and describe_deferred_pass (below). Every
+// field not named keeps the default written next to it in layout_types.hpp (a 2D RGBA8 texture,
+// NEAREST, CLAMP_TO_EDGE, fixed size, written by the passes; a fullscreen pass of phase shadow with
+// no blending and no depth test). The builder fills each input's binding from the program's
+// parameters, and finish_sampling each input's sampling.
 #pragma once
 
 #include "../layout_types.hpp"
@@ -9,6 +28,7 @@
 #include "target_limits.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <array>
 #include <optional>
 #include <string>
@@ -22,20 +42,21 @@ namespace detail {
 
 // The filtered levels' format (Config::level_format); ES 3.0 cannot render to half floats. Other
 // techniques' screen-sized intermediates (erosion) stay in half floats where the target has them.
-constexpr std::string_view level_format(const Config& config) {
-    if (config.target == Target::essl300) return "RGBA8";
-    if (config.technique == Technique::occlusion && config.level_format == LevelFormat::rgba8) return "RGBA8";
-    return "RGBA16F";
+constexpr TextureFormat level_format(const Config& config) {
+    if (config.target == Target::essl300) return TextureFormat::rgba8;
+    if (config.technique == Technique::occlusion && config.level_format == LevelFormat::rgba8) return TextureFormat::rgba8;
+    return TextureFormat::rgba16f;
 }
 
 // The screen-phase result: a format every target can render to. ES 3.0 renders R32F / R16F only
 // with EXT_color_buffer_float; R8 is colour-renderable in core ES 3.0 (8 bits of visibility).
-constexpr std::string_view visibility_format(const Config& config) {
-    return config.target == Target::essl300 ? "R8" : "R32F";
+constexpr TextureFormat visibility_format(const Config& config) {
+    return config.target == Target::essl300 ? TextureFormat::r8 : TextureFormat::r32f;
 }
 
-inline std::string border_wrap(const Config& config) {
-    return limits(config.target).clamp_to_border ? "CLAMP_TO_BORDER" : "CLAMP_TO_EDGE";
+// The wrap of textures whose outside reads the border colour where the target has one.
+constexpr Wrap border_wrap(const Config& config) {
+    return limits(config.target).clamp_to_border ? Wrap::clamp_to_border : Wrap::clamp_to_edge;
 }
 
 // One declaration group of a program: a uniform block on Vulkan ("PenumbraSlicing", …) and its
@@ -89,9 +110,9 @@ inline std::vector<ParamDesc> describe_params(const Config& config, const std::v
                 desc.compute = p.source == UniformSource::pass ? "the value in int_uniforms of the pass that runs this program"
                                : def ? std::string(def->compute(config.light)) : std::string();
             }
-            if (is_sampler(p)) { // completed from the texture by finish_sampling
-                desc.sampling.min_filter = desc.sampling.mag_filter = std::string(p.filter);
-                if (p.type.ends_with("Shadow")) desc.sampling.compare = std::string(shadow_compare_func);
+            if (is_sampler(p) && !p.filter.empty()) { // the sampling: from the texture, by finish_sampling
+                desc.filter = parse_enum<TextureFilter>(p.filter);
+                assert(desc.filter && "Param::filter names a TextureFilter");
             }
             if (is_vulkan(config)) desc.set = vulkan_descriptor_set;
             if (!is_sampler(p) && is_vulkan(config)) {
@@ -109,18 +130,15 @@ inline std::vector<ParamDesc> describe_params(const Config& config, const std::v
     return out;
 }
 
-// find_texture(layout, name): penumbra/layout_types.hpp.
-
 inline int binding_of(const std::vector<ParamDesc>& params, std::string_view name) {
     for (const ParamDesc& p : params)
         if (p.name == name) return p.binding;
     return -1;
 }
 
-// Adds textures and passes to a layout whose programs are already described.
+// Adds textures and passes to a layout whose programs are already described (see the top of this file).
 struct LayoutBuilder {
     Layout& layout;
-    std::string wrap; // the default wrap mode of new textures
     // What the screen phase depends on (layout.phase_inputs); a technique whose screen phase reads a
     // bake instead of the light and the geometry says so.
     std::vector<std::string> screen_inputs{"light", "geometry", "camera", "caller_textures"};
@@ -130,90 +148,64 @@ struct LayoutBuilder {
             if (p.name == program) return p.parameters;
         return layout.programs.front().parameters;
     }
-    TextureDesc& texture(std::string name, std::string target, std::string format, int w, int h, int d, int mips,
-                         std::string min, std::string mag, std::string purpose) {
-        TextureDesc t;
-        t.name = std::move(name);
-        t.target = std::move(target);
-        t.internal_format = std::move(format);
-        t.width = w;
-        t.height = h;
-        t.depth = d;
-        t.mip_levels = mips;
-        t.min_filter = std::move(min);
-        t.mag_filter = std::move(mag);
-        t.wrap = wrap;
-        t.purpose = std::move(purpose);
+    // Adds a texture; the reference stays valid until the next texture is added.
+    TextureDesc& texture(TextureDesc t) {
         layout.textures.push_back(std::move(t));
         return layout.textures.back();
     }
-    void pass(std::string name, std::string action, std::string program, std::vector<BindingDesc> inputs,
-              std::vector<AttachmentDesc> outputs, std::vector<std::pair<std::string, int>> ints, int w, int h,
-              RenderState state = {}, std::string phase = "shadow") {
-        for (BindingDesc& b : inputs)
-            if (!program.empty()) b.binding = binding_of(params_of(program), b.sampler);
-        PassDesc p;
-        p.name = std::move(name);
-        p.action = std::move(action);
-        p.program = std::move(program);
-        p.inputs = std::move(inputs);
-        p.outputs = std::move(outputs);
-        p.int_uniforms = std::move(ints);
-        p.viewport_width = w;
-        p.viewport_height = h;
-        p.state = std::move(state);
-        p.phase = std::move(phase);
-        if (p.action == "copy" && !p.inputs.empty() && !p.outputs.empty())
-            p.copy = CopyDesc{std::max(p.inputs[0].level, 0), -1, p.outputs[0].level, p.outputs[0].layer, w, h};
-        if (p.action == "generate_mipmap" && !p.outputs.empty())
-            if (const TextureDesc* t = find_texture(layout, p.outputs[0].texture))
-                p.mipmap = MipmapDesc{p.outputs[0].level, t->mip_levels - p.outputs[0].level};
+    // Adds a pass, each input's binding that of its sampler in the pass's program.
+    PassDesc& pass(PassDesc p) {
+        for (BindingDesc& b : p.inputs)
+            if (!p.program.empty()) b.binding = binding_of(params_of(p.program), b.sampler);
         layout.passes.push_back(std::move(p));
+        return layout.passes.back();
     }
-    // Full-screen passes: no blending, no depth test, an empty vertex array, 3 vertices.
-    void fullscreen(std::string name, std::string program, std::vector<BindingDesc> inputs, AttachmentDesc output,
-                    std::vector<std::pair<std::string, int>> ints, int w, int h) {
-        pass(std::move(name), "fullscreen", std::move(program), std::move(inputs), {std::move(output)}, std::move(ints),
-             w, h);
+    // The inputs of a pass running `program` over its samplers' own textures (every sampler parameter
+    // with a binding, reading the texture the parameter names).
+    std::vector<BindingDesc> own_inputs(std::string_view program) const {
+        std::vector<BindingDesc> in;
+        for (const ParamDesc& p : params_of(program))
+            if (p.binding >= 0) in.push_back({p.name, p.texture, p.binding});
+        return in;
     }
 };
 
-// How a binding reads `texture`: the texture's own filters and wrap, unless the sampler parameter
-// asks for another filter; `partial` holds what describe_params knew (filter override, compare).
-inline Sampling complete_sampling(const Sampling& partial, const TextureDesc& texture) {
-    Sampling s = partial;
-    if (s.min_filter.empty()) s.min_filter = texture.min_filter;
-    if (s.mag_filter.empty()) s.mag_filter = texture.mag_filter;
-    s.wrap = texture.wrap;
-    s.border_color = texture.border_color;
+// How a sampler parameter reads `texture`: the texture's own filters and wrap unless the parameter
+// asks for another filter (ParamDesc::filter); a shadow sampler compares (shadow_compare_func).
+inline Sampling sampling_of(const ParamDesc* param, const TextureDesc& texture) {
+    Sampling s{texture.min_filter, texture.mag_filter, texture.wrap, texture.border_color, std::nullopt};
+    if (param && param->filter) s.min_filter = s.mag_filter = *param->filter;
+    if (param && param->type.ends_with("Shadow")) s.compare = shadow_compare_func;
     return s;
 }
 
-// Every sampler parameter's and every pass input's "sampling", from the textures they read and what
-// their parameter says; the initial contents of textures that the engine provides.
+// Every sampler parameter's and every pass input's sampling, from the textures they read and what
+// their parameter says.
 inline void finish_sampling(Layout& layout) {
-    for (TextureDesc& t : layout.textures)
-        if (t.source != "passes") t.initial = t.source;
+    auto param_of = [&](std::string_view program, std::string_view sampler) -> const ParamDesc* {
+        for (const ProgramDesc& p : layout.programs)
+            if (p.name == program)
+                for (const ParamDesc& param : p.parameters)
+                    if (param.name == sampler) return &param;
+        return nullptr;
+    };
     for (PassDesc& pass : layout.passes)
-        for (BindingDesc& in : pass.inputs) {
-            Sampling partial;
-            for (const ProgramDesc& program : layout.programs)
-                if (program.name == pass.program)
-                    for (const ParamDesc& param : program.parameters)
-                        if (param.name == in.sampler) partial = param.sampling;
-            if (const TextureDesc* t = find_texture(layout, in.texture)) in.sampling = complete_sampling(partial, *t);
-        }
-    // a parameter without a texture of its own (a level pass's source, bound per pass): its first pass's
+        for (BindingDesc& in : pass.inputs)
+            if (const TextureDesc* t = find_texture(layout, in.texture))
+                in.sampling = sampling_of(param_of(pass.program, in.sampler), *t);
+    // a parameter without a texture of its own (a level pass's source, bound per pass): its first pass's;
+    // a draw's sampler (the caller's texture) has none
     for (ProgramDesc& program : layout.programs)
         for (ParamDesc& param : program.parameters) {
-            if (param.binding < 0) continue;
+            if (param.binding < 0 || param.source == "draw") continue;
             if (const TextureDesc* t = find_texture(layout, param.texture)) {
-                param.sampling = complete_sampling(param.sampling, *t);
+                param.sampling = sampling_of(&param, *t);
                 continue;
             }
             for (const PassDesc& pass : layout.passes)
                 for (const BindingDesc& in : pass.inputs)
-                    if (pass.program == program.name && in.sampler == param.name && param.sampling.wrap.empty())
+                    if (pass.program == program.name && in.sampler == param.name && !param.sampling &&
+                        find_texture(layout, in.texture))
                         param.sampling = in.sampling;
         }
 }
@@ -225,34 +217,25 @@ inline void describe_screen_textures(
     LayoutBuilder& b, const Config& config, std::string gbuffer = "penumbra_worldPositions",
     std::string gbuffer_purpose = "G-buffer filled by the engine every frame: xyz world position, w = 1 on geometry, "
                                   "0 on the background; read with texelFetch (no filtering)") {
-    TextureDesc& world =
-        b.texture(std::move(gbuffer), "2D", "RGBA32F", 0, 0, 1, 1, "NEAREST", "NEAREST", std::move(gbuffer_purpose));
-    world.wrap = "CLAMP_TO_EDGE";
-    world.size = "output";
-    world.source = "caller";
-    if (reads_receiver_normal(config)) {
-        TextureDesc& normals = b.texture("penumbra_worldNormals", "2D", "RGBA32F", 0, 0, 1, 1, "NEAREST", "NEAREST",
-                                         "G-buffer filled by the engine every frame: xyz the unit normal of the "
-                                         "side the viewer sees (tangent clip, normal offset); read with texelFetch "
-                                         "(no filtering)");
-        normals.wrap = "CLAMP_TO_EDGE";
-        normals.size = "output";
-        normals.source = "caller";
-    }
-    TextureDesc& visibility = b.texture("penumbra_visibility", "2D", std::string(visibility_format(config)), 0, 0, 1, 1,
-                                        "NEAREST", "NEAREST", "visibility of each output pixel, 0 shadowed to 1 lit");
-    visibility.wrap = "CLAMP_TO_EDGE";
-    visibility.size = "output";
-    b.layout.result = visibility.name;
+    b.texture({.name = std::move(gbuffer), .format = TextureFormat::rgba32f, .size = TextureSize::output,
+               .source = TextureSource::caller, .purpose = std::move(gbuffer_purpose)});
+    if (reads_receiver_normal(config))
+        b.texture({.name = "penumbra_worldNormals", .format = TextureFormat::rgba32f, .size = TextureSize::output,
+                   .source = TextureSource::caller,
+                   .purpose = "G-buffer filled by the engine every frame: xyz the unit normal of the side the viewer "
+                              "sees (tangent clip, normal offset); read with texelFetch (no filtering)"});
+    b.texture({.name = "penumbra_visibility", .format = visibility_format(config), .size = TextureSize::output,
+               .purpose = "visibility of each output pixel, 0 shadowed to 1 lit"});
+    b.layout.result = "penumbra_visibility";
 }
 
 // The screen phase of most techniques: shading_deferred over the caller's G-buffer into the result.
 inline void describe_deferred_pass(LayoutBuilder& b) {
-    std::vector<BindingDesc> deferred_inputs;
-    for (const ParamDesc& p : b.params_of("shading_deferred"))
-        if (p.binding >= 0) deferred_inputs.push_back({p.name, p.texture, p.binding});
-    b.pass("shading", "fullscreen", "shading_deferred", deferred_inputs, {{b.layout.result, 0, -1}}, {}, 0, 0, {},
-           "screen");
+    b.pass({.name = "shading",
+            .program = "shading_deferred",
+            .inputs = b.own_inputs("shading_deferred"),
+            .outputs = {{b.layout.result}},
+            .phase = Phase::screen});
 }
 
 } // namespace detail

@@ -1,53 +1,126 @@
-// penumbra/gl/layout_enums.hpp — the GL enum of each word layout.json uses for texture targets,
-// formats, filters, wraps, render state, image access and memory barriers.
+// penumbra/gl/layout_enums.hpp — the GL enum of each layout enum (penumbra/layout_types.hpp) and
+// texture format (penumbra/formats.hpp): texture targets, formats, filters, wraps, render state,
+// image access and memory barriers. Shared by the OpenGL 4.5 runtime and the portable GL 3.3 /
+// ES 3.0 runner (targets/gles).
 //
 // Header-only; includes <epoxy/gl.h>.
 #pragma once
 
-#include <epoxy/gl.h>
+#include "../layout_types.hpp"
 
-#include <map>
-#include <string>
+#include <epoxy/gl.h>
 
 namespace penumbra::gl::detail {
 
-// The GL enum of a layout.json word (targets, formats, filters, wraps, state); 0 when unknown.
-inline GLenum gl_enum(const std::string& name) {
-    static const std::map<std::string, GLenum> names{
-        {"2D", GL_TEXTURE_2D}, {"2D_ARRAY", GL_TEXTURE_2D_ARRAY}, {"3D", GL_TEXTURE_3D},
-        {"RGBA8", GL_RGBA8}, {"RGBA16F", GL_RGBA16F}, {"RGBA32F", GL_RGBA32F}, {"R8", GL_R8},
-        {"R16F", GL_R16F}, {"R32F", GL_R32F}, {"RG16F", GL_RG16F}, {"RG32F", GL_RG32F},
-        {"RGBA32UI", GL_RGBA32UI}, {"R32UI", GL_R32UI}, {"DEPTH_COMPONENT24", GL_DEPTH_COMPONENT24},
-        {"DEPTH_COMPONENT32F", GL_DEPTH_COMPONENT32F},
-        {"NEAREST", GL_NEAREST}, {"LINEAR", GL_LINEAR}, {"LINEAR_MIPMAP_LINEAR", GL_LINEAR_MIPMAP_LINEAR},
-        {"NEAREST_MIPMAP_NEAREST", GL_NEAREST_MIPMAP_NEAREST}, {"LINEAR_MIPMAP_NEAREST", GL_LINEAR_MIPMAP_NEAREST},
-        {"NEAREST_MIPMAP_LINEAR", GL_NEAREST_MIPMAP_LINEAR},
-        {"CLAMP_TO_BORDER", GL_CLAMP_TO_BORDER}, {"CLAMP_TO_EDGE", GL_CLAMP_TO_EDGE},
-        {"ADD", GL_FUNC_ADD}, {"MAX", GL_MAX}, {"MIN", GL_MIN},
-        {"ZERO", GL_ZERO}, {"ONE", GL_ONE}, {"SRC_ALPHA", GL_SRC_ALPHA}, {"ONE_MINUS_SRC_ALPHA", GL_ONE_MINUS_SRC_ALPHA},
-        {"DST_COLOR", GL_DST_COLOR},
-        {"NEVER", GL_NEVER}, {"LESS", GL_LESS}, {"EQUAL", GL_EQUAL}, {"LEQUAL", GL_LEQUAL}, {"GREATER", GL_GREATER},
-        {"NOTEQUAL", GL_NOTEQUAL}, {"GEQUAL", GL_GEQUAL}, {"ALWAYS", GL_ALWAYS},
-        {"BACK", GL_BACK}, {"FRONT", GL_FRONT}, {"OR", GL_OR}};
-    auto it = names.find(name);
-    return it == names.end() ? 0 : it->second;
+inline GLenum gl_enum(TextureTarget t) {
+    switch (t) {
+    case TextureTarget::texture_2d: return GL_TEXTURE_2D;
+    case TextureTarget::texture_2d_array: return GL_TEXTURE_2D_ARRAY;
+    case TextureTarget::texture_3d: return GL_TEXTURE_3D;
+    }
+    return 0;
 }
 
-// The access of a "dispatch" pass's image output (image_outputs[].access); 0 when unknown.
-inline GLenum image_access(const std::string& name) {
-    static const std::map<std::string, GLenum> names{
-        {"WRITE_ONLY", GL_WRITE_ONLY}, {"READ_ONLY", GL_READ_ONLY}, {"READ_WRITE", GL_READ_WRITE}};
-    auto it = names.find(name);
-    return it == names.end() ? 0 : it->second;
+// The sized internal format, and the pixel format and type of glTexImage / glClearTexImage data.
+struct GlFormat {
+    GLenum internal, format, type;
+};
+inline GlFormat gl_format(TextureFormat f) {
+    switch (f) {
+    case TextureFormat::rgba8: return {GL_RGBA8, GL_RGBA, GL_UNSIGNED_BYTE};
+    case TextureFormat::rgba16f: return {GL_RGBA16F, GL_RGBA, GL_HALF_FLOAT};
+    case TextureFormat::rgba32f: return {GL_RGBA32F, GL_RGBA, GL_FLOAT};
+    case TextureFormat::r8: return {GL_R8, GL_RED, GL_UNSIGNED_BYTE};
+    case TextureFormat::r16f: return {GL_R16F, GL_RED, GL_HALF_FLOAT};
+    case TextureFormat::r32f: return {GL_R32F, GL_RED, GL_FLOAT};
+    case TextureFormat::rg16f: return {GL_RG16F, GL_RG, GL_HALF_FLOAT};
+    case TextureFormat::rg32f: return {GL_RG32F, GL_RG, GL_FLOAT};
+    case TextureFormat::rgba32ui: return {GL_RGBA32UI, GL_RGBA_INTEGER, GL_UNSIGNED_INT};
+    case TextureFormat::r32ui: return {GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT};
+    case TextureFormat::depth24: return {GL_DEPTH_COMPONENT24, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT};
+    case TextureFormat::depth32f: return {GL_DEPTH_COMPONENT32F, GL_DEPTH_COMPONENT, GL_FLOAT};
+    }
+    return {0, 0, 0};
+}
+inline GLenum gl_enum(TextureFormat f) { return gl_format(f).internal; }
+
+// The pixel format of `channels` components (1, 2 or 4) of floats or of unsigned integers.
+inline GLenum pixel_format(int channels, bool integer) {
+    if (integer) return channels == 4 ? GL_RGBA_INTEGER : channels == 2 ? GL_RG_INTEGER : GL_RED_INTEGER;
+    return channels == 4 ? GL_RGBA : channels == 2 ? GL_RG : GL_RED;
 }
 
-// A memory barrier bit of a "dispatch" pass (dispatch.memory_barrier[]); 0 when unknown.
-inline GLbitfield memory_barrier_bit(const std::string& name) {
-    static const std::map<std::string, GLbitfield> names{
-        {"TEXTURE_FETCH", GL_TEXTURE_FETCH_BARRIER_BIT}, {"TEXTURE_UPDATE", GL_TEXTURE_UPDATE_BARRIER_BIT},
-        {"SHADER_IMAGE_ACCESS", GL_SHADER_IMAGE_ACCESS_BARRIER_BIT}, {"FRAMEBUFFER", GL_FRAMEBUFFER_BARRIER_BIT}};
-    auto it = names.find(name);
-    return it == names.end() ? 0 : it->second;
+inline GLenum gl_enum(TextureFilter f) {
+    switch (f) {
+    case TextureFilter::nearest: return GL_NEAREST;
+    case TextureFilter::linear: return GL_LINEAR;
+    case TextureFilter::linear_mipmap_linear: return GL_LINEAR_MIPMAP_LINEAR;
+    case TextureFilter::nearest_mipmap_nearest: return GL_NEAREST_MIPMAP_NEAREST;
+    case TextureFilter::linear_mipmap_nearest: return GL_LINEAR_MIPMAP_NEAREST;
+    case TextureFilter::nearest_mipmap_linear: return GL_NEAREST_MIPMAP_LINEAR;
+    }
+    return 0;
+}
+
+inline GLenum gl_enum(Wrap w) { return w == Wrap::clamp_to_border ? GL_CLAMP_TO_BORDER : GL_CLAMP_TO_EDGE; }
+
+inline GLenum gl_enum(CompareFunc f) {
+    switch (f) {
+    case CompareFunc::never: return GL_NEVER;
+    case CompareFunc::less: return GL_LESS;
+    case CompareFunc::equal: return GL_EQUAL;
+    case CompareFunc::lequal: return GL_LEQUAL;
+    case CompareFunc::greater: return GL_GREATER;
+    case CompareFunc::notequal: return GL_NOTEQUAL;
+    case CompareFunc::gequal: return GL_GEQUAL;
+    case CompareFunc::always: return GL_ALWAYS;
+    }
+    return 0;
+}
+
+inline GLenum gl_enum(BlendEquation e) {
+    switch (e) {
+    case BlendEquation::add: return GL_FUNC_ADD;
+    case BlendEquation::max: return GL_MAX;
+    case BlendEquation::min: return GL_MIN;
+    }
+    return 0;
+}
+
+inline GLenum gl_enum(BlendFactor f) {
+    switch (f) {
+    case BlendFactor::zero: return GL_ZERO;
+    case BlendFactor::one: return GL_ONE;
+    case BlendFactor::src_alpha: return GL_SRC_ALPHA;
+    case BlendFactor::one_minus_src_alpha: return GL_ONE_MINUS_SRC_ALPHA;
+    case BlendFactor::dst_color: return GL_DST_COLOR;
+    }
+    return 0;
+}
+
+// The face culled; 0 for Cull::none (culling off).
+inline GLenum gl_enum(Cull c) { return c == Cull::back ? GL_BACK : c == Cull::front ? GL_FRONT : 0; }
+
+// The logic operation; 0 for LogicOp::none (off).
+inline GLenum gl_enum(LogicOp op) { return op == LogicOp::bitwise_or ? GL_OR : 0; }
+
+inline GLenum gl_enum(ImageAccess a) {
+    switch (a) {
+    case ImageAccess::write_only: return GL_WRITE_ONLY;
+    case ImageAccess::read_only: return GL_READ_ONLY;
+    case ImageAccess::read_write: return GL_READ_WRITE;
+    }
+    return 0;
+}
+
+inline GLbitfield gl_enum(MemoryBarrierBit b) {
+    switch (b) {
+    case MemoryBarrierBit::texture_fetch: return GL_TEXTURE_FETCH_BARRIER_BIT;
+    case MemoryBarrierBit::texture_update: return GL_TEXTURE_UPDATE_BARRIER_BIT;
+    case MemoryBarrierBit::shader_image_access: return GL_SHADER_IMAGE_ACCESS_BARRIER_BIT;
+    case MemoryBarrierBit::framebuffer: return GL_FRAMEBUFFER_BARRIER_BIT;
+    }
+    return 0;
 }
 
 } // namespace penumbra::gl::detail

@@ -48,7 +48,8 @@ struct PassContext {
 inline std::pair<int, int> attachment_size(const PassContext& c, const AttachmentDesc& out) {
     const TextureDesc* t = find_texture(c.layout, out.texture);
     if (!t) return {0, 0};
-    const int w = t->size == "output" ? c.output_width : t->width, h = t->size == "output" ? c.output_height : t->height;
+    const bool output_sized = t->size == TextureSize::output;
+    const int w = output_sized ? c.output_width : t->width, h = output_sized ? c.output_height : t->height;
     return {std::max(w >> out.level, 1), std::max(h >> out.level, 1)};
 }
 
@@ -83,30 +84,20 @@ inline void unbind_inputs(const PassContext& c, const PassDesc& pass, const std:
     glUseProgram(0);
 }
 
-// A "dispatch" pass: the compute program over dispatch.groups, its inputs bound as samplers and its
-// image_outputs as images, then the memory barrier the passes after it need.
+// A dispatch pass: the compute program over dispatch.groups, its inputs bound as samplers and its
+// images as images (in their textures' formats), then the memory barrier the passes after it need.
 inline std::string run_dispatch(const PassContext& c, const PassDesc& pass) {
-    if (!pass.dispatch) return "pass " + pass.name + ": a dispatch pass needs \"dispatch\" (groups, memory_barrier)";
-    const DispatchDesc& dispatch = *pass.dispatch;
+    const DispatchDesc& dispatch = pass.dispatch;
     GLbitfield barrier = 0;
-    for (const std::string& bit : dispatch.memory_barrier) {
-        const GLbitfield value = detail::memory_barrier_bit(bit);
-        if (!value)
-            return "pass " + pass.name + ": memory_barrier '" + bit +
-                   "' unknown; allowed: TEXTURE_FETCH, TEXTURE_UPDATE, SHADER_IMAGE_ACCESS, FRAMEBUFFER";
-        barrier |= value;
-    }
+    for (MemoryBarrierBit bit : dispatch.memory_barrier) barrier |= detail::gl_enum(bit);
     const GLuint program = c.program(pass.program);
     if (!program) return "pass " + pass.name + ": no program " + pass.program;
-    for (const ImageBindingDesc& image : pass.image_outputs) {
+    for (const ImageBindingDesc& image : dispatch.images) {
         const GLuint id = c.texture(image.texture);
-        const GLenum format = detail::gl_enum(image.format), access = detail::image_access(image.access);
-        if (!id) return "pass " + pass.name + ": no texture " + image.texture + " for " + image.image;
-        if (!format || !access)
-            return "pass " + pass.name + ": image " + image.image + " has format '" + image.format + "' and access '" +
-                   image.access + "'; allowed: a texture format (RGBA8, RGBA16F, …), WRITE_ONLY, READ_ONLY, READ_WRITE";
-        glBindImageTexture(static_cast<GLuint>(image.unit), id, image.level, GL_FALSE, std::max(image.layer, 0), access,
-                           format);
+        const TextureDesc* t = find_texture(c.layout, image.texture);
+        if (!id || !t) return "pass " + pass.name + ": no texture " + image.texture + " for " + image.image;
+        glBindImageTexture(static_cast<GLuint>(image.unit), id, image.level, GL_FALSE, std::max(image.layer, 0),
+                           detail::gl_enum(image.access), detail::gl_enum(t->format));
     }
     glUseProgram(program);
     std::vector<GLuint> restricted;
@@ -117,7 +108,7 @@ inline std::string run_dispatch(const PassContext& c, const PassDesc& pass) {
         if (barrier) glMemoryBarrier(barrier);
     }
     unbind_inputs(c, pass, restricted);
-    for (const ImageBindingDesc& image : pass.image_outputs)
+    for (const ImageBindingDesc& image : dispatch.images)
         glBindImageTexture(static_cast<GLuint>(image.unit), 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA8);
     return diagnostic;
 }
@@ -125,29 +116,29 @@ inline std::string run_dispatch(const PassContext& c, const PassDesc& pass) {
 // Runs one pass: a copy, a mipmap generation, a compute dispatch, or a draw of `program` into the
 // pass's outputs.
 inline std::string run_pass(const PassContext& c, const PassDesc& pass, const DrawScene& draw) {
-    if (pass.action == "generate_mipmap") { // every level above the base, each a 2x2 box of the one below
-        if (!pass.mipmap || pass.mipmap->downsample != "box")
-            return "pass " + pass.name + ": generate_mipmap needs \"mipmap\" with downsample \"box\"";
-        glGenerateTextureMipmap(c.texture(pass.outputs.at(0).texture));
+    switch (pass.action) {
+    case PassAction::generate_mipmap: // every level above the base, each a 2x2 box of the one below
+        if (pass.outputs.size() != 1) return "pass " + pass.name + ": generate_mipmap needs one output";
+        glGenerateTextureMipmap(c.texture(pass.outputs[0].texture));
         return {};
-    }
-    if (pass.action == "copy") { // the region "copy" names, texel for texel
-        if (!pass.copy) return "pass " + pass.name + ": a copy pass needs \"copy\" (levels, layers, size)";
-        const CopyDesc& copy = *pass.copy;
+    case PassAction::copy: { // the region copy_region names, texel for texel
+        if (pass.inputs.size() != 1 || pass.outputs.size() != 1)
+            return "pass " + pass.name + ": a copy pass needs one input and one output";
+        const CopyDesc copy = copy_region(pass);
         auto target_of = [&](const std::string& name) {
             const TextureDesc* t = find_texture(c.layout, name);
             return t ? detail::gl_enum(t->target) : GL_TEXTURE_2D;
         };
-        const std::string &from = pass.inputs.at(0).texture, &to = pass.outputs.at(0).texture;
+        const std::string &from = pass.inputs[0].texture, &to = pass.outputs[0].texture;
         glCopyImageSubData(c.texture(from), target_of(from), copy.source_level, 0, 0, std::max(copy.source_layer, 0),
                            c.texture(to), target_of(to), copy.target_level, 0, 0, std::max(copy.target_layer, 0),
                            copy.width, copy.height, 1);
         return {};
     }
-    if (pass.action == "dispatch") return run_dispatch(c, pass);
-    if (pass.action != "draw_scene" && pass.action != "fullscreen")
-        return "pass " + pass.name + ": unknown action '" + pass.action +
-               "'; allowed: draw_scene, fullscreen, generate_mipmap, copy, dispatch";
+    case PassAction::dispatch: return run_dispatch(c, pass);
+    case PassAction::draw_scene:
+    case PassAction::fullscreen: break;
+    }
     const GLuint program = c.program(pass.program);
     if (!program) return "pass " + pass.name + ": no program " + pass.program;
     glBindFramebuffer(GL_FRAMEBUFFER, c.framebuffer);
@@ -156,7 +147,7 @@ inline std::string run_pass(const PassContext& c, const PassDesc& pass, const Dr
     std::vector<bool> integer_buffers; // cleared with glClearBufferuiv
     bool has_depth = false;
     for (const AttachmentDesc& out : pass.outputs) {
-        const bool depth = out.kind == "depth";
+        const bool depth = attachment_kind(c.layout, out) == AttachmentKind::depth;
         const GLenum attachment = depth ? GL_DEPTH_ATTACHMENT : GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(buffers.size());
         if (out.layer >= 0)
             glNamedFramebufferTextureLayer(c.framebuffer, attachment, c.texture(out.texture), out.level, out.layer);
@@ -167,7 +158,7 @@ inline std::string run_pass(const PassContext& c, const PassDesc& pass, const Dr
         } else {
             buffers.push_back(attachment);
             const TextureDesc* desc = find_texture(c.layout, out.texture);
-            integer_buffers.push_back(desc && detail::is_integer_format(desc->internal_format));
+            integer_buffers.push_back(desc && is_integer(desc->format));
         }
     }
     if (buffers.empty()) glNamedFramebufferDrawBuffer(c.framebuffer, GL_NONE);
@@ -203,7 +194,7 @@ inline std::string run_pass(const PassContext& c, const PassDesc& pass, const Dr
     std::vector<GLuint> restricted;
     std::string diagnostic = bind_inputs(c, pass, program, restricted);
     if (diagnostic.empty()) {
-        if (pass.action == "draw_scene") {
+        if (pass.action == PassAction::draw_scene) {
             draw(program);
         } else {
             glBindVertexArray(c.empty_vertex_array);
@@ -216,7 +207,7 @@ inline std::string run_pass(const PassContext& c, const PassDesc& pass, const Dr
 }
 
 // Runs every pass of `phase` in layout order, restoring the caller's framebuffer and viewport.
-inline std::string run_phase(const PassContext& c, const std::string& phase, const DrawScene& draw,
+inline std::string run_phase(const PassContext& c, Phase phase, const DrawScene& draw,
                              std::vector<PassTiming>* timings) {
     GLint previous_fbo = 0, previous_viewport[4];
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &previous_fbo);

@@ -14,38 +14,19 @@
 
 namespace penumbra::gl::detail {
 
-using penumbra::detail::find_texture; // the layout's description of a texture, by name
-
 // Same GL storage and sampling: a texture with this description can be kept as it is.
 inline bool same_storage(const TextureDesc& a, const TextureDesc& b) {
-    return a.target == b.target && a.internal_format == b.internal_format && a.width == b.width &&
-           a.height == b.height && a.depth == b.depth && a.mip_levels == b.mip_levels &&
-           a.min_filter == b.min_filter && a.mag_filter == b.mag_filter && a.wrap == b.wrap &&
-           a.border_color == b.border_color && a.size == b.size && a.source == b.source && a.initial == b.initial;
-}
-
-inline bool is_depth_format(const std::string& format) { return format.starts_with("DEPTH_COMPONENT"); }
-inline bool is_integer_format(const std::string& format) { return format.ends_with("UI"); }
-// Components of a colour format: R → 1, RG → 2, RGBA → 4.
-inline int format_channels(const std::string& format) {
-    if (format.starts_with("RGBA")) return 4;
-    if (format.starts_with("RG")) return 2;
-    return 1;
-}
-inline GLenum pixel_format(int channels, bool integer) {
-    if (integer) return channels == 4 ? GL_RGBA_INTEGER : channels == 2 ? GL_RG_INTEGER : GL_RED_INTEGER;
-    return channels == 4 ? GL_RGBA : channels == 2 ? GL_RG : GL_RED;
+    return a.target == b.target && a.format == b.format && a.width == b.width && a.height == b.height &&
+           a.depth == b.depth && a.mip_levels == b.mip_levels && a.min_filter == b.min_filter &&
+           a.mag_filter == b.mag_filter && a.wrap == b.wrap && a.border_color == b.border_color && a.size == b.size &&
+           a.source == b.source;
 }
 
 // A texture of description `t` at width × height (a fixed size or the output size), its levels
-// cleared to zero (initial "zero"; the others are the caller's or a bake's and are overwritten).
+// cleared to zero (initial zero; the others are the caller's or a bake's and are overwritten).
 // Comparison is the binding's sampler's, not the texture's. 0 with *log set on failure.
 inline GLuint allocate_texture(const TextureDesc& t, int width, int height, std::string* log) {
-    const GLenum target = detail::gl_enum(t.target), format = detail::gl_enum(t.internal_format);
-    if (!target || !format) {
-        *log = "unknown target or format " + t.target + " " + t.internal_format;
-        return 0;
-    }
+    const GLenum target = detail::gl_enum(t.target), format = detail::gl_enum(t.format);
     if (width < 1 || height < 1) {
         *log = "size " + std::to_string(width) + "x" + std::to_string(height) + " is empty";
         return 0;
@@ -64,13 +45,11 @@ inline GLuint allocate_texture(const TextureDesc& t, int width, int height, std:
     glTextureParameteri(id, GL_TEXTURE_WRAP_R, wrap);
     glTextureParameterfv(id, GL_TEXTURE_BORDER_COLOR, t.border_color.data());
     glTextureParameteri(id, GL_TEXTURE_MAX_LEVEL, t.mip_levels - 1);
-    const bool depth = detail::is_depth_format(t.internal_format);
-    const bool integer = detail::is_integer_format(t.internal_format);
     const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     const GLuint zero_u[4] = {0, 0, 0, 0};
     for (int level = 0; level < t.mip_levels; ++level) {
-        if (depth) glClearTexImage(id, level, GL_DEPTH_COMPONENT, GL_FLOAT, zero);
-        else if (integer) glClearTexImage(id, level, GL_RGBA_INTEGER, GL_UNSIGNED_INT, zero_u);
+        if (is_depth(t.format)) glClearTexImage(id, level, GL_DEPTH_COMPONENT, GL_FLOAT, zero);
+        else if (is_integer(t.format)) glClearTexImage(id, level, GL_RGBA_INTEGER, GL_UNSIGNED_INT, zero_u);
         else glClearTexImage(id, level, GL_RGBA, GL_FLOAT, zero);
     }
     if (const GLenum e = glGetError(); e != GL_NO_ERROR) {

@@ -332,7 +332,7 @@ public:
     // With `timings`, one entry per pass (GL_TIME_ELAPSED queries; waits for the results).
     std::string build(const DrawScene& draw, std::vector<PassTiming>* timings = nullptr) {
         detail::DebugCapture capture(options_.debug_output);
-        std::string diagnostic = run_phase("shadow", draw, timings);
+        std::string diagnostic = run_phase(Phase::shadow, draw, timings);
         if (std::string d = capture.take_diagnostic("build"); diagnostic.empty()) diagnostic = d;
         shadow_current_ = diagnostic.empty();
         return diagnostic;
@@ -403,7 +403,7 @@ public:
     // program must be in use.
     void bind_visibility(GLuint program, const std::optional<glm::mat4>& clip_from_world = std::nullopt) const {
         for (const PassDesc& pass : emission_.layout.passes)
-            if (pass.phase == "example")
+            if (pass.phase == Phase::example)
                 for (const BindingDesc& in : pass.inputs)
                     detail::bind_sampler(program, in.sampler, in.binding, texture(in.texture), samplers_->get(in.sampling));
         UniformInputs inputs = uniform_inputs();
@@ -432,7 +432,7 @@ private:
 
     // The runtime allocates fixed-size textures at once and output-sized ones per screen size;
     // "caller" textures come with every screen run.
-    static bool allocated_at_create(const TextureDesc& t) { return t.source != "caller" && t.size != "output"; }
+    static bool allocated_at_create(const TextureDesc& t) { return t.source != TextureSource::caller && t.size != TextureSize::output; }
 
     bool has_frame() const { return !std::holds_alternative<std::monostate>(light_) || frame_set_by_hand_; }
 
@@ -510,7 +510,7 @@ private:
         }
         for (auto it = supplied_.begin(); it != supplied_.end();) {
             bool still_bake = false;
-            for (const TextureDesc& t : next.layout.textures) still_bake = still_bake || (t.name == it->first && t.source == "bake");
+            for (const TextureDesc& t : next.layout.textures) still_bake = still_bake || (t.name == it->first && t.source == TextureSource::bake);
             it = still_bake ? std::next(it) : supplied_.erase(it);
         }
         programs_ = std::move(next_programs);
@@ -531,14 +531,14 @@ private:
             if (p.name == name) return &p;
         return nullptr;
     }
-    const TextureDesc* find_texture(const std::string& name) const { return detail::find_texture(emission_.layout, name); }
+    const TextureDesc* find_texture(const std::string& name) const { return penumbra::find_texture(emission_.layout, name); }
 
     std::string check_bake(const std::string& name) const {
         const TextureDesc* t = find_texture(name);
-        if (!t || t->source != "bake") {
+        if (!t || t->source != TextureSource::bake) {
             std::string names;
             for (const TextureDesc& d : emission_.layout.textures)
-                if (d.source == "bake") names += (names.empty() ? "" : ", ") + d.name;
+                if (d.source == TextureSource::bake) names += (names.empty() ? "" : ", ") + d.name;
             return "supply_texture: '" + name + "' is not a bake texture of this layout; bake textures: " +
                    (names.empty() ? "none" : names);
         }
@@ -549,15 +549,15 @@ private:
                        int level) {
         if (std::string d = check_bake(name); !d.empty()) return d;
         const TextureDesc& t = *find_texture(name);
-        if (integer != detail::is_integer_format(t.internal_format) || detail::is_depth_format(t.internal_format))
+        if (integer != is_integer(t.format) || is_depth(t.format))
             return "supply_texture " + name + ": " + (integer ? "integer" : "float") + " texels given for format " +
-                   t.internal_format;
+                   std::string(to_string(t.format));
         if (level < 0 || level >= t.mip_levels)
             return "supply_texture " + name + ": level " + std::to_string(level) + "; allowed: 0 to " +
                    std::to_string(t.mip_levels - 1);
         const int w = std::max(t.width >> level, 1), h = std::max(t.height >> level, 1);
-        const int d = t.target == "3D" ? std::max(t.depth >> level, 1) : t.depth;
-        const int channels = detail::format_channels(t.internal_format);
+        const int d = t.target == TextureTarget::texture_3d ? std::max(t.depth >> level, 1) : t.depth;
+        const int channels = penumbra::channels(t.format);
         const std::size_t expected = static_cast<std::size_t>(w) * h * d * channels;
         if (count != expected)
             return "supply_texture " + name + ": " + std::to_string(count) + " values given; level " +
@@ -568,7 +568,7 @@ private:
         const GLuint id = textures_.at(name);
         const GLenum format = detail::pixel_format(channels, integer);
         glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-        if (t.target == "2D")
+        if (t.target == TextureTarget::texture_2d)
             glTextureSubImage2D(id, level, 0, 0, w, h, format, type, data);
         else
             glTextureSubImage3D(id, level, 0, 0, 0, w, h, d, format, type, data);
@@ -583,7 +583,7 @@ private:
         for (auto& [name, id] : output_textures_) glDeleteTextures(1, &id);
         output_textures_.clear();
         for (const TextureDesc& t : emission_.layout.textures) {
-            if (t.size != "output" || t.source == "caller") continue;
+            if (t.size != TextureSize::output || t.source == TextureSource::caller) continue;
             std::string log;
             const GLuint id = detail::allocate_texture(t, width, height, &log);
             if (!id) return "texture " + t.name + ": " + log;
@@ -615,7 +615,7 @@ private:
                 output_height_,
                 uniform_inputs()};
     }
-    std::string run_phase(const std::string& phase, const DrawScene& draw, std::vector<PassTiming>* timings) {
+    std::string run_phase(Phase phase, const DrawScene& draw, std::vector<PassTiming>* timings) {
         return detail::run_phase(pass_context(), phase, draw, timings);
     }
 
@@ -625,11 +625,11 @@ private:
             return where + ": size " + std::to_string(width) + "x" + std::to_string(height) +
                    " is empty; allowed: at least 1x1";
         for (const TextureDesc& t : emission_.layout.textures)
-            if (t.source == "caller" && caller_textures.count(t.name) == 0)
+            if (t.source == TextureSource::caller && caller_textures.count(t.name) == 0)
                 return where + ": no texture given for " + t.name + " (source \"caller\": " + t.purpose + ")";
         if (std::string d = ensure_output_textures(width, height); !d.empty()) return where + ": " + d;
         caller_ = caller_textures;
-        std::string diagnostic = run_phase("screen", {}, timings);
+        std::string diagnostic = run_phase(Phase::screen, {}, timings);
         caller_.clear();
         return diagnostic;
     }

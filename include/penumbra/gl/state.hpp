@@ -46,9 +46,8 @@ public:
         for (auto& [sampling, id] : samplers_) glDeleteSamplers(1, &id);
     }
 
-    // The sampler of `s`; 0 (the texture's own parameters, no comparison) when `s` names no filter.
+    // The sampler of `s`.
     GLuint get(const Sampling& s) {
-        if (s.min_filter.empty()) return 0;
         if (auto it = samplers_.find(s); it != samplers_.end()) return it->second;
         GLuint id = 0;
         glCreateSamplers(1, &id);
@@ -59,9 +58,9 @@ public:
         glSamplerParameteri(id, GL_TEXTURE_WRAP_T, wrap);
         glSamplerParameteri(id, GL_TEXTURE_WRAP_R, wrap);
         glSamplerParameterfv(id, GL_TEXTURE_BORDER_COLOR, s.border_color.data());
-        if (!s.compare.empty()) {
+        if (s.compare) {
             glSamplerParameteri(id, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
-            glSamplerParameteri(id, GL_TEXTURE_COMPARE_FUNC, static_cast<GLint>(gl_enum(s.compare)));
+            glSamplerParameteri(id, GL_TEXTURE_COMPARE_FUNC, static_cast<GLint>(gl_enum(*s.compare)));
         }
         samplers_.emplace(s, id);
         return id;
@@ -115,13 +114,13 @@ inline void apply_state(const RenderState& s) {
     }
     glDepthMask(s.depth_write ? GL_TRUE : GL_FALSE);
     glColorMask(s.color_mask[0], s.color_mask[1], s.color_mask[2], s.color_mask[3]);
-    if (s.cull == "NONE") {
+    if (s.cull == Cull::none) {
         glDisable(GL_CULL_FACE);
     } else {
         glEnable(GL_CULL_FACE);
         glCullFace(gl_enum(s.cull));
     }
-    if (s.logic_op != "NONE") { // integer targets: each fragment OR-ed into the texel (no blending)
+    if (s.logic_op != LogicOp::none) { // integer targets: each fragment OR-ed into the texel (no blending)
         glEnable(GL_COLOR_LOGIC_OP);
         glLogicOp(gl_enum(s.logic_op));
     } else {

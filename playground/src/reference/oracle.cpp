@@ -55,7 +55,7 @@ bool read_slice_textures(const penumbra::gl::Runtime& runtime, SliceTextures& ou
     out.slices = config.slices;
     out.coverage.assign(static_cast<std::size_t>(config.slices) * R * R, 0.0f);
     for (const PassDesc& pass : runtime.emission().layout.passes) {
-        if (pass.action != "draw_scene" || pass.program != "slicing") continue;
+        if (pass.action != PassAction::draw_scene || pass.program != "slicing") continue;
         std::vector<float> rgba(static_cast<std::size_t>(4) * R * R);
         if (slices_as_bits(config)) { // paper §3.7: slice k is bit k % 32 of component k / 32 of one RGBA32UI target
             const AttachmentDesc& target = pass.outputs.at(0);
@@ -192,7 +192,7 @@ void Oracle::build_levels(const SliceTextures& slices) {
                 next = filter_1d(filter_1d(prev, true), false);
                 // RGBA8 levels (level_format): each level is stored rounded to the nearest 1/255 and
                 // the next one is built from the rounded texels, as on the GPU
-                if (detail::level_format(config_) == "RGBA8")
+                if (detail::level_format(config_) == TextureFormat::rgba8)
                     for (double& texel : next.texels) texel = std::round(texel * 255.0) / 255.0;
             }
             chain.push_back(std::move(next));
@@ -230,9 +230,10 @@ double Oracle::stored(int slice, int level, int x, int y) const {
 
 // How far a stored texel of `level` can be from its exact value (point 1 of the bound).
 double Oracle::storage_error(int level) const {
-    const std::string_view format =
-        config_.filter == Filter::mipmap ? std::string_view("RGBA8") : detail::level_format(config_);
-    const double unit = format == "RGBA8" ? 1.0 / 255.0 : format == "RGBA16F" ? 1.0 / 2048.0 : 2.0 * fp32_epsilon;
+    const TextureFormat format = config_.filter == Filter::mipmap ? TextureFormat::rgba8 : detail::level_format(config_);
+    const double unit = format == TextureFormat::rgba8     ? 1.0 / 255.0
+                        : format == TextureFormat::rgba16f ? 1.0 / 2048.0
+                                                           : 2.0 * fp32_epsilon;
     return level * unit;
 }
 

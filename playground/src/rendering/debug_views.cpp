@@ -434,15 +434,17 @@ std::string DebugViews::draw_layout_texture(const penumbra::gl::Runtime& runtime
         return "texture view: '" + view.texture + "' is not a texture of this layout; allowed: " + names;
     }
     const GLuint id = runtime.texture(desc->name);
-    if (!id) return "texture view: '" + desc->name + "' is not allocated yet (source " + desc->source + ")";
-    if (!desc->internal_format.empty() && desc->internal_format.back() == 'I') // RGBA32UI, R32I, …
-        return "texture view: '" + desc->name + "' holds integers (" + desc->internal_format +
+    if (!id) return "texture view: '" + desc->name + "' is not allocated yet (source " + std::string(penumbra::to_string(desc->source)) + ")";
+    if (penumbra::is_integer(desc->format)) // RGBA32UI, R32UI
+        return "texture view: '" + desc->name + "' holds integers (" + std::string(penumbra::to_string(desc->format)) +
                "); this view shows float and depth textures";
     if (view.level < 0 || view.level >= desc->mip_levels)
         return "texture view: level " + std::to_string(view.level) + " is out of range; '" + desc->name +
                "' has levels 0 to " + std::to_string(desc->mip_levels - 1);
-    const int layers = desc->target == "2D" ? 1 : desc->target == "3D" ? std::max(desc->depth >> view.level, 1)
-                                                                      : desc->depth;
+    using penumbra::TextureTarget;
+    const int layers = desc->target == TextureTarget::texture_2d   ? 1
+                       : desc->target == TextureTarget::texture_3d ? std::max(desc->depth >> view.level, 1)
+                                                                   : desc->depth;
     if (view.layer < 0 || view.layer >= layers)
         return "texture view: layer " + std::to_string(view.layer) + " is out of range; '" + desc->name +
                "' has layers 0 to " + std::to_string(layers - 1) + " at level " + std::to_string(view.level);
@@ -451,7 +453,7 @@ std::string DebugViews::draw_layout_texture(const penumbra::gl::Runtime& runtime
     if (!(view.max_value > view.min_value))
         return "texture view: max_value (" + number(view.max_value) + ") must be greater than min_value (" +
                number(view.min_value) + ")";
-    const int storage = desc->target == "2D" ? 0 : desc->target == "2D_ARRAY" ? 1 : 2;
+    const int storage = desc->target == TextureTarget::texture_2d ? 0 : desc->target == TextureTarget::texture_2d_array ? 1 : 2;
     const GLuint program = programs_->layout_texture;
     StateGuard guard;
     glBindTextureUnit(static_cast<GLuint>(storage), id);

@@ -210,17 +210,17 @@ void view_section(WindowApp& app) {
         int mip_levels = 1, layers = 1;
         if (ImGui::BeginCombo("texture", current)) {
             for (const TextureDesc& t : textures)
-                if (ImGui::Selectable((t.name + "  (" + t.internal_format + ", " + t.source + ")").c_str(),
+                if (ImGui::Selectable((t.name + "  (" + std::string(to_string(t.format)) + ", " + std::string(to_string(t.source)) + ")").c_str(),
                                       t.name == current)) {
                     c.view_texture = {.texture = t.name};
-                    if (t.internal_format.rfind("DEPTH", 0) == 0) c.view_texture.max_value = 1.0f;
+                    if (is_depth(t.format)) c.view_texture.max_value = 1.0f;
                 }
             ImGui::EndCombo();
         }
         for (const TextureDesc& t : textures)
             if (t.name == current) {
                 mip_levels = t.mip_levels;
-                layers = t.target == "2D" ? 1 : t.depth;
+                layers = t.target == TextureTarget::texture_2d ? 1 : t.depth;
             }
         if (mip_levels > 1) ImGui::SliderInt("level", &c.view_texture.level, 0, mip_levels - 1);
         if (layers > 1) ImGui::SliderInt("layer", &c.view_texture.layer, 0, layers - 1);

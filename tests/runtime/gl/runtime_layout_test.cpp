@@ -69,28 +69,14 @@ void main()
 }
 )";
 
-TextureDesc texture(std::string name, std::string format, int size, int mips = 1) {
-    TextureDesc t;
-    t.name = std::move(name);
-    t.target = "2D";
-    t.internal_format = std::move(format);
-    t.width = t.height = size;
-    t.mip_levels = mips;
-    t.min_filter = t.mag_filter = "NEAREST";
-    t.wrap = "CLAMP_TO_EDGE";
-    return t;
+TextureDesc texture(std::string name, TextureFormat format, int size, int mips = 1) {
+    return {.name = std::move(name), .format = format, .width = size, .height = size, .mip_levels = mips};
 }
 
-PassDesc pass(std::string name, std::string phase, std::string action, std::string program,
-              std::vector<BindingDesc> inputs, std::vector<AttachmentDesc> outputs) {
-    PassDesc p;
-    p.name = std::move(name);
-    p.phase = std::move(phase);
-    p.action = std::move(action);
-    p.program = std::move(program);
-    p.inputs = std::move(inputs);
-    p.outputs = std::move(outputs);
-    return p;
+PassDesc pass(std::string name, Phase phase, PassAction action, std::string program, std::vector<BindingDesc> inputs,
+              std::vector<AttachmentDesc> outputs) {
+    return {.name = std::move(name), .action = action, .program = std::move(program), .inputs = std::move(inputs),
+            .outputs = std::move(outputs), .phase = phase};
 }
 
 // One triangle covering the viewport, world positions at attribute 0: the "scene" of the depth pass.
@@ -133,39 +119,45 @@ Emission hand_made() {
     program("screen", fullscreen_vert, screen_frag);
 
     Layout& l = e.layout;
-    l.technique = "hand-made";
-    TextureDesc depth = texture("depthMap", "DEPTH_COMPONENT32F", 4);
-    depth.wrap = "CLAMP_TO_BORDER";
+    TextureDesc depth = texture("depthMap", TextureFormat::depth32f, 4);
+    depth.wrap = Wrap::clamp_to_border;
     depth.border_color = {1.0f, 1.0f, 1.0f, 1.0f};
     l.textures.push_back(depth);
-    TextureDesc bake = texture("bake", "R32F", 8);
-    bake.source = "bake";
+    TextureDesc bake = texture("bake", TextureFormat::r32f, 8);
+    bake.source = TextureSource::bake;
     l.textures.push_back(bake);
-    TextureDesc chain = texture("chain", "RG32F", 8, 4);
-    chain.min_filter = "NEAREST_MIPMAP_NEAREST";
+    TextureDesc chain = texture("chain", TextureFormat::rg32f, 8, 4);
+    chain.min_filter = TextureFilter::nearest_mipmap_nearest;
     l.textures.push_back(chain);
-    TextureDesc caller = texture("callerInput", "RGBA32F", 0);
-    caller.size = "output";
-    caller.source = "caller";
+    TextureDesc caller = texture("callerInput", TextureFormat::rgba32f, 0);
+    caller.size = TextureSize::output;
+    caller.source = TextureSource::caller;
     l.textures.push_back(caller);
-    TextureDesc result = texture("result", "R32F", 0);
-    result.size = "output";
+    TextureDesc result = texture("result", TextureFormat::r32f, 0);
+    result.size = TextureSize::output;
     l.textures.push_back(result);
     l.result = "result";
 
-    PassDesc depth_pass = pass("depth", "shadow", "draw_scene", "depth", {}, {{"depthMap", 0, -1, "depth"}});
+    PassDesc depth_pass = pass("depth", Phase::shadow, PassAction::draw_scene, "depth", {}, {{"depthMap", 0, -1}});
     depth_pass.state.depth_test = depth_pass.state.depth_write = true;
     depth_pass.state.clear_depth = 1.0f;
     l.passes.push_back(depth_pass);
-    l.passes.push_back(pass("chain0", "shadow", "fullscreen", "chain0", {{"bake", "bake", 0}}, {{"chain", 0, -1}}));
+    l.passes.push_back(pass("chain0", Phase::shadow, PassAction::fullscreen, "chain0", {{"bake", "bake", 0}}, {{"chain", 0, -1}}));
     for (int level = 0; level < 3; ++level)
-        l.passes.push_back(pass("reduce", "shadow", "fullscreen", "reduce", {{"source", "chain", 0, level}},
+        l.passes.push_back(pass("reduce", Phase::shadow, PassAction::fullscreen, "reduce", {{"source", "chain", 0, level}},
                                 {{"chain", level + 1, -1}}));
     // the depth map is compared by its binding's sampler, not by the texture
+    // (the other bindings read their textures with the textures' own filters and wrap)
+    for (PassDesc& p : l.passes)
+        for (BindingDesc& in : p.inputs) in.sampling = detail::sampling_of(nullptr, *find_texture(l, in.texture));
     BindingDesc compared{"depthMap", "depthMap", 1};
-    compared.sampling = {"NEAREST", "NEAREST", "CLAMP_TO_BORDER", {1.0f, 1.0f, 1.0f, 1.0f}, "LEQUAL"};
-    l.passes.push_back(pass("screen", "screen", "fullscreen", "screen",
-                            {{"callerInput", "callerInput", 0}, compared, {"chain", "chain", 2}}, {{"result", 0, -1}}));
+    compared.sampling = {TextureFilter::nearest, TextureFilter::nearest, Wrap::clamp_to_border, {1.0f, 1.0f, 1.0f, 1.0f},
+                         CompareFunc::lequal};
+    BindingDesc caller_input{"callerInput", "callerInput", 0}, chain_input{"chain", "chain", 2};
+    caller_input.sampling = detail::sampling_of(nullptr, caller);
+    chain_input.sampling = detail::sampling_of(nullptr, chain);
+    l.passes.push_back(pass("screen", Phase::screen, PassAction::fullscreen, "screen",
+                            {caller_input, compared, chain_input}, {{"result", 0, -1}}));
     return e;
 }
 
@@ -237,8 +229,8 @@ TEST_CASE("gl runtime: a binding's sampling decides the comparison, not the text
     std::string error;
     auto context = HeadlessContext::create(&error);
     REQUIRE_MESSAGE(context, error);
-    for (const std::string compare : {"LEQUAL", "GREATER"}) {
-        CAPTURE(compare);
+    for (const CompareFunc compare : {CompareFunc::lequal, CompareFunc::greater}) {
+        CAPTURE(to_string(compare));
         Emission e = hand_made();
         for (PassDesc& p : e.layout.passes)
             for (BindingDesc& in : p.inputs)
@@ -262,7 +254,7 @@ TEST_CASE("gl runtime: a binding's sampling decides the comparison, not the text
         const std::vector<float> values = rt->read_visibility();
         REQUIRE(values.size() == 2);
         // LEQUAL: x = 0 (reference 0.2 <= stored 0.25) lit, x = 1 not; GREATER: the other way round
-        const bool leq = compare == "LEQUAL";
+        const bool leq = compare == CompareFunc::lequal;
         CHECK(values[0] == doctest::Approx(1.0 + (leq ? 10.0 : 0.0) + 100.0 + 64000.0 + 5000.0));
         CHECK(values[1] == doctest::Approx(2.0 + (leq ? 0.0 : 10.0) + 100.0 + 64000.0 + 5000.0));
         glDeleteTextures(1, &caller);

@@ -134,7 +134,7 @@ TEST_CASE("reconfigure: changing resolution reallocates every fixed-size texture
     coarser.resolution = 64;
     REQUIRE(rt->reconfigure(coarser) == "");
     int fixed = 0; // output-sized textures follow the output size, caller ones are the caller's
-    for (const penumbra::TextureDesc& t : rt->emission().layout.textures) fixed += t.size == "fixed";
+    for (const penumbra::TextureDesc& t : rt->emission().layout.textures) fixed += t.size == penumbra::TextureSize::fixed;
     CHECK(fixed >= 2);
     CHECK(rt->last_reconfigure().textures_reallocated == fixed);
     // The resolution is baked into the prefilter and shading code, not into slicing, nor into the
@@ -143,7 +143,7 @@ TEST_CASE("reconfigure: changing resolution reallocates every fixed-size texture
     CHECK(rt->last_reconfigure().programs_rebuilt == static_cast<int>(rt->emission().programs.size()) - 2);
     CHECK(rt->program("slicing") == slicing);
     for (const penumbra::TextureDesc& t : rt->emission().layout.textures) {
-        if (t.size != "fixed") continue;
+        if (t.size != penumbra::TextureSize::fixed) continue;
         GLint width = 0, height = 0;
         glGetTextureLevelParameteriv(rt->texture(t.name), 0, GL_TEXTURE_WIDTH, &width);
         glGetTextureLevelParameteriv(rt->texture(t.name), 0, GL_TEXTURE_HEIGHT, &height);

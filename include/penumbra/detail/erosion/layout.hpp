@@ -12,16 +12,17 @@ inline std::vector<ParamGroup> erosion_param_groups(const Config& config, std::s
     return shadow_map_param_groups(config, program); // shadow_depth, shading_example
 }
 
-// Erosion, phase "screen" (erosion/emit_passes.hpp): output-sized textures, hard shadow, edges, the
+// Erosion, phase screen (erosion/emit_passes.hpp): output-sized textures, hard shadow, edges, the
 // min-max chain one level at a time (read level n, write n + 1), erosion, blur into the result.
 inline void describe_erosion_passes(LayoutBuilder& b, const Config& config) {
     const int K = erosion_levels(config.erosion);
-    const std::string fmt(level_format(config));
     auto screen_texture = [&](std::string_view name, int mips, std::string purpose) {
-        TextureDesc& t = b.texture(std::string(name), "2D", fmt, 0, 0, 1, mips, mips > 1 ? "NEAREST_MIPMAP_NEAREST" : "NEAREST",
-                                   "NEAREST", std::move(purpose));
-        t.wrap = "CLAMP_TO_EDGE";
-        t.size = "output";
+        b.texture({.name = std::string(name),
+                   .format = level_format(config),
+                   .mip_levels = mips,
+                   .min_filter = mips > 1 ? TextureFilter::nearest_mipmap_nearest : TextureFilter::nearest,
+                   .size = TextureSize::output,
+                   .purpose = std::move(purpose)});
     };
     screen_texture(erosion_hard_texture, 1,
                    "r: hard visibility (0/1), g: penumbra half-width / max search radius (shadowed pixels), a: geometry");
@@ -31,24 +32,21 @@ inline void describe_erosion_passes(LayoutBuilder& b, const Config& config) {
     screen_texture(erosion_penumbra_texture, 1,
                    "r: eroded visibility, g: search radius / max search radius, b: geometry");
     const std::string hard(erosion_hard_texture), edges(erosion_edges_texture), pen(erosion_penumbra_texture);
-    auto inputs = [&](std::string_view program) {
-        std::vector<BindingDesc> in;
-        for (const ParamDesc& p : b.params_of(program))
-            if (p.binding >= 0) in.push_back({p.name, p.texture, p.binding});
-        return in;
+    // a full-screen pass of the screen phase, `program` reading its samplers' own textures
+    auto screen = [&](std::string program, AttachmentDesc out, std::vector<BindingDesc> in = {}) {
+        if (in.empty()) in = b.own_inputs(program);
+        b.pass({.name = program, .program = program, .inputs = std::move(in), .outputs = {std::move(out)},
+                .phase = Phase::screen});
     };
-    auto screen = [&](std::string name, std::string program, std::vector<BindingDesc> in, AttachmentDesc out) {
-        b.pass(std::move(name), "fullscreen", std::move(program), std::move(in), {std::move(out)}, {}, 0, 0, {}, "screen");
-    };
-    screen("erosion_hard", "erosion_hard", inputs("erosion_hard"), {hard, 0, -1});
-    screen("erosion_edges", "erosion_edges", inputs("erosion_edges"), {edges, 0, -1});
+    screen("erosion_hard", {hard});
+    screen("erosion_edges", {edges});
     for (int level = 0; level < K; ++level) {
-        std::vector<BindingDesc> in = inputs("erosion_reduce");
-        in.front().level = level;
-        screen("erosion_reduce", "erosion_reduce", std::move(in), {edges, level + 1, -1});
+        std::vector<BindingDesc> in = b.own_inputs("erosion_reduce");
+        in.front().level = level; // read level n, write n + 1
+        screen("erosion_reduce", {edges, level + 1}, std::move(in));
     }
-    screen("erosion_erode", "erosion_erode", inputs("erosion_erode"), {pen, 0, -1});
-    screen("erosion_blur", "erosion_blur", inputs("erosion_blur"), {b.layout.result, 0, -1});
+    screen("erosion_erode", {pen});
+    screen("erosion_blur", {b.layout.result});
 }
 
 inline void describe_erosion_layout(LayoutBuilder& b, const Config& config) {

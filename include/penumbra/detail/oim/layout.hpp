@@ -18,15 +18,15 @@ inline std::vector<ParamGroup> oim_param_groups(const Config& config, std::strin
 inline void describe_oim_textures(LayoutBuilder& b, const Config& config) {
     const int R = config.oim.resolution;
     for (int p = 0; p < oim_pairs(config.oim); ++p)
-        for (const bool fall : {false, true}) {
-            TextureDesc& t = b.texture((fall ? oim_fall_name(p) : oim_rise_name(p)).str(), "2D", "RGBA16F", R, R, 1, 1,
-                                       "NEAREST", "NEAREST",
-                                       std::string(fall ? "fall" : "rise") + " times of intervals " +
-                                           std::to_string(4 * p) + " to " + std::to_string(4 * p + 3) +
-                                           " (path time t, k / samples: exact in 16-bit floats; unused intervals [0, 0])");
-            t.wrap = "CLAMP_TO_EDGE";
-            t.source = "bake";
-        }
+        for (const bool fall : {false, true})
+            b.texture({.name = (fall ? oim_fall_name(p) : oim_rise_name(p)).str(),
+                       .format = TextureFormat::rgba16f,
+                       .width = R,
+                       .height = R,
+                       .source = TextureSource::bake,
+                       .purpose = std::string(fall ? "fall" : "rise") + " times of intervals " + std::to_string(4 * p) +
+                                  " to " + std::to_string(4 * p + 3) +
+                                  " (path time t, k / samples: exact in 16-bit floats; unused intervals [0, 0])"});
 }
 
 // The maps are per surface, so the deferred pass reads texture coordinates; the screen phase

@@ -16,21 +16,27 @@ inline std::vector<ParamGroup> shadow_map_param_groups(const Config& config, std
                                 example_fragment_params(), example_vertex_params());
 }
 
-// Shadow map techniques, phase "shadow": the depth pass from the light (shadow_frame in
+// Shadow map techniques, phase shadow: the depth pass from the light (shadow_frame in
 // light_frame.hpp). PCSS's blocker search and erosion read the same depth texture without comparison,
 // through a second sampler (the bindings' "sampling"), so there is no copy of it.
 inline void describe_shadow_map_passes(LayoutBuilder& b, const Config& config) {
     const int R = config.shadow_map.resolution;
-    TextureDesc& map = b.texture(std::string(shadow_map_texture), "2D", "DEPTH_COMPONENT32F", R, R, 1, 1, "LINEAR",
-                                 "LINEAR", "shadow map: (z - near) / (far - near) along the light axis, biased; "
-                                           "the filter reads it with hardware comparison, bilinear");
-    map.wrap = "CLAMP_TO_EDGE"; // kernels reaching past the map read its edge, not a shadowing border
-    RenderState depth_only;
-    depth_only.depth_test = depth_only.depth_write = true;
-    depth_only.depth_func = "LESS";
-    depth_only.clear_depth = 1.0f;
-    b.pass("shadow_depth", "draw_scene", "shadow_depth", {}, {{std::string(shadow_map_texture), 0, -1, "depth"}}, {},
-           R, R, depth_only);
+    b.texture({.name = std::string(shadow_map_texture),
+               .format = TextureFormat::depth32f,
+               .width = R,
+               .height = R,
+               .min_filter = TextureFilter::linear,
+               .mag_filter = TextureFilter::linear,
+               .wrap = Wrap::clamp_to_edge, // kernels reaching past the map read its edge, not a shadowing border
+               .purpose = "shadow map: (z - near) / (far - near) along the light axis, biased; the filter reads it "
+                          "with hardware comparison, bilinear"});
+    b.pass({.name = "shadow_depth",
+            .action = PassAction::draw_scene,
+            .program = "shadow_depth",
+            .outputs = {{std::string(shadow_map_texture)}}, // the depth attachment (a depth format)
+            .viewport_width = R,
+            .viewport_height = R,
+            .state = {.depth_test = true, .depth_func = CompareFunc::less, .depth_write = true, .clear_depth = 1.0f}});
 }
 
 inline void describe_shadow_map_layout(LayoutBuilder& b, const Config& config) {
