@@ -39,6 +39,7 @@
 #include "rendering/headless_render.hpp"
 #include "scenes/scenes.hpp"
 
+#include <penumbra/config_fields.hpp>
 #include <penumbra/cost_model.hpp>
 #include <penumbra/gl/runtime.hpp>
 #include <penumbra/layout.hpp>
@@ -659,7 +660,7 @@ int main(int argc, char** argv) {
                     if (bytes_per_texel(t.internal_format) == 0)
                         return fail(entry.label + ": texture " + t.name + " has a format of unknown size, " + t.internal_format);
                 a.texture_bytes = static_cast<std::uint64_t>(penumbra::texture_bytes(layout, options->width, options->height));
-                a.config = json::parse(to_json(layout))["config"];
+                a.config = json::parse(config_to_json(layout.config));
                 active.push_back(std::move(a));
             }
             // Occlusion interval maps draw their own mesh (with the charts' texture coordinates) into their own G-buffer.
@@ -683,7 +684,7 @@ int main(int argc, char** argv) {
                     if (!run_frame(*a.runtime, mesh_of(a), pixels_of(a), warmup, &error)) return fail(entry.label + ": " + error);
                     // set_light fitted level_bound to this light: memory, configuration and cost as they run
                     a.texture_bytes = static_cast<std::uint64_t>(penumbra::texture_bytes(a.runtime->layout(), options->width, options->height));
-                    a.config = json::parse(to_json(a.runtime->layout()))["config"];
+                    a.config = json::parse(config_to_json(a.runtime->layout().config));
                     costs[e] = cost_model(a.runtime->layout(), options->width, options->height);
                     const std::vector<float> visibility = read_visibility(*a.runtime, pixels_of(a));
                     quality[e] = compare_quality(visibility, pixels->frame.geometry, truths[s].visibility,

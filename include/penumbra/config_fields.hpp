@@ -213,6 +213,32 @@ inline std::string config_to_json(const Config& config, std::string_view indent 
     return "{\n" + out + "\n" + std::string(indent) + "}";
 }
 
+// One --help entry: "  FLAG" padded to `column`, then `text` wrapped at `width` characters, its
+// continuation lines indented to `column`.
+inline std::string help_line(std::string_view flag, std::string_view text, std::size_t column, std::size_t width = 110) {
+    std::string line = "  " + std::string(flag);
+    line.resize(std::max(line.size() + 1, column), ' ');
+    std::size_t length = line.size();
+    bool first = true;
+    for (std::string_view rest = text; !rest.empty();) {
+        const std::size_t space = rest.find(' ');
+        const std::string_view word = rest.substr(0, space);
+        rest = space == std::string_view::npos ? std::string_view() : rest.substr(space + 1);
+        if (!first && length + 1 + word.size() > width) {
+            line += '\n';
+            line.append(column, ' ');
+            length = column;
+        } else if (!first) {
+            line += ' ';
+            ++length;
+        }
+        line += word;
+        length += word.size();
+        first = false;
+    }
+    return line + "\n";
+}
+
 // The --help lines of every field with a flag: a heading per technique group ("occlusion:"), then
 // "  --flag V" padded to `column`, the help, what is allowed and the default, wrapped at `width`.
 // Rows that share a switch (--no-rotation) are one line.
@@ -242,27 +268,7 @@ inline std::string config_usage(std::size_t column, std::size_t width = 110) {
             // "help: 1 to 64", or "help; 1 to 64" after a help that has a colon of its own
             text += (f.help.find(':') == std::string_view::npos ? ": " : "; ") + allowed_text(f) + " (default " + def + ")";
         }
-        std::string line = "  " + std::string(f.flag) + (f.metavar.empty() ? "" : " " + std::string(f.metavar));
-        line.resize(std::max(line.size() + 1, column), ' ');
-        // Words onto lines of at most `width` characters, continuation lines indented to `column`.
-        std::size_t length = line.size();
-        bool first = true;
-        for (std::string_view rest = text; !rest.empty();) {
-            const std::size_t space = rest.find(' ');
-            const std::string_view word = rest.substr(0, space);
-            rest = space == std::string_view::npos ? std::string_view() : rest.substr(space + 1);
-            if (!first && length + 1 + word.size() > width) {
-                line += "\n" + std::string(column, ' ');
-                length = column;
-            } else if (!first) {
-                line += ' ';
-                ++length;
-            }
-            line += word;
-            length += word.size();
-            first = false;
-        }
-        out += line + "\n";
+        out += help_line(std::string(f.flag) + (f.metavar.empty() ? "" : " " + std::string(f.metavar)), text, column, width);
     }
     return out;
 }

@@ -54,14 +54,14 @@ std::string set_value(WindowApp& app, std::string key, const std::string& value)
     }
     Config config = app.config(side);
     std::string error;
-    // A technique's parameters use the names of its command-line flags without the dashes:
-    // `set pcss_blockers 32` is `--pcss-blockers 32`, `set right.technique pcss` is `--technique pcss`.
+    // A configuration field's flag without the dashes (technique_flags.hpp): `set pcss_blockers 32`
+    // is `--pcss-blockers 32`, `set right.technique pcss` is `--technique pcss`.
     std::string flag = "--" + key;
     for (char& c : flag)
         if (c == '_') c = '-';
-    if (penumbra_gen::is_technique_flag(flag)) {
-        penumbra_gen::TechniqueFlags flags;
-        error = penumbra_gen::parse_technique_flag(flag, value, flags);
+    if (penumbra_gen::is_config_flag(flag)) {
+        penumbra_gen::ConfigFlags flags;
+        error = penumbra_gen::parse_config_flag(flag, value, flags);
         if (!error.empty()) return error;
         app.request_config(penumbra_gen::apply(flags, config), side);
         return {};
@@ -122,8 +122,8 @@ std::string set_value(WindowApp& app, std::string key, const std::string& value)
             return {};
         }
         return "set: unknown key '" + printable(key) +
-               "'; allowed: slices, resolution, filter, fusion, packing, light, target, leak_fix, fade, technique "
-               "and the technique flags of penumbra-gen without dashes (pcss_blockers, …) (also as right.KEY), "
+               "'; allowed: leak_fix, fade and the configuration flags of penumbra-gen without dashes (slices, "
+               "technique, pcss_blockers, …) (also as right.KEY), "
                "view, view_slice, view_level, view_texture, view_texture_level, view_texture_layer, "
                "view_texture_channel, view_texture_max, split, animate_light, animate_object, scene";
     } else {
