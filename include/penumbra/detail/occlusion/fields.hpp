@@ -41,14 +41,14 @@ constexpr auto occlusion_fields() {
              .allowed = "0 to 8 slicing texels",
              .help = "slicing texels by which the tangent clip moves a receiver sideways along its normal, off "
                      "its own texels",
-             .detail = "with the tangent clip: slicing texels by which a receiver moves sideways along its normal "
+             .detail = "with the tangent clip, slicing texels by which a receiver moves sideways along its normal "
                        "before its kernels are placed (off its own texels in the slices; each texel also moves the "
                        "kernels off occluders within a slice or two of it)",
              .techniques = "occlusion"}),
         member<&Config::clip_footprint>(
             {.key = "clip_footprint", .flag = "--no-clip-footprint",
              .help = "the tangent clip also moves receivers off their own footprint in the slice above them",
-             .detail = "with the tangent clip: a receiver also moves off its own tangent plane's footprint in the "
+             .detail = "with the tangent clip, a receiver also moves off its own tangent plane's footprint in the "
                        "slice above it (the plane's sideways run over the slice's content depth, with the slicing "
                        "perspective; 0 on faces that face the light, capped at 4 slicing texels)",
              .techniques = "occlusion"}),
@@ -56,7 +56,7 @@ constexpr auto occlusion_fields() {
             {.key = "fade_ramp", .flag = "--fade-ramp", .metavar = "F", .min = 0, .max = 4, .min_exclusive = true,
              .allowed = "more than 0 to 4 (fraction of a slice's thickness)",
              .help = "the self-shadow fade ramps over F of a slice's thickness",
-             .detail = "with the self-shadow fade: the fraction of a slice's thickness over which a plane's weight "
+             .detail = "with the self-shadow fade, the fraction of a slice's thickness over which a plane's weight "
                        "ramps from 0 (at the point) to 1",
              .techniques = "occlusion"}),
         member<&Config::slice_placement>(
