@@ -224,8 +224,8 @@ std::string usage() {
                                   "                        scene's, 2 for the procedural scenes); sun: angular "
                                   "diameter in degrees, below 90\n"
                                   "                        (default 2.66, five times the real sun)");
-    out += "\nconfiguration (as penumbra-gen; flags override the --config file; the window runs every target\n"
-           "but vulkan):\n\n";
+    out += "\nconfiguration (as penumbra-gen; flags override the --config file; --target vulkan cannot run here,\n"
+           "the playground renders with OpenGL):\n\n";
     out += penumbra::config_usage(24);
     out += "  (--alpha-test here: materials that cut cast the shadow of their texture's alpha, not of their\n"
            "  triangles: glTF alphaMode MASK (baseColorFactor.a x baseColorTexture.a below alphaCutoff, default\n"
