@@ -30,6 +30,12 @@
 namespace penumbra {
 namespace detail {
 
+// Rows name only the members they set; the rest keep their defaults on purpose.
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#endif
+
 constexpr auto common_fields() {
     return std::array{
         member<&Config::technique>({.key = "technique", .flag = "--technique", .metavar = "T",
@@ -51,6 +57,10 @@ constexpr auto common_fields() {
              .omit_default = true}),
     };
 }
+
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
 
 template <std::size_t... N> constexpr auto concat_fields(const std::array<ConfigField, N>&... parts) {
     std::array<ConfigField, (N + ...)> out{};
