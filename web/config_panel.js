@@ -55,7 +55,8 @@ export class ConfigPanel {
             row.title = `${field.flag}: ${field.help}`;
             const name = Object.assign(document.createElement("span"), {className: "name", textContent: field.key});
             let input;
-            const value = get(initial, field.key) ?? get(defaults, field.key);
+            // layout.json leaves out a field added later while it has its default (alpha_test): the table's
+            const value = get(initial, field.key) ?? get(defaults, field.key) ?? field.default;
             if (field.kind === "choice") {
                 input = document.createElement("select");
                 for (const option of field.names)
