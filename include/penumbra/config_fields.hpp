@@ -8,7 +8,10 @@
 //
 // The fields every technique reads (technique, light, target, alpha_test) are here; each technique's
 // own are in its folder, detail/<technique>/fields.hpp. A new field is one row there; a new
-// technique's fields, one fields.hpp and one line in config_field_table below.
+// technique's fields, one fields.hpp and one line in config_field_table below. Rows added after
+// layout_version 3 set omit_default, so that the layout.json of every earlier configuration stays
+// byte for byte what it was (a section whose rows all keep their defaults is left out). After a change,
+// `penumbra-config-schema --write docs/layout.schema.json` regenerates the schema's "config" object.
 #pragma once
 
 #include "config_field.hpp"
