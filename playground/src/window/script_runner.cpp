@@ -15,19 +15,6 @@ namespace {
 
 using penumbra_gen::printable;
 
-template <class Enum> std::string set_enum(Enum& field, const std::string& key, const std::string& value) {
-    if (auto parsed = parse_enum<Enum>(value)) {
-        field = *parsed;
-        return {};
-    }
-    std::string allowed;
-    for (std::string_view name : EnumNames<Enum>::names) {
-        if (!allowed.empty()) allowed += ", ";
-        allowed += std::string(name);
-    }
-    return key + ": '" + printable(value) + "' is not allowed; allowed: " + allowed;
-}
-
 std::string set_bool(bool& field, const std::string& key, const std::string& value) {
     if (value == "on" || value == "true" || value == "1")
         field = true;
@@ -66,21 +53,7 @@ std::string set_value(WindowApp& app, std::string key, const std::string& value)
         app.request_config(penumbra_gen::apply(flags, config), side);
         return {};
     }
-    if (key == "slices")
-        error = set_int(config.slices, key, value);
-    else if (key == "resolution")
-        error = set_int(config.resolution, key, value);
-    else if (key == "filter")
-        error = set_enum(config.filter, key, value);
-    else if (key == "fusion")
-        error = set_enum(config.fusion, key, value);
-    else if (key == "packing")
-        error = set_enum(config.packing, key, value);
-    else if (key == "light")
-        error = set_enum(config.light, key, value);
-    else if (key == "target")
-        error = set_enum(config.target, key, value);
-    else if (key == "leak_fix")
+    if (key == "leak_fix")
         error = set_bool(config.leak_fix, key, value);
     else if (key == "fade")
         error = set_bool(config.self_shadow_fade, key, value);
