@@ -39,6 +39,7 @@
 #include "rendering/headless_render.hpp"
 #include "scenes/scenes.hpp"
 
+#include <penumbra/config_fields.hpp>
 #include <penumbra_tools/file_transaction.hpp>
 
 #include <penumbra/cost_model.hpp>
@@ -715,7 +716,7 @@ private:
                     if (std::string d = a.runtime->supply_texture(name, texels); !d.empty()) return where + ": " + d;
             const Layout& layout = a.runtime->layout();
             a.texture_bytes = static_cast<std::uint64_t>(penumbra::texture_bytes(layout, options_.width, options_.height));
-            a.config = json::parse(to_json(layout))["config"];
+            a.config = json::parse(config_to_json(layout.config));
             active_.push_back(std::move(a));
         }
         return {};
@@ -764,7 +765,7 @@ private:
             if (!run_frame(*a.runtime, mesh_of(a), pixels_of(a), warmup, &error)) return entry.label + ": " + error;
             // set_light fitted level_bound to this light: memory, configuration and cost as they run
             a.texture_bytes = static_cast<std::uint64_t>(penumbra::texture_bytes(a.runtime->layout(), options_.width, options_.height));
-            a.config = json::parse(to_json(a.runtime->layout()))["config"];
+            a.config = json::parse(config_to_json(a.runtime->layout().config));
             cell.costs[e] = cost_model(a.runtime->layout(), options_.width, options_.height);
             const std::vector<float> visibility = read_visibility(*a.runtime, pixels_of(a));
             const std::vector<unsigned char>& geometry = pixels_->frame.geometry;

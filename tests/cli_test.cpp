@@ -273,7 +273,7 @@ struct BadInput {
 
 TEST_CASE("bad arguments and bad config files: exit 2, one clear error line, nothing written") {
     const std::vector<BadInput> cases{
-        {"unknown flag", {"--slcies", "8"}, "unknown flag '--slcies'; allowed: --slices"},
+        {"unknown flag", {"--slcies", "8"}, "unknown flag '--slcies'; allowed: --technique, --light, --target, --alpha-test, --slices"},
         {"short unknown flag", {"-s"}, "unknown flag '-s'"},
         {"positional", {"extra"}, "unexpected argument 'extra'"},
         {"missing value", {"--slices"}, "--slices: missing value", nullptr, true},
@@ -305,7 +305,7 @@ TEST_CASE("bad arguments and bad config files: exit 2, one clear error line, not
         {"json syntax", {}, "parse error at line 1, column", "{\"slices\": 8,"},
         {"json syntax line 3", {}, "line 3, column", "{\n  \"slices\": 8,\n  \"filter\" \"sat\"\n}"},
         {"empty file", {}, "parse error", ""},
-        {"unknown key", {}, "unknown key 'slice'; allowed keys: slices, resolution", R"({"slice": 8})"},
+        {"unknown key", {}, "unknown key 'slice'; allowed keys: technique, slices, resolution", R"({"slice": 8})"},
         {"string for an integer", {}, "key 'slices' must be an integer", R"({"slices": "16"})"},
         {"fraction", {}, "key 'resolution' must be an integer", R"({"resolution": 512.5})"},
         {"huge integer", {}, "key 'slices': 99999999999 is out of range", R"({"slices": 99999999999})"},

@@ -10,6 +10,8 @@
 //                                     1 emitted, 0 invalid (diagnostics), from the input buffer
 //   const char* penumbra_output()     the result as JSON (below), valid until the next call
 //   size_t penumbra_output_size()
+//   const char* penumbra_fields()     the table of configuration fields as JSON
+//   size_t penumbra_fields_size()     (penumbra::config_fields_json: the web page's panel)
 // Result: {"ok": bool, "files": {"<name>": "<text>", ...} (penumbra-gen's order, layout.json
 // last), "diagnostics": [{"severity": "error", "field": "...", "message": "..."}],
 // "error": "error: ..." (the line penumbra-gen prints, empty when ok)}.
@@ -17,6 +19,7 @@
 #include <penumbra_tools/output_files.hpp>
 
 #include <nlohmann/json.hpp>
+#include <penumbra/config_fields.hpp>
 #include <penumbra/emit.hpp>
 
 #include <cstddef>
@@ -25,7 +28,7 @@
 
 namespace {
 
-std::string input, output;
+std::string input, output, fields;
 bool output_ok = false;
 
 using ordered = nlohmann::ordered_json;
@@ -85,5 +88,15 @@ __attribute__((export_name("penumbra_emit"))) int penumbra_emit(std::size_t conf
 __attribute__((export_name("penumbra_output"))) const char* penumbra_output() { return output.data(); }
 
 __attribute__((export_name("penumbra_output_size"))) std::size_t penumbra_output_size() { return output.size(); }
+
+__attribute__((export_name("penumbra_fields"))) const char* penumbra_fields() {
+    if (fields.empty()) fields = penumbra::config_fields_json();
+    return fields.data();
+}
+
+__attribute__((export_name("penumbra_fields_size"))) std::size_t penumbra_fields_size() {
+    penumbra_fields();
+    return fields.size();
+}
 
 } // extern "C"

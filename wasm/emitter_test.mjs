@@ -18,7 +18,7 @@ import {fileURLToPath, pathToFileURL} from "node:url";
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const {loadEmitter} = await import(pathToFileURL(path.join(here, "../web/three/penumbra_emitter.js")));
-const {FIELDS} = await import(pathToFileURL(path.join(here, "../web/config_panel.js")));
+const {panelFields} = await import(pathToFileURL(path.join(here, "../web/config_panel.js")));
 
 function parseArguments(argv) {
     const out = {gen: null, wasm: null, seed: 19};
@@ -166,8 +166,10 @@ async function main() {
     });
     fs.rmSync(root, {recursive: true, force: true});
 
-    // The page's panel (web/config_panel.js): a field for every key of layout.json's config, each
-    // with penumbra-gen's flag and its --help text word for word.
+    // The page's panel (web/config_panel.js, from the module's table of configuration fields): a field
+    // for every key of layout.json's config, each with penumbra-gen's flag and its --help text word for
+    // word (a field written only when not its default, such as alpha_test, may be absent from the sample).
+    const FIELDS = panelFields(emitter);
     const help = spawnSync(path.resolve(args.gen), ["--help"], {encoding: "utf8"}).stdout.replace(/\s+/g, " ");
     const keys = [];
     const walk = (object, prefix) => {
@@ -179,7 +181,7 @@ async function main() {
     for (const key of keys)
         if (!FIELDS.some((f) => f.key === key)) failures.push(`panel: no field for layout.json config key ${key}`);
     for (const f of FIELDS) {
-        if (!keys.includes(f.key)) failures.push(`panel: field ${f.key} is no key of layout.json's config`);
+        if (!keys.includes(f.key) && !f.optional) failures.push(`panel: field ${f.key} is no key of layout.json's config`);
         if (!help.includes(f.flag)) failures.push(`panel: ${f.key}: flag ${f.flag} is not in penumbra-gen --help`);
         if (!help.includes(f.help)) failures.push(`panel: ${f.key}: '${f.help}' is not what penumbra-gen --help says`);
     }

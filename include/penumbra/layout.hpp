@@ -24,6 +24,7 @@ std::string to_json(const Layout& layout);
 } // namespace penumbra
 #else
 
+#include "config_fields.hpp"
 #include "detail/layout_builder.hpp"
 #include "detail/techniques.hpp"
 #include "detail/vertex_inputs.hpp"
@@ -146,7 +147,6 @@ inline std::string json_sampling(const Sampling& s) {
 PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
     using detail::json_name;
     using detail::json_string;
-    const Config& c = layout.config;
     std::string o = "{\n";
     auto field = [&](std::string_view indent, std::string_view key, const std::string& value, bool comma = true) {
         o += std::string(indent) + json_string(key) + ": " + value + (comma ? ",\n" : "\n");
@@ -154,54 +154,7 @@ PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
     o += "  \"generator\": \"penumbra " + std::string(detail::version_string) + "\",\n";
     field("  ", "layout_version", std::to_string(layout.version));
     field("  ", "technique", json_name(c.technique));
-    o += "  \"config\": {\n";
-    field("    ", "technique", json_string(to_string(c.technique)));
-    field("    ", "slices", std::to_string(c.slices));
-    field("    ", "resolution", std::to_string(c.resolution));
-    field("    ", "filter", json_string(to_string(c.filter)));
-    field("    ", "fusion", json_string(to_string(c.fusion)));
-    field("    ", "packing", json_string(to_string(c.packing)));
-    field("    ", "light", json_string(to_string(c.light)));
-    field("    ", "leak_fix", c.leak_fix ? "true" : "false");
-    field("    ", "self_shadow_fade", c.self_shadow_fade ? "true" : "false");
-    field("    ", "tangent_clip", c.tangent_clip ? "true" : "false");
-    field("    ", "slice_placement", json_string(to_string(c.slice_placement)));
-    field("    ", "level_format", json_string(to_string(c.level_format)));
-    field("    ", "level_bound", std::to_string(c.level_bound));
-    field("    ", "level_reduction", std::to_string(c.level_reduction));
-    // written when not the default (fragment), so that the fragment path's layouts read as before
-    if (c.prefilter_stage != PrefilterStage::fragment)
-        field("    ", "prefilter_stage", json_string(to_string(c.prefilter_stage)));
-    auto real = [](double v) { return detail::format_float(v).str(); };
-    field("    ", "tangent_clip_offset", real(c.tangent_clip_offset));
-    field("    ", "clip_footprint", c.clip_footprint ? "true" : "false");
-    field("    ", "fade_ramp", real(c.fade_ramp));
-    field("    ", "target", json_string(to_string(c.target)));
-    auto flag = [](bool v) { return std::string(v ? "true" : "false"); };
-    field("    ", "shadow_map",
-          "{\"resolution\": " + std::to_string(c.shadow_map.resolution) + ", \"constant_bias\": " +
-              real(c.shadow_map.constant_bias) + ", \"slope_bias\": " + real(c.shadow_map.slope_bias) +
-              ", \"normal_offset\": " + real(c.shadow_map.normal_offset) +
-              ", \"receiver_plane_bias\": " + flag(c.shadow_map.receiver_plane_bias) + "}");
-    field("    ", "pcf",
-          "{\"pattern\": " + json_string(to_string(c.pcf.pattern)) + ", \"grid_size\": " +
-              std::to_string(c.pcf.grid_size) + ", \"poisson_taps\": " + std::to_string(c.pcf.poisson_taps) +
-              ", \"radius\": " + real(c.pcf.radius) + ", \"rotate\": " + flag(c.pcf.rotate) + "}");
-    field("    ", "pcss",
-          "{\"blocker_samples\": " + std::to_string(c.pcss.blocker_samples) + ", \"filter_samples\": " +
-              std::to_string(c.pcss.filter_samples) + ", \"max_filter_texels\": " +
-              std::to_string(c.pcss.max_filter_texels) + ", \"rotate\": " + flag(c.pcss.rotate) + "}");
-    field("    ", "oim",
-          "{\"resolution\": " + std::to_string(c.oim.resolution) + ", \"intervals\": " +
-              std::to_string(c.oim.intervals) + ", \"samples\": " + std::to_string(c.oim.samples) + "}");
-    field("    ", "erosion",
-          "{\"max_search_radius\": " + std::to_string(c.erosion.max_search_radius) + ", \"edge_threshold\": " +
-              real(c.erosion.edge_threshold) + ", \"search_taps\": " + std::to_string(c.erosion.search_taps) +
-              ", \"blur_taps\": " + std::to_string(c.erosion.blur_taps) + "}",
-          c.alpha_test);
-    // written when on, so that the layouts of solid casters read as before
-    if (c.alpha_test) field("    ", "alpha_test", "true", false);
-    o += "  },\n";
+    o += "  \"config\": " + config_to_json(layout.config, "  ") + ",\n"; // penumbra/config_fields.hpp
     field("  ", "textures_per_layer", std::to_string(layout.textures_per_layer));
     field("  ", "max_level", std::to_string(layout.max_level));
     field("  ", "max_kernel_texels", std::to_string(c.technique == Technique::occlusion ? 1 << layout.max_level : 0));

@@ -22,9 +22,12 @@
 // The same model with uniforms instead of baked constants: penumbra::emit_generic (penumbra/generic.hpp).
 // At compile time: penumbra::static_glsl<config, "penumbra_visibility.glsl"> (penumbra/static_glsl.hpp).
 // Validation with glslang: penumbra/validation.hpp (target penumbra::validation).
+// Every configuration field's JSON key, flag, range and help, and a configuration as layout.json's
+// "config" object: penumbra::config_fields(), penumbra::config_to_json (penumbra/config_fields.hpp).
 #pragma once
 
 #include "config.hpp"
+#include "config_fields.hpp"
 #include "emit.hpp"
 #include "generic.hpp"
 #include "layout.hpp"

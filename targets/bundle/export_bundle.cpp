@@ -79,14 +79,12 @@ constexpr std::string_view usage_text =
     "  --reference N          also truth.f32: the Embree ground truth (oriented), N x N rays per pixel, 1 to 64\n"
     "  --sun-time T           --technique oim: the instant of the sun's path, 0 to 1 (default 0.5)\n"
     "  --bake-cache DIR       --technique oim: where bakes are cached (default as penumbra-playground)\n"
-    "  configuration flags    as penumbra-gen: --technique and its flags, --slices, --resolution, --filter,\n"
-    "                         --fusion, --packing, --light, --target, --no-leak-fix, --no-fade,\n"
-    "                         --[no-]tangent-clip, --slice-placement, --config FILE.json (see penumbra-gen --help)\n";
+    "  configuration flags    as penumbra-gen: every configuration field's flag (--technique, --slices, --pcss-blockers,\n"
+    "                         ...) and --config FILE.json (see penumbra-gen --help)\n";
 
 constexpr std::string_view flag_list =
-    "--scene, --no-ground, --size, --light-size, --out, --reference, --sun-time, --bake-cache, --slices, --resolution, "
-    "--filter, --fusion, --packing, --light, --target, --no-leak-fix, --no-fade, --tangent-clip, --no-tangent-clip, "
-    "--slice-placement, --config, --help, and the technique flags of penumbra-gen";
+    "--scene, --no-ground, --size, --light-size, --out, --reference, --sun-time, --bake-cache, --config, --help, and the "
+    "configuration flags of penumbra-gen (--technique, --slices, ...)";
 
 using penumbra::cli::parse_number;
 
@@ -117,12 +115,8 @@ penumbra_gen::Parsed<BundleArguments> parse(const std::vector<std::string>& args
         }
         const bool ours = flag == "--scene" || flag == "--size" || flag == "--light-size" || flag == "--out" ||
                           flag == "--reference" || flag == "--sun-time" || flag == "--bake-cache";
-        const bool configuration = flag == "--slices" || flag == "--resolution" || flag == "--filter" ||
-                                   flag == "--fusion" || flag == "--packing" || flag == "--light" || flag == "--target" ||
-                                   flag == "--config" || flag == "--no-leak-fix" || flag == "--no-fade" ||
-                                   flag == "--tangent-clip" || flag == "--no-tangent-clip" ||
-                                   flag == "--slice-placement" || penumbra_gen::is_technique_flag(flag) ||
-                                   penumbra_gen::is_technique_switch(flag);
+        const bool configuration =
+            flag == "--config" || penumbra_gen::is_config_flag(flag) || penumbra_gen::is_config_switch(flag);
         if (!ours && !configuration && flag.starts_with("-"))
             return fail("unknown flag '" + printable(flag) + "'; allowed: " + std::string(flag_list));
         if (!ours) {

@@ -7,6 +7,7 @@
 //   const r = emitter.emit({slices: 8, filter: "mipmap", target: "essl300"}); // or JSON text
 //   r.ok, r.files {"<name>": text, ..., "layout.json": text}, r.layout (parsed), r.diagnostics
 //   [{severity, field, message}], r.error ("error: …", the line penumbra-gen prints; "" when ok)
+//   emitter.fields()  // the table of configuration fields: [{key, flag, kind, min, max, help, techniques, names, default, …}]
 //
 // The module imports nothing (wasm/wasi_stubs.cpp defines the three WASI calls libc's stdio would
 // import): no WASI runtime and no import object, in a browser or in node.
@@ -58,6 +59,19 @@ export class Emitter {
         result.layout = result.ok ? JSON.parse(result.files["layout.json"]) : null;
         result.ms = performance.now() - started; // emission, with the copies in and out
         return result;
+    }
+
+    // The table of configuration fields (penumbra/config_fields.hpp, wasm/README.md): one object per
+    // field, {key, flag, metavar, kind: "integer" | "real" | "boolean" | "choice", min, max,
+    // min_exclusive, allowed, help, techniques: [] (every technique) or names, names, default, optional}.
+    fields() {
+        if (!this.fieldTable) {
+            const e = this.exports;
+            const at = e.penumbra_fields() >>> 0, size = e.penumbra_fields_size() >>> 0; // first: they may grow the memory
+            const text = new Uint8Array(e.memory.buffer, at, size);
+            this.fieldTable = JSON.parse(decoder.decode(text));
+        }
+        return this.fieldTable;
     }
 }
 

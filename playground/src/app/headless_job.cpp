@@ -11,6 +11,7 @@
 
 #include <penumbra_tools/file_transaction.hpp>
 #include <penumbra_tools/printable.hpp>
+#include <penumbra/config_fields.hpp>
 #include <penumbra/layout.hpp>
 
 #include <nlohmann/json.hpp>
@@ -59,7 +60,7 @@ int fail(const std::string& message, int code = 1) {
 
 // layout.json's "config" object (every technique's keys), so that --config metrics.json reproduces the run.
 nlohmann::ordered_json config_json(const Config& c) {
-    return nlohmann::ordered_json::parse(to_json(describe_layout(c))).at("config");
+    return nlohmann::ordered_json::parse(config_to_json(c)); // penumbra/config_fields.hpp
 }
 
 nlohmann::ordered_json light_json(const Scene& scene, Light light) {

@@ -20,31 +20,25 @@
 namespace penumbra::playground {
 namespace {
 
-using penumbra_gen::allowed_names;
-using penumbra_gen::parse_name;
 using penumbra_gen::printable;
 
-constexpr std::string_view flag_list =
-    "--headless, --scene, --no-ground, --size, --light-size, --out, --visibility, --reference, --samples, --metrics, "
-    "--reference-out, --error-out, --slices, --resolution, --filter, --fusion, --packing, --light, --target, "
-    "--no-leak-fix, --no-fade, --tangent-clip, --no-tangent-clip, --slice-placement, --prefilter-stage, --config, --watch, --frames, --screenshot, "
-    "--script, --help, --technique, --shadow-resolution, --shadow-bias, --shadow-slope-bias, --pcf-pattern, "
-    "--pcf-grid, --pcf-taps, --pcf-radius, --pcss-blockers, --pcss-filter, --pcss-max-texels, --no-rotation, --no-receiver-plane-bias, "
-    "--oim-resolution, --oim-intervals, --oim-samples, --sun-time, --sun-path, --bake-cache, --alpha-test";
+// The playground's own flags; the configuration fields' flags are penumbra-gen's (technique_flags.hpp).
+std::string flag_list() {
+    return "--headless, --scene, --no-ground, --size, --light-size, --out, --visibility, --reference, --samples, "
+           "--metrics, --reference-out, --error-out, --config, --watch, --frames, --screenshot, --script, --sun-time, "
+           "--sun-path, --bake-cache, --help, " +
+           penumbra::config_flag_list();
+}
 
 bool is_switch(std::string_view flag) {
-    return flag == "--headless" || flag == "--reference" || flag == "--no-ground" || flag == "--no-leak-fix" || flag == "--no-fade" ||
-           flag == "--tangent-clip" || flag == "--no-tangent-clip" || flag == "--alpha-test" ||
-           penumbra_gen::is_technique_switch(flag);
+    return flag == "--headless" || flag == "--reference" || flag == "--no-ground" || penumbra_gen::is_config_switch(flag);
 }
 
 bool takes_value(std::string_view flag) {
-    if (penumbra_gen::is_technique_flag(flag)) return true;
+    if (penumbra_gen::is_config_flag(flag)) return true;
     for (std::string_view f : {"--scene", "--size", "--light-size", "--out", "--visibility", "--samples", "--metrics",
-                               "--reference-out", "--error-out", "--slices", "--resolution", "--filter", "--fusion",
-                               "--packing", "--light", "--target", "--slice-placement", "--prefilter-stage", "--config", "--watch", "--frames", "--screenshot",
-                               "--sun-time", "--sun-path", "--bake-cache",
-                               "--script"})
+                               "--reference-out", "--error-out", "--config", "--watch", "--frames", "--screenshot",
+                               "--sun-time", "--sun-path", "--bake-cache", "--script"})
         if (flag == f) return true;
     return false;
 }
@@ -135,18 +129,13 @@ ParsedOptions parse_options(const std::vector<std::string>& args) {
             if (flag == "--headless") options.headless = true;
             if (flag == "--reference") options.reference = true;
             if (flag == "--no-ground") options.ground = false;
-            if (flag == "--no-leak-fix") flags.no_leak_fix = true;
-            if (flag == "--no-fade") flags.no_fade = true;
-            if (flag == "--tangent-clip") flags.tangent_clip = true;
-            if (flag == "--no-tangent-clip") flags.tangent_clip = false;
-            if (flag == "--alpha-test") flags.alpha_test = true;
-            penumbra_gen::set_technique_switch(flag, flags.technique);
+            penumbra_gen::set_config_switch(flag, flags);
             continue;
         }
         if (!takes_value(flag)) {
-            if (arg.starts_with("-")) return fail("unknown flag '" + printable(flag) + "'; allowed: " + std::string(flag_list));
+            if (arg.starts_with("-")) return fail("unknown flag '" + printable(flag) + "'; allowed: " + flag_list());
             return fail("unexpected argument '" + printable(arg) +
-                        "'; every value follows its flag (allowed flags: " + std::string(flag_list) + ")");
+                        "'; every value follows its flag (allowed flags: " + flag_list() + ")");
         }
         std::string_view value;
         if (inline_value) value = *inline_value;
@@ -154,22 +143,7 @@ ParsedOptions parse_options(const std::vector<std::string>& args) {
         else return fail(std::string(flag) + ": missing value (see --help)");
 
         std::string error;
-        int number = 0;
-        if (flag == "--slices") {
-            // The range is checked by penumbra::validate, with the same message penumbra-gen gives.
-            error = cli::parse_int(flag, value, number, penumbra::allowed_slices);
-            if (error.empty()) flags.slices = number;
-        } else if (flag == "--resolution") {
-            error = cli::parse_int(flag, value, number, "a power of two from 32 to 4096");
-            if (error.empty()) flags.resolution = number;
-        } else if (penumbra_gen::is_technique_flag(flag)) error = penumbra_gen::parse_technique_flag(flag, value, flags.technique);
-        else if (flag == "--filter") error = parse_name(flag, value, flags.filter);
-        else if (flag == "--fusion") error = parse_name(flag, value, flags.fusion);
-        else if (flag == "--packing") error = parse_name(flag, value, flags.packing);
-        else if (flag == "--light") error = parse_name(flag, value, flags.light);
-        else if (flag == "--target") error = parse_name(flag, value, flags.target);
-        else if (flag == "--slice-placement") error = parse_name(flag, value, flags.slice_placement);
-        else if (flag == "--prefilter-stage") error = parse_name(flag, value, flags.prefilter_stage);
+        if (penumbra_gen::is_config_flag(flag)) error = penumbra_gen::parse_config_flag(flag, value, flags);
         else if (flag == "--size") error = parse_size(value, options.width, options.height);
         else if (flag == "--samples") error = parse_int_in(flag, value, 1, 1024, options.samples);
         else if (flag == "--frames") error = parse_int_in(flag, value, 0, 1000000000, options.frames);
@@ -211,7 +185,6 @@ ParsedOptions parse_options(const std::vector<std::string>& args) {
 }
 
 std::string usage() {
-    const penumbra::Config d{};
     auto line = [](std::string_view flag, std::string_view text) {
         std::string out = "  " + std::string(flag);
         out.resize(std::max<std::size_t>(out.size() + 1, 24), ' ');
@@ -251,39 +224,14 @@ std::string usage() {
                                   "                        scene's, 2 for the procedural scenes); sun: angular "
                                   "diameter in degrees, below 90\n"
                                   "                        (default 2.66, five times the real sun)");
-    out += "\nconfiguration (as penumbra-gen; flags override the --config file):\n";
-    out += line("--slices N", "slices along the light normal: " + std::string(penumbra::allowed_slices) + " (default " + std::to_string(d.slices) + ")");
-    out += line("--resolution R",
-                "occlusion texture side: a power of two, 32 to 4096 (default " + std::to_string(d.resolution) + ")");
-    auto names = [&](std::string text, std::string_view def) { return text + " (default " + std::string(def) + ")"; };
-    out += line("--filter F", names("prefilter: " + allowed_names<penumbra::Filter>(), to_string(d.filter)));
-    out += line("--fusion U", names("slice fusion: " + allowed_names<penumbra::Fusion>(), to_string(d.fusion)));
-    out += line("--packing P", names("storage: " + allowed_names<penumbra::Packing>(), to_string(d.packing)));
-    out += line("--light L", names("area light: " + allowed_names<penumbra::Light>(), to_string(d.light)));
-    out += line("--target T", names("shading language: glsl330, glsl450, essl300 (vulkan cannot run on GL)",
-                                    to_string(d.target)));
-    out += line("--no-leak-fix", "turn off the leak fix (paper §3.4.1; default on)");
-    out += line("--no-fade", "turn off the self-shadow fade (paper §3.4.2; default on)");
-    out += line("--[no-]tangent-clip", std::string("kernels cover only the light above the receiver's tangent plane (default ") +
-                                           (d.tangent_clip ? "on" : "off") + ")");
-    out += line("--slice-placement P", names("slice boundaries: uniform, or adaptive (at the depths the geometry\n"
-                                             "                        occupies, computed on the GPU; paper §5)",
-                                             to_string(d.slice_placement)));
-    out += line("--prefilter-stage S", names("what builds the N-buffer levels above the packing pass: fragment passes, or\n"
-                                             "                        compute dispatches (nbuffer, atlas, glsl450 only)",
-                                             to_string(d.prefilter_stage)));
-    out += line("--alpha-test", std::string("cut-out casters, every technique (default ") + (d.alpha_test ? "on" : "off") +
-                                    "): materials that cut cast the shadow\n"
-                                    "                        of their texture's alpha, not of their triangles: glTF "
-                                    "alphaMode MASK (baseColorFactor.a\n"
-                                    "                        x baseColorTexture.a below alphaCutoff, default 0.5), "
-                                    "BLEND cast as a cut-out at 0.5,\n"
-                                    "                        OBJ map_d (or map_Kd's alpha) at 0.5; the oim bake cuts the "
-                                    "same. The Embree\n"
-                                    "                        truth and the receivers are cut either way (cut-out "
-                                    "pixels are not surfaces)");
-    out += "\ntechnique (occlusion: the flags above; shadowmap, pcf, pcss, erosion, oim: these, plus --light and --target):\n";
-    out += penumbra_gen::technique_usage(25);
+    out += "\nconfiguration (as penumbra-gen; flags override the --config file; --target vulkan cannot run here,\n"
+           "the playground renders with OpenGL):\n\n";
+    out += penumbra::config_usage(24);
+    out += "  (--alpha-test here: materials that cut cast the shadow of their texture's alpha, not of their\n"
+           "  triangles: glTF alphaMode MASK (baseColorFactor.a x baseColorTexture.a below alphaCutoff, default\n"
+           "  0.5), BLEND cast as a cut-out at 0.5, OBJ map_d (or map_Kd's alpha) at 0.5; the oim bake cuts the\n"
+           "  same. The Embree truth and the receivers are cut either way: cut-out pixels are not surfaces)\n";
+    out += "\ninput:\n";
     out += line("--config FILE.json", "configuration from JSON (the keys of Config, or a layout.json); a regular\n"
                                       "                        file of at most 1 MiB");
     out += "\noim (occlusion interval maps: the sun on a fixed path, baked with Embree, cached on disk):\n";

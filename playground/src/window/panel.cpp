@@ -4,148 +4,128 @@
 #include "scenes/scenes.hpp"
 
 #include <imgui.h>
+#include <penumbra/config_fields.hpp>
 
 #include <algorithm>
 #include <cfloat>
+#include <cmath>
 #include <cstdio>
 #include <string>
-#include <type_traits>
+#include <vector>
 
 namespace penumbra::playground {
 
 namespace {
 
-template <class Enum> bool enum_combo(const char* label, Enum& value) {
-    bool changed = false;
-    if (ImGui::BeginCombo(label, std::string(to_string(value)).c_str())) {
-        for (Enum candidate : all_values<Enum>()) {
-            if constexpr (std::is_same_v<Enum, Target>)
-                if (candidate == Target::vulkan) continue; // SPIR-V: nothing the GL runtime can run
-            const bool selected = candidate == value;
-            if (ImGui::Selectable(std::string(to_string(candidate)).c_str(), selected)) {
-                changed = !selected;
-                value = candidate;
-            }
-        }
-        ImGui::EndCombo();
-    }
-    return changed;
+// The highest value a field's widget offers where the table gives no maximum (it depends on another field).
+int widget_max(const ConfigField& f, const Config& config) {
+    if (std::isfinite(f.max)) return static_cast<int>(f.max);
+    if (f.key == "pcss.max_filter_texels") return config.shadow_map.resolution / 2;
+    return resolution_levels(config); // level_bound, level_reduction
 }
 
-// Returns true when the user changed something; `config` then holds the request.
-// Side of a power-of-two texture as a combo over 32 … 32·2^(count−1).
-bool power_of_two_combo(const char* label, int& side, int count) {
-    static const char* sides[] = {"32", "64", "128", "256", "512", "1024", "2048", "4096", "8192"};
-    int level = 0;
-    for (int r = side; r > 32; r /= 2) ++level;
-    if (!ImGui::Combo(label, &level, sides, count)) return false;
-    side = 32 << level;
+// One field of the table (penumbra/config_fields.hpp) as a widget: a checkbox, a combo of its names
+// or of the powers of two it allows, a slider over its range, a drag for a real; its flag and help as
+// the tooltip. Validation happens when the configuration is applied.
+bool field_widget(const ConfigField& f, Config& config) {
+    const std::string label(f.key);
+    const double value = f.get(config);
+    double next = value;
+    switch (f.kind) {
+    case FieldKind::boolean: {
+        bool on = value != 0.0;
+        if (ImGui::Checkbox(label.c_str(), &on)) next = on ? 1.0 : 0.0;
+        break;
+    }
+    case FieldKind::choice:
+        if (ImGui::BeginCombo(label.c_str(), std::string(f.names[static_cast<std::size_t>(value)]).c_str())) {
+            for (std::size_t i = 0; i < f.names.size(); ++i) {
+                if (f.key == "target" && f.names[i] == "vulkan") continue; // SPIR-V: nothing the GL runtime can run
+                if (ImGui::Selectable(std::string(f.names[i]).c_str(), i == static_cast<std::size_t>(value)))
+                    next = static_cast<double>(i);
+            }
+            ImGui::EndCombo();
+        }
+        break;
+    case FieldKind::integer: {
+        int number = static_cast<int>(value);
+        if (f.power_of_two) {
+            std::vector<std::string> sides;
+            int at = 0;
+            for (int side = static_cast<int>(f.min); side <= static_cast<int>(f.max); side *= 2) {
+                if (side == number) at = static_cast<int>(sides.size());
+                sides.push_back(std::to_string(side));
+            }
+            std::vector<const char*> items;
+            for (const std::string& side : sides) items.push_back(side.c_str());
+            if (ImGui::Combo(label.c_str(), &at, items.data(), static_cast<int>(items.size())))
+                next = static_cast<double>(static_cast<int>(f.min) << at);
+        } else if (ImGui::SliderInt(label.c_str(), &number, static_cast<int>(f.min), widget_max(f, config))) {
+            next = number;
+        }
+        break;
+    }
+    case FieldKind::real: {
+        float number = static_cast<float>(value);
+        const float lo = static_cast<float>(f.min_exclusive ? f.min + 0.01 : f.min);
+        const float hi = static_cast<float>(f.max);
+        if (ImGui::DragFloat(label.c_str(), &number, std::max(0.001f, 0.01f * std::abs(number)), lo, hi, "%.3f"))
+            next = std::clamp(number, lo, hi);
+        break;
+    }
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s: %s", std::string(f.flag).c_str(), std::string(f.help).c_str());
+    if (next == value) return false;
+    f.set(config, next);
     return true;
 }
 
-// The parameters of the shadow-map family (shadowmap, pcf, pcss); validation happens when applied.
-bool shadow_map_editor(Config& config) {
-    bool changed = power_of_two_combo("shadow map", config.shadow_map.resolution, 9);
-    float bias[2] = {float(config.shadow_map.constant_bias), float(config.shadow_map.slope_bias)};
-    if (ImGui::DragFloat2("bias: constant, slope", bias, 0.005f, 0.0f, 16.0f, "%.3f")) {
-        config.shadow_map.constant_bias = bias[0];
-        config.shadow_map.slope_bias = bias[1];
-        changed = true;
-    }
-    float normal_offset = float(config.shadow_map.normal_offset);
-    if (config.technique != Technique::erosion &&
-        ImGui::DragFloat("normal offset (texels x sin)", &normal_offset, 0.05f, 0.0f, 8.0f, "%.2f")) {
-        config.shadow_map.normal_offset = normal_offset;
-        changed = true;
-    }
-    if (config.technique == Technique::pcf || config.technique == Technique::pcss)
-        changed |= ImGui::Checkbox("receiver-plane depth bias", &config.shadow_map.receiver_plane_bias);
-    if (config.technique == Technique::pcf) {
-        changed |= enum_combo("pattern", config.pcf.pattern);
-        if (config.pcf.pattern == TapPattern::grid)
-            changed |= ImGui::SliderInt("grid N (N x N taps)", &config.pcf.grid_size, 1, 16);
-        else
-            changed |= ImGui::SliderInt("Poisson taps", &config.pcf.poisson_taps, 1, 64);
-        float radius = float(config.pcf.radius);
-        if (ImGui::DragFloat("radius (scene units)", &radius, 0.005f, 0.001f, 10.0f, "%.3f")) {
-            config.pcf.radius = radius;
-            changed = true;
-        }
-        changed |= ImGui::Checkbox("rotate per pixel", &config.pcf.rotate);
-    }
-    if (config.technique == Technique::pcss) {
-        static const int presets[][2] = {{8, 8}, {16, 16}, {17, 34}, {32, 32}, {32, 64}};
-        static const char* names[] = {"8/8 (Bevy)", "16/16 (Filament)", "17/34 (three.js)", "32/32 (Godot ultra)",
-                                      "32/64 (PlayCanvas high)"};
-        int preset = -1;
-        for (int i = 0; i < 5; ++i)
-            if (config.pcss.blocker_samples == presets[i][0] && config.pcss.filter_samples == presets[i][1]) preset = i;
-        if (ImGui::Combo("engine preset", &preset, names, 5)) {
-            config.pcss.blocker_samples = presets[preset][0];
-            config.pcss.filter_samples = presets[preset][1];
-            changed = true;
-        }
-        changed |= ImGui::SliderInt("blocker samples", &config.pcss.blocker_samples, 1, 64);
-        changed |= ImGui::SliderInt("filter samples", &config.pcss.filter_samples, 1, 128);
-        changed |= ImGui::SliderInt("max filter texels", &config.pcss.max_filter_texels, 1,
-                                    config.shadow_map.resolution / 2);
-        changed |= ImGui::Checkbox("rotate per pixel", &config.pcss.rotate);
-    }
-    return changed;
-}
-
-bool config_editor(const char* id, Config& config) {
-    ImGui::PushID(id);
-    bool changed = enum_combo("technique", config.technique);
-    changed |= ImGui::Checkbox("alpha test (cut-out casters)", &config.alpha_test);
-    if (config.technique != Technique::occlusion) {
-        if (uses_shadow_map(config)) changed |= shadow_map_editor(config);
-        changed |= enum_combo("light", config.light);
-        changed |= enum_combo("target", config.target);
-        ImGui::PopID();
-        return changed;
-    }
-    int channel_slices = std::min(config.slices, max_channel_slices); // 1 to 32: colour channels
+// Slices: a slider over the colour-channel counts (1 to 32) and buttons for the counts sliced as bits
+// (64, 128; paper §3.7).
+bool slices_widget(Config& config) {
+    bool changed = false;
+    int channel_slices = std::min(config.slices, max_channel_slices);
     if (ImGui::SliderInt("slices", &channel_slices, 1, max_channel_slices)) {
         config.slices = channel_slices;
         changed = true;
     }
-    for (const int bit_slices : {64, 128}) { // paper §3.7: sliced as bits, then unpacked
+    for (const int bit_slices : {64, 128}) {
         ImGui::SameLine();
         if (ImGui::RadioButton(std::to_string(bit_slices).c_str(), config.slices == bit_slices)) {
             config.slices = bit_slices;
             changed = true;
         }
     }
-    int level = 0;
-    for (int r = config.resolution; r > 32; r /= 2) ++level;
-    static const char* resolutions[] = {"32", "64", "128", "256", "512", "1024", "2048", "4096"};
-    if (ImGui::Combo("resolution", &level, resolutions, 8)) {
-        config.resolution = 32 << level;
-        changed = true;
+    return changed;
+}
+
+// PCSS's sample counts as shipped by engines: two fields at once.
+bool pcss_presets(Config& config) {
+    static const int presets[][2] = {{8, 8}, {16, 16}, {17, 34}, {32, 32}, {32, 64}};
+    static const char* names[] = {"8/8 (Bevy)", "16/16 (Filament)", "17/34 (three.js)", "32/32 (Godot ultra)",
+                                  "32/64 (PlayCanvas high)"};
+    int preset = -1;
+    for (int i = 0; i < 5; ++i)
+        if (config.pcss.blocker_samples == presets[i][0] && config.pcss.filter_samples == presets[i][1]) preset = i;
+    if (!ImGui::Combo("engine preset", &preset, names, 5)) return false;
+    config.pcss.blocker_samples = presets[preset][0];
+    config.pcss.filter_samples = presets[preset][1];
+    return true;
+}
+
+// Returns true when the user changed something; `config` then holds the request. Every field the
+// selected technique reads, in table order.
+bool config_editor(const char* id, Config& config) {
+    ImGui::PushID(id);
+    bool changed = false;
+    const Technique technique = config.technique;
+    for (const ConfigField& f : config_fields()) {
+        if (!reads_field(f, technique)) continue;
+        ImGui::PushID(f.key.data(), f.key.data() + f.key.size());
+        if (f.key == "pcss.blocker_samples") changed |= pcss_presets(config);
+        changed |= f.key == "slices" ? slices_widget(config) : field_widget(f, config);
+        ImGui::PopID();
     }
-    changed |= enum_combo("filter", config.filter);
-    changed |= enum_combo("fusion", config.fusion);
-    changed |= enum_combo("packing", config.packing);
-    changed |= enum_combo("light", config.light);
-    changed |= enum_combo("target", config.target);
-    changed |= ImGui::Checkbox("leak fix (§3.4.1)", &config.leak_fix);
-    ImGui::SameLine();
-    changed |= ImGui::Checkbox("fade (§3.4.2)", &config.self_shadow_fade);
-    changed |= ImGui::Checkbox("tangent clip", &config.tangent_clip);
-    changed |= ImGui::Checkbox("clip footprint", &config.clip_footprint);
-    float offsets[2] = {float(config.tangent_clip_offset), float(config.fade_ramp)};
-    if (ImGui::DragFloat2("clip offset (texels), fade ramp (slice)", offsets, 0.05f, 0.0f, 8.0f, "%.2f")) {
-        config.tangent_clip_offset = offsets[0];
-        config.fade_ramp = std::max(offsets[1], 0.01f);
-        changed = true;
-    }
-    changed |= enum_combo("slice placement (§5)", config.slice_placement);
-    if (config.packing == Packing::atlas && (config.filter == Filter::nbuffer || config.filter == Filter::gaussian))
-        changed |= ImGui::SliderInt("level reduction", &config.level_reduction, -1, resolution_levels(config),
-                                    config.level_reduction < 0 ? "off" : "above %d");
-    if (config.packing == Packing::atlas && config.filter == Filter::nbuffer && config.target == Target::glsl450)
-        changed |= enum_combo("prefilter stage", config.prefilter_stage);
     ImGui::PopID();
     return changed;
 }

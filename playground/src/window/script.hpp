@@ -1,8 +1,9 @@
 // playground/src/window/script.hpp — the automation script of `--script FILE`: one action per
 // line, `#` starts a comment.
 //
-//   set slices 8                 configuration value (slices, resolution, filter, fusion, packing,
-//                                light, leak_fix, fade); `set right.filter sat` for the split
+//   set slices 8                 configuration value: a configuration flag of penumbra-gen without
+//                                dashes (slices, filter, pcss_blockers, ...), or leak_fix, fade
+//                                (true/false); `set right.filter sat` for the split
 //                                screen's right half; also view (shaded, visibility, truth, error,
 //                                slice_texture, slice_map, level_map), view_slice, view_level, split,
 //                                animate_light, animate_object, scene

@@ -15,19 +15,6 @@ namespace {
 
 using penumbra_gen::printable;
 
-template <class Enum> std::string set_enum(Enum& field, const std::string& key, const std::string& value) {
-    if (auto parsed = parse_enum<Enum>(value)) {
-        field = *parsed;
-        return {};
-    }
-    std::string allowed;
-    for (std::string_view name : EnumNames<Enum>::names) {
-        if (!allowed.empty()) allowed += ", ";
-        allowed += std::string(name);
-    }
-    return key + ": '" + printable(value) + "' is not allowed; allowed: " + allowed;
-}
-
 std::string set_bool(bool& field, const std::string& key, const std::string& value) {
     if (value == "on" || value == "true" || value == "1")
         field = true;
@@ -54,33 +41,19 @@ std::string set_value(WindowApp& app, std::string key, const std::string& value)
     }
     Config config = app.config(side);
     std::string error;
-    // A technique's parameters use the names of its command-line flags without the dashes:
-    // `set pcss_blockers 32` is `--pcss-blockers 32`, `set right.technique pcss` is `--technique pcss`.
+    // A configuration field's flag without the dashes (technique_flags.hpp): `set pcss_blockers 32`
+    // is `--pcss-blockers 32`, `set right.technique pcss` is `--technique pcss`.
     std::string flag = "--" + key;
     for (char& c : flag)
         if (c == '_') c = '-';
-    if (penumbra_gen::is_technique_flag(flag)) {
-        penumbra_gen::TechniqueFlags flags;
-        error = penumbra_gen::parse_technique_flag(flag, value, flags);
+    if (penumbra_gen::is_config_flag(flag)) {
+        penumbra_gen::ConfigFlags flags;
+        error = penumbra_gen::parse_config_flag(flag, value, flags);
         if (!error.empty()) return error;
         app.request_config(penumbra_gen::apply(flags, config), side);
         return {};
     }
-    if (key == "slices")
-        error = set_int(config.slices, key, value);
-    else if (key == "resolution")
-        error = set_int(config.resolution, key, value);
-    else if (key == "filter")
-        error = set_enum(config.filter, key, value);
-    else if (key == "fusion")
-        error = set_enum(config.fusion, key, value);
-    else if (key == "packing")
-        error = set_enum(config.packing, key, value);
-    else if (key == "light")
-        error = set_enum(config.light, key, value);
-    else if (key == "target")
-        error = set_enum(config.target, key, value);
-    else if (key == "leak_fix")
+    if (key == "leak_fix")
         error = set_bool(config.leak_fix, key, value);
     else if (key == "fade")
         error = set_bool(config.self_shadow_fade, key, value);
@@ -122,8 +95,8 @@ std::string set_value(WindowApp& app, std::string key, const std::string& value)
             return {};
         }
         return "set: unknown key '" + printable(key) +
-               "'; allowed: slices, resolution, filter, fusion, packing, light, target, leak_fix, fade, technique "
-               "and the technique flags of penumbra-gen without dashes (pcss_blockers, …) (also as right.KEY), "
+               "'; allowed: leak_fix, fade and the configuration flags of penumbra-gen without dashes (slices, "
+               "technique, pcss_blockers, …) (also as right.KEY), "
                "view, view_slice, view_level, view_texture, view_texture_level, view_texture_layer, "
                "view_texture_channel, view_texture_max, split, animate_light, animate_object, scene";
     } else {

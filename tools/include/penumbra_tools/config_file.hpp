@@ -1,8 +1,9 @@
 // config_file.hpp — a configuration from a JSON file (--config), errors as values.
 //
-// The keys are the Config field names, as in layout.json's "config" object: slices, resolution,
-// filter, fusion, packing, light, leak_fix, self_shadow_fade, target; all optional, the rest keep
-// the defaults of Config{}. A whole layout.json is accepted too: its "config" member is read.
+// The keys are those of layout.json's "config" object, from the table of configuration fields
+// (penumbra/config_fields.hpp): "slices", …, and the sections "shadow_map": {"resolution": …}, …; all
+// optional, the rest keep the defaults of Config{}. A whole layout.json is accepted too: its "config"
+// member is read.
 #pragma once
 
 #include "arguments.hpp"

@@ -1,0 +1,121 @@
+// penumbra/detail/occlusion/fields.hpp — the occlusion textures' configuration fields: one row each
+// (penumbra/config_field.hpp), read by penumbra/config_fields.hpp.
+#pragma once
+
+#include "../../config_field.hpp"
+
+#include <array>
+
+namespace penumbra::detail {
+
+// Rows name only the members they set; the rest keep their defaults on purpose.
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#endif
+
+constexpr auto occlusion_fields() {
+    return std::array{
+        member<&Config::slices>({.key = "slices", .flag = "--slices", .metavar = "N", .min = 1, .max = 128,
+                                 .allowed = "1 to 32, 64 or 128", .help = "slices along the light normal",
+                                 .techniques = "occlusion"}),
+        member<&Config::resolution>({.key = "resolution", .flag = "--resolution", .metavar = "R", .min = 32,
+                                     .max = 4096, .power_of_two = true, .allowed = "a power of two from 32 to 4096",
+                                     .help = "occlusion texture side in texels", .techniques = "occlusion"}),
+        member<&Config::filter>({.key = "filter", .flag = "--filter", .metavar = "F", .help = "prefilter",
+                                 .techniques = "occlusion"}),
+        member<&Config::fusion>({.key = "fusion", .flag = "--fusion", .metavar = "U", .help = "slice fusion",
+                                 .techniques = "occlusion"}),
+        member<&Config::packing>({.key = "packing", .flag = "--packing", .metavar = "P", .help = "storage",
+                                  .techniques = "occlusion"}),
+        member<&Config::leak_fix>({.key = "leak_fix", .flag = "--no-leak-fix",
+                                   .help = "the leak fix: a fragment of slice k also marks slice k+1 (paper §3.4.1)",
+                                   .techniques = "occlusion"}),
+        member<&Config::self_shadow_fade>({.key = "self_shadow_fade", .flag = "--no-fade",
+                                           .help = "the self-shadow fade of the slice containing the point "
+                                                   "(paper §3.4.2)",
+                                           .techniques = "occlusion"}),
+        member<&Config::tangent_clip>(
+            {.key = "tangent_clip", .flag = "--[no-]tangent-clip",
+             .help = "kernels cover only the light above the receiver's tangent plane; penumbraVisibility takes "
+                     "the normal",
+             .detail = "kernels cover only the light above the receiver's tangent plane (the snippet takes the "
+                       "normal; the screen pass reads penumbra_worldNormals)",
+             .techniques = "occlusion"}),
+        member<&Config::tangent_clip_offset>(
+            {.key = "tangent_clip_offset", .flag = "--tangent-clip-offset", .metavar = "T", .min = 0, .max = 8,
+             .allowed = "0 to 8 slicing texels",
+             .help = "slicing texels by which the tangent clip moves a receiver sideways along its normal, off "
+                     "its own texels",
+             .detail = "with the tangent clip, slicing texels by which a receiver moves sideways along its normal "
+                       "before its kernels are placed (off its own texels in the slices; each texel also moves the "
+                       "kernels off occluders within a slice or two of it)",
+             .techniques = "occlusion"}),
+        member<&Config::clip_footprint>(
+            {.key = "clip_footprint", .flag = "--no-clip-footprint",
+             .help = "the tangent clip also moves receivers off their own footprint in the slice above them",
+             .detail = "with the tangent clip, a receiver also moves off its own tangent plane's footprint in the "
+                       "slice above it (the plane's sideways run over the slice's content depth, with the slicing "
+                       "perspective; 0 on faces that face the light, capped at 4 slicing texels)",
+             .techniques = "occlusion"}),
+        member<&Config::fade_ramp>(
+            {.key = "fade_ramp", .flag = "--fade-ramp", .metavar = "F", .min = 0, .max = 4, .min_exclusive = true,
+             .allowed = "more than 0 to 4 (fraction of a slice's thickness)",
+             .help = "the self-shadow fade ramps over F of a slice's thickness",
+             .detail = "with the self-shadow fade, the fraction of a slice's thickness over which a plane's weight "
+                       "ramps from 0 (at the point) to 1",
+             .techniques = "occlusion"}),
+        member<&Config::slice_placement>(
+            {.key = "slice_placement", .flag = "--slice-placement", .metavar = "P",
+             .help = "slice boundaries: uniform (equal slices over the bounds) or adaptive (at the depths the "
+                     "geometry occupies, computed on the GPU; paper §5)",
+             .detail = "uniform slices over the bounds (penumbra_sliceDepths), or adaptive (paper §5): boundaries "
+                       "at the depths the geometry occupies, computed on the GPU by the depth_bins and "
+                       "slice_boundaries passes into penumbra_sliceBoundaries",
+             .techniques = "occlusion"}),
+        member<&Config::level_bound>(
+            {.key = "level_bound", .flag = "--level-bound", .metavar = "N", .min = -1,
+             .allowed = "-1 (every level) or 0 to log2(resolution)",
+             .help = "highest filter level built and read: wider kernels read level N; the widest kernel of a "
+                     "light and scene is 2^N texels for the N of penumbra::kernel_level_bound; -1: every level",
+             .detail = "highest filter level built and read (N-buffer, Gaussian, mip chain); -1: log2(resolution), "
+                       "every level. The largest kernel a receiver inside the bounds can ask for follows from the "
+                       "light, the bounds and the slice depths (penumbra::kernel_level_bound); the GL runtime fits "
+                       "it at set_light and grows it with the light",
+             .techniques = "occlusion"}),
+        member<&Config::level_format>(
+            {.key = "level_format", .flag = "--level-format", .metavar = "F",
+             .help = "storage of the filtered levels (essl300: always rgba8)",
+             .detail = "storage of the filtered N-buffer / Gaussian levels: rgba8 (8-bit normalized, half the "
+                       "bytes; a window mean rounded to 1/255 per level) or rgba16f (half floats); essl300 stores "
+                       "rgba8 whatever this says",
+             .techniques = "occlusion"}),
+        member<&Config::level_reduction>(
+            {.key = "level_reduction", .flag = "--level-reduction", .metavar = "N", .min = -1,
+             .allowed = "-1 (every level at full resolution) or 0 to log2(resolution)",
+             .help = "atlas of N-buffer or Gaussian levels: the levels above N are stored at half the resolution "
+                     "of the one below (level l at resolution / 2^(l - N)); -1: every level at full resolution",
+             .detail = "atlas of N-buffer or Gaussian levels: the levels above this one are stored at half the "
+                       "resolution of the one below, level l at resolution / 2^(l - level_reduction) per axis (its "
+                       "texture's width and height say so; texel j of a tile stands for level-0 texel "
+                       "2^(l - level_reduction)·j, and the level passes' viewports are that size); -1: every level "
+                       "at full resolution. The array and volume packings store every level at full resolution "
+                       "whatever this says",
+             .techniques = "occlusion"}),
+        member<&Config::prefilter_stage>(
+            {.key = "prefilter_stage", .flag = "--prefilter-stage", .metavar = "S",
+             .help = "what builds the N-buffer levels above the packing pass (compute: dispatches that build "
+                     "several levels each in shared memory; filter nbuffer, packing atlas, target glsl450 only)",
+             .detail = "what builds the N-buffer levels above the atlas packing pass. fragment (the default; absent "
+                       "means fragment): one fullscreen pass per level. compute (filter nbuffer, packing atlas, "
+                       "target glsl450): \"dispatch\" passes, each building several levels of one workgroup's tile "
+                       "in shared memory (penumbra_nbuffer_levels.comp)",
+             .techniques = "occlusion", .omit_default = true}),
+    };
+}
+
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
+
+} // namespace penumbra::detail
