@@ -8,17 +8,15 @@
 //
 // The fields every technique reads (technique, light, target, alpha_test) are here; each technique's
 // own are in its folder, detail/<technique>/fields.hpp. A new field is one row there; a new
-// technique's fields, one fields.hpp and one line in config_field_table below. Rows added after
+// technique's fields, one fields.hpp in its folder that its descriptor's `fields` names
+// (detail/technique.hpp). Rows added after
 // layout_version 3 set omit_default, so that the layout.json of every earlier configuration stays
 // byte for byte what it was (a section whose rows all keep their defaults is left out). After a change,
 // `penumbra-config-schema --write docs/layout.schema.json` regenerates the schema's "config" object.
 #pragma once
 
 #include "config_field.hpp"
-#include "detail/erosion/fields.hpp"
-#include "detail/occlusion/fields.hpp"
-#include "detail/oim/fields.hpp"
-#include "detail/shadow_map/fields.hpp"
+#include "detail/techniques.hpp"
 #include "detail/text.hpp"
 
 #include <algorithm>
@@ -65,16 +63,37 @@ constexpr auto common_fields() {
 #pragma GCC diagnostic pop
 #endif
 
-template <std::size_t... N> constexpr auto concat_fields(const std::array<ConfigField, N>&... parts) {
-    std::array<ConfigField, (N + ...)> out{};
+// Each technique descriptor's rows once (techniques that share a folder share its rows), in the
+// order of the Technique values.
+constexpr std::vector<std::span<const ConfigField>> technique_field_sets() {
+    std::vector<std::span<const ConfigField>> sets;
+    for (Technique t : all_values<Technique>()) {
+        const std::span<const ConfigField> rows = technique_descriptor(t).fields;
+        bool seen = false;
+        for (const std::span<const ConfigField>& s : sets) seen = seen || s.data() == rows.data();
+        if (!seen) sets.push_back(rows);
+    }
+    return sets;
+}
+
+constexpr std::size_t technique_field_count() {
+    std::size_t n = 0;
+    for (const std::span<const ConfigField>& s : technique_field_sets()) n += s.size();
+    return n;
+}
+
+// Every row: the common fields, then each technique's (its descriptor's `fields`).
+constexpr auto make_config_field_table() {
+    constexpr auto common = common_fields();
+    std::array<ConfigField, common.size() + technique_field_count()> out{};
     std::size_t at = 0;
-    ((std::copy(parts.begin(), parts.end(), out.begin() + at), at += parts.size()), ...);
+    for (const ConfigField& f : common) out[at++] = f;
+    for (const std::span<const ConfigField>& s : technique_field_sets())
+        for (const ConfigField& f : s) out[at++] = f;
     return out;
 }
 
-// Every row: the common fields, then each technique folder's. The one place that lists the folders.
-inline constexpr auto config_field_table =
-    concat_fields(common_fields(), occlusion_fields(), shadow_map_fields(), oim_fields(), erosion_fields());
+inline constexpr auto config_field_table = make_config_field_table();
 
 // layout.json's "config" keys in the order layout_version 3 writes them (top level; a section's keys
 // follow the table). Frozen: keys added later follow these in table order.

@@ -147,6 +147,7 @@ inline std::string json_sampling(const Sampling& s) {
 PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
     using detail::json_name;
     using detail::json_string;
+    const Config& c = layout.config;
     std::string o = "{\n";
     auto field = [&](std::string_view indent, std::string_view key, const std::string& value, bool comma = true) {
         o += std::string(indent) + json_string(key) + ": " + value + (comma ? ",\n" : "\n");

@@ -197,7 +197,7 @@ inline void finish_sampling(Layout& layout) {
     // a draw's sampler (the caller's texture) has none
     for (ProgramDesc& program : layout.programs)
         for (ParamDesc& param : program.parameters) {
-            if (param.binding < 0 || param.source == "draw") continue;
+            if (param.binding < 0 || param.source == UniformSource::draw) continue;
             if (const TextureDesc* t = find_texture(layout, param.texture)) {
                 param.sampling = sampling_of(&param, *t);
                 continue;

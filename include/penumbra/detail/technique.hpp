@@ -9,10 +9,12 @@
 #pragma once
 
 #include "../config.hpp"
+#include "../config_field.hpp"
 #include "../program.hpp"
 #include "problem.hpp"
 #include "text.hpp"
 
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -52,8 +54,12 @@ struct ProgramPlan {
     std::vector<ShaderFileSpec> stages;
 };
 
-// Everything Penumbra needs to know about one technique. Every member is set.
+// Everything Penumbra needs to know about one technique. Every function is set.
 struct TechniqueDescriptor {
+    // Its own fields of the configuration (penumbra/config_fields.hpp: JSON, flags, --help, panels,
+    // schema); techniques that share a folder share its rows.
+    std::span<const ConfigField> fields;
+
     // Emission: the programs in the order their passes run, and penumbra_visibility.glsl.
     std::vector<ProgramPlan> (*programs)(const Config&);
     Text (*visibility_snippet)(const Config&);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "../shadow_map/technique.hpp"
+#include "fields.hpp"
 #include "layout.hpp"
 #include "validate.hpp"
 
@@ -45,8 +46,11 @@ inline long long erosion_texels_per_fragment(const Config&, const PassDesc& pass
     return pass.program.starts_with("erosion_") ? 16 : 1;
 }
 
+inline constexpr auto erosion_field_rows = erosion_fields();
+
 constexpr TechniqueDescriptor erosion_technique() {
     TechniqueDescriptor erosion = shadow_map_technique();
+    erosion.fields = erosion_field_rows;
     erosion.programs = erosion_programs;
     erosion.reads_normal = erosion_reads_normal;
     erosion.param_groups = erosion_param_groups;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "../technique.hpp"
+#include "fields.hpp"
 #include "layout.hpp"
 #include "validate.hpp"
 
@@ -106,8 +107,11 @@ inline long long occlusion_texels_per_fragment(const Config& c, const PassDesc& 
     return 1;
 }
 
+inline constexpr auto occlusion_field_rows = occlusion_fields();
+
 constexpr TechniqueDescriptor occlusion_technique() {
     return {
+        .fields = occlusion_field_rows,
         .programs = occlusion_programs,
         .visibility_snippet = visibility_snippet,
         .visibility_params = visibility_params,

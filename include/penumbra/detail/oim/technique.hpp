@@ -3,6 +3,7 @@
 #pragma once
 
 #include "../technique.hpp"
+#include "fields.hpp"
 #include "layout.hpp"
 #include "validate.hpp"
 
@@ -37,8 +38,11 @@ constexpr std::vector<std::string_view> oim_es_samplers(const Config&) { return 
 // The deferred pass reads its G-buffer texel (the maps' nearest texels are not counted).
 inline long long oim_texels_per_fragment(const Config&, const PassDesc&) { return 1; }
 
+inline constexpr auto oim_field_rows = oim_fields();
+
 constexpr TechniqueDescriptor oim_technique() {
     return {
+        .fields = oim_field_rows,
         .programs = oim_programs,
         .visibility_snippet = oim_visibility_snippet,
         .visibility_params = oim_visibility_params,

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "../technique.hpp"
+#include "fields.hpp"
 #include "layout.hpp"
 #include "validate.hpp"
 
@@ -84,8 +85,11 @@ inline long long shadow_map_texels_per_fragment(const Config& config, const Pass
     return 1;
 }
 
+inline constexpr auto shadow_map_field_rows = shadow_map_fields();
+
 constexpr TechniqueDescriptor shadow_map_technique() {
     return {
+        .fields = shadow_map_field_rows,
         .programs = shadow_map_programs,
         .visibility_snippet = shadow_visibility_snippet,
         .visibility_params = shadow_visibility_params,
