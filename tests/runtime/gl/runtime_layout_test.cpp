@@ -110,7 +110,7 @@ Emission hand_made() {
     auto program = [&](std::string name, const std::string& vert, const std::string& frag) {
         e.programs.push_back({name, {{name + ".vert", Stage::vertex, vert}, {name + ".frag", Stage::fragment, frag}}});
         ProgramDesc desc{name, {name + ".vert", name + ".frag"}, {}};
-        if (name == "screen") desc.parameters.push_back({"penumbra_sliceDepths", "vec2", "", "", "light"});
+        if (name == "screen") desc.parameters.push_back({"penumbra_sliceDepths", "vec2", "", "", UniformSource::light});
         e.layout.programs.push_back(desc);
     };
     program("depth", depth_vert, depth_frag);
