@@ -226,11 +226,11 @@ PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
         o += "}, \"viewport\": [" + std::to_string(p.viewport_width) + ", " + std::to_string(p.viewport_height) +
              "], \"state\": " + detail::json_state(p.state);
         if (p.action == PassAction::copy && !p.inputs.empty() && !p.outputs.empty()) {
-            const std::optional<CopyDesc> c = copy_region(p);
-            o += ", \"copy\": {\"source_level\": " + std::to_string(c->source_level) + ", \"source_layer\": " +
-                 std::to_string(c->source_layer) + ", \"target_level\": " + std::to_string(c->target_level) +
-                 ", \"target_layer\": " + std::to_string(c->target_layer) + ", \"width\": " + std::to_string(c->width) +
-                 ", \"height\": " + std::to_string(c->height) + "}";
+            const CopyDesc c = copy_region(p);
+            o += ", \"copy\": {\"source_level\": " + std::to_string(c.source_level) + ", \"source_layer\": " +
+                 std::to_string(c.source_layer) + ", \"target_level\": " + std::to_string(c.target_level) +
+                 ", \"target_layer\": " + std::to_string(c.target_layer) + ", \"width\": " + std::to_string(c.width) +
+                 ", \"height\": " + std::to_string(c.height) + "}";
         }
         if (p.action == PassAction::generate_mipmap && !p.outputs.empty()) {
             const MipmapDesc m = mipmap_range(layout, p);
@@ -238,16 +238,16 @@ PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
                  std::to_string(m.levels) + ", \"downsample\": \"box\"}"; // the only downsample there is
         }
         if (p.action == PassAction::dispatch) {
-            const DispatchDesc* d = &p.dispatch;
+            const DispatchDesc& d = p.dispatch;
             auto triple = [](const std::array<int, 3>& v) {
                 return "[" + std::to_string(v[0]) + ", " + std::to_string(v[1]) + ", " + std::to_string(v[2]) + "]";
             };
-            o += ", \"dispatch\": {\"groups\": " + triple(d->groups) + ", \"local_size\": " + triple(d->local_size) +
+            o += ", \"dispatch\": {\"groups\": " + triple(d.groups) + ", \"local_size\": " + triple(d.local_size) +
                  ", \"memory_barrier\": [";
-            for (std::size_t b = 0; b < d->memory_barrier.size(); ++b) o += (b ? ", " : "") + json_name(d->memory_barrier[b]);
+            for (std::size_t b = 0; b < d.memory_barrier.size(); ++b) o += (b ? ", " : "") + json_name(d.memory_barrier[b]);
             o += "]}, \"image_outputs\": [";
-            for (std::size_t im = 0; im < d->images.size(); ++im) {
-                const ImageBindingDesc& img = d->images[im];
+            for (std::size_t im = 0; im < d.images.size(); ++im) {
+                const ImageBindingDesc& img = d.images[im];
                 const TextureDesc* texture = find_texture(layout, img.texture); // the image's format is its texture's
                 o += (im ? ", " : "") + std::string("{\"image\": ") + json_string(img.image) + ", \"texture\": " +
                      json_string(img.texture) + ", \"level\": " + std::to_string(img.level) + ", \"layer\": " +
