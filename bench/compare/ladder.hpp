@@ -15,8 +15,8 @@
 namespace penumbra::bench {
 
 struct LadderEntry {
-    std::string family;  // the technique's name: "occlusion", "paper", "shadowmap", "pcf", "pcss", "erosion", "oim"
-                         // (tables group by it)
+    std::string family;  // the technique's name: "occlusion", "paper", "shadowmap", "pcf", "pcss", "erosion", "evsm",
+                         // "oim" (tables group by it)
     std::string label;   // short, unique name: "OT nbuffer 16/512"
     Config config;
     bool representative; // also in the flicker measurement and the image montage
@@ -118,6 +118,14 @@ inline LadderEntry erosion_entry() {
     return {"erosion", "erosion r" + std::to_string(config.erosion.max_search_radius), config, true};
 }
 
+// Exponential variance shadow maps (Unity HDRP's area-light shadows) from a depth map of 1024² like
+// the others: taps per blur pass, the blur's clamp as many texels (its half-width follows the light).
+inline LadderEntry evsm_entry(int blur_taps, bool representative = false) {
+    Config config{.technique = Technique::evsm, .shadow_map = {.resolution = 1024}};
+    config.evsm.blur_taps = config.evsm.max_blur_texels = blur_taps;
+    return {"evsm", "EVSM " + std::to_string(blur_taps), config, representative};
+}
+
 // Occlusion interval maps (sun only): intervals/resolution of the baked maps, the fewest samples
 // along the path (256). Small by default: the bake is a precomputation of minutes at the default
 // 256² on two cores.
@@ -170,6 +178,8 @@ inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
         pcss_entry(32, 32),        // Godot ultra
         pcss_entry(32, 64, true), // PlayCanvas high
         erosion_entry(),
+        evsm_entry(16, true),      // HDRP's area-light shadows
+        evsm_entry(64),
         oim_entry(8, 128, true),   // the sun only (refusal); baked once per scene into --out's cache/oim
     };
     if (set == LadderSet::full) {
