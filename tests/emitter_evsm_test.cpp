@@ -54,7 +54,7 @@ TEST_CASE("evsm: blur taps equal the configuration's, one line and one comment e
         const std::string snippet = emit(config).value->snippet.text;
         CHECK(has(snippet, "float penumbraVisibility(vec3 worldPos)"));
         CHECK(has(snippet, "float penumbraVisibility(vec3 worldPos, vec3 worldNormal)"));
-        CHECK(has(snippet, "light-bleeding reduction") == (e.light_bleeding_reduction > 0.0));
+        CHECK(has(snippet, "// light-bleeding reduction (Lauritzen 2007)") == (e.light_bleeding_reduction > 0.0));
         for (std::string_view file : {"penumbra_evsm_moments.frag", "penumbra_evsm_blur_x.frag", "penumbra_evsm_blur_y.frag"}) {
             const std::string text = text_of(config, file);
             CHECK(text.find("for (") == std::string::npos);
@@ -68,12 +68,12 @@ TEST_CASE("evsm: the header names the configuration; the sun's blur grows with t
     const Config rect{.technique = Technique::evsm};
     CHECK(has(text_of(rect, "penumbra_evsm_moments.frag"),
               "// technique evsm | shadow map 1024x1024 | bias 0.02 scene units + 1.5 x slope | evsm exponents +40.0 / "
-              "-5.0, light-bleeding reduction 0.2, variance bias 0.0001, blur 16 taps per axis over 0.5 of the widest "
-              "penumbra, at most 16 texels, moments RGBA32F | light rect | target glsl450\n"));
+              "-5.0, light-bleeding reduction 0.1, variance bias 0.0001, blur 32 taps per axis over 0.5 of the widest "
+              "penumbra, at most 32 texels, moments RGBA32F | light rect | target glsl450\n"));
     const Config sun{.technique = Technique::evsm, .light = Light::sun};
     CHECK(has(text_of(sun, "penumbra_evsm_blur_x.frag"), "float widest = penumbra_lightSizeUV.x * (range.y - range.x);"));
     // half of blur_fraction of the widest penumbra, in texels of the 1024-texel map
-    CHECK(has(text_of(sun, "penumbra_evsm_blur_x.frag"), "float radius = min(widest * 256.0, 16.0);"));
+    CHECK(has(text_of(sun, "penumbra_evsm_blur_x.frag"), "float radius = min(widest * 256.0, 32.0);"));
 }
 
 TEST_CASE("evsm: moments in RGBA32F filtered by the hardware, on ES the bits of 32-bit floats in RGBA32UI") {
@@ -94,7 +94,7 @@ TEST_CASE("evsm: moments in RGBA32F filtered by the hardware, on ES the bits of 
         const std::string blur = text_of(config, "penumbra_evsm_blur_x.frag");
         const std::string snippet = emit(config).value->snippet.text;
         CHECK(has(blur, es ? "out uvec4 penumbra_out;" : "out vec4 penumbra_out;"));
-        CHECK(has(blur, "floatBitsToUint(sum * 0.0625)") == es);
+        CHECK(has(blur, "floatBitsToUint(sum * 0.03125)") == es);
         CHECK(has(snippet, "uintBitsToFloat(texelFetch(moments, clamp(texel, ivec2(0), ivec2(255)), 0))") == es);
         CHECK(has(snippet, "return textureLod(moments, texel * 0.00390625, 0.0);") == !es);
         CHECK(has(snippet, "precision highp usampler2D;") == es);
@@ -133,7 +133,7 @@ TEST_CASE("evsm: the layout runs depth, moments, blur x, blur y from the light, 
     // the cost model: a blur tap is one bilinear footprint, the lookup one more after the G-buffer
     const CostModel cost = cost_model(layout, 64, 32);
     for (const PassCost& pass : cost.passes) {
-        if (pass.name == "evsm_blur_x") CHECK(pass.texel_fetches == 512LL * 512 * 4 * 16);
+        if (pass.name == "evsm_blur_x") CHECK(pass.texel_fetches == 512LL * 512 * 4 * 32);
         if (pass.name == "evsm_moments") CHECK(pass.texel_fetches == 512LL * 512);
         if (pass.name == "shading") CHECK(pass.texel_fetches == 64LL * 32 * (1 + 4));
     }
@@ -162,7 +162,7 @@ TEST_CASE("invalid evsm parameters are rejected with field, value and what is al
     CHECK(first_error({.blur_taps = 8, .max_blur_texels = 9}) ==
           "evsm.max_blur_texels: 9 texels leaves gaps of more than 2 texels between 8 blur taps; allowed: 1 to "
           "evsm.blur_taps (8), or raise evsm.blur_taps");
-    CHECK(first_error({.max_blur_texels = 17}, 32) ==
+    CHECK(first_error({.blur_taps = 32, .max_blur_texels = 17}, 32) ==
           "evsm.max_blur_texels: 17 texels is a blur the 32-texel shadow map cannot hold; allowed: 1 to 16 (half the "
           "shadow-map resolution)");
     // a bad map size is named once, not again through the blur's clamp

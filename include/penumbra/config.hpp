@@ -181,13 +181,13 @@ constexpr int erosion_levels(const ErosionParams& erosion) {
 struct EvsmParams {
     double positive_exponent = 40.0;       // c+: more than 0 to 42 (e^(2 c) must fit a 32-bit float)
     double negative_exponent = 5.0;        // c-: more than 0 to 42
-    double light_bleeding_reduction = 0.2; // Chebyshev bounds below this are shadow, the rest rescaled; 0 to < 1
+    double light_bleeding_reduction = 0.1; // Chebyshev bounds below this are shadow, the rest rescaled; 0 to < 1
     double variance_bias = 0.0001;         // least depth spread, as a fraction of the depth range; 0 to 0.01
     double blur_fraction = 0.5;            // the blur box's width over the widest penumbra the light casts across
                                            // the scene (a blocker on the near plane, a receiver on the far plane);
                                            // more than 0 to 1
-    int blur_taps = 16;                    // taps per blur pass (one pass per axis); 1 to 64
-    int max_blur_texels = 16;              // the blur's half-width is clamped to this many shadow-map texels;
+    int blur_taps = 32;                    // taps per blur pass (one pass per axis); 1 to 64
+    int max_blur_texels = 32;              // the blur's half-width is clamped to this many shadow-map texels;
                                            // 1 to blur_taps and to half the shadow-map resolution
 
     friend constexpr bool operator==(const EvsmParams&, const EvsmParams&) = default;
