@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
     for (penumbra::Packing packing : penumbra::all_values<penumbra::Packing>()) {
         const penumbra::Config config{.slices = 16, .resolution = 512, .packing = packing};
         const double snippet = median_microseconds(iterations, [&] {
-            sink += penumbra::emit_file(config, penumbra::Artifact::visibility_snippet).text.size();
+            sink += penumbra::emit_file(config, "penumbra_visibility.glsl").text.size();
         });
         const double whole = median_microseconds(iterations / 10 + 1, [&] { sink += penumbra::emit(config).value->programs.size(); });
         std::printf("%-44s %12.1f %12.1f\n", ("16 slices, 512, nbuffer, " + std::string(penumbra::to_string(packing))).c_str(),
@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
         for (penumbra::Filter filter : {penumbra::Filter::nbuffer, penumbra::Filter::sat, penumbra::Filter::mipmap}) {
             const penumbra::Config config{.slices = 16, .resolution = 512, .filter = filter, .packing = packing};
             if (!penumbra::is_valid(config)) continue;
-            const std::string text = penumbra::emit_file(config, penumbra::Artifact::visibility_snippet).text;
+            const std::string text = penumbra::emit_file(config, "penumbra_visibility.glsl").text;
             const std::size_t body = text.find("\nfloat penumbraVisibility(");
             std::printf("%-8s %-8s %10zu %8ld %14ld\n", std::string(penumbra::to_string(packing)).c_str(),
                         std::string(penumbra::to_string(filter)).c_str(), text.size(),

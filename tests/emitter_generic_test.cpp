@@ -27,7 +27,7 @@ std::string generic_fragment(const Config& config) {
     return result.value->program.stages.at(1).text;
 }
 
-std::string specialized_snippet(const Config& config) { return emit_file(config, Artifact::visibility_snippet).text; }
+std::string specialized_snippet(const Config& config) { return emit_file(config, "penumbra_visibility.glsl").text; }
 
 // One configuration per filter × packing × light that validates.
 std::vector<Config> storages(Target target = Target::glsl450) {

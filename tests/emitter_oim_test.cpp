@@ -29,7 +29,7 @@ TEST_CASE("oim: the evaluation is unrolled per rise/fall pair, two fetches each"
         config.oim.intervals = intervals;
         CAPTURE(intervals);
         REQUIRE(is_valid(config));
-        const std::string snippet = emit_file(config, Artifact::visibility_snippet).text;
+        const std::string snippet = emit_file(config, "penumbra_visibility.glsl").text;
         const std::size_t start = snippet.find("float penumbraVisibility(vec2 texCoord)");
         REQUIRE(start != std::string::npos);
         const std::string body = snippet.substr(start, snippet.find("\n}\n", start) - start);

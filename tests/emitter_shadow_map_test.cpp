@@ -21,7 +21,7 @@ int count(std::string_view text, std::string_view needle) {
     return n;
 }
 
-std::string snippet_of(const Config& config) { return emit_file(config, Artifact::visibility_snippet).text; }
+std::string snippet_of(const Config& config) { return emit_file(config, "penumbra_visibility.glsl").text; }
 
 // Blocker / filter settings of shipping engines: Bevy, Filament, three.js example, Godot ultra, PlayCanvas high.
 constexpr std::pair<int, int> engine_pcss[] = {{8, 8}, {16, 16}, {17, 34}, {32, 32}, {32, 64}};
@@ -92,7 +92,7 @@ TEST_CASE("shadow map techniques bake their constants: bias, radius, clamp") {
     const Config pcf{.technique = Technique::pcf,
                      .shadow_map = {.resolution = 512, .constant_bias = 0.125, .slope_bias = 2.5},
                      .pcf = {.pattern = TapPattern::grid, .grid_size = 2, .radius = 0.375, .rotate = false}};
-    const std::string depth = emit_file(pcf, Artifact::shadow_depth_frag).text;
+    const std::string depth = emit_file(pcf, "penumbra_shadow_depth.frag").text;
     CHECK(depth.find("float biased = penumbra_depth + 0.125 + 2.5 * slope;") != std::string::npos);
     const std::string snippet = snippet_of(pcf);
     CHECK(snippet.find("float radius = min(0.375 * penumbra_uvPerUnit(coord.w), 0.5);") != std::string::npos);
@@ -125,7 +125,7 @@ TEST_CASE("receiver-plane depth bias: every pcf and pcss tap compares against th
                 c.shadow_map.normal_offset = offset;
                 const bool normal = tilts || offset > 0.0;
                 CHECK(reads_receiver_normal(c) == normal);
-                const std::string deferred = emit_file(c, Artifact::deferred_frag).text;
+                const std::string deferred = emit_file(c, "penumbra_deferred.frag").text;
                 CHECK((deferred.find("penumbra_worldNormals") != std::string::npos) == normal);
             }
         }
@@ -227,9 +227,9 @@ constexpr Config kPcf{.technique = Technique::pcf, .target = Target::vulkan,
 } // namespace
 
 TEST_CASE("shadow map techniques at compile time equal run time") {
-    CHECK(static_glsl<kPcss, Artifact::visibility_snippet> == emit_file(kPcss, Artifact::visibility_snippet).text);
-    CHECK(static_glsl<kPcss, Artifact::shadow_depth_frag> == emit_file(kPcss, Artifact::shadow_depth_frag).text);
-    CHECK(static_glsl<kPcf, Artifact::deferred_frag> == emit_file(kPcf, Artifact::deferred_frag).text);
+    CHECK(static_glsl<kPcss, "penumbra_visibility.glsl"> == emit_file(kPcss, "penumbra_visibility.glsl").text);
+    CHECK(static_glsl<kPcss, "penumbra_shadow_depth.frag"> == emit_file(kPcss, "penumbra_shadow_depth.frag").text);
+    CHECK(static_glsl<kPcf, "penumbra_deferred.frag"> == emit_file(kPcf, "penumbra_deferred.frag").text);
 }
 
 TEST_CASE("shadow map layouts: a depth pass, the shading programs, every referenced texture exists") {

@@ -56,7 +56,7 @@ TEST_CASE("the shading function is specialized: unrolled, swizzled, constants ba
         CAPTURE(describe_layout(config).config.slices);
         CAPTURE(to_string(config.filter));
         CAPTURE(to_string(config.packing));
-        const std::string snippet = emit_file(config, Artifact::visibility_snippet).text;
+        const std::string snippet = emit_file(config, "penumbra_visibility.glsl").text;
         // with the clip, the loops live in the function both penumbraVisibility overloads call
         const std::string_view body =
             function_body(snippet, config.tangent_clip ? "\nfloat penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)"
@@ -114,7 +114,7 @@ TEST_CASE("fusion rules") {
         {Fusion::correlated, "penumbra_lit *= penumbra_correlatedStep(q, kernel, penumbra_prev, penumbra_prevKernel);"},
     };
     for (const auto& [fusion, line] : expected)
-        CHECK(emit_file(Config{.fusion = fusion}, Artifact::visibility_snippet).text.find(line) != std::string::npos);
+        CHECK(emit_file(Config{.fusion = fusion}, "penumbra_visibility.glsl").text.find(line) != std::string::npos);
 }
 
 TEST_CASE("tangent clip: the normal is an input, each kernel is restricted, the deferred pass reads normals") {
@@ -140,7 +140,7 @@ TEST_CASE("tangent clip: the normal is an input, each kernel is restricted, the 
     CHECK(snippet.find("return penumbra_clippedVisibility(p, vec3(0.0, 0.0, 1.0));") != std::string::npos);
     CHECK(count(snippet, "// slice 0:") + count(snippet, "// level 0:") == 1); // the loops are written once
     // off: the paper's signature and no clip
-    const std::string plain = emit_file(Config{.tangent_clip = false}, Artifact::visibility_snippet).text;
+    const std::string plain = emit_file(Config{.tangent_clip = false}, "penumbra_visibility.glsl").text;
     CHECK(plain.find("float penumbraVisibility(vec3 worldPos)") != std::string::npos);
     CHECK(plain.find("penumbra_tangentClip") == std::string::npos);
 }
@@ -175,11 +175,11 @@ TEST_CASE("adaptive slice placement: boundaries counted in slicing, read per sli
                 CHECK(snippet.find("penumbra_above + 1 <= 5") != std::string::npos);
                 CHECK(snippet.find("float zeta = penumbra_boundary(int(penumbra_k) + 1);") != std::string::npos);
             }
-            const std::string slicing = emit_file(config, Artifact::slicing_frag).text;
+            const std::string slicing = emit_file(config, "penumbra_slicing.frag").text;
             CHECK(slicing.find("inner += (inner + 2 <= 4 && penumbra_depth > penumbra_boundary(min(inner + 2, 4))) ? 2 : 0;") !=
                   std::string::npos);
             CHECK(slicing.find("penumbra_boundary(5)") == std::string::npos); // inner boundaries only
-            const std::string boundaries = emit_file(config, Artifact::slice_boundaries_frag).text;
+            const std::string boundaries = emit_file(config, "penumbra_slice_boundaries.frag").text;
             CHECK(boundaries.find("paper §5") != std::string::npos);
             CHECK(boundaries.find("penumbra_boundary = floatBitsToUint(z);") != std::string::npos);
         }
@@ -187,7 +187,7 @@ TEST_CASE("adaptive slice placement: boundaries counted in slicing, read per sli
     // uniform placement keeps the uniform text
     const std::string uniform =
         emit_file(Config{.slices = 5, .resolution = 64, .packing = Packing::array, .tangent_clip = false},
-                  Artifact::visibility_snippet).text;
+                  "penumbra_visibility.glsl").text;
     CHECK(uniform.find("penumbra_sliceBoundaries") == std::string::npos);
     CHECK(uniform.find("float zeta = penumbra_sliceDepths.x + 5.0 * penumbra_sliceDepths.y;") != std::string::npos);
 }
@@ -208,8 +208,8 @@ TEST_CASE("every emitted file states its configuration and carries chunk markers
 }
 
 TEST_CASE("slicing: one render target per four slices, the leak fix marks the next slice") {
-    const std::string with_fix = emit_file(Config{.slices = 6}, Artifact::slicing_frag).text;
-    const std::string without = emit_file(Config{.slices = 6, .leak_fix = false}, Artifact::slicing_frag).text;
+    const std::string with_fix = emit_file(Config{.slices = 6}, "penumbra_slicing.frag").text;
+    const std::string without = emit_file(Config{.slices = 6, .leak_fix = false}, "penumbra_slicing.frag").text;
     CHECK(count(with_fix, "out vec4 penumbra_occlusion") == 2);
     CHECK(with_fix.find("float next = min(k + 1.0, 5.0);") != std::string::npos);
     CHECK(without.find("next") == std::string::npos);
@@ -224,15 +224,15 @@ constexpr Config kCompileTime3{.slices = 4, .resolution = 128, .filter = Filter:
 } // namespace
 
 TEST_CASE("compile-time emission equals run-time emission") {
-    CHECK(static_glsl<kCompileTime1, Artifact::visibility_snippet> ==
-          emit_file(kCompileTime1, Artifact::visibility_snippet).text);
-    CHECK(static_glsl<kCompileTime1, Artifact::slicing_frag> == emit_file(kCompileTime1, Artifact::slicing_frag).text);
-    CHECK(static_glsl<kCompileTime2, Artifact::shading_frag> == emit_file(kCompileTime2, Artifact::shading_frag).text);
-    CHECK(static_glsl<kCompileTime2, Artifact::sat_pass_frag> == emit_file(kCompileTime2, Artifact::sat_pass_frag).text);
-    CHECK(static_glsl<kCompileTime3, Artifact::deferred_frag> == emit_file(kCompileTime3, Artifact::deferred_frag).text);
-    CHECK(static_glsl<kCompileTime3, Artifact::gaussian_level_frag> ==
-          emit_file(kCompileTime3, Artifact::gaussian_level_frag).text);
-    static_assert(static_glsl<kCompileTime1, Artifact::visibility_snippet>.size() > 1000);
+    CHECK(static_glsl<kCompileTime1, "penumbra_visibility.glsl"> ==
+          emit_file(kCompileTime1, "penumbra_visibility.glsl").text);
+    CHECK(static_glsl<kCompileTime1, "penumbra_slicing.frag"> == emit_file(kCompileTime1, "penumbra_slicing.frag").text);
+    CHECK(static_glsl<kCompileTime2, "penumbra_shading.frag"> == emit_file(kCompileTime2, "penumbra_shading.frag").text);
+    CHECK(static_glsl<kCompileTime2, "penumbra_sat_pass.frag"> == emit_file(kCompileTime2, "penumbra_sat_pass.frag").text);
+    CHECK(static_glsl<kCompileTime3, "penumbra_deferred.frag"> == emit_file(kCompileTime3, "penumbra_deferred.frag").text);
+    CHECK(static_glsl<kCompileTime3, "penumbra_gaussian_level.frag"> ==
+          emit_file(kCompileTime3, "penumbra_gaussian_level.frag").text);
+    static_assert(static_glsl<kCompileTime1, "penumbra_visibility.glsl">.size() > 1000);
 }
 
 TEST_CASE("invalid configurations: each names the field, the value and what is allowed") {

@@ -47,7 +47,7 @@ TEST_CASE("essl300 snippet: #version 300 es + penumbra_visibility.glsl alone com
                 CAPTURE(to_string(filter));
                 CAPTURE(to_string(packing));
                 CAPTURE(to_string(light));
-                const std::string snippet = emit_file(config, Artifact::visibility_snippet).text;
+                const std::string snippet = emit_file(config, "penumbra_visibility.glsl").text;
                 CHECK(snippet.find("precision highp float;") != std::string::npos);
                 const std::string alone = compile_fragment("#version 300 es\n" + snippet);
                 CHECK_MESSAGE(alone.empty(), alone);

@@ -323,12 +323,6 @@ constexpr bool clips_to_tangent_plane(const Config& config) {
     return config.technique == Technique::occlusion && config.tangent_clip;
 }
 
-// True when penumbraVisibility uses the receiver's normal (the tangent clip, the normal-offset bias or
-// the receiver-plane depth bias): the deferred pass then reads the caller's penumbra_worldNormals.
-constexpr bool reads_receiver_normal(const Config& config) {
-    return clips_to_tangent_plane(config) || offsets_along_normal(config) || tilts_taps_to_receiver_plane(config);
-}
-
 // Number of comparison taps of the PCF kernel.
 constexpr int pcf_taps(const PcfParams& pcf) {
     return pcf.pattern == TapPattern::grid ? pcf.grid_size * pcf.grid_size : pcf.poisson_taps;

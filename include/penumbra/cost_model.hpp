@@ -26,13 +26,10 @@
 //                  texel of the source level once (the aprons overlap the neighbours' blocks: a cache
 //                  holds them), at most the fetches' bytes; bytes written = every texel of every image
 //                  output once. `fragments` counts the invocations.
-// Fetches per fragment of the prefilter: an N-buffer level 4 texels, a Gaussian one 9; the atlas
-// packing 1, or the taps of level 1 where it writes level 1 too (a second colour output).
-// Fetches per fragment of the shading pass (occlusion textures) are an upper bound: every slice
-// above the point looks up (one per slice: two bilinear fetches for N-buffer atlas and array levels,
-// one trilinear for mip chains and volumes, four bilinear for summed-area tables); a bilinear fetch
-// counts 4 texels, a trilinear one 8. Shadow maps: 4 texels per tap (PCF taps, PCSS blocker and filter
-// samples, the hard shadow map's one).
+// Fetches per fragment come from the technique's descriptor (detail/<technique>/technique.hpp:
+// texels_per_fragment): a bilinear fetch counts 4 texels, a trilinear one 8. Occlusion textures: an
+// N-buffer level 4 texels, a Gaussian one 9, the shading pass an upper bound (every slice above the
+// point looks up); shadow maps: 4 texels per tap.
 #pragma once
 
 #include "layout.hpp"
@@ -68,32 +65,9 @@ struct CostModel {
 
 namespace detail {
 
-// Texels one fragment of `program` reads (the cost model's rules above).
+// Texels one fragment of `pass` reads: the technique's descriptor knows its programs' taps.
 inline long long texels_per_fragment(const Layout& layout, const PassDesc& pass) {
-    const Config& c = layout.config;
-    const std::string_view program = pass.program;
-    if (program == "nbuffer_level") return 4;
-    if (program == "gaussian_level") return 9;
-    if (program == "pack_atlas" && pass.outputs.size() > 1) return c.filter == Filter::gaussian ? 9 : 4; // + level 1
-    if (program == "pack_atlas" || program == "sat_shift" || program == "unpack_slices") return 1;
-    if (program == "sat_pass") return 2;
-    if (program == "slice_boundaries") return 64; // the 8 x 8 cells of one depth bin (detail/occlusion/emit_slice_placement.hpp)
-    if (program == "shading_deferred") {
-        const long long g_buffer = reads_receiver_normal(c) ? 2 : 1;
-        // shadow maps: every comparison or depth tap a bilinear footprint (4 texels)
-        if (c.technique == Technique::shadowmap) return g_buffer + 4;
-        if (c.technique == Technique::pcf) return g_buffer + 4LL * pcf_taps(c.pcf);
-        if (c.technique == Technique::pcss) return g_buffer + 4LL * (c.pcss.blocker_samples + c.pcss.filter_samples);
-        if (c.technique != Technique::occlusion) return g_buffer;
-        long long per_slice = 0;
-        if (c.filter == Filter::sat) per_slice = 4 * 4;
-        else if (c.filter == Filter::mipmap || c.packing == Packing::volume) per_slice = 8;
-        else per_slice = 2 * 4;
-        const long long boundaries = places_slices_adaptively(c) ? c.slices : 0;
-        return g_buffer + per_slice * c.slices + boundaries;
-    }
-    if (program.starts_with("erosion_")) return 16; // screen-space taps, about a blur's
-    return 1;
+    return technique_descriptor(layout.config.technique).texels_per_fragment(layout.config, pass);
 }
 
 // Bytes of one level (or one layer) of a texture.

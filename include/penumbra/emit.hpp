@@ -46,10 +46,19 @@ template <class T> struct Result {
 Result<Emission> emit(const Config& config);
 #else
 
-// The text of one file for a configuration; the same function the compile-time API runs.
+namespace detail {
+inline ShaderFile emit_file(const Config& config, const ShaderFileSpec& file) {
+    return {std::string(file.name), file.stage, file.text(config).str()};
+}
+} // namespace detail
+
+// The text of the file named `file_name` (one of layout.files but layout.json) for a configuration; the
+// same function the compile-time API runs. An empty ShaderFile when the configuration has no such file.
 // Precondition: is_valid(config). Header-only (not declared with PENUMBRA_SEPARATE_IMPLEMENTATION).
-inline ShaderFile emit_file(const Config& config, Artifact artifact) {
-    return {std::string(file_name(artifact)), artifact_stage(artifact), detail::artifact_text(config, artifact).str()};
+inline ShaderFile emit_file(const Config& config, std::string_view file_name) {
+    for (const detail::ShaderFileSpec& file : detail::shader_files(config))
+        if (file.name == file_name) return detail::emit_file(config, file);
+    return {};
 }
 
 PENUMBRA_ENTRY_POINT Result<Emission> emit(const Config& config) {
@@ -59,10 +68,10 @@ PENUMBRA_ENTRY_POINT Result<Emission> emit(const Config& config) {
     Emission emission;
     for (const detail::ProgramPlan& plan : detail::program_plan(config)) {
         Program program{std::string(plan.name), {}};
-        for (Artifact stage : plan.stages) program.stages.push_back(emit_file(config, stage));
+        for (const detail::ShaderFileSpec& stage : plan.stages) program.stages.push_back(detail::emit_file(config, stage));
         emission.programs.push_back(std::move(program));
     }
-    emission.snippet = emit_file(config, Artifact::visibility_snippet);
+    emission.snippet = detail::emit_file(config, detail::shader_files(config).back());
     emission.layout = describe_layout(config);
     result.value = std::move(emission);
     return result;

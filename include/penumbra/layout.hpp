@@ -40,7 +40,7 @@ namespace penumbra {
 // The layout of a valid configuration. Precondition: is_valid(config).
 PENUMBRA_ENTRY_POINT Layout describe_layout(const Config& config) {
     using namespace detail;
-    const TechniqueFunctions technique = technique_functions(config.technique);
+    const TechniqueDescriptor technique = technique_descriptor(config.technique);
     Layout layout;
     layout.config = config;
     layout.technique = std::string(to_string(config.technique));
@@ -48,9 +48,9 @@ PENUMBRA_ENTRY_POINT Layout describe_layout(const Config& config) {
     // Programs with their parameters, in pass order.
     for (const ProgramPlan& plan : technique.programs(config)) {
         ProgramDesc program{std::string(plan.name), {}, {}, describe_params(config, technique.param_groups(config, plan.name)), {}};
-        for (Artifact a : plan.stages) {
-            program.files.emplace_back(file_name(a));
-            program.stages.push_back(artifact_stage(a));
+        for (const ShaderFileSpec& file : plan.stages) {
+            program.files.emplace_back(file.name);
+            program.stages.push_back(file.stage);
         }
         if (!plan.stages.empty()) program.vertex_inputs = vertex_inputs(plan.stages.front(), config);
         layout.programs.push_back(std::move(program));
@@ -73,7 +73,7 @@ PENUMBRA_ENTRY_POINT Layout describe_layout(const Config& config) {
 
     finish_sampling(layout);
 
-    for (Artifact a : artifacts(config)) layout.files.emplace_back(file_name(a));
+    for (const ShaderFileSpec& file : shader_files(config)) layout.files.emplace_back(file.name);
     layout.files.emplace_back("layout.json");
     // The configuration is implied everywhere: a new one is a new layout.
     bool has_shadow = false;

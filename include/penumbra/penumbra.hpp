@@ -20,7 +20,7 @@
 // Only the filter levels a light's kernels reach: config.level_bound = penumbra::kernel_level_bound(f, config)
 // (penumbra/level_bound.hpp).
 // The same model with uniforms instead of baked constants: penumbra::emit_generic (penumbra/generic.hpp).
-// At compile time: penumbra::static_glsl<config, penumbra::Artifact::…> (penumbra/static_glsl.hpp).
+// At compile time: penumbra::static_glsl<config, "penumbra_visibility.glsl"> (penumbra/static_glsl.hpp).
 // Validation with glslang: penumbra/validation.hpp (target penumbra::validation).
 #pragma once
 

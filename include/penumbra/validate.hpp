@@ -3,7 +3,7 @@
 //   for (const penumbra::ConfigError& e : penumbra::validate(config)) std::puts(e.message.c_str());
 //
 // Every message names the field, the value given and what is allowed. Nothing is clamped. Each
-// technique checks its own fields (detail/<technique>/validate.hpp, through detail/techniques.hpp).
+// technique checks its own fields (detail/<technique>/validate.hpp, through its descriptor: detail/techniques.hpp).
 #pragma once
 
 #include "config.hpp"
@@ -24,7 +24,7 @@ constexpr std::vector<Problem> find_problems(const Config& config) {
     std::vector<Problem> problems;
     check_known(problems, "technique", config.technique);
     if (!problems.empty()) return problems;
-    return technique_functions(config.technique).problems(config);
+    return technique_descriptor(config.technique).problems(config);
 }
 
 } // namespace detail

@@ -1,10 +1,30 @@
-// penumbra/detail/emit_shading.hpp — complete shading programs around penumbraVisibility():
-// a forward example (Lambert + shadow) and a deferred pass that reads world positions.
+// penumbra/detail/emit_shading.hpp — the files every technique shares: complete shading programs
+// around the technique's penumbraVisibility() (a forward example, Lambert + shadow, and a deferred
+// pass that reads world positions), and the full-screen triangle of the screen and prefilter passes.
 #pragma once
 
-#include "technique_visibility.hpp"
+#include "glsl_common.hpp"
 
 namespace penumbra::detail {
+
+// main() of a triangle that covers the viewport, from the vertex index alone (no vertex buffer).
+constexpr void write_fullscreen_vertex_main(LineWriter& out, const Config& config) {
+    out.chunk("fullscreen_vertex_main");
+    out.line("void main()");
+    out.line("{");
+    out.line("int index = ", vertex_index(config), ";");
+    out.line("vec2 corner = vec2(float((index << 1) & 2), float(index & 2));");
+    out.line("gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);");
+    out.line("}");
+}
+
+constexpr Text fullscreen_vertex(const Config& config) {
+    LineWriter out;
+    write_preamble(out, config, "full-screen triangle, vertex stage (draw 3 vertices, no attributes)");
+    write_fullscreen_vertex_main(out, config);
+    return out.take();
+}
+
 
 constexpr std::vector<Param> example_fragment_params() {
     return {{"penumbra_toLight", "vec4",
@@ -34,7 +54,7 @@ constexpr Text example_fragment(const Config& config) {
     out.line("layout(location = 0) out vec4 penumbra_color;");
     out.blank();
     int binding = 0;
-    write_technique_visibility(out, config, binding);
+    technique_descriptor(config.technique).write_visibility(out, config, binding);
     out.blank();
     write_params(out, config, example_fragment_params(), "PenumbraExample", binding);
     out.chunk("example_main");
@@ -64,7 +84,7 @@ void main()
 // example block), so both stages fit one Vulkan pipeline layout.
 constexpr int example_fragment_binding_count(const Config& config) {
     int samplers = 0;
-    for (const Param& p : technique_visibility_params(config)) samplers += is_sampler(p) ? 1 : 0;
+    for (const Param& p : technique_descriptor(config.technique).visibility_params(config)) samplers += is_sampler(p) ? 1 : 0;
     return 1 + samplers + 1;
 }
 
@@ -99,11 +119,21 @@ constexpr Text deferred_fragment(const Config& config) {
     out.line("layout(location = 0) out vec4 penumbra_visibility;");
     out.blank();
     int binding = 0;
-    write_technique_visibility(out, config, binding);
+    technique_descriptor(config.technique).write_visibility(out, config, binding);
     out.blank();
     write_params(out, config, deferred_params(config), "PenumbraDeferred", binding);
     write_deferred_main(out, reads_receiver_normal(config));
     return out.take();
 }
+
+// The shared files, as the techniques' program plans list them.
+inline constexpr ShaderFileSpec fullscreen_vert{"penumbra_fullscreen.vert", Stage::vertex, fullscreen_vertex};
+inline constexpr ShaderFileSpec shading_vert{"penumbra_shading.vert", Stage::vertex, example_vertex, VertexInputs::receiver};
+inline constexpr ShaderFileSpec shading_frag{"penumbra_shading.frag", Stage::fragment, example_fragment};
+inline constexpr ShaderFileSpec deferred_frag{"penumbra_deferred.frag", Stage::fragment, deferred_fragment};
+
+// The two shading programs most techniques end with.
+constexpr ProgramPlan shading_example_program() { return {"shading_example", {shading_vert, shading_frag}}; }
+constexpr ProgramPlan shading_deferred_program() { return {"shading_deferred", {fullscreen_vert, deferred_frag}}; }
 
 } // namespace penumbra::detail

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "../config.hpp"
+#include "technique.hpp"
 #include "text.hpp"
 
 #include <string_view>
@@ -46,58 +47,9 @@ constexpr bool has_varying_locations(const Config& config) {
 
 constexpr Text on_off(bool value) { return choose(value, "on", "off"); }
 
-constexpr Text describe_shadow_map(const Config& config) {
-    const ShadowMapParams& sm = config.shadow_map;
-    Text out = cat("technique ", to_string(config.technique), " | shadow map ", format_int(sm.resolution), "x",
-                   format_int(sm.resolution), " | bias ", format_float(sm.constant_bias), " scene units + ",
-                   format_float(sm.slope_bias), " x slope");
-    if (offsets_along_normal(config)) out += cat(" | normal offset ", format_float(sm.normal_offset), " texels");
-    if (tilts_taps_to_receiver_plane(config)) out += " | receiver-plane depth bias";
-    if (config.technique == Technique::pcf)
-        out += cat(" | pcf ", to_string(config.pcf.pattern), " ", format_int(pcf_taps(config.pcf)), " taps, radius ",
-                   format_float(config.pcf.radius), ", rotation ", on_off(config.pcf.rotate));
-    if (config.technique == Technique::pcss)
-        out += cat(" | pcss ", format_int(config.pcss.blocker_samples), " blocker / ",
-                   format_int(config.pcss.filter_samples), " filter samples, filter at most ",
-                   format_int(config.pcss.max_filter_texels), " texels, rotation ", on_off(config.pcss.rotate));
-    if (config.technique == Technique::erosion)
-        out += cat(" | erosion search at most ", format_int(config.erosion.max_search_radius), " px, edge threshold ",
-                   format_float(config.erosion.edge_threshold), ", ", format_int(config.erosion.search_taps),
-                   " search / ", format_int(config.erosion.blur_taps), " blur taps");
-    return out += cat(" | light ", to_string(config.light), " | target ", to_string(config.target)), out;
-}
-
-constexpr Text describe_oim(const Config& config) {
-    const OimParams& o = config.oim;
-    return cat("technique oim | interval maps ", format_int(o.resolution), "x", format_int(o.resolution), " | ",
-               format_int(o.intervals), " intervals in ", format_int(oim_pairs(o)), " rise/fall pair(s) | ",
-               format_int(o.samples), " bake samples along the path | target ", to_string(config.target));
-}
-
-constexpr Text describe_occlusion(const Config& config) {
-    return cat("slices ", format_int(config.slices), " | resolution ", format_int(config.resolution), "x",
-               format_int(config.resolution), " | filter ", to_string(config.filter), " | fusion ",
-               to_string(config.fusion), " | packing ", to_string(config.packing), " | light ",
-               to_string(config.light), " | leak fix ", on_off(config.leak_fix), " | fade ",
-               on_off(config.self_shadow_fade),
-               choose(config.self_shadow_fade && config.fade_ramp != 1.0, cat(" over ", format_float(config.fade_ramp), " slice"),
-                      Text()),
-               choose(clips_to_tangent_plane(config),
-                      cat(" | tangent clip on, offset ", format_float(config.tangent_clip_offset), " texels",
-                          choose(config.clip_footprint, " + footprint", "")),
-                      Text()),
-               choose(places_slices_adaptively(config), " | slice placement adaptive", ""),
-               choose(prefilters_in_compute(config), " | prefilter compute", ""), " | target ",
-               to_string(config.target));
-}
-
 // The configuration line of every file's header: only the fields the technique reads, then the
 // alpha test of cut-out casters when it is on.
-constexpr Text describe_technique(const Config& config) {
-    if (uses_shadow_map(config)) return describe_shadow_map(config);
-    if (config.technique == Technique::oim) return describe_oim(config);
-    return describe_occlusion(config);
-}
+constexpr Text describe_technique(const Config& config) { return technique_descriptor(config.technique).summary(config); }
 
 constexpr Text describe(const Config& config) {
     if (!config.alpha_test) return describe_technique(config);
@@ -123,8 +75,8 @@ constexpr void write_precision(LineWriter& out, const Config& config) {
     out.line("precision highp sampler2D;");
     out.line("precision highp sampler2DArray;");
     out.line("precision highp sampler3D;");
-    if (uses_shadow_map(config)) out.line("precision highp sampler2DShadow;");
-    if (places_slices_adaptively(config)) out.line("precision highp usampler2D;"); // penumbra_sliceBoundaries
+    for (std::string_view sampler : technique_descriptor(config.technique).es_sampler_precision(config))
+        out.line("precision highp ", sampler, ";");
 }
 
 // First lines of every stage: the version directive must come first, then what this file is
@@ -133,15 +85,7 @@ constexpr void write_preamble(LineWriter& out, const Config& config, std::string
     write_version(out, config);
     out.line("// Penumbra ", version_string, " - ", title);
     out.line("// ", describe(config));
-    if (uses_shadow_map(config))
-        out.line("// Shadow map depth stored as (z - near) / (far - near) along the light axis. Generated: edit the "
-                 "configuration, not this file.");
-    else if (config.technique == Technique::oim)
-        out.line("// Rise and fall times are path times t in [0, 1] (the sun's path over the day), baked offline. "
-                 "Generated: edit the configuration, not this file.");
-    else
-        out.line("// ", format_int(texture_count(config)), " RGBA occlusion texture(s), filter levels 0 to ",
-                 format_int(max_level(config)), ". Generated: edit the configuration, not this file.");
+    out.line("// ", technique_descriptor(config.technique).storage_note(config), " Generated: edit the configuration, not this file.");
     write_precision(out, config);
     out.blank();
 }

@@ -3,8 +3,8 @@
 // (layout(location = …) in …); tests/emitter_layout_test.cpp checks that they agree.
 #pragma once
 
-#include "artifacts.hpp"
 #include "layout_builder.hpp"
+#include "technique.hpp"
 
 #include <vector>
 
@@ -24,17 +24,16 @@ inline VertexInputDesc material_uv_input() {
 }
 
 // The attributes a vertex stage reads; none for the full-screen triangle.
-inline std::vector<VertexInputDesc> vertex_inputs(Artifact vertex_stage, const Config& config) {
-    switch (vertex_stage) {
-    case Artifact::slicing_vert:
-    case Artifact::depth_bins_vert:
-    case Artifact::shadow_depth_vert:
+inline std::vector<VertexInputDesc> vertex_inputs(const ShaderFileSpec& vertex_stage, const Config& config) {
+    switch (vertex_stage.vertex_inputs) {
+    case VertexInputs::caster:
         if (config.alpha_test) return {position_input(), material_uv_input()};
         return {position_input()};
-    case Artifact::shading_vert: return {position_input(), normal_input()};
-    case Artifact::oim_shading_vert: return {position_input(), normal_input(), uv_input()};
-    default: return {};
+    case VertexInputs::receiver: return {position_input(), normal_input()};
+    case VertexInputs::receiver_with_uv: return {position_input(), normal_input(), uv_input()};
+    case VertexInputs::none: return {};
     }
+    return {};
 }
 
 } // namespace penumbra::detail

@@ -3,19 +3,9 @@
 #pragma once
 
 #include "../shadow_map/layout.hpp"
+#include "emit_passes.hpp"
 
 namespace penumbra::detail {
-
-// Depth, the screen passes instead of shading_deferred, the example.
-constexpr std::vector<ProgramPlan> erosion_programs(const Config&) {
-    return {{"shadow_depth", {Artifact::shadow_depth_vert, Artifact::shadow_depth_frag}},
-            {"erosion_hard", {Artifact::fullscreen_vert, Artifact::erosion_hard_frag}},
-            {"erosion_edges", {Artifact::fullscreen_vert, Artifact::erosion_edges_frag}},
-            {"erosion_reduce", {Artifact::fullscreen_vert, Artifact::erosion_reduce_frag}},
-            {"erosion_erode", {Artifact::fullscreen_vert, Artifact::erosion_erode_frag}},
-            {"erosion_blur", {Artifact::fullscreen_vert, Artifact::erosion_blur_frag}},
-            {"shading_example", {Artifact::shading_vert, Artifact::shading_frag}}};
-}
 
 inline std::vector<ParamGroup> erosion_param_groups(const Config& config, std::string_view program) {
     if (program.starts_with("erosion_")) return {{"PenumbraPass", erosion_params(config, program)}};

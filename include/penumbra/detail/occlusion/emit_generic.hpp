@@ -15,6 +15,7 @@
 #pragma once
 
 #include "emit_prefilter.hpp"
+#include "emit_visibility.hpp"
 #include "../emit_shading.hpp"
 
 namespace penumbra::detail {

@@ -3,27 +3,10 @@
 // layout description asks for glGenerateMipmap.
 #pragma once
 
+#include "../emit_shading.hpp"
 #include "prefilter_plan.hpp"
 
 namespace penumbra::detail {
-
-// main() of a triangle that covers the viewport, from the vertex index alone (no vertex buffer).
-constexpr void write_fullscreen_vertex_main(LineWriter& out, const Config& config) {
-    out.chunk("fullscreen_vertex_main");
-    out.line("void main()");
-    out.line("{");
-    out.line("int index = ", vertex_index(config), ";");
-    out.line("vec2 corner = vec2(float((index << 1) & 2), float(index & 2));");
-    out.line("gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);");
-    out.line("}");
-}
-
-constexpr Text fullscreen_vertex(const Config& config) {
-    LineWriter out;
-    write_preamble(out, config, "full-screen triangle, vertex stage (draw 3 vertices, no attributes)");
-    write_fullscreen_vertex_main(out, config);
-    return out.take();
-}
 
 constexpr Param step_param() {
     return {"penumbra_step", "int", "offset between the windows combined by this pass, in texels of the texture it reads", "texels", {}, "pass"};

@@ -3,39 +3,13 @@
 // placement, slicing, unpack, prefilter) before the deferred shading of the screen phase.
 #pragma once
 
-#include "../artifacts.hpp"
+#include "emit_prefilter_compute.hpp"
+#include "emit_slice_placement.hpp"
+#include "emit_unpack.hpp"
+#include "emit_visibility.hpp"
 #include "../layout_builder.hpp"
 
 namespace penumbra::detail {
-
-// [slice placement,] slicing, [unpack,] prefilter, shading.
-constexpr std::vector<ProgramPlan> occlusion_programs(const Config& config) {
-    std::vector<ProgramPlan> plan;
-    if (places_slices_adaptively(config)) { // paper §5: slice boundaries from the scene's depths, before slicing
-        plan.push_back({"depth_bins", {Artifact::depth_bins_vert, Artifact::depth_bins_frag}});
-        plan.push_back({"slice_boundaries", {Artifact::fullscreen_vert, Artifact::slice_boundaries_frag}});
-    }
-    plan.push_back({"slicing", {Artifact::slicing_vert, Artifact::slicing_frag}});
-    if (slices_as_bits(config))
-        plan.push_back({"unpack_slices", {Artifact::fullscreen_vert, Artifact::unpack_slices_frag}});
-    if (config.packing == Packing::atlas && config.filter != Filter::sat)
-        plan.push_back({"pack_atlas", {Artifact::fullscreen_vert, Artifact::pack_atlas_frag}});
-    // (the atlas packing pass writes levels 0 to packed_level; a level pass builds each one above:
-    // the level program stays listed where there is none, as with level_bound 0 before)
-    if (prefilters_in_compute(config)) // compute dispatches, several levels each (emit_prefilter_compute.hpp)
-        plan.push_back({"nbuffer_levels", {Artifact::nbuffer_levels_comp}});
-    else if (config.filter == Filter::nbuffer)
-        plan.push_back({"nbuffer_level", {Artifact::fullscreen_vert, Artifact::nbuffer_level_frag}});
-    if (config.filter == Filter::gaussian)
-        plan.push_back({"gaussian_level", {Artifact::fullscreen_vert, Artifact::gaussian_level_frag}});
-    if (config.filter == Filter::sat) {
-        plan.push_back({"sat_shift", {Artifact::fullscreen_vert, Artifact::sat_shift_frag}});
-        plan.push_back({"sat_pass", {Artifact::fullscreen_vert, Artifact::sat_pass_frag}});
-    }
-    plan.push_back({"shading_example", {Artifact::shading_vert, Artifact::shading_frag}});
-    plan.push_back({"shading_deferred", {Artifact::fullscreen_vert, Artifact::deferred_frag}});
-    return plan;
-}
 
 inline std::vector<ParamGroup> occlusion_param_groups(const Config& config, std::string_view program) {
     if (program == "shading_example" || program == "shading_deferred")

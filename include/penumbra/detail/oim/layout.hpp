@@ -2,16 +2,11 @@
 // (the maps come from a bake), a G-buffer of texture coordinates instead of world positions.
 #pragma once
 
-#include "../artifacts.hpp"
+#include "../emit_shading.hpp"
+#include "emit_oim.hpp"
 #include "../layout_builder.hpp"
 
 namespace penumbra::detail {
-
-// Shading only.
-constexpr std::vector<ProgramPlan> oim_programs(const Config&) {
-    return {{"shading_example", {Artifact::oim_shading_vert, Artifact::oim_shading_frag}},
-            {"shading_deferred", {Artifact::fullscreen_vert, Artifact::oim_deferred_frag}}};
-}
 
 inline std::vector<ParamGroup> oim_param_groups(const Config& config, std::string_view program) {
     return shading_param_groups(program, oim_visibility_params(config), oim_deferred_params(),

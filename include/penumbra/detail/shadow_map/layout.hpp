@@ -3,17 +3,12 @@
 // depth pass (erosion/layout.hpp).
 #pragma once
 
-#include "../artifacts.hpp"
+#include "../emit_shading.hpp"
+#include "emit_depth.hpp"
+#include "emit_visibility.hpp"
 #include "../layout_builder.hpp"
 
 namespace penumbra::detail {
-
-// Depth, shading.
-constexpr std::vector<ProgramPlan> shadow_map_programs(const Config&) {
-    return {{"shadow_depth", {Artifact::shadow_depth_vert, Artifact::shadow_depth_frag}},
-            {"shading_example", {Artifact::shading_vert, Artifact::shading_frag}},
-            {"shading_deferred", {Artifact::fullscreen_vert, Artifact::deferred_frag}}};
-}
 
 inline std::vector<ParamGroup> shadow_map_param_groups(const Config& config, std::string_view program) {
     if (program == "shadow_depth") return caster_param_groups(config, "PenumbraShadowDepth", shadow_depth_params());
