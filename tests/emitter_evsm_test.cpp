@@ -108,7 +108,7 @@ TEST_CASE("evsm: the layout runs depth, moments, blur x, blur y from the light, 
     std::vector<std::string> names;
     for (const PassDesc& pass : layout.passes) names.push_back(pass.name + ":" + pass.phase);
     CHECK(names == std::vector<std::string>{"shadow_depth:shadow", "evsm_moments:shadow", "evsm_blur_x:shadow",
-                                            "evsm_blur_y:shadow", "shading:screen"});
+                                            "evsm_blur_y:shadow", "shading:screen", "shading_example:example"});
     const PassDesc* moments = find_pass(layout, "evsm_moments");
     const PassDesc* x = find_pass(layout, "evsm_blur_x");
     const PassDesc* y = find_pass(layout, "evsm_blur_y");
