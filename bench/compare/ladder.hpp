@@ -118,12 +118,13 @@ inline LadderEntry erosion_entry() {
     return {"erosion", "erosion r" + std::to_string(config.erosion.max_search_radius), config, true};
 }
 
-// Exponential variance shadow maps (Unity HDRP's area-light shadows) from a depth map of 1024² like
-// the others: taps per blur pass, the blur's clamp as many texels (its half-width follows the light).
-inline LadderEntry evsm_entry(int blur_taps, bool representative = false) {
-    Config config{.technique = Technique::evsm, .shadow_map = {.resolution = 1024}};
+// Exponential variance shadow maps (Unity HDRP's area-light shadows): taps per blur pass (the blur's
+// clamp as many texels; its half-width follows the light) / the depth map's resolution. Its moments
+// are blurred over the whole map, so the map's size is its cost: 512² and the others' 1024².
+inline LadderEntry evsm_entry(int blur_taps, int resolution, bool representative = false) {
+    Config config{.technique = Technique::evsm, .shadow_map = {.resolution = resolution}};
     config.evsm.blur_taps = config.evsm.max_blur_texels = blur_taps;
-    return {"evsm", "EVSM " + std::to_string(blur_taps), config, representative};
+    return {"evsm", "EVSM " + std::to_string(blur_taps) + "/" + std::to_string(resolution), config, representative};
 }
 
 // Occlusion interval maps (sun only): intervals/resolution of the baked maps, the fewest samples
@@ -178,8 +179,8 @@ inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
         pcss_entry(32, 32),        // Godot ultra
         pcss_entry(32, 64, true), // PlayCanvas high
         erosion_entry(),
-        evsm_entry(16, true),      // HDRP's area-light shadows
-        evsm_entry(64),
+        evsm_entry(16, 512, true), // HDRP's area-light shadows
+        evsm_entry(32, 1024),
         oim_entry(8, 128, true),   // the sun only (refusal); baked once per scene into --out's cache/oim
     };
     if (set == LadderSet::full) {
