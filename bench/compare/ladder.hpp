@@ -120,7 +120,7 @@ inline LadderEntry erosion_entry() {
 
 // Exponential variance shadow maps (Unity HDRP's area-light shadows): taps per blur pass (the blur's
 // clamp as many texels; its half-width follows the light) / the depth map's resolution. Its moments
-// are blurred over the whole map, so the map's size is its cost: 512² and the others' 1024².
+// are blurred over the whole map, so the map's size is its cost: 512², half the others'.
 inline LadderEntry evsm_entry(int blur_taps, int resolution, bool representative = false) {
     Config config{.technique = Technique::evsm, .shadow_map = {.resolution = resolution}};
     config.evsm.blur_taps = config.evsm.max_blur_texels = blur_taps;
@@ -180,7 +180,7 @@ inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
         pcss_entry(32, 64, true), // PlayCanvas high
         erosion_entry(),
         evsm_entry(16, 512, true), // HDRP's area-light shadows
-        evsm_entry(32, 1024),
+        evsm_entry(32, 512),       // twice the blur for larger lights
         oim_entry(8, 128, true),   // the sun only (refusal); baked once per scene into --out's cache/oim
     };
     if (set == LadderSet::full) {
