@@ -117,6 +117,9 @@ list_configurations() {
     for f in "${filters[@]}"; do for p in "${packings[@]}"; do for l in "${lights[@]}"; do
         echo "snippet/$f-$p-$l --slices 6 --resolution 64 --filter $f --packing $p --light $l --target essl300"
     done; done; done
+    for l in "${lights[@]}"; do
+        echo "snippet/evsm-$l --technique evsm --light $l --target essl300 --shadow-resolution 256"
+    done
 }
 
 # Emits configuration NAME (flags after it) into DIR/NAME, or writes DIR/NAME.rejected.
