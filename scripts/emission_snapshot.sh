@@ -13,7 +13,7 @@
 #                x resolution {32,256,2048}, and the same with --no-fade (the generic program's row;
 #                penumbra-gen does not emit the generic program itself)
 #   tangent_clip/, slices_64_128/, adaptive/   the other occlusion rows
-#   shadow_map/, erosion/, oim/                 the rows of those techniques
+#   shadow_map/, erosion/, evsm/, oim/          the rows of those techniques
 #   alpha_test/  the cut-out casters' row (every technique with --alpha-test)
 #   snippet/     matrix_snippet_test.cpp
 # Not covered: the generic reference program (penumbra::emit_generic), which penumbra-gen cannot
@@ -96,6 +96,11 @@ list_configurations() {
              "--erosion-blur-taps 1"
         echo "erosion/$t-$l-largest --technique erosion $base --erosion-radius 256 --erosion-edge-threshold 4" \
              "--erosion-search-taps 64 --erosion-blur-taps 64"
+        echo "evsm/$t-$l-default --technique evsm $base"
+        echo "evsm/$t-$l-smallest --technique evsm $base --shadow-resolution 32 --evsm-bleeding 0" \
+             "--evsm-variance-bias 0 --evsm-blur-taps 1 --evsm-max-blur 1"
+        echo "evsm/$t-$l-largest --technique evsm $base --evsm-positive-exponent 42 --evsm-negative-exponent 42" \
+             "--evsm-bleeding 0.9 --evsm-variance-bias 0.01 --evsm-blur-fraction 1 --evsm-blur-taps 64 --evsm-max-blur 64"
     done; done
     for t in "${targets[@]}"; do for n in 4 8 12 16; do for r in 32 256 2048; do
         echo "oim/$t-I$n-R$r --technique oim --target $t --oim-intervals $n --oim-resolution $r"
@@ -107,11 +112,14 @@ list_configurations() {
         echo "alpha_test/$t-$l-${f}_array --slices 5 --resolution 64 --filter $f --packing array $cut"
         echo "alpha_test/$t-$l-adaptive --slices 16 --resolution 256 --slice-placement adaptive $cut"
         [[ $t != essl300 ]] && echo "alpha_test/$t-$l-S64 --slices 64 --resolution 32 $cut"
-        for k in shadowmap pcf pcss erosion oim; do echo "alpha_test/$t-$l-$k --technique $k $cut"; done
+        for k in shadowmap pcf pcss erosion evsm oim; do echo "alpha_test/$t-$l-$k --technique $k $cut"; done
     done; done
     for f in "${filters[@]}"; do for p in "${packings[@]}"; do for l in "${lights[@]}"; do
         echo "snippet/$f-$p-$l --slices 6 --resolution 64 --filter $f --packing $p --light $l --target essl300"
     done; done; done
+    for l in "${lights[@]}"; do
+        echo "snippet/evsm-$l --technique evsm --light $l --target essl300 --shadow-resolution 256"
+    done
 }
 
 # Emits configuration NAME (flags after it) into DIR/NAME, or writes DIR/NAME.rejected.

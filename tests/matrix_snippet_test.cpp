@@ -56,3 +56,17 @@ TEST_CASE("essl300 snippet: #version 300 es + penumbra_visibility.glsl alone com
             }
     CHECK(configs >= 12);
 }
+
+// EVSM's ES snippet reads the moments through usampler2D (the bits of 32-bit floats), which has no
+// default precision: the snippet declares it.
+TEST_CASE("essl300 snippet of evsm: #version 300 es + penumbra_visibility.glsl alone compiles") {
+    for (Light light : all_values<Light>()) {
+        const Config config{.technique = Technique::evsm, .light = light, .target = Target::essl300,
+                            .shadow_map = {.resolution = 256}};
+        REQUIRE(is_valid(config));
+        const std::string snippet = emit(config).value->snippet.text;
+        const std::string alone = compile_fragment("#version 300 es\n" + snippet);
+        CHECK_MESSAGE(alone.empty(), alone);
+        CHECK_FALSE(compile_fragment("#version 300 es\n" + without_precision(snippet)).empty());
+    }
+}

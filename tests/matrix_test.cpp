@@ -291,6 +291,23 @@ Row erosion_row() {
     return all_valid_row("erosion", configs, 7);
 }
 
+// EVSM over its parameters (the defaults and both extremes, a small map), on every target (ES: the
+// moments as bits in RGBA32UI, filtered by hand) and light: depth, moments, blur x, blur y, example, deferred.
+Row evsm_row() {
+    std::vector<Config> configs;
+    for (Target target : all_values<Target>())
+        for (Light light : all_values<Light>())
+            for (auto [resolution, e] : {std::pair{1024, EvsmParams{}},
+                                         {32, EvsmParams{.light_bleeding_reduction = 0.0, .variance_bias = 0.0,
+                                                         .blur_taps = 1, .max_blur_texels = 1}},
+                                         {1024, EvsmParams{.positive_exponent = 42.0, .negative_exponent = 42.0,
+                                                           .light_bleeding_reduction = 0.9, .variance_bias = 0.01,
+                                                           .blur_fraction = 1.0, .blur_taps = 64, .max_blur_texels = 64}}})
+                configs.push_back({.technique = Technique::evsm, .light = light, .target = target,
+                                   .shadow_map = {.resolution = resolution}, .evsm = e});
+    return all_valid_row("evsm", configs, 6);
+}
+
 // Occlusion interval maps: every interval count, resolution and target. glsl330 guarantees 1024
 // texels, so 2048 is refused for each interval count.
 Row oim_row() {
@@ -340,6 +357,7 @@ Row alpha_test_row() {
             with({.technique = Technique::pcf});
             with({.technique = Technique::pcss});
             with({.technique = Technique::erosion});
+            with({.technique = Technique::evsm});
             with({.technique = Technique::oim});
         }
     return {.name = "alpha test (cut-out casters)",
@@ -369,7 +387,7 @@ Row alpha_test_row() {
                 CHECK_MESSAGE(casters == (c.technique == Technique::oim ? 0 : places_slices_adaptively(c) ? 2 : 1),
                               name_of(c));
             },
-            .check_row = [](const RowResult& r) { CHECK(r.valid == 4 * 2 * 8 + 3 * 2); }};
+            .check_row = [](const RowResult& r) { CHECK(r.valid == 4 * 2 * 9 + 3 * 2); }};
 }
 
 // --- the one check -------------------------------------------------------------------------------
@@ -414,7 +432,7 @@ RowResult run_row(const Row& row) {
 
 TEST_CASE("the glslang matrix: every program of every valid configuration of each technique compiles and links") {
     const Row rows[] = {occlusion_row(), tangent_clip_row(), many_slices_row(), adaptive_row(), compute_prefilter_row(),
-                        generic_row(), shadow_map_row(), erosion_row(), oim_row(), alpha_test_row()};
+                        generic_row(), shadow_map_row(), erosion_row(), evsm_row(), oim_row(), alpha_test_row()};
     int configurations = 0, programs = 0, compiled = 0;
     for (const Row& row : rows) {
         CAPTURE(row.name);

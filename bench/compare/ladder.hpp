@@ -15,8 +15,8 @@
 namespace penumbra::bench {
 
 struct LadderEntry {
-    std::string family;  // the technique's name: "occlusion", "paper", "shadowmap", "pcf", "pcss", "erosion", "oim"
-                         // (tables group by it)
+    std::string family;  // the technique's name: "occlusion", "paper", "shadowmap", "pcf", "pcss", "erosion", "evsm",
+                         // "oim" (tables group by it)
     std::string label;   // short, unique name: "OT nbuffer 16/512"
     Config config;
     bool representative; // also in the flicker measurement and the image montage
@@ -118,6 +118,15 @@ inline LadderEntry erosion_entry() {
     return {"erosion", "erosion r" + std::to_string(config.erosion.max_search_radius), config, true};
 }
 
+// Exponential variance shadow maps (Unity HDRP's area-light shadows): taps per blur pass (the blur's
+// clamp as many texels; its half-width follows the light) / the depth map's resolution. Its moments
+// are blurred over the whole map, so the map's size is its cost: 512², half the others'.
+inline LadderEntry evsm_entry(int blur_taps, int resolution, bool representative = false) {
+    Config config{.technique = Technique::evsm, .shadow_map = {.resolution = resolution}};
+    config.evsm.blur_taps = config.evsm.max_blur_texels = blur_taps;
+    return {"evsm", "EVSM " + std::to_string(blur_taps) + "/" + std::to_string(resolution), config, representative};
+}
+
 // Occlusion interval maps (sun only): intervals/resolution of the baked maps, the fewest samples
 // along the path (256). Small by default: the bake is a precomputation of minutes at the default
 // 256² on two cores.
@@ -170,6 +179,8 @@ inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
         pcss_entry(32, 32),        // Godot ultra
         pcss_entry(32, 64, true), // PlayCanvas high
         erosion_entry(),
+        evsm_entry(16, 512, true), // HDRP's area-light shadows
+        evsm_entry(32, 512),       // twice the blur for larger lights
         oim_entry(8, 128, true),   // the sun only (refusal); baked once per scene into --out's cache/oim
     };
     if (set == LadderSet::full) {

@@ -93,6 +93,8 @@ enum class Technique : std::uint8_t {
     oim,       // occlusion interval maps (GPU Gems ch. 13): baked visibility intervals of the sun on a fixed path
     erosion,   // contact-hardening soft shadows by erosion (Klein et al.): screen-space hard shadow, edges,
                // min-max chain, variable-size erosion, penumbra-wide blur
+    evsm,      // exponential variance shadow maps (Lauritzen & McCool 2008; Unity HDRP's area-light shadows):
+               // moments of the exponentially warped depth, blurred over the light's size, Chebyshev bound
 };
 
 // Where the PCF taps lie in the kernel.
@@ -173,6 +175,24 @@ constexpr int erosion_levels(const ErosionParams& erosion) {
     return levels;
 }
 
+// Exponential variance shadow maps: the shadow map's depth d in [0, 1] warped by e^(c+ d') and
+// -e^(-c- d'), d' = 2d - 1, and the two moments of each blurred by a box whose half-width follows the
+// light (detail/evsm/). Reads shadow_map's resolution and the depth pass's biases.
+struct EvsmParams {
+    double positive_exponent = 40.0;       // c+: more than 0 to 42 (e^(2 c) must fit a 32-bit float)
+    double negative_exponent = 5.0;        // c-: more than 0 to 42
+    double light_bleeding_reduction = 0.1; // Chebyshev bounds below this are shadow, the rest rescaled; 0 to < 1
+    double variance_bias = 0.0001;         // least depth spread, as a fraction of the depth range; 0 to 0.01
+    double blur_fraction = 0.5;            // the blur box's width over the widest penumbra the light casts across
+                                           // the scene (a blocker on the near plane, a receiver on the far plane);
+                                           // more than 0 to 1
+    int blur_taps = 32;                    // taps per blur pass (one pass per axis); 1 to 64
+    int max_blur_texels = 32;              // the blur's half-width is clamped to this many shadow-map texels;
+                                           // 1 to blur_taps and to half the shadow-map resolution
+
+    friend constexpr bool operator==(const EvsmParams&, const EvsmParams&) = default;
+};
+
 struct Config {
     Technique technique = Technique::occlusion; // which method the programs implement
     int slices = 16;                        // slices along the light normal; 1 to 32 (four per RGBA texture),
@@ -212,6 +232,7 @@ struct Config {
     PcssParams pcss{};                      // pcss: blocker search and filter
     OimParams oim{};                        // oim: the interval maps (the sun's path: penumbra/sun_path.hpp)
     ErosionParams erosion{};                // erosion: edge search and blur (screen space)
+    EvsmParams evsm{};                      // evsm: warp, Chebyshev bound, blur (with shadow_map's map and biases)
     bool alpha_test = false;                // cut-out casters (leaf cards, fences, grilles), every technique: the
                                             // passes that draw the casters from the light (slicing, depth bins,
                                             // shadow-map depth) discard fragments whose alpha, read from the draw's
@@ -224,8 +245,8 @@ struct Config {
 // Names as they appear on the command line, in JSON and in diagnostics.
 template <class Enum> struct EnumNames;
 template <> struct EnumNames<Technique> {
-    static constexpr std::array<std::string_view, 6> names{"occlusion", "shadowmap", "pcf", "pcss", "oim",
-                                                           "erosion"};
+    static constexpr std::array<std::string_view, 7> names{"occlusion", "shadowmap", "pcf", "pcss", "oim",
+                                                           "erosion", "evsm"};
 };
 template <> struct EnumNames<TapPattern> {
     static constexpr std::array<std::string_view, 2> names{"grid", "poisson"};

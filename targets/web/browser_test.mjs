@@ -20,12 +20,12 @@
 //      differ, and at most 1% of the pixels may leave 2·bound + q.
 //   3. light_frame.js reproduces the exported light-frame uniforms (relative 1e-5), and moving the
 //      light changes the image.
-// A bundle of another technique (shadowmap, pcf, pcss, erosion, oim with its bake) has no oracle:
+// A bundle of another technique (shadowmap, pcf, pcss, erosion, evsm, oim with its bake) has no oracle:
 // its image is compared with the desktop run's (TECHNIQUE_* in bundle_compare.mjs). A bundle with a
 // ray-traced truth (--reference) checks the error view's MAE.
 // On the first bundle also: an invalid value typed in the panel shows the emitter's message
 // (penumbra-gen's line) and keeps nothing running; every shadow-map technique (shadowmap, pcf,
-// pcss, erosion) selected in the panel runs and shadows; oim says why it cannot run; the split
+// pcss, erosion, evsm) selected in the panel runs and shadows; oim says why it cannot run; the split
 // view runs a second configuration.
 // Exit 0 pass, 1 fail, 77 skip (no chromium), 2 bad arguments.
 import fs from "node:fs";
@@ -47,6 +47,9 @@ const TECHNIQUE_FIELDS = {
            "pcss.filter_samples", "pcss.max_filter_texels", "pcss.rotate"],
     erosion: ["shadow_map.resolution", "shadow_map.constant_bias", "shadow_map.slope_bias", "erosion.max_search_radius",
               "erosion.edge_threshold", "erosion.search_taps", "erosion.blur_taps"],
+    evsm: ["shadow_map.resolution", "shadow_map.constant_bias", "shadow_map.slope_bias", "evsm.positive_exponent",
+           "evsm.negative_exponent", "evsm.light_bleeding_reduction", "evsm.variance_bias", "evsm.blur_fraction",
+           "evsm.blur_taps", "evsm.max_blur_texels"],
     oim: ["oim.resolution", "oim.intervals", "oim.samples"],
 };
 const valueAt = (object, key) => key.split(".").reduce((o, k) => (o === undefined ? undefined : o[k]), object);
@@ -112,7 +115,7 @@ async function checkPanel(page, label) {
         await setField(page, "left", key, value);
     // Every technique WebGL2 can run, selected in the panel: it runs and shadows, unlike the others.
     const images = {};
-    for (const technique of ["shadowmap", "pcf", "pcss", "erosion", "occlusion"]) {
+    for (const technique of ["shadowmap", "pcf", "pcss", "erosion", "evsm", "occlusion"]) {
         await setField(page, "left", "technique", technique);
         const s = await state();
         if (!s.running) {
@@ -123,7 +126,7 @@ async function checkPanel(page, label) {
         const shadowed = images[technique].filter((v) => v < 0.5).length;
         if (shadowed === 0) failures.push(`technique ${technique}: no shadowed pixel`);
     }
-    for (const [a, b] of [["shadowmap", "pcss"], ["pcf", "pcss"], ["erosion", "occlusion"], ["pcss", "occlusion"]]) {
+    for (const [a, b] of [["shadowmap", "pcss"], ["pcf", "pcss"], ["erosion", "occlusion"], ["pcss", "occlusion"], ["evsm", "pcss"]]) {
         if (!images[a] || !images[b]) continue;
         let differing = 0;
         for (let i = 0; i < images[a].length; ++i) if (Math.abs(images[a][i] - images[b][i]) > 2 * R8_STEP) ++differing;

@@ -79,7 +79,7 @@ def main():
     # Every other technique (its own textures, passes and uniforms), every light and target.
     matrix += [(f"{technique}-{light}-{target}", ["--technique", technique, "--light", light, "--target", target])
                for technique, light, target in itertools.product(
-                   ["shadowmap", "pcf", "pcss", "oim", "erosion"], ["rect", "sun"],
+                   ["shadowmap", "pcf", "pcss", "oim", "erosion", "evsm"], ["rect", "sun"],
                    ["glsl330", "glsl450", "essl300", "vulkan"])]
     matrix += [(f"occlusion-{fusion}-clip-{target}", ["--fusion", fusion, "--tangent-clip", "--target", target])
                for fusion in ["chained", "correlated"] for target in ["glsl330", "glsl450", "essl300", "vulkan"]]
@@ -108,7 +108,7 @@ def main():
     # every technique and target, the adaptive depth bins too.
     matrix += [(f"alpha-test-{technique}-{target}", ["--alpha-test", "--technique", technique, "--target", target])
                for technique, target in itertools.product(
-                   ["occlusion", "shadowmap", "pcf", "pcss", "oim", "erosion"], ["glsl330", "glsl450", "essl300", "vulkan"])]
+                   ["occlusion", "shadowmap", "pcf", "pcss", "oim", "erosion", "evsm"], ["glsl330", "glsl450", "essl300", "vulkan"])]
     matrix += [(f"alpha-test-adaptive-{target}", ["--alpha-test", "--slice-placement", "adaptive", "--target", target,
                                                   "--slices", "5", "--resolution", "64"])
                for target in ["glsl330", "glsl450", "essl300", "vulkan"]]

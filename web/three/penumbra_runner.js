@@ -25,6 +25,7 @@ const FORMATS = {
     RGBA32F: {format: "RGBA", type: "FLOAT", float: true, filterable: false},
     R32F: {format: "RED", type: "FLOAT", float: true, filterable: false},
     RG32F: {format: "RG", type: "FLOAT", float: true, filterable: false},
+    RGBA32UI: {format: "RGBA_INTEGER", type: "UNSIGNED_INT", float: false, integer: true}, // evsm moments on ES (float bits)
     R32UI: {format: "RED_INTEGER", type: "UNSIGNED_INT", float: false, integer: true}, // adaptive slice boundaries
     DEPTH_COMPONENT24: {format: "DEPTH_COMPONENT", type: "UNSIGNED_INT", float: false, depth: true},
     DEPTH_COMPONENT32F: {format: "DEPTH_COMPONENT", type: "FLOAT", float: false, depth: true},

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "erosion/technique.hpp"
+#include "evsm/technique.hpp"
 #include "occlusion/technique.hpp"
 #include "oim/technique.hpp"
 #include "shadow_map/technique.hpp"
@@ -18,6 +19,7 @@ constexpr TechniqueDescriptor technique_descriptor(Technique technique) {
     case Technique::pcss: return shadow_map_technique();
     case Technique::oim: return oim_technique();
     case Technique::erosion: return erosion_technique();
+    case Technique::evsm: return evsm_technique();
     }
     return occlusion_technique(); // not reached for a known technique
 }

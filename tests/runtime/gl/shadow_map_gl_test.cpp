@@ -1,9 +1,12 @@
-// The shadow map techniques (shadowmap, pcf, pcss) on real OpenGL (llvmpipe on CI), label "gl":
+// The shadow map techniques (shadowmap, pcf, pcss, evsm) on real OpenGL (llvmpipe on CI), label "gl":
 //   - PCF across a straight shadow edge: a grid kernel's value is the fraction of its tap columns
 //     beyond the edge (the closed form), at every pixel whose taps are clear of the edge;
 //   - PCSS on one half-plane occluder parallel to the ground and to the light: the blocker depth
 //     and the penumbra width are known (w_p = (d_r - d_b) w / d_b), and the answer across the edge is
 //     the box filter's linear ramp;
+//   - EVSM on the same occluder, its blur as wide as the widest penumbra: the blurred moments' bound is
+//     the same ramp (the negative warp is exact for one occluder over a planar receiver), and the
+//     umbra and the lit ground are exactly 0 and 1;
 //   - a wide PCF kernel on a ground the sun reaches at a slant: with the receiver-plane depth bias the
 //     open ground is lit, without it half the kernel falls below the ground's own depth in the map;
 //   - every technique renders every built-in scene without a GL error, shadowing about as much of
@@ -141,6 +144,54 @@ TEST_CASE("pcss: one occluder parallel to the light, the penumbra has the parall
     CHECK(outside_wrong <= outside / 50);
 }
 
+TEST_CASE("evsm: one occluder parallel to the light, a blur as wide as the penumbra gives its linear ramp") {
+    std::string error;
+    auto context = HeadlessContext::create(&error);
+    REQUIRE_MESSAGE(context, error);
+    // As for PCSS above: w_p = 1 on the ground, the visibility across the edge clamp(0.5 + x, 0, 1). The
+    // scene's depth range is the occluder's 2 to the ground's 4, so the widest penumbra the blur follows
+    // (a blocker on the near plane over a receiver on the far one) is this one, and its box the ramp.
+    Scene scene = edge_scene(2.0f);
+    scene.light.center = {0.0, 4.0, 0.0};
+    scene.light.width = scene.light.height = 1.0;
+    const penumbra::Config config{
+        .technique = penumbra::Technique::evsm,
+        .shadow_map = {.resolution = 1024, .constant_bias = 0.005},
+        .evsm = {.light_bleeding_reduction = 0.0, .blur_fraction = 1.0, .blur_taps = 64, .max_blur_texels = 64}};
+    const HeadlessResult r = render(scene, config, 128);
+    double ramp_error = 0.0;
+    int ramp = 0, outside = 0, outside_wrong = 0;
+    for (std::size_t i = 0; i < r.visibility.size(); ++i) {
+        if (!on_ground(r, i)) continue;
+        const double x = r.positions[i].x, v = r.visibility[i];
+        if (std::abs(x) < 0.45) {
+            ramp_error += std::abs(v - std::clamp(0.5 + x, 0.0, 1.0));
+            ++ramp;
+        } else if (std::abs(x) > 0.55 && std::abs(x) < 1.5) {
+            ++outside;
+            outside_wrong += std::abs(v - (x > 0 ? 1.0 : 0.0)) > 0.02;
+        }
+    }
+    std::printf("evsm edge: %d penumbra pixels, MAE vs the box ramp %.4f; %d of %d outside wrong\n", ramp,
+                ramp_error / std::max(ramp, 1), outside_wrong, outside);
+    CHECK(ramp > 200);
+    CHECK(ramp_error / ramp < 0.05);
+    CHECK(outside > 200);
+    CHECK(outside_wrong <= outside / 50);
+    // the light-bleeding reduction steepens the same ramp: (v - 0.2) / 0.8, darker inside the penumbra
+    penumbra::Config reduced = config;
+    reduced.evsm.light_bleeding_reduction = 0.2;
+    const HeadlessResult steep = render(scene, reduced, 128);
+    int darker = 0, compared = 0;
+    for (std::size_t i = 0; i < r.visibility.size(); ++i)
+        if (on_ground(r, i) && std::abs(r.positions[i].x) < 0.3) {
+            ++compared;
+            darker += steep.visibility[i] < r.visibility[i] - 0.02f;
+        }
+    CHECK(compared > 100);
+    CHECK(darker > compared * 9 / 10);
+}
+
 TEST_CASE("pcf and pcss: the receiver-plane depth bias keeps a slanted, open receiver lit under a wide kernel") {
     std::string error;
     auto context = HeadlessContext::create(&error);
@@ -178,7 +229,7 @@ TEST_CASE("every shadow map technique renders every scene without a GL error and
     auto context = HeadlessContext::create(&error);
     REQUIRE_MESSAGE(context, error);
     const penumbra::Technique techniques[] = {penumbra::Technique::shadowmap, penumbra::Technique::pcf,
-                                              penumbra::Technique::pcss};
+                                              penumbra::Technique::pcss, penumbra::Technique::evsm};
     for (std::string_view name : scene_names()) {
         const std::optional<Scene> scene = make_scene(name);
         REQUIRE(scene);
