@@ -43,6 +43,8 @@ function(penumbra_generate_flags value_var switch_var)
         --pcss-blockers --pcss-filter --pcss-max-texels
         --oim-resolution --oim-intervals --oim-samples
         --erosion-radius --erosion-edge-threshold --erosion-search-taps --erosion-blur-taps
+        --evsm-positive-exponent --evsm-negative-exponent --evsm-bleeding --evsm-variance-bias
+        --evsm-blur-fraction --evsm-blur-taps --evsm-max-blur
         PARENT_SCOPE)
     set(${switch_var}
         --no-leak-fix --no-fade --tangent-clip --no-tangent-clip --no-clip-footprint

@@ -296,12 +296,6 @@ template <class Enum> constexpr auto all_values() {
     return values;
 }
 
-// True for the techniques built on one depth map from the light (shadowmap, pcf, pcss, erosion).
-constexpr bool uses_shadow_map(const Config& config) {
-    return config.technique == Technique::shadowmap || config.technique == Technique::pcf ||
-           config.technique == Technique::pcss || config.technique == Technique::erosion;
-}
-
 // True when the shadow-map techniques move the receiver along its normal before the lookup (the
 // normal-offset bias): penumbraVisibility then uses the normal, and the deferred pass reads it.
 constexpr bool offsets_along_normal(const Config& config) {

@@ -223,10 +223,14 @@ inline std::vector<std::string_view> config_top_keys() {
 
 // layout.json's "config" object for `config` (and the --config file format): every field, sections
 // on one line each, two-space indentation after `indent`; fields marked omit_default only when not
-// the default.
+// the default or in the selected technique's own section.
 inline std::string config_to_json(const Config& config, std::string_view indent = "") {
     const Config defaults{};
-    auto written = [&](const ConfigField& f) { return !f.omit_default || f.get(config) != f.get(defaults); };
+    // the selected technique's own section ("evsm" of technique evsm) is always written: its layout states
+    // every value its programs were specialized for
+    auto written = [&](const ConfigField& f) {
+        return !f.omit_default || f.get(config) != f.get(defaults) || field_section(f) == to_string(config.technique);
+    };
     std::string out;
     for (std::string_view top : detail::config_top_keys()) {
         std::string value;

@@ -22,33 +22,41 @@ inline void describe_evsm_passes(LayoutBuilder& b, const Config& config) {
     describe_shadow_map_passes(b, config);
     for (TextureDesc& t : b.layout.textures)
         if (t.name == shadow_map_texture) {
-            t.min_filter = t.mag_filter = "NEAREST";
+            t.min_filter = t.mag_filter = TextureFilter::nearest;
             t.purpose = "shadow map: (z - near) / (far - near) along the light axis, biased; the moments pass reads "
                         "it one texel per fragment";
         }
     const int R = config.shadow_map.resolution;
     const bool hardware = evsm_filters_in_hardware(config);
-    const std::string format(evsm_moments_format(config)), filter = hardware ? "LINEAR" : "NEAREST";
+    const TextureFilter filter = hardware ? TextureFilter::linear : TextureFilter::nearest;
     const std::string stored = hardware ? "" : " (the bits of 32-bit floats: ES 3.0 renders RGBA32UI in its core, "
                                                "float targets only with EXT_color_buffer_float)";
-    TextureDesc& moments =
-        b.texture(std::string(evsm_moments_texture), "2D", format, R, R, 1, 1, filter, filter,
-                  "EVSM moments e^(c+ d), its square, -e^(-c- d), its square of d = 2 depth - 1; blurred in place by "
-                  "the blur passes" + stored);
-    moments.wrap = "CLAMP_TO_EDGE";
-    TextureDesc& blurred = b.texture(std::string(evsm_blur_x_texture), "2D", format, R, R, 1, 1, filter, filter,
-                                     "EVSM moments blurred along x (the light's width)" + stored);
-    blurred.wrap = "CLAMP_TO_EDGE";
-    auto inputs = [&](std::string_view program) {
-        std::vector<BindingDesc> in;
-        for (const ParamDesc& p : b.params_of(program))
-            if (p.binding >= 0) in.push_back({p.name, p.texture, p.binding});
-        return in;
-    };
-    const std::string moments_name(evsm_moments_texture), blurred_name(evsm_blur_x_texture);
-    b.fullscreen("evsm_moments", "evsm_moments", inputs("evsm_moments"), {moments_name, 0, -1}, {}, R, R);
-    b.fullscreen("evsm_blur_x", "evsm_blur_x", inputs("evsm_blur_x"), {blurred_name, 0, -1}, {}, R, R);
-    b.fullscreen("evsm_blur_y", "evsm_blur_y", inputs("evsm_blur_y"), {moments_name, 0, -1}, {}, R, R);
+    const std::string moments(evsm_moments_texture), blurred(evsm_blur_x_texture);
+    b.texture({.name = moments,
+               .format = evsm_moments_format(config),
+               .width = R,
+               .height = R,
+               .min_filter = filter,
+               .mag_filter = filter,
+               .purpose = "EVSM moments e^(c+ d), its square, -e^(-c- d), its square of d = 2 depth - 1; blurred in "
+                          "place by the blur passes" + stored});
+    b.texture({.name = blurred,
+               .format = evsm_moments_format(config),
+               .width = R,
+               .height = R,
+               .min_filter = filter,
+               .mag_filter = filter,
+               .purpose = "EVSM moments blurred along x (the light's width)" + stored});
+    // moments -> blur along x -> blur along y, back into the moments
+    const std::array<std::array<std::string_view, 2>, 3> passes{
+        {{"evsm_moments", moments}, {"evsm_blur_x", blurred}, {"evsm_blur_y", moments}}};
+    for (const auto& [program, output] : passes)
+        b.pass({.name = std::string(program),
+                .program = std::string(program),
+                .inputs = b.own_inputs(program),
+                .outputs = {{std::string(output)}},
+                .viewport_width = R,
+                .viewport_height = R});
 }
 
 inline void describe_evsm_layout(LayoutBuilder& b, const Config& config) {

@@ -29,8 +29,8 @@ inline constexpr double evsm_max_exponent = 42.0;
 // floats in RGBA32UI, filtered by hand (OpenGL ES 3.0 / WebGL2).
 constexpr bool evsm_filters_in_hardware(const Config& config) { return limits(config.target).float32_render_filter; }
 
-constexpr std::string_view evsm_moments_format(const Config& config) {
-    return evsm_filters_in_hardware(config) ? "RGBA32F" : "RGBA32UI";
+constexpr TextureFormat evsm_moments_format(const Config& config) {
+    return evsm_filters_in_hardware(config) ? TextureFormat::rgba32f : TextureFormat::rgba32ui;
 }
 
 // The sampler type the passes read the moments through.
@@ -50,21 +50,13 @@ constexpr Param evsm_moments_param(const Config& config, std::string_view textur
 // The moments pass reads the depth map without comparison: one texel per fragment.
 constexpr Param evsm_depth_param() {
     return {"penumbra_shadowDepth", "sampler2D", "shadow map read as depth (no comparison): one texel per fragment",
-            "", Text(shadow_map_texture), "light", "NEAREST"};
+            "", Text(shadow_map_texture), UniformSource::light, "NEAREST"};
 }
 
 // The blur passes' radius follows the light: its size on the map (penumbra_lightSizeUV, as PCSS's
 // blocker search reads it) over the depth range.
 constexpr std::vector<Param> evsm_blur_params(const Config& config, std::string_view source) {
-    std::vector<Param> params;
-    if (config.light == Light::rect)
-        params.push_back({"penumbra_lightSizeUV", "vec2",
-                          "light width, height seen on the shadow map's near plane, in shadow-map uv", "uv"});
-    else
-        params.push_back({"penumbra_lightSizeUV", "vec2",
-                          "the sun's cone: growth of the light's footprint per unit of depth, in shadow-map uv",
-                          "uv per scene unit"});
-    params.push_back(depth_range_param());
+    std::vector<Param> params{uniform_param(Uniform::light_size_uv, config.light), depth_range_param()};
     params.push_back(evsm_moments_param(config, source));
     return params;
 }

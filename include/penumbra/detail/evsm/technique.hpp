@@ -4,6 +4,7 @@
 #pragma once
 
 #include "../shadow_map/technique.hpp"
+#include "fields.hpp"
 #include "layout.hpp"
 #include "validate.hpp"
 
@@ -31,7 +32,7 @@ constexpr Text evsm_summary(const Config& config) {
                format_float(e.negative_exponent), ", light-bleeding reduction ", format_float(e.light_bleeding_reduction),
                ", variance bias ", format_float(e.variance_bias), ", blur ", format_int(e.blur_taps),
                " taps per axis over ", format_float(e.blur_fraction), " of the widest penumbra, at most ",
-               format_int(e.max_blur_texels), " texels, moments ", evsm_moments_format(config),
+               format_int(e.max_blur_texels), " texels, moments ", to_string(evsm_moments_format(config)),
                describe_light_and_target(config));
 }
 
@@ -54,8 +55,11 @@ inline long long evsm_texels_per_fragment(const Config& config, const PassDesc& 
     return 1;
 }
 
+inline constexpr auto evsm_field_rows = evsm_fields();
+
 constexpr TechniqueDescriptor evsm_technique() {
     return {
+        .fields = evsm_field_rows,
         .programs = evsm_programs,
         .visibility_snippet = evsm_visibility_snippet,
         .visibility_params = evsm_visibility_params,
