@@ -86,11 +86,11 @@ TEST_CASE("evsm: moments in RGBA32F filtered by the hardware, on ES the bits of 
         const TextureDesc* blurred = detail::find_texture(layout, "penumbra_evsmBlurX");
         REQUIRE(moments);
         REQUIRE(blurred);
-        CHECK(moments->internal_format == (es ? "RGBA32UI" : "RGBA32F"));
-        CHECK(blurred->internal_format == moments->internal_format);
-        CHECK(moments->min_filter == (es ? "NEAREST" : "LINEAR"));
+        CHECK(moments->format == (es ? TextureFormat::rgba32ui : TextureFormat::rgba32f));
+        CHECK(blurred->format == moments->format);
+        CHECK(moments->min_filter == (es ? TextureFilter::nearest : TextureFilter::linear));
         CHECK(moments->width == 256);
-        CHECK(moments->wrap == "CLAMP_TO_EDGE");
+        CHECK(moments->wrap == Wrap::clamp_to_edge);
         const std::string blur = text_of(config, "penumbra_evsm_blur_x.frag");
         const std::string snippet = emit(config).value->snippet.text;
         CHECK(has(blur, es ? "out uvec4 penumbra_out;" : "out vec4 penumbra_out;"));
@@ -106,7 +106,7 @@ TEST_CASE("evsm: the layout runs depth, moments, blur x, blur y from the light, 
     const Config config{.technique = Technique::evsm, .shadow_map = {.resolution = 512}};
     const Layout layout = describe_layout(config);
     std::vector<std::string> names;
-    for (const PassDesc& pass : layout.passes) names.push_back(pass.name + ":" + pass.phase);
+    for (const PassDesc& pass : layout.passes) names.push_back(pass.name + ":" + std::string(to_string(pass.phase)));
     CHECK(names == std::vector<std::string>{"shadow_depth:shadow", "evsm_moments:shadow", "evsm_blur_x:shadow",
                                             "evsm_blur_y:shadow", "shading:screen", "shading_example:example"});
     const PassDesc* moments = find_pass(layout, "evsm_moments");
@@ -114,7 +114,7 @@ TEST_CASE("evsm: the layout runs depth, moments, blur x, blur y from the light, 
     const PassDesc* y = find_pass(layout, "evsm_blur_y");
     REQUIRE((moments && x && y));
     CHECK(moments->inputs.at(0).texture == "penumbra_shadowMap");
-    CHECK(moments->inputs.at(0).sampling.min_filter == "NEAREST");
+    CHECK(moments->inputs.at(0).sampling.min_filter == TextureFilter::nearest);
     CHECK(moments->outputs.at(0).texture == "penumbra_evsmMoments");
     CHECK(x->inputs.at(0).texture == "penumbra_evsmMoments");
     CHECK(x->outputs.at(0).texture == "penumbra_evsmBlurX");
@@ -128,7 +128,7 @@ TEST_CASE("evsm: the layout runs depth, moments, blur x, blur y from the light, 
         if (program.name == "evsm_blur_x")
             for (const ParamDesc& p : program.parameters)
                 computed += (p.name == "penumbra_lightSizeUV" || p.name == "penumbra_shadowDepthRange") &&
-                            p.source == "light" && !p.compute.empty();
+                            p.source == UniformSource::light && !p.compute.empty();
     CHECK(computed == 2);
     // the cost model: a blur tap is one bilinear footprint, the lookup one more after the G-buffer
     const CostModel cost = cost_model(layout, 64, 32);
