@@ -27,27 +27,29 @@ enum class FieldKind : std::uint8_t {
     choice,  // an enumeration: one of `names`
 };
 
+// Every member has a default, so a row names only the members it sets (designated initializers,
+// without -Wmissing-field-initializers).
 struct ConfigField {
-    std::string_view key;     // JSON key of layout.json's "config" and --config: "slices", or "section.key"
-                              // for a nested one ("pcss.blocker_samples")
-    std::string_view flag;    // command-line flag. Booleans are switches: "--no-leak-fix" sets false,
-                              // "--alpha-test" sets true, "--[no-]tangent-clip" is both. Rows may share a
-                              // switch (--no-rotation: pcf.rotate and pcss.rotate)
-    std::string_view metavar; // the value's name in --help ("--slices N"); "" for switches
+    std::string_view key{};     // JSON key of layout.json's "config" and --config: "slices", or "section.key"
+                                // for a nested one ("pcss.blocker_samples")
+    std::string_view flag{};    // command-line flag. Booleans are switches: "--no-leak-fix" sets false,
+                                // "--alpha-test" sets true, "--[no-]tangent-clip" is both. Rows may share a
+                                // switch (--no-rotation: pcf.rotate and pcss.rotate)
+    std::string_view metavar{}; // the value's name in --help ("--slices N"); "" for switches
     FieldKind kind = FieldKind::integer;  // set by member<>() from the member's type
     double min = -std::numeric_limits<double>::infinity(); // numbers: the range the field allows
     double max = std::numeric_limits<double>::infinity();
     bool min_exclusive = false;           // "more than min"
     bool power_of_two = false;            // integers: only powers of two in [min, max]
-    std::string_view allowed;             // what is allowed, in words, where a plain range does not say it
+    std::string_view allowed{};             // what is allowed, in words, where a plain range does not say it
                                           // ("1 to 32, 64 or 128"); "" : written from min and max
-    std::string_view help;                // one line: --help, the panels
-    std::string_view detail;              // a longer description for docs/layout.schema.json ("": help)
-    std::string_view section;             // the first row of a section: the section's own description
-    std::string_view techniques;          // the techniques that read it, "pcf, pcss"; "": every technique
+    std::string_view help{};                // one line: --help, the panels
+    std::string_view detail{};              // a longer description for docs/layout.schema.json ("": help)
+    std::string_view section{};             // the first row of a section: the section's own description
+    std::string_view techniques{};          // the techniques that read it, "pcf, pcss"; "": every technique
     bool omit_default = false;            // layout.json writes it only when not the default (fields added
                                           // after layout_version 3, so that older layouts read as before)
-    std::span<const std::string_view> names; // choice: the enumeration's names (EnumNames)
+    std::span<const std::string_view> names{}; // choice: the enumeration's names (EnumNames)
     double (*get)(const Config&) = nullptr;
     void (*set)(Config&, double) = nullptr;
     void (*implies)(Config&) = nullptr;   // the flag also sets this unless that field's own flag is given

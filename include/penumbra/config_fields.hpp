@@ -31,12 +31,6 @@
 namespace penumbra {
 namespace detail {
 
-// Rows name only the members they set; the rest keep their defaults on purpose.
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#endif
-
 constexpr auto common_fields() {
     return std::array{
         member<&Config::technique>({.key = "technique", .flag = "--technique", .metavar = "T",
@@ -58,10 +52,6 @@ constexpr auto common_fields() {
              .omit_default = true}),
     };
 }
-
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
 
 // Each technique descriptor's rows once (techniques that share a folder share its rows), in the
 // order of the Technique values.

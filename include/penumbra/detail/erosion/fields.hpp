@@ -9,12 +9,6 @@
 
 namespace penumbra::detail {
 
-// Rows name only the members they set; the rest keep their defaults on purpose.
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#endif
-
 constexpr auto erosion_fields() {
     using E = ErosionParams;
     return std::array{
@@ -34,9 +28,5 @@ constexpr auto erosion_fields() {
                                                  .help = "Poisson taps of the final blur", .techniques = "erosion"}),
     };
 }
-
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
 
 } // namespace penumbra::detail

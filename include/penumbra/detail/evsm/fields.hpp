@@ -10,12 +10,6 @@
 
 namespace penumbra::detail {
 
-// Rows name only the members they set; the rest keep their defaults on purpose.
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#endif
-
 constexpr auto evsm_fields() {
     using E = EvsmParams;
     return std::array{
@@ -52,9 +46,5 @@ constexpr auto evsm_fields() {
              .omit_default = true}),
     };
 }
-
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
 
 } // namespace penumbra::detail

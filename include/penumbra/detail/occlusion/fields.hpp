@@ -8,12 +8,6 @@
 
 namespace penumbra::detail {
 
-// Rows name only the members they set; the rest keep their defaults on purpose.
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#endif
-
 constexpr auto occlusion_fields() {
     return std::array{
         member<&Config::slices>({.key = "slices", .flag = "--slices", .metavar = "N", .min = 1, .max = 128,
@@ -113,9 +107,5 @@ constexpr auto occlusion_fields() {
              .techniques = "occlusion", .omit_default = true}),
     };
 }
-
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
 
 } // namespace penumbra::detail

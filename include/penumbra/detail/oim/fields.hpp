@@ -8,12 +8,6 @@
 
 namespace penumbra::detail {
 
-// Rows name only the members they set; the rest keep their defaults on purpose.
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#endif
-
 constexpr auto oim_fields() {
     using O = OimParams;
     return std::array{
@@ -30,9 +24,5 @@ constexpr auto oim_fields() {
                                            .techniques = "oim"}),
     };
 }
-
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
 
 } // namespace penumbra::detail

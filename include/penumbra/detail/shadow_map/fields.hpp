@@ -9,12 +9,6 @@
 
 namespace penumbra::detail {
 
-// Rows name only the members they set; the rest keep their defaults on purpose.
-#if defined(__GNUC__)
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#endif
-
 // shadow_map.* (the depth map of shadowmap, pcf, pcss and erosion), then pcf.*, then pcss.*.
 constexpr auto shadow_map_fields() {
     using S = ShadowMapParams;
@@ -81,9 +75,5 @@ constexpr auto shadow_map_fields() {
                                            .help = "per-pixel rotation of the tap pattern", .techniques = "pcss"}),
     };
 }
-
-#if defined(__GNUC__)
-#pragma GCC diagnostic pop
-#endif
 
 } // namespace penumbra::detail
