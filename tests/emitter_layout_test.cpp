@@ -144,6 +144,10 @@ TEST_CASE("layout: structured state, border colours, attachment kinds, levels") 
     }
 }
 
+TEST_CASE("uniform_values: one reader per registry row, for each frame its input names") {
+    CHECK(penumbra::detail::readers_match_registry());
+}
+
 TEST_CASE("layout v2: every plain uniform says where its value comes from, and the table has it") {
     for (const Config& config : vocabulary_configs()) {
         CAPTURE(to_string(config.filter));
