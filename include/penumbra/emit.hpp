@@ -71,7 +71,7 @@ PENUMBRA_ENTRY_POINT Result<Emission> emit(const Config& config) {
         for (const detail::ShaderFileSpec& stage : plan.stages) program.stages.push_back(detail::emit_file(config, stage));
         emission.programs.push_back(std::move(program));
     }
-    emission.snippet = detail::emit_file(config, detail::shader_files(config).back());
+    emission.snippet = detail::emit_file(config, detail::visibility_snippet_file(config));
     emission.layout = describe_layout(config);
     result.value = std::move(emission);
     return result;

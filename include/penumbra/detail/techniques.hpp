@@ -32,6 +32,10 @@ constexpr std::vector<ProgramPlan> program_plan(const Config& config) {
 // penumbra_visibility.glsl: for inclusion into the engine's own shaders (no #version).
 inline constexpr std::string_view visibility_snippet_name = "penumbra_visibility.glsl";
 
+constexpr ShaderFileSpec visibility_snippet_file(const Config& config) {
+    return {visibility_snippet_name, Stage::fragment, technique_descriptor(config.technique).visibility_snippet};
+}
+
 // Every file of the configuration, each once, in pass order; the snippet last.
 constexpr std::vector<ShaderFileSpec> shader_files(const Config& config) {
     std::vector<ShaderFileSpec> files;
@@ -41,7 +45,7 @@ constexpr std::vector<ShaderFileSpec> shader_files(const Config& config) {
             for (const ShaderFileSpec& f : files) seen = seen || f == stage;
             if (!seen) files.push_back(stage);
         }
-    files.push_back({visibility_snippet_name, Stage::fragment, technique_descriptor(config.technique).visibility_snippet});
+    files.push_back(visibility_snippet_file(config));
     return files;
 }
 
