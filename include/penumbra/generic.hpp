@@ -99,6 +99,10 @@ inline Result<GenericShading> emit_generic(const Config& config) {
         result.errors.push_back({"slice_placement", "adaptive",
                                  "slice_placement: adaptive is not implemented by the generic reference (its slices "
                                  "are uniform, from penumbra_sliceDepths); allowed: uniform"});
+    if (config.target == Target::wgsl)
+        result.errors.push_back({"target", "wgsl",
+                                 "target: wgsl is not written by the generic reference (a GLSL program for the desktop "
+                                 "runtime); allowed: glsl330, glsl450, essl300, vulkan"});
     if (!result.errors.empty()) return result;
     Program program{"shading_generic",
                     {{"penumbra_generic.vert", Stage::vertex, detail::generic_vertex(config).str()},

@@ -154,7 +154,8 @@ inline std::string json_webgpu_texture(const Layout& layout, const TextureDesc& 
     if (attachment) usage += ", \"RENDER_ATTACHMENT\"";
     // uploaded by the caller or the bake, or a copy pass's target
     if (t.source != TextureSource::passes || copied_to) usage += ", \"COPY_DST\"";
-    if (t.name == layout.result || copied_from) usage += ", \"COPY_SRC\""; // read back, or a copy's source
+    // read back (the result; and what the passes write, so a runner can check intermediates), or a copy's source
+    if (t.name == layout.result || copied_from || attachment) usage += ", \"COPY_SRC\"";
     return "{\"format\": " + json_string(format_info(t.format).webgpu) + ", \"usage\": " + usage + "]}";
 }
 
@@ -164,6 +165,7 @@ inline std::string json_wgsl_binding(const Layout& layout, const ParamDesc& d) {
     const TextureDesc* texture = find_texture(layout, d.texture);
     std::string sample_type = texture ? std::string(webgpu_sample_type(texture->format)) : "float";
     if (d.texture_type == "texture_depth_2d") sample_type = "depth";
+    else if (sample_type == "depth") sample_type = "unfilterable-float"; // a depth texture read as texture_2d<f32>
     std::string o = ", \"texture_type\": " + json_string(d.texture_type) + ", \"sample_type\": " + json_string(sample_type) +
                     ", \"sampler_binding\": " + std::to_string(d.sampler_binding);
     if (d.sampler_binding < 0) return o;
