@@ -195,8 +195,11 @@ constexpr Text pack_atlas_fragment(const Config& config) {
         out.line(main_signature(config));
         out.line("{");
         out.line(value(config, "ivec2", "texel", construct(config, "ivec2", cat(frag_coord(config), ".xy"))));
-        out.line("penumbra_result = ",
-                 fetch_layer(config, "penumbra_slices", cat(ivec2, "(texel.x % ", R, ", texel.y)"), cat("texel.x / ", R), "0"), ";");
+        if (is_wgsl(config))
+            out.line("penumbra_result = ",
+                     fetch_layer(config, "penumbra_slices", cat(ivec2, "(texel.x % ", R, ", texel.y)"), cat("texel.x / ", R), "0"), ";");
+        else
+            out.line("penumbra_result = texelFetch(penumbra_slices, ivec3(texel.x % ", R, ", texel.y, texel.x / ", R, "), 0);");
         out.line("}");
         write_entry_point(out, config, Stage::fragment);
         return out.take();
