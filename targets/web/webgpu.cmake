@@ -21,3 +21,31 @@ if(TARGET penumbra-gen)
                      --out ${CMAKE_CURRENT_BINARY_DIR}/wgsl-matrix --chromium ${PENUMBRA_CHROMIUM})
     set_tests_properties(wgsl_matrix PROPERTIES LABELS browser SKIP_RETURN_CODE 77 TIMEOUT 120)
 endif()
+# "webgpu_bundles": the WebGPU layout runner (web/webgpu_runner.js) over bundles of boxes at 64x64
+# exported with --target wgsl (the desktop GL run of glsl450, emission/ in WGSL), each compared with
+# the desktop run's image (webgpu_bundle_test.mjs). Images of both runs go to webgpu-bundles/images.
+if(TARGET penumbra-export-bundle)
+    set(webgpu_cases
+        "shadowmap-rect|--technique shadowmap --light rect" "shadowmap-sun|--technique shadowmap --light sun"
+        "pcf-rect|--technique pcf --light rect --pcf-pattern grid --pcf-grid 3 --pcf-radius 0.15"
+        "pcf-sun|--technique pcf --light sun --pcf-taps 16"
+        "pcss-rect|--technique pcss --light rect --pcss-blockers 8 --pcss-filter 8"
+        "pcss-sun|--technique pcss --light sun --pcss-blockers 8 --pcss-filter 8")
+    set(webgpu_bundles "")
+    foreach(case IN LISTS webgpu_cases)
+        string(REPLACE "|" ";" parts "${case}")
+        list(GET parts 0 name)
+        list(GET parts 1 flags)
+        separate_arguments(flags UNIX_COMMAND "${flags}")
+        set(dir ${PROJECT_BINARY_DIR}/target_bundles/webgpu-${name})
+        add_test(NAME penumbra-bundle-webgpu-${name}
+                 COMMAND $<TARGET_FILE:penumbra-export-bundle> --scene boxes --target wgsl --size 64x64 ${flags} --out ${dir})
+        set_tests_properties(penumbra-bundle-webgpu-${name} PROPERTIES FIXTURES_SETUP penumbra_webgpu_bundles LABELS browser TIMEOUT 120)
+        list(APPEND webgpu_bundles ${dir})
+    endforeach()
+    add_test(NAME webgpu_bundles
+             COMMAND ${PENUMBRA_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/webgpu_bundle_test.mjs --web ${PROJECT_SOURCE_DIR}/web
+                     --chromium ${PENUMBRA_CHROMIUM} --images ${CMAKE_CURRENT_BINARY_DIR}/webgpu-bundles/images ${webgpu_bundles})
+    set_tests_properties(webgpu_bundles PROPERTIES LABELS browser SKIP_RETURN_CODE 77 TIMEOUT 120
+                         FIXTURES_REQUIRED penumbra_webgpu_bundles)
+endif()

@@ -1,0 +1,155 @@
+// webgpu_bundle_test.mjs — the `webgpu_bundles` test: the WebGPU layout runner (web/webgpu_runner.js)
+// in Debian's chromium (headless, WebGPU through SwiftShader) over bundles exported with
+// `penumbra-export-bundle --target wgsl` (the desktop GL runtime ran glsl450; emission/ holds the
+// wgsl emission of the same configuration). For each bundle the page builds the layout's textures,
+// pipelines and bind groups from emission/layout.json alone, uploads the bundle's uniforms, draws
+// mesh.f32 in the shadow phase, fills the caller G-buffers (positions.f32, normals.f32), runs the
+// screen phase at the bundle's size and reads the result back; it must match visibility_gl.f32 as
+// the WebGL2 bundles of these techniques do (TECHNIQUE_* in bundle_compare.mjs: the shadow-map
+// techniques have no oracle bound; SwiftShader and llvmpipe rasterize the depth pass differently).
+//
+//   node targets/web/webgpu_bundle_test.mjs --web web [--chromium PATH] [--images DIR] BUNDLE_DIR...
+//
+// Exit 0 pass, 1 fail, 2 bad arguments, 77 skip (no chromium; no WebGPU adapter only with
+// PENUMBRA_WEBGPU_OPTIONAL=1).
+import fs from "node:fs";
+import path from "node:path";
+import {difference, readReference, TECHNIQUE_MEAN_ALLOWED, TECHNIQUE_PIXEL_STEP, TECHNIQUE_PIXELS_ALLOWED} from "./bundle_compare.mjs";
+import {writeGreyPng} from "./harness.mjs";
+import {adapterLine, startWebGPU} from "./wgsl_compile.mjs";
+
+function usage(message) {
+    console.error(`error: ${message}\nusage: node webgpu_bundle_test.mjs --web DIR [--chromium PATH] [--images DIR] BUNDLE_DIR...`);
+    process.exit(2);
+}
+
+function parseArguments(argv) {
+    const out = {web: null, chromium: "/usr/bin/chromium", images: null, bundles: []};
+    for (let i = 0; i < argv.length; ++i) {
+        const flag = argv[i];
+        if (flag === "--web" || flag === "--chromium" || flag === "--images") {
+            if (i + 1 >= argv.length) usage(`${flag}: missing value`);
+            out[flag.slice(2)] = argv[++i];
+        } else if (flag.startsWith("--")) {
+            usage(`unknown flag '${flag}'`);
+        } else {
+            out.bundles.push(flag);
+        }
+    }
+    if (!out.web) usage("--web: missing (the web/ folder with webgpu_runner.js)");
+    if (!fs.existsSync(path.join(out.web, "webgpu_runner.js"))) usage(`--web: no webgpu_runner.js in ${out.web}`);
+    if (out.bundles.length === 0) usage("no bundle directories");
+    for (const b of out.bundles) if (!fs.existsSync(path.join(b, "uniforms.json"))) usage(`${b}: not a bundle (no uniforms.json)`);
+    return out;
+}
+
+// In the page: the runner over bundle /bundle/<index>/, with the device of startWebGPU.
+async function runInPage(index) {
+    const {WebGPULayoutRunner} = await import("/web/webgpu_runner.js");
+    const base = `/bundle/${index}/`;
+    const get = async (name, kind) => {
+        const response = await fetch(base + name);
+        if (!response.ok) throw new Error(`${base}${name}: HTTP ${response.status}`);
+        return kind === "json" ? response.json() : new Float32Array(await response.arrayBuffer());
+    };
+    try {
+        const bundle = await get("uniforms.json", "json");
+        const started = performance.now();
+        const runner = await WebGPULayoutRunner.load(window.penumbraDevice, `${base}emission/`);
+        const created = performance.now();
+        runner.setUniforms(bundle.uniforms);
+        const shadowPasses = await runner.runPhase("shadow", runner.sceneDrawer(await get("mesh.f32")));
+        const size = {width: bundle.width, height: bundle.height};
+        runner.allocateOutputSized(size.width, size.height);
+        const filled = [];
+        for (const t of runner.layout.textures) {
+            if (t.source !== "caller") continue;
+            const file = bundle.caller_textures?.[t.name];
+            if (!file) throw new Error(`layout texture ${t.name} is filled by the caller, but uniforms.json caller_textures has no file for it`);
+            runner.fillTexture(t.name, size.width, size.height, await get(file));
+            filled.push(t.name);
+        }
+        const screenPasses = await runner.runPhase("screen", null, size);
+        const visibility = await runner.readResult();
+        const finished = performance.now();
+        const result = {visibility: Array.from(visibility), shadowPasses, screenPasses, filled, target: runner.layout.config.target,
+                        result: runner.layout.result, resultFormat: runner.description(runner.layout.result).webgpu.format,
+                        programs: runner.layout.programs.map((p) => p.name), createMs: created - started, runMs: finished - created};
+        runner.dispose();
+        return result;
+    } catch (e) {
+        return {error: e.message};
+    }
+}
+
+async function main() {
+    const args = parseArguments(process.argv.slice(2));
+    const roots = {web: args.web};
+    args.bundles.forEach((dir, i) => (roots[`bundle/${i}`] = dir));
+    const started = Date.now();
+    const gpu = await startWebGPU(args.chromium, roots);
+    let failed = 0;
+    try {
+        const problems = [];
+        gpu.page.on("pageerror", (e) => problems.push(`page error: ${e.message}`));
+        gpu.page.on("console", (m) => m.type() === "error" && problems.push(`console: ${m.text()}`));
+        console.log(`chromium ${await gpu.browser.version()}; ${adapterLine(gpu.adapter)}`);
+        // What ran must be a real WebGPU adapter (not WebGL2, which has no such object): it names its vendor.
+        if (!gpu.adapter.vendor && !gpu.adapter.architecture) {
+            console.log("FAIL the WebGPU adapter names no vendor or architecture: cannot say what ran");
+            failed++;
+        }
+        for (let i = 0; i < args.bundles.length; ++i) {
+            const dir = args.bundles[i];
+            const bundle = JSON.parse(fs.readFileSync(path.join(dir, "uniforms.json"), "utf8"));
+            const c = bundle.config;
+            const label = `${bundle.scene} ${c.technique}/${c.light} ${bundle.width}x${bundle.height}`;
+            const failures = [];
+            const r = await gpu.page.evaluate(runInPage, i);
+            if (r.error) {
+                console.log(`FAIL ${label}: ${r.error.split("\n").join("\n     ")}`);
+                failed++;
+                continue;
+            }
+            const reference = readReference(dir);
+            const visibility = Float32Array.from(r.visibility);
+            if (visibility.length !== reference.gl.length) failures.push(`${visibility.length} pixels read, expected ${reference.gl.length}`);
+            if (r.target !== "wgsl") failures.push(`emission target '${r.target}', expected wgsl`);
+            if (r.shadowPasses === 0 || r.screenPasses === 0) failures.push(`ran ${r.shadowPasses} shadow and ${r.screenPasses} screen passes`);
+            const d = difference(visibility, reference.gl);
+            const pixels = reference.gl.length;
+            let shadowed = 0, shadowedHere = 0;
+            for (let k = 0; k < pixels; ++k) {
+                if (reference.gl[k] < 0.98) ++shadowed;
+                if (visibility[k] < 0.98) ++shadowedHere;
+            }
+            if (shadowed === 0) failures.push("the desktop image has no shadowed pixel: the comparison would prove nothing");
+            if (d.over > TECHNIQUE_PIXELS_ALLOWED * pixels)
+                failures.push(`${d.over} of ${pixels} pixels differ from the desktop run by more than ${TECHNIQUE_PIXEL_STEP} (allowed ${100 * TECHNIQUE_PIXELS_ALLOWED}%)`);
+            if (d.mean > TECHNIQUE_MEAN_ALLOWED) failures.push(`mean |WebGPU − desktop| ${d.mean.toFixed(4)} (allowed ${TECHNIQUE_MEAN_ALLOWED})`);
+            failures.push(...problems.splice(0));
+            if (args.images) {
+                fs.mkdirSync(args.images, {recursive: true});
+                const name = `${i}_${c.technique}_${c.light}`;
+                await writeGreyPng(path.join(args.images, `${name}_webgpu.png`), bundle.width, bundle.height, visibility);
+                await writeGreyPng(path.join(args.images, `${name}_gl.png`), bundle.width, bundle.height, reference.gl);
+            }
+            console.log(`${failures.length ? "FAIL" : "ok  "} ${label}: WebGPU ran ${r.shadowPasses} shadow + ${r.screenPasses} screen passes ` +
+                        `(programs ${r.programs.join(", ")}; caller textures ${r.filled.join(", ")}; result ${r.result} ${r.resultFormat}; ` +
+                        `created in ${r.createMs.toFixed(0)} ms, ran and read back in ${r.runMs.toFixed(0)} ms)\n` +
+                        `     max |WebGPU − desktop| ${d.worst.toExponential(2)}, mean ${d.mean.toExponential(2)}, ${d.over} of ${pixels} pixels more than ` +
+                        `${TECHNIQUE_PIXEL_STEP} apart; shadowed (< 0.98) desktop ${shadowed}, WebGPU ${shadowedHere}`);
+            for (const f of failures) console.log(`     ${f}`);
+            if (failures.length) failed++;
+        }
+    } finally {
+        await gpu.close();
+    }
+    console.log(`${failed ? "FAIL" : "ok"}: ${args.bundles.length} bundles, ${failed} failed, ${((Date.now() - started) / 1000).toFixed(1)} s`);
+    process.exit(failed ? 1 : 0);
+}
+
+main().catch((e) => {
+    console.log(`FAIL ${e.stack || e.message}`);
+    process.exit(1);
+});
