@@ -114,7 +114,8 @@ export class WebGPULayoutRunner {
         try {
             await runner.compile(sources);
             for (const t of layout.textures) if (t.size !== "output") runner.textures[t.name] = runner.allocate(t, t.width, t.height);
-            layout.passes.forEach((pass, index) => runner.pipeline(pass, index));
+            // (the example phase draws into the caller's own framebuffer, whose format the layout cannot give)
+            layout.passes.forEach((pass, index) => pass.phase !== "example" && runner.pipeline(pass, index));
         } finally {
             const error = await device.popErrorScope();
             if (error) fail(`WebGPU validation error while creating the layout's objects: ${error.message}`);
@@ -470,6 +471,7 @@ export class WebGPULayoutRunner {
     // "screen": every frame at the output size) in one submission; fails with WebGPU's validation
     // message. Returns how many passes ran.
     async runPhase(phase, drawScene, size) {
+        if (phase === "example") fail("runPhase('example'): the example phase draws into the caller's framebuffer; this runner runs shadow and screen");
         if (phase === "screen") {
             if (!size) fail("runPhase('screen'): needs the output size {width, height}");
             this.allocateOutputSized(size.width, size.height);

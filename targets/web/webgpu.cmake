@@ -14,11 +14,12 @@ add_test(NAME wgsl_compile
 set_tests_properties(wgsl_compile PROPERTIES LABELS browser TIMEOUT 60 SKIP_REGULAR_EXPRESSION "^skip: "
     PASS_REGULAR_EXPRESSION "wgsl_fixtures/broken\\.wgsl:6:21: error: unresolved value 'y'\nFAIL: 2 WGSL modules compiled, 1 clean, 1 errors")
 # "wgsl_matrix": penumbra-gen --target wgsl over the matrix of wgsl_matrix.mjs, every module compiled
-# with zero errors, the configurations wgsl does not have yet refused with a message naming wgsl.
+# with zero errors and every configuration built by the WebGPU layout runner from its layout.json
+# (pipelines, bind groups), the configurations wgsl does not have yet refused with a message naming wgsl.
 if(TARGET penumbra-gen)
     add_test(NAME wgsl_matrix
              COMMAND ${PENUMBRA_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/wgsl_matrix.mjs --gen $<TARGET_FILE:penumbra-gen>
-                     --out ${CMAKE_CURRENT_BINARY_DIR}/wgsl-matrix --chromium ${PENUMBRA_CHROMIUM})
+                     --out ${CMAKE_CURRENT_BINARY_DIR}/wgsl-matrix --web ${PROJECT_SOURCE_DIR}/web --chromium ${PENUMBRA_CHROMIUM})
     set_tests_properties(wgsl_matrix PROPERTIES LABELS browser SKIP_RETURN_CODE 77 TIMEOUT 120)
 endif()
 # "webgpu_bundles": the WebGPU layout runner (web/webgpu_runner.js) over bundles of boxes at 64x64

@@ -2,7 +2,7 @@
 // `penumbra-gen --target wgsl` over a configuration matrix into OUT (one folder a configuration) and
 // compiles every WGSL module it wrote in chromium's WebGPU (wgsl_compile.mjs: one browser, one page).
 //
-//   node targets/web/wgsl_matrix.mjs --gen PATH --out DIR [--chromium PATH] [--only REGEX]
+//   node targets/web/wgsl_matrix.mjs --gen PATH --out DIR [--web DIR] [--chromium PATH] [--only REGEX]
 //
 // Each configuration of COMPILED must be accepted, list only .wgsl files in layout.json's programs
 // (each present, one `fn main` with its stage's attribute) and compile with zero errors. Each one of
@@ -55,16 +55,17 @@ function usage(message) {
 }
 
 function parseArguments(argv) {
-    const out = {gen: null, out: null, chromium: "/usr/bin/chromium", only: null};
+    const out = {gen: null, out: null, web: null, chromium: "/usr/bin/chromium", only: null};
     for (let i = 0; i < argv.length; ++i) {
         const flag = argv[i];
-        if (!["--gen", "--out", "--chromium", "--only"].includes(flag)) usage(`unknown argument '${flag}'`);
+        if (!["--gen", "--out", "--web", "--chromium", "--only"].includes(flag)) usage(`unknown argument '${flag}'`);
         if (i + 1 >= argv.length) usage(`${flag}: missing value`);
         out[flag.slice(2)] = argv[++i];
     }
     if (!out.gen) usage("--gen: missing (the penumbra-gen executable)");
     if (!fs.existsSync(out.gen)) usage(`--gen: no file ${out.gen}`);
     if (!out.out) usage("--out: missing (a folder for the emissions)");
+    if (out.web && !fs.existsSync(path.join(out.web, "webgpu_runner.js"))) usage(`--web: no webgpu_runner.js in ${out.web}`);
     return out;
 }
 
@@ -82,6 +83,7 @@ async function main() {
 
     // 1. Emit every configuration; check layout.json's program files.
     const modules = [];
+    const emissions = []; // {name, dir, files: [.wgsl names]}
     let emitted = 0;
     for (const c of configurations()) {
         if (only && !only.test(c.name)) continue;
@@ -103,9 +105,13 @@ async function main() {
                 if (stage && STAGE_ATTRIBUTE[stage] && !STAGE_ATTRIBUTE[stage].test(text))
                     failures.push(`${c.name}: ${file}: no '@${stage} fn main' (WGSL.md: one entry point named main per stage file)`);
             });
+        const files = {"layout.json": fs.readFileSync(path.join(dir, "layout.json"), "utf8")};
         for (const file of fs.readdirSync(dir).sort())
-            if (file.endsWith(".wgsl")) modules.push({name: path.join(dir, file), code: fs.readFileSync(path.join(dir, file), "utf8")});
-            else if (file !== "layout.json") failures.push(`${c.name}: wrote '${file}', neither WGSL nor layout.json`);
+            if (file.endsWith(".wgsl")) {
+                files[file] = fs.readFileSync(path.join(dir, file), "utf8");
+                modules.push({name: path.join(dir, file), code: files[file]});
+            } else if (file !== "layout.json") failures.push(`${c.name}: wrote '${file}', neither WGSL nor layout.json`);
+        emissions.push({name: c.name, dir, files});
     }
 
     // 2. The refusals: a user error naming wgsl, not a crash.
@@ -125,13 +131,14 @@ async function main() {
     if (modules.length === 0) failures.push("no WGSL module was emitted: nothing compiled");
 
     // 3. Compile every module in one page.
-    let errors = 0, warnings = 0, clean = 0;
+    let errors = 0, warnings = 0, clean = 0, built = 0;
     if (modules.length) {
-        const gpu = await startWebGPU(args.chromium);
+        const gpu = await startWebGPU(args.chromium, args.web ? {web: args.web} : {});
         try {
             console.log(adapterLine(gpu.adapter));
             const [broken] = await compileModules(gpu.page, [{name: "self-check", code: "fn f() -> f32 { return undeclared; }\n"}]);
             if (!broken.messages.some((m) => m.type === "error")) failures.push("self-check: chromium reports no error for a broken module");
+            const badModules = new Set();
             for (const {name, messages} of await compileModules(gpu.page, modules)) {
                 let bad = false;
                 for (const m of messages) {
@@ -140,6 +147,23 @@ async function main() {
                     console.log(`${name}:${m.line}:${m.column}: ${m.type}: ${m.message}`);
                 }
                 if (!bad) ++clean;
+                else badModules.add(name);
+            }
+            // 4. The layout runner builds every configuration whose modules compiled.
+            for (const e of args.web ? emissions : []) {
+                if (Object.keys(e.files).some((f) => badModules.has(path.join(e.dir, f)))) continue;
+                const error = await gpu.page.evaluate(async (files) => {
+                    try {
+                        const {WebGPULayoutRunner} = await import("/web/webgpu_runner.js");
+                        const runner = await WebGPULayoutRunner.fromEmission(window.penumbraDevice, {files});
+                        runner.dispose();
+                        return null;
+                    } catch (x) {
+                        return x.message;
+                    }
+                }, e.files);
+                if (error) failures.push(`${e.name}: the WebGPU layout runner cannot build it from layout.json: ${error}`);
+                else ++built;
             }
         } finally {
             await gpu.close();
@@ -148,7 +172,8 @@ async function main() {
     if (errors) failures.push(`${errors} WGSL errors in ${modules.length - clean} modules`);
     for (const f of failures) console.log(`FAIL ${f}`);
     console.log(`${failures.length ? "FAIL" : "ok"}: ${emitted} configurations emitted, ${refused} refused for wgsl as expected; ` +
-                `${modules.length} WGSL modules compiled, ${clean} clean, ${errors} errors, ${warnings} warnings ` +
+                `${modules.length} WGSL modules compiled, ${clean} clean, ${errors} errors, ${warnings} warnings; ` +
+                `${args.web ? `${built} of ${emissions.length} built by the WebGPU layout runner (pipelines and bind groups)` : "layouts not built (no --web)"} ` +
                 `in ${((Date.now() - started) / 1000).toFixed(1)} s`);
     process.exit(failures.length ? 1 : 0);
 }
