@@ -82,6 +82,7 @@ enum class Target : std::uint8_t {
     glsl450, // OpenGL 4.5 core, `#version 450 core`
     essl300, // OpenGL ES 3.0 / WebGL2, `#version 300 es`
     vulkan,  // GLSL 450 for SPIR-V: set/binding decorations, parameters in a uniform block
+    wgsl,    // WGSL for WebGPU: one module per stage, bind group 0, parameters in a uniform buffer
 };
 
 // The shadowing technique the emitted programs implement.
@@ -274,7 +275,7 @@ template <> struct EnumNames<Light> {
     static constexpr std::array<std::string_view, 2> names{"rect", "sun"};
 };
 template <> struct EnumNames<Target> {
-    static constexpr std::array<std::string_view, 4> names{"glsl330", "glsl450", "essl300", "vulkan"};
+    static constexpr std::array<std::string_view, 5> names{"glsl330", "glsl450", "essl300", "vulkan", "wgsl"};
 };
 
 template <class Enum> constexpr std::string_view to_string(Enum value) {

@@ -48,7 +48,7 @@ Result<Emission> emit(const Config& config);
 
 namespace detail {
 inline ShaderFile emit_file(const Config& config, const ShaderFileSpec& file) {
-    return {std::string(file.name), file.stage, file.text(config).str()};
+    return {file_name(config, file.name).str(), file.stage, file.text(config).str()};
 }
 } // namespace detail
 
@@ -57,7 +57,7 @@ inline ShaderFile emit_file(const Config& config, const ShaderFileSpec& file) {
 // Precondition: is_valid(config). Header-only (not declared with PENUMBRA_SEPARATE_IMPLEMENTATION).
 inline ShaderFile emit_file(const Config& config, std::string_view file_name) {
     for (const detail::ShaderFileSpec& file : detail::shader_files(config))
-        if (file.name == file_name) return detail::emit_file(config, file);
+        if (detail::file_name(config, file.name) == detail::Text(file_name)) return detail::emit_file(config, file);
     return {};
 }
 

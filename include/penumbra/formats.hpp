@@ -47,23 +47,24 @@ struct FormatInfo {
     int channels;        // colour components (R 1, RG 2, RGBA 4); 1 for depth
     int bytes_per_texel; // the storage the format asks for (drivers may pad)
     FormatKind kind;
+    std::string_view webgpu; // WebGPU's GPUTextureFormat (target wgsl)
 };
 
 namespace detail {
 // Indexed by TextureFormat, in its order.
 inline constexpr std::array<FormatInfo, 12> format_table{{
-    {4, 4, FormatKind::unorm},  // RGBA8
-    {4, 8, FormatKind::float_}, // RGBA16F
-    {4, 16, FormatKind::float_}, // RGBA32F
-    {1, 1, FormatKind::unorm},  // R8
-    {1, 2, FormatKind::float_}, // R16F
-    {1, 4, FormatKind::float_}, // R32F
-    {2, 4, FormatKind::float_}, // RG16F
-    {2, 8, FormatKind::float_}, // RG32F
-    {4, 16, FormatKind::uint},  // RGBA32UI
-    {1, 4, FormatKind::uint},   // R32UI
-    {1, 4, FormatKind::depth},  // DEPTH_COMPONENT24 (stored in 32 bits)
-    {1, 4, FormatKind::depth},  // DEPTH_COMPONENT32F
+    {4, 4, FormatKind::unorm, "rgba8unorm"},    // RGBA8
+    {4, 8, FormatKind::float_, "rgba16float"},  // RGBA16F
+    {4, 16, FormatKind::float_, "rgba32float"}, // RGBA32F
+    {1, 1, FormatKind::unorm, "r8unorm"},       // R8
+    {1, 2, FormatKind::float_, "r16float"},     // R16F
+    {1, 4, FormatKind::float_, "r32float"},     // R32F
+    {2, 4, FormatKind::float_, "rg16float"},    // RG16F
+    {2, 8, FormatKind::float_, "rg32float"},    // RG32F
+    {4, 16, FormatKind::uint, "rgba32uint"},    // RGBA32UI
+    {1, 4, FormatKind::uint, "r32uint"},        // R32UI
+    {1, 4, FormatKind::depth, "depth24plus"},   // DEPTH_COMPONENT24 (stored in 32 bits)
+    {1, 4, FormatKind::depth, "depth32float"},  // DEPTH_COMPONENT32F
 }};
 static_assert(format_table.size() == EnumNames<TextureFormat>::names.size(), "one format_table row per TextureFormat");
 } // namespace detail
@@ -78,5 +79,17 @@ constexpr int bytes_per_channel(TextureFormat format) { return bytes_per_texel(f
 constexpr bool is_depth(TextureFormat format) { return format_info(format).kind == FormatKind::depth; }
 constexpr bool is_integer(TextureFormat format) { return format_info(format).kind == FormatKind::uint; }
 constexpr bool is_float(TextureFormat format) { return format_info(format).kind == FormatKind::float_; }
+
+// WebGPU's sample type of a texture binding of `format` (GPUTextureSampleType): 32-bit floats are not
+// filterable without the optional float32-filterable feature.
+constexpr std::string_view webgpu_sample_type(TextureFormat format) {
+    switch (format_info(format).kind) {
+    case FormatKind::depth: return "depth";
+    case FormatKind::uint: return "uint";
+    case FormatKind::float_: return bytes_per_channel(format) == 4 ? "unfilterable-float" : "float";
+    case FormatKind::unorm: return "float";
+    }
+    return "float";
+}
 
 } // namespace penumbra

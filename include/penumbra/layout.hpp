@@ -50,7 +50,7 @@ PENUMBRA_ENTRY_POINT Layout describe_layout(const Config& config) {
     for (const ProgramPlan& plan : technique.programs(config)) {
         ProgramDesc program{std::string(plan.name), {}, {}, describe_params(config, technique.param_groups(config, plan.name)), {}};
         for (const ShaderFileSpec& file : plan.stages) {
-            program.files.emplace_back(file.name);
+            program.files.push_back(file_name(config, file.name).str());
             program.stages.push_back(file.stage);
         }
         if (!plan.stages.empty()) program.vertex_inputs = vertex_inputs(plan.stages.front(), config);
@@ -75,7 +75,7 @@ PENUMBRA_ENTRY_POINT Layout describe_layout(const Config& config) {
 
     finish_sampling(layout);
 
-    for (const ShaderFileSpec& file : shader_files(config)) layout.files.emplace_back(file.name);
+    for (const ShaderFileSpec& file : shader_files(config)) layout.files.push_back(file_name(config, file.name).str());
     layout.files.emplace_back("layout.json");
     // The configuration is implied everywhere: a new one is a new layout.
     bool has_shadow = false;
@@ -141,6 +141,35 @@ inline std::string json_sampling(const Sampling& s) {
     return o + ", \"compare\": " + (s.compare ? json_name(*s.compare) : json_string("")) + "}";
 }
 
+// WGSL: a texture's WebGPU format and usages (what its passes, the caller and the readback do with it).
+inline std::string json_webgpu_texture(const Layout& layout, const TextureDesc& t) {
+    bool attachment = false;
+    for (const PassDesc& pass : layout.passes)
+        for (const AttachmentDesc& out : pass.outputs) attachment = attachment || out.texture == t.name;
+    std::string usage = "[\"TEXTURE_BINDING\"";
+    if (attachment) usage += ", \"RENDER_ATTACHMENT\"";
+    if (t.source != TextureSource::passes) usage += ", \"COPY_DST\""; // the caller's or the bake's upload
+    if (t.name == layout.result) usage += ", \"COPY_SRC\"";           // read back
+    return "{\"format\": " + json_string(format_info(t.format).webgpu) + ", \"usage\": " + usage + "]}";
+}
+
+// WGSL: how a sampler parameter binds: its texture's WGSL and WebGPU types, its sampler's binding and
+// kind (comparison for depth comparisons; non-filtering for nearest reads and unfilterable formats).
+inline std::string json_wgsl_binding(const Layout& layout, const ParamDesc& d) {
+    const TextureDesc* texture = find_texture(layout, d.texture);
+    std::string sample_type = texture ? std::string(webgpu_sample_type(texture->format)) : "float";
+    if (d.texture_type == "texture_depth_2d") sample_type = "depth";
+    std::string o = ", \"texture_type\": " + json_string(d.texture_type) + ", \"sample_type\": " + json_string(sample_type) +
+                    ", \"sampler_binding\": " + std::to_string(d.sampler_binding);
+    if (d.sampler_binding < 0) return o;
+    const Sampling s = d.sampling.value_or(Sampling{});
+    std::string_view kind = "filtering";
+    if (s.compare) kind = "comparison";
+    else if (sample_type != "float" || (s.min_filter == TextureFilter::nearest && s.mag_filter == TextureFilter::nearest))
+        kind = "non-filtering";
+    return o + ", \"sampler_type\": " + json_string(kind);
+}
+
 } // namespace detail
 
 // layout.json: the layout as JSON (two-space indentation, keys as in the C++ structs).
@@ -153,6 +182,7 @@ PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
         o += std::string(indent) + json_string(key) + ": " + value + (comma ? ",\n" : "\n");
     };
     o += "  \"generator\": \"penumbra " + std::string(detail::version_string) + "\",\n";
+    const bool wgsl = c.target == Target::wgsl;
     field("  ", "layout_version", std::to_string(layout.version));
     field("  ", "technique", json_name(c.technique));
     o += "  \"config\": " + config_to_json(layout.config, "  ") + ",\n"; // penumbra/config_fields.hpp
@@ -168,6 +198,7 @@ PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
              ", \"mip_levels\": " + std::to_string(t.mip_levels) + ", \"min_filter\": " + json_name(t.min_filter) +
              ", \"mag_filter\": " + json_name(t.mag_filter) + ", \"wrap\": " + json_name(t.wrap);
         if (t.wrap == Wrap::clamp_to_border) o += ", \"border_color\": " + detail::json_floats(t.border_color);
+        if (wgsl) o += ", \"webgpu\": " + detail::json_webgpu_texture(layout, t);
         o += ", \"size\": " + json_name(t.size) + ", \"source\": " + json_name(t.source) +
              ", \"initial\": " + json_name(initial_contents(t)) + ", \"purpose\": " + json_string(t.purpose) + "}" +
              (i + 1 < layout.textures.size() ? ",\n" : "\n");
@@ -200,7 +231,8 @@ PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
             if (d.offset >= 0)
                 o += ", \"block\": " + json_string(d.block) + ", \"block_binding\": " + std::to_string(d.block_binding) +
                      ", \"offset\": " + std::to_string(d.offset);
-            if (d.set >= 0) o += ", \"set\": " + std::to_string(d.set);
+            if (d.set >= 0) o += (wgsl ? ", \"group\": " : ", \"set\": ") + std::to_string(d.set);
+            if (wgsl && d.binding >= 0) o += detail::json_wgsl_binding(layout, d);
             o += std::string("}") + (u + 1 < p.parameters.size() ? ",\n" : "\n");
         }
         o += std::string("    ]}") + (i + 1 < layout.programs.size() ? ",\n" : "\n");

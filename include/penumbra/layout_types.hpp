@@ -209,7 +209,11 @@ struct ParamDesc {
     std::string block;           // Vulkan: uniform block holding this value
     int block_binding = -1;      // Vulkan: binding of that block
     int offset = -1;             // Vulkan: std140 byte offset in the block
-    int set = -1;                // Vulkan: descriptor set of the block or sampler (vulkan_descriptor_set)
+    int set = -1;                // Vulkan: descriptor set of the block or sampler (vulkan_descriptor_set); WGSL: bind group
+    // WGSL: a sampler parameter binds its texture at `binding` and its sampler at `sampler_binding`
+    // (-1: none, texels are fetched); the texture's WGSL type ("texture_depth_2d", "texture_2d<f32>").
+    int sampler_binding = -1;
+    std::string texture_type;
 };
 
 // A vertex attribute of a program that draws the caller's geometry (draw_scene).

@@ -53,7 +53,7 @@ template <FixedString Name> struct no_such_file {
 // The file named `name` among the configuration's files; its text function is null when there is none.
 constexpr ShaderFileSpec find_file(const Config& config, std::string_view name) {
     for (const ShaderFileSpec& file : shader_files(config))
-        if (file.name == name) return file;
+        if (file_name(config, file.name) == Text(name)) return file;
     return {};
 }
 

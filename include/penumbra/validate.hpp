@@ -20,11 +20,27 @@ namespace penumbra {
 
 namespace detail {
 
+// The techniques whose descriptors write WGSL, for the message of one that does not.
+constexpr Text techniques_writing_wgsl() {
+    Text names;
+    for (std::size_t i = 0; i < EnumNames<Technique>::names.size(); ++i)
+        if (technique_descriptor(static_cast<Technique>(i)).writes_wgsl)
+            names += cat(names.empty() ? "" : ", ", EnumNames<Technique>::names[i]);
+    return names;
+}
+
 constexpr std::vector<Problem> find_problems(const Config& config) {
     std::vector<Problem> problems;
     check_known(problems, "technique", config.technique);
     if (!problems.empty()) return problems;
-    return technique_descriptor(config.technique).problems(config);
+    const TechniqueDescriptor technique = technique_descriptor(config.technique);
+    if (config.target == Target::wgsl && !technique.writes_wgsl)
+        add_problem(problems, "target", Text("wgsl"),
+                    cat("is not written for technique '", to_string(config.technique),
+                        "' yet; allowed with target wgsl: technique ", techniques_writing_wgsl(),
+                        "; other targets: glsl330, glsl450, essl300, vulkan"));
+    if (!problems.empty()) return problems;
+    return technique.problems(config);
 }
 
 } // namespace detail

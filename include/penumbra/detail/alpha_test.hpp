@@ -30,9 +30,10 @@ constexpr std::vector<Param> alpha_test_params(const Config& config) {
 // Vertex stage: the caster's texture coordinates in, passed on to the fragment stage.
 constexpr void write_alpha_test_vertex_inputs(LineWriter& out, const Config& config) {
     if (!config.alpha_test) return;
-    out.line("layout(location = ", format_int(alpha_test_uv_location),
-             ") in vec2 penumbra_uv; // the caster's material texture coordinates (alpha test)");
-    out.line(varying(config, "out", alpha_test_varying_location, "vec2", "penumbra_texCoord"));
+    out.line(stage_variable(out, config, "in", alpha_test_uv_location, "vec2", "penumbra_uv", true),
+             " // the caster's material texture coordinates (alpha test)");
+    out.line(stage_variable(out, config, "out", alpha_test_varying_location, "vec2", "penumbra_texCoord",
+                            has_varying_locations(config)));
 }
 
 constexpr void write_alpha_test_vertex_copy(LineWriter& out, const Config& config) {
@@ -42,7 +43,8 @@ constexpr void write_alpha_test_vertex_copy(LineWriter& out, const Config& confi
 // Fragment stage: the texture coordinates in.
 constexpr void write_alpha_test_fragment_inputs(LineWriter& out, const Config& config) {
     if (!config.alpha_test) return;
-    out.line(varying(config, "in", alpha_test_varying_location, "vec2", "penumbra_texCoord"),
+    out.line(stage_variable(out, config, "in", alpha_test_varying_location, "vec2", "penumbra_texCoord",
+                            has_varying_locations(config)),
              " // the caster's material texture coordinates (alpha test)");
 }
 
@@ -55,7 +57,8 @@ constexpr void write_alpha_test_params(LineWriter& out, const Config& config, in
 constexpr void write_alpha_test_discard(LineWriter& out, const Config& config) {
     if (!config.alpha_test) return;
     out.comment("alpha test: where the material's alpha is below the cutoff there is no caster (leaf cards, fences)");
-    out.line("if (texture(penumbra_alphaTexture, penumbra_texCoord).a < penumbra_alphaCutoff) discard;");
+    out.line(if_then(config, cat(sample(config, "penumbra_alphaTexture", "penumbra_texCoord"), ".a < penumbra_alphaCutoff"),
+                     "discard;"));
 }
 
 } // namespace penumbra::detail

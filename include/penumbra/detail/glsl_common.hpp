@@ -4,6 +4,7 @@
 
 #include "../config.hpp"
 #include "../uniforms.hpp"
+#include "language.hpp"
 #include "technique.hpp"
 #include "text.hpp"
 
@@ -27,6 +28,10 @@ struct Param {
     // Samplers: the filter this binding reads its texture with when it is not the texture's own
     // (layout.json's "sampling"); "" for the texture's filters.
     std::string_view filter = {};
+    // Samplers that only read texels (texelFetch): WGSL binds no sampler for them.
+    bool fetch_only = false;
+    // A sampler2D over a depth texture (WGSL: texture_depth_2d, not texture_2d<f32>).
+    bool depth_texture = false;
 };
 
 constexpr bool is_sampler(const Param& param) {
@@ -62,6 +67,7 @@ constexpr void write_version(LineWriter& out, const Config& config) {
     case Target::glsl450: out.line("#version 450 core"); break;
     case Target::essl300: out.line("#version 300 es"); break;
     case Target::vulkan: out.line("#version 450"); break;
+    case Target::wgsl: break; // WGSL has no version directive
     }
 }
 
@@ -91,22 +97,21 @@ constexpr void write_preamble(LineWriter& out, const Config& config, std::string
 
 // The deferred pass's main(): visibility of the G-buffer texel under the pixel (with
 // `normals`, the G-buffer's normal too, for the tangent clip).
-constexpr void write_deferred_main(LineWriter& out, bool normals = false) {
+constexpr void write_deferred_main(LineWriter& out, const Config& config, bool normals = false) {
     out.chunk("deferred_main");
-    out.block(R"(
-void main()
-{
-    vec4 world = texelFetch(penumbra_worldPositions, ivec2(gl_FragCoord.xy), 0);
-    // A real branch, not a select: the background must not pay for the whole slice loop.
-    if (world.w < 0.5)
-    {
-        penumbra_visibility = vec4(1.0);
-        return;
-    }
-)");
+    const Text texel = cat(type_name(config, "ivec2"), "(", frag_coord(config), ".xy)");
+    out.line(main_signature(config));
+    out.line("{");
+    out.line(value(config, "vec4", "world", fetch(config, "penumbra_worldPositions", texel, "0")));
+    out.comment("A real branch, not a select: the background must not pay for the whole slice loop.");
+    out.line("if (world.w < 0.5)");
+    out.line("{");
+    out.line("penumbra_visibility = vec4(1.0);");
+    out.line("return;");
+    out.line("}");
     if (normals) {
-        out.line("vec3 normal = texelFetch(penumbra_worldNormals, ivec2(gl_FragCoord.xy), 0).xyz;");
-        out.line("penumbra_visibility = vec4(vec3(penumbraVisibility(world.xyz, normal)), 1.0);");
+        out.line(value(config, "vec3", "normal", cat(fetch(config, "penumbra_worldNormals", texel, "0"), ".xyz")));
+        out.line("penumbra_visibility = vec4(vec3(", visibility_with_normal(config), "(world.xyz, normal)), 1.0);");
     } else {
         out.line("penumbra_visibility = vec4(vec3(penumbraVisibility(world.xyz)), 1.0);");
     }
@@ -120,26 +125,84 @@ constexpr bool has_values(const std::vector<Param>& params) {
     return false;
 }
 
-// Binding (texture unit on OpenGL) of each parameter, -1 for plain uniforms: on Vulkan the
-// uniform block takes the first binding, then the samplers follow in declaration order.
+// WGSL: a sampler parameter binds its texture and, unless it only fetches texels or reads
+// integers (which WebGPU never filters), a sampler right after it.
+constexpr bool binds_wgsl_sampler(const Param& p) {
+    return is_sampler(p) && !p.fetch_only && !p.type.starts_with("usampler") && !p.type.starts_with("isampler");
+}
+
+// WGSL's texture type of a GLSL sampler parameter.
+constexpr Text wgsl_texture_type(const Param& p) {
+    if (p.type.ends_with("Shadow") || p.depth_texture) return Text("texture_depth_2d");
+    const std::string_view scalar = p.type.starts_with("usampler") ? "u32" : p.type.starts_with("isampler") ? "i32" : "f32";
+    const std::string_view shape = p.type.ends_with("2DArray") ? "texture_2d_array" : p.type.ends_with("3D") ? "texture_3d" : "texture_2d";
+    return cat(shape, "<", scalar, ">");
+}
+
+// Binding (texture unit on OpenGL) of each parameter, -1 for plain uniforms: on Vulkan and WGSL the
+// uniform block takes the first binding, then the samplers follow in declaration order (on WGSL each
+// texture, then its sampler: binds_wgsl_sampler).
 constexpr std::vector<int> param_bindings(const Config& config, const std::vector<Param>& params, int& next_binding) {
-    if (has_values(params) && is_vulkan(config)) ++next_binding;
+    if (has_values(params) && (is_vulkan(config) || is_wgsl(config))) ++next_binding;
     std::vector<int> bindings;
-    for (const Param& p : params) bindings.push_back(is_sampler(p) ? next_binding++ : -1);
+    for (const Param& p : params) {
+        bindings.push_back(is_sampler(p) ? next_binding++ : -1);
+        if (is_wgsl(config) && binds_wgsl_sampler(p)) ++next_binding;
+    }
     return bindings;
 }
 
+constexpr Text param_comment(const Param& p) {
+    return choose(p.units.empty(), cat(" // ", p.meaning), cat(" // ", p.meaning, " (", p.units, ")"));
+}
+
+// WGSL: the plain uniforms as one uniform buffer (a struct), copied by a load function into private
+// globals of their GLSL names, which the entry point calls first (language.hpp); each sampler as its
+// texture and sampler bindings.
+constexpr void write_wgsl_params(LineWriter& out, const std::vector<Param>& params, std::string_view block_name,
+                                 const std::vector<int>& bindings, int block_binding) {
+    if (has_values(params)) {
+        const Text buffer = cat("penumbra", block_name.substr(8), "Block"); // PenumbraX -> penumbraXBlock
+        out.line("struct ", block_name, " {");
+        for (const Param& p : params)
+            if (!is_sampler(p)) out.line(p.name, ": ", wgsl_type_name(p.type), ",", param_comment(p));
+        out.line("}");
+        out.line("@group(0) @binding(", format_int(block_binding), ") var<uniform> ", buffer, ": ", block_name, ";");
+        for (const Param& p : params)
+            if (!is_sampler(p)) out.line("var<private> ", p.name, ": ", wgsl_type_name(p.type), ";");
+        const Text load = cat("penumbra_load", block_name.substr(8));
+        out.line("fn ", load, "()");
+        out.line("{");
+        for (const Param& p : params)
+            if (!is_sampler(p)) out.line(p.name, " = ", buffer, ".", p.name, ";");
+        out.line("}");
+        out.entry_calls.push_back(load);
+    }
+    for (std::size_t i = 0; i < params.size(); ++i) {
+        const Param& p = params[i];
+        if (!is_sampler(p)) continue;
+        out.line("@group(0) @binding(", format_int(bindings[i]), ") var ", p.name, ": ", wgsl_texture_type(p), ";",
+                 param_comment(p));
+        if (binds_wgsl_sampler(p))
+            out.line("@group(0) @binding(", format_int(bindings[i] + 1), ") var ", sampler_of(p.name), ": ",
+                     p.type.ends_with("Shadow") ? "sampler_comparison" : "sampler", ";");
+    }
+}
+
 // Declares `params`: plain uniforms on OpenGL targets, one std140 block on Vulkan (which has no
-// loose uniforms); samplers with explicit bindings where the dialect has them. `next_binding`
-// numbers blocks and samplers in declaration order.
+// loose uniforms), one uniform buffer on WGSL; samplers with explicit bindings where the dialect has
+// them. `next_binding` numbers blocks and samplers in declaration order.
 constexpr void write_params(LineWriter& out, const Config& config, const std::vector<Param>& params,
                             std::string_view block_name, int& next_binding) {
     out.chunk("parameters");
     const int block_binding = next_binding;
     const std::vector<int> bindings = param_bindings(config, params, next_binding);
-    auto comment = [](const Param& p) {
-        return choose(p.units.empty(), cat(" // ", p.meaning), cat(" // ", p.meaning, " (", p.units, ")"));
-    };
+    if (is_wgsl(config)) {
+        write_wgsl_params(out, params, block_name, bindings, block_binding);
+        out.blank();
+        return;
+    }
+    auto comment = [](const Param& p) { return param_comment(p); };
     if (has_values(params) && is_vulkan(config)) {
         out.line("layout(set = ", format_int(vulkan_descriptor_set), ", binding = ", format_int(block_binding), ", std140) uniform ", block_name, " {");
         for (const Param& p : params)
@@ -169,10 +232,6 @@ constexpr Text varying(const Config& config, std::string_view direction, int loc
     if (has_varying_locations(config))
         return cat("layout(location = ", format_int(location), ") ", direction, " ", type, " ", name, ";");
     return cat(direction, " ", type, " ", name, ";");
-}
-
-constexpr std::string_view vertex_index(const Config& config) {
-    return is_vulkan(config) ? "gl_VertexIndex" : "gl_VertexID";
 }
 
 constexpr std::string_view channel_name(int channel) {

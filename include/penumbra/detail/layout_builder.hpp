@@ -114,10 +114,15 @@ inline std::vector<ParamDesc> describe_params(const Config& config, const std::v
                 desc.filter = parse_enum<TextureFilter>(p.filter);
                 assert(desc.filter && "Param::filter names a TextureFilter");
             }
-            if (is_vulkan(config)) desc.set = vulkan_descriptor_set;
-            if (!is_sampler(p) && is_vulkan(config)) {
+            if (is_vulkan(config) || is_wgsl(config)) desc.set = vulkan_descriptor_set;
+            if (is_sampler(p) && is_wgsl(config)) {
+                desc.sampler_binding = binds_wgsl_sampler(p) ? desc.binding + 1 : -1;
+                desc.texture_type = wgsl_texture_type(p).str();
+            }
+            if (!is_sampler(p) && (is_vulkan(config) || is_wgsl(config))) {
                 const std::optional<GlslType> type = parse_enum<GlslType>(p.type);
-                const Std140 layout = std140(type.value_or(GlslType::float_)); // std140 layout rules
+                // std140 layout rules (WGSL's uniform address space places these types the same)
+                const Std140 layout = std140(type.value_or(GlslType::float_));
                 offset = (offset + layout.align - 1) / layout.align * layout.align;
                 desc.block = std::string(block);
                 desc.block_binding = block_binding;

@@ -48,6 +48,10 @@ struct ShaderFileSpec {
     friend constexpr bool operator==(const ShaderFileSpec& a, const ShaderFileSpec& b) { return a.name == b.name; }
 };
 
+// penumbra_visibility.glsl: for inclusion into the engine's own shaders (no #version); WGSL's
+// penumbra_visibility.wgsl (language.hpp, file_name).
+inline constexpr std::string_view visibility_snippet_name = "penumbra_visibility.glsl";
+
 // A program of a configuration: its name (as layout.json and the passes call it) and stage files.
 struct ProgramPlan {
     std::string_view name;
@@ -87,6 +91,9 @@ struct TechniqueDescriptor {
 
     // The cost model (penumbra/cost_model.hpp): texels one fragment of `pass` reads.
     long long (*texels_per_fragment)(const Config&, const PassDesc& pass);
+
+    // Whether its emitters write WGSL too (detail/language.hpp); validate() refuses target wgsl otherwise.
+    bool writes_wgsl = false;
 };
 
 // The descriptor of `technique`: detail/techniques.hpp. Precondition: a known value (validate()

@@ -29,9 +29,6 @@ constexpr std::vector<ProgramPlan> program_plan(const Config& config) {
     return technique_descriptor(config.technique).programs(config);
 }
 
-// penumbra_visibility.glsl: for inclusion into the engine's own shaders (no #version).
-inline constexpr std::string_view visibility_snippet_name = "penumbra_visibility.glsl";
-
 constexpr ShaderFileSpec visibility_snippet_file(const Config& config) {
     return {visibility_snippet_name, Stage::fragment, technique_descriptor(config.technique).visibility_snippet};
 }

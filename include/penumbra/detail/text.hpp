@@ -97,9 +97,21 @@ constexpr Text format_float(double value) {
     return out;
 }
 
-// Writes GLSL line by line with four-space indentation driven by braces.
+// A value a WGSL entry point passes in or out (detail/language.hpp): its attribute
+// ("@location(0)", "@builtin(position)"), the private global that holds it, the global's type, and
+// the type on the wire when it differs.
+struct EntryVariable {
+    Text attribute, name, type, wire_type;
+};
+
+// Writes shader text line by line with four-space indentation driven by braces.
 class LineWriter {
 public:
+    // WGSL only: what the module's entry point (detail/language.hpp, write_entry_point) copies in,
+    // returns, and calls before the body (the uniform blocks' loads). Empty for GLSL.
+    std::vector<EntryVariable> entry_inputs, entry_outputs;
+    std::vector<Text> entry_calls;
+
     constexpr void line(std::string_view text) {
         if (!text.empty() && text.front() == '}' && depth_ > 0) --depth_;
         if (!text.empty())
@@ -114,7 +126,7 @@ public:
     // Marks the start of a chunk so diagnostics can name the C++ emitter that wrote it
     // (see chunk_at_line in penumbra/program.hpp).
     constexpr void chunk(std::string_view name) { line("// @penumbra:", name); }
-    // Fixed GLSL (a raw string literal): every line re-indented relative to the current depth.
+    // Fixed text (a raw string literal): every line re-indented relative to the current depth.
     constexpr void block(std::string_view text) {
         std::size_t start = (!text.empty() && text.front() == '\n') ? 1 : 0;
         while (start < text.size()) {

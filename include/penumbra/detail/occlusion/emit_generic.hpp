@@ -342,7 +342,7 @@ constexpr Text generic_fragment(const Config& config) {
     out.line("return penumbra_fused(penumbra_lit, penumbra_sum, penumbra_max, penumbra_chain, penumbra_correlated);");
     out.line("}");
     out.blank();
-    write_deferred_main(out, clip);
+    write_deferred_main(out, config, clip);
     return out.take();
 }
 

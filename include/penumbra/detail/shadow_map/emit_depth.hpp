@@ -12,22 +12,27 @@ constexpr Text shadow_depth_vertex(const Config& config) {
     LineWriter out;
     write_preamble(out, config, "shadow map depth pass, vertex stage");
     out.chunk("shadow_depth_inputs");
-    out.line("layout(location = 0) in vec3 penumbra_position; // world space (scene units)");
-    out.line(varying(config, "out", 0, "float", "penumbra_depth"), " // depth along the light axis (scene units)");
+    out.line(stage_variable(out, config, "in", 0, "vec3", "penumbra_position", true), " // world space (scene units)");
+    out.line(stage_variable(out, config, "out", 0, "float", "penumbra_depth", has_varying_locations(config)),
+             " // depth along the light axis (scene units)");
     write_alpha_test_vertex_inputs(out, config);
+    declare_builtin(out, config, false, "position", "vec4", clip_position(config));
     out.blank();
     int binding = 0;
     write_params(out, config, shadow_depth_params(), "PenumbraShadowDepth", binding);
     out.chunk("shadow_depth_vertex_main");
-    out.block(R"(
-void main()
-{
-    vec4 world = vec4(penumbra_position, 1.0);
-    penumbra_depth = (penumbra_lightFromWorld * world).z;
-    gl_Position = penumbra_shadowClipFromWorld * world;
-)");
+    out.line(main_signature(config));
+    out.line("{");
+    out.line(value(config, "vec4", "world", "vec4(penumbra_position, 1.0)"));
+    out.line("penumbra_depth = (penumbra_lightFromWorld * world).z;");
+    out.line(clip_position(config), " = penumbra_shadowClipFromWorld * world;");
+    if (is_wgsl(config)) {
+        out.comment("WebGPU's framebuffer rows run top down: flipped, the map's row 0 holds uv.y = 0 as on OpenGL");
+        out.line(clip_position(config), ".y = -", clip_position(config), ".y;");
+    }
     write_alpha_test_vertex_copy(out, config);
     out.line("}");
+    write_entry_point(out, config, Stage::vertex);
     return out.take();
 }
 
@@ -36,24 +41,27 @@ constexpr Text shadow_depth_fragment(const Config& config) {
     LineWriter out;
     write_preamble(out, config, "shadow map depth pass, fragment stage (depth test LESS, clear depth to 1)");
     out.chunk("shadow_depth_outputs");
-    out.line(varying(config, "in", 0, "float", "penumbra_depth"));
+    out.line(stage_variable(out, config, "in", 0, "float", "penumbra_depth", has_varying_locations(config)));
     write_alpha_test_fragment_inputs(out, config);
+    declare_builtin(out, config, false, "frag_depth", "float", frag_depth(config));
     out.blank();
     int binding = 0;
     write_params(out, config, shadow_depth_params(), "PenumbraShadowDepth", binding);
     write_alpha_test_params(out, config, binding);
     out.chunk("shadow_depth_fragment_main");
-    out.line("void main()");
+    out.line(main_signature(config));
     out.line("{");
     write_alpha_test_discard(out, config);
     out.comment("slope-scaled bias in scene units: constant + factor * depth change across one shadow-map texel");
     out.comment("(the pass is drawn at the shadow map's resolution, so the derivatives are per texel)");
-    out.line("float slope = max(abs(dFdx(penumbra_depth)), abs(dFdy(penumbra_depth)));");
-    out.line("float biased = penumbra_depth + ", format_float(sm.constant_bias), " + ", format_float(sm.slope_bias),
-             " * slope;");
-    out.line("vec2 range = penumbra_shadowDepthRange;");
-    out.line("gl_FragDepth = clamp((biased - range.x) / (range.y - range.x), 0.0, 1.0);");
+    out.line(value(config, "float", "slope",
+                   cat("max(abs(", builtin(config, "dFdx"), "(penumbra_depth)), abs(", builtin(config, "dFdy"), "(penumbra_depth)))")));
+    out.line(value(config, "float", "biased",
+                   cat("penumbra_depth + ", format_float(sm.constant_bias), " + ", format_float(sm.slope_bias), " * slope")));
+    out.line(value(config, "vec2", "range", "penumbra_shadowDepthRange"));
+    out.line(frag_depth(config), " = clamp((biased - range.x) / (range.y - range.x), 0.0, 1.0);");
     out.line("}");
+    write_entry_point(out, config, Stage::fragment);
     return out.take();
 }
 

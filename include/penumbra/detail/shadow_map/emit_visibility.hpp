@@ -33,24 +33,24 @@ constexpr Text shadow_taps_label(const Config& config) {
 constexpr void write_shadow_coord_function(LineWriter& out, const Config& config) {
     out.chunk("shadow_coord");
     out.comment("xy: shadow-map uv, z: depth as stored, (z - near) / (far - near), w: depth along the light axis");
-    out.line("vec4 penumbra_shadowCoord(vec3 worldPos)");
+    out.line(signature(config, "vec4", "penumbra_shadowCoord", {{"vec3", "worldPos"}}));
     out.line("{");
-    out.line("vec3 p = (penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz;");
+    out.line(variable(config, "vec3", "p", "(penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz"));
     if (config.light == Light::rect) {
         out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
         out.comment("perspective from the light centre, square frustum");
-        out.line("vec2 uv = 0.5 + p.xy / (2.0 * penumbra_shadowTanHalfFov * p.z);");
+        out.line(value(config, "vec2", "uv", "0.5 + p.xy / (2.0 * penumbra_shadowTanHalfFov * p.z)"));
     } else {
         out.comment("orthographic along the sun's direction");
-        out.line("vec2 uv = 0.5 + p.xy / (2.0 * penumbra_windowHalfSize);");
+        out.line(value(config, "vec2", "uv", "0.5 + p.xy / (2.0 * penumbra_windowHalfSize)"));
     }
-    out.line("vec2 range = penumbra_shadowDepthRange;");
+    out.line(value(config, "vec2", "range", "penumbra_shadowDepthRange"));
     out.line("return vec4(uv, (p.z - range.x) / (range.y - range.x), p.z);");
     out.line("}");
     out.blank();
     if (config.technique == Technique::shadowmap) return;
     out.comment("shadow-map uv per scene unit, measured on the receiver at depth z");
-    out.line("float penumbra_uvPerUnit(float z)");
+    out.line(signature(config, "float", "penumbra_uvPerUnit", {{"float", "z"}}));
     out.line("{");
     if (config.light == Light::rect)
         out.line("return 1.0 / (2.0 * penumbra_shadowTanHalfFov * z);");
@@ -73,17 +73,20 @@ constexpr void write_rotation_function(LineWriter& out, const Config& config) {
     // paths, so the same pixel got another pattern on another API.
     out.comment("per-pixel rotation of the tap pattern: an angle from an integer hash of the world position's bits,");
     out.comment("the same on every API and GPU");
-    out.line("mat2 penumbra_rotation(vec3 worldPos)");
+    out.line(signature(config, "mat2", "penumbra_rotation", {{"vec3", "worldPos"}}));
     out.line("{");
-    out.line("uvec3 bits = floatBitsToUint(worldPos);");
-    out.line("uint h = bits.x * 0x8da6b343u ^ bits.y * 0xd8163841u ^ bits.z * 0xcb1ab31fu;");
+    out.line(value(config, "uvec3", "bits", cat(builtin(config, "floatBitsToUint"), "(worldPos)")));
+    // WGSL does not mix * and ^ without parentheses
+    out.line(variable(config, "uint", "h",
+                      choose(is_wgsl(config), Text("(bits.x * 0x8da6b343u) ^ (bits.y * 0xd8163841u) ^ (bits.z * 0xcb1ab31fu)"),
+                             Text("bits.x * 0x8da6b343u ^ bits.y * 0xd8163841u ^ bits.z * 0xcb1ab31fu"))));
     out.line("h = h * 747796405u + 2891336453u;");
     out.line("h = ((h >> ((h >> 28u) + 4u)) ^ h) * 277803737u;");
     out.line("h = (h >> 22u) ^ h;");
-    out.line("float angle = 6.283185307 * float(h >> 8u) * (1.0 / 16777216.0);");
-    out.line("float c = cos(angle);");
-    out.line("float s = sin(angle);");
-    out.line("return mat2(c, s, -s, c);");
+    out.line(value(config, "float", "angle", cat("6.283185307 * ", construct(config, "float", "h >> 8u"), " * (1.0 / 16777216.0)")));
+    out.line(value(config, "float", "c", "cos(angle)"));
+    out.line(value(config, "float", "s", "sin(angle)"));
+    out.line("return ", construct(config, "mat2", "c, s, -s, c"), ";");
     out.line("}");
     out.blank();
 }
@@ -118,18 +121,18 @@ constexpr Text tap_depth(const Config& config, const Tap& tap, std::string_view 
 // tilt = the stored depth's change per unit of the literal tap offset: rot^T (slope * scale).
 constexpr void write_tilt(LineWriter& out, const Config& config, std::string_view tilt, std::string_view scale) {
     if (!tilts_taps_to_receiver_plane(config)) return;
-    out.line("vec2 ", tilt, " = ", choose(rotates(config), cat("(depthSlope * ", scale, ") * penumbra_rot"),
-                                             cat("depthSlope * ", scale)),
-             "; // depth change per unit of tap offset");
+    out.line(value(config, "vec2", tilt, choose(rotates(config), cat("(depthSlope * ", scale, ") * penumbra_rot"),
+                                                  cat("depthSlope * ", scale))),
+             " // depth change per unit of tap offset");
 }
 
 constexpr void write_comparison_taps(LineWriter& out, const Config& config, const std::vector<Tap>& taps, int group,
                                      std::string_view what, std::string_view scale) {
     write_tilt(out, config, "tilt", scale);
-    out.line("float penumbra_lit = 0.0;");
+    out.line(variable(config, "float", "penumbra_lit", "0.0"));
     write_taps(out, taps, group, what, [&](const Tap& tap) {
-        out.line("penumbra_lit += textureLod(", shadow_map_texture, ", vec3(coord.xy + ", tap_offset(config, tap, scale),
-                 ", ", tap_depth(config, tap, "tilt"), "), 0.0);");
+        out.line("penumbra_lit += ", sample_compare(config, shadow_map_texture, cat("coord.xy + ", tap_offset(config, tap, scale)),
+                                                    tap_depth(config, tap, "tilt")), ";");
     });
     out.line("return penumbra_lit * ", format_float(1.0 / static_cast<double>(taps.size())), ";");
 }
@@ -139,31 +142,32 @@ constexpr void write_pcss_body(LineWriter& out, const Config& config) {
     const bool rect = config.light == Light::rect;
     out.comment("Fernando 2005, step 1: blocker search over the region the light subtends on the near plane");
     if (rect)
-        out.line("vec2 search = min(0.5 * penumbra_lightSizeUV * (coord.w - penumbra_shadowDepthRange.x) / coord.w, vec2(0.5));");
+        out.line(value(config, "vec2", "search", "min(0.5 * penumbra_lightSizeUV * (coord.w - penumbra_shadowDepthRange.x) / coord.w, vec2(0.5))"));
     else
-        out.line("vec2 search = min(0.5 * penumbra_lightSizeUV * (coord.w - penumbra_shadowDepthRange.x), vec2(0.5));");
+        out.line(value(config, "vec2", "search", "min(0.5 * penumbra_lightSizeUV * (coord.w - penumbra_shadowDepthRange.x), vec2(0.5))"));
     out.comment("a blocker is strictly nearer than the receiver: a receiver on the far plane, whose biased depth");
     out.comment("the map clamps to 1, is not its own blocker");
-    out.line("vec2 penumbra_blocker = vec2(0.0); // x: sum of blocker depths (as stored), y: blocker count");
-    out.line("float d;");
+    out.line(variable(config, "vec2", "penumbra_blocker", "vec2(0.0)"), " // x: sum of blocker depths (as stored), y: blocker count");
+    out.line(variable(config, "float", "d"));
     write_tilt(out, config, "searchTilt", "search");
     write_taps(out, poisson_disk(pcss.blocker_samples, blocker_seed), 4, "blocker taps", [&](const Tap& tap) {
-        out.line("d = textureLod(penumbra_shadowDepth, coord.xy + ", tap_offset(config, tap, "search"), ", 0.0).r;");
-        out.line("penumbra_blocker += float(d < ", tap_depth(config, tap, "searchTilt"), ") * vec2(d, 1.0);");
+        out.line("d = ", sample_depth(config, "penumbra_shadowDepth", cat("coord.xy + ", tap_offset(config, tap, "search"))), ";");
+        out.line("penumbra_blocker += ", construct(config, "float", cat("d < ", tap_depth(config, tap, "searchTilt"))), " * vec2(d, 1.0);");
     });
     out.comment("no blocker: fully lit (a real branch: the filter is skipped)");
-    out.line("if (penumbra_blocker.y == 0.0) return 1.0;");
-    out.line("vec2 range = penumbra_shadowDepthRange;");
-    out.line("float zBlocker = range.x + penumbra_blocker.x / penumbra_blocker.y * (range.y - range.x);");
+    out.line(if_then(config, "penumbra_blocker.y == 0.0", "return 1.0;"));
+    out.line(value(config, "vec2", "range", "penumbra_shadowDepthRange"));
+    out.line(value(config, "float", "zBlocker", "range.x + penumbra_blocker.x / penumbra_blocker.y * (range.y - range.x)"));
     out.comment("step 2, parallel planes: w_p = (d_receiver - d_blocker) * w_light / d_blocker, on the receiver");
     if (rect)
-        out.line("vec2 penumbraWidth = (coord.w - zBlocker) * penumbra_lightSize / zBlocker;");
+        out.line(value(config, "vec2", "penumbraWidth", "(coord.w - zBlocker) * penumbra_lightSize / zBlocker"));
     else
-        out.line("vec2 penumbraWidth = vec2(2.0 * (coord.w - zBlocker) * penumbra_tanAngularRadius);");
+        out.line(value(config, "vec2", "penumbraWidth", "vec2(2.0 * (coord.w - zBlocker) * penumbra_tanAngularRadius)"));
     out.line("// step 3: PCF over half that width each side, in shadow-map uv, at most ",
              format_int(pcss.max_filter_texels), " texels");
-    out.line("vec2 filterUV = min(0.5 * penumbraWidth * penumbra_uvPerUnit(coord.w), vec2(",
-             format_float(static_cast<double>(pcss.max_filter_texels) / config.shadow_map.resolution), "));");
+    out.line(value(config, "vec2", "filterUV",
+                   cat("min(0.5 * penumbraWidth * penumbra_uvPerUnit(coord.w), vec2(",
+                       format_float(static_cast<double>(pcss.max_filter_texels) / config.shadow_map.resolution), "))")));
     write_comparison_taps(out, config, poisson_disk(pcss.filter_samples), 4, "filter taps", "filterUV");
 }
 
@@ -175,16 +179,16 @@ constexpr void write_pcss_body(LineWriter& out, const Config& config) {
 constexpr void write_normal_offset(LineWriter& out, const Config& config) {
     if (config.light == Light::rect) {
         out.comment("cosine to the direction towards the light centre; a texel spans 2 tan(fov/2) z / R at depth z");
-        out.line("float cosine = dot(nLight, -normalize(p));");
-        out.line("float texel = 2.0 * penumbra_shadowTanHalfFov * p.z * ",
-                 format_float(1.0 / config.shadow_map.resolution), ";");
+        out.line(value(config, "float", "cosine", "dot(nLight, -normalize(p))"));
+        out.line(value(config, "float", "texel",
+                       cat("2.0 * penumbra_shadowTanHalfFov * p.z * ", format_float(1.0 / config.shadow_map.resolution))));
     } else {
         out.comment("cosine to the direction towards the sun; a texel spans 2 h / R of the orthographic window");
-        out.line("float cosine = -nLight.z;");
-        out.line("float texel = 2.0 * penumbra_windowHalfSize * ", format_float(1.0 / config.shadow_map.resolution),
-                 ";");
+        out.line(value(config, "float", "cosine", "-nLight.z"));
+        out.line(value(config, "float", "texel",
+                       cat("2.0 * penumbra_windowHalfSize * ", format_float(1.0 / config.shadow_map.resolution))));
     }
-    out.line("float sine = sqrt(max(1.0 - cosine * cosine, 0.0));");
+    out.line(value(config, "float", "sine", "sqrt(max(1.0 - cosine * cosine, 0.0))"));
 }
 
 // Receiver-plane depth bias (ShadowMapParams::receiver_plane_bias; Isidoro 2006, as in Filament's and
@@ -197,15 +201,15 @@ constexpr void write_receiver_plane_slope(LineWriter& out, const Config& config)
     if (config.light == Light::rect) {
         out.comment("the tangent plane's depth along the ray through uv: z(uv) = dot(n, p) / dot(n, dir(uv)),");
         out.comment("dir = p / p.z at the receiver; its change per lateral scene unit is n.xy / -dot(n, dir)");
-        out.line("float facing = -dot(nLight, p / p.z);");
+        out.line(value(config, "float", "facing", "-dot(nLight, p / p.z)"));
     } else {
         out.comment("the tangent plane's depth across the orthographic window changes by n.xy / -n.z per scene unit");
-        out.line("float facing = -nLight.z;");
+        out.line(value(config, "float", "facing", "-nLight.z"));
     }
-    out.line("vec2 rise = facing > 0.0 ? nLight.xy / max(facing, 0.1) : vec2(0.0);");
-    out.line("vec2 depthRange = penumbra_shadowDepthRange;");
+    out.line(value(config, "vec2", "rise", conditional(config, "facing > 0.0", "nLight.xy / max(facing, 0.1)", "vec2(0.0)")));
+    out.line(value(config, "vec2", "depthRange", "penumbra_shadowDepthRange"));
     out.comment("per uv instead of per scene unit on the receiver, then depth as stored: (z - near) / (far - near)");
-    out.line("vec2 depthSlope = rise / (penumbra_uvPerUnit(p.z) * (depthRange.y - depthRange.x));");
+    out.line(value(config, "vec2", "depthSlope", "rise / (penumbra_uvPerUnit(p.z) * (depthRange.y - depthRange.x))"));
 }
 
 // penumbraVisibility(worldPos, worldNormal) with what the normal is for: the normal offset, the
@@ -217,7 +221,7 @@ constexpr void write_normal_visibility(LineWriter& out, const Config& config) {
         out.comment("The same with the receiver's normal, so that shaders written for the occlusion technique's");
         out.comment("tangent clip compile unchanged; without the normal offset or the receiver-plane bias a depth");
         out.comment("map has no use for it.");
-        out.line("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)");
+        out.line(signature(config, "float", visibility_with_normal(config), {{"vec3", "worldPos"}, {"vec3", "worldNormal"}}));
         out.line("{");
         out.line("return penumbraVisibility(worldPos);");
         out.line("}");
@@ -228,11 +232,11 @@ constexpr void write_normal_visibility(LineWriter& out, const Config& config) {
     if (offset && tilt) uses += " and ";
     if (tilt) uses += "the receiver-plane depth bias";
     out.comment(cat("With the receiver's normal (the side being lit): ", uses, ", then the lookup above."));
-    out.line("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)");
+    out.line(signature(config, "float", visibility_with_normal(config), {{"vec3", "worldPos"}, {"vec3", "worldNormal"}}));
     out.line("{");
-    out.line("vec3 n = worldNormal * inversesqrt(max(dot(worldNormal, worldNormal), 1e-20));");
-    out.line("vec3 p = (penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz;");
-    out.line("vec3 nLight = mat3(penumbra_lightFromWorld) * n;");
+    out.line(value(config, "vec3", "n", cat("worldNormal * ", builtin(config, "inversesqrt"), "(max(dot(worldNormal, worldNormal), 1e-20))")));
+    out.line(variable(config, "vec3", "p", "(penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz"));
+    out.line(value(config, "vec3", "nLight", cat(upper_3x3(config, "penumbra_lightFromWorld"), " * n")));
     if (config.light == Light::rect) out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
     if (offset) write_normal_offset(out, config);
     if (tilt) write_receiver_plane_slope(out, config);
@@ -258,23 +262,23 @@ constexpr void write_shadow_visibility(LineWriter& out, const Config& config, in
     if (tilt) {
         out.comment("depthSlope: the receiver's tangent plane, stored depth per unit of shadow-map uv (the");
         out.comment("receiver-plane depth bias); each tap compares against the plane's depth under it");
-        out.line("float penumbra_filteredVisibility(vec3 worldPos, vec2 depthSlope)");
+        out.line(signature(config, "float", "penumbra_filteredVisibility", {{"vec3", "worldPos"}, {"vec2", "depthSlope"}}));
     } else {
-        out.line("float penumbraVisibility(vec3 worldPos)");
+        out.line(signature(config, "float", "penumbraVisibility", {{"vec3", "worldPos"}}));
     }
     out.line("{");
-    out.line("vec4 coord = penumbra_shadowCoord(worldPos);");
-    if (rotates(config)) out.line("mat2 penumbra_rot = penumbra_rotation(worldPos);");
+    out.line(value(config, "vec4", "coord", "penumbra_shadowCoord(worldPos)"));
+    if (rotates(config)) out.line(value(config, "mat2", "penumbra_rot", "penumbra_rotation(worldPos)"));
     if (config.technique == Technique::shadowmap || config.technique == Technique::erosion) {
         if (config.technique == Technique::erosion)
             out.comment("erosion is a screen-space filter: per point, only its hard shadow (the soft one: the screen passes)");
         out.comment("one comparison tap; the hardware filters the 2x2 comparisons around it bilinearly");
-        out.line("return textureLod(", shadow_map_texture, ", vec3(coord.xy, coord.z), 0.0);");
+        out.line("return ", sample_compare(config, shadow_map_texture, "coord.xy", "coord.z"), ";");
     } else if (config.technique == Technique::pcf) {
         const PcfParams& pcf = config.pcf;
         out.comment(cat("kernel radius: ", format_float(pcf.radius),
                         " scene units on the receiver, in shadow-map uv, at most half the map"));
-        out.line("float radius = min(", format_float(pcf.radius), " * penumbra_uvPerUnit(coord.w), 0.5);");
+        out.line(value(config, "float", "radius", cat("min(", format_float(pcf.radius), " * penumbra_uvPerUnit(coord.w), 0.5)")));
         if (pcf.pattern == TapPattern::grid)
             write_comparison_taps(out, config, grid_taps(pcf.grid_size), pcf.grid_size, "grid row, taps", "radius");
         else
@@ -286,7 +290,7 @@ constexpr void write_shadow_visibility(LineWriter& out, const Config& config, in
     out.blank();
     if (tilt) {
         out.comment("Without a normal there is no tangent plane: every tap compares against the receiver's depth.");
-        out.line("float penumbraVisibility(vec3 worldPos)");
+        out.line(signature(config, "float", "penumbraVisibility", {{"vec3", "worldPos"}}));
         out.line("{");
         out.line("return penumbra_filteredVisibility(worldPos, vec2(0.0));");
         out.line("}");

@@ -46,7 +46,8 @@ constexpr std::vector<Param> shadow_visibility_params(const Config& config) {
         // the same depth texture as the filter's, through a second sampler: NEAREST, no comparison
         params.push_back({"penumbra_shadowDepth", "sampler2D",
                           "shadow map read as depth (no comparison): the blocker search", "",
-                          Text(shadow_map_texture), UniformSource::light, "NEAREST"});
+                          Text(shadow_map_texture), UniformSource::light, "NEAREST", /*fetch_only=*/false,
+                          /*depth_texture=*/true});
     }
     params.push_back({Text(shadow_map_texture), "sampler2DShadow",
                       "shadow map with hardware depth comparison (LEQUAL) and bilinear filtering", "",

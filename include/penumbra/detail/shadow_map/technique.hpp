@@ -24,9 +24,14 @@ constexpr std::vector<ProgramPlan> shadow_map_programs(const Config&) {
 // The includable snippet penumbra_visibility.glsl: no #version, declarations from binding 0.
 constexpr Text shadow_visibility_snippet(const Config& config) {
     LineWriter out;
-    out.line("// Penumbra ", version_string, " - penumbra_visibility.glsl: float penumbraVisibility(vec3 worldPos)");
+    out.line("// Penumbra ", version_string, " - ", file_name(config, visibility_snippet_name), ": ",
+             signature(config, "float", "penumbraVisibility", {{"vec3", "worldPos"}}));
     out.line("// ", describe(config));
-    out.comment("Include after the #version line of a stage for this target. Bindings start at 0.");
+    if (is_wgsl(config))
+        out.comment("Add to a module of the shading stage. Bindings start at 0 in group 0; call penumbra_loadVisibility()"
+                    " first in the entry point.");
+    else
+        out.comment("Include after the #version line of a stage for this target. Bindings start at 0.");
     if (config.target == Target::essl300) out.comment("ES: declare precision highp sampler2DShadow before it.");
     out.blank();
     int binding = 0;
@@ -102,6 +107,7 @@ constexpr TechniqueDescriptor shadow_map_technique() {
         .storage_note = shadow_map_storage_note,
         .es_sampler_precision = shadow_map_es_samplers,
         .texels_per_fragment = shadow_map_texels_per_fragment,
+        .writes_wgsl = true,
     };
 }
 

@@ -1,0 +1,235 @@
+// penumbra/detail/language.hpp — the one place where GLSL and WGSL part ways.
+//
+// Emitters write what both languages share as text: expressions, swizzles, vec2/vec3/vec4(…)
+// constructors, operators, the built-in maths (min, clamp, dot, mix, sqrt …), comments and braces.
+// They ask this file for what differs: declarations, function signatures, type names, conversions,
+// the conditional operator, texture reads, derivatives, built-in variables, and WGSL's entry point.
+//
+// A WGSL entry point takes its inputs as parameters and returns its outputs, where GLSL's main()
+// reads and writes globals. So that one body serves both, a WGSL module keeps GLSL's shape: the
+// stage's inputs and outputs and the uniform values are module-scope `var<private>` globals under
+// their GLSL names, the body is `fn penumbra_main()`, and the generated `fn main` (write_entry_point)
+// copies the inputs in, loads the uniform blocks, runs the body and returns the outputs. Compilers
+// fold the copies; a reader sees the same statements in both languages.
+#pragma once
+
+#include "../config.hpp"
+#include "text.hpp"
+
+#include <initializer_list>
+#include <string_view>
+#include <utility>
+
+namespace penumbra::detail {
+
+constexpr bool is_wgsl(const Config& config) { return config.target == Target::wgsl; }
+
+// WGSL's name of a GLSL type ("vec3" → "vec3f"); the GLSL name itself on the GLSL targets.
+constexpr std::string_view wgsl_type_name(std::string_view glsl) {
+    constexpr std::pair<std::string_view, std::string_view> names[] = {
+        {"float", "f32"},   {"int", "i32"},       {"uint", "u32"},       {"bool", "bool"},
+        {"vec2", "vec2f"},  {"vec3", "vec3f"},    {"vec4", "vec4f"},     {"ivec2", "vec2i"},
+        {"ivec3", "vec3i"}, {"ivec4", "vec4i"},   {"uvec2", "vec2u"},    {"uvec3", "vec3u"},
+        {"uvec4", "vec4u"}, {"mat2", "mat2x2f"},  {"mat3", "mat3x3f"},   {"mat4", "mat4x4f"},
+    };
+    for (const auto& [from, to] : names)
+        if (from == glsl) return to;
+    return glsl;
+}
+
+constexpr std::string_view type_name(const Config& config, std::string_view glsl) {
+    return is_wgsl(config) ? wgsl_type_name(glsl) : glsl;
+}
+
+// A local variable the code assigns again: `T name = init;` / `var name: T = init;` (without
+// `init`, declared only).
+constexpr Text variable(const Config& config, std::string_view type, std::string_view name, std::string_view init = {}) {
+    if (!is_wgsl(config)) return init.empty() ? cat(type, " ", name, ";") : cat(type, " ", name, " = ", init, ";");
+    if (init.empty()) return cat("var ", name, ": ", wgsl_type_name(type), ";");
+    return cat("var ", name, ": ", wgsl_type_name(type), " = ", init, ";");
+}
+
+// A local value set once: `T name = init;` / `let name: T = init;`.
+constexpr Text value(const Config& config, std::string_view type, std::string_view name, std::string_view init) {
+    if (!is_wgsl(config)) return cat(type, " ", name, " = ", init, ";");
+    return cat("let ", name, ": ", wgsl_type_name(type), " = ", init, ";");
+}
+
+struct Parameter {
+    std::string_view type, name;
+};
+
+// A function's signature (the line before its `{`): `float f(vec3 p)` / `fn f(p: vec3f) -> f32`.
+constexpr Text signature(const Config& config, std::string_view result, std::string_view name,
+                         std::initializer_list<Parameter> parameters) {
+    Text out = is_wgsl(config) ? cat("fn ", name, "(") : cat(result, " ", name, "(");
+    bool first = true;
+    for (const Parameter& p : parameters) {
+        if (!first) out += ", ";
+        first = false;
+        out += is_wgsl(config) ? cat(p.name, ": ", wgsl_type_name(p.type)) : cat(p.type, " ", p.name);
+    }
+    out += ")";
+    if (is_wgsl(config) && result != "void") out += cat(" -> ", wgsl_type_name(result));
+    return out;
+}
+
+// GLSL's main() is WGSL's penumbra_main(), which the entry point calls (write_entry_point).
+constexpr std::string_view main_signature(const Config& config) {
+    return is_wgsl(config) ? "fn penumbra_main()" : "void main()";
+}
+
+// A conversion or constructor by type name: `float(x)` / `f32(x)`.
+constexpr Text construct(const Config& config, std::string_view type, std::string_view args) {
+    return cat(type_name(config, type), "(", args, ")");
+}
+
+// `when ? a : b` / `select(b, a, when)`.
+constexpr Text conditional(const Config& config, std::string_view when, std::string_view a, std::string_view b) {
+    if (is_wgsl(config)) return cat("select(", b, ", ", a, ", ", when, ")");
+    return cat(when, " ? ", a, " : ", b);
+}
+
+// The upper-left 3x3 of a mat4 (a direction's transform): WGSL has no mat3(mat4).
+constexpr Text upper_3x3(const Config& config, std::string_view m) {
+    if (!is_wgsl(config)) return cat("mat3(", m, ")");
+    return cat("mat3x3f(", m, "[0].xyz, ", m, "[1].xyz, ", m, "[2].xyz)");
+}
+
+// A one-statement if: WGSL wants braces around every body.
+constexpr Text if_then(const Config& config, std::string_view when, std::string_view statement) {
+    if (is_wgsl(config)) return cat("if (", when, ") { ", statement, " }");
+    return cat("if (", when, ") ", statement);
+}
+
+// penumbraVisibility with the receiver's normal: an overload in GLSL; WGSL has no overloading.
+constexpr std::string_view visibility_with_normal(const Config& config) {
+    return is_wgsl(config) ? "penumbraVisibilityWithNormal" : "penumbraVisibility";
+}
+
+// Built-in functions whose names differ.
+constexpr std::string_view builtin(const Config& config, std::string_view glsl) {
+    if (!is_wgsl(config)) return glsl;
+    if (glsl == "dFdx") return "dpdx";
+    if (glsl == "dFdy") return "dpdy";
+    if (glsl == "inversesqrt") return "inverseSqrt";
+    if (glsl == "floatBitsToUint") return "bitcast<vec3u>";
+    return glsl;
+}
+
+// Built-in variables, under a WGSL private global of the entry point (write_entry_point).
+constexpr std::string_view clip_position(const Config& config) {
+    return is_wgsl(config) ? "penumbra_clipPosition" : "gl_Position";
+}
+constexpr std::string_view frag_coord(const Config& config) { return is_wgsl(config) ? "penumbra_fragCoord" : "gl_FragCoord"; }
+constexpr std::string_view frag_depth(const Config& config) { return is_wgsl(config) ? "penumbra_fragDepth" : "gl_FragDepth"; }
+constexpr std::string_view front_facing(const Config& config) {
+    return is_wgsl(config) ? "penumbra_frontFacing" : "gl_FrontFacing";
+}
+constexpr std::string_view vertex_index(const Config& config) {
+    if (is_wgsl(config)) return "penumbra_vertexIndex";
+    return config.target == Target::vulkan ? "gl_VertexIndex" : "gl_VertexID";
+}
+
+// The sampler WGSL pairs with a texture: the GLSL sampler's name and this suffix.
+constexpr Text sampler_of(std::string_view texture) { return cat(texture, "_sampler"); }
+
+// Texture reads. GLSL combines texture and sampler in one name; WGSL binds them apart.
+// A depth comparison at level 0 (the hardware filters the 2x2 comparisons): `uv`, `depth` scalars.
+constexpr Text sample_compare(const Config& config, std::string_view texture, std::string_view uv, std::string_view depth) {
+    if (!is_wgsl(config)) return cat("textureLod(", texture, ", vec3(", uv, ", ", depth, "), 0.0)");
+    return cat("textureSampleCompareLevel(", texture, ", ", sampler_of(texture), ", ", uv, ", ", depth, ")");
+}
+// The stored depth of a depth texture at level 0, unfiltered by comparison.
+constexpr Text sample_depth(const Config& config, std::string_view texture, std::string_view uv) {
+    if (!is_wgsl(config)) return cat("textureLod(", texture, ", ", uv, ", 0.0).r");
+    return cat("textureSampleLevel(", texture, ", ", sampler_of(texture), ", ", uv, ", 0)");
+}
+// A filtered read at an explicit level (a float texture).
+constexpr Text sample_level(const Config& config, std::string_view texture, std::string_view uv, std::string_view level) {
+    if (!is_wgsl(config)) return cat("textureLod(", texture, ", ", uv, ", ", level, ")");
+    return cat("textureSampleLevel(", texture, ", ", sampler_of(texture), ", ", uv, ", ", level, ")");
+}
+// A filtered read with implicit derivatives (fragment stage, uniform control flow).
+constexpr Text sample(const Config& config, std::string_view texture, std::string_view uv) {
+    if (!is_wgsl(config)) return cat("texture(", texture, ", ", uv, ")");
+    return cat("textureSample(", texture, ", ", sampler_of(texture), ", ", uv, ")");
+}
+// One texel, integer coordinates.
+constexpr Text fetch(const Config& config, std::string_view texture, std::string_view texel, std::string_view level) {
+    if (!is_wgsl(config)) return cat("texelFetch(", texture, ", ", texel, ", ", level, ")");
+    return cat("textureLoad(", texture, ", ", texel, ", ", level, ")");
+}
+
+// A stage input or output: `layout(location = N) in T name;` / a private global the entry point
+// wires to @location(N). Outputs of a fragment stage are `out` with their location.
+constexpr Text stage_variable(LineWriter& out, const Config& config, std::string_view direction, int location,
+                              std::string_view type, std::string_view name, bool glsl_location) {
+    if (is_wgsl(config)) {
+        EntryVariable v{cat("@location(", format_int(location), ")"), Text(name), Text(wgsl_type_name(type)), {}};
+        (direction == "in" ? out.entry_inputs : out.entry_outputs).push_back(std::move(v));
+        return cat("var<private> ", name, ": ", wgsl_type_name(type), ";");
+    }
+    if (glsl_location) return cat("layout(location = ", format_int(location), ") ", direction, " ", type, " ", name, ";");
+    return cat(direction, " ", type, " ", name, ";");
+}
+
+// A built-in the stage reads or writes, declared once where the module needs it: the private global
+// of the WGSL entry point (nothing on GLSL, whose built-ins are predeclared). `wire_type` is WGSL's
+// type of the built-in when the global's differs (vertex_index is u32, the GLSL-shaped code wants i32).
+constexpr void declare_builtin(LineWriter& out, const Config& config, bool input, std::string_view builtin_name,
+                               std::string_view type, std::string_view name, std::string_view wire_type = {}) {
+    if (!is_wgsl(config)) return;
+    EntryVariable v{cat("@builtin(", builtin_name, ")"), Text(name), Text(wgsl_type_name(type)), Text(wire_type)};
+    (input ? out.entry_inputs : out.entry_outputs).push_back(std::move(v));
+    out.line("var<private> ", name, ": ", wgsl_type_name(type), ";");
+}
+
+// WGSL: the entry point `main` of the stage, after penumbra_main(): the inputs copied into their
+// globals, every uniform block loaded, the body run, the outputs returned.
+constexpr void write_entry_point(LineWriter& out, const Config& config, Stage stage) {
+    if (!is_wgsl(config)) return;
+    out.blank();
+    out.chunk("entry_point");
+    out.comment("entry point: the inputs into the globals above, the uniform values loaded, then penumbra_main()");
+    const bool outputs = !out.entry_outputs.empty();
+    if (outputs) {
+        out.line("struct PenumbraStageOutput {");
+        for (const EntryVariable& v : out.entry_outputs) out.line(v.attribute, " ", v.name, ": ", v.type, ",");
+        out.line("}");
+        out.blank();
+    }
+    out.line(stage == Stage::vertex ? "@vertex" : "@fragment");
+    Text head("fn main(");
+    bool first = true;
+    for (const EntryVariable& v : out.entry_inputs) {
+        if (!first) head += ", ";
+        first = false;
+        head += cat(v.attribute, " ", v.name, "In: ", v.wire_type.empty() ? v.type.view() : v.wire_type.view());
+    }
+    head += ")";
+    if (outputs) head += " -> PenumbraStageOutput";
+    out.line(head);
+    out.line("{");
+    for (const EntryVariable& v : out.entry_inputs)
+        out.line(v.name, " = ", v.wire_type.empty() ? cat(v.name, "In") : cat(v.type, "(", v.name, "In)"), ";");
+    for (const Text& call : out.entry_calls) out.line(call, "();");
+    out.line("penumbra_main();");
+    if (outputs) {
+        Text result("return PenumbraStageOutput(");
+        for (std::size_t i = 0; i < out.entry_outputs.size(); ++i)
+            result += cat(i == 0 ? "" : ", ", out.entry_outputs[i].name);
+        out.line(result, ");");
+    }
+    out.line("}");
+}
+
+// The name a file of `config` is written under: the GLSL name, or for WGSL that name with `.wgsl`
+// in place of `.glsl` or after the stage's extension (penumbra_deferred.frag.wgsl).
+constexpr Text file_name(const Config& config, std::string_view glsl_name) {
+    if (!is_wgsl(config)) return Text(glsl_name);
+    if (glsl_name.ends_with(".glsl")) glsl_name.remove_suffix(5);
+    return cat(glsl_name, ".wgsl");
+}
+
+} // namespace penumbra::detail
