@@ -402,6 +402,10 @@ export class WebGPULayoutRunner {
             entries.push({binding: param.binding, resource: view});
             if (param.sampler_binding >= 0) {
                 const sampling = input?.sampling ?? param.sampling ?? (() => {
+                    if (param.source === "draw") { // the caller's texture: filtered as its sampler type allows
+                        const f = param.sampler_type === "filtering" ? "LINEAR" : "NEAREST";
+                        return {min_filter: f, mag_filter: f, wrap: "REPEAT", compare: ""};
+                    }
                     const t = this.description(param.texture);
                     return {min_filter: param.filter || t.min_filter, mag_filter: param.filter || t.mag_filter, wrap: t.wrap, compare: ""};
                 })();
