@@ -24,7 +24,9 @@ if(TARGET penumbra-gen)
 endif()
 # "webgpu_bundles": the WebGPU layout runner (web/webgpu_runner.js) over bundles of boxes at 64x64
 # exported with --target wgsl (the desktop GL run of glsl450, emission/ in WGSL), each compared with
-# the desktop run's image (webgpu_bundle_test.mjs). Images of both runs go to webgpu-bundles/images.
+# the desktop run's image (webgpu_bundle_test.mjs); with the WebAssembly emitter, the playground's
+# renderer switch on each bundle as well. Images of both runs (and the playground's canvas) go to
+# webgpu-bundles/images.
 if(TARGET penumbra-export-bundle)
     set(webgpu_cases
         "shadowmap-rect|--technique shadowmap --light rect" "shadowmap-sun|--technique shadowmap --light sun"
@@ -44,8 +46,14 @@ if(TARGET penumbra-export-bundle)
         set_tests_properties(penumbra-bundle-webgpu-${name} PROPERTIES FIXTURES_SETUP penumbra_webgpu_bundles LABELS browser TIMEOUT 120)
         list(APPEND webgpu_bundles ${dir})
     endforeach()
+    # With the WebAssembly emitter built, the playground's WebGL2 / WebGPU switch on each bundle too.
+    get_property(webgpu_emitter_wasm GLOBAL PROPERTY PENUMBRA_EMITTER_WASM)
+    set(webgpu_wasm "")
+    if(webgpu_emitter_wasm)
+        set(webgpu_wasm --wasm ${webgpu_emitter_wasm})
+    endif()
     add_test(NAME webgpu_bundles
-             COMMAND ${PENUMBRA_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/webgpu_bundle_test.mjs --web ${PROJECT_SOURCE_DIR}/web
+             COMMAND ${PENUMBRA_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/webgpu_bundle_test.mjs --web ${PROJECT_SOURCE_DIR}/web ${webgpu_wasm}
                      --chromium ${PENUMBRA_CHROMIUM} --images ${CMAKE_CURRENT_BINARY_DIR}/webgpu-bundles/images ${webgpu_bundles})
     set_tests_properties(webgpu_bundles PROPERTIES LABELS browser SKIP_RETURN_CODE 77 TIMEOUT 120
                          FIXTURES_REQUIRED penumbra_webgpu_bundles)

@@ -9,7 +9,12 @@
 // techniques have no oracle bound; SwiftShader and llvmpipe rasterize the depth pass differently), and
 // away from silhouettes at most one pixel a bundle may be more than TECHNIQUE_PIXEL_STEP apart.
 //
-//   node targets/web/webgpu_bundle_test.mjs --web web [--chromium PATH] [--images DIR] BUNDLE_DIR...
+//   node targets/web/webgpu_bundle_test.mjs --web web [--wasm EMITTER.wasm] [--chromium PATH] [--images DIR] BUNDLE_DIR...
+//
+// With --wasm (build/wasm/penumbra_emitter.wasm), the playground too (web/index.html): opened on each
+// bundle with ?backend=webgpu, its panel set to the bundle's configuration, at the bundle's camera and
+// uniforms it must show WebGPU's image within the same tolerances of the desktop run; switched to
+// WebGL2 by its renderer switch it must run WebGL2 and show nearly the same image (both SwiftShader).
 //
 // Exit 0 pass, 1 fail, 2 bad arguments, 77 skip (no chromium; no WebGPU adapter only with
 // PENUMBRA_WEBGPU_OPTIONAL=1).
@@ -43,15 +48,15 @@ function silhouettePixels(positions, width, height, a, b) {
 }
 
 function usage(message) {
-    console.error(`error: ${message}\nusage: node webgpu_bundle_test.mjs --web DIR [--chromium PATH] [--images DIR] BUNDLE_DIR...`);
+    console.error(`error: ${message}\nusage: node webgpu_bundle_test.mjs --web DIR [--wasm MODULE] [--chromium PATH] [--images DIR] BUNDLE_DIR...`);
     process.exit(2);
 }
 
 function parseArguments(argv) {
-    const out = {web: null, chromium: "/usr/bin/chromium", images: null, bundles: []};
+    const out = {web: null, wasm: null, chromium: "/usr/bin/chromium", images: null, bundles: []};
     for (let i = 0; i < argv.length; ++i) {
         const flag = argv[i];
-        if (flag === "--web" || flag === "--chromium" || flag === "--images") {
+        if (flag === "--web" || flag === "--wasm" || flag === "--chromium" || flag === "--images") {
             if (i + 1 >= argv.length) usage(`${flag}: missing value`);
             out[flag.slice(2)] = argv[++i];
         } else if (flag.startsWith("--")) {
@@ -63,6 +68,7 @@ function parseArguments(argv) {
     if (!out.web) usage("--web: missing (the web/ folder with webgpu_runner.js)");
     if (!fs.existsSync(path.join(out.web, "webgpu_runner.js"))) usage(`--web: no webgpu_runner.js in ${out.web}`);
     if (out.bundles.length === 0) usage("no bundle directories");
+    if (out.wasm && !fs.existsSync(out.wasm)) usage(`--wasm: no file ${out.wasm} (cmake --build build --target penumbra-emitter-wasm)`);
     for (const b of out.bundles) if (!fs.existsSync(path.join(b, "uniforms.json"))) usage(`${b}: not a bundle (no uniforms.json)`);
     return out;
 }
@@ -106,12 +112,105 @@ async function runInPage(index) {
     }
 }
 
+const valueAt = (object, key) => key.split(".").reduce((o, k) => (o === undefined ? undefined : o[k]), object);
+
+// The playground on bundle `index` with ?backend=webgpu: its panel set to the bundle's configuration
+// (every shown field that differs, as a user would), then WebGPU's image and WebGL2's after the switch.
+async function checkPlayground(browser, port, index, dir, label, images) {
+    const bundle = JSON.parse(fs.readFileSync(path.join(dir, "uniforms.json"), "utf8"));
+    const failures = [];
+    const page = await browser.newPage();
+    const problems = [];
+    page.on("pageerror", (e) => problems.push(`page error: ${e.message}`));
+    page.on("console", (m) => m.type() === "error" && problems.push(`console: ${m.text()}`));
+    await page.goto(`http://127.0.0.1:${port}/web/index.html?bundle=/bundle/${index}/&backend=webgpu`);
+    await page.waitForFunction(() => window.penumbra !== undefined, {timeout: 60000});
+    const error = await page.evaluate(() => window.penumbra.error);
+    if (error) throw new Error(`${label}: the playground failed: ${error}`);
+    if ((await page.evaluate(() => window.penumbra.backend())) !== "webgpu")
+        failures.push(`?backend=webgpu: the page runs ${await page.evaluate(() => window.penumbra.backend())}: ${await page.evaluate(() => window.penumbra.status())}`);
+    // The panel: technique first, then every shown field whose value differs from the bundle's (the
+    // page runs wgsl whatever the panel's target says, so that field stays).
+    let changes = 0;
+    for (let round = 0; round < 3; ++round) {
+        const fields = await page.$$eval("#left [data-key]", (es) => es.filter((e) => !e.closest("[hidden]"))
+            .map((e) => ({key: e.dataset.key, kind: e.tagName === "SELECT" ? "select" : e.type,
+                          value: e.tagName === "SELECT" ? e.value : e.type === "checkbox" ? e.checked : Number(e.value)})));
+        fields.sort((a, b) => (b.key === "technique") - (a.key === "technique"));
+        const field = fields.find((f) => f.key !== "target" && valueAt(bundle.config, f.key) !== undefined && f.value !== valueAt(bundle.config, f.key));
+        if (!field) break;
+        const selector = `#left [data-key="${field.key}"]`, wanted = valueAt(bundle.config, field.key);
+        if (field.kind === "select") await page.select(selector, String(wanted));
+        else if (field.kind === "checkbox") await page.click(selector);
+        else {
+            await page.click(selector, {clickCount: 3});
+            await page.keyboard.press("Backspace");
+            await page.type(selector, String(wanted));
+            await page.keyboard.press("Tab");
+        }
+        ++changes;
+        round = -1; // until no shown field differs
+    }
+    // The orbit camera (the page's own WebGL2 G-buffer, read back into WebGPU's caller textures) at the canvas size.
+    await page.evaluate(async () => {
+        window.penumbra.setCamera("orbit");
+        await window.penumbra.settled();
+    });
+    const orbit = await page.evaluate(() => {
+        try { const v = window.penumbra.readVisibility(); return {count: v.length, shadowed: v.filter((x) => x < 0.5).length}; }
+        catch (e) { return {error: e.message}; }
+    });
+    const shot = async (name) => images && (await page.$("#view")).screenshot({path: path.join(images, `${index}_${bundle.config.technique}_${bundle.config.light}_${name}.png`)});
+    await shot("playground_webgpu_orbit");
+    if (orbit.error || !(orbit.shadowed > 0)) failures.push(`orbit camera on WebGPU: ${orbit.error || `${orbit.shadowed} of ${orbit.count} pixels shadowed`}`);
+    await page.evaluate(async () => {
+        window.penumbra.setCamera("bundle");
+        window.penumbra.useBundleUniforms(true);
+        await window.penumbra.settled();
+    });
+    const read = async () => {
+        const v = await page.evaluate(() => { try { return Array.from(window.penumbra.readVisibility()); } catch (e) { return e.message; } });
+        if (typeof v === "string") throw new Error(`${label}: playground: ${v} (${await page.evaluate(() => window.penumbra.reason())})`);
+        return Float32Array.from(v);
+    };
+    const reference = readReference(dir);
+    const webgpu = await read();
+    const info = await page.evaluate(() => window.penumbra.info());
+    const d = difference(webgpu, reference.gl);
+    if (info.backend !== "webgpu" || !info.adapter) failures.push(`the page says backend ${info.backend}, adapter ${JSON.stringify(info.adapter)}`);
+    if (d.over > TECHNIQUE_PIXELS_ALLOWED * webgpu.length || d.mean > TECHNIQUE_MEAN_ALLOWED)
+        failures.push(`playground on WebGPU: ${d.over} pixels more than ${TECHNIQUE_PIXEL_STEP} from the desktop run, mean ${d.mean.toFixed(4)}`);
+    // The switch: WebGL2 runs the essl300 emission of the same configuration.
+    const switched = await page.evaluate(async () => {
+        const ok = await window.penumbra.setBackend("webgl2");
+        window.penumbra.setCamera("orbit");
+        return ok;
+    });
+    await shot("playground_webgl2_orbit");
+    await page.evaluate(() => window.penumbra.setCamera("bundle"));
+    const webgl = await read();
+    const afterInfo = await page.evaluate(() => window.penumbra.info());
+    const between = difference(webgl, webgpu);
+    if (!switched || afterInfo.backend !== "webgl2") failures.push(`the renderer switch to WebGL2 did not take (${afterInfo.backend})`);
+    if (between.over > TECHNIQUE_PIXELS_ALLOWED * webgpu.length || between.mean > TECHNIQUE_MEAN_ALLOWED)
+        failures.push(`WebGL2 and WebGPU in the playground: ${between.over} pixels more than ${TECHNIQUE_PIXEL_STEP} apart, mean ${between.mean.toFixed(4)}`);
+    await page.close();
+    failures.push(...problems);
+    console.log(`${failures.length ? "FAIL" : "ok  "} ${label} in the playground: ${changes} panel fields set; orbit camera ${orbit.shadowed} of ${orbit.count} ` +
+                `pixels shadowed; at the bundle's camera WebGPU (${info.adapter?.architecture}) ` +
+                `vs desktop max ${d.worst.toExponential(2)}, ${d.over} pixels > ${TECHNIQUE_PIXEL_STEP}; switched to WebGL2 (${afterInfo.renderer}): ` +
+                `vs WebGPU max ${between.worst.toExponential(2)}, ${between.over} pixels > ${TECHNIQUE_PIXEL_STEP}`);
+    for (const f of failures) console.log(`     ${f}`);
+    return failures.length;
+}
+
 async function main() {
     const args = parseArguments(process.argv.slice(2));
     const roots = {web: args.web};
     args.bundles.forEach((dir, i) => (roots[`bundle/${i}`] = dir));
     const started = Date.now();
-    const gpu = await startWebGPU(args.chromium, roots);
+    const files = args.wasm ? {"/web/three/penumbra_emitter.wasm": path.resolve(args.wasm)} : {};
+    const gpu = await startWebGPU(args.chromium, roots, files);
     let failed = 0;
     try {
         const problems = [];
@@ -170,6 +269,7 @@ async function main() {
                         `${TECHNIQUE_PIXEL_STEP} apart (${edges} of them at silhouettes); shadowed (< 0.98) desktop ${shadowed}, WebGPU ${shadowedHere}`);
             for (const f of failures) console.log(`     ${f}`);
             if (failures.length) failed++;
+            if (args.wasm) failed += (await checkPlayground(gpu.browser, gpu.port, i, dir, label, args.images)) ? 1 : 0;
         }
     } finally {
         await gpu.close();

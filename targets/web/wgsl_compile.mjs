@@ -26,9 +26,9 @@ const VALID = "@fragment\nfn main() -> @location(0) vec4f {\n    return vec4f(1.
 // Chromium with WebGPU on an empty page from 127.0.0.1 and a device in window.penumbraDevice.
 // {browser, page, port, adapter: {vendor, architecture, device, description, isFallbackAdapter}, close}.
 // Exits 77 without chromium; without an adapter exits 1 (77 with PENUMBRA_WEBGPU_OPTIONAL=1).
-// `roots`: more folders to serve (as harness.mjs serve()).
-export async function startWebGPU(chromium, roots = {}) {
-    const server = await serve(roots, {"/": path.join(HERE, "webgpu_page.html")});
+// `roots`, `files`: more folders and files to serve (as harness.mjs serve()).
+export async function startWebGPU(chromium, roots = {}, files = {}) {
+    const server = await serve(roots, {"/": path.join(HERE, "webgpu_page.html"), ...files});
     const {browser, close} = await launchChromium(chromium, WEBGPU_ARGS);
     const port = server.address().port;
     const done = async () => {
