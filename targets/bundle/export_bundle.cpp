@@ -7,7 +7,7 @@
 //   penumbra-export-bundle --scene NAME|FILE [--no-ground] [configuration flags] [--size WxH] [--light-size X] --out DIR
 //
 // The configuration flags are penumbra-gen's (the same parser); the GL run uses the same
-// configuration (with target glsl450 when the target is vulkan). Exit status: 0 written,
+// configuration (with target glsl450 when the target is vulkan or wgsl). Exit status: 0 written,
 // 1 rendering or writing failed, 2 bad arguments.
 #include <penumbra_tools/arguments.hpp>
 #include <penumbra_tools/cli.hpp>
@@ -52,7 +52,7 @@ struct BundleArguments {
     int width = 128, height = 128;
     std::optional<double> light_size;
     std::string out_dir;
-    Config config; // the target's; the GL run uses it (with Target::glsl450 for vulkan)
+    Config config; // the target's; the GL run uses it (with Target::glsl450 for vulkan and wgsl)
     bool ground = true;        // --no-ground: no floor under a mesh file
     int reference_samples = 0; // --reference N: truth.f32, N×N rays per pixel (0: none)
     double sun_time = 0.5;     // --sun-time (oim)
@@ -65,7 +65,7 @@ constexpr std::string_view usage_text =
     "                              [--reference N] [--sun-time T] [--bake-cache DIR] --out DIR\n"
     "\n"
     "Renders the scene with the desktop GL runtime (the configuration's emission; glsl450 for the vulkan\n"
-    "target) and writes, for a foreign runner to reproduce: mesh.f32, uniforms.json, positions.f32,\n"
+    "and wgsl targets) and writes, for a foreign runner to reproduce: mesh.f32, uniforms.json, positions.f32,\n"
     "normals.f32, visibility_gl.f32, slices.f32, oracle.f32, bound.f32 (occlusion textures: the CPU oracle)\n"
     "and emission/ (penumbra-gen's files for --target); with --reference truth.f32, with --technique oim\n"
     "texcoords.f32 and the bake's textures. See targets/bundle/README.md.\n"
@@ -230,9 +230,9 @@ int run(const std::vector<std::string>& args) {
     Scene& scene = *loaded.scene;
     if (a.light_size) apply_light_size(scene, shading_light(a.config), *a.light_size);
     // The GL run emits the same configuration: the desktop runtime runs every GL dialect (glsl330
-    // and essl300 text inside its 4.5 context); the vulkan text it cannot, so that one runs glsl450.
+    // and essl300 text inside its 4.5 context); the vulkan and wgsl text it cannot, so those run glsl450.
     Config gl_config = a.config;
-    if (gl_config.target == Target::vulkan) gl_config.target = Target::glsl450;
+    if (gl_config.target == Target::vulkan || gl_config.target == Target::wgsl) gl_config.target = Target::glsl450;
 
     // The GL run, and what the oracle needs from it.
     std::string error;

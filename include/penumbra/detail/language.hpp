@@ -31,6 +31,8 @@ constexpr std::string_view wgsl_type_name(std::string_view glsl) {
         {"vec2", "vec2f"},  {"vec3", "vec3f"},    {"vec4", "vec4f"},     {"ivec2", "vec2i"},
         {"ivec3", "vec3i"}, {"ivec4", "vec4i"},   {"uvec2", "vec2u"},    {"uvec3", "vec3u"},
         {"uvec4", "vec4u"}, {"mat2", "mat2x2f"},  {"mat3", "mat3x3f"},   {"mat4", "mat4x4f"},
+        // samplers as function parameters: WGSL passes the texture alone
+        {"sampler2D", "texture_2d<f32>"}, {"usampler2D", "texture_2d<u32>"},
     };
     for (const auto& [from, to] : names)
         if (from == glsl) return to;
@@ -113,8 +115,18 @@ constexpr std::string_view builtin(const Config& config, std::string_view glsl) 
     if (glsl == "dFdx") return "dpdx";
     if (glsl == "dFdy") return "dpdy";
     if (glsl == "inversesqrt") return "inverseSqrt";
-    if (glsl == "floatBitsToUint") return "bitcast<vec3u>";
     return glsl;
+}
+
+// A float vector's bits as unsigned integers and back (`type` the result's GLSL type): GLSL's
+// floatBitsToUint / uintBitsToFloat, WGSL's bitcast.
+constexpr Text float_bits(const Config& config, std::string_view uint_type, std::string_view value) {
+    if (!is_wgsl(config)) return cat("floatBitsToUint(", value, ")");
+    return cat("bitcast<", wgsl_type_name(uint_type), ">(", value, ")");
+}
+constexpr Text uint_bits_to_float(const Config& config, std::string_view float_type, std::string_view value) {
+    if (!is_wgsl(config)) return cat("uintBitsToFloat(", value, ")");
+    return cat("bitcast<", wgsl_type_name(float_type), ">(", value, ")");
 }
 
 // Built-in variables, under a WGSL private global of the entry point (write_entry_point).
@@ -144,6 +156,11 @@ constexpr Text sample_compare(const Config& config, std::string_view texture, st
 constexpr Text sample_depth(const Config& config, std::string_view texture, std::string_view uv) {
     if (!is_wgsl(config)) return cat("textureLod(", texture, ", ", uv, ", 0.0).r");
     return cat("textureSampleLevel(", texture, ", ", sampler_of(texture), ", ", uv, ", 0)");
+}
+// One texel of a depth texture (its depth).
+constexpr Text fetch_depth(const Config& config, std::string_view texture, std::string_view texel) {
+    if (!is_wgsl(config)) return cat("texelFetch(", texture, ", ", texel, ", 0).r");
+    return cat("textureLoad(", texture, ", ", texel, ", 0)");
 }
 // A filtered read at an explicit level (a float texture).
 constexpr Text sample_level(const Config& config, std::string_view texture, std::string_view uv, std::string_view level) {

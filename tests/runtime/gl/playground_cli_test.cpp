@@ -109,6 +109,7 @@ TEST_CASE("playground cli: bad arguments exit 2 with a message naming what is al
         {{"--headless", "--out", "a.png", "--size", "64"}, "error: --size: '64' is not WxH"},
         {{"--headless", "--out", "a.png", "--samples", "0"}, "error: --samples: 0 is out of range; allowed: 1 to 1024"},
         {{"--headless", "--out", "a.png", "--target", "vulkan"}, "error: --target: 'vulkan' cannot run here"},
+        {{"--headless", "--out", "a.png", "--technique", "pcf", "--target", "wgsl"}, "error: --target: 'wgsl' cannot run here"},
         {{"--headless", "--out", "a.png", "--light-size", "-1"}, "error: --light-size: '-1' is not a positive number"},
         {{"--headless", "--out", "a.png", "--light", "sun", "--light-size", "120"}, "below 90"},
         {{"--headless", "--out", "a.png", "--error-out", "e.png"}, "error: --error-out: needs --reference"},

@@ -58,7 +58,6 @@ constexpr TechniqueDescriptor erosion_technique() {
     erosion.problems = erosion_problems;
     erosion.summary = erosion_summary;
     erosion.texels_per_fragment = erosion_texels_per_fragment;
-    erosion.writes_wgsl = false; // its screen passes are GLSL only so far
     return erosion;
 }
 

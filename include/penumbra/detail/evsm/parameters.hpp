@@ -50,7 +50,7 @@ constexpr Param evsm_moments_param(const Config& config, std::string_view textur
 // The moments pass reads the depth map without comparison: one texel per fragment.
 constexpr Param evsm_depth_param() {
     return {"penumbra_shadowDepth", "sampler2D", "shadow map read as depth (no comparison): one texel per fragment",
-            "", Text(shadow_map_texture), UniformSource::light, "NEAREST"};
+            "", Text(shadow_map_texture), UniformSource::light, "NEAREST", /*fetch_only=*/true, /*depth_texture=*/true};
 }
 
 // The blur passes' radius follows the light: its size on the map (penumbra_lightSizeUV, as PCSS's

@@ -72,6 +72,7 @@ constexpr TechniqueDescriptor evsm_technique() {
         .storage_note = evsm_storage_note,
         .es_sampler_precision = evsm_es_samplers,
         .texels_per_fragment = evsm_texels_per_fragment,
+        .writes_wgsl = true,
     };
 }
 

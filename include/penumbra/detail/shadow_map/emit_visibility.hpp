@@ -75,7 +75,7 @@ constexpr void write_rotation_function(LineWriter& out, const Config& config) {
     out.comment("the same on every API and GPU");
     out.line(signature(config, "mat2", "penumbra_rotation", {{"vec3", "worldPos"}}));
     out.line("{");
-    out.line(value(config, "uvec3", "bits", cat(builtin(config, "floatBitsToUint"), "(worldPos)")));
+    out.line(value(config, "uvec3", "bits", float_bits(config, "uvec3", "worldPos")));
     // WGSL does not mix * and ^ without parentheses
     out.line(variable(config, "uint", "h",
                       choose(is_wgsl(config), Text("(bits.x * 0x8da6b343u) ^ (bits.y * 0xd8163841u) ^ (bits.z * 0xcb1ab31fu)"),
