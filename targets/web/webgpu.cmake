@@ -22,10 +22,11 @@ if(TARGET penumbra-gen)
                      --out ${CMAKE_CURRENT_BINARY_DIR}/wgsl-matrix --web ${PROJECT_SOURCE_DIR}/web --chromium ${PENUMBRA_CHROMIUM})
     set_tests_properties(wgsl_matrix PROPERTIES LABELS browser SKIP_RETURN_CODE 77 TIMEOUT 120)
 endif()
-# "webgpu_bundles": the WebGPU layout runner (web/webgpu_runner.js) over bundles of boxes at 64x64
+# "webgpu_bundles": the WebGPU layout runner (web/webgpu_runner.js) over bundles of boxes at 64x64 (every
+# technique with WGSL: shadowmap, pcf, pcss, erosion, evsm; rect and sun)
 # exported with --target wgsl (the desktop GL run of glsl450, emission/ in WGSL), each compared with
 # the desktop run's image (webgpu_bundle_test.mjs); with the WebAssembly emitter, the playground's
-# renderer switch on each bundle as well. Images of both runs (and the playground's canvas) go to
+# renderer switch on two of them (pcss rect, evsm sun) as well. Images of both runs (and the playground's canvas) go to
 # webgpu-bundles/images.
 if(TARGET penumbra-export-bundle)
     set(webgpu_cases
@@ -33,7 +34,11 @@ if(TARGET penumbra-export-bundle)
         "pcf-rect|--technique pcf --light rect --pcf-pattern grid --pcf-grid 3 --pcf-radius 0.15"
         "pcf-sun|--technique pcf --light sun --pcf-taps 16"
         "pcss-rect|--technique pcss --light rect --pcss-blockers 8 --pcss-filter 8"
-        "pcss-sun|--technique pcss --light sun --pcss-blockers 8 --pcss-filter 8")
+        "pcss-sun|--technique pcss --light sun --pcss-blockers 8 --pcss-filter 8"
+        "erosion-rect|--technique erosion --light rect" "erosion-sun|--technique erosion --light sun"
+        # (a 256² shadow map: SwiftShader's 32-tap blur passes over 1024² take seconds)
+        "evsm-rect|--technique evsm --light rect --shadow-resolution 256"
+        "evsm-sun|--technique evsm --light sun --shadow-resolution 256")
     set(webgpu_bundles "")
     foreach(case IN LISTS webgpu_cases)
         string(REPLACE "|" ";" parts "${case}")
@@ -44,6 +49,10 @@ if(TARGET penumbra-export-bundle)
         add_test(NAME penumbra-bundle-webgpu-${name}
                  COMMAND $<TARGET_FILE:penumbra-export-bundle> --scene boxes --target wgsl --size 64x64 ${flags} --out ${dir})
         set_tests_properties(penumbra-bundle-webgpu-${name} PROPERTIES FIXTURES_SETUP penumbra_webgpu_bundles LABELS browser TIMEOUT 120)
+        # the playground's renderer switch on two of them (a page load and 512² frames each)
+        if(name STREQUAL "pcss-rect" OR name STREQUAL "evsm-sun")
+            list(APPEND webgpu_bundles --playground)
+        endif()
         list(APPEND webgpu_bundles ${dir})
     endforeach()
     # With the WebAssembly emitter built, the playground's WebGL2 / WebGPU switch on each bundle too.

@@ -5,14 +5,15 @@
 // pipelines and bind groups from emission/layout.json alone, uploads the bundle's uniforms, draws
 // mesh.f32 in the shadow phase, fills the caller G-buffers (positions.f32, normals.f32), runs the
 // screen phase at the bundle's size and reads the result back; it must match visibility_gl.f32 as
-// the WebGL2 bundles of these techniques do (TECHNIQUE_* in bundle_compare.mjs: the shadow-map
+// the WebGL2 bundles of these techniques do (TECHNIQUE_* in bundle_compare.mjs: the shadow-map-based
 // techniques have no oracle bound; SwiftShader and llvmpipe rasterize the depth pass differently), and
 // away from silhouettes at most one pixel a bundle may be more than TECHNIQUE_PIXEL_STEP apart.
 //
-//   node targets/web/webgpu_bundle_test.mjs --web web [--wasm EMITTER.wasm] [--chromium PATH] [--images DIR] BUNDLE_DIR...
+//   node targets/web/webgpu_bundle_test.mjs --web web [--wasm EMITTER.wasm] [--chromium PATH] [--images DIR]
+//        BUNDLE_DIR... [--playground BUNDLE_DIR]...
 //
 // With --wasm (build/wasm/penumbra_emitter.wasm), the playground too (web/index.html): opened on each
-// bundle with ?backend=webgpu, its panel set to the bundle's configuration, at the bundle's camera and
+// bundle given with --playground (a few: each costs a page load and 512² frames) with ?backend=webgpu, its panel set to the bundle's configuration, at the bundle's camera and
 // uniforms it must show WebGPU's image within the same tolerances of the desktop run; switched to
 // WebGL2 by its renderer switch it must run WebGL2 and show nearly the same image (both SwiftShader).
 //
@@ -48,15 +49,20 @@ function silhouettePixels(positions, width, height, a, b) {
 }
 
 function usage(message) {
-    console.error(`error: ${message}\nusage: node webgpu_bundle_test.mjs --web DIR [--wasm MODULE] [--chromium PATH] [--images DIR] BUNDLE_DIR...`);
+    console.error(`error: ${message}\nusage: node webgpu_bundle_test.mjs --web DIR [--wasm MODULE] [--chromium PATH] [--images DIR] ` +
+                  "BUNDLE_DIR... [--playground BUNDLE_DIR]...");
     process.exit(2);
 }
 
 function parseArguments(argv) {
-    const out = {web: null, wasm: null, chromium: "/usr/bin/chromium", images: null, bundles: []};
+    const out = {web: null, wasm: null, chromium: "/usr/bin/chromium", images: null, bundles: [], playground: new Set()};
     for (let i = 0; i < argv.length; ++i) {
         const flag = argv[i];
-        if (flag === "--web" || flag === "--wasm" || flag === "--chromium" || flag === "--images") {
+        if (flag === "--playground") {
+            if (i + 1 >= argv.length) usage(`${flag}: missing value`);
+            out.bundles.push(argv[++i]);
+            out.playground.add(argv[i]);
+        } else if (flag === "--web" || flag === "--wasm" || flag === "--chromium" || flag === "--images") {
             if (i + 1 >= argv.length) usage(`${flag}: missing value`);
             out[flag.slice(2)] = argv[++i];
         } else if (flag.startsWith("--")) {
@@ -269,7 +275,7 @@ async function main() {
                         `${TECHNIQUE_PIXEL_STEP} apart (${edges} of them at silhouettes); shadowed (< 0.98) desktop ${shadowed}, WebGPU ${shadowedHere}`);
             for (const f of failures) console.log(`     ${f}`);
             if (failures.length) failed++;
-            if (args.wasm) failed += (await checkPlayground(gpu.browser, gpu.port, i, dir, label, args.images)) ? 1 : 0;
+            if (args.wasm && args.playground.has(dir)) failed += (await checkPlayground(gpu.browser, gpu.port, i, dir, label, args.images)) ? 1 : 0;
         }
     } finally {
         await gpu.close();

@@ -14,7 +14,8 @@ import path from "node:path";
 import {spawnSync} from "node:child_process";
 import {adapterLine, compileModules, startWebGPU} from "./wgsl_compile.mjs";
 
-// ---- The matrix (edit here). Every combination of a technique variant × light × normal offset × alpha test.
+// ---- The matrix (edit here). Every combination of a technique variant × light × alpha test, and for the
+// techniques with a normal offset (NORMAL_OFFSET_TECHNIQUES) × normal offset.
 const VARIANTS = {
     "shadowmap": "--technique shadowmap",
     "pcf-grid": "--technique pcf --pcf-grid 3",
@@ -24,7 +25,12 @@ const VARIANTS = {
     "pcf-poisson-noplane": "--technique pcf --pcf-taps 8 --no-receiver-plane-bias",
     "pcss": "--technique pcss --pcss-blockers 8 --pcss-filter 8",
     "pcss-norot": "--technique pcss --pcss-blockers 8 --pcss-filter 8 --no-rotation",
+    "erosion": "--technique erosion",
+    "erosion-small": "--technique erosion --erosion-radius 4 --erosion-search-taps 8 --erosion-blur-taps 4",
+    "evsm": "--technique evsm",
+    "evsm-small": "--technique evsm --evsm-blur-taps 4 --evsm-max-blur 4 --evsm-bleeding 0",
 };
+const NORMAL_OFFSET_TECHNIQUES = ["shadowmap", "pcf", "pcss"];
 const LIGHTS = ["rect", "sun"];
 const NORMAL_OFFSETS = ["0", "1"];
 const ALPHA_TEST = [false, true];
@@ -33,19 +39,20 @@ const REFUSED = {
     "occlusion": "--technique occlusion",
     "occlusion-sun": "--technique occlusion --light sun",
     "oim": "--technique oim",
-    "erosion": "--technique erosion",
-    "evsm": "--technique evsm",
 };
 // ----
 
 function configurations() {
     const out = [];
-    for (const [variant, flags] of Object.entries(VARIANTS))
+    for (const [variant, flags] of Object.entries(VARIANTS)) {
+        const offsets = NORMAL_OFFSET_TECHNIQUES.includes(flags.split(" ")[1]) ? NORMAL_OFFSETS : [null];
         for (const light of LIGHTS)
-            for (const offset of NORMAL_OFFSETS)
+            for (const offset of offsets)
                 for (const alpha of ALPHA_TEST)
-                    out.push({name: `${variant}-${light}-n${offset}${alpha ? "-alpha" : ""}`,
-                              flags: [...flags.split(" "), "--light", light, "--shadow-normal-offset", offset, ...(alpha ? ["--alpha-test"] : [])]});
+                    out.push({name: `${variant}-${light}${offset === null ? "" : `-n${offset}`}${alpha ? "-alpha" : ""}`,
+                              flags: [...flags.split(" "), "--light", light, ...(offset === null ? [] : ["--shadow-normal-offset", offset]),
+                                      ...(alpha ? ["--alpha-test"] : [])]});
+    }
     return out;
 }
 
