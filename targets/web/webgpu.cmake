@@ -14,19 +14,25 @@ add_test(NAME wgsl_compile
 set_tests_properties(wgsl_compile PROPERTIES LABELS browser TIMEOUT 60 SKIP_REGULAR_EXPRESSION "^skip: "
     PASS_REGULAR_EXPRESSION "wgsl_fixtures/broken\\.wgsl:6:21: error: unresolved value 'y'\nFAIL: 2 WGSL modules compiled, 1 clean, 1 errors")
 # "wgsl_matrix": penumbra-gen --target wgsl over the matrix of wgsl_matrix.mjs, every module compiled
-# with zero errors and every configuration built by the WebGPU layout runner from its layout.json
-# (pipelines, bind groups), the configurations wgsl does not have yet refused with a message naming wgsl.
+# with zero errors, every configuration built by the WebGPU layout runner from its layout.json
+# (pipelines, bind groups) and, with the WebAssembly emitter built, emitted by it byte for byte as
+# penumbra-gen does; the configurations wgsl does not have yet refused with a message naming wgsl.
+get_property(webgpu_emitter_wasm GLOBAL PROPERTY PENUMBRA_EMITTER_WASM)
+set(webgpu_wasm "")
+if(webgpu_emitter_wasm)
+    set(webgpu_wasm --wasm ${webgpu_emitter_wasm})
+endif()
 if(TARGET penumbra-gen)
     add_test(NAME wgsl_matrix
              COMMAND ${PENUMBRA_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/wgsl_matrix.mjs --gen $<TARGET_FILE:penumbra-gen>
-                     --out ${CMAKE_CURRENT_BINARY_DIR}/wgsl-matrix --web ${PROJECT_SOURCE_DIR}/web --chromium ${PENUMBRA_CHROMIUM})
+                     --out ${CMAKE_CURRENT_BINARY_DIR}/wgsl-matrix --web ${PROJECT_SOURCE_DIR}/web ${webgpu_wasm} --chromium ${PENUMBRA_CHROMIUM})
     set_tests_properties(wgsl_matrix PROPERTIES LABELS browser SKIP_RETURN_CODE 77 TIMEOUT 120)
 endif()
-# "webgpu_bundles": the WebGPU layout runner (web/webgpu_runner.js) over bundles of boxes at 64x64 (every
-# technique with WGSL: shadowmap, pcf, pcss, erosion, evsm; rect and sun)
-# exported with --target wgsl (the desktop GL run of glsl450, emission/ in WGSL), each compared with
-# the desktop run's image (webgpu_bundle_test.mjs); with the WebAssembly emitter, the playground's
-# renderer switch on two of them (pcss rect, evsm sun) as well. Images of both runs (and the playground's canvas) go to
+# "webgpu_bundles": the WebGPU layout runner (web/webgpu_runner.js) over bundles of boxes at 64x64
+# exported with --target wgsl (the desktop GL run of glsl450, emission/ in WGSL) for every technique
+# with WGSL (shadowmap, pcf, pcss, erosion, evsm; rect and sun), each compared with the desktop run's
+# image (webgpu_bundle_test.mjs); with the WebAssembly emitter, the playground's renderer switch on
+# two of them (pcss rect, evsm sun) as well. Images of both runs and the playground's canvas go to
 # webgpu-bundles/images.
 if(TARGET penumbra-export-bundle)
     set(webgpu_cases
@@ -55,12 +61,6 @@ if(TARGET penumbra-export-bundle)
         endif()
         list(APPEND webgpu_bundles ${dir})
     endforeach()
-    # With the WebAssembly emitter built, the playground's WebGL2 / WebGPU switch on each bundle too.
-    get_property(webgpu_emitter_wasm GLOBAL PROPERTY PENUMBRA_EMITTER_WASM)
-    set(webgpu_wasm "")
-    if(webgpu_emitter_wasm)
-        set(webgpu_wasm --wasm ${webgpu_emitter_wasm})
-    endif()
     add_test(NAME webgpu_bundles
              COMMAND ${PENUMBRA_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/webgpu_bundle_test.mjs --web ${PROJECT_SOURCE_DIR}/web ${webgpu_wasm}
                      --chromium ${PENUMBRA_CHROMIUM} --images ${CMAKE_CURRENT_BINARY_DIR}/webgpu-bundles/images ${webgpu_bundles})

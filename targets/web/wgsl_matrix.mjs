@@ -2,12 +2,19 @@
 // `penumbra-gen --target wgsl` over a configuration matrix into OUT (one folder a configuration) and
 // compiles every WGSL module it wrote in chromium's WebGPU (wgsl_compile.mjs: one browser, one page).
 //
-//   node targets/web/wgsl_matrix.mjs --gen PATH --out DIR [--web DIR] [--chromium PATH] [--only REGEX]
+//   node targets/web/wgsl_matrix.mjs --gen PATH --out DIR [--web DIR] [--wasm MODULE] [--chromium PATH] [--only REGEX]
 //
-// Each configuration of COMPILED must be accepted, list only .wgsl files in layout.json's programs
-// (each present, one `fn main` with its stage's attribute) and compile with zero errors. Each one of
-// REFUSED must be refused by penumbra-gen as a user error (exit 2, one `error: ...` line that names
-// wgsl), so that a crash or an unrelated failure cannot pass as a refusal.
+// Each configuration of the matrix (VARIANTS × LIGHTS × ...) must be accepted, list only .wgsl files in
+// layout.json's programs (each present, one `fn main` with its stage's attribute) and compile with
+// zero errors. Each one of REFUSED must be refused by penumbra-gen as a user error (exit 2, one
+// `error: ...` line that names wgsl), so that a crash or an unrelated failure cannot pass as a refusal.
+// With --web (the folder of webgpu_runner.js), each configuration whose modules compile is also built
+// by the WebGPU layout runner from its layout.json alone (bind group layouts from the parameters'
+// bindings, textures of its webgpu formats and usages, a pipeline for every shadow and screen pass):
+// WebGPU's validation then checks layout.json against the WGSL (binding types, inter-stage locations,
+// target formats), which compiling each module alone does not. With --wasm
+// (build/wasm/penumbra_emitter.wasm), the WebAssembly emitter must write every configuration's files
+// byte for byte as penumbra-gen did (from the configuration layout.json records; in node).
 // Exit 0 pass, 1 fail, 2 bad arguments, 77 skip (no chromium; no adapter only with PENUMBRA_WEBGPU_OPTIONAL=1).
 import fs from "node:fs";
 import path from "node:path";
@@ -57,21 +64,22 @@ function configurations() {
 }
 
 function usage(message) {
-    console.error(`error: ${message}\nusage: node wgsl_matrix.mjs --gen PENUMBRA_GEN --out DIR [--chromium PATH] [--only REGEX]`);
+    console.error(`error: ${message}\nusage: node wgsl_matrix.mjs --gen PENUMBRA_GEN --out DIR [--web DIR] [--wasm MODULE] [--chromium PATH] [--only REGEX]`);
     process.exit(2);
 }
 
 function parseArguments(argv) {
-    const out = {gen: null, out: null, web: null, chromium: "/usr/bin/chromium", only: null};
+    const out = {gen: null, out: null, web: null, wasm: null, chromium: "/usr/bin/chromium", only: null};
     for (let i = 0; i < argv.length; ++i) {
         const flag = argv[i];
-        if (!["--gen", "--out", "--web", "--chromium", "--only"].includes(flag)) usage(`unknown argument '${flag}'`);
+        if (!["--gen", "--out", "--web", "--wasm", "--chromium", "--only"].includes(flag)) usage(`unknown argument '${flag}'`);
         if (i + 1 >= argv.length) usage(`${flag}: missing value`);
         out[flag.slice(2)] = argv[++i];
     }
     if (!out.gen) usage("--gen: missing (the penumbra-gen executable)");
     if (!fs.existsSync(out.gen)) usage(`--gen: no file ${out.gen}`);
     if (!out.out) usage("--out: missing (a folder for the emissions)");
+    if (out.wasm && !fs.existsSync(out.wasm)) usage(`--wasm: no file ${out.wasm} (cmake --build build --target penumbra-emitter-wasm)`);
     if (out.web && !fs.existsSync(path.join(out.web, "webgpu_runner.js"))) usage(`--web: no webgpu_runner.js in ${out.web}`);
     return out;
 }
@@ -137,7 +145,26 @@ async function main() {
     }
     if (modules.length === 0) failures.push("no WGSL module was emitted: nothing compiled");
 
-    // 3. Compile every module in one page.
+    // 3. The WebAssembly emitter: the same files, byte for byte.
+    let identical = 0;
+    if (args.wasm) {
+        const {loadEmitter} = await import("../../web/three/penumbra_emitter.js");
+        const emitter = await loadEmitter(fs.readFileSync(args.wasm));
+        for (const e of emissions) {
+            const r = emitter.emit(JSON.parse(e.files["layout.json"]).config);
+            const written = fs.readdirSync(e.dir).sort();
+            if (!r.ok) failures.push(`${e.name}: the WebAssembly emitter refuses it: ${r.error}`);
+            else if (JSON.stringify(Object.keys(r.files).sort()) !== JSON.stringify(written))
+                failures.push(`${e.name}: the WebAssembly emitter writes ${Object.keys(r.files).sort().join(", ")}; penumbra-gen ${written.join(", ")}`);
+            else {
+                const different = written.filter((f) => r.files[f] !== fs.readFileSync(path.join(e.dir, f), "utf8"));
+                if (different.length) failures.push(`${e.name}: the WebAssembly emitter's ${different.join(", ")} differ from penumbra-gen's`);
+                else ++identical;
+            }
+        }
+    }
+
+    // 4. Compile every module in one page.
     let errors = 0, warnings = 0, clean = 0, built = 0;
     if (modules.length) {
         const gpu = await startWebGPU(args.chromium, args.web ? {web: args.web} : {});
@@ -156,7 +183,7 @@ async function main() {
                 if (!bad) ++clean;
                 else badModules.add(name);
             }
-            // 4. The layout runner builds every configuration whose modules compiled.
+            // 5. The layout runner builds every configuration whose modules compiled.
             for (const e of args.web ? emissions : []) {
                 if (Object.keys(e.files).some((f) => badModules.has(path.join(e.dir, f)))) continue;
                 const error = await gpu.page.evaluate(async (files) => {
@@ -180,7 +207,8 @@ async function main() {
     for (const f of failures) console.log(`FAIL ${f}`);
     console.log(`${failures.length ? "FAIL" : "ok"}: ${emitted} configurations emitted, ${refused} refused for wgsl as expected; ` +
                 `${modules.length} WGSL modules compiled, ${clean} clean, ${errors} errors, ${warnings} warnings; ` +
-                `${args.web ? `${built} of ${emissions.length} built by the WebGPU layout runner (pipelines and bind groups)` : "layouts not built (no --web)"} ` +
+                `${args.web ? `${built} of ${emissions.length} built by the WebGPU layout runner (pipelines and bind groups)` : "layouts not built (no --web)"}; ` +
+                `${args.wasm ? `${identical} of ${emissions.length} byte-identical from the WebAssembly emitter` : "WebAssembly emitter not compared (no --wasm)"} ` +
                 `in ${((Date.now() - started) / 1000).toFixed(1)} s`);
     process.exit(failures.length ? 1 : 0);
 }
