@@ -295,9 +295,11 @@ export class WebGPULayoutRunner {
     // The render or compute pipeline of a pass, made once (at creation, so that errors show there).
     pipeline(pass, index) {
         if (this.pipelines[index] !== undefined) return this.pipelines[index];
+        if (pass.action === "copy") return (this.pipelines[index] = null); // a texture copy: no pipeline
         if (pass.action !== "draw_scene" && pass.action !== "fullscreen") {
             if (pass.action === "dispatch") fail(`pass ${pass.name}: action 'dispatch' (compute) is not supported by this runner yet`);
-            fail(`pass ${pass.name}: action '${pass.action}' unknown; this runner runs draw_scene and fullscreen`);
+            if (pass.action === "generate_mipmap") fail(`pass ${pass.name}: action 'generate_mipmap' does not exist in WebGPU (no generateMipmap): the wgsl emission builds levels with passes`);
+            fail(`pass ${pass.name}: action '${pass.action}' unknown; this runner runs draw_scene, fullscreen and copy`);
         }
         const program = this.programs[pass.program];
         if (!program) fail(`pass ${pass.name}: no program '${pass.program}' in layout.json`);
@@ -418,21 +420,26 @@ export class WebGPULayoutRunner {
     // Encodes one pass. `drawScene(renderPass, program)` draws the caller's triangles with the
     // vertex buffers in the order of the program's vertex_inputs (sceneDrawer makes one).
     encodePass(encoder, pass, index, drawScene, size) {
+        if (pass.action === "copy") return this.encodeCopy(encoder, pass);
         const {pipeline, program} = this.pipeline(pass, index);
         const s = pass.state;
         const colorAttachments = [];
         let depthStencilAttachment;
         for (const out of pass.outputs) {
             const t = this.texture(out.texture);
-            const view = t.texture.createView({dimension: "2d", baseMipLevel: Math.max(out.level, 0), mipLevelCount: 1,
-                                               baseArrayLayer: Math.max(out.layer, 0), arrayLayerCount: 1});
+            // a layer of an array texture is a 2D view of it; a slice of a 3D texture is the view's depthSlice
+            const view = t.dimension === "3d"
+                ? t.texture.createView({dimension: "3d", baseMipLevel: Math.max(out.level, 0), mipLevelCount: 1})
+                : t.texture.createView({dimension: "2d", baseMipLevel: Math.max(out.level, 0), mipLevelCount: 1,
+                                        baseArrayLayer: Math.max(out.layer, 0), arrayLayerCount: 1});
             if (out.kind === "depth") {
                 depthStencilAttachment = {view, depthLoadOp: s.clear_depth !== null && s.clear_depth !== undefined ? "clear" : "load",
                                           depthClearValue: s.clear_depth ?? 1, depthStoreOp: "store"};
             } else {
                 const c = s.clear_color;
                 colorAttachments.push({view, loadOp: c ? "clear" : "load", storeOp: "store",
-                                       clearValue: c ? {r: c[0], g: c[1], b: c[2], a: c[3]} : undefined});
+                                       clearValue: c ? {r: c[0], g: c[1], b: c[2], a: c[3]} : undefined,
+                                       ...(t.dimension === "3d" ? {depthSlice: Math.max(out.layer, 0)} : {})});
             }
         }
         const render = encoder.beginRenderPass({label: pass.name, colorAttachments, depthStencilAttachment});
@@ -448,6 +455,20 @@ export class WebGPULayoutRunner {
             render.draw(3);
         }
         render.end();
+    }
+
+    // A copy pass: the region "copy" names (levels, layers, size) from the input's texture to the
+    // output's, texel for texel (copyTextureToTexture: the layout gives the source COPY_SRC and the target COPY_DST).
+    encodeCopy(encoder, pass) {
+        const c = pass.copy;
+        if (!c) fail(`pass ${pass.name}: a copy pass needs "copy" (levels, layers, size)`);
+        const source = this.texture(pass.inputs[0].texture), target = this.texture(pass.outputs[0].texture);
+        for (const [t, usage] of [[source, "COPY_SRC"], [target, "COPY_DST"]])
+            if (!t.desc.webgpu.usage.includes(usage))
+                fail(`pass ${pass.name}: texture ${t.desc.name} is copied ${usage === "COPY_SRC" ? "from" : "to"}, but layout.json's usage has no ${usage}`);
+        encoder.copyTextureToTexture({texture: source.texture, mipLevel: Math.max(c.source_level, 0), origin: [0, 0, Math.max(c.source_layer, 0)]},
+                                     {texture: target.texture, mipLevel: Math.max(c.target_level, 0), origin: [0, 0, Math.max(c.target_layer, 0)]},
+                                     [c.width, c.height, 1]);
     }
 
     // A drawScene callback for triangles `positions` (Float32Array, 3 floats a vertex, world units),

@@ -8,6 +8,8 @@
 // the WebGL2 bundles of these techniques do (TECHNIQUE_* in bundle_compare.mjs: the shadow-map-based
 // techniques have no oracle bound; SwiftShader and llvmpipe rasterize the depth pass differently), and
 // away from silhouettes at most one pixel a bundle may be more than TECHNIQUE_PIXEL_STEP apart.
+// First, on a small layout written in the test, the runner conventions occlusion textures will use
+// (copy passes into array layers, renders into 3D slices, int_uniforms per pass).
 //
 //   node targets/web/webgpu_bundle_test.mjs --web web [--wasm EMITTER.wasm] [--chromium PATH] [--images DIR]
 //        BUNDLE_DIR... [--playground BUNDLE_DIR]...
@@ -77,6 +79,66 @@ function parseArguments(argv) {
     if (out.wasm && !fs.existsSync(out.wasm)) usage(`--wasm: no file ${out.wasm} (cmake --build build --target penumbra-emitter-wasm)`);
     for (const b of out.bundles) if (!fs.existsSync(path.join(b, "uniforms.json"))) usage(`${b}: not a bundle (no uniforms.json)`);
     return out;
+}
+
+// In the page: the runner's conventions that today's emissions do not use yet (occlusion textures will):
+// a copy pass into a layer of an array texture, a render pass into a slice of a 3D texture, one
+// program run by two passes with different int_uniforms (each pass its own uniform buffer). A
+// layout written here: "fill" writes penumbra_value × penumbra_scale; the result reads
+// 10 × array layer 0 + array layer 1 + 3D slice 1 + 100 × 3D slice 0, which is 0.25 + 0.5 = 0.75
+// only when every pass went to the layer and slice the layout names.
+async function conventionsInPage() {
+    const {WebGPULayoutRunner} = await import("/web/webgpu_runner.js");
+    const usage = (...u) => ({webgpu: {format: "rgba32float", usage: ["TEXTURE_BINDING", ...u]}});
+    const texture = (name, target, depth, size, extra) => ({name, target, width: 4, height: 4, depth, mip_levels: 1, min_filter: "NEAREST",
+                                                           mag_filter: "NEAREST", wrap: "CLAMP_TO_EDGE", size, source: "passes", ...extra});
+    const state = {blend: false, blend_equation: "ADD", blend_src: "ONE", blend_dst: "ZERO", depth_test: false, depth_func: "LESS",
+                   depth_write: false, color_mask: [true, true, true, true], cull: "NONE", clear_color: null, clear_depth: null,
+                   polygon_offset_factor: 0, polygon_offset_units: 0, logic_op: "NONE"};
+    const pass = (name, program, outputs, extra = {}) => ({name, phase: "screen", action: "fullscreen", program, inputs: [], outputs,
+                                                           int_uniforms: {}, viewport: [4, 4], state, ...extra});
+    const layout = {
+        layout_version: 3, config: {target: "wgsl"}, result: "result",
+        textures: [texture("source", "2D", 1, "fixed", usage("RENDER_ATTACHMENT", "COPY_SRC")),
+                   texture("layers", "2D_ARRAY", 2, "fixed", usage("COPY_DST")),
+                   texture("volume", "3D", 2, "fixed", usage("RENDER_ATTACHMENT")),
+                   texture("result", "2D", 1, "output", {webgpu: {format: "r32float", usage: ["RENDER_ATTACHMENT", "COPY_SRC"]}})],
+        programs: [
+            {name: "fill", files: ["fullscreen.vert.wgsl", "fill.frag.wgsl"], stages: ["vertex", "fragment"], vertex_inputs: [], parameters: [
+                {name: "penumbra_value", type: "float", source: "light", block: "Fill", block_binding: 0, offset: 0, group: 0},
+                {name: "penumbra_scale", type: "int", source: "pass", block: "Fill", block_binding: 0, offset: 4, group: 0}]},
+            {name: "read", files: ["fullscreen.vert.wgsl", "read.frag.wgsl"], stages: ["vertex", "fragment"], vertex_inputs: [], parameters: [
+                {name: "layers", type: "sampler2DArray", binding: 0, sampler_binding: -1, texture: "layers", texture_type: "texture_2d_array<f32>",
+                 sample_type: "unfilterable-float", group: 0},
+                {name: "volume", type: "sampler3D", binding: 1, sampler_binding: -1, texture: "volume", texture_type: "texture_3d<f32>",
+                 sample_type: "unfilterable-float", group: 0}]}],
+        passes: [pass("fill_source", "fill", [{texture: "source", kind: "color", level: 0, layer: -1}], {int_uniforms: {penumbra_scale: 1}}),
+                 {...pass("copy_layer", "", [{texture: "layers", kind: "color", level: 0, layer: 1}]), action: "copy",
+                  inputs: [{sampler: "", texture: "source", binding: -1, level: 0}],
+                  copy: {source_level: 0, source_layer: -1, target_level: 0, target_layer: 1, width: 4, height: 4}},
+                 pass("fill_slice", "fill", [{texture: "volume", kind: "color", level: 0, layer: 1}], {int_uniforms: {penumbra_scale: 2}}),
+                 pass("read", "read", [{texture: "result", kind: "color", level: 0, layer: -1}], {viewport: [0, 0]})],
+    };
+    const files = {
+        "fullscreen.vert.wgsl": "@vertex fn main(@builtin(vertex_index) i: u32) -> @builtin(position) vec4f {\n" +
+            "    let c = vec2f(f32((i << 1u) & 2u), f32(i & 2u));\n    return vec4f(c * 2.0 - 1.0, 0.0, 1.0);\n}\n",
+        "fill.frag.wgsl": "struct Fill { penumbra_value: f32, penumbra_scale: i32 }\n@group(0) @binding(0) var<uniform> fill: Fill;\n" +
+            "@fragment fn main() -> @location(0) vec4f { return vec4f(fill.penumbra_value * f32(fill.penumbra_scale)); }\n",
+        "read.frag.wgsl": "@group(0) @binding(0) var layers: texture_2d_array<f32>;\n@group(0) @binding(1) var volume: texture_3d<f32>;\n" +
+            "@fragment fn main(@builtin(position) p: vec4f) -> @location(0) vec4f {\n    let c = vec2i(p.xy);\n" +
+            "    return vec4f(10.0 * textureLoad(layers, c, 0, 0).x + textureLoad(layers, c, 1, 0).x + textureLoad(volume, vec3i(c, 1), 0).x" +
+            " + 100.0 * textureLoad(volume, vec3i(c, 0), 0).x);\n}\n",
+    };
+    try {
+        const runner = await WebGPULayoutRunner.fromEmission(window.penumbraDevice, {files, layout});
+        runner.setUniforms({penumbra_value: 0.25});
+        await runner.runPhase("screen", null, {width: 4, height: 4});
+        const values = Array.from(await runner.readResult());
+        runner.dispose();
+        return {values};
+    } catch (e) {
+        return {error: e.message};
+    }
 }
 
 // In the page: the runner over bundle /bundle/<index>/, with the device of startWebGPU.
@@ -228,6 +290,12 @@ async function main() {
             console.log("FAIL the WebGPU adapter names no vendor or architecture: cannot say what ran");
             failed++;
         }
+        const conventions = await gpu.page.evaluate(conventionsInPage);
+        const wrong = conventions.error ? conventions.error : conventions.values.filter((v) => v !== 0.75).length
+            ? `result ${[...new Set(conventions.values)].join(", ")}, expected 0.75 everywhere` : "";
+        console.log(`${wrong ? "FAIL" : "ok  "} runner conventions: a copy into an array layer, a render into a 3D slice, int_uniforms per pass` +
+                    (wrong ? `: ${wrong}` : ""));
+        if (wrong) failed++;
         for (let i = 0; i < args.bundles.length; ++i) {
             const dir = args.bundles[i];
             const bundle = JSON.parse(fs.readFileSync(path.join(dir, "uniforms.json"), "utf8"));
