@@ -63,6 +63,21 @@ const VIEW_DIMENSION = {texture_2d: "2d", texture_depth_2d: "2d", texture_2d_arr
 
 export class LayoutError extends Error {}
 
+// Runs `work` in a validation error scope: the runner's own error first (it says more, e.g. Tint's
+// line and column), else WebGPU's validation message.
+async function validated(device, where, work) {
+    device.pushErrorScope("validation");
+    let failure = null;
+    try {
+        await work();
+    } catch (e) {
+        failure = e;
+    }
+    const error = await device.popErrorScope();
+    if (failure) throw failure;
+    if (error) fail(`WebGPU validation error ${where}: ${error.message}`);
+}
+
 function fail(message) {
     throw new LayoutError(message);
 }
@@ -110,16 +125,12 @@ export class WebGPULayoutRunner {
     // group layouts and pipelines; any WebGPU validation error fails here with its message.
     static async create(device, layout, sources) {
         const runner = new WebGPULayoutRunner(device, layout);
-        device.pushErrorScope("validation");
-        try {
+        await validated(device, "while creating the layout's objects", async () => {
             await runner.compile(sources);
             for (const t of layout.textures) if (t.size !== "output") runner.textures[t.name] = runner.allocate(t, t.width, t.height);
             // (the example phase draws into the caller's own framebuffer, whose format the layout cannot give)
             layout.passes.forEach((pass, index) => pass.phase !== "example" && runner.pipeline(pass, index));
-        } finally {
-            const error = await device.popErrorScope();
-            if (error) fail(`WebGPU validation error while creating the layout's objects: ${error.message}`);
-        }
+        });
         return runner;
     }
 
@@ -501,9 +512,8 @@ export class WebGPULayoutRunner {
             if (!size) fail("runPhase('screen'): needs the output size {width, height}");
             this.allocateOutputSized(size.width, size.height);
         }
-        this.device.pushErrorScope("validation");
         let count = 0;
-        try {
+        await validated(this.device, `in phase ${phase}`, () => {
             const encoder = this.device.createCommandEncoder({label: phase});
             this.layout.passes.forEach((pass, index) => {
                 if (pass.phase !== phase) return;
@@ -511,10 +521,7 @@ export class WebGPULayoutRunner {
                 ++count;
             });
             this.device.queue.submit([encoder.finish()]);
-        } finally {
-            const error = await this.device.popErrorScope();
-            if (error) fail(`phase ${phase}: WebGPU validation error: ${error.message}`);
-        }
+        });
         this.passCount += count;
         return count;
     }
