@@ -749,15 +749,15 @@ class App {
                 const runner = app.sides[0].runner, {resolution: R, slices: S} = runner.layout.config;
                 const pass = runner.layout.passes.find((p) => p.name === "slicing");
                 let differing = 0, covered = 0;
-                pass.outputs.forEach((out, t) => {
-                    const ours = runner.readTexture(out.texture, out.level, out.layer);
+                for (const [t, out] of pass.outputs.entries()) {
+                    const ours = await runner.readTexture(out.texture, out.level, out.layer); // (a promise on WebGPU)
                     for (let c = 0; c < 4 && 4 * t + c < S; ++c)
                         for (let i = 0; i < R * R; ++i) {
                             const d = desktop[(4 * t + c) * R * R + i];
                             covered += d > 0.5 ? 1 : 0;
                             differing += Math.abs(ours[4 * i + c] - d) > 0.5 ? 1 : 0;
                         }
-                });
+                }
                 return {differing, covered, texels: S * R * R};
             },
             uniforms: () => {
