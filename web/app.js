@@ -24,6 +24,7 @@ import {ConfigPanel} from "./config_panel.js";
 import {SceneGeometry, GBuffer, Composite, perspective, lookAt, multiply, SCENE_POSITION_LOCATION} from "./scene_view.js";
 
 const $ = (id) => document.getElementById(id);
+const STALE = Symbol("stale WebGPU frame");
 
 // The page's renderers: the emission each one runs.
 const BACKENDS = {
@@ -369,6 +370,7 @@ class App {
     // The WebGPU frame: each side's visibility computed by WebGPU, read back, and composited in WebGL2
     // as render() does.
     async renderWebGPU() {
+        if (this.backend !== "webgpu") return; // switched back to WebGL2 while this frame waited
         const gl = this.gl;
         const started = performance.now();
         const sides = this.state.split && this.sides[1] ? this.sides : [this.sides[0]];
@@ -389,6 +391,7 @@ class App {
             try {
                 if (!(await this.renderSideWebGPU(side, area))) messages.push(label + "the bounds reach the light plane: move the light up");
             } catch (e) {
+                if (e === STALE) return; // the side's runner (or the renderer) changed meanwhile: a newer frame follows
                 messages.push(`${label}cannot run on WebGPU: ${e.message}`);
                 side.reason = e.message;
                 side.failed = true;
@@ -412,6 +415,7 @@ class App {
     // bundle's), screen phase, read-back, and its part of the canvas.
     async renderSideWebGPU(side, area) {
         const gl = this.gl, runner = side.runner;
+        const current = () => { if (side.runner !== runner || this.backend !== "webgpu") throw STALE; };
         const config = runner.layout.config;
         const light = this.light(config.light);
         const frame = lightUniforms(light, this.geometry.box.lo, this.geometry.box.hi, config.slices);
@@ -422,6 +426,7 @@ class App {
         if (!side.drawer || side.drawer.runner !== runner || side.drawer.triangles !== this.bundle.triangles) // the scene's vertex buffer
             side.drawer = {runner, triangles: this.bundle.triangles, draw: runner.sceneDrawer(this.bundle.triangles)};
         await runner.runPhase("shadow", side.drawer.draw);
+        current();
 
         const bundleCamera = this.state.camera === "bundle";
         const width = bundleCamera ? this.bundle.width : this.canvas.width, height = bundleCamera ? this.bundle.height : this.canvas.height;
@@ -447,7 +452,10 @@ class App {
             runner.fillTexture(t.name, width, height, data[t.name]);
         }
         await runner.runPhase("screen", null, {width, height});
-        side.lastVisibility = await runner.readResult();
+        current();
+        const visibility = await runner.readResult();
+        current();
+        side.lastVisibility = visibility;
         // the read-back result as a WebGL2 texture for the composite (same rows: bottom first)
         this.webgpuResults ??= {};
         let result = this.webgpuResults[side.index];
