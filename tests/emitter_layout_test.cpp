@@ -589,6 +589,19 @@ TEST_CASE("layout v3: vertex inputs as data, and the vertex stages declare exact
                     for (const ShaderFile& stage : p.stages)
                         if (stage.stage == Stage::vertex) vertex_text = stage.text;
             REQUIRE_FALSE(vertex_text.empty());
+            if (config.target == Target::wgsl) { // the entry point's @location parameters
+                const std::size_t entry = vertex_text.find("\nfn main(");
+                REQUIRE(entry != std::string::npos);
+                const std::string signature = vertex_text.substr(entry, vertex_text.find('\n', entry + 1) - entry);
+                int declared = 0;
+                for (std::size_t at = signature.find("@location("); at != std::string::npos; at = signature.find("@location(", at + 1))
+                    ++declared;
+                CHECK(declared == static_cast<int>(program.vertex_inputs.size()));
+                for (const VertexInputDesc& in : program.vertex_inputs)
+                    CHECK(signature.find("@location(" + std::to_string(in.location) + ") " + in.name + "In: " +
+                                         std::string(detail::wgsl_type_name(in.type))) != std::string::npos);
+                continue;
+            }
             int declared = 0;
             for (std::size_t at = vertex_text.find(") in "); at != std::string::npos; at = vertex_text.find(") in ", at + 1))
                 ++declared;
@@ -631,7 +644,9 @@ TEST_CASE("layout: every program file states its stage, the emitted file's own")
             for (std::size_t f = 0; f < desc.files.size(); ++f) {
                 CHECK(desc.files[f] == program.stages[f].file_name);
                 CHECK(desc.stages[f] == program.stages[f].stage);
-                const std::string& file = desc.files[f];
+                // WGSL: the GLSL name and .wgsl (penumbra_deferred.frag.wgsl)
+                std::string file = desc.files[f];
+                if (config.target == Target::wgsl && file.ends_with(".wgsl")) file.resize(file.size() - 5);
                 CHECK(std::string_view(file).substr(file.rfind('.') + 1) == stage_extension(desc.stages[f]));
             }
         }
@@ -663,7 +678,7 @@ TEST_CASE("layout v3: every binding states its sampling; only shadow samplers co
                 }
                 REQUIRE(p.sampling);
                 CHECK((p.sampling->compare == CompareFunc::lequal) == p.type.ends_with("Shadow"));
-                CHECK(p.set == (config.target == Target::vulkan ? 0 : -1));
+                CHECK(p.set == (config.target == Target::vulkan || config.target == Target::wgsl ? 0 : -1));
             }
         for (const PassDesc& pass : layout.passes)
             for (const BindingDesc& in : pass.inputs) {

@@ -251,7 +251,7 @@ TEST_CASE("invalid configurations: each names the field, the value and what is a
         {{.fusion = static_cast<Fusion>(7)}, "fusion", "allowed: probabilistic, additive, maximum, average"},
         {{.packing = static_cast<Packing>(5)}, "packing", "allowed: atlas, array, volume"},
         {{.light = static_cast<Light>(2)}, "light", "allowed: rect, sun"},
-        {{.target = static_cast<Target>(4)}, "target", "allowed: glsl330, glsl450, essl300, vulkan"},
+        {{.target = static_cast<Target>(5)}, "target", "allowed: glsl330, glsl450, essl300, vulkan, wgsl"},
         {{.filter = Filter::gaussian}, "filter", "filter: gaussian needs light 'sun'"},
         {{.filter = Filter::sat, .packing = Packing::volume}, "packing", "packing: volume cannot hold filter 'sat'"},
         {{.filter = Filter::mipmap, .packing = Packing::volume}, "packing", "packing: volume cannot hold filter 'mipmap'"},

@@ -52,8 +52,10 @@ template <FixedString Name> struct no_such_file {
 
 // The file named `name` among the configuration's files; its text function is null when there is none.
 constexpr ShaderFileSpec find_file(const Config& config, std::string_view name) {
-    for (const ShaderFileSpec& file : shader_files(config))
-        if (file_name(config, file.name) == Text(name)) return file;
+    for (const ShaderFileSpec& file : shader_files(config)) {
+        const Text written_as = file_name(config, file.name); // a named Text: GCC 12 ends temporaries early here
+        if (written_as.view() == name) return file;
+    }
     return {};
 }
 

@@ -109,6 +109,11 @@ def main():
     matrix += [(f"alpha-test-{technique}-{target}", ["--alpha-test", "--technique", technique, "--target", target])
                for technique, target in itertools.product(
                    ["occlusion", "shadowmap", "pcf", "pcss", "oim", "erosion", "evsm"], ["glsl330", "glsl450", "essl300", "vulkan"])]
+    # WGSL (WebGPU): bind groups, sampler bindings, texture formats and usages; the techniques it writes.
+    matrix += [(f"wgsl-{technique}-{light}{'-alpha' if alpha else ''}",
+                ["--technique", technique, "--light", light, "--target", "wgsl", *(["--alpha-test"] if alpha else [])])
+               for technique, light, alpha in itertools.product(
+                   ["shadowmap", "pcf", "pcss", "erosion", "evsm"], ["rect", "sun"], [False, True])]
     matrix += [(f"alpha-test-adaptive-{target}", ["--alpha-test", "--slice-placement", "adaptive", "--target", target,
                                                   "--slices", "5", "--resolution", "64"])
                for target in ["glsl330", "glsl450", "essl300", "vulkan"]]

@@ -14,6 +14,7 @@
 #pragma once
 
 #include "../config.hpp"
+#include "../program.hpp"
 #include "text.hpp"
 
 #include <initializer_list>
@@ -43,18 +44,33 @@ constexpr std::string_view type_name(const Config& config, std::string_view glsl
     return is_wgsl(config) ? wgsl_type_name(glsl) : glsl;
 }
 
+// Concatenates named values and literals by reference: cat() copies every part (it must, for Text
+// temporaries), which on the long unrolled tap lines costs constant evaluation its operation budget.
+template <class... Parts> constexpr Text joined(const Parts&... parts) {
+    Text out;
+    out.reserve((std::string_view(parts).size() + ... + 0));
+    ((out += std::string_view(parts)), ...);
+    return out;
+}
+
+// Text parameters are taken by value: GCC 12 ends the life of Text temporaries bound to references or
+// string_views too early in constant evaluation (text.hpp, cat).
+
 // A local variable the code assigns again: `T name = init;` / `var name: T = init;` (without
 // `init`, declared only).
-constexpr Text variable(const Config& config, std::string_view type, std::string_view name, std::string_view init = {}) {
-    if (!is_wgsl(config)) return init.empty() ? cat(type, " ", name, ";") : cat(type, " ", name, " = ", init, ";");
-    if (init.empty()) return cat("var ", name, ": ", wgsl_type_name(type), ";");
-    return cat("var ", name, ": ", wgsl_type_name(type), " = ", init, ";");
+constexpr Text variable(const Config& config, Text type, Text name, Text init = {}) {
+    if (!is_wgsl(config)) {
+        if (init.empty()) return joined(type, " ", name, ";");
+        return joined(type, " ", name, " = ", init, ";");
+    }
+    if (init.empty()) return joined("var ", name, ": ", wgsl_type_name(type), ";");
+    return joined("var ", name, ": ", wgsl_type_name(type), " = ", init, ";");
 }
 
 // A local value set once: `T name = init;` / `let name: T = init;`.
-constexpr Text value(const Config& config, std::string_view type, std::string_view name, std::string_view init) {
-    if (!is_wgsl(config)) return cat(type, " ", name, " = ", init, ";");
-    return cat("let ", name, ": ", wgsl_type_name(type), " = ", init, ";");
+constexpr Text value(const Config& config, Text type, Text name, Text init) {
+    if (!is_wgsl(config)) return joined(type, " ", name, " = ", init, ";");
+    return joined("let ", name, ": ", wgsl_type_name(type), " = ", init, ";");
 }
 
 struct Parameter {
@@ -64,15 +80,18 @@ struct Parameter {
 // A function's signature (the line before its `{`): `float f(vec3 p)` / `fn f(p: vec3f) -> f32`.
 constexpr Text signature(const Config& config, std::string_view result, std::string_view name,
                          std::initializer_list<Parameter> parameters) {
-    Text out = is_wgsl(config) ? cat("fn ", name, "(") : cat(result, " ", name, "(");
+    Text out = choose(is_wgsl(config), joined("fn ", name, "("), joined(result, " ", name, "("));
     bool first = true;
     for (const Parameter& p : parameters) {
         if (!first) out += ", ";
         first = false;
-        out += is_wgsl(config) ? cat(p.name, ": ", wgsl_type_name(p.type)) : cat(p.type, " ", p.name);
+        if (is_wgsl(config))
+            out += joined(p.name, ": ", wgsl_type_name(p.type));
+        else
+            out += joined(p.type, " ", p.name);
     }
     out += ")";
-    if (is_wgsl(config) && result != "void") out += cat(" -> ", wgsl_type_name(result));
+    if (is_wgsl(config) && result != "void") out += joined(" -> ", wgsl_type_name(result));
     return out;
 }
 
@@ -82,26 +101,26 @@ constexpr std::string_view main_signature(const Config& config) {
 }
 
 // A conversion or constructor by type name: `float(x)` / `f32(x)`.
-constexpr Text construct(const Config& config, std::string_view type, std::string_view args) {
-    return cat(type_name(config, type), "(", args, ")");
+constexpr Text construct(const Config& config, Text type, Text args) {
+    return joined(type_name(config, type), "(", args, ")");
 }
 
 // `when ? a : b` / `select(b, a, when)`.
-constexpr Text conditional(const Config& config, std::string_view when, std::string_view a, std::string_view b) {
-    if (is_wgsl(config)) return cat("select(", b, ", ", a, ", ", when, ")");
-    return cat(when, " ? ", a, " : ", b);
+constexpr Text conditional(const Config& config, Text when, Text a, Text b) {
+    if (is_wgsl(config)) return joined("select(", b, ", ", a, ", ", when, ")");
+    return joined(when, " ? ", a, " : ", b);
 }
 
 // The upper-left 3x3 of a mat4 (a direction's transform): WGSL has no mat3(mat4).
-constexpr Text upper_3x3(const Config& config, std::string_view m) {
-    if (!is_wgsl(config)) return cat("mat3(", m, ")");
-    return cat("mat3x3f(", m, "[0].xyz, ", m, "[1].xyz, ", m, "[2].xyz)");
+constexpr Text upper_3x3(const Config& config, Text m) {
+    if (!is_wgsl(config)) return joined("mat3(", m, ")");
+    return joined("mat3x3f(", m, "[0].xyz, ", m, "[1].xyz, ", m, "[2].xyz)");
 }
 
 // A one-statement if: WGSL wants braces around every body.
-constexpr Text if_then(const Config& config, std::string_view when, std::string_view statement) {
-    if (is_wgsl(config)) return cat("if (", when, ") { ", statement, " }");
-    return cat("if (", when, ") ", statement);
+constexpr Text if_then(const Config& config, Text when, Text statement) {
+    if (is_wgsl(config)) return joined("if (", when, ") { ", statement, " }");
+    return joined("if (", when, ") ", statement);
 }
 
 // penumbraVisibility with the receiver's normal: an overload in GLSL; WGSL has no overloading.
@@ -120,13 +139,13 @@ constexpr std::string_view builtin(const Config& config, std::string_view glsl) 
 
 // A float vector's bits as unsigned integers and back (`type` the result's GLSL type): GLSL's
 // floatBitsToUint / uintBitsToFloat, WGSL's bitcast.
-constexpr Text float_bits(const Config& config, std::string_view uint_type, std::string_view value) {
-    if (!is_wgsl(config)) return cat("floatBitsToUint(", value, ")");
-    return cat("bitcast<", wgsl_type_name(uint_type), ">(", value, ")");
+constexpr Text float_bits(const Config& config, Text uint_type, Text value) {
+    if (!is_wgsl(config)) return joined("floatBitsToUint(", value, ")");
+    return joined("bitcast<", wgsl_type_name(uint_type), ">(", value, ")");
 }
-constexpr Text uint_bits_to_float(const Config& config, std::string_view float_type, std::string_view value) {
-    if (!is_wgsl(config)) return cat("uintBitsToFloat(", value, ")");
-    return cat("bitcast<", wgsl_type_name(float_type), ">(", value, ")");
+constexpr Text uint_bits_to_float(const Config& config, Text float_type, Text value) {
+    if (!is_wgsl(config)) return joined("uintBitsToFloat(", value, ")");
+    return joined("bitcast<", wgsl_type_name(float_type), ">(", value, ")");
 }
 
 // Built-in variables, under a WGSL private global of the entry point (write_entry_point).
@@ -144,38 +163,38 @@ constexpr std::string_view vertex_index(const Config& config) {
 }
 
 // The sampler WGSL pairs with a texture: the GLSL sampler's name and this suffix.
-constexpr Text sampler_of(std::string_view texture) { return cat(texture, "_sampler"); }
+constexpr Text sampler_of(std::string_view texture) { return joined(texture, "_sampler"); }
 
 // Texture reads. GLSL combines texture and sampler in one name; WGSL binds them apart.
 // A depth comparison at level 0 (the hardware filters the 2x2 comparisons): `uv`, `depth` scalars.
-constexpr Text sample_compare(const Config& config, std::string_view texture, std::string_view uv, std::string_view depth) {
-    if (!is_wgsl(config)) return cat("textureLod(", texture, ", vec3(", uv, ", ", depth, "), 0.0)");
-    return cat("textureSampleCompareLevel(", texture, ", ", sampler_of(texture), ", ", uv, ", ", depth, ")");
+constexpr Text sample_compare(const Config& config, Text texture, Text uv, Text depth) {
+    if (!is_wgsl(config)) return joined("textureLod(", texture, ", vec3(", uv, ", ", depth, "), 0.0)");
+    return joined("textureSampleCompareLevel(", texture, ", ", sampler_of(texture), ", ", uv, ", ", depth, ")");
 }
 // The stored depth of a depth texture at level 0, unfiltered by comparison.
-constexpr Text sample_depth(const Config& config, std::string_view texture, std::string_view uv) {
-    if (!is_wgsl(config)) return cat("textureLod(", texture, ", ", uv, ", 0.0).r");
-    return cat("textureSampleLevel(", texture, ", ", sampler_of(texture), ", ", uv, ", 0)");
+constexpr Text sample_depth(const Config& config, Text texture, Text uv) {
+    if (!is_wgsl(config)) return joined("textureLod(", texture, ", ", uv, ", 0.0).r");
+    return joined("textureSampleLevel(", texture, ", ", sampler_of(texture), ", ", uv, ", 0)");
 }
 // One texel of a depth texture (its depth).
-constexpr Text fetch_depth(const Config& config, std::string_view texture, std::string_view texel) {
-    if (!is_wgsl(config)) return cat("texelFetch(", texture, ", ", texel, ", 0).r");
-    return cat("textureLoad(", texture, ", ", texel, ", 0)");
+constexpr Text fetch_depth(const Config& config, Text texture, Text texel) {
+    if (!is_wgsl(config)) return joined("texelFetch(", texture, ", ", texel, ", 0).r");
+    return joined("textureLoad(", texture, ", ", texel, ", 0)");
 }
 // A filtered read at an explicit level (a float texture).
-constexpr Text sample_level(const Config& config, std::string_view texture, std::string_view uv, std::string_view level) {
-    if (!is_wgsl(config)) return cat("textureLod(", texture, ", ", uv, ", ", level, ")");
-    return cat("textureSampleLevel(", texture, ", ", sampler_of(texture), ", ", uv, ", ", level, ")");
+constexpr Text sample_level(const Config& config, Text texture, Text uv, Text level) {
+    if (!is_wgsl(config)) return joined("textureLod(", texture, ", ", uv, ", ", level, ")");
+    return joined("textureSampleLevel(", texture, ", ", sampler_of(texture), ", ", uv, ", ", level, ")");
 }
 // A filtered read with implicit derivatives (fragment stage, uniform control flow).
-constexpr Text sample(const Config& config, std::string_view texture, std::string_view uv) {
-    if (!is_wgsl(config)) return cat("texture(", texture, ", ", uv, ")");
-    return cat("textureSample(", texture, ", ", sampler_of(texture), ", ", uv, ")");
+constexpr Text sample(const Config& config, Text texture, Text uv) {
+    if (!is_wgsl(config)) return joined("texture(", texture, ", ", uv, ")");
+    return joined("textureSample(", texture, ", ", sampler_of(texture), ", ", uv, ")");
 }
 // One texel, integer coordinates.
-constexpr Text fetch(const Config& config, std::string_view texture, std::string_view texel, std::string_view level) {
-    if (!is_wgsl(config)) return cat("texelFetch(", texture, ", ", texel, ", ", level, ")");
-    return cat("textureLoad(", texture, ", ", texel, ", ", level, ")");
+constexpr Text fetch(const Config& config, Text texture, Text texel, Text level) {
+    if (!is_wgsl(config)) return joined("texelFetch(", texture, ", ", texel, ", ", level, ")");
+    return joined("textureLoad(", texture, ", ", texel, ", ", level, ")");
 }
 
 // A stage input or output: `layout(location = N) in T name;` / a private global the entry point
@@ -183,12 +202,12 @@ constexpr Text fetch(const Config& config, std::string_view texture, std::string
 constexpr Text stage_variable(LineWriter& out, const Config& config, std::string_view direction, int location,
                               std::string_view type, std::string_view name, bool glsl_location) {
     if (is_wgsl(config)) {
-        EntryVariable v{cat("@location(", format_int(location), ")"), Text(name), Text(wgsl_type_name(type)), {}};
+        EntryVariable v{joined("@location(", format_int(location), ")"), Text(name), Text(wgsl_type_name(type)), {}};
         (direction == "in" ? out.entry_inputs : out.entry_outputs).push_back(std::move(v));
-        return cat("var<private> ", name, ": ", wgsl_type_name(type), ";");
+        return joined("var<private> ", name, ": ", wgsl_type_name(type), ";");
     }
-    if (glsl_location) return cat("layout(location = ", format_int(location), ") ", direction, " ", type, " ", name, ";");
-    return cat(direction, " ", type, " ", name, ";");
+    if (glsl_location) return joined("layout(location = ", format_int(location), ") ", direction, " ", type, " ", name, ";");
+    return joined(direction, " ", type, " ", name, ";");
 }
 
 // A built-in the stage reads or writes, declared once where the module needs it: the private global
@@ -197,7 +216,7 @@ constexpr Text stage_variable(LineWriter& out, const Config& config, std::string
 constexpr void declare_builtin(LineWriter& out, const Config& config, bool input, std::string_view builtin_name,
                                std::string_view type, std::string_view name, std::string_view wire_type = {}) {
     if (!is_wgsl(config)) return;
-    EntryVariable v{cat("@builtin(", builtin_name, ")"), Text(name), Text(wgsl_type_name(type)), Text(wire_type)};
+    EntryVariable v{joined("@builtin(", builtin_name, ")"), Text(name), Text(wgsl_type_name(type)), Text(wire_type)};
     (input ? out.entry_inputs : out.entry_outputs).push_back(std::move(v));
     out.line("var<private> ", name, ": ", wgsl_type_name(type), ";");
 }
@@ -222,20 +241,20 @@ constexpr void write_entry_point(LineWriter& out, const Config& config, Stage st
     for (const EntryVariable& v : out.entry_inputs) {
         if (!first) head += ", ";
         first = false;
-        head += cat(v.attribute, " ", v.name, "In: ", v.wire_type.empty() ? v.type.view() : v.wire_type.view());
+        head += joined(v.attribute, " ", v.name, "In: ", v.wire_type.empty() ? v.type.view() : v.wire_type.view());
     }
     head += ")";
     if (outputs) head += " -> PenumbraStageOutput";
     out.line(head);
     out.line("{");
     for (const EntryVariable& v : out.entry_inputs)
-        out.line(v.name, " = ", v.wire_type.empty() ? cat(v.name, "In") : cat(v.type, "(", v.name, "In)"), ";");
+        out.line(v.name, " = ", choose(v.wire_type.empty(), joined(v.name, "In"), joined(v.type, "(", v.name, "In)")), ";");
     for (const Text& call : out.entry_calls) out.line(call, "();");
     out.line("penumbra_main();");
     if (outputs) {
         Text result("return PenumbraStageOutput(");
         for (std::size_t i = 0; i < out.entry_outputs.size(); ++i)
-            result += cat(i == 0 ? "" : ", ", out.entry_outputs[i].name);
+            result += joined(i == 0 ? "" : ", ", out.entry_outputs[i].name);
         out.line(result, ");");
     }
     out.line("}");
@@ -246,7 +265,7 @@ constexpr void write_entry_point(LineWriter& out, const Config& config, Stage st
 constexpr Text file_name(const Config& config, std::string_view glsl_name) {
     if (!is_wgsl(config)) return Text(glsl_name);
     if (glsl_name.ends_with(".glsl")) glsl_name.remove_suffix(5);
-    return cat(glsl_name, ".wgsl");
+    return joined(glsl_name, ".wgsl");
 }
 
 } // namespace penumbra::detail

@@ -28,6 +28,9 @@ public:
         chars_.push_back(c);
         return *this;
     }
+    // Room for `n` characters in all: a text built from known parts grows once, not by doubling (constant
+    // evaluation counts every character each reallocation copies).
+    constexpr void reserve(std::size_t n) { chars_.reserve(n); }
     constexpr operator std::string_view() const { return view(); }
     constexpr std::string_view view() const { return {chars_.data(), chars_.size()}; }
     constexpr std::size_t size() const { return chars_.size(); }
@@ -51,6 +54,7 @@ constexpr Text choose(bool when, Text a, Text b) {
 // the life of Text temporaries passed by reference too early in constant evaluation.
 template <class... Parts> constexpr Text cat(Parts... parts) {
     Text out;
+    out.reserve((std::string_view(parts).size() + ... + 0));
     ((out += std::string_view(parts)), ...);
     return out;
 }
@@ -120,7 +124,14 @@ public:
         out_ += '\n';
         if (!text.empty() && text.back() == '{') ++depth_;
     }
-    template <class... Parts> constexpr void line(const Parts&... parts) { line(cat(parts...).view()); }
+    // Joined in place rather than through cat(), which copies every part first: the unrolled tap lines
+    // are most of a file's text, and constant evaluation counts every character copied.
+    template <class... Parts> constexpr void line(const Parts&... parts) {
+        Text joined;
+        joined.reserve((std::string_view(parts).size() + ... + 0));
+        ((joined += std::string_view(parts)), ...);
+        line(joined.view());
+    }
     constexpr void blank() { out_ += '\n'; }
     constexpr void comment(std::string_view text) { line("// ", text); }
     // Marks the start of a chunk so diagnostics can name the C++ emitter that wrote it

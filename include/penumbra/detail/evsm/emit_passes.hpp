@@ -90,8 +90,8 @@ constexpr void write_evsm_output(LineWriter& out, const Config& config) {
     declare_builtin(out, config, true, "position", "vec4", frag_coord(config));
 }
 constexpr Text evsm_store(const Config& config, std::string_view value) {
-    return evsm_filters_in_hardware(config) ? cat("penumbra_out = ", value, ";")
-                                            : cat("penumbra_out = ", float_bits(config, "uvec4", value), ";");
+    if (evsm_filters_in_hardware(config)) return cat("penumbra_out = ", value, ";");
+    return cat("penumbra_out = ", float_bits(config, "uvec4", value), ";");
 }
 
 constexpr Text evsm_moments_fragment(const Config& config) {
@@ -152,7 +152,7 @@ constexpr Text evsm_blur_fragment(const Config& config, int axis) {
     out.line(variable(config, "vec4", "sum", "vec4(0.0)"));
     for (int i = 0; i < e.blur_taps; ++i) {
         const Text offset = cat(format_float(evsm_tap_offset(i, e.blur_taps)), " * radius");
-        const Text step = axis == 0 ? cat("vec2(", offset, ", 0.0)") : cat("vec2(0.0, ", offset, ")");
+        const Text step = choose(axis == 0, cat("vec2(", offset, ", 0.0)"), cat("vec2(0.0, ", offset, ")"));
         out.line("sum += penumbra_evsmSample(", source, ", centre + ", step, "); // tap ", format_int(i + 1), " of ",
                  format_int(e.blur_taps), ", at ", format_float(evsm_tap_offset(i, e.blur_taps)), " of the half-width");
     }
