@@ -3,7 +3,8 @@
 //   penumbra-bench-emit [iterations]
 //
 // Median over many calls of emit_file(config, visibility_snippet) and of a whole emit(config)
-// (every file plus the layout); then the snippet size for 16 slices at 512² for each packing.
+// (every file plus the layout); then the snippet size for 16 slices at 512² for each packing; then,
+// for each technique that writes WGSL, a whole emit() for glsl450 and for wgsl, in the same run.
 #include <penumbra/penumbra.hpp>
 
 #include <algorithm>
@@ -53,5 +54,24 @@ int main(int argc, char** argv) {
                         std::string(penumbra::to_string(filter)).c_str(), text.size(),
                         std::count(text.begin(), text.end(), '\n'), std::count(text.begin() + body, text.end(), '\n'));
         }
+    std::printf("\nGLSL against WGSL: a whole emit(), the technique's defaults\n");
+    std::printf("%-10s %12s %12s %8s %12s %12s\n", "technique", "glsl450 us", "wgsl us", "ratio", "glsl bytes", "wgsl bytes");
+    for (penumbra::Technique technique : penumbra::all_values<penumbra::Technique>()) {
+        const penumbra::Config wgsl{.technique = technique, .target = penumbra::Target::wgsl};
+        if (!penumbra::is_valid(wgsl)) continue;
+        const penumbra::Config glsl{.technique = technique, .target = penumbra::Target::glsl450};
+        const int runs = iterations / 10 + 1;
+        auto whole = [&](const penumbra::Config& c) { sink += penumbra::emit(c).value->programs.size(); };
+        whole(glsl), whole(wgsl); // warm-up
+        const double g = median_microseconds(runs, [&] { whole(glsl); });
+        const double w = median_microseconds(runs, [&] { whole(wgsl); });
+        auto bytes = [](const penumbra::Config& c) {
+            std::size_t n = 0;
+            for (const penumbra::ShaderFile& f : penumbra::emit(c).value->files()) n += f.text.size();
+            return n;
+        };
+        std::printf("%-10s %12.1f %12.1f %8.2f %12zu %12zu\n", std::string(penumbra::to_string(technique)).c_str(), g, w,
+                    w / g, bytes(glsl), bytes(wgsl));
+    }
     return sink == 0; // keeps the work observable
 }

@@ -13,7 +13,7 @@
 #                x resolution {32,256,2048}, and the same with --no-fade (the generic program's row;
 #                penumbra-gen does not emit the generic program itself)
 #   tangent_clip/, slices_64_128/, adaptive/   the other occlusion rows
-#   shadow_map/, erosion/, evsm/, oim/          the rows of those techniques
+#   shadow_map/, erosion/, evsm/, oim/          the rows of those techniques (the first three for wgsl too)
 #   alpha_test/  the cut-out casters' row (every technique with --alpha-test)
 #   snippet/     matrix_snippet_test.cpp
 # Not covered: the generic reference program (penumbra::emit_generic), which penumbra-gen cannot
@@ -74,7 +74,7 @@ list_configurations() {
                  "--target $t --light $l --slice-placement adaptive $b"
         done
     done; done; done; done
-    for t in "${targets[@]}"; do for l in "${lights[@]}"; do
+    for t in "${targets[@]}" wgsl; do for l in "${lights[@]}"; do # the techniques that write WGSL too
         local base="--target $t --light $l"
         echo "shadow_map/$t-$l-shadowmap --technique shadowmap $base"
         echo "shadow_map/$t-$l-shadowmap_unbiased --technique shadowmap $base --shadow-resolution 32" \

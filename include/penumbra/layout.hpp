@@ -143,13 +143,18 @@ inline std::string json_sampling(const Sampling& s) {
 
 // WGSL: a texture's WebGPU format and usages (what its passes, the caller and the readback do with it).
 inline std::string json_webgpu_texture(const Layout& layout, const TextureDesc& t) {
-    bool attachment = false;
-    for (const PassDesc& pass : layout.passes)
-        for (const AttachmentDesc& out : pass.outputs) attachment = attachment || out.texture == t.name;
+    bool attachment = false, copied_from = false, copied_to = false;
+    for (const PassDesc& pass : layout.passes) {
+        const bool copy = pass.action == PassAction::copy;
+        for (const AttachmentDesc& out : pass.outputs)
+            if (out.texture == t.name) (copy ? copied_to : attachment) = true;
+        for (const BindingDesc& in : pass.inputs) copied_from = copied_from || (copy && in.texture == t.name);
+    }
     std::string usage = "[\"TEXTURE_BINDING\"";
     if (attachment) usage += ", \"RENDER_ATTACHMENT\"";
-    if (t.source != TextureSource::passes) usage += ", \"COPY_DST\""; // the caller's or the bake's upload
-    if (t.name == layout.result) usage += ", \"COPY_SRC\"";           // read back
+    // uploaded by the caller or the bake, or a copy pass's target
+    if (t.source != TextureSource::passes || copied_to) usage += ", \"COPY_DST\"";
+    if (t.name == layout.result || copied_from) usage += ", \"COPY_SRC\""; // read back, or a copy's source
     return "{\"format\": " + json_string(format_info(t.format).webgpu) + ", \"usage\": " + usage + "]}";
 }
 

@@ -51,7 +51,8 @@ def references_errors(layout):
             errors.append(f"program {program['name']}: {len(program['stages'])} stages for "
                           f"{len(program['files'])} files")
         for f, stage in zip(program["files"], program["stages"]):
-            expected = extension_stage.get(pathlib.PurePath(f).suffix)
+            # WGSL: the GLSL name and .wgsl (penumbra_deferred.frag.wgsl)
+            expected = extension_stage.get(pathlib.PurePath(f.removesuffix(".wgsl")).suffix)
             if stage != expected:
                 errors.append(f"program {program['name']}: file {f} has stage {stage}, its extension says {expected}")
     return errors
