@@ -67,6 +67,25 @@ constexpr Text variable(const Config& config, Text type, Text name, Text init = 
     return joined("var ", name, ": ", wgsl_type_name(type), " = ", init, ";");
 }
 
+// The start of a declaration whose initializer follows on the same line (and the next ones):
+// `T name = ` / `let name: T = ` (`var` when `assigned_again`).
+constexpr Text declaration(const Config& config, Text type, Text name, bool assigned_again = false) {
+    if (!is_wgsl(config)) return joined(type, " ", name, " = ");
+    return joined(assigned_again ? "var " : "let ", name, ": ", wgsl_type_name(type), " = ");
+}
+
+// clamp(x, 0.0, 1.0) of a vector: WGSL's clamp wants bounds of x's type; saturate takes any.
+constexpr Text saturate(const Config& config, Text x) {
+    if (!is_wgsl(config)) return joined("clamp(", x, ", 0.0, 1.0)");
+    return joined("saturate(", x, ")");
+}
+
+// GLSL's mod(a, b) for a >= 0: WGSL's % on floats truncates, which agrees there.
+constexpr Text modulo(const Config& config, Text a, Text b) {
+    if (!is_wgsl(config)) return joined("mod(", a, ", ", b, ")");
+    return joined("(", a, " % ", b, ")");
+}
+
 // A local value set once: `T name = init;` / `let name: T = init;`.
 constexpr Text value(const Config& config, Text type, Text name, Text init) {
     if (!is_wgsl(config)) return joined(type, " ", name, " = ", init, ";");
@@ -115,6 +134,18 @@ constexpr Text conditional(const Config& config, Text when, Text a, Text b) {
 constexpr Text upper_3x3(const Config& config, Text m) {
     if (!is_wgsl(config)) return joined("mat3(", m, ")");
     return joined("mat3x3f(", m, "[0].xyz, ", m, "[1].xyz, ", m, "[2].xyz)");
+}
+
+// A component-wise comparison of two vectors (GLSL's lessThan, greaterThanEqual, equal, …): a bool vector.
+constexpr Text compare(const Config& config, std::string_view glsl_function, Text a, Text b) {
+    if (!is_wgsl(config)) return joined(glsl_function, "(", a, ", ", b, ")");
+    constexpr std::pair<std::string_view, std::string_view> operators[] = {
+        {"lessThan", " < "}, {"lessThanEqual", " <= "}, {"greaterThan", " > "},
+        {"greaterThanEqual", " >= "}, {"equal", " == "}, {"notEqual", " != "}};
+    std::string_view op = " ? ";
+    for (const auto& [name, symbol] : operators)
+        if (name == glsl_function) op = symbol;
+    return joined("(", a, op, b, ")");
 }
 
 // A one-statement if: WGSL wants braces around every body.
@@ -180,6 +211,11 @@ constexpr Text sample_depth(const Config& config, Text texture, Text uv) {
 constexpr Text fetch_depth(const Config& config, Text texture, Text texel) {
     if (!is_wgsl(config)) return joined("texelFetch(", texture, ", ", texel, ", 0).r");
     return joined("textureLoad(", texture, ", ", texel, ", 0)");
+}
+// One texel of layer `layer` of an array texture: GLSL's ivec3 coordinate, WGSL's separate index.
+constexpr Text fetch_layer(const Config& config, Text texture, Text texel, Text layer, Text level) {
+    if (!is_wgsl(config)) return joined("texelFetch(", texture, ", ivec3(", texel, ", ", layer, "), ", level, ")");
+    return joined("textureLoad(", texture, ", ", texel, ", ", layer, ", ", level, ")");
 }
 // A filtered read at an explicit level (a float texture).
 constexpr Text sample_level(const Config& config, Text texture, Text uv, Text level) {

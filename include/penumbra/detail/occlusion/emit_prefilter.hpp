@@ -29,7 +29,8 @@ constexpr std::vector<Param> level_params(const Config& config) {
         params.push_back(scale_param());
     }
     if (config.packing == Packing::atlas)
-        params.push_back({"penumbra_source", "sampler2D", "previous filter level (atlas)", ""});
+        params.push_back({"penumbra_source", "sampler2D", "previous filter level (atlas)", "", {}, UniformSource::light, {},
+                          /*fetch_only=*/true});
     else if (config.packing == Packing::array) {
         params.push_back(layer_param("layer of the previous level's tile in the source array"));
         params.push_back({"penumbra_source", "sampler2DArray", "filter levels array", "", "penumbra_levels"});
@@ -43,13 +44,17 @@ constexpr std::vector<Param> level_params(const Config& config) {
 // penumbra_source_texel(origin, local) over an atlas level whose tiles are `tile` texels wide (a
 // literal, or a uniform where the level's size varies): 0 outside the tile, so the window sums treat
 // the outside as unoccluded. Shared by the fragment level passes and the compute prefilter.
-constexpr void write_atlas_source_texel(LineWriter& out, const Text& tile) {
+constexpr void write_atlas_source_texel(LineWriter& out, const Config& config, const Text& tile) {
+    const std::string_view ivec2 = type_name(config, "ivec2");
     out.comment("texel `local` of the previous level's tile that starts at `origin`, 0 outside the tile");
-    out.line("vec4 penumbra_source_texel(ivec2 origin, ivec2 local)");
+    out.line(signature(config, "vec4", "penumbra_source_texel", {{"ivec2", "origin"}, {"ivec2", "local"}}));
     out.line("{");
-    out.line("bool inside = all(greaterThanEqual(local, ivec2(0))) && all(lessThan(local, ivec2(", tile, ")));");
-    out.line("vec4 value = texelFetch(penumbra_source, origin + clamp(local, ivec2(0), ivec2(", tile, " - 1)), 0);");
-    out.line("return inside ? value : vec4(0.0);");
+    out.line(value(config, "bool", "inside",
+                   cat("all(", compare(config, "greaterThanEqual", "local", cat(ivec2, "(0)")), ") && all(",
+                       compare(config, "lessThan", "local", cat(ivec2, "(", tile, ")")), ")")));
+    out.line(value(config, "vec4", "value",
+                   fetch(config, "penumbra_source", cat("origin + clamp(local, ", ivec2, "(0), ", ivec2, "(", tile, " - 1))"), "0")));
+    out.line("return ", conditional(config, "inside", "value", "vec4(0.0)"), ";");
     out.line("}");
 }
 
@@ -63,12 +68,13 @@ constexpr void write_level_source(LineWriter& out, const Config& config) {
     const std::vector<Param> params = level_params(config);
     int binding = 0;
     write_params(out, config, params, "PenumbraPass", binding);
-    out.line("layout(location = 0) out vec4 penumbra_result;");
+    out.line(stage_variable(out, config, "out", 0, "vec4", "penumbra_result", true));
+    declare_builtin(out, config, true, "position", "vec4", frag_coord(config));
     out.blank();
     out.chunk("level_source");
     if (config.packing == Packing::atlas) {
         // reduced levels: the previous level's tiles are penumbra_sourceTile texels wide
-        write_atlas_source_texel(out, choose(reduces_levels(config), Text("penumbra_sourceTile"), R));
+        write_atlas_source_texel(out, config, choose(reduces_levels(config), Text("penumbra_sourceTile"), R));
         out.blank();
         return;
     }
@@ -88,7 +94,8 @@ constexpr void write_level_source(LineWriter& out, const Config& config) {
 // texel s·j of its tile, so with penumbra_scale = s / s' it is texel scale·j of the previous level's
 // tile (offsets in the previous level's texels: penumbra_step = 2^(l-1) / s').
 constexpr void write_level_base(LineWriter& out, const Config& config) {
-    out.line("ivec2 fragment = ivec2(gl_FragCoord.xy);");
+    const std::string_view ivec2 = type_name(config, "ivec2");
+    out.line(value(config, "ivec2", "fragment", construct(config, "ivec2", cat(frag_coord(config), ".xy"))));
     if (config.packing != Packing::atlas) {
         out.line("ivec2 origin = ivec2(0);");
         out.line("ivec2 local = fragment;");
@@ -96,17 +103,18 @@ constexpr void write_level_base(LineWriter& out, const Config& config) {
     }
     if (!reduces_levels(config)) {
         const Text R = format_int(config.resolution);
-        out.line("int tile = fragment.x / ", R, "; // which occlusion texture");
-        out.line("ivec2 origin = ivec2(tile * ", R, ", 0);");
-        out.line("ivec2 local = ivec2(fragment.x - tile * ", R, ", fragment.y);");
+        out.line(value(config, "int", "tile", cat("fragment.x / ", R)), " // which occlusion texture");
+        out.line(value(config, "ivec2", "origin", cat(ivec2, "(tile * ", R, ", 0)")));
+        out.line(value(config, "ivec2", "local", cat(ivec2, "(fragment.x - tile * ", R, ", fragment.y)")));
         return;
     }
-    out.line("int side = penumbra_scale == 1 ? penumbra_sourceTile : penumbra_sourceTile / 2; // this level's tile side");
+    out.line(value(config, "int", "side", conditional(config, "penumbra_scale == 1", "penumbra_sourceTile", "penumbra_sourceTile / 2")),
+             " // this level's tile side");
     out.comment("which occlusion texture: fragment.x / side without an integer division (the pixel centre's");
     out.comment("half texel keeps the float quotient at least 0.5 / side off an integer: exact for any side)");
-    out.line("int tile = int(gl_FragCoord.x / float(side));");
-    out.line("ivec2 origin = ivec2(tile * penumbra_sourceTile, 0);");
-    out.line("ivec2 local = ivec2(fragment.x - tile * side, fragment.y) * penumbra_scale;");
+    out.line(value(config, "int", "tile", construct(config, "int", cat(frag_coord(config), ".x / ", construct(config, "float", "side")))));
+    out.line(value(config, "ivec2", "origin", cat(ivec2, "(tile * penumbra_sourceTile, 0)")));
+    out.line(value(config, "ivec2", "local", cat(ivec2, "(fragment.x - tile * side, fragment.y) * penumbra_scale")));
 }
 
 // Décoret 2005: level l at a texel is the mean of the 2^l window anchored there, i.e. of four
@@ -116,15 +124,15 @@ constexpr Text nbuffer_level_fragment(const Config& config) {
     write_preamble(out, config, "N-buffer level l from level l-1, fragment stage");
     write_level_source(out, config);
     out.chunk("nbuffer_level_main");
-    out.line("void main()");
+    out.line(main_signature(config));
     out.line("{");
     write_level_base(out, config);
-    out.block(R"(
-    int s = penumbra_step; // 2^(l-1) texels of level 0, in texels of the previous level
-    penumbra_result = 0.25 * (penumbra_source_texel(origin, local) + penumbra_source_texel(origin, local + ivec2(s, 0))
-        + penumbra_source_texel(origin, local + ivec2(0, s)) + penumbra_source_texel(origin, local + ivec2(s, s)));
-}
-)");
+    const std::string_view ivec2 = type_name(config, "ivec2");
+    out.line(value(config, "int", "s", "penumbra_step"), " // 2^(l-1) texels of level 0, in texels of the previous level");
+    out.line("penumbra_result = 0.25 * (penumbra_source_texel(origin, local) + penumbra_source_texel(origin, local + ", ivec2, "(s, 0))");
+    out.line("+ penumbra_source_texel(origin, local + ", ivec2, "(0, s)) + penumbra_source_texel(origin, local + ", ivec2, "(s, s)));");
+    out.line("}");
+    write_entry_point(out, config, Stage::fragment);
     return out.take();
 }
 
@@ -136,30 +144,31 @@ constexpr Text gaussian_level_fragment(const Config& config) {
     write_preamble(out, config, "Gaussian level l from level l-1, fragment stage");
     write_level_source(out, config);
     out.chunk("gaussian_level_main");
-    out.line("void main()");
+    out.line(main_signature(config));
     out.line("{");
     write_level_base(out, config);
-    out.block(R"(
-    int s = penumbra_step; // 2^(l-1) texels of level 0, in texels of the previous level
-    vec4 sum = vec4(0.0);
-    // 3 x 3 taps, weights (1 2 1) x (1 2 1) / 16
-    sum += 1.0 * penumbra_source_texel(origin, local + ivec2(-s, -s));
-    sum += 2.0 * penumbra_source_texel(origin, local + ivec2(0, -s));
-    sum += 1.0 * penumbra_source_texel(origin, local + ivec2(s, -s));
-    sum += 2.0 * penumbra_source_texel(origin, local + ivec2(-s, 0));
-    sum += 4.0 * penumbra_source_texel(origin, local + ivec2(0, 0));
-    sum += 2.0 * penumbra_source_texel(origin, local + ivec2(s, 0));
-    sum += 1.0 * penumbra_source_texel(origin, local + ivec2(-s, s));
-    sum += 2.0 * penumbra_source_texel(origin, local + ivec2(0, s));
-    sum += 1.0 * penumbra_source_texel(origin, local + ivec2(s, s));
-    penumbra_result = sum / 16.0;
-}
-)");
+    const std::string_view ivec2 = type_name(config, "ivec2");
+    out.line(value(config, "int", "s", "penumbra_step"), " // 2^(l-1) texels of level 0, in texels of the previous level");
+    out.line(variable(config, "vec4", "sum", "vec4(0.0)"));
+    out.comment("3 x 3 taps, weights (1 2 1) x (1 2 1) / 16");
+    for (const char* tap : {"1.0 * penumbra_source_texel(origin, local + #(-s, -s))", "2.0 * penumbra_source_texel(origin, local + #(0, -s))",
+                            "1.0 * penumbra_source_texel(origin, local + #(s, -s))", "2.0 * penumbra_source_texel(origin, local + #(-s, 0))",
+                            "4.0 * penumbra_source_texel(origin, local + #(0, 0))", "2.0 * penumbra_source_texel(origin, local + #(s, 0))",
+                            "1.0 * penumbra_source_texel(origin, local + #(-s, s))", "2.0 * penumbra_source_texel(origin, local + #(0, s))",
+                            "1.0 * penumbra_source_texel(origin, local + #(s, s))"}) {
+        const std::string_view text = tap;
+        const std::size_t hash = text.find('#');
+        out.line("sum += ", text.substr(0, hash), ivec2, text.substr(hash + 1), ";");
+    }
+    out.line("penumbra_result = sum / 16.0;");
+    out.line("}");
+    write_entry_point(out, config, Stage::fragment);
     return out.take();
 }
 
 constexpr Param slices_param() {
-    return {"penumbra_slices", "sampler2DArray", "slicing output, one layer per RGBA texture", "", "penumbra_slices"};
+    return {"penumbra_slices", "sampler2DArray", "slicing output, one layer per RGBA texture", "", "penumbra_slices",
+            UniformSource::light, {}, /*fetch_only=*/true};
 }
 constexpr std::vector<Param> pack_atlas_params() { return {slices_param()}; }
 
@@ -177,47 +186,56 @@ constexpr Text pack_atlas_fragment(const Config& config) {
     int binding = 0;
     write_params(out, config, pack_atlas_params(), "PenumbraPass", binding);
     const Text R = format_int(config.resolution);
+    const std::string_view ivec2 = type_name(config, "ivec2");
     if (packed == 0) {
-        out.line("layout(location = 0) out vec4 penumbra_result;");
+        out.line(stage_variable(out, config, "out", 0, "vec4", "penumbra_result", true));
+        declare_builtin(out, config, true, "position", "vec4", frag_coord(config));
         out.blank();
         out.chunk("pack_atlas_main");
-        out.line("void main()");
+        out.line(main_signature(config));
         out.line("{");
-        out.line("ivec2 texel = ivec2(gl_FragCoord.xy);");
-        out.line("penumbra_result = texelFetch(penumbra_slices, ivec3(texel.x % ", R, ", texel.y, texel.x / ", R,
-                 "), 0);");
+        out.line(value(config, "ivec2", "texel", construct(config, "ivec2", cat(frag_coord(config), ".xy"))));
+        out.line("penumbra_result = ",
+                 fetch_layer(config, "penumbra_slices", cat(ivec2, "(texel.x % ", R, ", texel.y)"), cat("texel.x / ", R), "0"), ";");
         out.line("}");
+        write_entry_point(out, config, Stage::fragment);
         return out.take();
     }
-    out.line("layout(location = 0) out vec4 penumbra_level0; // level 0: the slicing output");
-    out.line("layout(location = 1) out vec4 penumbra_level1; // level 1, same size");
+    out.line(stage_variable(out, config, "out", 0, "vec4", "penumbra_level0", true), " // level 0: the slicing output");
+    out.line(stage_variable(out, config, "out", 1, "vec4", "penumbra_level1", true), " // level 1, same size");
+    declare_builtin(out, config, true, "position", "vec4", frag_coord(config));
     out.blank();
     out.chunk("pack_atlas_source");
     out.comment(cat("texel `local` of occlusion texture `layer` of the slicing output, 0 outside its ", R, " x ", R,
                     " texels"));
-    out.line("vec4 penumbra_slice_texel(int layer, ivec2 local)");
+    out.line(signature(config, "vec4", "penumbra_slice_texel", {{"int", "layer"}, {"ivec2", "local"}}));
     out.line("{");
-    out.line("bool inside = all(greaterThanEqual(local, ivec2(0))) && all(lessThan(local, ivec2(", R, ")));");
-    out.line("vec4 value = texelFetch(penumbra_slices, ivec3(clamp(local, ivec2(0), ivec2(",
-             format_int(config.resolution - 1), ")), layer), 0);");
-    out.line("return inside ? value : vec4(0.0);");
+    out.line(value(config, "bool", "inside",
+                   cat("all(", compare(config, "greaterThanEqual", "local", cat(ivec2, "(0)")), ") && all(",
+                       compare(config, "lessThan", "local", cat(ivec2, "(", R, ")")), ")")));
+    out.line(value(config, "vec4", "value",
+                   fetch_layer(config, "penumbra_slices",
+                               cat("clamp(local, ", ivec2, "(0), ", ivec2, "(", format_int(config.resolution - 1), "))"), "layer",
+                               "0")));
+    out.line("return ", conditional(config, "inside", "value", "vec4(0.0)"), ";");
     out.line("}");
     out.blank();
     out.chunk("pack_atlas_main");
-    out.line("void main()");
+    out.line(main_signature(config));
     out.line("{");
-    out.line("ivec2 texel = ivec2(gl_FragCoord.xy);");
-    out.line("int layer = texel.x / ", R, "; // which occlusion texture: the tile");
-    out.line("ivec2 local = ivec2(texel.x - layer * ", R, ", texel.y);");
-    out.line("vec4 level0 = penumbra_slice_texel(layer, local);");
+    out.line(value(config, "ivec2", "texel", construct(config, "ivec2", cat(frag_coord(config), ".xy"))));
+    out.line(value(config, "int", "layer", cat("texel.x / ", R)), " // which occlusion texture: the tile");
+    out.line(value(config, "ivec2", "local", cat(ivec2, "(texel.x - layer * ", R, ", texel.y)")));
+    out.line(value(config, "vec4", "level0", "penumbra_slice_texel(layer, local)"));
     out.line("penumbra_level0 = level0;");
     if (!gaussian) {
         out.comment("level 1 (Décoret 2005): the mean of the 2 x 2 window anchored here");
-        out.line("penumbra_level1 = 0.25 * (level0 + penumbra_slice_texel(layer, local + ivec2(1, 0))");
-        out.line("    + penumbra_slice_texel(layer, local + ivec2(0, 1)) + penumbra_slice_texel(layer, local + ivec2(1, 1)));");
+        out.line("penumbra_level1 = 0.25 * (level0 + penumbra_slice_texel(layer, local + ", ivec2, "(1, 0))");
+        out.line("    + penumbra_slice_texel(layer, local + ", ivec2, "(0, 1)) + penumbra_slice_texel(layer, local + ", ivec2,
+                 "(1, 1)));");
     } else {
         out.comment("level 1: level 0 blurred by [1 2 1] / 4 in x and y, 3 x 3 taps, weights (1 2 1) x (1 2 1) / 16");
-        out.line("vec4 sum = vec4(0.0);");
+        out.line(variable(config, "vec4", "sum", "vec4(0.0)"));
         const int weights[3] = {1, 2, 1};
         for (int dy = -1; dy <= 1; ++dy)
             for (int dx = -1; dx <= 1; ++dx) {
@@ -225,12 +243,13 @@ constexpr Text pack_atlas_fragment(const Config& config) {
                 if (dx == 0 && dy == 0)
                     out.line("sum += ", w, " * level0;");
                 else
-                    out.line("sum += ", w, " * penumbra_slice_texel(layer, local + ivec2(", format_int(dx), ", ",
+                    out.line("sum += ", w, " * penumbra_slice_texel(layer, local + ", ivec2, "(", format_int(dx), ", ",
                              format_int(dy), "));");
             }
         out.line("penumbra_level1 = sum / 16.0;");
     }
     out.line("}");
+    write_entry_point(out, config, Stage::fragment);
     return out.take();
 }
 

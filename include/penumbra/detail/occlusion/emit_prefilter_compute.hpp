@@ -80,7 +80,7 @@ constexpr Text nbuffer_levels_compute(const Config& config) {
     out.blank();
 
     out.chunk("compute_source");
-    write_atlas_source_texel(out, "penumbra_sourceTile");
+    write_atlas_source_texel(out, config, "penumbra_sourceTile");
     out.blank();
     if (config.level_format == LevelFormat::rgba16f) {
         out.comment("what an RGBA16F level stores: half floats, so the next level is built from what the fragment");

@@ -18,22 +18,27 @@ constexpr Text slicing_camera_vertex(const Config& config, std::string_view titl
     LineWriter out;
     write_preamble(out, config, title);
     out.chunk("slicing_inputs");
-    out.line("layout(location = 0) in vec3 penumbra_position; // world space (scene units)");
-    out.line(varying(config, "out", 0, "float", "penumbra_depth"), " // depth along the light normal (scene units)");
+    out.line(stage_variable(out, config, "in", 0, "vec3", "penumbra_position", true), " // world space (scene units)");
+    out.line(stage_variable(out, config, "out", 0, "float", "penumbra_depth", has_varying_locations(config)),
+             " // depth along the light normal (scene units)");
     write_alpha_test_vertex_inputs(out, config);
+    declare_builtin(out, config, false, "position", "vec4", clip_position(config));
     out.blank();
     int binding = 0;
     write_params(out, config, params, block, binding);
     out.chunk("slicing_vertex_main");
-    out.block(R"(
-void main()
-{
-    vec4 world = vec4(penumbra_position, 1.0);
-    penumbra_depth = (penumbra_lightFromWorld * world).z;
-    gl_Position = penumbra_sliceClipFromWorld * world;
-)");
+    out.line(main_signature(config));
+    out.line("{");
+    out.line(value(config, "vec4", "world", "vec4(penumbra_position, 1.0)"));
+    out.line("penumbra_depth = (penumbra_lightFromWorld * world).z;");
+    out.line(clip_position(config), " = penumbra_sliceClipFromWorld * world;");
+    if (is_wgsl(config)) {
+        out.comment("WebGPU's framebuffer rows run top down: flipped, a slice's row 0 holds uv.y = 0 as on OpenGL");
+        out.line(clip_position(config), ".y = -", clip_position(config), ".y;");
+    }
     write_alpha_test_vertex_copy(out, config);
     out.line("}");
+    write_entry_point(out, config, Stage::vertex);
     return out.take();
 }
 
@@ -49,7 +54,7 @@ constexpr Text slicing_fragment(const Config& config) {
                           "clear to 0)"
                         : "slicing pass, fragment stage (blend equation MAX, clear to 0)");
     out.chunk("slicing_outputs");
-    out.line(varying(config, "in", 0, "float", "penumbra_depth"));
+    out.line(stage_variable(out, config, "in", 0, "float", "penumbra_depth", has_varying_locations(config)));
     write_alpha_test_fragment_inputs(out, config);
     if (bits) {
         out.comment("paper §3.7: more slices than colour channels (eight RGBA targets hold 32) from one geometry pass,");
@@ -60,7 +65,7 @@ constexpr Text slicing_fragment(const Config& config) {
     }
     for (int t = 0; !bits && t < texture_count(config); ++t) {
         const int last = t * 4 + 3 < config.slices - 1 ? t * 4 + 3 : config.slices - 1;
-        out.line("layout(location = ", format_int(t), ") out vec4 penumbra_occlusion", format_int(t), "; // slices ",
+        out.line(stage_variable(out, config, "out", t, "vec4", cat("penumbra_occlusion", format_int(t)), true), " // slices ",
                  format_int(t * 4), " to ", format_int(last));
     }
     out.blank();
@@ -79,7 +84,7 @@ constexpr Text slicing_fragment(const Config& config) {
     }
     if (places_slices_adaptively(config)) write_boundary_function(out);
     out.chunk("slicing_fragment_main");
-    out.line("void main()");
+    out.line(main_signature(config));
     out.line("{");
     write_alpha_test_discard(out, config);
     if (places_slices_adaptively(config)) {
@@ -88,8 +93,9 @@ constexpr Text slicing_fragment(const Config& config) {
         out.line("float k = float(inner);");
     } else {
         out.comment("slice k holds the depths in (z0 + k * thickness, z0 + (k + 1) * thickness]");
-        out.line("float k = clamp(ceil((penumbra_depth - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 1.0, 0.0, ",
-                 format_float(config.slices - 1), ");");
+        out.line(value(config, "float", "k",
+                       cat("clamp(ceil((penumbra_depth - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 1.0, 0.0, ",
+                           format_float(config.slices - 1), ")")));
     }
     const int reach = leak_fix_reach(config);
     if (reach == 1) out.comment("paper §3.4.1 leak fix: also mark the next slice away from the light");
@@ -101,7 +107,7 @@ constexpr Text slicing_fragment(const Config& config) {
     }
     if (reach > 0) {
         out.comment("slices k to next are marked");
-        out.line("float next = min(k + ", format_float(reach), ", ", format_float(config.slices - 1), ");");
+        out.line(value(config, "float", "next", cat("min(k + ", format_float(reach), ", ", format_float(config.slices - 1), ")")));
     }
     if (bits) {
         out.line("penumbra_sliceBits = penumbra_sliceBit(k);");
@@ -113,12 +119,15 @@ constexpr Text slicing_fragment(const Config& config) {
                                ", ", format_float(4 * t + 3), ")");
         out.line("// texture ", format_int(t));
         if (reach > 0)
-            out.line("penumbra_occlusion", format_int(t), " = vec4(greaterThanEqual(", first, ", vec4(k))) * vec4(lessThanEqual(",
-                     first, ", vec4(next)));");
+            out.line("penumbra_occlusion", format_int(t), " = ",
+                     construct(config, "vec4", compare(config, "greaterThanEqual", first, "vec4(k)")), " * ",
+                     construct(config, "vec4", compare(config, "lessThanEqual", first, "vec4(next)")), ";");
         else
-            out.line("penumbra_occlusion", format_int(t), " = vec4(equal(vec4(k), ", first, "));");
+            out.line("penumbra_occlusion", format_int(t), " = ", construct(config, "vec4", compare(config, "equal", "vec4(k)", first)),
+                     ";");
     }
     out.line("}");
+    write_entry_point(out, config, Stage::fragment);
     return out.take();
 }
 

@@ -28,6 +28,12 @@ constexpr VisibilityConstants constants(const Config& config) {
 
 // `resolution` and `max_level` are GLSL float expressions: baked literals in the specialized code,
 // uniforms in the generic reference (emit_generic.hpp).
+// The kernel's centre and side: assigned again by the tangent clip (WGSL: var), set once without it (let).
+constexpr Text kernel_local(const Config& config, std::string_view type, std::string_view name, std::string_view init) {
+    if (config.tangent_clip) return variable(config, type, name, init);
+    return value(config, type, name, init);
+}
+
 constexpr void write_kernel_function(LineWriter& out, const Config& config, std::string_view resolution,
                                      std::string_view max_level) {
     out.chunk("kernel");
@@ -35,20 +41,20 @@ constexpr void write_kernel_function(LineWriter& out, const Config& config, std:
     out.comment("xy = centre (uv of the slice's texture), z = side (uv), w = filter level.");
     if (config.tangent_clip) {
         out.comment("clip: the part of the light above the receiver's tangent plane (penumbra_tangentClip)");
-        out.line("vec4 penumbra_kernel(vec3 p, float zeta, vec3 clip)");
+        out.line(signature(config, "vec4", "penumbra_kernel", {{"vec3", "p"}, {"float", "zeta"}, {"vec3", "clip"}}));
     } else {
-        out.line("vec4 penumbra_kernel(vec3 p, float zeta)");
+        out.line(signature(config, "vec4", "penumbra_kernel", {{"vec3", "p"}, {"float", "zeta"}}));
     }
     out.line("{");
     if (config.light == Light::rect) {
         out.comment("rays from p to the light rectangle cut the plane in a square; w and h cancel out of its side");
-        out.line("float scale = penumbra_copDistance / (p.z * (penumbra_copDistance + zeta));");
-        out.line("vec2 centre = 0.5 + p.xy * (zeta * scale) / penumbra_lightSize;");
-        out.line("float side = max(p.z - zeta, 0.0) * scale;");
+        out.line(value(config, "float", "scale", "penumbra_copDistance / (p.z * (penumbra_copDistance + zeta))"));
+        out.line(kernel_local(config, "vec2", "centre", "0.5 + p.xy * (zeta * scale) / penumbra_lightSize"));
+        out.line(kernel_local(config, "float", "side", "max(p.z - zeta, 0.0) * scale"));
     } else {
         out.comment("journal §3.5: orthographic slicing, the cone towards the sun grows linearly with distance");
-        out.line("vec2 centre = 0.5 + p.xy / (2.0 * penumbra_windowHalfSize);");
-        out.line("float side = max(p.z - zeta, 0.0) * penumbra_tanAngularRadius / penumbra_windowHalfSize;");
+        out.line(kernel_local(config, "vec2", "centre", "0.5 + p.xy / (2.0 * penumbra_windowHalfSize)"));
+        out.line(kernel_local(config, "float", "side", "max(p.z - zeta, 0.0) * penumbra_tanAngularRadius / penumbra_windowHalfSize"));
     }
     if (config.tangent_clip) {
         out.comment("the light's unit square maps affinely onto the kernel: the clipped part is the square of");
@@ -58,7 +64,7 @@ constexpr void write_kernel_function(LineWriter& out, const Config& config, std:
     }
     const Text bias = choose(config.filter == Filter::gaussian, cat(" + (", format_float(gaussian_level_bias), ")"), Text());
     out.comment("windows narrower than one texel read level 0");
-    out.line("float level = clamp(log2(max(side * ", resolution, ", 1.0))", bias, ", 0.0, ", max_level, ");");
+    out.line(value(config, "float", "level", cat("clamp(log2(max(side * ", resolution, ", 1.0))", bias, ", 0.0, ", max_level, ")")));
     out.line("return vec4(centre, side, level);");
     out.line("}");
     out.blank();
@@ -89,34 +95,36 @@ constexpr void write_tangent_clip_function(LineWriter& out, const Config& config
     out.comment("unit square [-0.5, 0.5]^2: xy = centre of the clipped rectangle, z = its shorter side. The plane");
     out.comment("is cut along the axis it crosses most steeply, at the other axis' centre line (exact for planes");
     out.comment("parallel to a light axis, the same area otherwise).");
-    out.line("vec3 penumbra_tangentClip(vec3 p, vec3 n)");
+    out.line(signature(config, "vec3", "penumbra_tangentClip", {{"vec3", "p"}, {"vec3", "n"}}));
     out.line("{");
     if (config.light == Light::rect) {
         out.comment("light point (X w, Y h, 0) is above the plane where n.x X w + n.y Y h > dot(n, p)");
-        out.line("vec2 slopes = n.xy * penumbra_lightSize;");
-        out.line("float level = dot(n, p);");
+        out.line(value(config, "vec2", "slopes", "n.xy * penumbra_lightSize"));
+        out.line(value(config, "float", "level", "dot(n, p)"));
     } else {
         out.comment("direction (X, Y) 2 tan(alpha) sideways, 1 up towards the sun is above where its dot with n > 0");
-        out.line("vec2 slopes = n.xy * (2.0 * penumbra_tanAngularRadius);");
-        out.line("float level = n.z;");
+        out.line(value(config, "vec2", "slopes", "n.xy * (2.0 * penumbra_tanAngularRadius)"));
+        out.line(value(config, "float", "level", "n.z"));
     }
-    out.line("bool alongX = abs(slopes.x) >= abs(slopes.y);");
-    out.line("float slope = alongX ? slopes.x : slopes.y;");
-    out.line("float safe = slope >= 0.0 ? max(slope, 1e-12) : min(slope, -1e-12);");
-    out.line("float cut = clamp(level / safe, -0.5, 0.5);");
-    out.line("float lo = safe > 0.0 ? cut : -0.5;");
-    out.line("float hi = safe > 0.0 ? 0.5 : cut;");
-    out.line("float mid = 0.5 * (lo + hi);");
-    out.line("return vec3(alongX ? vec2(mid, 0.0) : vec2(0.0, mid), hi - lo);");
+    out.line(value(config, "bool", "alongX", "abs(slopes.x) >= abs(slopes.y)"));
+    out.line(value(config, "float", "slope", conditional(config, "alongX", "slopes.x", "slopes.y")));
+    out.line(value(config, "float", "safe", conditional(config, "slope >= 0.0", "max(slope, 1e-12)", "min(slope, -1e-12)")));
+    out.line(value(config, "float", "cut", "clamp(level / safe, -0.5, 0.5)"));
+    out.line(value(config, "float", "lo", conditional(config, "safe > 0.0", "cut", "-0.5")));
+    out.line(value(config, "float", "hi", conditional(config, "safe > 0.0", "0.5", "cut")));
+    out.line(value(config, "float", "mid", "0.5 * (lo + hi)"));
+    out.line("return vec3(", conditional(config, "alongX", "vec2(mid, 0.0)", "vec2(0.0, mid)"), ", hi - lo);");
     out.line("}");
     out.blank();
 }
 
 // The receiver in the light frame, p, at the start of every penumbraVisibility (and its generic twin).
-constexpr void write_light_frame_point(LineWriter& out) {
-    out.line("vec3 p = (penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz;");
+constexpr void write_light_frame_point(LineWriter& out, const Config& config) {
+    out.line(variable(config, "vec3", "p", "(penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz"));
     out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
 }
+// The generic reference program's (GLSL only).
+constexpr void write_light_frame_point(LineWriter& out) { write_light_frame_point(out, Config{}); }
 
 // GLSL float expressions of the tangent clip's offsets: baked literals in the specialized code,
 // uniform expressions in the generic reference (emit_generic.hpp).
@@ -146,24 +154,25 @@ constexpr TangentClipOffsets tangent_clip_offsets(const Config& config) {
 // perspective of the slicing projection adds dot(p.xy, n.xy) / (|n.xy| (d + z)). Surfaces facing the
 // light have no footprint there (the fade takes their own slice); it is capped for the others.
 constexpr void write_tangent_clip_setup(LineWriter& out, const Config& config, const TangentClipOffsets& k) {
-    out.line("vec3 n = mat3(penumbra_lightFromWorld) * worldNormal;");
-    out.line("n *= inversesqrt(max(dot(n, n), 1e-20));");
-    out.line("vec3 penumbra_clip = penumbra_tangentClip(p, n);");
+    out.line(variable(config, "vec3", "n", cat(upper_3x3(config, "penumbra_lightFromWorld"), " * worldNormal")));
+    out.line("n *= ", builtin(config, "inversesqrt"), "(max(dot(n, n), 1e-20));");
+    out.line(value(config, "vec3", "penumbra_clip", "penumbra_tangentClip(p, n)"));
     const bool rect = config.light == Light::rect;
     if (!k.footprint_reach.empty()) {
         out.comment("footprint of the receiver's own tangent plane in the slice above it, along its normal (scene units)");
-        out.line("float penumbra_across = max(length(n.xy), 1e-6);");
+        out.line(value(config, "float", "penumbra_across", "max(length(n.xy), 1e-6)"));
         if (rect)
-            out.line("float penumbra_spread = max(n.z / penumbra_across + dot(p.xy, n.xy) / (penumbra_across * "
-                     "(penumbra_copDistance + p.z)), 0.0);");
+            out.line(value(config, "float", "penumbra_spread",
+                           "max(n.z / penumbra_across + dot(p.xy, n.xy) / (penumbra_across * (penumbra_copDistance + p.z)), 0.0)"));
         else
-            out.line("float penumbra_spread = max(n.z / penumbra_across, 0.0);");
-        out.line("float penumbra_footprint = penumbra_spread * ", k.footprint_reach, " * penumbra_sliceDepths.y;");
+            out.line(value(config, "float", "penumbra_spread", "max(n.z / penumbra_across, 0.0)"));
+        out.line(value(config, "float", "penumbra_footprint", cat("penumbra_spread * ", k.footprint_reach, " * penumbra_sliceDepths.y")));
         if (rect)
-            out.line("float penumbra_cap = max(penumbra_lightSize.x, penumbra_lightSize.y) * (penumbra_copDistance + p.z) "
-                     "/ penumbra_copDistance * ", k.footprint_cap_uv, ";");
+            out.line(value(config, "float", "penumbra_cap",
+                           cat("max(penumbra_lightSize.x, penumbra_lightSize.y) * (penumbra_copDistance + p.z) / penumbra_copDistance * ",
+                               k.footprint_cap_uv)));
         else
-            out.line("float penumbra_cap = 2.0 * penumbra_windowHalfSize * ", k.footprint_cap_uv, ";");
+            out.line(value(config, "float", "penumbra_cap", cat("2.0 * penumbra_windowHalfSize * ", k.footprint_cap_uv)));
     }
     out.comment(cat("move the point ", k.offset_words, " slicing texels sideways along its normal, off its own texels"));
     if (rect)
@@ -204,18 +213,18 @@ constexpr void write_weight_function(LineWriter& out, const Config& config) {
     if (fades_over_own_thickness(config)) {
         out.comment(cat("paper §3.4.2: 0 for planes at or below the point, a ramp over ", fade_ramp_words(config),
                         " below the plane, then 1"));
-        out.line("float penumbra_weight(float zPoint, float zeta, float thickness)");
+        out.line(signature(config, "float", "penumbra_weight", {{"float", "zPoint"}, {"float", "zeta"}, {"float", "thickness"}}));
         out.line("{");
         out.line("return clamp((zPoint - zeta) / ", fade_ramp_depth(config, "thickness"), ", 0.0, 1.0);");
     } else if (config.self_shadow_fade) {
         out.comment(cat("paper §3.4.2: 0 for planes at or below the point, a ramp over ", fade_ramp_words(config),
                         " above the point, then 1"));
-        out.line("float penumbra_weight(float zPoint, float zeta)");
+        out.line(signature(config, "float", "penumbra_weight", {{"float", "zPoint"}, {"float", "zeta"}}));
         out.line("{");
         out.line("return clamp((zPoint - zeta) / ", fade_ramp_depth(config, "penumbra_sliceDepths.y"), ", 0.0, 1.0);");
     } else {
         out.comment("fade off: planes strictly above the point count fully, the others not at all");
-        out.line("float penumbra_weight(float zPoint, float zeta)");
+        out.line(signature(config, "float", "penumbra_weight", {{"float", "zPoint"}, {"float", "zeta"}}));
         out.line("{");
         out.line("return 1.0 - step(zPoint, zeta);");
     }
@@ -338,49 +347,53 @@ constexpr void write_lookup_function(LineWriter& out, const Config& config) {
 // larger covered area, so the fraction of it both slices still share is (1 - shift/size) per axis: the
 // weight between nested slices (the union is the larger one, chained fusion) and independent ones (the
 // product). Generic program and oracle share it.
-constexpr void write_correlated_step_function(LineWriter& out) {
+constexpr void write_correlated_step_function(LineWriter& out, const Config& config) {
     out.chunk("fusion");
     out.comment("correlated fusion: light let through by this slice given the one visited before, docs/model.md §1.7");
-    out.line("float penumbra_correlatedStep(float q, vec4 kernel, float prev, vec4 prevKernel)");
+    out.line(signature(config, "float", "penumbra_correlatedStep",
+                       {{"float", "q"}, {"vec4", "kernel"}, {"float", "prev"}, {"vec4", "prevKernel"}}));
     out.line("{");
     out.comment("parallax between the two kernels, RMS over the light's points, per axis (uv)");
-    out.line("vec2 parallax = kernel.xy - prevKernel.xy;");
-    out.line("float grow = kernel.z - prevKernel.z;");
-    out.line("vec2 shift = sqrt(parallax * parallax + vec2(grow * grow / 12.0));");
+    out.line(value(config, "vec2", "parallax", "kernel.xy - prevKernel.xy"));
+    out.line(value(config, "float", "grow", "kernel.z - prevKernel.z"));
+    out.line(value(config, "vec2", "shift", "sqrt(parallax * parallax + vec2(grow * grow / 12.0))"));
     out.comment("the size of the occluder both kernels see (uv): at least the larger area either kernel sees covered");
-    out.line("float feature = sqrt(max(q * kernel.z * kernel.z, prev * prevKernel.z * prevKernel.z));");
-    out.line("vec2 overlap = clamp(1.0 - shift / max(feature, 1e-12), 0.0, 1.0);");
+    out.line(value(config, "float", "feature", "sqrt(max(q * kernel.z * kernel.z, prev * prevKernel.z * prevKernel.z))"));
+    out.line(value(config, "vec2", "overlap", saturate(config, "1.0 - shift / max(feature, 1e-12)")));
     out.comment("blocked by both: nested (the smaller) when the occluder overlaps itself, independent (product) when not");
-    out.line("float both = mix(q * prev, min(q, prev), overlap.x * overlap.y);");
+    out.line(value(config, "float", "both", "mix(q * prev, min(q, prev), overlap.x * overlap.y)"));
     out.line("return (1.0 - q - prev + both) / max(1.0 - prev, 1e-6);");
     out.line("}");
     out.blank();
 }
 
+// The generic reference program's (GLSL only).
+constexpr void write_correlated_step_function(LineWriter& out) { write_correlated_step_function(out, Config{}); }
+
 constexpr void write_fusion_start(LineWriter& out, const Config& config) {
     out.chunk("fusion");
     switch (config.fusion) {
-    case Fusion::probabilistic: out.line("float penumbra_lit = 1.0; // paper eq. (5): product of (1 - q)"); break;
-    case Fusion::additive: out.line("float penumbra_sum = 0.0;"); break;
-    case Fusion::maximum: out.line("float penumbra_max = 0.0;"); break;
+    case Fusion::probabilistic: out.line(variable(config, "float", "penumbra_lit", "1.0"), " // paper eq. (5): product of (1 - q)"); break;
+    case Fusion::additive: out.line(variable(config, "float", "penumbra_sum", "0.0")); break;
+    case Fusion::maximum: out.line(variable(config, "float", "penumbra_max", "0.0")); break;
     case Fusion::average:
-        out.line("float penumbra_sum = 0.0;");
-        out.line("float penumbra_max = 0.0;");
+        out.line(variable(config, "float", "penumbra_sum", "0.0"));
+        out.line(variable(config, "float", "penumbra_max", "0.0"));
         break;
     case Fusion::chained:
         out.comment("chained fusion: eq. (5) assumes independent slices, but the leak fix (paper §3.4.1) copies every");
         out.comment("surface into the next slice and a solid covers consecutive slices alike. Neighbours are taken");
         out.comment("as nested (fused by maximum), slices further apart as independent (product): a chain whose");
         out.comment("step from the previous slice's q to this one's lets through (1 - max(q, prev)) / (1 - prev).");
-        out.line("float penumbra_lit = 1.0;");
-        out.line("float penumbra_prev = 0.0; // q of the slice visited before (its neighbour)");
+        out.line(variable(config, "float", "penumbra_lit", "1.0"));
+        out.line(variable(config, "float", "penumbra_prev", "0.0"), " // q of the slice visited before (its neighbour)");
         break;
     case Fusion::correlated:
         out.comment("correlated fusion: neighbours between nested (chained) and independent (product), weighted by");
         out.comment("how much of the occluder the two kernels see survives the parallax between them");
-        out.line("float penumbra_lit = 1.0;");
-        out.line("float penumbra_prev = 0.0; // q of the slice visited before (its neighbour)");
-        out.line("vec4 penumbra_prevKernel = vec4(0.0); // and its kernel");
+        out.line(variable(config, "float", "penumbra_lit", "1.0"));
+        out.line(variable(config, "float", "penumbra_prev", "0.0"), " // q of the slice visited before (its neighbour)");
+        out.line(variable(config, "vec4", "penumbra_prevKernel", "vec4(0.0)"), " // and its kernel");
         break;
     }
 }
@@ -476,12 +489,15 @@ constexpr void write_level_loop(LineWriter& out, const Config& config) {
                      ") penumbra_below = penumbra_boundary(penumbra_above + 1);");
         }
     } else {
-        out.line("float penumbra_k = clamp(ceil((p.z - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 2.0, -1.0, ",
-                 k.S_minus_1, ");");
+        out.line(variable(config, "float", "penumbra_k",
+                          cat("clamp(ceil((p.z - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 2.0, -1.0, ", k.S_minus_1, ")")));
     }
-    out.line("vec4 penumbra_i = vec4(equal(vec4(mod(max(penumbra_k, 0.0), 4.0)), vec4(0.0, 1.0, 2.0, 3.0)));");
-    out.line("float penumbra_delta = floor(max(penumbra_k, 0.0) / 4.0) * ", k.inv_T,
-             "; // horizontal offset of the slice's tile");
+    out.line(variable(config, "vec4", "penumbra_i",
+                      construct(config, "vec4",
+                                compare(config, "equal", cat("vec4(", modulo(config, "max(penumbra_k, 0.0)", "4.0"), ")"),
+                                        "vec4(0.0, 1.0, 2.0, 3.0)"))));
+    out.line(variable(config, "float", "penumbra_delta", cat("floor(max(penumbra_k, 0.0) / 4.0) * ", k.inv_T)),
+             " // horizontal offset of the slice's tile");
     for (int level = 0; level <= levels; ++level) {
         const bool last = level == levels;
         const Text lo = atlas_level_name(level);
@@ -499,21 +515,23 @@ constexpr void write_level_loop(LineWriter& out, const Config& config) {
                 out.line("penumbra_below = zeta;");
             }
         } else {
-            out.line("float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;");
+            out.line(value(config, "float", "zeta", "penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y"));
         }
-        out.line("vec4 kernel = ", kernel_call(config), ";");
+        out.line(value(config, "vec4", "kernel", kernel_call(config)));
         auto read = [&](int l) {
-            return cat("textureLod(", atlas_level_name(l), ", vec2(penumbra_delta + (", level_read_coordinate(config, l, "kernel.x"),
-                       ") * ", k.inv_T, ", ", level_read_coordinate(config, l, "kernel.y"), "), 0.0)");
+            return sample_level(config, atlas_level_name(l),
+                                cat("vec2(penumbra_delta + (", level_read_coordinate(config, l, "kernel.x"), ") * ", k.inv_T, ", ",
+                                    level_read_coordinate(config, l, "kernel.y"), ")"),
+                                "0.0");
         };
         if (last) {
-            out.line("vec4 texel = ", read(level), ";");
+            out.line(value(config, "vec4", "texel", read(level)));
         } else {
-            out.line("if (kernel.w >= ", format_float(level + 1), ") break;");
-            out.line("vec4 texel = mix(", read(level), ",");
+            out.line(if_then(config, cat("kernel.w >= ", format_float(level + 1)), "break;"));
+            out.line(declaration(config, "vec4", "texel"), "mix(", read(level), ",");
             out.line("    ", read(level + 1), ", kernel.w - ", format_float(level), ");");
         }
-        out.line("float q = ", weight_call(config), " * dot(texel, penumbra_i);");
+        out.line(value(config, "float", "q", cat(weight_call(config), " * dot(texel, penumbra_i)")));
         write_accumulate(out, config);
         out.comment("next slice up: the channel rotates; wrapping from r to a moves one tile left");
         out.line("penumbra_k -= 1.0;");
@@ -535,17 +553,17 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
     write_weight_function(out, config);
     if (!uses_level_loop(config)) write_lookup_function(out, config);
     if (config.tangent_clip) write_tangent_clip_function(out, config);
-    if (config.fusion == Fusion::correlated) write_correlated_step_function(out);
+    if (config.fusion == Fusion::correlated) write_correlated_step_function(out, config);
     out.chunk("visibility");
     if (config.tangent_clip) {
         out.comment("The fused visibility at light-frame point p of the part of the light that penumbra_clip keeps.");
-        out.line("float penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)");
+        out.line(signature(config, "float", "penumbra_clippedVisibility", {{"vec3", "p"}, {"vec3", "penumbra_clip"}}));
     } else {
         out.comment("Fraction of the light visible from worldPos: 1 lit, 0 in umbra.");
-        out.line("float penumbraVisibility(vec3 worldPos)");
+        out.line(signature(config, "float", "penumbraVisibility", {{"vec3", "worldPos"}}));
     }
     out.line("{");
-    if (!config.tangent_clip) write_light_frame_point(out);
+    if (!config.tangent_clip) write_light_frame_point(out, config);
     write_fusion_start(out, config);
     if (uses_level_loop(config))
         write_level_loop(out, config);
@@ -558,18 +576,18 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
     out.chunk("visibility");
     out.comment("Fraction of the part of the light above the tangent plane at worldPos (worldNormal: the normal of");
     out.comment("the side being lit, any length but not zero) that is visible: 1 lit, 0 in umbra.");
-    out.line("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)");
+    out.line(signature(config, "float", visibility_with_normal(config), {{"vec3", "worldPos"}, {"vec3", "worldNormal"}}));
     out.line("{");
-    write_light_frame_point(out);
+    write_light_frame_point(out, config);
     write_tangent_clip_setup(out, config);
     out.line("return penumbra_clippedVisibility(p, penumbra_clip);");
     out.line("}");
     out.blank();
     out.comment("Without a normal: the fraction of the whole light that is visible (the paper's kernels, no clip),");
     out.comment("for shaders written against penumbraVisibility(vec3 worldPos) of every technique.");
-    out.line("float penumbraVisibility(vec3 worldPos)");
+    out.line(signature(config, "float", "penumbraVisibility", {{"vec3", "worldPos"}}));
     out.line("{");
-    write_light_frame_point(out);
+    write_light_frame_point(out, config);
     out.line("return penumbra_clippedVisibility(p, vec3(0.0, 0.0, 1.0));");
     out.line("}");
 }
@@ -577,11 +595,23 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
 // The includable snippet penumbra_visibility.glsl: no #version, declarations from binding 0.
 constexpr Text visibility_snippet(const Config& config) {
     LineWriter out;
-    out.line("// Penumbra ", version_string, " - penumbra_visibility.glsl: float penumbraVisibility(vec3 worldPos",
-             choose(config.tangent_clip, ", vec3 worldNormal) (clipped to the tangent plane) and (vec3 worldPos", ""),
-             ")");
-    out.line("// ", describe(config));
-    out.comment("Include after the #version line of a stage for this target. Bindings start at 0.");
+    if (is_wgsl(config)) {
+        out.line("// Penumbra ", version_string, " - penumbra_visibility.wgsl: ",
+                 choose(config.tangent_clip,
+                        cat(signature(config, "float", "penumbraVisibilityWithNormal", {{"vec3", "worldPos"}, {"vec3", "worldNormal"}}),
+                            " (clipped to the tangent plane) and "),
+                        Text()),
+                 signature(config, "float", "penumbraVisibility", {{"vec3", "worldPos"}}));
+        out.line("// ", describe(config));
+        out.comment("Add to a module of the shading stage. Bindings start at 0 in group 0; call penumbra_loadVisibility()"
+                    " first in the entry point.");
+    } else {
+        out.line("// Penumbra ", version_string, " - penumbra_visibility.glsl: float penumbraVisibility(vec3 worldPos",
+                 choose(config.tangent_clip, ", vec3 worldNormal) (clipped to the tangent plane) and (vec3 worldPos", ""),
+                 ")");
+        out.line("// ", describe(config));
+        out.comment("Include after the #version line of a stage for this target. Bindings start at 0.");
+    }
     out.blank();
     write_precision(out, config); // ES 3.00: highp defaults, so `#version 300 es` + this text compiles
     int binding = 0;

@@ -124,6 +124,7 @@ constexpr TechniqueDescriptor occlusion_technique() {
         .storage_note = occlusion_storage_note,
         .es_sampler_precision = occlusion_es_samplers,
         .texels_per_fragment = occlusion_texels_per_fragment,
+        .writes_wgsl = true, // atlas N-buffers and Gaussian levels, up to 32 slices, uniform placement (validate.hpp)
     };
 }
 

@@ -70,6 +70,17 @@ constexpr std::vector<Problem> occlusion_problems(const Config& config) {
         add("filter", Text("sat"),
             cat("needs renderable, filterable 32-bit float textures, which target '", target,
                 "' does not guarantee; allowed filters for ", target, ": mipmap, nbuffer, gaussian"));
+    if (config.target == Target::wgsl) { // what the WGSL emitters and WebGPU do not have yet
+        if (config.filter == Filter::mipmap)
+            add("filter", Text("mipmap"),
+                "needs generateMipmap, which WebGPU does not have (a mip chain as render passes is not written yet); "
+                "allowed for wgsl: nbuffer, gaussian");
+        if (config.packing != Packing::atlas)
+            add("packing", Text(to_string(config.packing)), "is not written for wgsl yet; allowed for wgsl: atlas");
+        if (places_slices_adaptively(config))
+            add("slice_placement", Text("adaptive"),
+                "needs generateMipmap over its depth bins, which WebGPU does not have; allowed for wgsl: uniform");
+    }
     const Text allowed_for_target = cat("1 to ", format_int(4 * limit.max_draw_buffers), limit.logic_op ? ", 64 or 128" : "");
     if (slices_as_bits(config) && !limit.logic_op)
         add("slices", format_int(config.slices),
