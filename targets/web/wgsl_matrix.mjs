@@ -36,15 +36,25 @@ const VARIANTS = {
     "erosion-small": "--technique erosion --erosion-radius 4 --erosion-search-taps 8 --erosion-blur-taps 4",
     "evsm": "--technique evsm",
     "evsm-small": "--technique evsm --evsm-blur-taps 4 --evsm-max-blur 4 --evsm-bleeding 0",
+    "occlusion": "--technique occlusion",
+    "occlusion-small": "--technique occlusion --slices 8 --resolution 128 --fusion additive --no-tangent-clip",
+    "occlusion-probabilistic": "--technique occlusion --slices 4 --resolution 64 --fusion probabilistic",
+    "occlusion-gaussian": "--technique occlusion --filter gaussian --slices 8 --resolution 128",
 };
+// Variants that exist under one light only (the Gaussian stands for the sun's disk).
+const VARIANT_LIGHTS = {"occlusion-gaussian": ["sun"]};
 const NORMAL_OFFSET_TECHNIQUES = ["shadowmap", "pcf", "pcss"];
 const LIGHTS = ["rect", "sun"];
 const NORMAL_OFFSETS = ["0", "1"];
 const ALPHA_TEST = [false, true];
 // What the wgsl target refuses today (the lead ports these next; move a line up into VARIANTS when it lands).
 const REFUSED = {
-    "occlusion": "--technique occlusion",
-    "occlusion-sun": "--technique occlusion --light sun",
+    "occlusion-mipmap": "--technique occlusion --filter mipmap",
+    "occlusion-sat": "--technique occlusion --filter sat",
+    "occlusion-array": "--technique occlusion --packing array",
+    "occlusion-volume": "--technique occlusion --packing volume",
+    "occlusion-adaptive": "--technique occlusion --slice-placement adaptive",
+    "occlusion-64": "--technique occlusion --slices 64",
     "oim": "--technique oim",
 };
 // ----
@@ -53,7 +63,7 @@ function configurations() {
     const out = [];
     for (const [variant, flags] of Object.entries(VARIANTS)) {
         const offsets = NORMAL_OFFSET_TECHNIQUES.includes(flags.split(" ")[1]) ? NORMAL_OFFSETS : [null];
-        for (const light of LIGHTS)
+        for (const light of VARIANT_LIGHTS[variant] || LIGHTS)
             for (const offset of offsets)
                 for (const alpha of ALPHA_TEST)
                     out.push({name: `${variant}-${light}${offset === null ? "" : `-n${offset}`}${alpha ? "-alpha" : ""}`,
