@@ -6,18 +6,44 @@
 // bundles written at publish time by scripts/publish_web.sh) or ?bundle=DIR/ (penumbra-export-bundle
 // --target essl300). Light: sliders, or drag with the shift key; camera: drag to orbit.
 //
-// URL parameters: ?bundle=DIR/, ?scene=NAME (a built-in scene), ?wasm=URL.
-// window.penumbra (for automation): ready (a promise), readVisibility(side), setLight(), info(), ...
+// The renderer switch runs WebGL2 (the essl300 emission, penumbra_runner.js) or WebGPU (the wgsl
+// emission of the same configuration, webgpu_runner.js; for the techniques that have WGSL): WebGPU
+// computes the visibility, the page reads it back and shows it through the same WebGL2 composite.
+//
+// URL parameters: ?bundle=DIR/, ?scene=NAME (a built-in scene), ?wasm=URL, ?backend=webgl2|webgpu.
+// window.penumbra (for automation): ready (a promise), readVisibility(side), setLight(), info(),
+// setBackend(name), settled() (WebGPU renders asynchronously: await it before reading), ...
 // The emitter, the layout runner and the light frame are the three.js add-on's (three/, the npm
 // package penumbra-three): one copy, which the playground imports from there.
 import {loadEmitter} from "./three/penumbra_emitter.js";
 import {LayoutRunner} from "./three/penumbra_runner.js";
+import {WebGPULayoutRunner} from "./webgpu_runner.js";
 import {lightUniforms} from "./three/light_frame.js";
 import {sunDirection, timeWindow} from "./sun_path.js";
 import {ConfigPanel} from "./config_panel.js";
 import {SceneGeometry, GBuffer, Composite, perspective, lookAt, multiply, SCENE_POSITION_LOCATION} from "./scene_view.js";
 
 const $ = (id) => document.getElementById(id);
+const STALE = Symbol("stale WebGPU frame");
+
+// The page's renderers: the emission each one runs.
+const BACKENDS = {
+    webgl2: {name: "WebGL2", target: "essl300", language: "ES 3.00"},
+    webgpu: {name: "WebGPU", target: "wgsl", language: "WGSL"},
+};
+
+// An RGBA32F texture's texels (bottom row first) through a read framebuffer.
+function readFloatTexture(gl, texture, width, height) {
+    const framebuffer = gl.createFramebuffer();
+    gl.bindFramebuffer(gl.FRAMEBUFFER, framebuffer);
+    gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, texture.id, 0);
+    gl.readBuffer(gl.COLOR_ATTACHMENT0);
+    const out = new Float32Array(4 * width * height);
+    gl.readPixels(0, 0, width, height, gl.RGBA, gl.FLOAT, out);
+    gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+    gl.deleteFramebuffer(framebuffer);
+    return out;
+}
 
 async function fetchOk(url) {
     const response = await fetch(url);
@@ -81,6 +107,8 @@ class Side {
         this.emissions = 0;
         this.runner = null;
         this.reason = "";
+        this.generation = 0;        // WebGPU runners are built asynchronously: only the latest one is kept
+        this.lastVisibility = null; // WebGPU: the last result read back
         this.panel = new ConfigPanel($("panels"), app.emitter, {
             id: index ? "right" : "left", title, defaults: app.defaults, initial, onChange: () => this.update(),
         });
@@ -95,19 +123,34 @@ class Side {
         this.reason = "";
         let note = emission.ok ? `emitted ${Object.keys(emission.files).length} files in ${emission.ms.toFixed(1)} ms` : "";
         let runnable = emission;
-        if (emission.ok && emission.layout.config.target !== "essl300") {
-            runnable = this.app.emitter.emit({...config, target: "essl300"});
-            note += runnable.ok ? "; the page runs the essl300 emission of the same configuration (WebGL2 runs ES 3.00)"
-                                : `; WebGL2 runs only essl300, where this configuration is refused: ${runnable.error}`;
+        const backend = BACKENDS[this.app.backend];
+        if (emission.ok && emission.layout.config.target !== backend.target) {
+            runnable = this.app.emitter.emit({...config, target: backend.target});
+            note += runnable.ok ? `; the page runs the ${backend.target} emission of the same configuration (${backend.name} runs ${backend.language})`
+                                : `; ${backend.name} runs only ${backend.target}, where this configuration is refused: ${runnable.error}`;
         }
         this.panel.showResult(emission, note);
         if (this.runner) this.runner.dispose();
         this.runner = null;
+        this.lastVisibility = null;
+        const generation = ++this.generation;
         if (!emission.ok) this.reason = "invalid configuration: " + emission.error;
-        else if (!runnable.ok) this.reason = "cannot run on WebGL2: " + runnable.error;
+        else if (!runnable.ok) this.reason = `cannot run on ${backend.name}: ` + runnable.error;
         else {
             this.reason = this.app.cannotRun(runnable.layout);
-            if (!this.reason) {
+            if (!this.reason && this.app.backend === "webgpu") {
+                this.reason = "building the WebGPU pipelines…";
+                this.app.track(WebGPULayoutRunner.fromEmission(this.app.gpu.device, runnable).then((runner) => {
+                    if (generation !== this.generation) return runner.dispose();
+                    this.runner = runner;
+                    this.reason = "";
+                    this.app.render();
+                }, (e) => {
+                    if (generation !== this.generation) return;
+                    this.reason = "cannot run on WebGPU: " + e.message;
+                    this.app.render();
+                }));
+            } else if (!this.reason) {
                 try {
                     this.runner = LayoutRunner.fromEmission(this.app.gl, runnable);
                     this.runner.enableTiming();
@@ -145,6 +188,10 @@ class App {
         this.gbuffer = new GBuffer(this.gl);
         this.composite = new Composite(this.gl);
         this.timer = !!this.gl.getExtension("EXT_disjoint_timer_query_webgl2");
+        this.inflight = Promise.resolve(); // WebGPU work in progress (settled() waits for it)
+        this.backend = "webgl2";
+        this.backendNote = "";
+        if (params.get("backend") === "webgpu" && !(await this.startWebGPU())) this.backendNote = "WebGPU unavailable, running WebGL2: " + this.gpuError;
 
         // Scenes: the built-in bundles (scenes/index.json), and ?bundle=.
         let index = {scenes: []};
@@ -176,6 +223,50 @@ class App {
         const {width, height} = this.bundle;
         this.references = {difference: imageTexture(this.gl, width, height, this.bundle.gl)};
         if (this.bundle.truth) this.references.error = imageTexture(this.gl, width, height, this.bundle.truth);
+    }
+
+    // A WebGPU device (once); false, with gpuError saying why, when the browser has none.
+    async startWebGPU() {
+        if (!this.gpu) {
+            try {
+                if (!navigator.gpu) throw new Error("navigator.gpu is undefined (no WebGPU, or not a secure context)");
+                const adapter = await navigator.gpu.requestAdapter();
+                if (!adapter) throw new Error("navigator.gpu.requestAdapter() gave no adapter");
+                this.gpu = {device: await adapter.requestDevice(), adapter: WebGPULayoutRunner.describeAdapter(adapter)};
+            } catch (e) {
+                this.gpuError = e.message;
+                return false;
+            }
+        }
+        this.backend = "webgpu";
+        return true;
+    }
+
+    // The renderer, "webgl2" or "webgpu": every side re-emits for it. False when WebGPU is missing.
+    async setBackend(name) {
+        if (!BACKENDS[name]) throw new Error(`backend '${name}' unknown; allowed: ${Object.keys(BACKENDS).join(", ")}`);
+        this.backendNote = "";
+        if (name === "webgpu" && !(await this.startWebGPU())) this.backendNote = "WebGPU unavailable: " + this.gpuError;
+        else if (name === "webgl2") this.backend = "webgl2";
+        if ($("backend")) $("backend").value = this.backend;
+        this.sides.forEach((s) => s && s.update(false));
+        this.render();
+        await this.settled();
+        return this.backend === name;
+    }
+
+    // Tracks asynchronous WebGPU work (runner builds, renders) for settled().
+    track(promise) {
+        this.inflight = Promise.all([this.inflight, promise.catch(() => {})]);
+        return promise;
+    }
+
+    async settled() {
+        let current;
+        do {
+            current = this.inflight;
+            await current;
+        } while (current !== this.inflight);
     }
 
     // Why a layout cannot run on this page with this scene ("" when it can).
@@ -276,6 +367,113 @@ class App {
         return frame.contained;
     }
 
+    // The WebGPU frame: each side's visibility computed by WebGPU, read back, and composited in WebGL2
+    // as render() does.
+    async renderWebGPU() {
+        if (this.backend !== "webgpu") return; // switched back to WebGL2 while this frame waited
+        const gl = this.gl;
+        const started = performance.now();
+        const sides = this.state.split && this.sides[1] ? this.sides : [this.sides[0]];
+        const w = this.canvas.width, h = this.canvas.height;
+        const messages = [];
+        gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+        gl.viewport(0, 0, w, h);
+        gl.clearColor(0.05, 0.05, 0.06, 1);
+        gl.clear(gl.COLOR_BUFFER_BIT);
+        for (const [i, side] of sides.entries()) {
+            const area = sides.length === 1 ? [0, 0, w, h] : [i * (w >> 1), 0, w >> 1, h];
+            const label = sides.length === 1 ? "" : i ? "right: " : "left: ";
+            if (!side.runner) {
+                messages.push(label + side.reason);
+                continue;
+            }
+            side.failed = false;
+            try {
+                if (!(await this.renderSideWebGPU(side, area))) messages.push(label + "the bounds reach the light plane: move the light up");
+            } catch (e) {
+                if (e === STALE) return; // the side's runner (or the renderer) changed meanwhile: a newer frame follows
+                messages.push(`${label}cannot run on WebGPU: ${e.message}`);
+                side.reason = e.message;
+                side.failed = true;
+            }
+        }
+        if (sides.length > 1) {
+            gl.enable(gl.SCISSOR_TEST);
+            gl.scissor((w >> 1) - 1, 0, 2, h);
+            gl.clearColor(0.9, 0.75, 0.2, 1);
+            gl.clear(gl.COLOR_BUFFER_BIT);
+            gl.disable(gl.SCISSOR_TEST);
+        }
+        gl.finish();
+        this.state.frameMs = performance.now() - started;
+        ++this.state.renders;
+        this.messages = messages;
+        this.showStatus();
+    }
+
+    // One side on WebGPU: shadow phase, the G-buffer (the page's WebGL2 pass, read back, or the
+    // bundle's), screen phase, read-back, and its part of the canvas.
+    async renderSideWebGPU(side, area) {
+        const gl = this.gl, runner = side.runner;
+        const current = () => { if (side.runner !== runner || this.backend !== "webgpu") throw STALE; };
+        const config = runner.layout.config;
+        const light = this.light(config.light);
+        const frame = lightUniforms(light, this.geometry.box.lo, this.geometry.box.hi, config.slices);
+        runner.setUniforms(this.state.useBundleUniforms && this.state.camera === "bundle" ? this.bundle.info.uniforms : frame.uniforms);
+        const {eye, clip} = this.camera();
+        const toLight = light.kind === "sun" ? [-light.direction[0], -light.direction[1], -light.direction[2], 0] : [...light.center, 1];
+        runner.setUniforms({penumbra_clipFromWorld: clip, penumbra_toLight: toLight});
+        if (!side.drawer || side.drawer.runner !== runner || side.drawer.triangles !== this.bundle.triangles) // the scene's vertex buffer
+            side.drawer = {runner, triangles: this.bundle.triangles, draw: runner.sceneDrawer(this.bundle.triangles)};
+        await runner.runPhase("shadow", side.drawer.draw);
+        current();
+
+        const bundleCamera = this.state.camera === "bundle";
+        const width = bundleCamera ? this.bundle.width : this.canvas.width, height = bundleCamera ? this.bundle.height : this.canvas.height;
+        const positions = this.gbuffer.ownTexture("positions", width, height), normals = this.gbuffer.ownTexture("normals", width, height);
+        let data;
+        if (bundleCamera) {
+            data = this.bundle.callerTextures;
+            for (const [t, texels] of [[positions, data.penumbra_worldPositions], [normals, data.penumbra_worldNormals]]) {
+                gl.bindTexture(gl.TEXTURE_2D, t.id);
+                gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+                gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, width, height, gl.RGBA, gl.FLOAT, texels);
+                gl.bindTexture(gl.TEXTURE_2D, null);
+            }
+        } else {
+            this.gbuffer.render(this.geometry, clip, eye, width, height, {positions, normals});
+            data = {penumbra_worldPositions: readFloatTexture(gl, positions, width, height),
+                    penumbra_worldNormals: readFloatTexture(gl, normals, width, height)};
+        }
+        runner.allocateOutputSized(width, height);
+        for (const t of runner.layout.textures) {
+            if (t.source !== "caller") continue;
+            if (!data[t.name]) throw new Error(`the layout reads a G-buffer (${t.name}) that this page does not draw`);
+            runner.fillTexture(t.name, width, height, data[t.name]);
+        }
+        await runner.runPhase("screen", null, {width, height});
+        current();
+        const visibility = await runner.readResult();
+        current();
+        side.lastVisibility = visibility;
+        // the read-back result as a WebGL2 texture for the composite (same rows: bottom first)
+        this.webgpuResults ??= {};
+        let result = this.webgpuResults[side.index];
+        if (!result || result.width !== width || result.height !== height) {
+            if (result) gl.deleteTexture(result.id);
+            result = this.webgpuResults[side.index] = {id: imageTexture(gl, width, height, side.lastVisibility), width, height};
+        } else {
+            gl.bindTexture(gl.TEXTURE_2D, result.id);
+            gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+            gl.texSubImage2D(gl.TEXTURE_2D, 0, 0, 0, width, height, gl.RED, gl.FLOAT, side.lastVisibility);
+            gl.bindTexture(gl.TEXTURE_2D, null);
+        }
+        this.composite.draw({visibility: result.id, positions: positions.id, normals: normals.id,
+                             reference: bundleCamera ? this.references[this.state.view] : null}, [this.canvas.width, this.canvas.height], area,
+                            this.state.view, toLight);
+        return frame.contained;
+    }
+
     // The bundle's slicing output (slices.f32) in place of the browser's own slicing pass.
     injectSlices(runner, pass) {
         const R = runner.layout.config.resolution, S = runner.layout.config.slices;
@@ -290,6 +488,17 @@ class App {
     }
 
     render() {
+        if (this.backend === "webgpu") {
+            // one frame at a time; requests while one waits are merged into it
+            if (this.frameQueued) return;
+            this.frameQueued = true;
+            this.frames = (this.frames || Promise.resolve()).then(() => {
+                this.frameQueued = false;
+                return this.renderWebGPU();
+            });
+            this.track(this.frames);
+            return;
+        }
         const gl = this.gl;
         const started = performance.now();
         gl.bindFramebuffer(gl.FRAMEBUFFER, null);
@@ -332,11 +541,15 @@ class App {
 
     showStatus() {
         const sides = this.state.split && this.sides[1] ? this.sides : [this.sides[0]];
-        const lines = [`${this.sceneName}: ${this.geometry.count / 3} triangles; ` +
-                       `frame ${this.state.frameMs.toFixed(1)} ms (CPU, with gl.finish)` +
-                       (this.timer ? "" : "; no EXT_disjoint_timer_query_webgl2 in this browser, so no GPU pass times")];
+        const lines = this.backend === "webgpu"
+            ? [`${this.sceneName}: ${this.geometry.count / 3} triangles; WebGPU (adapter ${this.gpu.adapter.vendor} ${this.gpu.adapter.architecture}, ` +
+               `the wgsl emission); frame ${this.state.frameMs.toFixed(1)} ms (CPU, with the read-back)`]
+            : [`${this.sceneName}: ${this.geometry.count / 3} triangles; ` +
+               `frame ${this.state.frameMs.toFixed(1)} ms (CPU, with gl.finish)` +
+               (this.timer ? "" : "; no EXT_disjoint_timer_query_webgl2 in this browser, so no GPU pass times")];
+        if (this.backendNote) lines.push(this.backendNote);
         sides.forEach((side, i) => {
-            if (!side.runner) return;
+            if (!side.runner || !side.runner.passTimes) return;
             const times = side.runner.passTimes();
             if (!times || !Object.keys(times).length) return;
             const total = Object.values(times).reduce((a, b) => a + b, 0);
@@ -351,8 +564,9 @@ class App {
         const against = {difference: this.bundle.gl, error: this.bundle.truth}[this.state.view];
         if (this.state.view === "error" && !this.bundle.truth)
             lines.push("this bundle carries no ray-traced truth (penumbra-export-bundle --reference N writes one)");
-        if (against && this.state.camera === "bundle" && this.sides[0].runner) {
-            const v = this.sides[0].runner.readResult(), geometry = this.bundle.callerTextures.penumbra_worldPositions;
+        const shown = this.backend === "webgpu" ? this.sides[0].lastVisibility : this.sides[0].runner && this.sides[0].runner.readResult();
+        if (against && this.state.camera === "bundle" && this.sides[0].runner && shown) {
+            const v = shown, geometry = this.bundle.callerTextures.penumbra_worldPositions;
             let sum = 0, n = 0;
             for (let i = 0; i < v.length; ++i)
                 if (geometry[4 * i + 3] > 0.5 && Number.isFinite(against[i])) { sum += Math.abs(v[i] - against[i]); ++n; }
@@ -417,6 +631,8 @@ class App {
                                 this.state.view = v;
                                 if (v === "difference" || v === "error") this.setCamera("bundle"); else this.render();
                             }));
+        row("renderer ", select("backend", Object.entries(BACKENDS).map(([key, b]) => [key, `${b.name} (the ${b.target} emission)`]), this.backend,
+                                (v) => this.setBackend(v)));
         row("camera ", select("camera", [["orbit", "orbit (drag the image)"], ["bundle", "the bundle's camera and G-buffers"]], this.state.camera,
                               (v) => this.setCamera(v)));
         const split = Object.assign(document.createElement("input"), {type: "checkbox", id: "split"});
@@ -518,8 +734,15 @@ class App {
             // The side's result; an error when its last render failed (the texture would be stale).
             readVisibility: (side = 0) => {
                 if (!app.sides[side].runner || app.sides[side].failed) throw new Error(`side ${side} did not render: ${app.sides[side].reason}`);
+                if (app.backend === "webgpu") {
+                    if (!app.sides[side].lastVisibility) throw new Error(`side ${side}: no WebGPU frame yet (await window.penumbra.settled())`);
+                    return app.sides[side].lastVisibility;
+                }
                 return app.sides[side].runner.readResult();
             },
+            backend: () => app.backend,
+            setBackend: (name) => app.setBackend(name),
+            settled: () => app.settled(),
             setCamera: (camera) => app.setCamera(camera),
             setSplit: (on) => app.setSplit(on),
             setLight: (kind, changes) => { Object.assign(app.light(kind), changes); app.render(); },
@@ -534,15 +757,15 @@ class App {
                 const runner = app.sides[0].runner, {resolution: R, slices: S} = runner.layout.config;
                 const pass = runner.layout.passes.find((p) => p.name === "slicing");
                 let differing = 0, covered = 0;
-                pass.outputs.forEach((out, t) => {
-                    const ours = runner.readTexture(out.texture, out.level, out.layer);
+                for (const [t, out] of pass.outputs.entries()) {
+                    const ours = await runner.readTexture(out.texture, out.level, out.layer); // (a promise on WebGPU)
                     for (let c = 0; c < 4 && 4 * t + c < S; ++c)
                         for (let i = 0; i < R * R; ++i) {
                             const d = desktop[(4 * t + c) * R * R + i];
                             covered += d > 0.5 ? 1 : 0;
                             differing += Math.abs(ours[4 * i + c] - d) > 0.5 ? 1 : 0;
                         }
-                });
+                }
                 return {differing, covered, texels: S * R * R};
             },
             uniforms: () => {
@@ -565,6 +788,7 @@ class App {
                 const gl = app.gl, debug = gl.getExtension("WEBGL_debug_renderer_info");
                 const runner = app.sides[0].runner;
                 return {renderer: gl.getParameter(debug ? debug.UNMASKED_RENDERER_WEBGL : gl.RENDERER), version: gl.getParameter(gl.VERSION),
+                        backend: app.backend, adapter: app.gpu ? app.gpu.adapter : null,
                         timer: app.timer, bundle: app.bundle.info.config, width: app.bundle.width, height: app.bundle.height,
                         resultFormat: runner ? runner.texture(runner.layout.result).desc.internal_format : null,
                         emitterLoadMs: app.emitter.compileMs};

@@ -14,6 +14,8 @@ export const CHROMIUM_ARGS = ["--no-sandbox", "--use-angle=swiftshader", "--enab
                               "--disable-background-networking", "--disable-component-update", "--disable-sync",
                               "--no-first-run", "--disable-quic", "--disable-extensions",
                               "--disable-dev-shm-usage"]; // containers often have a tiny /dev/shm
+// Added for WebGPU on SwiftShader (navigator.gpu exists only on a page served from 127.0.0.1, not about:blank).
+export const WEBGPU_ARGS = ["--enable-unsafe-webgpu", "--use-webgpu-adapter=swiftshader"];
 
 // Serves /<prefix>/... from roots[prefix] (longest prefix first) and each URL path of `files` from
 // its file, on 127.0.0.1 only.
@@ -41,8 +43,8 @@ export function serve(roots, files = {}) {
     return new Promise((resolve) => server.listen(0, "127.0.0.1", () => resolve(server)));
 }
 
-// Exit 77 (ctest's skip) without chromium; exit 1 without puppeteer-core.
-export async function launchChromium(executablePath) {
+// Exit 77 (ctest's skip) without chromium; exit 1 without puppeteer-core. `extraArgs`: e.g. WEBGPU_ARGS.
+export async function launchChromium(executablePath, extraArgs = []) {
     if (!fs.existsSync(executablePath)) {
         console.log(`skip: no chromium at ${executablePath} (scripts/setup.sh installs Debian's chromium)`);
         process.exit(77);
@@ -60,7 +62,7 @@ export async function launchChromium(executablePath) {
         headless: true,
         userDataDir,
         protocolTimeout: 600000,
-        args: CHROMIUM_ARGS,
+        args: [...CHROMIUM_ARGS, ...extraArgs],
     });
     const close = async () => {
         await browser.close();
