@@ -112,6 +112,7 @@ TEST_CASE("fusion rules") {
         {Fusion::average, "return 1.0 - 0.5 * (min(1.0, penumbra_sum) + penumbra_max);"},
         {Fusion::chained, "penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);"},
         {Fusion::correlated, "penumbra_lit *= penumbra_correlatedStep(q, kernel, penumbra_prev, penumbra_prevKernel);"},
+        {Fusion::extent, "penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);"},
     };
     for (const auto& [fusion, line] : expected)
         CHECK(emit_file(Config{.fusion = fusion}, "penumbra_visibility.glsl").text.find(line) != std::string::npos);
