@@ -201,7 +201,7 @@ struct Config {
                                             // 64 or 128 (sliced as bits of one RGBA32UI target, paper §3.7)
     int resolution = 512;                   // occlusion texture side in texels; a power of two, 32 to 4096
     Filter filter = Filter::nbuffer;        // prefilter of the occlusion textures
-    Fusion fusion = Fusion::extent;         // rule combining the slices' occlusion (docs/model.md §1.7.2)
+    Fusion fusion = Fusion::chained;        // rule combining the slices' occlusion
     Packing packing = Packing::atlas;       // storage of the filtered levels
     Light light = Light::rect;              // kind of area light
     bool leak_fix = true;                   // paper §3.4.1: a fragment of slice k also marks slice k+1
