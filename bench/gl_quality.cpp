@@ -189,7 +189,7 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                     parts.empty() ? std::nullopt : penumbra::parse_enum<penumbra::Fusion>(parts.front());
                 if (!fusion) {
                     error = "--variants: '" + std::string(name) + "' does not start with a fusion rule; allowed: "
-                            "probabilistic, additive, maximum, average, chained, correlated";
+                            "probabilistic, additive, maximum, average, chained, correlated, extent";
                     return std::nullopt;
                 }
                 v.fusion = *fusion;

@@ -476,7 +476,7 @@ TEST_CASE("layout: levels above level_reduction at half the resolution of the on
 
 TEST_CASE("kernel_level_bound: the widest kernel of a receiver on the bounds' bottom through the top plane") {
     const RectLight light{.center = {0, 5, 0}, .u_axis = {1, 0, 0}, .v_axis = {0, 0, 1}, .width = 1, .height = 1};
-    const Config config{.slices = 16, .resolution = 512};
+    const Config config{.slices = 16, .resolution = 512, .fusion = Fusion::chained};
     const SliceFrame small = slice_frame(light, {-4, 0, -4}, {4, 1, 4}, 16);
     const int bound = kernel_level_bound(small, config);
     // σ = d (z_S − ζ_0) / (z_S (d + ζ_0)) by hand
@@ -489,6 +489,10 @@ TEST_CASE("kernel_level_bound: the widest kernel of a receiver on the bounds' bo
     Config sat = config;
     sat.filter = Filter::sat;
     CHECK(kernel_level_bound(small, sat) == -1);
+    // extent fusion also reads a window twice the kernel's side: one level more
+    Config extent = config;
+    extent.fusion = Fusion::extent;
+    CHECK(kernel_level_bound(small, extent) == bound + 1);
 }
 
 TEST_CASE("cost_model: fragments, fetches and bytes per pass, from the layout") {
@@ -519,7 +523,8 @@ TEST_CASE("cost_model: fragments, fetches and bytes per pass, from the layout") 
     CHECK(pack->bytes_written == 2 * 4LL * 2048 * 512);
     CHECK(cost.screen.passes == 1);
     CHECK(cost.screen.fragments == 256LL * 256);
-    CHECK(cost.screen.texel_fetches == 256LL * 256 * (2 + 16 * 8)); // G-buffer (positions, normals) + 2 bilinear per slice
+    // G-buffer (positions, normals) + 2 bilinear per slice, + 1 for extent fusion's doubled window
+    CHECK(cost.screen.texel_fetches == 256LL * 256 * (2 + 16 * (config.fusion == Fusion::extent ? 12 : 8)));
     // the same configuration in half floats moves twice the level bytes
     Config half = config;
     half.level_format = LevelFormat::rgba16f;

@@ -62,6 +62,8 @@ TEST_CASE("the shading function is specialized: unrolled, swizzled, constants ba
             function_body(snippet, config.tangent_clip ? "\nfloat penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)"
                                                        : "\nfloat penumbraVisibility(vec3 worldPos)");
         const int S = config.slices, L = max_level(config);
+        // extent fusion reads each slice once more, over a window twice the kernel's side
+        const int lookups = config.fusion == Fusion::extent ? 2 : 1;
 
         // no loop statement for the static loop; the atlas level loop keeps one bounded walk per level
         CHECK(count(body, "for (") == 0);
@@ -69,7 +71,7 @@ TEST_CASE("the shading function is specialized: unrolled, swizzled, constants ba
                                 (config.filter == Filter::nbuffer || config.filter == Filter::gaussian);
         CHECK(count(body, "while (") == (level_loop ? L + 1 : 0));
         // slices are selected by rotating a one-hot vec4 and a dot product, never by a branch on the index
-        CHECK(count(body, "dot(") == (level_loop ? L + 1 : S));
+        CHECK(count(body, "dot(") == (level_loop ? L + 1 : S) * lookups);
         CHECK(count(body, "penumbra_i = penumbra_i.yzwx;") == (level_loop ? L + 1 : S - 1));
         CHECK(count(body, "if (") == (level_loop ? L : 0));
         // no sampler array, let alone a dynamically indexed one
@@ -79,7 +81,8 @@ TEST_CASE("the shading function is specialized: unrolled, swizzled, constants ba
             // one comment per unrolled level, each level texture read statically
             for (int level = 0; level <= L; ++level)
                 CHECK(body.find("// level " + std::to_string(level) + ":") != std::string_view::npos);
-            CHECK(count(body, "textureLod(") == 2 * L + 1);
+            // extent: the doubled window's level two above, where there is one (the others are read already)
+            CHECK(count(body, "textureLod(") == 2 * L + 1 + (lookups - 1) * (L - 1));
         } else {
             // one labelled block per slice, each with its baked plane index, one filtered lookup each
             for (int s = 0; s < S; ++s) {
@@ -87,7 +90,7 @@ TEST_CASE("the shading function is specialized: unrolled, swizzled, constants ba
                 CHECK(body.find("penumbra_sliceDepths.x + " + std::to_string(s + 1) + ".0 * penumbra_sliceDepths.y") !=
                       std::string_view::npos);
             }
-            CHECK(count(body, "penumbra_filtered") == S);
+            CHECK(count(body, "penumbra_filtered") == S * lookups);
             if (config.filter == Filter::sat)
                 CHECK(count(function_body(snippet, "vec4 penumbra_filtered"), "penumbra_prefix(") *
                           count(function_body(snippet, "vec4 penumbra_prefix"), "textureLod(") ==
@@ -112,6 +115,7 @@ TEST_CASE("fusion rules") {
         {Fusion::average, "return 1.0 - 0.5 * (min(1.0, penumbra_sum) + penumbra_max);"},
         {Fusion::chained, "penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);"},
         {Fusion::correlated, "penumbra_lit *= penumbra_correlatedStep(q, kernel, penumbra_prev, penumbra_prevKernel);"},
+        {Fusion::extent, "penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);"},
     };
     for (const auto& [fusion, line] : expected)
         CHECK(emit_file(Config{.fusion = fusion}, "penumbra_visibility.glsl").text.find(line) != std::string::npos);

@@ -42,6 +42,8 @@ enum class Fusion : std::uint8_t {
                    // slices further apart by product (the leak fix and solids make neighbours correlated)
     correlated,    // neighbours blended between nested (chained) and independent (product) by the overlap of
                    // the occluder the two kernels see, displaced by the parallax between them (docs/model.md §1.7)
+    extent,        // correlated, the occluder's size from the covered area in a window twice the kernel's side
+                   // (one more lookup per slice; docs/model.md §1.7.2)
 };
 
 // How the filtered occlusion textures are stored (paper §3.6–3.7, docs/model.md §3).
@@ -256,8 +258,8 @@ template <> struct EnumNames<Filter> {
     static constexpr std::array<std::string_view, 4> names{"mipmap", "nbuffer", "sat", "gaussian"};
 };
 template <> struct EnumNames<Fusion> {
-    static constexpr std::array<std::string_view, 6> names{"probabilistic", "additive", "maximum", "average",
-                                                           "chained", "correlated"};
+    static constexpr std::array<std::string_view, 7> names{"probabilistic", "additive", "maximum", "average",
+                                                           "chained", "correlated", "extent"};
 };
 template <> struct EnumNames<Packing> {
     static constexpr std::array<std::string_view, 3> names{"atlas", "array", "volume"};

@@ -10,7 +10,8 @@
 // (z_S) through the topmost plane (ζ_0, the bottom of slice 0). The tangent clip only shrinks
 // kernels (side × clip.z ≤ side) and moves the point sideways, not in depth, so the whole-light
 // kernel bounds it. The lookup reads level λ = log2(σ·R) (+ the Gaussian bias) and blends with the
-// level above it, so the bound is ⌈λ⌉, clamped to [0, log2 R].
+// level above it, so the bound is ⌈λ⌉, clamped to [0, log2 R]. Extent fusion also reads a window twice
+// the kernel's side (docs/model.md §1.7.2), one level higher.
 #pragma once
 
 #include "config.hpp"
@@ -46,7 +47,8 @@ inline double widest_kernel(const SliceFrame& frame, const Config& config) {
 // levels (summed-area tables) and techniques other than occlusion textures: -1 (not used).
 inline int kernel_level_bound(const SliceFrame& frame, const Config& config) {
     if (config.technique != Technique::occlusion || config.filter == Filter::sat) return -1;
-    const double texels = widest_kernel(frame, config) * config.resolution;
+    const double window = config.fusion == Fusion::extent ? 2.0 : 1.0; // extent: the doubled window
+    const double texels = window * widest_kernel(frame, config) * config.resolution;
     // log2(√6/4): the Gaussian levels' bias (detail/occlusion/emit_visibility.hpp)
     const double bias = config.filter == Filter::gaussian ? -0.70751874963942190927 : 0.0;
     const double level = std::log2(std::max(texels, 1.0)) + bias;

@@ -30,7 +30,7 @@ if(TARGET penumbra-gen)
 endif()
 # "webgpu_bundles": the WebGPU layout runner (web/webgpu_runner.js) over bundles of boxes at 64x64
 # exported with --target wgsl (the desktop GL run of glsl450, emission/ in WGSL) for every technique
-# with WGSL (shadowmap, pcf, pcss, erosion, evsm; rect and sun), each compared with the desktop run's
+# with WGSL (shadowmap, pcf, pcss, erosion, evsm, occlusion; rect and sun), each compared with the desktop run's
 # image (webgpu_bundle_test.mjs); with the WebAssembly emitter, the playground's renderer switch on
 # two of them (pcss rect, evsm sun) as well. Images of both runs and the playground's canvas go to
 # webgpu-bundles/images.
@@ -44,7 +44,10 @@ if(TARGET penumbra-export-bundle)
         "erosion-rect|--technique erosion --light rect" "erosion-sun|--technique erosion --light sun"
         # (a 256² shadow map: SwiftShader's 32-tap blur passes over 1024² take seconds)
         "evsm-rect|--technique evsm --light rect --shadow-resolution 256"
-        "evsm-sun|--technique evsm --light sun --shadow-resolution 256")
+        "evsm-sun|--technique evsm --light sun --shadow-resolution 256"
+        # occlusion textures: compared with the CPU oracle within its bound as well
+        "occlusion-rect|--slices 8 --resolution 128 --filter nbuffer --light rect"
+        "occlusion-sun|--slices 8 --resolution 128 --filter gaussian --light sun --fusion correlated")
     set(webgpu_bundles "")
     foreach(case IN LISTS webgpu_cases)
         string(REPLACE "|" ";" parts "${case}")

@@ -83,7 +83,7 @@ def main():
                    ["shadowmap", "pcf", "pcss", "oim", "erosion", "evsm"], ["rect", "sun"],
                    ["glsl330", "glsl450", "essl300", "vulkan"])]
     matrix += [(f"occlusion-{fusion}-clip-{target}", ["--fusion", fusion, "--tangent-clip", "--target", target])
-               for fusion in ["chained", "correlated"] for target in ["glsl330", "glsl450", "essl300", "vulkan"]]
+               for fusion in ["chained", "correlated", "extent"] for target in ["glsl330", "glsl450", "essl300", "vulkan"]]
     # More than 32 slices: the slicing as bits (logic op OR) and the unpack passes.
     matrix += [(f"bits-{filt}-{packing}-{target}-S{slices}",
                 ["--filter", filt, "--packing", packing, "--target", target, "--slices", str(slices),

@@ -386,13 +386,28 @@ double correlated_step(double q, glm::dvec3 kernel, double previous, glm::dvec3 
     const double both = q * previous + rho * (std::min(q, previous) - q * previous);
     return (1.0 - q - previous + both) / std::max(1.0 - previous, 1e-6);
 }
+
+// Extent fusion (docs/model.md §1.7.2, penumbra_extentStep): the same with the occluder's size from the
+// covered areas (uv²) the two slices see in windows twice their kernels' sides.
+double extent_step(double q, glm::dvec3 kernel, double area, double previous, glm::dvec3 previous_kernel,
+                   double previous_area) {
+    const glm::dvec2 parallax = glm::dvec2(kernel) - glm::dvec2(previous_kernel);
+    const double grow = kernel.z - previous_kernel.z;
+    const glm::dvec2 shift = glm::sqrt(parallax * parallax + glm::dvec2(grow * grow / 12.0));
+    const double feature = std::sqrt(std::max(area, previous_area));
+    const glm::dvec2 overlap = glm::clamp(1.0 - shift / std::max(feature, 1e-12), 0.0, 1.0);
+    const double rho = overlap.x * overlap.y;
+    const double both = q * previous + rho * (std::min(q, previous) - q * previous);
+    return (1.0 - q - previous + both) / std::max(1.0 - previous, 1e-6);
+}
 } // namespace
 
 OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion) const {
     glm::dvec3 p = glm::dvec3(light_from_world_ * glm::dvec4(glm::dvec3(world), 1.0));
     p.z = std::max(p.z, 1e-6); // points on or behind the light plane
-    double lit = 1.0, sum = 0.0, maximum = 0.0, bound = 0.0, chain = 1.0, previous = 0.0, correlated = 1.0;
+    double lit = 1.0, sum = 0.0, maximum = 0.0, bound = 0.0, chain = 1.0, previous = 0.0, correlated = 1.0, extent = 1.0;
     glm::dvec3 previous_kernel(0.0); // centre and side of the slice visited before (correlated fusion)
+    double previous_area = 0.0;      // and its covered area in the doubled window (extent fusion)
     bool beyond = false;
     // Tangent clip (detail/occlusion/emit_visibility.hpp): the part of the light above the tangent plane, in the
     // light's unit square, cut along the axis the plane crosses most steeply; then the point
@@ -447,14 +462,23 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
         beyond = beyond || (o.clamped && weight > 0.0);
         bound += ambiguous ? o.value + o.bound : clip_ambiguous ? 1.0 : weight * o.bound + arithmetic_error;
         const double q = weight * o.value;
+        // extent fusion: the same slice over a window twice the kernel's side (only that rule reads it)
+        double area = 0.0;
+        if (fusion == Fusion::extent) {
+            const Sample wide = filtered(s, centre, 2.0 * side);
+            area = weight * std::max(o.value, 4.0 * wide.value) * side * side;
+            bound += weight * wide.bound;
+        }
         lit *= 1.0 - q;
         sum += q;
         maximum = std::max(maximum, q);
         // chained: the neighbour visited before is nested with this slice, the others independent
         chain *= (1.0 - std::max(q, previous)) / std::max(1.0 - previous, 1e-6);
         correlated *= correlated_step(q, {centre, side}, previous, previous_kernel);
+        extent *= extent_step(q, {centre, side}, area, previous, previous_kernel, previous_area);
         previous = q;
         previous_kernel = {centre, side};
+        previous_area = area;
     }
     double v = lit;
     switch (fusion) {
@@ -464,6 +488,7 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
     case Fusion::average: v = 1.0 - 0.5 * (std::min(1.0, sum) + maximum); break; // Soler & Sillion
     case Fusion::chained: v = std::clamp(chain, 0.0, 1.0); break;
     case Fusion::correlated: v = std::clamp(correlated, 0.0, 1.0); break;
+    case Fusion::extent: v = std::clamp(extent, 0.0, 1.0); break;
     }
     return {v, bound, beyond};
 }

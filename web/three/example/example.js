@@ -235,7 +235,7 @@ function buildGui(keys) {
         folder.add(custom, "slices", 1, 16, 1);
         folder.add(custom, "resolution", [128, 256, 512, 1024]);
         folder.add(custom, "filter", ["mipmap", "nbuffer", "gaussian"]); // sat needs float textures ES 3.00 lacks
-        folder.add(custom, "fusion", ["probabilistic", "additive", "maximum", "average", "chained", "correlated"]);
+        folder.add(custom, "fusion", ["probabilistic", "additive", "maximum", "average", "chained", "correlated", "extent"]);
         folder.add(custom, "packing", ["atlas", "array", "volume"]);
         folder.add(custom, "tangentClip").name("tangent clip");
         const message = {text: ""};

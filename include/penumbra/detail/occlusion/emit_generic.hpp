@@ -43,7 +43,7 @@ constexpr std::vector<Param> generic_value_params() {
         {"penumbra_maxLevel", "int", "highest filter level L = log2(R)", ""},
         {"penumbra_tileCount", "int", "RGBA occlusion textures T = ceil(S / 4)", ""},
         {"penumbra_invTileCount", "float", "1 / T: width of one tile in an atlas", "uv"},
-        {"penumbra_fusion", "int", "fusion rule: 0 probabilistic, 1 additive, 2 maximum, 3 average, 4 chained, 5 correlated", ""},
+        {"penumbra_fusion", "int", "fusion rule: 0 probabilistic, 1 additive, 2 maximum, 3 average, 4 chained, 5 correlated, 6 extent", ""},
         {"penumbra_fade", "int", "paper §3.4.2 self-shadow fade: 1 on, 0 off", ""},
         {"penumbra_fadeRamp", "float", "the fade's ramp, as a fraction of a slice's thickness", ""},
         {"penumbra_tangentClipOffset", "float", "the tangent clip's sideways offset along the normal", "slicing texels"},
@@ -248,8 +248,9 @@ constexpr void write_generic_level_read(LineWriter& out, const Config& config) {
 constexpr void write_generic_fusion(LineWriter& out) {
     out.chunk("fusion_result");
     out.comment("every rule's accumulator is kept; the uniform picks the result (paper §3.3)");
-    out.line("float penumbra_fused(float lit, float sum, float maximum, float chain, float correlated)");
+    out.line("float penumbra_fused(float lit, float sum, float maximum, float chain, float correlated, float extent)");
     out.line("{");
+    out.line("if (penumbra_fusion == ", format_int(static_cast<int>(Fusion::extent)), ") return clamp(extent, 0.0, 1.0);");
     out.line("if (penumbra_fusion == ", format_int(static_cast<int>(Fusion::correlated)), ") return clamp(correlated, 0.0, 1.0);");
     out.line("if (penumbra_fusion == ", format_int(static_cast<int>(Fusion::chained)), ") return clamp(chain, 0.0, 1.0);");
     out.line("if (penumbra_fusion == ", format_int(static_cast<int>(Fusion::probabilistic)), ") return lit;");
@@ -268,8 +269,16 @@ constexpr void write_generic_accumulate(LineWriter& out) {
     out.line("penumbra_chain *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);");
     out.comment("correlated: neighbours between nested and independent by the parallax between their kernels");
     out.line("penumbra_correlated *= penumbra_correlatedStep(q, kernel, penumbra_prev, penumbra_prevKernel);");
+    out.comment("extent: the same, the occluder's size from a window twice the kernel's side");
+    out.line("penumbra_extent *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);");
     out.line("penumbra_prev = q;");
     out.line("penumbra_prevKernel = kernel;");
+    out.line("penumbra_prevArea = area;");
+}
+
+// The extent rule's test: only that rule pays for the wider window's lookups.
+constexpr Text generic_extent_test() {
+    return cat("penumbra_fusion == ", format_int(static_cast<int>(Fusion::extent)));
 }
 
 // A `for` loop over the slices, from the bottom one up to the light, one lookup each.
@@ -279,7 +288,14 @@ constexpr void write_generic_slice_loop(LineWriter& out, const Config& config) {
     out.line("float zeta = penumbra_sliceDepths.x + float(s + 1) * penumbra_sliceDepths.y;");
     out.line("vec4 kernel = ", kernel_call(config), ";");
     out.comment("texture s / 4 holds the slice, channel s % 4");
-    out.line("float q = penumbra_weight(p.z, zeta) * penumbra_filtered(kernel, s / 4)[s % 4];");
+    out.line("float fade = penumbra_weight(p.z, zeta);");
+    out.line("float coverage = penumbra_filtered(kernel, s / 4)[s % 4];");
+    out.line("float q = fade * coverage;");
+    out.line("float area = 0.0;");
+    out.line("if (", generic_extent_test(), ") {");
+    out.line("vec4 penumbra_wide = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));");
+    out.line("area = ", extent_area("fade", "coverage", "penumbra_filtered(penumbra_wide, s / 4)[s % 4]"), ";");
+    out.line("}");
     write_generic_accumulate(out);
     out.line("}");
 }
@@ -299,7 +315,19 @@ constexpr void write_generic_level_loop(LineWriter& out, const Config& config) {
     out.line("int s = int(penumbra_k);");
     out.line("vec4 texel = penumbra_atlasLevel(level, kernel, s / 4);");
     out.line("if (!last) texel = mix(texel, penumbra_atlasLevel(level + 1, kernel, s / 4), kernel.w - float(level));");
-    out.line("float q = penumbra_weight(p.z, zeta) * texel[s % 4];");
+    out.line("float fade = penumbra_weight(p.z, zeta);");
+    out.line("float q = fade * texel[s % 4];");
+    out.line("float area = 0.0;");
+    out.line("if (", generic_extent_test(), ") {");
+    out.comment("the doubled window's level lies between this level and two above it (clamped to the last);");
+    out.comment("levels indexed from the loop's counter, so the sampler index stays dynamically uniform");
+    out.line("float t = penumbra_wideLevel(kernel) - float(level);");
+    out.line("vec4 penumbra_lo = penumbra_atlasLevel(level, kernel, s / 4);");
+    out.line("vec4 penumbra_hi = penumbra_atlasLevel(min(level + 1, penumbra_maxLevel), kernel, s / 4);");
+    out.line("vec4 penumbra_wide = t < 1.0 ? mix(penumbra_lo, penumbra_hi, t)");
+    out.line("    : mix(penumbra_hi, penumbra_atlasLevel(min(level + 2, penumbra_maxLevel), kernel, s / 4), t - 1.0);");
+    out.line("area = ", extent_area("fade", "texel[s % 4]", "penumbra_wide[s % 4]"), ";");
+    out.line("}");
     write_generic_accumulate(out);
     out.line("penumbra_k -= 1.0;");
     out.line("}");
@@ -314,6 +342,8 @@ constexpr Text generic_fragment(const Config& config) {
     if (uses_generic_level_loop(config)) write_generic_level_read(out, config);
     else write_generic_lookup(out, config);
     write_correlated_step_function(out);
+    write_extent_step_function(out);
+    write_wide_level_function(out, config, "penumbra_resolution", "float(penumbra_maxLevel)");
     write_generic_fusion(out);
     out.chunk("visibility");
     const bool clip = clips_to_tangent_plane(config);
@@ -335,11 +365,13 @@ constexpr Text generic_fragment(const Config& config) {
     out.line("float penumbra_max = 0.0;");
     out.line("float penumbra_chain = 1.0;");
     out.line("float penumbra_correlated = 1.0;");
+    out.line("float penumbra_extent = 1.0;");
     out.line("float penumbra_prev = 0.0;");
     out.line("vec4 penumbra_prevKernel = vec4(0.0);");
+    out.line("float penumbra_prevArea = 0.0;");
     if (uses_generic_level_loop(config)) write_generic_level_loop(out, config);
     else write_generic_slice_loop(out, config);
-    out.line("return penumbra_fused(penumbra_lit, penumbra_sum, penumbra_max, penumbra_chain, penumbra_correlated);");
+    out.line("return penumbra_fused(penumbra_lit, penumbra_sum, penumbra_max, penumbra_chain, penumbra_correlated, penumbra_extent);");
     out.line("}");
     out.blank();
     write_deferred_main(out, config, clip);

@@ -369,6 +369,55 @@ constexpr void write_correlated_step_function(LineWriter& out, const Config& con
 
 // The generic reference program's (GLSL only).
 constexpr void write_correlated_step_function(LineWriter& out) { write_correlated_step_function(out, Config{}); }
+// Extent fusion (docs/model.md §1.7.2): correlated fusion whose occluder size is read from the data. The
+// covered area within the kernel is only a lower bound of the occluder's: a solid's edge that crosses the
+// kernel covers part of it, and the parallax then decorrelates what is one occluder. The same slice read
+// over a window twice the kernel's side (`area`: uv², the larger of the two covered areas) tells an
+// occluder inside the kernel (the same area) from one that extends past it (up to four times the area).
+// Generic program and oracle share it.
+constexpr void write_extent_step_function(LineWriter& out, const Config& config) {
+    out.chunk("fusion");
+    out.comment("extent fusion: correlated fusion, the occluder's size from a window twice the kernel's side, docs/model.md §1.7.2");
+    out.line(signature(config, "float", "penumbra_extentStep",
+                       {{"float", "q"}, {"vec4", "kernel"}, {"float", "area"}, {"float", "prev"}, {"vec4", "prevKernel"},
+                        {"float", "prevArea"}}));
+    out.line("{");
+    out.comment("parallax between the two kernels, RMS over the light's points, per axis (uv)");
+    out.line(value(config, "vec2", "parallax", "kernel.xy - prevKernel.xy"));
+    out.line(value(config, "float", "grow", "kernel.z - prevKernel.z"));
+    out.line(value(config, "vec2", "shift", "sqrt(parallax * parallax + vec2(grow * grow / 12.0))"));
+    out.comment("the occluder's size (uv): the larger covered area either slice sees around its kernel");
+    out.line(value(config, "float", "feature", "sqrt(max(area, prevArea))"));
+    out.line(value(config, "vec2", "overlap", saturate(config, "1.0 - shift / max(feature, 1e-12)")));
+    out.comment("blocked by both: nested (the smaller) when the occluder overlaps itself, independent (product) when not");
+    out.line(value(config, "float", "both", "mix(q * prev, min(q, prev), overlap.x * overlap.y)"));
+    out.line("return (1.0 - q - prev + both) / max(1.0 - prev, 1e-6);");
+    out.line("}");
+    out.blank();
+}
+
+// The filter level of a window twice the kernel's side (extent fusion), as penumbra_kernel picks levels.
+// `resolution` and `max_level` as for write_kernel_function.
+constexpr void write_wide_level_function(LineWriter& out, const Config& config, std::string_view resolution,
+                                         std::string_view max_level) {
+    out.chunk("fusion");
+    out.comment("filter level of a window twice the kernel's side (extent fusion)");
+    out.line(signature(config, "float", "penumbra_wideLevel", {{"vec4", "kernel"}}));
+    out.line("{");
+    const Text bias = choose(config.filter == Filter::gaussian, cat(" + (", format_float(gaussian_level_bias), ")"), Text());
+    out.line("return clamp(log2(max(2.0 * kernel.z * ", resolution, ", 1.0))", bias, ", 0.0, ", max_level, ");");
+    out.line("}");
+    out.blank();
+}
+
+// The covered area (uv²) extent fusion takes for a slice: `fade` times the larger of the kernel's coverage
+// and four times the doubled window's (`wide`, a channel of a vec4 expression), times the kernel's area.
+constexpr Text extent_area(std::string_view fade, std::string_view texel_channel, std::string_view wide_channel) {
+    return cat(fade, " * max(", texel_channel, ", 4.0 * ", wide_channel, ") * kernel.z * kernel.z");
+}
+
+// The generic reference program's (GLSL only).
+constexpr void write_extent_step_function(LineWriter& out) { write_extent_step_function(out, Config{}); }
 
 constexpr void write_fusion_start(LineWriter& out, const Config& config) {
     out.chunk("fusion");
@@ -395,6 +444,14 @@ constexpr void write_fusion_start(LineWriter& out, const Config& config) {
         out.line(variable(config, "float", "penumbra_prev", "0.0"), " // q of the slice visited before (its neighbour)");
         out.line(variable(config, "vec4", "penumbra_prevKernel", "vec4(0.0)"), " // and its kernel");
         break;
+    case Fusion::extent:
+        out.comment("extent fusion: correlated fusion, the occluder's size from the covered area in a window twice");
+        out.comment("the kernel's side, so an edge of a solid that crosses the kernel stays nested");
+        out.line(variable(config, "float", "penumbra_lit", "1.0"));
+        out.line(variable(config, "float", "penumbra_prev", "0.0"), " // q of the slice visited before (its neighbour)");
+        out.line(variable(config, "vec4", "penumbra_prevKernel", "vec4(0.0)"), " // its kernel");
+        out.line(variable(config, "float", "penumbra_prevArea", "0.0"), " // and its covered area");
+        break;
     }
 }
 
@@ -416,6 +473,12 @@ constexpr void write_accumulate(LineWriter& out, const Config& config) {
         out.line("penumbra_prev = q;");
         out.line("penumbra_prevKernel = kernel;");
         break;
+    case Fusion::extent:
+        out.line("penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);");
+        out.line("penumbra_prev = q;");
+        out.line("penumbra_prevKernel = kernel;");
+        out.line("penumbra_prevArea = area;");
+        break;
     }
 }
 
@@ -430,7 +493,8 @@ constexpr void write_fusion_result(LineWriter& out, const Config& config) {
         out.line("return 1.0 - 0.5 * (min(1.0, penumbra_sum) + penumbra_max);");
         break;
     case Fusion::chained:
-    case Fusion::correlated: out.line("return clamp(penumbra_lit, 0.0, 1.0);"); break;
+    case Fusion::correlated:
+    case Fusion::extent: out.line("return clamp(penumbra_lit, 0.0, 1.0);"); break;
     }
 }
 
@@ -462,7 +526,19 @@ constexpr void write_slice_loop(LineWriter& out, const Config& config) {
         out.line("vec4 kernel = ", kernel_call(config), ";");
         const Text lookup = choose(config.packing == Packing::volume, cat("penumbra_filtered", format_int(tile), "(kernel)"),
                                    cat("penumbra_filtered(kernel, ", format_float(tile), ")"));
-        out.line("float q = ", weight_call(config), " * dot(", lookup, ", penumbra_i);");
+        if (config.fusion == Fusion::extent) {
+            const Text wide = choose(config.packing == Packing::volume,
+                                     cat("penumbra_filtered", format_int(tile), "(penumbra_wide)"),
+                                     cat("penumbra_filtered(penumbra_wide, ", format_float(tile), ")"));
+            out.line("float fade = ", weight_call(config), ";");
+            out.line("float coverage = dot(", lookup, ", penumbra_i);");
+            out.line("float q = fade * coverage;");
+            out.comment("the same slice over a window twice the kernel's side: how far the occluder extends");
+            out.line("vec4 penumbra_wide = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));");
+            out.line("float area = ", extent_area("fade", "coverage", cat("dot(", wide, ", penumbra_i)")), ";");
+        } else {
+            out.line("float q = ", weight_call(config), " * dot(", lookup, ", penumbra_i);");
+        }
         write_accumulate(out, config);
         out.line("}");
         if (s > 0) out.line("penumbra_i = penumbra_i.yzwx;");
@@ -524,14 +600,47 @@ constexpr void write_level_loop(LineWriter& out, const Config& config) {
                                     level_read_coordinate(config, l, "kernel.y"), ")"),
                                 "0.0");
         };
-        if (last) {
-            out.line(value(config, "vec4", "texel", read(level)));
+        if (config.fusion == Fusion::extent) {
+            // the doubled window's level lies between this level and two above it (clamped to the last)
+            const Text L1 = format_float(level + 1);
+            if (!last) out.line(if_then(config, cat("kernel.w >= ", L1), "break;"));
+            out.line(value(config, "vec4", "penumbra_lo", read(level)));
+            if (last) {
+                out.line(value(config, "vec4", "texel", "penumbra_lo"));
+                out.line(value(config, "vec4", "penumbra_wide", "penumbra_lo"), " // no wider window than the last level's");
+            } else {
+                out.line(value(config, "vec4", "penumbra_hi", read(level + 1)));
+                out.line(value(config, "vec4", "texel", cat("mix(penumbra_lo, penumbra_hi, kernel.w - ", format_float(level), ")")));
+                out.comment("the same slice over a window twice the kernel's side: how far the occluder extends");
+                out.line(value(config, "float", "penumbra_wideAt", "penumbra_wideLevel(kernel)"));
+                if (level + 1 == levels) {
+                    out.line(value(config, "vec4", "penumbra_wide",
+                                   cat("mix(penumbra_lo, penumbra_hi, penumbra_wideAt - ", format_float(level), ")")));
+                } else if (is_wgsl(config)) { // select() evaluates both: the same reads
+                    out.line(value(config, "vec4", "penumbra_wide",
+                                   conditional(config, cat("penumbra_wideAt < ", L1),
+                                               cat("mix(penumbra_lo, penumbra_hi, penumbra_wideAt - ", format_float(level), ")"),
+                                               cat("mix(penumbra_hi, ", read(level + 2), ", penumbra_wideAt - ", L1, ")"))));
+                } else {
+                    out.line("vec4 penumbra_wide = penumbra_wideAt < ", L1, " ? mix(penumbra_lo, penumbra_hi, penumbra_wideAt - ",
+                             format_float(level), ")");
+                    out.line("    : mix(penumbra_hi, ", read(level + 2), ", penumbra_wideAt - ", L1, ");");
+                }
+            }
+            out.line(value(config, "float", "fade", weight_call(config)));
+            out.line(value(config, "float", "coverage", "dot(texel, penumbra_i)"));
+            out.line(value(config, "float", "q", "fade * coverage"));
+            out.line(value(config, "float", "area", extent_area("fade", "coverage", "dot(penumbra_wide, penumbra_i)")));
         } else {
-            out.line(if_then(config, cat("kernel.w >= ", format_float(level + 1)), "break;"));
-            out.line(declaration(config, "vec4", "texel"), "mix(", read(level), ",");
-            out.line("    ", read(level + 1), ", kernel.w - ", format_float(level), ");");
+            if (last) {
+                out.line(value(config, "vec4", "texel", read(level)));
+            } else {
+                out.line(if_then(config, cat("kernel.w >= ", format_float(level + 1)), "break;"));
+                out.line(declaration(config, "vec4", "texel"), "mix(", read(level), ",");
+                out.line("    ", read(level + 1), ", kernel.w - ", format_float(level), ");");
+            }
+            out.line(value(config, "float", "q", cat(weight_call(config), " * dot(texel, penumbra_i)")));
         }
-        out.line(value(config, "float", "q", cat(weight_call(config), " * dot(texel, penumbra_i)")));
         write_accumulate(out, config);
         out.comment("next slice up: the channel rotates; wrapping from r to a moves one tile left");
         out.line("penumbra_k -= 1.0;");
@@ -554,6 +663,11 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
     if (!uses_level_loop(config)) write_lookup_function(out, config);
     if (config.tangent_clip) write_tangent_clip_function(out, config);
     if (config.fusion == Fusion::correlated) write_correlated_step_function(out, config);
+    if (config.fusion == Fusion::extent) {
+        const VisibilityConstants k = constants(config);
+        write_extent_step_function(out, config);
+        write_wide_level_function(out, config, k.R, k.L);
+    }
     out.chunk("visibility");
     if (config.tangent_clip) {
         out.comment("The fused visibility at light-frame point p of the part of the light that penumbra_clip keeps.");

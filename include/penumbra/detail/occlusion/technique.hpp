@@ -101,6 +101,9 @@ inline long long occlusion_texels_per_fragment(const Config& c, const PassDesc& 
         if (c.filter == Filter::sat) per_slice = 4 * 4;
         else if (c.filter == Filter::mipmap || c.packing == Packing::volume) per_slice = 8;
         else per_slice = 2 * 4;
+        // extent fusion reads each slice once more over a window twice the kernel's side: one more level
+        // in the atlas level loop, one more filtered lookup elsewhere (docs/model.md §1.7.2)
+        if (c.fusion == Fusion::extent) per_slice += uses_level_loop(c) ? 4 : per_slice;
         const long long boundaries = places_slices_adaptively(c) ? c.slices : 0;
         return g_buffer_texels(c) + per_slice * c.slices + boundaries;
     }
