@@ -23,11 +23,8 @@
 // PENUMBRA_WEBGPU_OPTIONAL=1).
 import fs from "node:fs";
 import path from "node:path";
-import {compare, difference, readReference, TECHNIQUE_MEAN_ALLOWED, TECHNIQUE_PIXEL_STEP, TECHNIQUE_PIXELS_ALLOWED} from "./bundle_compare.mjs";
-
-// Occlusion textures: pixels that may leave the oracle's bound, all at silhouettes (where SwiftShader and
-// llvmpipe rasterize the G-buffer's neighbours, hence the slices, differently).
-const ORACLE_PIXELS_ALLOWED = 1;
+import {compare, difference, readReference, OWN_PIXELS_ALLOWED, TECHNIQUE_MEAN_ALLOWED, TECHNIQUE_PIXEL_STEP,
+        TECHNIQUE_PIXELS_ALLOWED} from "./bundle_compare.mjs";
 import {readFloats, writeGreyPng} from "./harness.mjs";
 import {adapterLine, startWebGPU} from "./wgsl_compile.mjs";
 
@@ -351,9 +348,12 @@ async function main() {
                 const inside = outside.filter((k) => !silhouette.has(k)).length;
                 oracleLine = `\n     oracle: max |WebGPU − oracle| ${o.worstOracle.toExponential(2)}, ${o.outsideOracle} of ${pixels} pixels outside the bound ` +
                              `(${inside} away from silhouettes)`;
-                if (o.outsideOracle > ORACLE_PIXELS_ALLOWED || inside > 0)
+                // WebGPU slices the scene itself, and SwiftShader rasterizes casters' edges unlike the desktop's llvmpipe,
+                // whose slices the oracle read: as for the WebGL2 runner's own slices (browser_test.mjs), a share of the
+                // pixels may leave the bound, all of them at silhouettes (measured: 10 and 2 of 4096)
+                if (o.outsideOracle > OWN_PIXELS_ALLOWED * pixels || inside > 0)
                     failures.push(`${o.outsideOracle} pixels outside the oracle's bound, ${inside} of them away from silhouettes ` +
-                                  `(allowed ${ORACLE_PIXELS_ALLOWED}, at silhouettes)`);
+                                  `(allowed ${100 * OWN_PIXELS_ALLOWED}%, at silhouettes only)`);
             }
             failures.push(...problems.splice(0));
             if (args.images) {
