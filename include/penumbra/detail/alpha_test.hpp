@@ -40,6 +40,25 @@ constexpr void write_alpha_test_vertex_copy(LineWriter& out, const Config& confi
     if (config.alpha_test) out.line("penumbra_texCoord = penumbra_uv;");
 }
 
+// The vertex main of a pass that draws the casters from the light (shadow-map depth, slicing, depth
+// bins): the depth along the light axis, the light camera's clip position `clip_from_world` (on WGSL
+// flipped in y, so that row 0 of `target` holds uv.y = 0 as on OpenGL), and the alpha test's copy.
+constexpr void write_caster_vertex_main(LineWriter& out, const Config& config, std::string_view clip_from_world,
+                                        std::string_view target) {
+    out.line(main_signature(config));
+    out.line("{");
+    out.line(value(config, "vec4", "world", "vec4(penumbra_position, 1.0)"));
+    out.line("penumbra_depth = (penumbra_lightFromWorld * world).z;");
+    out.line(clip_position(config), " = ", clip_from_world, " * world;");
+    if (is_wgsl(config)) {
+        out.comment(cat("WebGPU's framebuffer rows run top down: flipped, ", target, " row 0 holds uv.y = 0 as on OpenGL"));
+        out.line(clip_position(config), ".y = -", clip_position(config), ".y;");
+    }
+    write_alpha_test_vertex_copy(out, config);
+    out.line("}");
+    write_entry_point(out, config, Stage::vertex);
+}
+
 // Fragment stage: the texture coordinates in.
 constexpr void write_alpha_test_fragment_inputs(LineWriter& out, const Config& config) {
     if (!config.alpha_test) return;

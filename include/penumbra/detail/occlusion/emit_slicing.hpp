@@ -27,18 +27,7 @@ constexpr Text slicing_camera_vertex(const Config& config, std::string_view titl
     int binding = 0;
     write_params(out, config, params, block, binding);
     out.chunk("slicing_vertex_main");
-    out.line(main_signature(config));
-    out.line("{");
-    out.line(value(config, "vec4", "world", "vec4(penumbra_position, 1.0)"));
-    out.line("penumbra_depth = (penumbra_lightFromWorld * world).z;");
-    out.line(clip_position(config), " = penumbra_sliceClipFromWorld * world;");
-    if (is_wgsl(config)) {
-        out.comment("WebGPU's framebuffer rows run top down: flipped, a slice's row 0 holds uv.y = 0 as on OpenGL");
-        out.line(clip_position(config), ".y = -", clip_position(config), ".y;");
-    }
-    write_alpha_test_vertex_copy(out, config);
-    out.line("}");
-    write_entry_point(out, config, Stage::vertex);
+    write_caster_vertex_main(out, config, "penumbra_sliceClipFromWorld", "a slice's");
     return out.take();
 }
 

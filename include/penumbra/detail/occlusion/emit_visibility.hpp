@@ -347,18 +347,17 @@ constexpr void write_lookup_function(LineWriter& out, const Config& config) {
 // larger covered area, so the fraction of it both slices still share is (1 - shift/size) per axis: the
 // weight between nested slices (the union is the larger one, chained fusion) and independent ones (the
 // product). Generic program and oracle share it.
-constexpr void write_correlated_step_function(LineWriter& out, const Config& config) {
-    out.chunk("fusion");
-    out.comment("correlated fusion: light let through by this slice given the one visited before, docs/model.md §1.7");
-    out.line(signature(config, "float", "penumbra_correlatedStep",
-                       {{"float", "q"}, {"vec4", "kernel"}, {"float", "prev"}, {"vec4", "prevKernel"}}));
-    out.line("{");
+// The body both the correlated and the extent step share: the parallax between the kernels, then the
+// weight between nested and independent slices for an occluder of size `feature` (a GLSL expression, and
+// the comment saying where that size comes from).
+constexpr void write_parallax_step_body(LineWriter& out, const Config& config, std::string_view feature_comment,
+                                        std::string_view feature) {
     out.comment("parallax between the two kernels, RMS over the light's points, per axis (uv)");
     out.line(value(config, "vec2", "parallax", "kernel.xy - prevKernel.xy"));
     out.line(value(config, "float", "grow", "kernel.z - prevKernel.z"));
     out.line(value(config, "vec2", "shift", "sqrt(parallax * parallax + vec2(grow * grow / 12.0))"));
-    out.comment("the size of the occluder both kernels see (uv): at least the larger area either kernel sees covered");
-    out.line(value(config, "float", "feature", "sqrt(max(q * kernel.z * kernel.z, prev * prevKernel.z * prevKernel.z))"));
+    out.comment(feature_comment);
+    out.line(value(config, "float", "feature", feature));
     out.line(value(config, "vec2", "overlap", saturate(config, "1.0 - shift / max(feature, 1e-12)")));
     out.comment("blocked by both: nested (the smaller) when the occluder overlaps itself, independent (product) when not");
     out.line(value(config, "float", "both", "mix(q * prev, min(q, prev), overlap.x * overlap.y)"));
@@ -367,8 +366,20 @@ constexpr void write_correlated_step_function(LineWriter& out, const Config& con
     out.blank();
 }
 
+constexpr void write_correlated_step_function(LineWriter& out, const Config& config) {
+    out.chunk("fusion");
+    out.comment("correlated fusion: light let through by this slice given the one visited before, docs/model.md §1.7");
+    out.line(signature(config, "float", "penumbra_correlatedStep",
+                       {{"float", "q"}, {"vec4", "kernel"}, {"float", "prev"}, {"vec4", "prevKernel"}}));
+    out.line("{");
+    write_parallax_step_body(out, config,
+                             "the size of the occluder both kernels see (uv): at least the larger area either kernel sees covered",
+                             "sqrt(max(q * kernel.z * kernel.z, prev * prevKernel.z * prevKernel.z))");
+}
+
 // The generic reference program's (GLSL only).
 constexpr void write_correlated_step_function(LineWriter& out) { write_correlated_step_function(out, Config{}); }
+
 // Extent fusion (docs/model.md §1.7.2): correlated fusion whose occluder size is read from the data. The
 // covered area within the kernel is only a lower bound of the occluder's: a solid's edge that crosses the
 // kernel covers part of it, and the parallax then decorrelates what is one occluder. The same slice read
@@ -382,18 +393,8 @@ constexpr void write_extent_step_function(LineWriter& out, const Config& config)
                        {{"float", "q"}, {"vec4", "kernel"}, {"float", "area"}, {"float", "prev"}, {"vec4", "prevKernel"},
                         {"float", "prevArea"}}));
     out.line("{");
-    out.comment("parallax between the two kernels, RMS over the light's points, per axis (uv)");
-    out.line(value(config, "vec2", "parallax", "kernel.xy - prevKernel.xy"));
-    out.line(value(config, "float", "grow", "kernel.z - prevKernel.z"));
-    out.line(value(config, "vec2", "shift", "sqrt(parallax * parallax + vec2(grow * grow / 12.0))"));
-    out.comment("the occluder's size (uv): the larger covered area either slice sees around its kernel");
-    out.line(value(config, "float", "feature", "sqrt(max(area, prevArea))"));
-    out.line(value(config, "vec2", "overlap", saturate(config, "1.0 - shift / max(feature, 1e-12)")));
-    out.comment("blocked by both: nested (the smaller) when the occluder overlaps itself, independent (product) when not");
-    out.line(value(config, "float", "both", "mix(q * prev, min(q, prev), overlap.x * overlap.y)"));
-    out.line("return (1.0 - q - prev + both) / max(1.0 - prev, 1e-6);");
-    out.line("}");
-    out.blank();
+    write_parallax_step_body(out, config, "the occluder's size (uv): the larger covered area either slice sees around its kernel",
+                             "sqrt(max(area, prevArea))");
 }
 
 // The filter level of a window twice the kernel's side (extent fusion), as penumbra_kernel picks levels.
