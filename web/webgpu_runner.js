@@ -14,6 +14,11 @@
 //   await runner.runPhase("screen", null, {width: w, height: h});            // deferred visibility
 //   const visibility = await runner.readResult();                           // Float32Array, bottom row first
 //
+// A test or a debugging tool can put its own data in place of a pass's output: load with
+// {writable: [texture names]} (those textures get COPY_DST besides the layout's usage), then
+// runPhase(phase, draw, size, {<pass name>: (pass) => runner.uploadTexture(...)}) calls the callback
+// where that pass would run.
+//
 // Rows: the runner uploads and reads back texture rows in memory order, as WebGL2's runner does
 // (row 0 first); a caller texture filled bottom row first gives a result bottom row first. Clip
 // space is WebGPU's; the emitted vertex stages write it (WGSL.md), the runner changes nothing.
@@ -96,8 +101,9 @@ export class WebGPULayoutRunner {
                 description: info.description || "", isFallbackAdapter: !!(info.isFallbackAdapter ?? adapter.isFallbackAdapter)};
     }
 
-    // Fetches `${base}layout.json` and every program file it names.
-    static async load(device, base) {
+    // Fetches `${base}layout.json` and every program file it names. options.writable: names of
+    // textures the caller will fill with uploadTexture although passes write them.
+    static async load(device, base, options = {}) {
         const fetchText = async (name) => {
             const response = await fetch(base + name);
             if (!response.ok) fail(`${base}${name}: HTTP ${response.status}`);
@@ -107,24 +113,24 @@ export class WebGPULayoutRunner {
         const sources = {};
         for (const program of layout.programs || [])
             for (const file of program.files) if (!(file in sources)) sources[file] = await fetchText(file);
-        return WebGPULayoutRunner.create(device, layout, sources);
+        return WebGPULayoutRunner.create(device, layout, sources, options);
     }
 
     // From an emission in memory: {files: {"<name>": text, ...}, layout} (layout: layout.json parsed;
     // taken from files["layout.json"] when absent), as penumbra_emitter.js's emit() returns it.
-    static async fromEmission(device, {files, layout}) {
+    static async fromEmission(device, {files, layout}, options = {}) {
         if (!files) fail("fromEmission: no files (an emission that failed? see its diagnostics)");
         const parsed = layout ?? (files["layout.json"] !== undefined ? JSON.parse(files["layout.json"]) : null);
         if (!parsed) fail("fromEmission: no layout and no layout.json among the files");
         for (const program of parsed.programs || [])
             for (const file of program.files) if (typeof files[file] !== "string") fail(`fromEmission: program ${program.name}: no file ${file}`);
-        return WebGPULayoutRunner.create(device, parsed, files);
+        return WebGPULayoutRunner.create(device, parsed, files, options);
     }
 
     // Compiles every module (Tint's errors with file, line and column), makes the textures, bind
     // group layouts and pipelines; any WebGPU validation error fails here with its message.
-    static async create(device, layout, sources) {
-        const runner = new WebGPULayoutRunner(device, layout);
+    static async create(device, layout, sources, options = {}) {
+        const runner = new WebGPULayoutRunner(device, layout, options);
         await validated(device, "while creating the layout's objects", async () => {
             await runner.compile(sources);
             for (const t of layout.textures) if (t.size !== "output") runner.textures[t.name] = runner.allocate(t, t.width, t.height);
@@ -134,13 +140,15 @@ export class WebGPULayoutRunner {
         return runner;
     }
 
-    constructor(device, layout) {
+    constructor(device, layout, {writable = []} = {}) {
         if (layout.layout_version !== LAYOUT_VERSION)
             fail(`layout.json: layout_version ${layout.layout_version}; this runner reads version ${LAYOUT_VERSION}`);
         if (layout.config && layout.config.target !== "wgsl")
             fail(`layout.json: target '${layout.config.target}'; WebGPU runs the wgsl emission (penumbra-gen --target wgsl)`);
         this.device = device;
         this.layout = layout;
+        for (const name of writable) this.description(name);
+        this.writable = new Set(writable);
         this.uniformValues = {};
         this.outputSize = null;
         this.textures = {};
@@ -231,6 +239,7 @@ export class WebGPULayoutRunner {
         const format = t.webgpu.format;
         let usage = 0;
         for (const u of t.webgpu.usage) usage |= GPUTextureUsage[lookUp(Object.fromEntries(TEXTURE_USAGE.map((x) => [x, x])), u, `texture ${t.name}: usage`)];
+        if (this.writable.has(t.name)) usage |= GPUTextureUsage.COPY_DST;
         if (t.wrap === "CLAMP_TO_BORDER") fail(`texture ${t.name}: wrap CLAMP_TO_BORDER does not exist in WebGPU`);
         const dimension = t.target === "3D" ? "3d" : "2d";
         const layers = t.target === "2D" ? 1 : t.depth;
@@ -261,6 +270,29 @@ export class WebGPULayoutRunner {
         const f = lookUp(FORMATS, t.format, `texture ${name}: format`);
         if (data.byteLength !== f.bytes * width * height) fail(`fillTexture ${name}: ${data.byteLength} bytes, expected ${f.bytes * width * height}`);
         this.device.queue.writeTexture({texture: t.texture}, data, {bytesPerRow: f.bytes * width, rowsPerImage: height}, [width, height, 1]);
+    }
+
+    // One level (and layer) of a texture the runner was loaded with as writable, from RGBA floats in
+    // memory row order (as readTexture gives them; unorm8 formats store round(255·x)).
+    uploadTexture(name, level, layer, rgba) {
+        if (!this.writable.has(name)) fail(`uploadTexture ${name}: not loaded as writable (load(device, base, {writable: ["${name}"]}))`);
+        const t = this.texture(name);
+        const f = lookUp(FORMATS, t.format, `texture ${name}: format`);
+        const width = Math.max(t.width >> level, 1), height = Math.max(t.height >> level, 1);
+        if (rgba.length !== 4 * width * height) fail(`uploadTexture ${name}: ${rgba.length} values, expected ${4 * width * height} (RGBA ${width}×${height})`);
+        let data;
+        if (f.type === "unorm8") {
+            data = new Uint8Array(f.channels * width * height);
+            for (let i = 0; i < width * height; ++i)
+                for (let c = 0; c < f.channels; ++c) data[f.channels * i + c] = Math.round(255 * Math.min(Math.max(rgba[4 * i + c], 0), 1));
+        } else if (f.type === "float32") {
+            data = new Float32Array(f.channels * width * height);
+            for (let i = 0; i < width * height; ++i) for (let c = 0; c < f.channels; ++c) data[f.channels * i + c] = rgba[4 * i + c];
+        } else {
+            fail(`uploadTexture ${name}: format ${t.format} is not uploaded by this runner (unorm8 and float32 formats are)`);
+        }
+        this.device.queue.writeTexture({texture: t.texture, mipLevel: level, origin: [0, 0, Math.max(layer, 0)]}, data,
+                                       {bytesPerRow: f.bytes * width, rowsPerImage: height}, [width, height, 1]);
     }
 
     // A texture for a parameter whose source is "draw" (alpha test: the caster's material texture);
@@ -506,7 +538,7 @@ export class WebGPULayoutRunner {
     // Runs every pass of `phase` in layout order ("shadow": when the scene or light changes;
     // "screen": every frame at the output size) in one submission; fails with WebGPU's validation
     // message. Returns how many passes ran.
-    async runPhase(phase, drawScene, size) {
+    async runPhase(phase, drawScene, size, replace = {}) {
         if (phase === "example") fail("runPhase('example'): the example phase draws into the caller's framebuffer; this runner runs shadow and screen");
         if (phase === "screen") {
             if (!size) fail("runPhase('screen'): needs the output size {width, height}");
@@ -514,10 +546,17 @@ export class WebGPULayoutRunner {
         }
         let count = 0;
         await validated(this.device, `in phase ${phase}`, () => {
-            const encoder = this.device.createCommandEncoder({label: phase});
+            let encoder = this.device.createCommandEncoder({label: phase});
             this.layout.passes.forEach((pass, index) => {
                 if (pass.phase !== phase) return;
-                this.encodePass(encoder, pass, index, drawScene, size);
+                if (replace[pass.name]) {
+                    // what was encoded so far runs first, then the caller's uploads (queue order)
+                    this.device.queue.submit([encoder.finish()]);
+                    replace[pass.name](pass);
+                    encoder = this.device.createCommandEncoder({label: phase});
+                } else {
+                    this.encodePass(encoder, pass, index, drawScene, size);
+                }
                 ++count;
             });
             this.device.queue.submit([encoder.finish()]);

@@ -28,7 +28,7 @@ if(TARGET penumbra-gen)
                      --out ${CMAKE_CURRENT_BINARY_DIR}/wgsl-matrix --web ${PROJECT_SOURCE_DIR}/web ${webgpu_wasm} --chromium ${PENUMBRA_CHROMIUM})
     set_tests_properties(wgsl_matrix PROPERTIES LABELS browser SKIP_RETURN_CODE 77 TIMEOUT 120)
 endif()
-# "webgpu_bundles": the WebGPU layout runner (web/webgpu_runner.js) over bundles of boxes at 64x64
+# "webgpu_bundles": the WebGPU layout runner (web/webgpu_runner.js) over bundles (boxes; tree and spider for occlusion textures) at 64x64
 # exported with --target wgsl (the desktop GL run of glsl450, emission/ in WGSL) for every technique
 # with WGSL (shadowmap, pcf, pcss, erosion, evsm, occlusion; rect and sun), each compared with the desktop run's
 # image (webgpu_bundle_test.mjs); with the WebAssembly emitter, the playground's renderer switch on
@@ -45,18 +45,24 @@ if(TARGET penumbra-export-bundle)
         # (a 256² shadow map: SwiftShader's 32-tap blur passes over 1024² take seconds)
         "evsm-rect|--technique evsm --light rect --shadow-resolution 256"
         "evsm-sun|--technique evsm --light sun --shadow-resolution 256"
-        # occlusion textures: compared with the CPU oracle within its bound as well
+        # occlusion textures: compared with the CPU oracle within its bound as well, with WebGPU's own
+        # slices and with the desktop's; on the tree and a real mesh (Debian's assimp-testmodels) too
         "occlusion-rect|--slices 8 --resolution 128 --filter nbuffer --light rect"
-        "occlusion-sun|--slices 8 --resolution 128 --filter gaussian --light sun --fusion correlated")
+        "occlusion-sun|--slices 8 --resolution 128 --filter gaussian --light sun --fusion correlated"
+        "occlusion-tree|--scene tree --slices 8 --resolution 128 --filter nbuffer --light rect"
+        "occlusion-spider|--scene /usr/share/assimp/models/OBJ/spider.obj --slices 16 --resolution 128 --filter nbuffer --light rect")
     set(webgpu_bundles "")
     foreach(case IN LISTS webgpu_cases)
         string(REPLACE "|" ";" parts "${case}")
         list(GET parts 0 name)
         list(GET parts 1 flags)
         separate_arguments(flags UNIX_COMMAND "${flags}")
+        if(NOT flags MATCHES "--scene")
+            list(PREPEND flags --scene boxes)
+        endif()
         set(dir ${PROJECT_BINARY_DIR}/target_bundles/webgpu-${name})
         add_test(NAME penumbra-bundle-webgpu-${name}
-                 COMMAND $<TARGET_FILE:penumbra-export-bundle> --scene boxes --target wgsl --size 64x64 ${flags} --out ${dir})
+                 COMMAND $<TARGET_FILE:penumbra-export-bundle> --target wgsl --size 64x64 ${flags} --out ${dir})
         set_tests_properties(penumbra-bundle-webgpu-${name} PROPERTIES FIXTURES_SETUP penumbra_webgpu_bundles LABELS browser TIMEOUT 120)
         # the playground's renderer switch on two of them (a page load and 512² frames each)
         if(name STREQUAL "pcss-rect" OR name STREQUAL "evsm-sun")

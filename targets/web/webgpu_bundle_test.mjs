@@ -8,6 +8,9 @@
 // the WebGL2 bundles of these techniques do (TECHNIQUE_* in bundle_compare.mjs: the shadow-map-based
 // techniques have no oracle bound; SwiftShader and llvmpipe rasterize the depth pass differently), and
 // away from silhouettes at most one pixel a bundle may be more than TECHNIQUE_PIXEL_STEP apart.
+// Occlusion textures also against the CPU oracle, which read the desktop's slices: with WebGPU's own
+// slices outside its bound only at silhouettes (SwiftShader and llvmpipe rasterize caster edges
+// differently), and with the desktop's slices uploaded in place of the slicing pass, 0 pixels outside.
 // First, on a small layout written in the test, the runner conventions occlusion textures will use
 // (copy passes into array layers, renders into 3D slices, int_uniforms per pass).
 //
@@ -149,8 +152,10 @@ async function conventionsInPage() {
     }
 }
 
-// In the page: the runner over bundle /bundle/<index>/, with the device of startWebGPU.
-async function runInPage(index) {
+// In the page: the runner over bundle /bundle/<index>/, with the device of startWebGPU. With
+// `injectSlices`, the desktop run's slicing output (slices.f32, slice k of R² floats at k·R², rows
+// bottom first) takes the place of the slicing pass, as browser_test.mjs does for WebGL2.
+async function runInPage(index, injectSlices = false) {
     const {WebGPULayoutRunner} = await import("/web/webgpu_runner.js");
     const base = `/bundle/${index}/`;
     const get = async (name, kind) => {
@@ -161,10 +166,27 @@ async function runInPage(index) {
     try {
         const bundle = await get("uniforms.json", "json");
         const started = performance.now();
-        const runner = await WebGPULayoutRunner.load(window.penumbraDevice, `${base}emission/`);
+        let writable = [], replace = {};
+        if (injectSlices) {
+            const layout = await get("emission/layout.json", "json");
+            const slicing = layout.passes.find((p) => p.name === "slicing");
+            if (!slicing) throw new Error("injectSlices: the layout has no slicing pass");
+            writable = [...new Set(slicing.outputs.map((o) => o.texture))];
+            const slices = await get("slices.f32");
+            const {slices: S, resolution: R} = layout.config;
+            if (slices.length !== S * R * R) throw new Error(`slices.f32: ${slices.length} floats, expected ${S}·${R}² = ${S * R * R}`);
+            // output t holds slices 4t … 4t+3 in its channels
+            replace.slicing = (pass) => pass.outputs.forEach((out, t) => {
+                const rgba = new Float32Array(4 * R * R);
+                for (let c = 0; c < 4 && 4 * t + c < S; ++c)
+                    for (let i = 0; i < R * R; ++i) rgba[4 * i + c] = slices[(4 * t + c) * R * R + i];
+                runner.uploadTexture(out.texture, out.level, out.layer, rgba);
+            });
+        }
+        const runner = await WebGPULayoutRunner.load(window.penumbraDevice, `${base}emission/`, {writable});
         const created = performance.now();
         runner.setUniforms(bundle.uniforms);
-        const shadowPasses = await runner.runPhase("shadow", runner.sceneDrawer(await get("mesh.f32")));
+        const shadowPasses = await runner.runPhase("shadow", runner.sceneDrawer(await get("mesh.f32")), null, replace);
         const size = {width: bundle.width, height: bundle.height};
         runner.allocateOutputSized(size.width, size.height);
         const filled = [];
@@ -354,6 +376,18 @@ async function main() {
                 if (o.outsideOracle > OWN_PIXELS_ALLOWED * pixels || inside > 0)
                     failures.push(`${o.outsideOracle} pixels outside the oracle's bound, ${inside} of them away from silhouettes ` +
                                   `(allowed ${100 * OWN_PIXELS_ALLOWED}%, at silhouettes only)`);
+                // With the desktop's slices in place of WebGPU's own, everything after slicing is the model the oracle
+                // computes: every pixel within the bound (the result is r32float: no quantization step to add).
+                const injected = await gpu.page.evaluate(runInPage, i, true);
+                if (injected.error) {
+                    failures.push(`with the desktop slices: ${injected.error}`);
+                } else {
+                    const withSlices = compare(Float32Array.from(injected.visibility), reference, 0);
+                    oracleLine += `\n     with the desktop slices: max |WebGPU − oracle| ${withSlices.worstOracle.toExponential(2)}, ` +
+                                  `${withSlices.outsideOracle} of ${pixels} pixels outside the bound`;
+                    if (withSlices.outsideOracle > 0)
+                        failures.push(`with the desktop slices, ${withSlices.outsideOracle} pixels outside the oracle's bound (allowed 0)`);
+                }
             }
             failures.push(...problems.splice(0));
             if (args.images) {
