@@ -40,6 +40,8 @@ std::vector<Config> wgsl_configs() {
         out.push_back({.slices = 5, .resolution = 64, .filter = Filter::gaussian, .fusion = fusion, .light = Light::sun,
                        .tangent_clip = fusion == Fusion::chained, .target = Target::wgsl});
     out.push_back({.slices = 32, .resolution = 128, .self_shadow_fade = false, .level_reduction = -1, .target = Target::wgsl});
+    // the mip chain as passes (WebGPU has no generateMipmap), with the extent fusion's second read
+    out.push_back({.slices = 8, .resolution = 128, .filter = Filter::mipmap, .fusion = Fusion::extent, .target = Target::wgsl});
     Config grid{.technique = Technique::pcf, .target = Target::wgsl};
     grid.pcf.pattern = TapPattern::grid;
     grid.pcf.rotate = false;
@@ -161,6 +163,44 @@ TEST_CASE("wgsl: layout.json names WebGPU's formats, usages and binding types") 
     CHECK(!has(vulkan, "sampler_binding"));
 }
 
+TEST_CASE("wgsl: the mipmap filter builds its chain with a pass a level, each reading the level below alone") {
+    // WebGPU has no generateMipmap; GL keeps it
+    const Config config{.slices = 8, .resolution = 128, .filter = Filter::mipmap, .target = Target::wgsl};
+    const Result<Emission> result = emit(config);
+    REQUIRE(result.errors.empty());
+    const Layout& layout = result.value->layout;
+    std::vector<const PassDesc*> chain;
+    for (const PassDesc& pass : layout.passes) {
+        CHECK(pass.action != PassAction::generate_mipmap);
+        if (pass.program == "mip_level") chain.push_back(&pass);
+    }
+    const int levels = layout.textures[1].mip_levels; // penumbra_slices, then the atlas
+    REQUIRE(layout.textures[1].name == "penumbra_occlusionAtlas");
+    REQUIRE(static_cast<int>(chain.size()) == levels - 1);
+    for (int l = 1; l < levels; ++l) {
+        const PassDesc& pass = *chain[static_cast<std::size_t>(l - 1)];
+        CAPTURE(l);
+        REQUIRE(pass.inputs.size() == 1);
+        CHECK(pass.inputs[0].texture == "penumbra_occlusionAtlas");
+        CHECK(pass.inputs[0].level == l - 1);
+        REQUIRE(pass.outputs.size() == 1);
+        CHECK(pass.outputs[0].level == l);
+        CHECK(pass.viewport_width == (2 * 128) >> l);
+        CHECK(pass.viewport_height == 128 >> l);
+    }
+    const std::string mip = emit_file(config, "penumbra_mip_level.frag.wgsl").text;
+    CHECK(has(mip, "0.25 * (textureLoad(penumbra_source, base, 0) + textureLoad(penumbra_source, base + vec2i(1, 0), 0)"));
+    CHECK(has(emit_file(config, "penumbra_visibility.wgsl").text,
+              "textureSampleLevel(penumbra_occlusionAtlas, penumbra_occlusionAtlas_sampler, vec2((tile + kernel.x) * 0.5, kernel.y), kernel.w)"));
+    Config gl = config;
+    gl.target = Target::glsl450;
+    const Result<Emission> gl_result = emit(gl);
+    REQUIRE(gl_result.errors.empty());
+    bool generates = false;
+    for (const PassDesc& pass : gl_result.value->layout.passes) generates = generates || pass.action == PassAction::generate_mipmap;
+    CHECK(generates);
+}
+
 TEST_CASE("wgsl: EVSM stores the moments as RGBA32UI float bits and filters them by hand, as on ES") {
     const Config evsm{.technique = Technique::evsm, .target = Target::wgsl};
     const Result<Emission> result = emit(evsm);
@@ -186,9 +226,6 @@ TEST_CASE("wgsl: occlusion textures refuse what WebGPU or the WGSL emitters do n
         std::string field, message;
     };
     const std::vector<Case> cases{
-        {{.filter = Filter::mipmap, .target = Target::wgsl}, "filter",
-         "needs generateMipmap, which WebGPU does not have (a mip chain as render passes is not written yet); allowed for "
-         "wgsl: nbuffer, gaussian"},
         {{.packing = Packing::array, .target = Target::wgsl}, "packing", "is not written for wgsl yet; allowed for wgsl: atlas"},
         {{.slice_placement = SlicePlacement::adaptive, .target = Target::wgsl}, "slice_placement",
          "needs generateMipmap over its depth bins, which WebGPU does not have; allowed for wgsl: uniform"},

@@ -49,6 +49,7 @@ if(TARGET penumbra-export-bundle)
         # slices and with the desktop's; on the tree and a real mesh (Debian's assimp-testmodels) too
         "occlusion-rect|--slices 8 --resolution 128 --filter nbuffer --light rect"
         "occlusion-sun|--slices 8 --resolution 128 --filter gaussian --light sun --fusion correlated"
+        "occlusion-mipmap|--slices 8 --resolution 128 --filter mipmap --light rect --fusion extent"
         "occlusion-tree|--scene tree --slices 8 --resolution 128 --filter nbuffer --light rect"
         "occlusion-spider|--scene /usr/share/assimp/models/OBJ/spider.obj --slices 16 --resolution 128 --filter nbuffer --light rect")
     set(webgpu_bundles "")

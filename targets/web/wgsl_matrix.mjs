@@ -40,6 +40,7 @@ const VARIANTS = {
     "occlusion-small": "--technique occlusion --slices 8 --resolution 128 --fusion additive --no-tangent-clip",
     "occlusion-probabilistic": "--technique occlusion --slices 4 --resolution 64 --fusion probabilistic",
     "occlusion-gaussian": "--technique occlusion --filter gaussian --slices 8 --resolution 128",
+    "occlusion-mipmap": "--technique occlusion --filter mipmap --slices 8 --resolution 128",
 };
 // Variants that exist under one light only (the Gaussian stands for the sun's disk).
 const VARIANT_LIGHTS = {"occlusion-gaussian": ["sun"]};
@@ -49,7 +50,6 @@ const NORMAL_OFFSETS = ["0", "1"];
 const ALPHA_TEST = [false, true];
 // What the wgsl target refuses today (the lead ports these next; move a line up into VARIANTS when it lands).
 const REFUSED = {
-    "occlusion-mipmap": "--technique occlusion --filter mipmap",
     "occlusion-sat": "--technique occlusion --filter sat",
     "occlusion-array": "--technique occlusion --packing array",
     "occlusion-volume": "--technique occlusion --packing volume",

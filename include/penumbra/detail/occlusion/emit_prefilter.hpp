@@ -1,6 +1,7 @@
 // penumbra/detail/occlusion/emit_prefilter.hpp — full-screen passes that turn the slicing output into the
-// filtered storage the shading pass reads (paper §3.2). Mipmaps need no shader of ours: the
-// layout description asks for glGenerateMipmap.
+// filtered storage the shading pass reads (paper §3.2). Mipmaps need no shader of ours on GL: the
+// layout description asks for glGenerateMipmap; WebGPU has none, so on WGSL a pass per level builds
+// the chain (mip_level_fragment).
 #pragma once
 
 #include "../emit_shading.hpp"
@@ -161,6 +162,37 @@ constexpr Text gaussian_level_fragment(const Config& config) {
         out.line("sum += ", text.substr(0, hash), ivec2, text.substr(hash + 1), ";");
     }
     out.line("penumbra_result = sum / 16.0;");
+    out.line("}");
+    write_entry_point(out, config, Stage::fragment);
+    return out.take();
+}
+
+// The mipmap filter on WGSL (WebGPU has no generateMipmap): level n + 1 of the mip chain from level n,
+// the pass binding level n alone (layout.json: the input's level), each texel the mean of the 2 × 2
+// texels under it, the box filter generateMipmap applies to power-of-two levels.
+constexpr std::vector<Param> mip_level_params() {
+    return {{"penumbra_source", "sampler2D", "the level being reduced (the pass binds one level)", "", {},
+             UniformSource::light, {}, /*fetch_only=*/true}};
+}
+
+constexpr Text mip_level_fragment(const Config& config) {
+    LineWriter out;
+    write_preamble(out, config, Text("mip chain of the occlusion atlas (WebGPU has no generateMipmap), level n to n+1, fragment stage"));
+    int binding = 0;
+    write_params(out, config, mip_level_params(), "PenumbraPass", binding);
+    out.line(stage_variable(out, config, "out", 0, "vec4", "penumbra_result", true));
+    declare_builtin(out, config, true, "position", "vec4", frag_coord(config));
+    out.blank();
+    out.chunk("mip_level_main");
+    out.comment("the mean of the 2 x 2 texels of level n under this texel of level n + 1");
+    out.line(main_signature(config));
+    out.line("{");
+    const std::string_view ivec2 = type_name(config, "ivec2");
+    out.line(value(config, "ivec2", "base", cat("2 * ", construct(config, "ivec2", cat(frag_coord(config), ".xy")))));
+    out.line("penumbra_result = 0.25 * (", fetch(config, "penumbra_source", "base", "0"), " + ",
+             fetch(config, "penumbra_source", cat("base + ", ivec2, "(1, 0)"), "0"));
+    out.line("    + ", fetch(config, "penumbra_source", cat("base + ", ivec2, "(0, 1)"), "0"), " + ",
+             fetch(config, "penumbra_source", cat("base + ", ivec2, "(1, 1)"), "0"), ");");
     out.line("}");
     write_entry_point(out, config, Stage::fragment);
     return out.take();

@@ -271,11 +271,13 @@ constexpr void write_lookup_function(LineWriter& out, const Config& config) {
     out.chunk("lookup");
     if (config.filter == Filter::mipmap) {
         out.comment("paper §3.2: hardware trilinear filtering, level chosen explicitly");
-        out.line("vec4 penumbra_filtered(vec4 kernel, float tile)");
+        out.line(signature(config, "vec4", "penumbra_filtered", {{"vec4", "kernel"}, {"float", "tile"}}));
         out.line("{");
         if (config.packing == Packing::atlas)
-            out.line("return textureLod(penumbra_occlusionAtlas, vec2((tile + kernel.x) * ", k.inv_T,
-                     ", kernel.y), kernel.w);");
+            out.line("return ",
+                     sample_level(config, "penumbra_occlusionAtlas", cat("vec2((tile + kernel.x) * ", k.inv_T, ", kernel.y)"),
+                                  "kernel.w"),
+                     ";");
         else
             out.line("return textureLod(penumbra_occlusion, vec3(kernel.xy, tile), kernel.w);");
         out.line("}");
@@ -504,7 +506,7 @@ constexpr void write_fusion_result(LineWriter& out, const Config& config) {
 constexpr void write_slice_loop(LineWriter& out, const Config& config) {
     out.chunk("slice_loop");
     out.comment("static loop over the slices, unrolled; i selects the slice's channel");
-    out.line("vec4 penumbra_i = ", one_hot((config.slices - 1) % 4), ";");
+    out.line(variable(config, "vec4", "penumbra_i", one_hot((config.slices - 1) % 4)));
     if (fades_over_own_thickness(config))
         write_virtual_plane(out, config);
     for (int s = config.slices - 1; s >= 0; --s) {
@@ -522,23 +524,23 @@ constexpr void write_slice_loop(LineWriter& out, const Config& config) {
             out.line("// slice ", format_int(s), ": texture ", format_int(tile), ", channel ", channel_name(s % 4),
                      ", bottom plane at z0 + ", format_int(s + 1), " * thickness");
             out.line("{");
-            out.line("float zeta = penumbra_sliceDepths.x + ", format_float(s + 1), " * penumbra_sliceDepths.y;");
+            out.line(value(config, "float", "zeta", cat("penumbra_sliceDepths.x + ", format_float(s + 1), " * penumbra_sliceDepths.y")));
         }
-        out.line("vec4 kernel = ", kernel_call(config), ";");
+        out.line(value(config, "vec4", "kernel", kernel_call(config)));
         const Text lookup = choose(config.packing == Packing::volume, cat("penumbra_filtered", format_int(tile), "(kernel)"),
                                    cat("penumbra_filtered(kernel, ", format_float(tile), ")"));
         if (config.fusion == Fusion::extent) {
             const Text wide = choose(config.packing == Packing::volume,
                                      cat("penumbra_filtered", format_int(tile), "(penumbra_wide)"),
                                      cat("penumbra_filtered(penumbra_wide, ", format_float(tile), ")"));
-            out.line("float fade = ", weight_call(config), ";");
-            out.line("float coverage = dot(", lookup, ", penumbra_i);");
-            out.line("float q = fade * coverage;");
+            out.line(value(config, "float", "fade", weight_call(config)));
+            out.line(value(config, "float", "coverage", cat("dot(", lookup, ", penumbra_i)")));
+            out.line(value(config, "float", "q", "fade * coverage"));
             out.comment("the same slice over a window twice the kernel's side: how far the occluder extends");
-            out.line("vec4 penumbra_wide = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));");
-            out.line("float area = ", extent_area("fade", "coverage", cat("dot(", wide, ", penumbra_i)")), ";");
+            out.line(value(config, "vec4", "penumbra_wide", "vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel))"));
+            out.line(value(config, "float", "area", extent_area("fade", "coverage", cat("dot(", wide, ", penumbra_i)"))));
         } else {
-            out.line("float q = ", weight_call(config), " * dot(", lookup, ", penumbra_i);");
+            out.line(value(config, "float", "q", cat(weight_call(config), " * dot(", lookup, ", penumbra_i)")));
         }
         write_accumulate(out, config);
         out.line("}");

@@ -20,6 +20,7 @@ inline std::vector<ParamGroup> occlusion_param_groups(const Config& config, std:
     std::vector<Param> params;
     if (program == "slice_boundaries") params = slice_boundaries_params();
     if (program == "pack_atlas") params = pack_atlas_params();
+    if (program == "mip_level") params = mip_level_params();
     if (program == "unpack_slices") params = unpack_params();
     if (program == "nbuffer_level" || program == "gaussian_level") params = level_params(config);
     if (program == "nbuffer_levels") params = nbuffer_compute_params();
@@ -235,7 +236,16 @@ inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
                 .viewport_width = T * R,
                 .viewport_height = R});
     }
-    if (config.filter == Filter::mipmap) {
+    if (config.filter == Filter::mipmap && config.target == Target::wgsl) {
+        // WebGPU has no generateMipmap: one pass a level, reading level l - 1 alone (validate: atlas only)
+        for (int l = 1; l <= L; ++l)
+            b.pass({.name = "mip_level",
+                    .program = "mip_level",
+                    .inputs = {{.sampler = "penumbra_source", .texture = "penumbra_occlusionAtlas", .level = l - 1}},
+                    .outputs = {{"penumbra_occlusionAtlas", l}},
+                    .viewport_width = std::max(T * R >> l, 1),
+                    .viewport_height = std::max(R >> l, 1)});
+    } else if (config.filter == Filter::mipmap) {
         const std::string storage = config.packing == Packing::atlas ? "penumbra_occlusionAtlas" : "penumbra_occlusion";
         b.pass({.name = "mipmaps", .action = PassAction::generate_mipmap, .outputs = {{storage}}});
     } else if (config.filter == Filter::sat) {

@@ -14,6 +14,7 @@ inline constexpr ShaderFileSpec slicing_vert{"penumbra_slicing.vert", Stage::ver
 inline constexpr ShaderFileSpec slicing_frag{"penumbra_slicing.frag", Stage::fragment, slicing_fragment};
 inline constexpr ShaderFileSpec pack_atlas_frag{"penumbra_pack_atlas.frag", Stage::fragment, pack_atlas_fragment};
 inline constexpr ShaderFileSpec nbuffer_level_frag{"penumbra_nbuffer_level.frag", Stage::fragment, nbuffer_level_fragment};
+inline constexpr ShaderFileSpec mip_level_frag{"penumbra_mip_level.frag", Stage::fragment, mip_level_fragment};
 inline constexpr ShaderFileSpec gaussian_level_frag{"penumbra_gaussian_level.frag", Stage::fragment, gaussian_level_fragment};
 inline constexpr ShaderFileSpec sat_shift_frag{"penumbra_sat_shift.frag", Stage::fragment, sat_shift_fragment};
 inline constexpr ShaderFileSpec sat_pass_frag{"penumbra_sat_pass.frag", Stage::fragment, sat_pass_fragment};
@@ -46,6 +47,8 @@ constexpr std::vector<ProgramPlan> occlusion_programs(const Config& config) {
     else if (config.filter == Filter::nbuffer)
         plan.push_back({"nbuffer_level", {fullscreen_vert, nbuffer_level_frag}});
     if (config.filter == Filter::gaussian) plan.push_back({"gaussian_level", {fullscreen_vert, gaussian_level_frag}});
+    // WebGPU has no generateMipmap: the mip chain as passes
+    if (config.filter == Filter::mipmap && config.target == Target::wgsl) plan.push_back({"mip_level", {fullscreen_vert, mip_level_frag}});
     if (config.filter == Filter::sat) {
         plan.push_back({"sat_shift", {fullscreen_vert, sat_shift_frag}});
         plan.push_back({"sat_pass", {fullscreen_vert, sat_pass_frag}});
@@ -90,7 +93,7 @@ constexpr std::vector<std::string_view> occlusion_es_samplers(const Config& conf
 // levels, one trilinear for mip chains and volumes, four bilinear for summed-area tables.
 inline long long occlusion_texels_per_fragment(const Config& c, const PassDesc& pass) {
     const std::string_view program = pass.program;
-    if (program == "nbuffer_level") return 4;
+    if (program == "nbuffer_level" || program == "mip_level") return 4;
     if (program == "gaussian_level") return 9;
     if (program == "pack_atlas" && pass.outputs.size() > 1) return c.filter == Filter::gaussian ? 9 : 4; // + level 1
     if (program == "pack_atlas" || program == "sat_shift" || program == "unpack_slices") return 1;

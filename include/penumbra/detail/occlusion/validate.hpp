@@ -71,10 +71,6 @@ constexpr std::vector<Problem> occlusion_problems(const Config& config) {
             cat("needs renderable, filterable 32-bit float textures, which target '", target,
                 "' does not guarantee; allowed filters for ", target, ": mipmap, nbuffer, gaussian"));
     if (config.target == Target::wgsl) { // what the WGSL emitters and WebGPU do not have yet
-        if (config.filter == Filter::mipmap)
-            add("filter", Text("mipmap"),
-                "needs generateMipmap, which WebGPU does not have (a mip chain as render passes is not written yet); "
-                "allowed for wgsl: nbuffer, gaussian");
         if (config.packing != Packing::atlas)
             add("packing", Text(to_string(config.packing)), "is not written for wgsl yet; allowed for wgsl: atlas");
         if (places_slices_adaptively(config))
