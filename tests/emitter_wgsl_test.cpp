@@ -42,6 +42,15 @@ std::vector<Config> wgsl_configs() {
     out.push_back({.slices = 32, .resolution = 128, .self_shadow_fade = false, .level_reduction = -1, .target = Target::wgsl});
     // the mip chain as passes (WebGPU has no generateMipmap), with the extent fusion's second read
     out.push_back({.slices = 8, .resolution = 128, .filter = Filter::mipmap, .fusion = Fusion::extent, .target = Target::wgsl});
+    // the array and volume packings: levels built in a scratch texture and copied into a layer / depth
+    out.push_back({.slices = 8, .resolution = 128, .filter = Filter::mipmap, .packing = Packing::array, .target = Target::wgsl});
+    out.push_back({.slices = 8, .resolution = 128, .packing = Packing::array, .target = Target::wgsl});
+    // adaptive slice placement: the depth bins' mip chain as passes, the boundaries as float bits in R32UI
+    out.push_back({.slices = 8, .resolution = 128, .slice_placement = SlicePlacement::adaptive, .target = Target::wgsl});
+    out.push_back({.slices = 5, .resolution = 64, .filter = Filter::mipmap, .fusion = Fusion::extent,
+                   .slice_placement = SlicePlacement::adaptive, .target = Target::wgsl, .alpha_test = true});
+    out.push_back({.slices = 8, .resolution = 128, .filter = Filter::gaussian, .fusion = Fusion::extent, .packing = Packing::volume,
+                   .light = Light::sun, .target = Target::wgsl});
     Config grid{.technique = Technique::pcf, .target = Target::wgsl};
     grid.pcf.pattern = TapPattern::grid;
     grid.pcf.rotate = false;
@@ -226,9 +235,6 @@ TEST_CASE("wgsl: occlusion textures refuse what WebGPU or the WGSL emitters do n
         std::string field, message;
     };
     const std::vector<Case> cases{
-        {{.packing = Packing::array, .target = Target::wgsl}, "packing", "is not written for wgsl yet; allowed for wgsl: atlas"},
-        {{.slice_placement = SlicePlacement::adaptive, .target = Target::wgsl}, "slice_placement",
-         "needs generateMipmap over its depth bins, which WebGPU does not have; allowed for wgsl: uniform"},
         {{.filter = Filter::sat, .target = Target::wgsl}, "filter", "needs renderable, filterable 32-bit float textures"},
         {{.slices = 64, .resolution = 64, .target = Target::wgsl}, "slices", "needs a logical OR on the slicing target"},
     };

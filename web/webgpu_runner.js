@@ -272,8 +272,9 @@ export class WebGPULayoutRunner {
         this.device.queue.writeTexture({texture: t.texture}, data, {bytesPerRow: f.bytes * width, rowsPerImage: height}, [width, height, 1]);
     }
 
-    // One level (and layer) of a texture the runner was loaded with as writable, from RGBA floats in
-    // memory row order (as readTexture gives them; unorm8 formats store round(255·x)).
+    // One level (and layer) of a texture the runner was loaded with as writable, from RGBA values in
+    // memory row order (as readTexture gives them; unorm8 formats store round(255·x), uint32 formats
+    // the values as they are: pass them in an Array or a Uint32Array, a Float32Array would round them).
     uploadTexture(name, level, layer, rgba) {
         if (!this.writable.has(name)) fail(`uploadTexture ${name}: not loaded as writable (load(device, base, {writable: ["${name}"]}))`);
         const t = this.texture(name);
@@ -288,8 +289,11 @@ export class WebGPULayoutRunner {
         } else if (f.type === "float32") {
             data = new Float32Array(f.channels * width * height);
             for (let i = 0; i < width * height; ++i) for (let c = 0; c < f.channels; ++c) data[f.channels * i + c] = rgba[4 * i + c];
+        } else if (f.type === "uint32") {
+            data = new Uint32Array(f.channels * width * height);
+            for (let i = 0; i < width * height; ++i) for (let c = 0; c < f.channels; ++c) data[f.channels * i + c] = rgba[4 * i + c];
         } else {
-            fail(`uploadTexture ${name}: format ${t.format} is not uploaded by this runner (unorm8 and float32 formats are)`);
+            fail(`uploadTexture ${name}: format ${t.format} is not uploaded by this runner (unorm8, float32 and uint32 formats are)`);
         }
         this.device.queue.writeTexture({texture: t.texture, mipLevel: level, origin: [0, 0, Math.max(layer, 0)]}, data,
                                        {bytesPerRow: f.bytes * width, rowsPerImage: height}, [width, height, 1]);

@@ -66,7 +66,8 @@ constexpr std::string_view usage_text =
     "\n"
     "Renders the scene with the desktop GL runtime (the configuration's emission; glsl450 for the vulkan\n"
     "and wgsl targets) and writes, for a foreign runner to reproduce: mesh.f32, uniforms.json, positions.f32,\n"
-    "normals.f32, visibility_gl.f32, slices.f32, oracle.f32, bound.f32 (occlusion textures: the CPU oracle)\n"
+    "normals.f32, visibility_gl.f32, slices.f32, oracle.f32, bound.f32 (occlusion textures: the CPU oracle;\n"
+    "boundaries.f32 with adaptive slice placement)\n"
     "and emission/ (penumbra-gen's files for --target); with --reference truth.f32, with --technique oim\n"
     "texcoords.f32 and the bake's textures. See targets/bundle/README.md.\n"
     "\n"
@@ -270,6 +271,7 @@ int run(const std::vector<std::string>& args) {
     if (!render_headless(scene, gl_config, a.width, a.height, result, &error, options)) return fail(error);
     if (!read) return fail(read_error);
     const std::vector<float> coverage = slices.coverage; // slices.f32: what a runner can rasterize differently
+    const std::vector<float> placed = boundaries;        // boundaries.f32: adaptive placement's, from the same run
     std::optional<Oracle> oracle;
     if (occlusion) oracle.emplace(gl_config, frame, std::move(slices), std::move(boundaries));
     std::vector<float> truth;
@@ -348,7 +350,7 @@ int run(const std::vector<std::string>& args) {
     }
     if (!truth.empty()) uniforms["truth"] = {{"file", "truth.f32"}, {"kind", "oriented"}, {"samples", a.reference_samples}};
     // Files of an earlier bundle in this folder that this one does not write would mislead a runner.
-    for (const char* optional_file : {"slices.f32", "oracle.f32", "bound.f32", "truth.f32", "texcoords.f32"})
+    for (const char* optional_file : {"slices.f32", "boundaries.f32", "oracle.f32", "bound.f32", "truth.f32", "texcoords.f32"})
         std::filesystem::remove(dir / optional_file, ec);
     std::ofstream json(dir / "uniforms.json", std::ios::binary);
     json << uniforms.dump(2) << '\n';
@@ -359,6 +361,7 @@ int run(const std::vector<std::string>& args) {
     if (occlusion && (!write_floats(dir / "bound.f32", bound, &error) || !write_floats(dir / "oracle.f32", model, &error) ||
                       !write_floats(dir / "slices.f32", coverage, &error)))
         return fail(error);
+    if (!placed.empty() && !write_floats(dir / "boundaries.f32", placed, &error)) return fail(error);
     if (oim && !write_floats(dir / "texcoords.f32", tex_coords, &error)) return fail(error);
     if (!truth.empty() && !write_floats(dir / "truth.f32", truth_bottom_first, &error)) return fail(error);
     std::cout << "penumbra-export-bundle: wrote " << a.out_dir << " (" << scene.name << ", " << a.width << "x"

@@ -166,12 +166,12 @@ async function runInPage(index, injectSlices = false) {
     try {
         const bundle = await get("uniforms.json", "json");
         const started = performance.now();
-        let writable = [], replace = {};
+        const writable = [], replace = {};
         if (injectSlices) {
             const layout = await get("emission/layout.json", "json");
             const slicing = layout.passes.find((p) => p.name === "slicing");
             if (!slicing) throw new Error("injectSlices: the layout has no slicing pass");
-            writable = [...new Set(slicing.outputs.map((o) => o.texture))];
+            writable.push(...new Set(slicing.outputs.map((o) => o.texture)));
             const slices = await get("slices.f32");
             const {slices: S, resolution: R} = layout.config;
             if (slices.length !== S * R * R) throw new Error(`slices.f32: ${slices.length} floats, expected ${S}·${R}² = ${S * R * R}`);
@@ -182,6 +182,19 @@ async function runInPage(index, injectSlices = false) {
                     for (let i = 0; i < R * R; ++i) rgba[4 * i + c] = slices[(4 * t + c) * R * R + i];
                 runner.uploadTexture(out.texture, out.level, out.layer, rgba);
             });
+            // adaptive placement: the desktop's boundaries too (the oracle's), as float bits
+            const placement = layout.passes.find((p) => p.name === "slice_boundaries");
+            if (placement) {
+                const depths = await get("boundaries.f32");
+                const target = placement.outputs[0].texture;
+                writable.push(target);
+                const bits = new Uint32Array(depths.buffer, depths.byteOffset, depths.length);
+                replace.slice_boundaries = () => {
+                    const rgba = new Array(4 * depths.length).fill(0);
+                    bits.forEach((b, k) => (rgba[4 * k] = b));
+                    runner.uploadTexture(target, 0, -1, rgba);
+                };
+            }
         }
         const runner = await WebGPULayoutRunner.load(window.penumbraDevice, `${base}emission/`, {writable});
         const created = performance.now();

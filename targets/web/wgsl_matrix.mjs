@@ -41,6 +41,10 @@ const VARIANTS = {
     "occlusion-probabilistic": "--technique occlusion --slices 4 --resolution 64 --fusion probabilistic",
     "occlusion-gaussian": "--technique occlusion --filter gaussian --slices 8 --resolution 128",
     "occlusion-mipmap": "--technique occlusion --filter mipmap --slices 8 --resolution 128",
+    "occlusion-array": "--technique occlusion --packing array --slices 8 --resolution 128",
+    "occlusion-array-mipmap": "--technique occlusion --packing array --filter mipmap --slices 8 --resolution 128 --fusion extent",
+    "occlusion-volume": "--technique occlusion --packing volume --slices 8 --resolution 128 --fusion extent",
+    "occlusion-adaptive": "--technique occlusion --slice-placement adaptive --slices 8 --resolution 128",
 };
 // Variants that exist under one light only (the Gaussian stands for the sun's disk).
 const VARIANT_LIGHTS = {"occlusion-gaussian": ["sun"]};
@@ -51,9 +55,6 @@ const ALPHA_TEST = [false, true];
 // What the wgsl target refuses today (the lead ports these next; move a line up into VARIANTS when it lands).
 const REFUSED = {
     "occlusion-sat": "--technique occlusion --filter sat",
-    "occlusion-array": "--technique occlusion --packing array",
-    "occlusion-volume": "--technique occlusion --packing volume",
-    "occlusion-adaptive": "--technique occlusion --slice-placement adaptive",
     "occlusion-64": "--technique occlusion --slices 64",
     "oim": "--technique oim",
 };

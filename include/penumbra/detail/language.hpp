@@ -86,6 +86,19 @@ constexpr Text modulo(const Config& config, Text a, Text b) {
     return joined("(", a, " % ", b, ")");
 }
 
+// A local array of `size` elements: `T name[size];` / `var name: array<T, size>;`.
+constexpr Text array_variable(const Config& config, Text type, Text name, Text size) {
+    if (!is_wgsl(config)) return joined(type, " ", name, "[", size, "];");
+    return joined("var ", name, ": array<", wgsl_type_name(type), ", ", size, ">;");
+}
+
+// A counted loop's head, `name` from 0 while below `end`: `for (int name = 0; name < end; ++name)` /
+// `for (var name: i32 = 0; name < end; name++)`.
+constexpr Text counted_loop(const Config& config, Text name, Text end) {
+    if (!is_wgsl(config)) return joined("for (int ", name, " = 0; ", name, " < ", end, "; ++", name, ")");
+    return joined("for (var ", name, ": i32 = 0; ", name, " < ", end, "; ", name, "++)");
+}
+
 // A local value set once: `T name = init;` / `let name: T = init;`.
 constexpr Text value(const Config& config, Text type, Text name, Text init) {
     if (!is_wgsl(config)) return joined(type, " ", name, " = ", init, ";");
@@ -221,6 +234,12 @@ constexpr Text fetch_layer(const Config& config, Text texture, Text texel, Text 
 constexpr Text sample_level(const Config& config, Text texture, Text uv, Text level) {
     if (!is_wgsl(config)) return joined("textureLod(", texture, ", ", uv, ", ", level, ")");
     return joined("textureSampleLevel(", texture, ", ", sampler_of(texture), ", ", uv, ", ", level, ")");
+}
+// A filtered read of layer `layer` (a float expression holding an integer) of an array texture at an
+// explicit level: GLSL's third coordinate, WGSL's integer array index.
+constexpr Text sample_layer_level(const Config& config, Text texture, Text uv, Text layer, Text level) {
+    if (!is_wgsl(config)) return joined("textureLod(", texture, ", vec3(", uv, ", ", layer, "), ", level, ")");
+    return joined("textureSampleLevel(", texture, ", ", sampler_of(texture), ", ", uv, ", i32(", layer, "), ", level, ")");
 }
 // A filtered read with implicit derivatives (fragment stage, uniform control flow).
 constexpr Text sample(const Config& config, Text texture, Text uv) {

@@ -34,10 +34,12 @@ constexpr std::vector<Param> level_params(const Config& config) {
                           /*fetch_only=*/true});
     else if (config.packing == Packing::array) {
         params.push_back(layer_param("layer of the previous level's tile in the source array"));
-        params.push_back({"penumbra_source", "sampler2DArray", "filter levels array", "", "penumbra_levels"});
+        params.push_back({"penumbra_source", "sampler2DArray", "filter levels array", "", "penumbra_levels", UniformSource::light,
+                          {}, /*fetch_only=*/true});
     } else {
         params.push_back(layer_param("depth index of the previous level in the source volume"));
-        params.push_back({"penumbra_source", "sampler3D", "volume of the four slices being filtered", ""});
+        params.push_back({"penumbra_source", "sampler3D", "volume of the four slices being filtered", "", {}, UniformSource::light,
+                          {}, /*fetch_only=*/true});
     }
     return params;
 }
@@ -79,13 +81,20 @@ constexpr void write_level_source(LineWriter& out, const Config& config) {
         out.blank();
         return;
     }
+    const std::string_view ivec2 = type_name(config, "ivec2");
     out.comment("texel `local` of the previous level, 0 outside the texture (origin: always 0)");
-    out.line("vec4 penumbra_source_texel(ivec2 origin, ivec2 local)");
+    out.line(signature(config, "vec4", "penumbra_source_texel", {{"ivec2", "origin"}, {"ivec2", "local"}}));
     out.line("{");
-    out.line("bool inside = all(greaterThanEqual(local, ivec2(0))) && all(lessThan(local, ivec2(", R, ")));");
-    out.line("ivec2 texel = origin + clamp(local, ivec2(0), ivec2(", format_int(config.resolution - 1), "));");
-    out.line("vec4 value = texelFetch(penumbra_source, ivec3(texel, penumbra_sourceLayer), 0);");
-    out.line("return inside ? value : vec4(0.0);");
+    out.line(value(config, "bool", "inside",
+                   cat("all(", compare(config, "greaterThanEqual", "local", cat(ivec2, "(0)")), ") && all(",
+                       compare(config, "lessThan", "local", cat(ivec2, "(", R, ")")), ")")));
+    out.line(value(config, "ivec2", "texel", cat("origin + clamp(local, ", ivec2, "(0), ", ivec2, "(", format_int(config.resolution - 1), "))")));
+    if (config.packing == Packing::array)
+        out.line(value(config, "vec4", "value", fetch_layer(config, "penumbra_source", "texel", "penumbra_sourceLayer", "0")));
+    else
+        out.line(value(config, "vec4", "value",
+                       fetch(config, "penumbra_source", cat(type_name(config, "ivec3"), "(texel, penumbra_sourceLayer)"), "0")));
+    out.line("return ", conditional(config, "inside", "value", "vec4(0.0)"), ";");
     out.line("}");
     out.blank();
 }
@@ -98,8 +107,8 @@ constexpr void write_level_base(LineWriter& out, const Config& config) {
     const std::string_view ivec2 = type_name(config, "ivec2");
     out.line(value(config, "ivec2", "fragment", construct(config, "ivec2", cat(frag_coord(config), ".xy"))));
     if (config.packing != Packing::atlas) {
-        out.line("ivec2 origin = ivec2(0);");
-        out.line("ivec2 local = fragment;");
+        out.line(value(config, "ivec2", "origin", cat(ivec2, "(0)")));
+        out.line(value(config, "ivec2", "local", "fragment"));
         return;
     }
     if (!reduces_levels(config)) {
@@ -169,17 +178,29 @@ constexpr Text gaussian_level_fragment(const Config& config) {
 
 // The mipmap filter on WGSL (WebGPU has no generateMipmap): level n + 1 of the mip chain from level n,
 // the pass binding level n alone (layout.json: the input's level), each texel the mean of the 2 × 2
-// texels under it, the box filter generateMipmap applies to power-of-two levels.
-constexpr std::vector<Param> mip_level_params() {
+// texels under it, the box filter generateMipmap applies to power-of-two levels. Of a texture array
+// (the array packing, adaptive placement's depth bins) a pass a layer (penumbra_sourceLayer).
+constexpr std::vector<Param> mip_chain_params(bool array) {
+    if (array)
+        return {layer_param("the layer being reduced"),
+                {"penumbra_source", "sampler2DArray", "the level being reduced (the pass binds one level)", "", {},
+                 UniformSource::light, {}, /*fetch_only=*/true}};
     return {{"penumbra_source", "sampler2D", "the level being reduced (the pass binds one level)", "", {},
              UniformSource::light, {}, /*fetch_only=*/true}};
 }
+constexpr std::vector<Param> mip_level_params(const Config& config) { return mip_chain_params(config.packing == Packing::array); }
 
-constexpr Text mip_level_fragment(const Config& config) {
+// One texel of the level being reduced, at `texel` (a text expression).
+constexpr Text mip_source_texel(const Config& config, bool array, Text texel) {
+    if (array) return fetch_layer(config, "penumbra_source", texel, "penumbra_sourceLayer", "0");
+    return fetch(config, "penumbra_source", texel, "0");
+}
+
+constexpr Text mip_chain_fragment(const Config& config, bool array, Text title) {
     LineWriter out;
-    write_preamble(out, config, Text("mip chain of the occlusion atlas (WebGPU has no generateMipmap), level n to n+1, fragment stage"));
+    write_preamble(out, config, title);
     int binding = 0;
-    write_params(out, config, mip_level_params(), "PenumbraPass", binding);
+    write_params(out, config, mip_chain_params(array), "PenumbraPass", binding);
     out.line(stage_variable(out, config, "out", 0, "vec4", "penumbra_result", true));
     declare_builtin(out, config, true, "position", "vec4", frag_coord(config));
     out.blank();
@@ -189,13 +210,25 @@ constexpr Text mip_level_fragment(const Config& config) {
     out.line("{");
     const std::string_view ivec2 = type_name(config, "ivec2");
     out.line(value(config, "ivec2", "base", cat("2 * ", construct(config, "ivec2", cat(frag_coord(config), ".xy")))));
-    out.line("penumbra_result = 0.25 * (", fetch(config, "penumbra_source", "base", "0"), " + ",
-             fetch(config, "penumbra_source", cat("base + ", ivec2, "(1, 0)"), "0"));
-    out.line("    + ", fetch(config, "penumbra_source", cat("base + ", ivec2, "(0, 1)"), "0"), " + ",
-             fetch(config, "penumbra_source", cat("base + ", ivec2, "(1, 1)"), "0"), ");");
+    out.line("penumbra_result = 0.25 * (", mip_source_texel(config, array, "base"), " + ",
+             mip_source_texel(config, array, cat("base + ", ivec2, "(1, 0)")));
+    out.line("    + ", mip_source_texel(config, array, cat("base + ", ivec2, "(0, 1)")), " + ",
+             mip_source_texel(config, array, cat("base + ", ivec2, "(1, 1)")), ");");
     out.line("}");
     write_entry_point(out, config, Stage::fragment);
     return out.take();
+}
+
+constexpr Text mip_level_fragment(const Config& config) {
+    return mip_chain_fragment(config, config.packing == Packing::array,
+                              "mip chain of the occlusion textures (WebGPU has no generateMipmap), level n to n+1, fragment stage");
+}
+
+// Adaptive slice placement's depth bins on WGSL: their mip chain (layout.hpp), as mip_level_fragment.
+constexpr Text depth_bins_level_fragment(const Config& config) {
+    return mip_chain_fragment(config, true,
+                              "adaptive slice placement: mip chain of the depth bins (WebGPU has no generateMipmap), level n to "
+                              "n+1, fragment stage");
 }
 
 constexpr Param slices_param() {

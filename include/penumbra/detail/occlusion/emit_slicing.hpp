@@ -71,15 +71,15 @@ constexpr Text slicing_fragment(const Config& config) {
         out.line("}");
         out.blank();
     }
-    if (places_slices_adaptively(config)) write_boundary_function(out);
+    if (places_slices_adaptively(config)) write_boundary_function(out, config);
     out.chunk("slicing_fragment_main");
     out.line(main_signature(config));
     out.line("{");
     write_alpha_test_discard(out, config);
     if (places_slices_adaptively(config)) {
         out.comment("slice k holds the depths in (boundary k, boundary k + 1]: k counts the inner boundaries above");
-        write_boundary_search(out, "inner", "penumbra_depth", config.slices - 1);
-        out.line("float k = float(inner);");
+        write_boundary_search(out, config, "inner", "penumbra_depth", config.slices - 1);
+        out.line(value(config, "float", "k", construct(config, "float", "inner")));
     } else {
         out.comment("slice k holds the depths in (z0 + k * thickness, z0 + (k + 1) * thickness]");
         out.line(value(config, "float", "k",

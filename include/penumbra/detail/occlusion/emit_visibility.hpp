@@ -236,8 +236,9 @@ constexpr void write_weight_function(LineWriter& out, const Config& config) {
 // the last plane's ramp runs over the last slice's own thickness.
 constexpr void write_virtual_plane(LineWriter& out, const Config& config) {
     const Text S = format_int(config.slices), S1 = format_int(config.slices - 1);
-    out.line("float penumbra_below = 2.0 * penumbra_boundary(", S, ") - penumbra_boundary(", S1,
-             "); // below the bottom plane");
+    out.line(variable(config, "float", "penumbra_below",
+                      cat("2.0 * penumbra_boundary(", S, ") - penumbra_boundary(", S1, ")")),
+             " // below the bottom plane");
 }
 
 // How the loops call the fade function.
@@ -279,7 +280,7 @@ constexpr void write_lookup_function(LineWriter& out, const Config& config) {
                                   "kernel.w"),
                      ";");
         else
-            out.line("return textureLod(penumbra_occlusion, vec3(kernel.xy, tile), kernel.w);");
+            out.line("return ", sample_layer_level(config, "penumbra_occlusion", "kernel.xy", "tile", "kernel.w"), ";");
         out.line("}");
     } else if (config.filter == Filter::sat) {
         const Text R1 = format_float(config.resolution + 1);
@@ -308,33 +309,38 @@ constexpr void write_lookup_function(LineWriter& out, const Config& config) {
         const bool nbuffer = config.filter == Filter::nbuffer;
         out.comment(nbuffer ? "N-buffers: two levels around the kernel's, each read at its window anchor, then a lerp"
                             : "Gaussian levels: two levels around the kernel's, then a lerp");
-        out.line("vec4 penumbra_filtered(vec4 kernel, float tile)");
+        out.line(signature(config, "vec4", "penumbra_filtered", {{"vec4", "kernel"}, {"float", "tile"}}));
         out.line("{");
-        out.line("float lo = floor(kernel.w);");
-        out.line("float hi = min(lo + 1.0, ", k.L, ");");
+        out.line(value(config, "float", "lo", "floor(kernel.w)"));
+        out.line(value(config, "float", "hi", cat("min(lo + 1.0, ", k.L, ")")));
         if (nbuffer) {
-            out.line("vec2 shiftLo = vec2((exp2(lo - 1.0) - 0.5) / ", k.R, ");");
-            out.line("vec2 shiftHi = vec2((exp2(hi - 1.0) - 0.5) / ", k.R, ");");
+            out.line(value(config, "vec2", "shiftLo", cat("vec2((exp2(lo - 1.0) - 0.5) / ", k.R, ")")));
+            out.line(value(config, "vec2", "shiftHi", cat("vec2((exp2(hi - 1.0) - 0.5) / ", k.R, ")")));
         } else {
-            out.line("vec2 shiftLo = vec2(0.0);");
-            out.line("vec2 shiftHi = vec2(0.0);");
+            out.line(value(config, "vec2", "shiftLo", "vec2(0.0)"));
+            out.line(value(config, "vec2", "shiftHi", "vec2(0.0)"));
         }
-        out.line("vec4 texelLo = textureLod(penumbra_levels, vec3(kernel.xy - shiftLo, lo * ", k.T, " + tile), 0.0);");
-        out.line("vec4 texelHi = textureLod(penumbra_levels, vec3(kernel.xy - shiftHi, hi * ", k.T, " + tile), 0.0);");
+        out.line(value(config, "vec4", "texelLo",
+                       sample_layer_level(config, "penumbra_levels", "kernel.xy - shiftLo", cat("lo * ", k.T, " + tile"), "0.0")));
+        out.line(value(config, "vec4", "texelHi",
+                       sample_layer_level(config, "penumbra_levels", "kernel.xy - shiftHi", cat("hi * ", k.T, " + tile"), "0.0")));
         out.line("return mix(texelLo, texelHi, kernel.w - lo);");
         out.line("}");
     } else if (config.packing == Packing::volume) {
         out.comment("paper §3.7: levels along the depth of a 3D texture, the hardware interpolates between them;");
         out.comment("both levels are read at one position, so the N-buffer anchor follows the fractional level");
         for (int t = 0; t < texture_count(config); ++t) {
-            out.line("vec4 penumbra_filtered", format_int(t), "(vec4 kernel)");
+            const Text name = cat("penumbra_filtered", format_int(t));
+            out.line(signature(config, "vec4", name, {{"vec4", "kernel"}}));
             out.line("{");
             if (config.filter == Filter::nbuffer)
-                out.line("vec2 shift = vec2((exp2(kernel.w - 1.0) - 0.5) / ", k.R, ");");
+                out.line(value(config, "vec2", "shift", cat("vec2((exp2(kernel.w - 1.0) - 0.5) / ", k.R, ")")));
             else
-                out.line("vec2 shift = vec2(0.0);");
-            out.line("return textureLod(", volume_name(t), ", vec3(kernel.xy - shift, (kernel.w + 0.5) / ",
-                     format_float(max_level(config) + 1), "), 0.0);");
+                out.line(value(config, "vec2", "shift", "vec2(0.0)"));
+            out.line("return ",
+                     sample_level(config, volume_name(t),
+                                  cat("vec3(kernel.xy - shift, (kernel.w + 0.5) / ", format_float(max_level(config) + 1), ")"), "0.0"),
+                     ";");
             out.line("}");
         }
     }
@@ -515,9 +521,9 @@ constexpr void write_slice_loop(LineWriter& out, const Config& config) {
             out.line("// slice ", format_int(s), ": texture ", format_int(tile), ", channel ", channel_name(s % 4),
                      ", bottom plane at boundary ", format_int(s + 1));
             out.line("{");
-            out.line("float zeta = penumbra_boundary(", format_int(s + 1), ");");
+            out.line(value(config, "float", "zeta", cat("penumbra_boundary(", format_int(s + 1), ")")));
             if (fades_over_own_thickness(config)) {
-                out.line("float thickness = penumbra_below - zeta; // the slice below the plane");
+                out.line(value(config, "float", "thickness", "penumbra_below - zeta"), " // the slice below the plane");
                 out.line("penumbra_below = zeta;");
             }
         } else {
@@ -559,13 +565,13 @@ constexpr void write_level_loop(LineWriter& out, const Config& config) {
     out.comment("start at the nearest slice above the point; slices below it have weight 0");
     if (places_slices_adaptively(config)) {
         out.comment("(adaptive placement: one less than the number of boundaries above the point)");
-        write_boundary_search(out, "penumbra_above", "p.z", config.slices);
-        out.line("float penumbra_k = float(penumbra_above - 1);");
+        write_boundary_search(out, config, "penumbra_above", "p.z", config.slices);
+        out.line(variable(config, "float", "penumbra_k", construct(config, "float", "penumbra_above - 1")));
         if (fades_over_own_thickness(config)) {
             write_virtual_plane(out, config);
             out.comment("the plane below the first slice visited, when it is not the last");
-            out.line("if (penumbra_above < ", format_int(config.slices),
-                     ") penumbra_below = penumbra_boundary(penumbra_above + 1);");
+            out.line(if_then(config, cat("penumbra_above < ", format_int(config.slices)),
+                             "penumbra_below = penumbra_boundary(penumbra_above + 1);"));
         }
     } else {
         out.line(variable(config, "float", "penumbra_k",
@@ -588,9 +594,9 @@ constexpr void write_level_loop(LineWriter& out, const Config& config) {
                      format_int(2 << level), " texels");
         out.line("while (penumbra_k >= 0.0) {");
         if (places_slices_adaptively(config)) {
-            out.line("float zeta = penumbra_boundary(int(penumbra_k) + 1);");
+            out.line(value(config, "float", "zeta", cat("penumbra_boundary(", construct(config, "int", "penumbra_k"), " + 1)")));
             if (fades_over_own_thickness(config)) {
-                out.line("float thickness = penumbra_below - zeta; // the slice below the plane");
+                out.line(value(config, "float", "thickness", "penumbra_below - zeta"), " // the slice below the plane");
                 out.line("penumbra_below = zeta;");
             }
         } else {
@@ -660,7 +666,7 @@ constexpr bool uses_level_loop(const Config& config) {
 // Declarations and functions of penumbraVisibility, ready to paste into any stage of the target.
 constexpr void write_visibility(LineWriter& out, const Config& config, int& next_binding) {
     write_params(out, config, visibility_params(config), "PenumbraVisibility", next_binding);
-    if (places_slices_adaptively(config)) write_boundary_function(out);
+    if (places_slices_adaptively(config)) write_boundary_function(out, config);
     write_kernel_function(out, config);
     write_weight_function(out, config);
     if (!uses_level_loop(config)) write_lookup_function(out, config);

@@ -20,7 +20,8 @@ inline std::vector<ParamGroup> occlusion_param_groups(const Config& config, std:
     std::vector<Param> params;
     if (program == "slice_boundaries") params = slice_boundaries_params();
     if (program == "pack_atlas") params = pack_atlas_params();
-    if (program == "mip_level") params = mip_level_params();
+    if (program == "mip_level") params = mip_level_params(config);
+    if (program == "depth_bins_level") params = mip_chain_params(true);
     if (program == "unpack_slices") params = unpack_params();
     if (program == "nbuffer_level" || program == "gaussian_level") params = level_params(config);
     if (program == "nbuffer_levels") params = nbuffer_compute_params();
@@ -60,7 +61,20 @@ inline void describe_slice_placement_passes(LayoutBuilder& b, const Config& conf
                 .viewport_height = D,
                 .state = max_blend});
     }
-    b.pass({.name = "depth_bins_mipmaps", .action = PassAction::generate_mipmap, .outputs = {{"penumbra_depthBins"}}});
+    if (config.target == Target::wgsl) {
+        // WebGPU has no generateMipmap: a pass a level and layer, reading level l - 1 alone
+        for (int l = 1; l <= depth_bins_read_level; ++l)
+            for (int t = 0; t < layers; ++t)
+                b.pass({.name = "depth_bins_level",
+                        .program = "depth_bins_level",
+                        .inputs = {{.sampler = "penumbra_source", .texture = "penumbra_depthBins", .level = l - 1}},
+                        .outputs = {{"penumbra_depthBins", l, t}},
+                        .int_uniforms = {{"penumbra_sourceLayer", t}},
+                        .viewport_width = D >> l,
+                        .viewport_height = D >> l});
+    } else {
+        b.pass({.name = "depth_bins_mipmaps", .action = PassAction::generate_mipmap, .outputs = {{"penumbra_depthBins"}}});
+    }
     b.pass({.name = "slice_boundaries",
             .program = "slice_boundaries",
             .inputs = {{"penumbra_depthBins", "penumbra_depthBins"}},
@@ -237,14 +251,21 @@ inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
                 .viewport_height = R});
     }
     if (config.filter == Filter::mipmap && config.target == Target::wgsl) {
-        // WebGPU has no generateMipmap: one pass a level, reading level l - 1 alone (validate: atlas only)
+        // WebGPU has no generateMipmap: one pass a level (and layer), reading level l - 1 alone
+        const bool atlas = config.packing == Packing::atlas;
+        const std::string storage = atlas ? "penumbra_occlusionAtlas" : "penumbra_occlusion";
         for (int l = 1; l <= L; ++l)
-            b.pass({.name = "mip_level",
-                    .program = "mip_level",
-                    .inputs = {{.sampler = "penumbra_source", .texture = "penumbra_occlusionAtlas", .level = l - 1}},
-                    .outputs = {{"penumbra_occlusionAtlas", l}},
-                    .viewport_width = std::max(T * R >> l, 1),
-                    .viewport_height = std::max(R >> l, 1)});
+            for (int t = 0; t < (atlas ? 1 : T); ++t) {
+                std::vector<std::pair<std::string, int>> ints;
+                if (!atlas) ints.push_back({"penumbra_sourceLayer", t});
+                b.pass({.name = "mip_level",
+                        .program = "mip_level",
+                        .inputs = {{.sampler = "penumbra_source", .texture = storage, .level = l - 1}},
+                        .outputs = {{storage, l, atlas ? -1 : t}},
+                        .int_uniforms = ints,
+                        .viewport_width = std::max((atlas ? T * R : R) >> l, 1),
+                        .viewport_height = std::max(R >> l, 1)});
+            }
     } else if (config.filter == Filter::mipmap) {
         const std::string storage = config.packing == Packing::atlas ? "penumbra_occlusionAtlas" : "penumbra_occlusion";
         b.pass({.name = "mipmaps", .action = PassAction::generate_mipmap, .outputs = {{storage}}});

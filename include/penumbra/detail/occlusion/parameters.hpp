@@ -103,18 +103,21 @@ constexpr std::vector<Param> slice_boundaries_params() {
     return {
         uniform_param(Uniform::slice_depths, "x: depth z0 of the uniform slices' top, y: uniform slice thickness"),
         {"penumbra_depthBins", "sampler2DArray", "depth-bin coverage, four bins per layer, mip chain", "",
-         "penumbra_depthBins"},
+         "penumbra_depthBins", UniformSource::light, {}, /*fetch_only=*/true},
     };
 }
 
 // Adaptive slice placement: boundary k of the S + 1 the slice_boundaries pass wrote (k = 0: the first
 // slice's top, k = S: the last slice's bottom).
-constexpr void write_boundary_function(LineWriter& out) {
+constexpr void write_boundary_function(LineWriter& out, const Config& config) {
     out.chunk("slice_boundaries");
     out.comment("adaptive slice placement (paper §5): depth of boundary k, stored as the float's bits");
-    out.line("float penumbra_boundary(int k)");
+    out.line(signature(config, "float", "penumbra_boundary", {{"int", "k"}}));
     out.line("{");
-    out.line("return uintBitsToFloat(texelFetch(penumbra_sliceBoundaries, ivec2(k, 0), 0).r);");
+    out.line("return ",
+             uint_bits_to_float(config, "float",
+                                cat(fetch(config, "penumbra_sliceBoundaries", construct(config, "ivec2", "k, 0"), "0"), ".r")),
+             ";");
     out.line("}");
     out.blank();
 }
@@ -122,16 +125,20 @@ constexpr void write_boundary_function(LineWriter& out) {
 // Declares int `count` = how many of boundaries 1 .. last lie above `depth` (nearer the light: depth >
 // boundary). The boundaries increase, so a binary search finds it: steps of 16, 8, 4, 2, 1 boundaries,
 // each taken when the boundary it reaches is still above the point, one fetch per step.
-constexpr void write_boundary_search(LineWriter& out, std::string_view count, std::string_view depth, int last) {
-    out.line("int ", count, " = 0;");
+constexpr void write_boundary_search(LineWriter& out, const Config& config, std::string_view count, std::string_view depth,
+                                     int last) {
+    out.line(variable(config, "int", count, "0"));
     if (last < 1) return;
     int step = 1;
     while (step * 2 <= last) step *= 2;
     out.comment(cat("binary search over the increasing boundaries 1 to ", format_int(last)));
     for (; step >= 1; step /= 2)
-        out.line(count, " += (", count, " + ", format_int(step), " <= ", format_int(last), " && ", depth,
-                 " > penumbra_boundary(min(", count, " + ", format_int(step), ", ", format_int(last), "))) ? ",
-                 format_int(step), " : 0;");
+        out.line(count, " += ",
+                 conditional(config,
+                             cat("(", count, " + ", format_int(step), " <= ", format_int(last), " && ", depth,
+                                 " > penumbra_boundary(min(", count, " + ", format_int(step), ", ", format_int(last), ")))"),
+                             format_int(step), "0"),
+                 ";");
 }
 
 } // namespace penumbra::detail

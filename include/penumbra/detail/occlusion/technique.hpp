@@ -24,6 +24,8 @@ inline constexpr ShaderFileSpec unpack_slices_frag{"penumbra_unpack_slices.frag"
 inline constexpr ShaderFileSpec depth_bins_vert{"penumbra_depth_bins.vert", Stage::vertex, depth_bins_vertex,
                                                 VertexInputs::caster};
 inline constexpr ShaderFileSpec depth_bins_frag{"penumbra_depth_bins.frag", Stage::fragment, depth_bins_fragment};
+inline constexpr ShaderFileSpec depth_bins_level_frag{"penumbra_depth_bins_level.frag", Stage::fragment,
+                                                      depth_bins_level_fragment};
 inline constexpr ShaderFileSpec slice_boundaries_frag{"penumbra_slice_boundaries.frag", Stage::fragment,
                                                       slice_boundaries_fragment};
 // compute prefilter: N-buffer levels, several per dispatch (emit_prefilter_compute.hpp)
@@ -34,6 +36,8 @@ constexpr std::vector<ProgramPlan> occlusion_programs(const Config& config) {
     std::vector<ProgramPlan> plan;
     if (places_slices_adaptively(config)) { // paper §5: slice boundaries from the scene's depths, before slicing
         plan.push_back({"depth_bins", {depth_bins_vert, depth_bins_frag}});
+        // WebGPU has no generateMipmap: the depth bins' mip chain as passes
+        if (config.target == Target::wgsl) plan.push_back({"depth_bins_level", {fullscreen_vert, depth_bins_level_frag}});
         plan.push_back({"slice_boundaries", {fullscreen_vert, slice_boundaries_frag}});
     }
     plan.push_back({"slicing", {slicing_vert, slicing_frag}});
@@ -93,7 +97,7 @@ constexpr std::vector<std::string_view> occlusion_es_samplers(const Config& conf
 // levels, one trilinear for mip chains and volumes, four bilinear for summed-area tables.
 inline long long occlusion_texels_per_fragment(const Config& c, const PassDesc& pass) {
     const std::string_view program = pass.program;
-    if (program == "nbuffer_level" || program == "mip_level") return 4;
+    if (program == "nbuffer_level" || program == "mip_level" || program == "depth_bins_level") return 4;
     if (program == "gaussian_level") return 9;
     if (program == "pack_atlas" && pass.outputs.size() > 1) return c.filter == Filter::gaussian ? 9 : 4; // + level 1
     if (program == "pack_atlas" || program == "sat_shift" || program == "unpack_slices") return 1;

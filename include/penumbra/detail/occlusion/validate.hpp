@@ -70,13 +70,6 @@ constexpr std::vector<Problem> occlusion_problems(const Config& config) {
         add("filter", Text("sat"),
             cat("needs renderable, filterable 32-bit float textures, which target '", target,
                 "' does not guarantee; allowed filters for ", target, ": mipmap, nbuffer, gaussian"));
-    if (config.target == Target::wgsl) { // what the WGSL emitters and WebGPU do not have yet
-        if (config.packing != Packing::atlas)
-            add("packing", Text(to_string(config.packing)), "is not written for wgsl yet; allowed for wgsl: atlas");
-        if (places_slices_adaptively(config))
-            add("slice_placement", Text("adaptive"),
-                "needs generateMipmap over its depth bins, which WebGPU does not have; allowed for wgsl: uniform");
-    }
     const Text allowed_for_target = cat("1 to ", format_int(4 * limit.max_draw_buffers), limit.logic_op ? ", 64 or 128" : "");
     if (slices_as_bits(config) && !limit.logic_op)
         add("slices", format_int(config.slices),
@@ -119,13 +112,15 @@ constexpr std::vector<Problem> occlusion_problems(const Config& config) {
             add("prefilter_stage", Text("compute"),
                 cat("builds N-buffer levels in the atlas only, not filter '", filter, "' with packing '",
                     to_string(config.packing), "'; allowed: fragment, or compute with filter nbuffer and packing atlas"));
-        else if (config.target != Target::glsl450)
+        else if (config.target != Target::glsl450) {
+            Text why = cat("target '", target, "' does not have");
+            if (config.target == Target::vulkan)
+                why = Text("the Vulkan runner (targets/vulkan) does not run (it has no compute pipelines)");
+            if (config.target == Target::wgsl) why = Text("the WGSL emitters do not write yet (WebGPU has them)");
             add("prefilter_stage", Text("compute"),
-                cat("needs compute shaders (OpenGL 4.3+), which ",
-                    config.target == Target::vulkan ? Text("the Vulkan runner (targets/vulkan) does not run (it has no "
-                                                           "compute pipelines)")
-                                                    : cat("target '", target, "' does not have"),
-                    "; allowed for ", target, ": fragment; compute with target glsl450"));
+                cat("needs compute shaders (OpenGL 4.3+), which ", why, "; allowed for ", target,
+                    ": fragment; compute with target glsl450"));
+        }
         else if (compute_source_step(config) > compute_max_step)
             add("prefilter_stage", Text("compute"),
                 cat("needs level_reduction 0 to ", format_int(compute_max_level_reduction),
