@@ -161,8 +161,15 @@ inline std::string json_webgpu_texture(const Layout& layout, const TextureDesc& 
 
 // WGSL: how a sampler parameter binds: its texture's WGSL and WebGPU types, its sampler's binding and
 // kind (comparison for depth comparisons; non-filtering for nearest reads and unfilterable formats).
-inline std::string json_wgsl_binding(const Layout& layout, const ParamDesc& d) {
+// A parameter without a texture of its own (a ping-pong source) takes the format of what the program's
+// passes bind to it (they bind textures of one format).
+inline std::string json_wgsl_binding(const Layout& layout, const ProgramDesc& program, const ParamDesc& d) {
     const TextureDesc* texture = find_texture(layout, d.texture);
+    for (const PassDesc& pass : layout.passes) {
+        if (texture || pass.program != program.name) continue;
+        for (const BindingDesc& in : pass.inputs)
+            if (in.sampler == d.name) texture = find_texture(layout, in.texture);
+    }
     std::string sample_type = texture ? std::string(webgpu_sample_type(texture->format)) : "float";
     if (d.texture_type == "texture_depth_2d") sample_type = "depth";
     else if (sample_type == "depth") sample_type = "unfilterable-float"; // a depth texture read as texture_2d<f32>
@@ -239,7 +246,7 @@ PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
                 o += ", \"block\": " + json_string(d.block) + ", \"block_binding\": " + std::to_string(d.block_binding) +
                      ", \"offset\": " + std::to_string(d.offset);
             if (d.set >= 0) o += (wgsl ? ", \"group\": " : ", \"set\": ") + std::to_string(d.set);
-            if (wgsl && d.binding >= 0) o += detail::json_wgsl_binding(layout, d);
+            if (wgsl && d.binding >= 0) o += detail::json_wgsl_binding(layout, p, d);
             o += std::string("}") + (u + 1 < p.parameters.size() ? ",\n" : "\n");
         }
         o += std::string("    ]}") + (i + 1 < layout.programs.size() ? ",\n" : "\n");

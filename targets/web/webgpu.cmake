@@ -52,6 +52,7 @@ if(TARGET penumbra-export-bundle)
         "occlusion-mipmap|--slices 8 --resolution 128 --filter mipmap --light rect --fusion extent"
         "occlusion-array|--slices 8 --resolution 128 --packing array --filter mipmap --light rect"
         "occlusion-adaptive|--slices 8 --resolution 128 --slice-placement adaptive --light rect"
+        "occlusion-sat|--scene tree --slices 8 --resolution 128 --filter sat --packing array --light rect --fusion extent"
         "occlusion-volume|--scene tree --slices 8 --resolution 128 --packing volume --filter gaussian --light sun --fusion extent"
         "occlusion-tree|--scene tree --slices 8 --resolution 128 --filter nbuffer --light rect"
         "occlusion-spider|--scene /usr/share/assimp/models/OBJ/spider.obj --slices 16 --resolution 128 --filter nbuffer --light rect")

@@ -45,6 +45,8 @@ const VARIANTS = {
     "occlusion-array-mipmap": "--technique occlusion --packing array --filter mipmap --slices 8 --resolution 128 --fusion extent",
     "occlusion-volume": "--technique occlusion --packing volume --slices 8 --resolution 128 --fusion extent",
     "occlusion-adaptive": "--technique occlusion --slice-placement adaptive --slices 8 --resolution 128",
+    "occlusion-sat": "--technique occlusion --filter sat --slices 8 --resolution 128",
+    "occlusion-sat-array": "--technique occlusion --filter sat --packing array --slices 5 --resolution 64 --fusion extent",
 };
 // Variants that exist under one light only (the Gaussian stands for the sun's disk).
 const VARIANT_LIGHTS = {"occlusion-gaussian": ["sun"]};
@@ -54,7 +56,6 @@ const NORMAL_OFFSETS = ["0", "1"];
 const ALPHA_TEST = [false, true];
 // What the wgsl target refuses today (the lead ports these next; move a line up into VARIANTS when it lands).
 const REFUSED = {
-    "occlusion-sat": "--technique occlusion --filter sat",
     "occlusion-64": "--technique occlusion --slices 64",
     "oim": "--technique oim",
 };

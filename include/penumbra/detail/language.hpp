@@ -92,6 +92,13 @@ constexpr Text array_variable(const Config& config, Text type, Text name, Text s
     return joined("var ", name, ": array<", wgsl_type_name(type), ", ", size, ">;");
 }
 
+// clamp(x, lo, hi) of a vector x with scalar bounds: WGSL wants bounds of x's type (`type`).
+constexpr Text clamp_vector(const Config& config, Text type, Text x, Text lo, Text hi) {
+    if (!is_wgsl(config)) return joined("clamp(", x, ", ", lo, ", ", hi, ")");
+    const std::string_view t = wgsl_type_name(type);
+    return joined("clamp(", x, ", ", t, "(", lo, "), ", t, "(", hi, "))");
+}
+
 // A counted loop's head, `name` from 0 while below `end`: `for (int name = 0; name < end; ++name)` /
 // `for (var name: i32 = 0; name < end; name++)`.
 constexpr Text counted_loop(const Config& config, Text name, Text end) {

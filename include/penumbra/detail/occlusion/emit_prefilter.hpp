@@ -329,10 +329,12 @@ constexpr std::vector<Param> sat_shift_params(const Config& config) {
 constexpr std::vector<Param> sat_pass_params(const Config& config) {
     std::vector<Param> params{step_param(), {"penumbra_vertical", "int", "0: pass along x, 1: pass along y", "", {}, UniformSource::pass}};
     if (config.packing == Packing::atlas) {
-        params.push_back({"penumbra_source", "sampler2D", "partial sums of the previous pass", ""});
+        params.push_back({"penumbra_source", "sampler2D", "partial sums of the previous pass", "", {}, UniformSource::light, {},
+                          /*fetch_only=*/true});
     } else {
         params.push_back(layer_param("layer being summed"));
-        params.push_back({"penumbra_source", "sampler2DArray", "partial sums of the previous pass", ""});
+        params.push_back({"penumbra_source", "sampler2DArray", "partial sums of the previous pass", "", {}, UniformSource::light,
+                          {}, /*fetch_only=*/true});
     }
     return params;
 }
@@ -345,23 +347,28 @@ constexpr Text sat_shift_fragment(const Config& config) {
     write_preamble(out, config, "summed-area table, exclusive shift of the slicing output, fragment stage");
     int binding = 0;
     write_params(out, config, sat_shift_params(config), "PenumbraPass", binding);
-    out.line("layout(location = 0) out vec4 penumbra_result;");
+    out.line(stage_variable(out, config, "out", 0, "vec4", "penumbra_result", true));
+    declare_builtin(out, config, true, "position", "vec4", frag_coord(config));
     out.blank();
     out.chunk("sat_shift_main");
     const Text R1 = format_int(config.resolution + 1);
-    out.line("void main()");
+    const std::string_view ivec2 = type_name(config, "ivec2");
+    out.line(main_signature(config));
     out.line("{");
-    out.line("ivec2 texel = ivec2(gl_FragCoord.xy);");
+    out.line(value(config, "ivec2", "texel", construct(config, "ivec2", cat(frag_coord(config), ".xy"))));
     if (config.packing == Packing::atlas) {
-        out.line("int tile = texel.x / ", R1, ";");
-        out.line("ivec2 source = ivec2(texel.x % ", R1, ", texel.y) - 1;");
+        out.line(value(config, "int", "tile", cat("texel.x / ", R1)));
+        out.line(value(config, "ivec2", "source", cat(ivec2, "(texel.x % ", R1, ", texel.y) - 1")));
     } else {
-        out.line("int tile = penumbra_sourceLayer;");
-        out.line("ivec2 source = texel - 1;");
+        out.line(value(config, "int", "tile", "penumbra_sourceLayer"));
+        out.line(value(config, "ivec2", "source", "texel - 1"));
     }
-    out.line("vec4 value = texelFetch(penumbra_slices, ivec3(max(source, ivec2(0)), tile), 0);");
-    out.line("penumbra_result = all(greaterThanEqual(source, ivec2(0))) ? value : vec4(0.0);");
+    out.line(value(config, "vec4", "value", fetch_layer(config, "penumbra_slices", cat("max(source, ", ivec2, "(0))"), "tile", "0")));
+    out.line("penumbra_result = ",
+             conditional(config, cat("all(", compare(config, "greaterThanEqual", "source", cat(ivec2, "(0)")), ")"), "value", "vec4(0.0)"),
+             ";");
     out.line("}");
+    write_entry_point(out, config, Stage::fragment);
     return out.take();
 }
 
@@ -370,25 +377,33 @@ constexpr Text sat_pass_fragment(const Config& config) {
     write_preamble(out, config, "summed-area table, one recursive-doubling pass, fragment stage");
     int binding = 0;
     write_params(out, config, sat_pass_params(config), "PenumbraPass", binding);
-    out.line("layout(location = 0) out vec4 penumbra_result;");
+    out.line(stage_variable(out, config, "out", 0, "vec4", "penumbra_result", true));
+    declare_builtin(out, config, true, "position", "vec4", frag_coord(config));
     out.blank();
     out.chunk("sat_pass_main");
     const Text R1 = format_int(config.resolution + 1);
-    out.line("void main()");
+    const std::string_view ivec2 = type_name(config, "ivec2");
+    const std::string_view self = is_wgsl(config) ? "here" : "self"; // `self` is reserved in WGSL
+    out.line(main_signature(config));
     out.line("{");
-    out.line("ivec2 texel = ivec2(gl_FragCoord.xy);");
-    out.line("ivec2 offset = penumbra_vertical == 0 ? ivec2(penumbra_step, 0) : ivec2(0, penumbra_step);");
+    out.line(value(config, "ivec2", "texel", construct(config, "ivec2", cat(frag_coord(config), ".xy"))));
+    out.line(value(config, "ivec2", "offset",
+                   conditional(config, "penumbra_vertical == 0", cat(ivec2, "(penumbra_step, 0)"), cat(ivec2, "(0, penumbra_step)"))));
     if (config.packing == Packing::atlas) {
-        out.line("ivec2 local = ivec2(texel.x % ", R1, ", texel.y) - offset; // partner within the tile");
-        out.line("vec4 self = texelFetch(penumbra_source, texel, 0);");
-        out.line("vec4 partner = texelFetch(penumbra_source, max(texel - offset, ivec2(0)), 0);");
+        out.line(value(config, "ivec2", "local", cat(ivec2, "(texel.x % ", R1, ", texel.y) - offset")), " // partner within the tile");
+        out.line(value(config, "vec4", self, fetch(config, "penumbra_source", "texel", "0")));
+        out.line(value(config, "vec4", "partner", fetch(config, "penumbra_source", cat("max(texel - offset, ", ivec2, "(0))"), "0")));
     } else {
-        out.line("ivec2 local = texel - offset;");
-        out.line("vec4 self = texelFetch(penumbra_source, ivec3(texel, penumbra_sourceLayer), 0);");
-        out.line("vec4 partner = texelFetch(penumbra_source, ivec3(max(local, ivec2(0)), penumbra_sourceLayer), 0);");
+        out.line(value(config, "ivec2", "local", "texel - offset"));
+        out.line(value(config, "vec4", self, fetch_layer(config, "penumbra_source", "texel", "penumbra_sourceLayer", "0")));
+        out.line(value(config, "vec4", "partner",
+                       fetch_layer(config, "penumbra_source", cat("max(local, ", ivec2, "(0))"), "penumbra_sourceLayer", "0")));
     }
-    out.line("penumbra_result = self + (all(greaterThanEqual(local, ivec2(0))) ? partner : vec4(0.0));");
+    out.line("penumbra_result = ", self, " + (",
+             conditional(config, cat("all(", compare(config, "greaterThanEqual", "local", cat(ivec2, "(0)")), ")"), "partner", "vec4(0.0)"),
+             ");");
     out.line("}");
+    write_entry_point(out, config, Stage::fragment);
     return out.take();
 }
 

@@ -286,24 +286,45 @@ constexpr void write_lookup_function(LineWriter& out, const Config& config) {
         const Text R1 = format_float(config.resolution + 1);
         out.comment("Crow 1984: prefix sum at texel corner X (in texels) lives at the centre of texel X of an");
         out.comment("(R+1)-texel tile; bilinear filtering between corners is exact for box-shaped coverage");
-        out.line("vec4 penumbra_prefix(vec2 corner, float tile)");
+        out.line(signature(config, "vec4", "penumbra_prefix", {{"vec2", "corner"}, {"float", "tile"}}));
         out.line("{");
-        out.line("vec2 uv = (corner + 0.5) / ", R1, ";");
-        if (config.packing == Packing::atlas)
-            out.line("return textureLod(penumbra_satAtlas, vec2((tile + uv.x) * ", k.inv_T, ", uv.y), 0.0);");
-        else
-            out.line("return textureLod(penumbra_sat, vec3(uv, tile), 0.0);");
+        if (!is_wgsl(config)) {
+            out.line("vec2 uv = (corner + 0.5) / ", R1, ";");
+            if (config.packing == Packing::atlas)
+                out.line("return textureLod(penumbra_satAtlas, vec2((tile + uv.x) * ", k.inv_T, ", uv.y), 0.0);");
+            else
+                out.line("return textureLod(penumbra_sat, vec3(uv, tile), 0.0);");
+        } else {
+            // WebGPU filters no 32-bit float texture without an optional feature: the bilinear read by hand
+            const bool atlas = config.packing == Packing::atlas;
+            const Text last = format_int(config.resolution); // the tile's last texel
+            out.comment("WebGPU filters no 32-bit float texture (without an optional feature): the bilinear read by hand,");
+            out.comment("the four texels around the corner (clamped to the tile) weighted by its fraction");
+            out.line(value(config, "vec2", "base", "floor(corner)"));
+            out.line(value(config, "vec2", "f", "corner - base"));
+            out.line(value(config, "ivec2", "a", cat("min(vec2i(base), vec2i(", last, "))")));
+            out.line(value(config, "ivec2", "b", cat("min(a + vec2i(1), vec2i(", last, "))")));
+            const Text offset = choose(atlas, cat(" + vec2i(i32(tile) * ", format_int(config.resolution + 1), ", 0)"), Text());
+            auto load = [&](std::string_view x, std::string_view y) {
+                const Text texel = cat("vec2i(", x, ".x, ", y, ".y)", offset);
+                return atlas ? fetch(config, "penumbra_satAtlas", texel, "0")
+                             : fetch_layer(config, "penumbra_sat", texel, "i32(tile)", "0");
+            };
+            out.line(value(config, "vec4", "bottom", cat("mix(", load("a", "a"), ", ", load("b", "a"), ", f.x)")));
+            out.line(value(config, "vec4", "top", cat("mix(", load("a", "b"), ", ", load("b", "b"), ", f.x)")));
+            out.line("return mix(bottom, top, f.y);");
+        }
         out.line("}");
         out.blank();
         out.comment("exact box mean: the window is clipped to the texture, outside counts as unoccluded");
-        out.line("vec4 penumbra_filtered(vec4 kernel, float tile)");
+        out.line(signature(config, "vec4", "penumbra_filtered", {{"vec4", "kernel"}, {"float", "tile"}}));
         out.line("{");
-        out.line("float side = max(kernel.z * ", k.R, ", 1.0);");
-        out.line("vec2 lo = clamp(kernel.xy * ", k.R, " - 0.5 * side, 0.0, ", k.R, ");");
-        out.line("vec2 hi = clamp(kernel.xy * ", k.R, " + 0.5 * side, 0.0, ", k.R, ");");
-        out.line("vec4 sum = penumbra_prefix(hi, tile) - penumbra_prefix(vec2(lo.x, hi.y), tile)");
+        out.line(value(config, "float", "side", cat("max(kernel.z * ", k.R, ", 1.0)")));
+        out.line(value(config, "vec2", "lo", clamp_vector(config, "vec2", cat("kernel.xy * ", k.R, " - 0.5 * side"), "0.0", k.R)));
+        out.line(value(config, "vec2", "hi", clamp_vector(config, "vec2", cat("kernel.xy * ", k.R, " + 0.5 * side"), "0.0", k.R)));
+        out.line(declaration(config, "vec4", "sum"), "penumbra_prefix(hi, tile) - penumbra_prefix(vec2(lo.x, hi.y), tile)");
         out.line("    - penumbra_prefix(vec2(hi.x, lo.y), tile) + penumbra_prefix(lo, tile);");
-        out.line("return clamp(sum / (side * side), 0.0, 1.0);");
+        out.line("return ", saturate(config, "sum / (side * side)"), ";");
         out.line("}");
     } else if (config.packing == Packing::array) {
         const bool nbuffer = config.filter == Filter::nbuffer;

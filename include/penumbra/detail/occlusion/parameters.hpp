@@ -29,11 +29,12 @@ constexpr std::vector<Param> storage_samplers(const Config& config) {
     } else if (config.filter == Filter::sat) {
         if (config.packing == Packing::atlas)
             samplers.push_back({"penumbra_satAtlas", "sampler2D",
-                                "exclusive summed-area tables, (R+1)-texel tiles side by side", "", "penumbra_satAtlas"});
+                                "exclusive summed-area tables, (R+1)-texel tiles side by side", "", "penumbra_satAtlas",
+                                UniformSource::light, {}, /*fetch_only=*/is_wgsl(config)});
         else
             samplers.push_back({"penumbra_sat", "sampler2DArray",
                                 "exclusive summed-area tables, one (R+1)-texel layer per occlusion texture", "",
-                                "penumbra_sat"});
+                                "penumbra_sat", UniformSource::light, {}, /*fetch_only=*/is_wgsl(config)});
     } else if (config.packing == Packing::atlas) {
         for (int level = 0; level <= levels; ++level)
             samplers.push_back({atlas_level_name(level), "sampler2D", "filter level, occlusion tiles side by side",

@@ -66,7 +66,8 @@ constexpr std::vector<Problem> occlusion_problems(const Config& config) {
             cat("cannot hold filter '", filter,
                 "' (a volume stores equal-size filter levels as depth; mipmap levels shrink and a summed-area table "
                 "has one level); allowed with this filter: atlas, array"));
-    if (config.filter == Filter::sat && !limit.float32_render_filter)
+    // (WGSL reads the tables texel by texel and filters them by hand: WebGPU renders 32-bit floats)
+    if (config.filter == Filter::sat && !limit.float32_render_filter && config.target != Target::wgsl)
         add("filter", Text("sat"),
             cat("needs renderable, filterable 32-bit float textures, which target '", target,
                 "' does not guarantee; allowed filters for ", target, ": mipmap, nbuffer, gaussian"));
