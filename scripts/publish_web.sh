@@ -50,7 +50,7 @@ if [ ! -f "$three/build/three.module.js" ]; then
     exit 1
 fi
 mkdir -p "$out/three/node_modules/three/build" "$out/three/node_modules/three/examples/jsm"/{controls,helpers,lights,libs,loaders,utils}
-cp -r "$root"/web/three/{penumbra_shadows.js,penumbra_runner.js,light_frame.js,penumbra_emitter.js,emissions.js} \
+cp -r "$root"/web/three/{penumbra_shadows.js,penumbra_runner.js,penumbra_webgpu_runner.js,light_frame.js,penumbra_emitter.js,emissions.js} \
       "$root"/web/three/{penumbra_shadows.d.ts,penumbra_emitter.d.ts,package.json,README.md} \
       "$root"/web/three/emissions "$root"/web/three/example "$out/three/"
 rm -f "$out/three/emissions/regenerate.sh"

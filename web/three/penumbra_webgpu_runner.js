@@ -1,4 +1,4 @@
-// webgpu_runner.js — runs a `wgsl` emission on WebGPU by following its layout.json alone, as
+// penumbra_webgpu_runner.js — runs a `wgsl` emission on WebGPU by following its layout.json alone, as
 // three/penumbra_runner.js does for the essl300 emission on WebGL2: the textures of `textures` (their
 // `webgpu` format and usage), the programs of `programs` (one WGSL module a stage, entry point
 // `main`; one bind group layout a program, from its parameters' `group`, `binding`,
