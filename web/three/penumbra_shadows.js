@@ -25,8 +25,11 @@
 // (penumbra_shadows_webgpu.js: the wgsl emission on the renderer's GPUDevice, the visibility in
 // the node materials through TSL). What both do alike (the scene's casters and receivers, when to
 // re-run the shadow phase, the light frame, the emission's files) is penumbra_scene.js.
-import {Color, DoubleSide, ExternalTexture, FloatType, GLSL3, Matrix4, NoBlending, RGBAFormat, ShaderChunk,
-        ShaderMaterial, WebGLRenderTarget} from "three";
+import {Color, DoubleSide, ExternalTexture, FloatType, GLSL3, Matrix4, NoBlending, RGBAFormat, ShaderMaterial,
+        WebGLRenderTarget} from "three";
+// (ShaderChunk through the namespace: a WebGPU page may map "three" to three.webgpu.js, which has
+// no ShaderChunk, and this module must still load there to hand over to penumbra_shadows_webgpu.js)
+import * as three from "three";
 import {LayoutRunner} from "./penumbra_runner.js";
 import {EMISSIONS, PenumbraError, ShadowsBase, casterVertices, fail, forEachPlacement, isDeformed, kindOf, loadEmissionFiles,
         loadEmitter, positionVersion, snippetParameters} from "./penumbra_scene.js";
@@ -123,7 +126,7 @@ function patchShader(shader, addons) {
     shader.vertexShader = shader.vertexShader
         .replace("#include <common>", "#include <common>\nout vec3 vPenumbraWorldPosition;")
         .replace("#include <project_vertex>", `#include <project_vertex>${WORLD_VERTEX}`);
-    let lights = ShaderChunk.lights_fragment_begin;
+    let lights = three.ShaderChunk.lights_fragment_begin;
     const rects = addons.filter((a) => a.kind === "rect"), suns = addons.filter((a) => a.kind === "sun");
     if (rects.length) lights = patchChunk(lights, RECT_CALL, rectPatch(rects), "the rect-area light loop");
     if (suns.length) lights = patchChunk(lights, DIR_CALL, dirPatch(suns), "the directional light loop");

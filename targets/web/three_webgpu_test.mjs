@@ -1,0 +1,143 @@
+// three_webgpu_test.mjs — the `three-webgpu` browser test: the three.js add-on on WebGPURenderer
+// (web/three/penumbra_shadows.js → penumbra_shadows_webgpu.js) in Debian's chromium (headless,
+// WebGPU through SwiftShader), over bundles exported with `penumbra-export-bundle --target wgsl`
+// (the desktop GL run of the same configuration; emission/ holds its wgsl emission):
+//
+//   node targets/web/three_webgpu_test.mjs --web web [--chromium PATH] [--images DIR] BUNDLE_DIR[:physical-node]...
+//
+// Each bundle's scene is rebuilt in three.js (web/three/test/webgpu.html: the bundle's triangles,
+// light and camera, as the WebGL2 test's page), the add-on attached with PenumbraShadows.load(), and
+// the checks of three_test.mjs (its functions, the same tolerances):
+//   1. the add-on's light frame is the desktop's (relative 1e-5);
+//   2. its visibility equals the desktop run's within 2·bound + q on the interior pixels, all but
+//      INTERIOR_PIXELS_ALLOWED (one pixel a bundle); silhouette pixels (where three's rasterization
+//      and the desktop's G-buffer may see different surfaces) are counted and reported, left out
+//      as in three_test.mjs;
+//   3. in the node material the light's term is multiplied by that visibility (rect and sun):
+//      lit-with / lit-without equals it within 2q + 1e-3 on all but 1% of the lit pixels;
+//   4. the mesh moved as a Mesh, InstancedMesh, SkinnedMesh and morph target: the same visibility;
+//   5. moving the light re-runs the shadow phase once, update() without a change does not, no
+//      WebGPU validation error, dispose() restores the material.
+// ":physical-node" after a bundle: its receivers get a MeshPhysicalNodeMaterial (else the bundle
+// scene's plain MeshStandardMaterial, which WebGPURenderer converts).
+// Exit 0 pass, 1 fail, 2 bad arguments, 77 skip (no chromium; no WebGPU adapter only with
+// PENUMBRA_WEBGPU_OPTIONAL=1, as wgsl_compile.mjs).
+import fs from "node:fs";
+import path from "node:path";
+import {openPage, writeGreyPng} from "./harness.mjs";
+import {PIXELS_ALLOWED, UNIFORM_TOLERANCE, VARIANT_PIXELS_ALLOWED, compareRatio, compareVariants, compareWithDesktop,
+        frameError} from "./three_test.mjs";
+import {adapterLine, startWebGPU} from "./wgsl_compile.mjs";
+
+// Interior pixels outside 2·bound + q: one a bundle (issue 31's target; the WebGL2 test allows 1%
+// of the image: SwiftShader rasterizes the slicing pass's triangle edges unlike llvmpipe).
+const INTERIOR_PIXELS_ALLOWED = 1;
+
+function usage(message) {
+    console.error(`error: ${message}\nusage: node three_webgpu_test.mjs --web DIR [--chromium PATH] [--images DIR] BUNDLE_DIR[:physical-node]...`);
+    process.exit(2);
+}
+
+function parseArguments(argv) {
+    const out = {web: null, chromium: "/usr/bin/chromium", images: null, bundles: []};
+    for (let i = 0; i < argv.length; ++i) {
+        const flag = argv[i];
+        if (flag === "--web" || flag === "--chromium" || flag === "--images") {
+            if (i + 1 >= argv.length) usage(`${flag}: missing value`);
+            out[flag.slice(2)] = argv[++i];
+        } else if (flag.startsWith("--")) {
+            usage(`unknown flag '${flag}'; allowed: --web, --chromium, --images`);
+        } else {
+            const [dir, material = ""] = flag.split(/:(?=[a-z-]+$)/);
+            if (material && material !== "physical-node") usage(`${flag}: ':${material}' unknown; allowed: ':physical-node'`);
+            if (!fs.existsSync(path.join(dir, "uniforms.json"))) usage(`${dir}: no uniforms.json (a bundle of penumbra-export-bundle --target wgsl)`);
+            out.bundles.push({dir, material});
+        }
+    }
+    if (!out.web) usage("--web: missing (the web/ folder with three/penumbra_shadows.js)");
+    if (!fs.existsSync(path.join(out.web, "three/penumbra_shadows_webgpu.js"))) usage(`--web: no three/penumbra_shadows_webgpu.js in ${out.web}`);
+    if (out.bundles.length === 0) usage("no bundle directories");
+    return out;
+}
+
+async function checkBundle(browser, port, index, {dir, material}, images) {
+    const bundle = JSON.parse(fs.readFileSync(path.join(dir, "uniforms.json"), "utf8"));
+    const c = bundle.config;
+    if (c.target !== "wgsl") return {failures: [`${dir}: a bundle of target '${c.target}'; this test runs wgsl bundles`]};
+    const label = `${bundle.scene} ${c.light} ${c.filter}/${c.packing} ${c.slices}×${c.resolution}² ${bundle.width}x${bundle.height}`;
+    const started = Date.now();
+    const query = `bundle=/bundle/${index}/${material ? `&material=${material}` : ""}`;
+    const {page, problems} = await openPage(browser, `http://127.0.0.1:${port}/web/three/test/webgpu.html?${query}`, "penumbraThree");
+    const failures = [];
+    const call = (name, ...args) => page.evaluate((n, a) => window.penumbraThree[n](...a), name, args);
+    const info = await call("info");
+    if (info.backend !== "webgpu" || info.addon !== "PenumbraShadowsWebGPU") failures.push(`the page runs backend ${info.backend} with ${info.addon}`);
+
+    const uniformError = frameError(await call("frameUniforms"));
+    if (!(uniformError <= UNIFORM_TOLERANCE)) failures.push(`the add-on's light frame differs from the desktop's by ${uniformError.toExponential(2)} (relative)`);
+
+    const visibility = await call("visibility");
+    const v = compareWithDesktop(visibility, dir, bundle);
+    if (v.length !== v.pixels) failures.push(`${v.length} pixels read, expected ${v.pixels}`);
+    if (v.outside > INTERIOR_PIXELS_ALLOWED)
+        failures.push(`${v.outside} of ${v.geometry} interior pixels differ from the desktop run by more than 2·bound + q (allowed: ${INTERIOR_PIXELS_ALLOWED})`);
+    if (v.shadowed === 0) failures.push("the desktop image has no shadowed pixel: the comparison would prove nothing");
+
+    const ratio = compareRatio(await call("materialRatio"), visibility);
+    if (ratio.lit === 0) failures.push("the light lights no pixel");
+    if (ratio.outside > PIXELS_ALLOWED * ratio.lit) failures.push(`the lit image is not visibility × unshadowed at ${ratio.outside} of ${ratio.lit} lit pixels`);
+
+    const variants = compareVariants(await call("variants"));
+    for (const name of ["instanced", "skinned", "morphed"])
+        if (variants[name] > VARIANT_PIXELS_ALLOWED * v.pixels) failures.push(`the ${name} casters and receivers differ from the moved Mesh at ${variants[name]} pixels`);
+    if (variants.moved === 0) failures.push("moving the mesh changed no pixel: the variants prove nothing");
+
+    const before = await call("shadowUpdates");
+    const idle = await call("update");
+    const moved = await call("moveLight", 0.25 * (bundle.light.width || 1));
+    const after = await call("visibility");
+    const changed = after.reduce((n, x, i) => n + (Math.abs(x - visibility[i]) > 2 / 255 ? 1 : 0), 0);
+    if (idle !== before) failures.push("update() without a change re-ran the shadow phase");
+    if (moved !== before + 1) failures.push("moving the light did not re-run the shadow phase once");
+    if (c.light === "rect" && changed === 0) failures.push("moving the light changed no pixel");
+    const shadowError = await call("shadowError");
+    if (shadowError) failures.push(`WebGPU: ${shadowError}`);
+    const disposed = await call("dispose");
+    if (!disposed.textures || disposed.texturesLeft || !disposed.restored)
+        failures.push(`dispose() left ${disposed.texturesLeft} of ${disposed.textures} textures${disposed.restored ? "" : " and did not restore the material"}`);
+    failures.push(...problems);
+    await page.close();
+    if (images) {
+        fs.mkdirSync(images, {recursive: true});
+        await writeGreyPng(path.join(images, `${index}_${bundle.scene}_${c.light}_webgpu.png`), bundle.width, bundle.height, visibility);
+    }
+    console.log(`${failures.length ? "FAIL" : "ok  "} three r${info.three} WebGPURenderer ${label} ${info.material} (${((Date.now() - started) / 1000).toFixed(1)} s)\n` +
+                `     light frame vs desktop ${uniformError.toExponential(2)} (relative); visibility vs desktop: mean |Δ| ${v.mean.toExponential(2)}, ` +
+                `max ${v.worst.toFixed(4)}, ${v.outside} of ${v.geometry} interior pixels outside 2·bound + q (${v.shadowed} shadowed); ` +
+                `${v.silhouetteOutside} of ${v.silhouette} silhouette pixels outside (left out)\n` +
+                `     material: lit-with / lit-without vs visibility max |Δ| ${ratio.worst.toFixed(4)}, ${ratio.outside} of ${ratio.lit} lit pixels outside 2q + 1e-3; ` +
+                `moved light changed ${changed} pixels\n` +
+                `     moved mesh changed ${variants.moved} pixels; pixels differing from it: instanced ${variants.instanced}, skinned ${variants.skinned}, morphed ${variants.morphed}`);
+    for (const f of failures) console.log(`     ${f}`);
+    return {failures};
+}
+
+async function main() {
+    const args = parseArguments(process.argv.slice(2));
+    const roots = {web: args.web};
+    args.bundles.forEach(({dir}, i) => (roots[`bundle/${i}`] = dir));
+    const {browser, port, adapter, close} = await startWebGPU(args.chromium, roots);
+    console.log(adapterLine(adapter));
+    let failures = 0;
+    try {
+        for (let i = 0; i < args.bundles.length; ++i) failures += (await checkBundle(browser, port, i, args.bundles[i], args.images)).failures.length;
+    } catch (e) {
+        console.log(`FAIL ${e.message}`);
+        failures += 1;
+    } finally {
+        await close();
+    }
+    process.exit(failures ? 1 : 0);
+}
+
+main();
