@@ -56,3 +56,32 @@ if(three_emitter_wasm)
 else()
     message(STATUS "penumbra: no WebAssembly emitter, so no test of the npm package penumbra-three (it ships the emitter)")
 endif()
+# "three-webgpu": the add-on on three's WebGPURenderer (three_webgpu_test.mjs, WebGPU through
+# SwiftShader as webgpu.cmake's tests; exits 77 without chromium, and without a WebGPU adapter only
+# with PENUMBRA_WEBGPU_OPTIONAL=1) over wgsl bundles of boxes (rect; sun with a MeshPhysicalNodeMaterial)
+# and the tree (rect): the visibility against the desktop run within the oracle's bound, the node
+# materials' light term, instanced/skinned/morphed casters, updates and dispose.
+if(TARGET penumbra-export-bundle)
+    set(three_webgpu_cases "boxes-rect|--scene boxes --light rect|" "boxes-sun|--scene boxes --light sun --light-size 20|:physical-node"
+        "tree-rect|--scene tree --light rect|")
+    set(three_webgpu_bundles "")
+    foreach(case IN LISTS three_webgpu_cases)
+        string(REPLACE "|" ";" parts "${case}")
+        list(GET parts 0 name)
+        list(GET parts 1 flags)
+        list(GET parts 2 material)
+        separate_arguments(flags UNIX_COMMAND "${flags}")
+        set(dir ${PROJECT_BINARY_DIR}/target_bundles/three-webgpu-${name})
+        add_test(NAME penumbra-bundle-three-webgpu-${name}
+                 COMMAND $<TARGET_FILE:penumbra-export-bundle> ${flags} --target wgsl --slices 16 --resolution 128 --filter nbuffer
+                         --size 64x64 --out ${dir})
+        set_tests_properties(penumbra-bundle-three-webgpu-${name} PROPERTIES FIXTURES_SETUP penumbra_three_webgpu_bundles
+                             LABELS browser TIMEOUT 120)
+        list(APPEND three_webgpu_bundles ${dir}${material})
+    endforeach()
+    add_test(NAME three-webgpu
+             COMMAND ${PENUMBRA_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/three_webgpu_test.mjs --web ${PROJECT_SOURCE_DIR}/web
+                     --chromium ${PENUMBRA_CHROMIUM} --images ${CMAKE_CURRENT_BINARY_DIR}/three-webgpu/images ${three_webgpu_bundles})
+    set_tests_properties(three-webgpu PROPERTIES LABELS browser SKIP_RETURN_CODE 77 TIMEOUT 120
+                         FIXTURES_REQUIRED penumbra_three_webgpu_bundles)
+endif()
