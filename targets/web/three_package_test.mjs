@@ -83,7 +83,9 @@ function pack(three, work, wasm) {
     const failures = [];
     for (const need of ["package.json", "penumbra_shadows.js", "penumbra_shadows.d.ts", "penumbra_runner.js", "light_frame.js",
                         "penumbra_emitter.js", "penumbra_emitter.d.ts", "penumbra_emitter.wasm", "emissions.js", "LICENSE",
-                        "emissions/rect-nbuffer-16x512/layout.json", "emissions/sun-mipmap-16x512/penumbra_visibility.glsl"])
+                        "emissions/rect-nbuffer-16x512/layout.json", "emissions/sun-mipmap-16x512/penumbra_visibility.glsl",
+                        "penumbra_scene.js", "penumbra_shadows_webgpu.js", "penumbra_webgpu_runner.js",
+                        "emissions/rect-nbuffer-16x512-wgsl/penumbra_visibility.wgsl"])
         if (!files.includes(need)) failures.push(`the tarball lacks ${need}`);
     for (const f of files) if (/^(example|test|node_modules)\/|\.tgz$|prepack\.mjs$|regenerate\.sh$/.test(f)) failures.push(`the tarball holds ${f}`);
     console.log(`${failures.length ? "FAIL" : "ok  "} npm pack: ${info.filename}, ${files.length} files, ${(info.size / 1024).toFixed(0)} KiB ` +
@@ -111,6 +113,8 @@ export default {
     optimizeDeps: {exclude: ["penumbra-three"]}, // the dev server's pre-bundling would lose the new URL(…) assets (README)
     build: {outDir: process.env.OUT_DIR, emptyOutDir: true, minify: false}, // (minifying three takes longer than the rest)
     resolve: {alias: three ? [{find: /^three$/, replacement: three + "/build/three.module.js"},
+                              {find: /^three\\/webgpu$/, replacement: three + "/build/three.webgpu.js"},
+                              {find: /^three\\/tsl$/, replacement: three + "/build/three.tsl.js"},
                               {find: /^three\\/addons\\//, replacement: three + "/examples/jsm/"}] : []},
 };
 `);
@@ -122,7 +126,9 @@ console.log(typeof PenumbraShadows.load, Object.keys(EMISSIONS).length, r.ok, Ob
     const {stdout} = run(process.execPath, ["--input-type=module", "-e", probe], {cwd: app});
     const [load, emissions, ok] = stdout.trim().split(" ");
     const failures = [];
-    if (load !== "function" || emissions !== "6" || ok !== "true")
+    // (every folder of web/three/emissions: essl300 ones and their "-wgsl" twins)
+    const shipped = fs.readdirSync(path.join(here, "../../web/three/emissions"), {withFileTypes: true}).filter((d) => d.isDirectory()).length;
+    if (load !== "function" || emissions !== String(shipped) || ok !== "true")
         failures.push(`in node, import("penumbra-three") and import("penumbra-three/emitter") gave: ${stdout.trim()}`);
     console.log(`${failures.length ? "FAIL" : "ok  "} npm install --offline of the tarball into a fresh project (${installed.seconds.toFixed(1)} s); ` +
                 `in node its exports resolve and the emitter emits (${stdout.trim().split(" ")[3]} files)`);

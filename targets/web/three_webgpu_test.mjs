@@ -103,8 +103,9 @@ async function checkBundle(browser, port, index, {dir, material}, images) {
     const shadowError = await call("shadowError");
     if (shadowError) failures.push(`WebGPU: ${shadowError}`);
     const disposed = await call("dispose");
-    if (!disposed.textures || disposed.texturesLeft || !disposed.restored)
-        failures.push(`dispose() left ${disposed.texturesLeft} of ${disposed.textures} textures${disposed.restored ? "" : " and did not restore the material"}`);
+    if (!disposed.hooked || !disposed.restored || !disposed.refused)
+        failures.push(`dispose(): the material was ${disposed.hooked ? "" : "not "}hooked before and ${disposed.restored ? "" : "not "}restored after; ` +
+                      `update() after it was ${disposed.refused ? "" : "not "}refused`);
     failures.push(...problems);
     await page.close();
     if (images) {

@@ -82,13 +82,14 @@ async function main() {
         update: () => { shadows.update(); return shadows.info.shadowUpdates; },
         error: undefined,
         shadowError: () => shadows.info.error,
-        // dispose(): the runner's textures are destroyed, the material's hooks gone
+        // dispose(): the material's hooks gone, update() refused
         dispose: () => {
-            const textures = Object.keys(shadows.runner.textures).length;
             const material = mesh.material;
+            const hooked = Object.hasOwn(material, "setupLightingModel") && Object.hasOwn(material, "customProgramCacheKey");
             shadows.dispose();
-            return {textures, texturesLeft: Object.keys(shadows.runner?.textures || {}).length,
-                    restored: !Object.hasOwn(material, "setupLightingModel") && !Object.hasOwn(material, "customProgramCacheKey")};
+            let refused = false;
+            try { shadows.update(); } catch (e) { refused = /after dispose/.test(e.message); }
+            return {hooked, refused, restored: !Object.hasOwn(material, "setupLightingModel") && !Object.hasOwn(material, "customProgramCacheKey")};
         },
     };
 }
