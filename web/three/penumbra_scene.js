@@ -4,7 +4,7 @@
 // receivers of the scene, when the shadow phase must run again, the light frame from the three.js
 // light and the scene's bounds (light_frame.js), and the casters' vertices. Each renderer's module
 // subclasses ShadowsBase with its own GPU work: the runner, the caster draws, the material hooks.
-import {Box3, Matrix4, Vector3} from "three";
+import {Box3, Color, Matrix4, Vector3} from "three";
 import {rectFrame, sunFrame} from "./light_frame.js";
 import {EMISSIONS} from "./emissions.js";
 
@@ -239,6 +239,42 @@ export class ShadowsBase {
             this.info.shadowUpdates++;
             this.info.lastShadowMs = performance.now() - t0;
         }
+    }
+
+    // The debug view of renderVisibility(): the receivers alone, drawn with the visibility material
+    // (made by makeMaterial(), again when the emission changed) into the visibility target (made by
+    // makeTarget(width, height)) cleared to white (1: no receiver); the renderer's target and clear
+    // colour and the scene's override, background and visibilities are restored. Returns the target
+    // for the renderer's own read-back.
+    _renderReceivers(camera, width, height, makeTarget, makeMaterial) {
+        const renderer = this.renderer;
+        if (!this._visibilityTarget) this._visibilityTarget = makeTarget(width, height);
+        const target = this._visibilityTarget;
+        if (target.width !== width || target.height !== height) target.setSize(width, height);
+        if (!this._visibilityMaterial || this._visibilityMaterial.userData.key !== this._cacheKey) {
+            if (this._visibilityMaterial) this._visibilityMaterial.dispose();
+            this._visibilityMaterial = makeMaterial();
+            this._visibilityMaterial.userData.key = this._cacheKey;
+        }
+        const hidden = [];
+        this.scene.traverse((o) => { if (o.isMesh && o.visible && !o.receiveShadow) { hidden.push(o); o.visible = false; } });
+        const previous = {target: renderer.getRenderTarget(), override: this.scene.overrideMaterial, background: this.scene.background,
+                          clear: renderer.getClearColor(new Color()), alpha: renderer.getClearAlpha()};
+        this.scene.overrideMaterial = this._visibilityMaterial;
+        this.scene.background = null;
+        try {
+            renderer.setRenderTarget(target);
+            renderer.setClearColor(0xffffff, 1);
+            renderer.clear();
+            renderer.render(this.scene, camera);
+        } finally {
+            renderer.setRenderTarget(previous.target);
+            renderer.setClearColor(previous.clear, previous.alpha);
+            this.scene.overrideMaterial = previous.override;
+            this.scene.background = previous.background;
+            for (const o of hidden) o.visible = true;
+        }
+        return target;
     }
 
     // Everything the shadow phase depends on, as numbers.

@@ -111,24 +111,9 @@ export function loadEmitter(wasm?: string | URL | null): Promise<Emitter>;
  * renderVisibility is asynchronous (WebGPU reads back asynchronously) and info.error holds WebGPU's
  * message when a shadow phase failed validation.
  */
-export interface PenumbraShadowsWebGPU {
+export interface PenumbraShadowsWebGPU extends Omit<PenumbraShadows, "renderer" | "info" | "renderVisibility"> {
     readonly renderer: WebGPURenderer;
-    readonly scene: Scene;
-    readonly light: RectAreaLight | DirectionalLight;
-    readonly kind: "rect" | "sun";
-    enabled: boolean;
-    intensity: number;
-    angularDiameter: number;
-    autoUpdate: boolean;
-    needsUpdate: boolean;
-    readonly disposed: boolean;
-    readonly config: Record<string, any>;
     readonly info: PenumbraShadowsInfo & {error: string | null};
-
-    update(): void;
-    setEmission(emission: Emission): Promise<void>;
-    setSize(width: number, height: number): void;
     /** The visibility the receivers get (0 shadowed … 1 lit), width × height, bottom row first. */
     renderVisibility(camera: Camera, width: number, height: number): Promise<Float32Array>;
-    dispose(): void;
 }

@@ -25,7 +25,7 @@
 // (penumbra_shadows_webgpu.js: the wgsl emission on the renderer's GPUDevice, the visibility in
 // the node materials through TSL). What both do alike (the scene's casters and receivers, when to
 // re-run the shadow phase, the light frame, the emission's files) is penumbra_scene.js.
-import {Color, DoubleSide, ExternalTexture, FloatType, GLSL3, Matrix4, NoBlending, RGBAFormat, ShaderMaterial,
+import {DoubleSide, ExternalTexture, FloatType, GLSL3, Matrix4, NoBlending, RGBAFormat, ShaderMaterial,
         WebGLRenderTarget} from "three";
 // (ShaderChunk through the namespace: a WebGPU page may map "three" to three.webgpu.js, which has
 // no ShaderChunk, and this module must still load there to hand over to penumbra_shadows_webgpu.js)
@@ -381,31 +381,10 @@ export class PenumbraShadows extends ShadowsBase {
     // and tests: Float32Array of width × height, bottom row first; 1 where no receiver is.
     renderVisibility(camera, width, height) {
         this._alive("renderVisibility()");
-        const renderer = this.renderer;
-        if (!this._visibilityTarget) this._visibilityTarget = new WebGLRenderTarget(width, height, {type: FloatType, format: RGBAFormat, depthBuffer: true});
-        const target = this._visibilityTarget;
-        if (target.width !== width || target.height !== height) target.setSize(width, height);
-        if (!this._visibilityMaterial || this._visibilityMaterial.userData.key !== this._cacheKey) {
-            if (this._visibilityMaterial) this._visibilityMaterial.dispose();
-            this._visibilityMaterial = this._makeVisibilityMaterial();
-        }
-        const hidden = [];
-        this.scene.traverse((o) => { if (o.isMesh && o.visible && !o.receiveShadow) { hidden.push(o); o.visible = false; } });
-        const previous = {target: renderer.getRenderTarget(), override: this.scene.overrideMaterial, background: this.scene.background};
-        this.scene.overrideMaterial = this._visibilityMaterial;
-        this.scene.background = null;
-        const clear = renderer.getClearColor(new Color()), alpha = renderer.getClearAlpha();
-        renderer.setRenderTarget(target);
-        renderer.setClearColor(0xffffff, 1);
-        renderer.clear();
-        renderer.render(this.scene, camera);
+        const target = this._renderReceivers(camera, width, height,
+            (w, h) => new WebGLRenderTarget(w, h, {type: FloatType, format: RGBAFormat, depthBuffer: true}), () => this._makeVisibilityMaterial());
         const rgba = new Float32Array(4 * width * height);
-        renderer.readRenderTargetPixels(target, 0, 0, width, height, rgba);
-        renderer.setRenderTarget(previous.target);
-        renderer.setClearColor(clear, alpha);
-        this.scene.overrideMaterial = previous.override;
-        this.scene.background = previous.background;
-        for (const o of hidden) o.visible = true;
+        this.renderer.readRenderTargetPixels(target, 0, 0, width, height, rgba);
         const out = new Float32Array(width * height);
         for (let i = 0; i < out.length; ++i) out[i] = rgba[4 * i];
         return out;
@@ -449,7 +428,6 @@ void main() {
 	penumbraOut = vec4( v, v, v, 1.0 );
 }`,
         });
-        material.userData.key = this._cacheKey;
         return material;
     }
 

@@ -314,36 +314,12 @@ export class PenumbraShadowsWebGPU extends ShadowsBase {
     // 1 where no receiver is. Asynchronous: WebGPU reads textures back asynchronously.
     async renderVisibility(camera, width, height) {
         this._alive("renderVisibility()");
-        const renderer = this.renderer;
-        if (!this._visibilityTarget) this._visibilityTarget = new RenderTarget(width, height, {type: FloatType, depthBuffer: true});
-        const target = this._visibilityTarget;
-        if (target.width !== width || target.height !== height) target.setSize(width, height);
-        if (!this._visibilityMaterial || this._visibilityMaterial.userData.key !== this._cacheKey) {
-            if (this._visibilityMaterial) this._visibilityMaterial.dispose();
+        const target = this._renderReceivers(camera, width, height, (w, h) => new RenderTarget(w, h, {type: FloatType, depthBuffer: true}), () => {
             const material = new MeshBasicNodeMaterial({side: DoubleSide, blending: NoBlending});
             material.colorNode = vec4(this._visibility, this._visibility, this._visibility, float(1));
-            material.userData.key = this._cacheKey;
-            this._visibilityMaterial = material;
-        }
-        const hidden = [];
-        this.scene.traverse((o) => { if (o.isMesh && o.visible && !o.receiveShadow) { hidden.push(o); o.visible = false; } });
-        const previous = {target: renderer.getRenderTarget(), override: this.scene.overrideMaterial, background: this.scene.background,
-                          clear: renderer.getClearColor(new Vector3()), alpha: renderer.getClearAlpha()};
-        this.scene.overrideMaterial = this._visibilityMaterial;
-        this.scene.background = null;
-        try {
-            renderer.setRenderTarget(target);
-            renderer.setClearColor(0xffffff, 1);
-            renderer.clear();
-            renderer.render(this.scene, camera);
-        } finally {
-            renderer.setRenderTarget(previous.target);
-            renderer.setClearColor(previous.clear, previous.alpha);
-            this.scene.overrideMaterial = previous.override;
-            this.scene.background = previous.background;
-            for (const o of hidden) o.visible = true;
-        }
-        const rgba = await renderer.readRenderTargetPixelsAsync(target, 0, 0, width, height);
+            return material;
+        });
+        const rgba = await this.renderer.readRenderTargetPixelsAsync(target, 0, 0, width, height);
         // WebGPU's rows: top row first; ours (WebGL2's): bottom row first
         const out = new Float32Array(width * height);
         for (let y = 0; y < height; ++y)

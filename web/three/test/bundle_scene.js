@@ -99,3 +99,25 @@ export async function placementVariants(scene, mesh, shadows, render) {
     for (const k of Object.keys(out)) out[k] = Array.from(out[k]);
     return out;
 }
+
+// The render with the add-on over the one without it (render(): RGBA floats of the frame, or their
+// Promise, in the bundle's row order): {ratio, unshadowed} a pixel, the light's term scaled by the
+// visibility where the scene has no other light.
+export async function materialRatio(scene, shadows, render) {
+    if (scene.children.some((o) => o.isAmbientLight)) throw new Error("the bundle scene has an ambient light");
+    const frame = async (enabled) => {
+        shadows.enabled = enabled;
+        shadows.update();
+        return render();
+    };
+    const on = await frame(true), off = await frame(false);
+    shadows.enabled = true;
+    shadows.update();
+    const n = on.length / 4, ratio = new Array(n), unshadowed = new Array(n);
+    for (let i = 0; i < n; ++i) {
+        const a = on[4 * i] + on[4 * i + 1] + on[4 * i + 2], b = off[4 * i] + off[4 * i + 1] + off[4 * i + 2];
+        unshadowed[i] = b / 3;
+        ratio[i] = b > 0 ? a / b : NaN;
+    }
+    return {ratio, unshadowed};
+}

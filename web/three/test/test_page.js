@@ -10,7 +10,7 @@
 import * as THREE from "three";
 import {RectAreaLightUniformsLib} from "three/addons/lights/RectAreaLightUniformsLib.js";
 import {PenumbraShadows} from "../penumbra_shadows.js";
-import {loadBundleScene, placementVariants} from "./bundle_scene.js";
+import {loadBundleScene, materialRatio, placementVariants} from "./bundle_scene.js";
 
 function rendererName(gl) {
     const debug = gl.getExtension("WEBGL_debug_renderer_info");
@@ -123,25 +123,7 @@ async function main() {
                       three: THREE.REVISION, casters: shadows.info.casters, receivers: shadows.info.receivers}),
         visibility: () => Array.from(shadows.renderVisibility(camera, W, H)),
         frameUniforms: () => ({computed: shadows._frame.uniforms, bundle: bundle.uniforms}),
-        materialRatio: () => {
-            const ambient = scene.children.filter((o) => o.isAmbientLight);
-            if (ambient.length) throw new Error("the bundle scene has an ambient light");
-            shadows.enabled = true;
-            shadows.update();
-            const on = renderInto();
-            shadows.enabled = false;
-            shadows.update();
-            const off = renderInto();
-            shadows.enabled = true;
-            shadows.update();
-            const ratio = new Array(W * H), unshadowed = new Array(W * H);
-            for (let i = 0; i < W * H; ++i) {
-                const a = on[4 * i] + on[4 * i + 1] + on[4 * i + 2], b = off[4 * i] + off[4 * i + 1] + off[4 * i + 2];
-                unshadowed[i] = b / 3;
-                ratio[i] = b > 0 ? a / b : NaN;
-            }
-            return {ratio, unshadowed};
-        },
+        materialRatio: () => materialRatio(scene, shadows, renderInto),
         peer: (type, settings) => Array.from(peer(type, settings)),
         moveLight: (dx) => {
             light.translateX(dx);

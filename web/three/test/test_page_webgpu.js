@@ -12,7 +12,7 @@
 import * as THREE from "three/webgpu";
 import {RectAreaLightTexturesLib} from "three/addons/lights/RectAreaLightTexturesLib.js";
 import {PenumbraShadows} from "../penumbra_shadows.js";
-import {loadBundleScene, placementVariants} from "./bundle_scene.js";
+import {loadBundleScene, materialRatio, placementVariants} from "./bundle_scene.js";
 
 async function main() {
     const query = new URLSearchParams(location.search);
@@ -54,23 +54,7 @@ async function main() {
                       receivers: shadows.info.receivers, addon: shadows.constructor.name, material: mesh.material.type}),
         visibility: async () => Array.from(await shadows.renderVisibility(camera, W, H)),
         frameUniforms: () => ({computed: shadows._frame.uniforms, bundle: bundle.uniforms}),
-        materialRatio: async () => {
-            shadows.enabled = true;
-            shadows.update();
-            const on = flip(await renderInto());
-            shadows.enabled = false;
-            shadows.update();
-            const off = flip(await renderInto());
-            shadows.enabled = true;
-            shadows.update();
-            const ratio = new Array(W * H), unshadowed = new Array(W * H);
-            for (let i = 0; i < W * H; ++i) {
-                const a = on[4 * i] + on[4 * i + 1] + on[4 * i + 2], b = off[4 * i] + off[4 * i + 1] + off[4 * i + 2];
-                unshadowed[i] = b / 3;
-                ratio[i] = b > 0 ? a / b : NaN;
-            }
-            return {ratio, unshadowed};
-        },
+        materialRatio: () => materialRatio(scene, shadows, async () => flip(await renderInto())),
         variants: () => placementVariants(scene, mesh, shadows, () => shadows.renderVisibility(camera, W, H)),
         moveLight: (dx) => {
             light.translateX(dx);
