@@ -59,11 +59,22 @@ endif()
 # "three-webgpu": the add-on on three's WebGPURenderer (three_webgpu_test.mjs, WebGPU through
 # SwiftShader as webgpu.cmake's tests; exits 77 without chromium, and without a WebGPU adapter only
 # with PENUMBRA_WEBGPU_OPTIONAL=1) over wgsl bundles of boxes (rect; sun with a MeshPhysicalNodeMaterial)
-# and the tree (rect): the visibility against the desktop run within the oracle's bound, the node
-# materials' light term, instanced/skinned/morphed casters, updates and dispose.
+# and the tree (rect), and the corpus's teapot where scripts/get_corpus.sh fetched it (the corpus
+# is not in the repository): the visibility against the desktop run within the oracle's bound, the
+# node materials' light term, instanced/skinned/morphed casters, updates and dispose.
 if(TARGET penumbra-export-bundle)
     set(three_webgpu_cases "boxes-rect|--scene boxes --light rect|" "boxes-sun|--scene boxes --light sun --light-size 20|:physical-node"
         "tree-rect|--scene tree --light rect|")
+    if(DEFINED ENV{XDG_CACHE_HOME})
+        set(three_webgpu_teapot $ENV{XDG_CACHE_HOME}/penumbra/corpus/meshes/teapot.obj)
+    else()
+        set(three_webgpu_teapot $ENV{HOME}/.cache/penumbra/corpus/meshes/teapot.obj)
+    endif()
+    if(EXISTS ${three_webgpu_teapot})
+        list(APPEND three_webgpu_cases "teapot-rect|--scene ${three_webgpu_teapot} --light rect|")
+    else()
+        message(STATUS "penumbra: no corpus (scripts/get_corpus.sh), so three-webgpu runs without the teapot")
+    endif()
     set(three_webgpu_bundles "")
     foreach(case IN LISTS three_webgpu_cases)
         string(REPLACE "|" ";" parts "${case}")
