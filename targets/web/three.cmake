@@ -58,20 +58,22 @@ else()
 endif()
 # "three-webgpu": the add-on on three's WebGPURenderer (three_webgpu_test.mjs, WebGPU through
 # SwiftShader as webgpu.cmake's tests; exits 77 without chromium, and without a WebGPU adapter only
-# with PENUMBRA_WEBGPU_OPTIONAL=1) over wgsl bundles of boxes (rect; sun with a MeshPhysicalNodeMaterial)
+# with PENUMBRA_WEBGPU_OPTIONAL=1) over wgsl bundles of boxes (rect, N-buffer; sun, Gaussian levels,
+# with a MeshPhysicalNodeMaterial)
 # and the tree (rect), and the corpus's teapot where scripts/get_corpus.sh fetched it (the corpus
 # is not in the repository): the visibility against the desktop run within the oracle's bound, the
 # node materials' light term, instanced/skinned/morphed casters, updates and dispose.
 if(TARGET penumbra-export-bundle)
-    set(three_webgpu_cases "boxes-rect|--scene boxes --light rect|" "boxes-sun|--scene boxes --light sun --light-size 20|:physical-node"
-        "tree-rect|--scene tree --light rect|")
+    set(three_webgpu_cases "boxes-rect|--scene boxes --light rect --filter nbuffer|"
+        "boxes-sun|--scene boxes --light sun --filter gaussian --light-size 20|:physical-node"
+        "tree-rect|--scene tree --light rect --filter nbuffer|")
     if(DEFINED ENV{XDG_CACHE_HOME})
         set(three_webgpu_teapot $ENV{XDG_CACHE_HOME}/penumbra/corpus/meshes/teapot.obj)
     else()
         set(three_webgpu_teapot $ENV{HOME}/.cache/penumbra/corpus/meshes/teapot.obj)
     endif()
     if(EXISTS ${three_webgpu_teapot})
-        list(APPEND three_webgpu_cases "teapot-rect|--scene ${three_webgpu_teapot} --light rect|")
+        list(APPEND three_webgpu_cases "teapot-rect|--scene ${three_webgpu_teapot} --light rect --filter nbuffer|")
     else()
         message(STATUS "penumbra: no corpus (scripts/get_corpus.sh), so three-webgpu runs without the teapot")
     endif()
@@ -84,7 +86,7 @@ if(TARGET penumbra-export-bundle)
         separate_arguments(flags UNIX_COMMAND "${flags}")
         set(dir ${PROJECT_BINARY_DIR}/target_bundles/three-webgpu-${name})
         add_test(NAME penumbra-bundle-three-webgpu-${name}
-                 COMMAND $<TARGET_FILE:penumbra-export-bundle> ${flags} --target wgsl --slices 16 --resolution 128 --filter nbuffer
+                 COMMAND $<TARGET_FILE:penumbra-export-bundle> ${flags} --target wgsl --slices 16 --resolution 128
                          --size 64x64 --out ${dir})
         set_tests_properties(penumbra-bundle-three-webgpu-${name} PROPERTIES FIXTURES_SETUP penumbra_three_webgpu_bundles
                              LABELS browser TIMEOUT 120)

@@ -131,13 +131,18 @@ export class PenumbraShadowsWebGPU extends ShadowsBase {
         return texture;
     }
 
-    // WebGPU's default limit is 16 sampled textures a shader stage, and three's materials need some.
-    _warnTextures() {
+    // Every add-on's textures are sampled in the receivers' fragment stage, which WebGPU limits to
+    // maxSampledTexturesPerShaderStage (16 unless the renderer asked for more: requiredLimits), and
+    // three's lit material needs some (the RectAreaLight's LTC textures, the maps).
+    _warnTextures(material = null) {
+        const shared = material && shadowedMaterials.get(material);
+        const textures = shared ? shared.addons.reduce((n, a) => n + a._textures.length, 0) : this._textures.length;
         const limit = this.device.limits.maxSampledTexturesPerShaderStage;
-        if (this._textures.length + 4 > limit && !this._warnedTextures) {
+        if (textures + 4 > limit && !this._warnedTextures) {
             this._warnedTextures = true;
-            console.warn(`PenumbraShadows: the emission samples ${this._textures.length} textures and a WebGPU shader stage has ${limit}; ` +
-                         "a receiver with maps (or two shadowed lights) may exceed it: use an emission with fewer levels (a lower resolution)");
+            console.warn(`PenumbraShadows: ${shared ? `a material shadowed by ${shared.addons.length} add-ons` : "the emission"} samples ${textures} textures ` +
+                         `and a WebGPU shader stage has ${limit}, of which three needs some: use emissions with fewer levels (a lower resolution), ` +
+                         "or a WebGPURenderer({requiredLimits: {maxSampledTexturesPerShaderStage: …}}) where the adapter allows more");
         }
     }
 
@@ -281,6 +286,7 @@ export class PenumbraShadowsWebGPU extends ShadowsBase {
         }
         shared.addons.push(this);
         this._materials.add(material);
+        this._warnTextures(material);
         material.needsUpdate = true;
     }
 
