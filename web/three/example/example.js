@@ -39,8 +39,10 @@ renderer.setPixelRatio(fixedSize ? 1 : Math.min(window.devicePixelRatio, 2));
 renderer.setSize(...(fixedSize || [window.innerWidth, window.innerHeight]));
 renderer.toneMapping = THREE.ACESFilmicToneMapping;
 document.body.appendChild(renderer.domElement);
-const offscreen = params.get("offscreen") === "1" && fixedSize
-    ? new THREE.RenderTarget(fixedSize[0], fixedSize[1], {colorSpace: THREE.SRGBColorSpace, samples: 4}) : null;
+// (WebGPURenderer: the output render target, which gets the canvas's tone mapping and sRGB output;
+// WebGLRenderer: a plain target, linear)
+const offscreen = params.get("offscreen") === "1" && fixedSize ? new THREE.RenderTarget(fixedSize[0], fixedSize[1], {samples: 4}) : null;
+if (offscreen && renderer.setOutputRenderTarget) renderer.setOutputRenderTarget(offscreen);
 
 const scene = new THREE.Scene();
 scene.background = new THREE.Color(0x20242a);
@@ -196,10 +198,10 @@ function render() {
         state.z = 2.0 * Math.cos(0.4 * t);
         placeLights();
     }
-    renderer.setRenderTarget(offscreen);
+    if (offscreen && !renderer.setOutputRenderTarget) renderer.setRenderTarget(offscreen);
     if (shadows) shadows.update(); // (none between two lights' add-ons)
     renderer.render(scene, camera);
-    renderer.setRenderTarget(null);
+    if (offscreen && !renderer.setOutputRenderTarget) renderer.setRenderTarget(null);
     if (!shadows) return;
     const c = shadows.config;
     status.textContent = `${rendererKind === "webgpu" ? "WebGPURenderer" : "WebGLRenderer"}: ${state.mode === "penumbra" ? `Penumbra ${c.slices} slices ${c.resolution}² ${c.filter} (${state.emitted ? "emitted in the page" : state.emission})` : state.mode === "none" ? "no shadows" : `three ${state.mode.toUpperCase()} shadow map, radius ${state.mode === "vsm" ? state.vsmRadius : state.pcfRadius}`}` +
@@ -220,7 +222,7 @@ const onEmission = async (v) => { if (shadows) { await shadows.setEmission(v); s
 // The emissions of the light's kind in the GUI, and the light's own folder.
 function showLight(keys) {
     emissionController = emissionController.options(keys).name("emission").onChange(onEmission);
-    emissionController.setValue(state.emission);
+    emissionController.updateDisplay(); // (attach() loaded state.emission: setValue would load it again, racing a later setEmission)
     folders.rect.show(state.light === "rect");
     folders.sun.show(state.light === "sun");
 }
