@@ -62,7 +62,8 @@ endif()
 # with a MeshPhysicalNodeMaterial)
 # and the tree (rect), and the corpus's teapot where scripts/get_corpus.sh fetched it (the corpus
 # is not in the repository): the visibility against the desktop run within the oracle's bound, the
-# node materials' light term, instanced/skinned/morphed casters, updates and dispose.
+# node materials' light term, instanced/skinned/morphed casters, updates and dispose; and two add-ons
+# (a RectAreaLight and a sun) on one node material, each scaling its own light's term only.
 if(TARGET penumbra-export-bundle)
     set(three_webgpu_cases "boxes-rect|--scene boxes --light rect --filter nbuffer|"
         "boxes-sun|--scene boxes --light sun --filter gaussian --light-size 20|:physical-node"
@@ -92,9 +93,24 @@ if(TARGET penumbra-export-bundle)
                              LABELS browser TIMEOUT 120)
         list(APPEND three_webgpu_bundles ${dir}${material})
     endforeach()
+    # two add-ons on one node material (a RectAreaLight and a sun): emissions at 32² (six textures
+    # each), so that both fit WebGPU's 16 sampled textures a stage beside three's own
+    set(three_webgpu_two "")
+    if(TARGET penumbra-gen)
+        foreach(light IN ITEMS rect sun)
+            set(dir ${CMAKE_CURRENT_BINARY_DIR}/three-webgpu/two-lights-${light})
+            add_test(NAME penumbra-three-webgpu-two-lights-${light}
+                     COMMAND $<TARGET_FILE:penumbra-gen> --target wgsl --light ${light} --filter nbuffer --slices 8 --resolution 32 --out ${dir})
+            set_tests_properties(penumbra-three-webgpu-two-lights-${light} PROPERTIES FIXTURES_SETUP penumbra_three_webgpu_bundles
+                                 LABELS browser TIMEOUT 60)
+            list(APPEND three_webgpu_two ${dir})
+        endforeach()
+        list(PREPEND three_webgpu_two --two-lights)
+    endif()
     add_test(NAME three-webgpu
              COMMAND ${PENUMBRA_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/three_webgpu_test.mjs --web ${PROJECT_SOURCE_DIR}/web
-                     --chromium ${PENUMBRA_CHROMIUM} --images ${CMAKE_CURRENT_BINARY_DIR}/three-webgpu/images ${three_webgpu_bundles})
+                     --chromium ${PENUMBRA_CHROMIUM} --images ${CMAKE_CURRENT_BINARY_DIR}/three-webgpu/images ${three_webgpu_two}
+                     ${three_webgpu_bundles})
     set_tests_properties(three-webgpu PROPERTIES LABELS browser SKIP_RETURN_CODE 77 TIMEOUT 120
                          FIXTURES_REQUIRED penumbra_three_webgpu_bundles)
 endif()

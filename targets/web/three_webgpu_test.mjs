@@ -3,7 +3,8 @@
 // WebGPU through SwiftShader), over bundles exported with `penumbra-export-bundle --target wgsl`
 // (the desktop GL run of the same configuration; emission/ holds its wgsl emission):
 //
-//   node targets/web/three_webgpu_test.mjs --web web [--chromium PATH] [--images DIR] BUNDLE_DIR[:physical-node]...
+//   node targets/web/three_webgpu_test.mjs --web web [--chromium PATH] [--images DIR]
+//        [--two-lights RECT_EMISSION_DIR SUN_EMISSION_DIR] BUNDLE_DIR[:physical-node]...
 //
 // Each bundle's scene is rebuilt in three.js (web/three/test/webgpu.html: the bundle's triangles,
 // light and camera, as the WebGL2 test's page), the add-on attached with PenumbraShadows.load(), and
@@ -20,12 +21,16 @@
 //      WebGPU validation error, dispose() restores the material.
 // ":physical-node" after a bundle: its receivers get a MeshPhysicalNodeMaterial (else the bundle
 // scene's plain MeshStandardMaterial, which WebGPURenderer converts).
+// --two-lights: a RectAreaLight and a sun, each with its add-on (the two wgsl emission folders, small
+// enough that both fit 16 sampled textures a stage), on one MeshStandardNodeMaterial
+// (web/three/test/two_lights_webgpu.html): each light's lit-with / lit-without is its own visibility,
+// both lights on is the sum of each alone, and their shadows differ.
 // Exit 0 pass, 1 fail, 2 bad arguments, 77 skip (no chromium; no WebGPU adapter only with
 // PENUMBRA_WEBGPU_OPTIONAL=1, as wgsl_compile.mjs).
 import fs from "node:fs";
 import path from "node:path";
 import {openPage, writeGreyPng} from "./harness.mjs";
-import {PIXELS_ALLOWED, UNIFORM_TOLERANCE, VARIANT_PIXELS_ALLOWED, compareRatio, compareVariants, compareWithDesktop,
+import {PIXELS_ALLOWED, R8_STEP, UNIFORM_TOLERANCE, VARIANT_PIXELS_ALLOWED, compareRatio, compareVariants, compareWithDesktop,
         frameError} from "./three_test.mjs";
 import {adapterLine, startWebGPU} from "./wgsl_compile.mjs";
 
@@ -34,19 +39,24 @@ import {adapterLine, startWebGPU} from "./wgsl_compile.mjs";
 const INTERIOR_PIXELS_ALLOWED = 1;
 
 function usage(message) {
-    console.error(`error: ${message}\nusage: node three_webgpu_test.mjs --web DIR [--chromium PATH] [--images DIR] BUNDLE_DIR[:physical-node]...`);
+    console.error(`error: ${message}\nusage: node three_webgpu_test.mjs --web DIR [--chromium PATH] [--images DIR] ` +
+                  "[--two-lights RECT_DIR SUN_DIR] BUNDLE_DIR[:physical-node]...");
     process.exit(2);
 }
 
 function parseArguments(argv) {
-    const out = {web: null, chromium: "/usr/bin/chromium", images: null, bundles: []};
+    const out = {web: null, chromium: "/usr/bin/chromium", images: null, bundles: [], twoLights: null};
     for (let i = 0; i < argv.length; ++i) {
         const flag = argv[i];
-        if (flag === "--web" || flag === "--chromium" || flag === "--images") {
+        if (flag === "--two-lights") {
+            if (i + 2 >= argv.length) usage("--two-lights: needs the rect and the sun emission folders");
+            out.twoLights = [argv[++i], argv[++i]];
+            for (const dir of out.twoLights) if (!fs.existsSync(path.join(dir, "layout.json"))) usage(`--two-lights: no layout.json in ${dir}`);
+        } else if (flag === "--web" || flag === "--chromium" || flag === "--images") {
             if (i + 1 >= argv.length) usage(`${flag}: missing value`);
             out[flag.slice(2)] = argv[++i];
         } else if (flag.startsWith("--")) {
-            usage(`unknown flag '${flag}'; allowed: --web, --chromium, --images`);
+            usage(`unknown flag '${flag}'; allowed: --web, --chromium, --images, --two-lights`);
         } else {
             const [dir, material = ""] = flag.split(/:(?=[a-z-]+$)/);
             if (material && material !== "physical-node") usage(`${flag}: ':${material}' unknown; allowed: ':physical-node'`);
@@ -123,15 +133,39 @@ async function checkBundle(browser, port, index, {dir, material}, images) {
     return {failures};
 }
 
+// Two add-ons on one material: each scales its own light's term only.
+async function checkTwoLights(browser, port) {
+    const started = Date.now();
+    const {page, problems} = await openPage(browser, `http://127.0.0.1:${port}/web/three/test/two_lights_webgpu.html?rect=/two/rect/&sun=/two/sun/`, "result");
+    const r = await page.evaluate(() => window.result);
+    await page.close();
+    const failures = [...problems, ...r.errors.map((e) => `WebGPU: ${e}`)];
+    for (const light of ["rect", "sun"]) {
+        const x = r[light];
+        if (x.lit === 0 || x.shadowed === 0) failures.push(`${light}: ${x.lit} lit and ${x.shadowed} shadowed pixels: the check would prove nothing`);
+        if (!(x.worst <= 2 * R8_STEP + 1e-3)) failures.push(`${light}: lit-with / lit-without differs from its own visibility by ${x.worst}`);
+    }
+    if (!(r.sum <= 1e-4)) failures.push(`both lights on differ from the sum of each alone by ${r.sum}`);
+    if (r.distinct === 0) failures.push("the two lights' visibilities are the same: the check would prove nothing");
+    console.log(`${failures.length ? "FAIL" : "ok  "} two add-ons (a RectAreaLight and a sun) on one MeshStandardNodeMaterial (${((Date.now() - started) / 1000).toFixed(1)} s): ` +
+                `rect lit-with / lit-without vs its visibility max |Δ| ${r.rect.worst.toExponential(2)} (${r.rect.shadowed} shadowed of ${r.rect.lit} lit), ` +
+                `sun ${r.sun.worst.toExponential(2)} (${r.sun.shadowed} of ${r.sun.lit}); both on vs the sum max |Δ| ${r.sum.toExponential(2)}; ` +
+                `${r.distinct} pixels where the two visibilities differ`);
+    for (const f of failures) console.log(`     ${f}`);
+    return failures;
+}
+
 async function main() {
     const args = parseArguments(process.argv.slice(2));
     const roots = {web: args.web};
     args.bundles.forEach(({dir}, i) => (roots[`bundle/${i}`] = dir));
+    if (args.twoLights) [roots["two/rect"], roots["two/sun"]] = args.twoLights;
     const {browser, port, adapter, close} = await startWebGPU(args.chromium, roots);
     console.log(adapterLine(adapter));
     let failures = 0;
     try {
         for (let i = 0; i < args.bundles.length; ++i) failures += (await checkBundle(browser, port, i, args.bundles[i], args.images)).failures.length;
+        if (args.twoLights) failures += (await checkTwoLights(browser, port)).length;
     } catch (e) {
         console.log(`FAIL ${e.message}`);
         failures += 1;
