@@ -188,6 +188,7 @@ export class ShadowsBase {
         this._serial = ++serial;
         this._rename = renamer(`penumbra${this._serial}`);
         this._materials = new Set(); // materials we hooked
+        this._geometries = new Map(); // BufferGeometry (or deformed mesh) → its GPU buffers (_geometryOf, _dropGeometry)
         this._signature = null;
         this._frame = null;
     }
@@ -275,6 +276,22 @@ export class ShadowsBase {
             for (const o of hidden) o.visible = true;
         }
         return target;
+    }
+
+    // Frees every GPU resource of the add-on and restores the materials it hooked (other add-ons'
+    // shadows on them stay). Afterwards update(), setEmission() and renderVisibility() throw; a
+    // second dispose() does nothing. The subclass's _disposeResources() frees its own.
+    dispose() {
+        if (this.disposed) return;
+        this.disposed = true;
+        for (const key of [...this._geometries.keys()]) this._dropGeometry(key);
+        for (const material of this._materials) this._unpatch(material);
+        this._materials.clear();
+        if (this._visibilityTarget) this._visibilityTarget.dispose();
+        if (this._visibilityMaterial) this._visibilityMaterial.dispose();
+        if (this.runner) this.runner.dispose(); // its textures, samplers, programs or pipelines, framebuffers, buffers
+        this.runner = null;
+        this._disposeResources(); // (last: on WebGL2 it resets three's state after the runner's raw GL)
     }
 
     // Everything the shadow phase depends on, as numbers.

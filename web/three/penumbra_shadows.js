@@ -162,7 +162,6 @@ export class PenumbraShadows extends ShadowsBase {
         if (!options.runner) fail("no emission: use `await PenumbraShadows.load(renderer, scene, light, options)`");
         this._names = {lightIndex: `penumbra${this._serial}LightIndex`, intensity: `penumbra${this._serial}Intensity`,
                        shadow: `penumbra${this._serial}Shadow`, visibility: this._rename("penumbraVisibility")};
-        this._geometries = new Map(); // BufferGeometry (or SkinnedMesh) → {vao, buffers, count, version}
         this._visibilityTarget = null;
         this._visibilityMaterial = null;
         this._setRunner(options.runner);
@@ -218,7 +217,7 @@ export class PenumbraShadows extends ShadowsBase {
         const runner = await loadRunner(this.renderer.getContext(), emission, this.kind, this.wasm);
         const old = this.runner;
         this._setRunner(runner);
-        disposeRunner(old);
+        old.dispose();
         this.renderer.resetState();
     }
 
@@ -431,25 +430,14 @@ void main() {
         return material;
     }
 
-    // Frees every GPU resource of the add-on and restores the patched materials (other add-ons'
-    // shadows on them stay). Afterwards update(), setEmission() and renderVisibility() throw; a
-    // second dispose() does nothing.
-    dispose() {
-        if (this.disposed) return;
-        this.disposed = true;
-        for (const key of [...this._geometries.keys()]) this._dropGeometry(key);
-        for (const material of this._materials) this._unpatch(material);
-        this._materials.clear();
+    // dispose(): the external textures' GL names (the runner deleted them), three's state
+    _disposeResources() {
         for (const t of this._samplers) {
             this.renderer.properties.get(t).__webglTexture = undefined;
             if (t.isExternalTexture) t.sourceTexture = null;
             t.dispose();
         }
         this._samplers = [];
-        if (this._visibilityTarget) this._visibilityTarget.dispose();
-        if (this._visibilityMaterial) this._visibilityMaterial.dispose();
-        disposeRunner(this.runner);
-        this.runner = null;
         this.renderer.resetState();
     }
 }
@@ -467,6 +455,3 @@ async function loadRunner(gl, emission, kind, wasm) {
     return runner;
 }
 
-function disposeRunner(runner) {
-    if (runner) runner.dispose(); // its textures, samplers, programs, framebuffers and queries
-}

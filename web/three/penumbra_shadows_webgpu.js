@@ -59,7 +59,6 @@ export class PenumbraShadowsWebGPU extends ShadowsBase {
         super(renderer, scene, light, options);
         if (!options.runner) fail("no emission: use `await PenumbraShadows.load(renderer, scene, light, options)`");
         this.device = renderer.backend.device;
-        this._geometries = new Map(); // BufferGeometry (or deformed mesh) → {position: GPUBuffer, index, count, ...}
         this._zeros = null;           // a vertex buffer of zeros for vertex inputs we have no data for
         this._intensity = uniform(this.intensity).setGroup(renderGroup);
         this._visibilityTarget = null;
@@ -333,21 +332,11 @@ export class PenumbraShadowsWebGPU extends ShadowsBase {
         return out;
     }
 
-    // Frees every GPU resource of the add-on and restores the materials (other add-ons' shadows on
-    // them stay). Afterwards update(), setEmission() and renderVisibility() throw; a second dispose() does nothing.
-    dispose() {
-        if (this.disposed) return;
-        this.disposed = true;
-        for (const key of [...this._geometries.keys()]) this._dropGeometry(key);
-        for (const material of this._materials) this._unpatch(material);
-        this._materials.clear();
+    // dispose(): the ExternalTextures (not their GPUTextures: the runner destroys those), our buffer of zeros
+    _disposeResources() {
         for (const t of this._textures) t.dispose();
         this._textures = [];
         if (this._zeros) this._zeros.destroy();
-        if (this._visibilityTarget) this._visibilityTarget.dispose();
-        if (this._visibilityMaterial) this._visibilityMaterial.dispose();
-        if (this.runner) this.runner.dispose();
-        this.runner = null;
     }
 }
 

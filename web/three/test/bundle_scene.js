@@ -121,3 +121,17 @@ export async function materialRatio(scene, shadows, render) {
     }
     return {ratio, unshadowed};
 }
+
+// What both test pages give the drivers to move the light and count the add-on's shadow phases.
+export function addonControls(light, shadows) {
+    return {
+        moveLight: (dx) => {
+            light.translateX(dx);
+            light.updateMatrixWorld();
+            shadows.update();
+            return shadows.info.shadowUpdates;
+        },
+        shadowUpdates: () => shadows.info.shadowUpdates,
+        update: () => { shadows.update(); return shadows.info.shadowUpdates; },
+    };
+}

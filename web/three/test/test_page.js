@@ -10,7 +10,7 @@
 import * as THREE from "three";
 import {RectAreaLightUniformsLib} from "three/addons/lights/RectAreaLightUniformsLib.js";
 import {PenumbraShadows} from "../penumbra_shadows.js";
-import {loadBundleScene, materialRatio, placementVariants} from "./bundle_scene.js";
+import {addonControls, loadBundleScene, materialRatio, placementVariants} from "./bundle_scene.js";
 
 function rendererName(gl) {
     const debug = gl.getExtension("WEBGL_debug_renderer_info");
@@ -125,14 +125,7 @@ async function main() {
         frameUniforms: () => ({computed: shadows._frame.uniforms, bundle: bundle.uniforms}),
         materialRatio: () => materialRatio(scene, shadows, renderInto),
         peer: (type, settings) => Array.from(peer(type, settings)),
-        moveLight: (dx) => {
-            light.translateX(dx);
-            light.updateMatrixWorld();
-            shadows.update();
-            return shadows.info.shadowUpdates;
-        },
-        shadowUpdates: () => shadows.info.shadowUpdates,
-        update: () => { shadows.update(); return shadows.info.shadowUpdates; },
+        ...addonControls(light, shadows), // moveLight(dx), shadowUpdates(), update()
         variants: () => placementVariants(scene, mesh, shadows, () => shadows.renderVisibility(camera, W, H)),
         // dispose(): the runner's textures and programs are deleted, the materials restored
         dispose: () => {

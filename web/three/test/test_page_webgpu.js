@@ -12,7 +12,7 @@
 import * as THREE from "three/webgpu";
 import {RectAreaLightTexturesLib} from "three/addons/lights/RectAreaLightTexturesLib.js";
 import {PenumbraShadows} from "../penumbra_shadows.js";
-import {loadBundleScene, materialRatio, placementVariants} from "./bundle_scene.js";
+import {addonControls, loadBundleScene, materialRatio, placementVariants} from "./bundle_scene.js";
 
 async function main() {
     const query = new URLSearchParams(location.search);
@@ -56,14 +56,7 @@ async function main() {
         frameUniforms: () => ({computed: shadows._frame.uniforms, bundle: bundle.uniforms}),
         materialRatio: () => materialRatio(scene, shadows, async () => flip(await renderInto())),
         variants: () => placementVariants(scene, mesh, shadows, () => shadows.renderVisibility(camera, W, H)),
-        moveLight: (dx) => {
-            light.translateX(dx);
-            light.updateMatrixWorld();
-            shadows.update();
-            return shadows.info.shadowUpdates;
-        },
-        shadowUpdates: () => shadows.info.shadowUpdates,
-        update: () => { shadows.update(); return shadows.info.shadowUpdates; },
+        ...addonControls(light, shadows), // moveLight(dx), shadowUpdates(), update()
         error: undefined,
         shadowError: () => shadows.info.error,
         // dispose(): the material's hooks gone, update() refused
