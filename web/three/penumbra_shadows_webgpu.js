@@ -90,9 +90,9 @@ export class PenumbraShadowsWebGPU extends ShadowsBase {
                 if (!t) fail(`penumbra_visibility.wgsl has no texture '${p.name}' that layout.json lists`);
                 if (t.type !== "texture_2d<f32>")
                     fail(`the emission's ${p.name} is a ${t.type}; on WebGPURenderer the add-on samples texture_2d<f32> only (packing 'atlas'; got '${layout.config.packing}')`);
-                const texture = this._externalTexture(runner, p);
-                this._textures.push(texture);
-                args[t.name] = textureNode(texture);
+                const external = this._externalTexture(runner, p);
+                this._textures.push(external);
+                args[t.name] = texture(external); // (passed whole: the wgslFn parameter gets the texture's name)
                 if (t.sampler) args[t.sampler] = sampler(args[t.name]);
             } else {
                 const make = values[p.type] || fail(`layout.json: uniform ${p.name} of type ${p.type}, which the add-on cannot pass`);
@@ -117,6 +117,8 @@ export class PenumbraShadowsWebGPU extends ShadowsBase {
     // GPUTexture, sampled as layout.json says (three makes the sampler from these fields).
     _externalTexture(runner, p) {
         const t = runner.texture(p.texture ?? p.name);
+        // (three declares an ExternalTexture's binding as filterable float, which 32-bit float formats are not)
+        if (t.format.endsWith("32float")) fail(`the emission's ${t.desc.name} is ${t.format}, which WebGPU cannot filter; use level_format rgba8 or rgba16f`);
         const d = p.sampling ?? t.desc;
         const texture = new ExternalTexture(t.texture);
         const filter = (f) => (f && f.startsWith("LINEAR") ? LinearFilter : NearestFilter);
@@ -126,7 +128,6 @@ export class PenumbraShadowsWebGPU extends ShadowsBase {
         texture.wrapS = texture.wrapT = wrap;
         texture.generateMipmaps = false;
         texture.flipY = false;
-        if (t.format.endsWith("32float")) fail(`the emission's ${p.texture} is ${t.format}, which WebGPU cannot filter; use level_format rgba8 or rgba16f`);
         return texture;
     }
 
@@ -163,27 +164,29 @@ export class PenumbraShadowsWebGPU extends ShadowsBase {
     }
 
     _renderShadow(casters, receivers, frame) {
-        for (const [name, {node, type}] of Object.entries(this._uniforms)) {
+        for (const [name, {node}] of Object.entries(this._uniforms)) {
             const value = frame.uniforms[name];
             if (value === undefined) continue;
-            if (type === "mat4") node.value.fromArray(value);
-            else if (type.startsWith("vec")) node.value.fromArray(value);
+            if (typeof node.value === "object") node.value.fromArray(value); // Vector2/3/4, Matrix4 (column-major, as ours)
             else node.value = value;
         }
         const runner = this.runner;
         runner.setUniforms(frame.uniforms);
         const drawn = casters.map((object) => this._geometryOf(object));
-        const {done} = runner.submitPhase("shadow", (render, program, setDrawUniforms) => this._drawCasters(render, program, setDrawUniforms, casters, drawn));
+        // zeros for vertex inputs other than the position (made before encoding: a draw must not see it replaced)
+        const zeros = runner.layout.programs.some((p) => (p.vertex_inputs || []).some((v) => v.name !== "penumbra_position"))
+            ? this._zeroBuffer(drawn.reduce((n, g) => Math.max(n, g.vertices), 0)) : null;
+        const {done} = runner.submitPhase("shadow", (render, program, setDrawUniforms) =>
+            this._drawCasters(render, program, setDrawUniforms, casters, drawn, zeros));
         done.then(() => (this.info.error = null), (e) => {
             this.info.error = e.message;
             console.error(`PenumbraShadows: the shadow phase failed: ${e.message}`);
         });
-        this._done = done;
     }
 
     // Each placement of each caster, with each "...FromWorld" matrix of the program times its model
     // (and instance) matrix in a uniform buffer of its own, so that the vertices stay in object space.
-    _drawCasters(render, program, setDrawUniforms, casters, drawn) {
+    _drawCasters(render, program, setDrawUniforms, casters, drawn, zeros) {
         const matrices = program.parameters.filter((p) => p.type === "mat4" && /FromWorld$/.test(p.name));
         const base = matrices.map((p) => new Matrix4().fromArray(this.runner.uniformValues[p.name]));
         const m = new Matrix4();
@@ -195,7 +198,7 @@ export class PenumbraShadowsWebGPU extends ShadowsBase {
                 matrices.forEach((p, k) => (values[p.name] = m.multiplyMatrices(base[k], matrix).toArray()));
                 setDrawUniforms(values, slot++);
                 (program.vertex_inputs || []).forEach((v, location) =>
-                    render.setVertexBuffer(location, v.name === "penumbra_position" ? g.position : this._zeroBuffer(g.vertices)));
+                    render.setVertexBuffer(location, v.name === "penumbra_position" ? g.position : zeros));
                 if (g.index) {
                     render.setIndexBuffer(g.index, g.indexFormat);
                     render.drawIndexed(g.count, 1, g.first);
@@ -351,10 +354,6 @@ async function loadRunner(device, emission, kind, wasm) {
     return runner;
 }
 
-// TSL's texture node of an ExternalTexture, passed whole to the wgslFn (its name, not a sample).
-function textureNode(t) {
-    return texture(t);
-}
 
 // ---- the snippet, rewritten for wgslFn --------------------------------------------------------
 
