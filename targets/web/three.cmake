@@ -63,7 +63,8 @@ endif()
 # and the tree (rect), and the corpus's teapot where scripts/get_corpus.sh fetched it (the corpus
 # is not in the repository): the visibility against the desktop run within the oracle's bound, the
 # node materials' light term, instanced/skinned/morphed casters, updates and dispose; and two add-ons
-# (a RectAreaLight and a sun) on one node material, each scaling its own light's term only.
+# (a RectAreaLight and a sun) on one node material, each scaling its own light's term only; the
+# first bundle also on three r180.
 if(TARGET penumbra-export-bundle)
     set(three_webgpu_cases "boxes-rect|--scene boxes --light rect --filter nbuffer|"
         "boxes-sun|--scene boxes --light sun --filter gaussian --light-size 20|:physical-node"
@@ -107,10 +108,15 @@ if(TARGET penumbra-export-bundle)
         endforeach()
         list(PREPEND three_webgpu_two --two-lights)
     endif()
+    # the first bundle again on three r180 (the other end of the peer range; npm ci here installs it)
+    set(three_webgpu_r180 "")
+    if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/node_modules/three-r180/build/three.webgpu.js)
+        set(three_webgpu_r180 --three ${CMAKE_CURRENT_SOURCE_DIR}/node_modules/three-r180)
+    endif()
     add_test(NAME three-webgpu
              COMMAND ${PENUMBRA_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/three_webgpu_test.mjs --web ${PROJECT_SOURCE_DIR}/web
                      --chromium ${PENUMBRA_CHROMIUM} --images ${CMAKE_CURRENT_BINARY_DIR}/three-webgpu/images ${three_webgpu_two}
-                     ${three_webgpu_bundles})
+                     ${three_webgpu_r180} ${three_webgpu_bundles})
     set_tests_properties(three-webgpu PROPERTIES LABELS browser SKIP_RETURN_CODE 77 TIMEOUT 120
                          FIXTURES_REQUIRED penumbra_three_webgpu_bundles)
 endif()

@@ -4,7 +4,7 @@
 // (the desktop GL run of the same configuration; emission/ holds its wgsl emission):
 //
 //   node targets/web/three_webgpu_test.mjs --web web [--chromium PATH] [--images DIR]
-//        [--two-lights RECT_EMISSION_DIR SUN_EMISSION_DIR] BUNDLE_DIR[:physical-node]...
+//        [--two-lights RECT_EMISSION_DIR SUN_EMISSION_DIR] [--three THREE_DIR] BUNDLE_DIR[:physical-node]...
 //
 // Each bundle's scene is rebuilt in three.js (web/three/test/webgpu.html: the bundle's triangles,
 // light and camera, as the WebGL2 test's page), the add-on attached with PenumbraShadows.load(), and
@@ -25,9 +25,12 @@
 // enough that both fit 16 sampled textures a stage), on one MeshStandardNodeMaterial
 // (web/three/test/two_lights_webgpu.html): each light's lit-with / lit-without is its own visibility,
 // both lights on is the sum of each alone, and their shadows differ.
+// --three: the first bundle again with another three.js build (an npm package folder, e.g. three
+// r180, the other end of the peer range), through a page whose import map points there.
 // Exit 0 pass, 1 fail, 2 bad arguments, 77 skip (no chromium; no WebGPU adapter only with
 // PENUMBRA_WEBGPU_OPTIONAL=1, as wgsl_compile.mjs).
 import fs from "node:fs";
+import os from "node:os";
 import path from "node:path";
 import {openPage, writeGreyPng} from "./harness.mjs";
 import {PIXELS_ALLOWED, R8_STEP, UNIFORM_TOLERANCE, VARIANT_PIXELS_ALLOWED, compareRatio, compareVariants, compareWithDesktop,
@@ -40,23 +43,23 @@ const INTERIOR_PIXELS_ALLOWED = 1;
 
 function usage(message) {
     console.error(`error: ${message}\nusage: node three_webgpu_test.mjs --web DIR [--chromium PATH] [--images DIR] ` +
-                  "[--two-lights RECT_DIR SUN_DIR] BUNDLE_DIR[:physical-node]...");
+                  "[--two-lights RECT_DIR SUN_DIR] [--three THREE_DIR] BUNDLE_DIR[:physical-node]...");
     process.exit(2);
 }
 
 function parseArguments(argv) {
-    const out = {web: null, chromium: "/usr/bin/chromium", images: null, bundles: [], twoLights: null};
+    const out = {web: null, chromium: "/usr/bin/chromium", images: null, bundles: [], twoLights: null, three: null};
     for (let i = 0; i < argv.length; ++i) {
         const flag = argv[i];
         if (flag === "--two-lights") {
             if (i + 2 >= argv.length) usage("--two-lights: needs the rect and the sun emission folders");
             out.twoLights = [argv[++i], argv[++i]];
             for (const dir of out.twoLights) if (!fs.existsSync(path.join(dir, "layout.json"))) usage(`--two-lights: no layout.json in ${dir}`);
-        } else if (flag === "--web" || flag === "--chromium" || flag === "--images") {
+        } else if (flag === "--web" || flag === "--chromium" || flag === "--images" || flag === "--three") {
             if (i + 1 >= argv.length) usage(`${flag}: missing value`);
             out[flag.slice(2)] = argv[++i];
         } else if (flag.startsWith("--")) {
-            usage(`unknown flag '${flag}'; allowed: --web, --chromium, --images, --two-lights`);
+            usage(`unknown flag '${flag}'; allowed: --web, --chromium, --images, --two-lights, --three`);
         } else {
             const [dir, material = ""] = flag.split(/:(?=[a-z-]+$)/);
             if (material && material !== "physical-node") usage(`${flag}: ':${material}' unknown; allowed: ':physical-node'`);
@@ -67,17 +70,18 @@ function parseArguments(argv) {
     if (!out.web) usage("--web: missing (the web/ folder with three/penumbra_shadows.js)");
     if (!fs.existsSync(path.join(out.web, "three/penumbra_shadows_webgpu.js"))) usage(`--web: no three/penumbra_shadows_webgpu.js in ${out.web}`);
     if (out.bundles.length === 0) usage("no bundle directories");
+    if (out.three && !fs.existsSync(path.join(out.three, "build/three.webgpu.js"))) usage(`--three: no build/three.webgpu.js in ${out.three}`);
     return out;
 }
 
-async function checkBundle(browser, port, index, {dir, material}, images) {
+async function checkBundle(browser, port, index, {dir, material}, images, page_ = "webgpu.html") {
     const bundle = JSON.parse(fs.readFileSync(path.join(dir, "uniforms.json"), "utf8"));
     const c = bundle.config;
     if (c.target !== "wgsl") return {failures: [`${dir}: a bundle of target '${c.target}'; this test runs wgsl bundles`]};
     const label = `${bundle.scene} ${c.light} ${c.filter}/${c.packing} ${c.slices}×${c.resolution}² ${bundle.width}x${bundle.height}`;
     const started = Date.now();
     const query = `bundle=/bundle/${index}/${material ? `&material=${material}` : ""}`;
-    const {page, problems} = await openPage(browser, `http://127.0.0.1:${port}/web/three/test/webgpu.html?${query}`, "penumbraThree");
+    const {page, problems} = await openPage(browser, `http://127.0.0.1:${port}/web/three/test/${page_}?${query}`, "penumbraThree");
     const failures = [];
     const call = (name, ...args) => page.evaluate((n, a) => window.penumbraThree[n](...a), name, args);
     const info = await call("info");
@@ -160,12 +164,23 @@ async function main() {
     const roots = {web: args.web};
     args.bundles.forEach(({dir}, i) => (roots[`bundle/${i}`] = dir));
     if (args.twoLights) [roots["two/rect"], roots["two/sun"]] = args.twoLights;
-    const {browser, port, adapter, close} = await startWebGPU(args.chromium, roots);
+    // --three: the test page with an import map to that build (served beside webgpu.html, so that
+    // its module's relative imports resolve alike)
+    const files = {};
+    if (args.three) {
+        roots["three-alt"] = args.three;
+        const html = fs.readFileSync(path.join(args.web, "three/test/webgpu.html"), "utf8").replaceAll("../node_modules/three/", "/three-alt/");
+        const file = path.join(fs.mkdtempSync(path.join(os.tmpdir(), "penumbra-three-webgpu-")), "webgpu-alt.html");
+        fs.writeFileSync(file, html);
+        files["/web/three/test/webgpu-alt.html"] = file;
+    }
+    const {browser, port, adapter, close} = await startWebGPU(args.chromium, roots, files);
     console.log(adapterLine(adapter));
     let failures = 0;
     try {
         for (let i = 0; i < args.bundles.length; ++i) failures += (await checkBundle(browser, port, i, args.bundles[i], args.images)).failures.length;
         if (args.twoLights) failures += (await checkTwoLights(browser, port)).length;
+        if (args.three) failures += (await checkBundle(browser, port, 0, args.bundles[0], null, "webgpu-alt.html")).failures.length;
     } catch (e) {
         console.log(`FAIL ${e.message}`);
         failures += 1;

@@ -45,7 +45,9 @@ const shadowedMaterials = new WeakMap();
 export class PenumbraShadowsWebGPU extends ShadowsBase {
     static async load(renderer, scene, light, options = {}) {
         if (!renderer || !renderer.isWebGPURenderer) fail("the first argument must be a WebGPURenderer (three/webgpu)");
-        await renderer.init();
+        // (r187's init() returns its first promise again; r180's throws once initialized, and has only
+        // the private _initialized to tell)
+        if (!(renderer.initialized ?? renderer._initialized)) await renderer.init();
         if (!renderer.backend.isWebGPUBackend || !renderer.backend.device)
             fail("this WebGPURenderer runs its WebGL2 fallback backend (no WebGPU in this browser, or forceWebGL), " +
                  "where the add-on has no GPUDevice to run the wgsl emission on; use a THREE.WebGLRenderer there");
