@@ -50,13 +50,15 @@ if [ ! -f "$three/build/three.module.js" ]; then
     exit 1
 fi
 mkdir -p "$out/three/node_modules/three/build" "$out/three/node_modules/three/examples/jsm"/{controls,helpers,lights,libs,loaders,utils}
-cp -r "$root"/web/three/{penumbra_shadows.js,penumbra_runner.js,light_frame.js,penumbra_emitter.js,emissions.js} \
+cp -r "$root"/web/three/{penumbra_shadows.js,penumbra_shadows_webgpu.js,penumbra_scene.js,penumbra_runner.js,penumbra_webgpu_runner.js,light_frame.js,penumbra_emitter.js,emissions.js} \
       "$root"/web/three/{penumbra_shadows.d.ts,penumbra_emitter.d.ts,package.json,README.md} \
       "$root"/web/three/emissions "$root"/web/three/example "$out/three/"
 rm -f "$out/three/emissions/regenerate.sh"
 cp "$wasm" "$out/three/penumbra_emitter.wasm"
 cp "$three"/LICENSE "$three"/package.json "$out/three/node_modules/three/"
-cp "$three"/build/three.module.js "$three"/build/three.core.js "$out/three/node_modules/three/build/"
+# (three.webgpu.js and three.tsl.js: the example's renderer switch to WebGPURenderer)
+cp "$three"/build/three.module.js "$three"/build/three.core.js "$three"/build/three.webgpu.js "$three"/build/three.tsl.js \
+   "$out/three/node_modules/three/build/"
 addons="controls/OrbitControls.js helpers/RectAreaLightHelper.js lights/RectAreaLightUniformsLib.js
         lights/RectAreaLightTexturesLib.js libs/lil-gui.module.min.js loaders/GLTFLoader.js loaders/OBJLoader.js
         utils/BufferGeometryUtils.js utils/SkeletonUtils.js"

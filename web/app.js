@@ -7,7 +7,7 @@
 // --target essl300). Light: sliders, or drag with the shift key; camera: drag to orbit.
 //
 // The renderer switch runs WebGL2 (the essl300 emission, penumbra_runner.js) or WebGPU (the wgsl
-// emission of the same configuration, webgpu_runner.js; for the techniques that have WGSL): WebGPU
+// emission of the same configuration, three/penumbra_webgpu_runner.js; for the techniques that have WGSL): WebGPU
 // computes the visibility, the page reads it back and shows it through the same WebGL2 composite.
 //
 // URL parameters: ?bundle=DIR/, ?scene=NAME (a built-in scene), ?wasm=URL, ?backend=webgl2|webgpu.
@@ -17,7 +17,7 @@
 // package penumbra-three): one copy, which the playground imports from there.
 import {loadEmitter} from "./three/penumbra_emitter.js";
 import {LayoutRunner} from "./three/penumbra_runner.js";
-import {WebGPULayoutRunner} from "./webgpu_runner.js";
+import {WebGPULayoutRunner} from "./three/penumbra_webgpu_runner.js";
 import {lightUniforms} from "./three/light_frame.js";
 import {sunDirection, timeWindow} from "./sun_path.js";
 import {ConfigPanel} from "./config_panel.js";

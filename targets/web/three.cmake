@@ -56,3 +56,69 @@ if(three_emitter_wasm)
 else()
     message(STATUS "penumbra: no WebAssembly emitter, so no test of the npm package penumbra-three (it ships the emitter)")
 endif()
+# "three-webgpu": the add-on on three's WebGPURenderer (three_webgpu_test.mjs, WebGPU through
+# SwiftShader as webgpu.cmake's tests; exits 77 without chromium, and without a WebGPU adapter only
+# with PENUMBRA_WEBGPU_OPTIONAL=1) over wgsl bundles of boxes (rect, N-buffer; sun, Gaussian levels,
+# with a MeshPhysicalNodeMaterial; rect, mipmap)
+# and the tree (rect), and the corpus's teapot where scripts/get_corpus.sh fetched it (the corpus
+# is not in the repository): the visibility against the desktop run within the oracle's bound, the
+# node materials' light term, instanced/skinned/morphed casters, updates and dispose; and two add-ons
+# (a RectAreaLight and a sun) on one node material, each scaling its own light's term only; the
+# first bundle also on three r180.
+if(TARGET penumbra-export-bundle)
+    set(three_webgpu_cases "boxes-rect|--scene boxes --light rect --filter nbuffer|"
+        "boxes-sun|--scene boxes --light sun --filter gaussian --light-size 20|:physical-node"
+        "tree-rect|--scene tree --light rect --filter nbuffer|"
+        # the mip chain (a pass a level on WebGPU): one sampled texture for all levels
+        "boxes-mipmap|--scene boxes --light rect --filter mipmap|")
+    if(DEFINED ENV{XDG_CACHE_HOME})
+        set(three_webgpu_teapot $ENV{XDG_CACHE_HOME}/penumbra/corpus/meshes/teapot.obj)
+    else()
+        set(three_webgpu_teapot $ENV{HOME}/.cache/penumbra/corpus/meshes/teapot.obj)
+    endif()
+    if(EXISTS ${three_webgpu_teapot})
+        list(APPEND three_webgpu_cases "teapot-rect|--scene ${three_webgpu_teapot} --light rect --filter nbuffer|")
+    else()
+        message(STATUS "penumbra: no corpus (scripts/get_corpus.sh), so three-webgpu runs without the teapot")
+    endif()
+    set(three_webgpu_bundles "")
+    foreach(case IN LISTS three_webgpu_cases)
+        string(REPLACE "|" ";" parts "${case}")
+        list(GET parts 0 name)
+        list(GET parts 1 flags)
+        list(GET parts 2 material)
+        separate_arguments(flags UNIX_COMMAND "${flags}")
+        set(dir ${PROJECT_BINARY_DIR}/target_bundles/three-webgpu-${name})
+        add_test(NAME penumbra-bundle-three-webgpu-${name}
+                 COMMAND $<TARGET_FILE:penumbra-export-bundle> ${flags} --target wgsl --slices 16 --resolution 128
+                         --size 64x64 --out ${dir})
+        set_tests_properties(penumbra-bundle-three-webgpu-${name} PROPERTIES FIXTURES_SETUP penumbra_three_webgpu_bundles
+                             LABELS browser TIMEOUT 120)
+        list(APPEND three_webgpu_bundles ${dir}${material})
+    endforeach()
+    # two add-ons on one node material (a RectAreaLight and a sun): emissions at 32² (six textures
+    # each), so that both fit WebGPU's 16 sampled textures a stage beside three's own
+    set(three_webgpu_two "")
+    if(TARGET penumbra-gen)
+        foreach(light IN ITEMS rect sun)
+            set(dir ${CMAKE_CURRENT_BINARY_DIR}/three-webgpu/two-lights-${light})
+            add_test(NAME penumbra-three-webgpu-two-lights-${light}
+                     COMMAND $<TARGET_FILE:penumbra-gen> --target wgsl --light ${light} --filter nbuffer --slices 8 --resolution 32 --out ${dir})
+            set_tests_properties(penumbra-three-webgpu-two-lights-${light} PROPERTIES FIXTURES_SETUP penumbra_three_webgpu_bundles
+                                 LABELS browser TIMEOUT 60)
+            list(APPEND three_webgpu_two ${dir})
+        endforeach()
+        list(PREPEND three_webgpu_two --two-lights)
+    endif()
+    # the first bundle again on three r180 (the other end of the peer range; npm ci here installs it)
+    set(three_webgpu_r180 "")
+    if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/node_modules/three-r180/build/three.webgpu.js)
+        set(three_webgpu_r180 --three ${CMAKE_CURRENT_SOURCE_DIR}/node_modules/three-r180)
+    endif()
+    add_test(NAME three-webgpu
+             COMMAND ${PENUMBRA_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/three_webgpu_test.mjs --web ${PROJECT_SOURCE_DIR}/web
+                     --chromium ${PENUMBRA_CHROMIUM} --images ${CMAKE_CURRENT_BINARY_DIR}/three-webgpu/images ${three_webgpu_two}
+                     ${three_webgpu_r180} ${three_webgpu_bundles})
+    set_tests_properties(three-webgpu PROPERTIES LABELS browser SKIP_RETURN_CODE 77 TIMEOUT 120
+                         FIXTURES_REQUIRED penumbra_three_webgpu_bundles)
+endif()

@@ -15,8 +15,8 @@ const three = path.join(path.dirname(fileURLToPath(import.meta.url)), "../../web
 export function emissionsTable(dir = path.join(three, "emissions")) {
     const keys = fs.readdirSync(dir).filter((k) => fs.statSync(path.join(dir, k)).isDirectory()).sort();
     const lines = [
-        "// emissions.js — the emissions shipped in emissions/ (penumbra-gen --target essl300 output, one folder",
-        "// per configuration: emissions/regenerate.sh), each file a literal `new URL(\"./…\", import.meta.url)`",
+        "// emissions.js — the emissions shipped in emissions/ (penumbra-gen output, one folder per configuration:",
+        "// essl300, and \"<key>-wgsl\" in WGSL; emissions/regenerate.sh), each file a literal `new URL(\"./…\", import.meta.url)`",
         "// so that bundlers (Vite, webpack, Parcel) copy it into the build. Written by",
         "// targets/web/three_emissions_table.mjs --write; do not edit.",
         "export const EMISSIONS = {",

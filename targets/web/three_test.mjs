@@ -24,14 +24,16 @@
 //      (a configuration object as `emission`) gives the same visibility as the bundle's emission
 //      folder (within 1e-6).
 // Exit 0 pass, 1 fail, 77 skip (no chromium), 2 bad arguments.
+// The checks 1-4 are exported for three_webgpu_test.mjs (the add-on on WebGPURenderer).
 import path from "node:path";
 import fs from "node:fs";
+import {fileURLToPath} from "node:url";
 import {serve, launchChromium, openPage, readFloats} from "./harness.mjs";
 
-const R8_STEP = 1 / 255;
-const UNIFORM_TOLERANCE = 1e-5;
-const PIXELS_ALLOWED = 0.01;
-const VARIANT_PIXELS_ALLOWED = 0.002; // float rounding of M applied on the GPU or the CPU
+export const R8_STEP = 1 / 255;
+export const UNIFORM_TOLERANCE = 1e-5;
+export const PIXELS_ALLOWED = 0.01;
+export const VARIANT_PIXELS_ALLOWED = 0.002; // float rounding of M applied on the GPU or the CPU
 
 function parseArguments(argv) {
     const out = {web: null, chromium: "/usr/bin/chromium", wasm: null, bundles: []};
@@ -56,7 +58,7 @@ function usage(message) {
 // Pixels whose 8 neighbours are geometry within 8 pixel footprints of its world position and
 // with its normal (the desktop G-buffers): at the others (silhouettes and creases), three's
 // rasterization may see another surface than llvmpipe's.
-function interiorPixels(positions, normals, bundle) {
+export function interiorPixels(positions, normals, bundle) {
     const W = bundle.width, H = bundle.height, eye = bundle.camera.eye;
     const scale = 2 * Math.tan(bundle.camera.fov_y_degrees * Math.PI / 360) / H;
     const out = new Uint8Array(W * H);
@@ -87,6 +89,63 @@ function relativeDifference(a, b) {
     return worst / Math.max(scale, 1e-30);
 }
 
+// 1. The add-on's light frame against the bundle's uniforms: the largest relative difference.
+export function frameError(frame) {
+    let uniformError = 0;
+    for (const [name, value] of Object.entries(frame.bundle)) {
+        if (!(name in frame.computed)) continue;
+        const a = [].concat(frame.computed[name]), b = [].concat(value);
+        uniformError = Math.max(uniformError, relativeDifference(a, b));
+    }
+    return uniformError;
+}
+
+// 2. The add-on's visibility (bottom row first) against the desktop run of bundle `dir`: on the
+// interior pixels, how many are outside 2·bound + q (and the largest and mean |Δ|); silhouette
+// pixels are counted apart (silhouetteOutside: those of them outside too).
+export function compareWithDesktop(visibility, dir, bundle) {
+    const gl = readFloats(path.join(dir, "visibility_gl.f32")), bound = readFloats(path.join(dir, "bound.f32"));
+    const positions = readFloats(path.join(dir, "positions.f32"));
+    const interior = interiorPixels(positions, readFloats(path.join(dir, "normals.f32")), bundle);
+    const out = {outside: 0, worst: 0, geometry: 0, shadowed: 0, mean: 0, silhouette: 0, silhouetteOutside: 0, pixels: gl.length,
+                 length: visibility.length};
+    for (let i = 0; i < gl.length; ++i) {
+        if (positions[4 * i + 3] === 0) continue; // background: the desktop leaves 1
+        const d = Math.abs(visibility[i] - gl[i]);
+        const beyond = d > 2 * bound[i] + R8_STEP + 1e-6;
+        if (!interior[i]) { ++out.silhouette; if (beyond) ++out.silhouetteOutside; continue; }
+        ++out.geometry;
+        if (gl[i] < 0.98) ++out.shadowed;
+        out.mean += d;
+        out.worst = Math.max(out.worst, d);
+        if (beyond) ++out.outside;
+    }
+    out.mean /= Math.max(out.geometry, 1);
+    return out;
+}
+
+// 3. (rect) lit-with / lit-without against the visibility, where the light reaches.
+export function compareRatio({ratio, unshadowed}, visibility) {
+    const out = {outside: 0, lit: 0, worst: 0};
+    for (let i = 0; i < ratio.length; ++i) {
+        if (!(unshadowed[i] > 1e-3)) continue;
+        ++out.lit;
+        const d = Math.abs(ratio[i] - visibility[i]);
+        out.worst = Math.max(out.worst, d);
+        if (!(d <= 2 * R8_STEP + 1e-3)) ++out.outside;
+    }
+    return out;
+}
+
+// 4. The variants against the moved Mesh: pixels differing by more than 2q, by name; and how many
+// pixels moving the mesh changed.
+export function compareVariants(variants) {
+    const differing = (a, b, tolerance) => a.reduce((n, v, i) => n + (Math.abs(v - b[i]) > tolerance ? 1 : 0), 0);
+    const out = {moved: differing(variants.mesh, variants.unmoved, 2 * R8_STEP)};
+    for (const name of ["instanced", "skinned", "morphed"]) out[name] = differing(variants[name], variants.mesh, 2 * R8_STEP);
+    return out;
+}
+
 async function checkBundle(browser, port, index, dir, wasm) {
     const bundle = JSON.parse(fs.readFileSync(path.join(dir, "uniforms.json"), "utf8"));
     const c = bundle.config;
@@ -97,31 +156,13 @@ async function checkBundle(browser, port, index, dir, wasm) {
     const info = await page.evaluate(() => window.penumbraThree.info());
 
     // 1. light frame
-    const frame = await page.evaluate(() => window.penumbraThree.frameUniforms());
-    let uniformError = 0;
-    for (const [name, value] of Object.entries(frame.bundle)) {
-        if (!(name in frame.computed)) continue;
-        const a = [].concat(frame.computed[name]), b = [].concat(value);
-        uniformError = Math.max(uniformError, relativeDifference(a, b));
-    }
+    const uniformError = frameError(await page.evaluate(() => window.penumbraThree.frameUniforms()));
     if (uniformError > UNIFORM_TOLERANCE) failures.push(`the add-on's light frame differs from the desktop's by ${uniformError.toExponential(2)} (relative)`);
 
     // 2. visibility against the desktop runtime
-    const gl = readFloats(path.join(dir, "visibility_gl.f32")), bound = readFloats(path.join(dir, "bound.f32"));
-    const positions = readFloats(path.join(dir, "positions.f32"));
     const visibility = await page.evaluate(() => window.penumbraThree.visibility());
-    const interior = interiorPixels(positions, readFloats(path.join(dir, "normals.f32")), bundle);
-    let outside = 0, worst = 0, geometry = 0, shadowed = 0, sumDiff = 0, silhouette = 0;
-    for (let i = 0; i < gl.length; ++i) {
-        if (positions[4 * i + 3] === 0) continue; // background: the desktop leaves 1
-        if (!interior[i]) { ++silhouette; continue; }
-        ++geometry;
-        if (gl[i] < 0.98) ++shadowed;
-        const d = Math.abs(visibility[i] - gl[i]);
-        sumDiff += d;
-        worst = Math.max(worst, d);
-        if (d > 2 * bound[i] + R8_STEP + 1e-6) ++outside;
-    }
+    const v = compareWithDesktop(visibility, dir, bundle);
+    const {outside, worst, geometry, shadowed, silhouette} = v, gl = {length: v.pixels};
     if (visibility.length !== gl.length) failures.push(`${visibility.length} pixels read, expected ${gl.length}`);
     if (outside > PIXELS_ALLOWED * gl.length)
         failures.push(`${outside} of ${geometry} interior pixels differ from the desktop run by more than 2·bound + q (allowed: ${100 * PIXELS_ALLOWED}% of the ${gl.length} pixels)`);
@@ -130,28 +171,20 @@ async function checkBundle(browser, port, index, dir, wasm) {
     // 3. the material hook
     let ratioOutside = 0, lit = 0, ratioWorst = 0;
     if (c.light === "rect") {
-        const {ratio, unshadowed} = await page.evaluate(() => window.penumbraThree.materialRatio());
-        for (let i = 0; i < ratio.length; ++i) {
-            if (!(unshadowed[i] > 1e-3)) continue;
-            ++lit;
-            const d = Math.abs(ratio[i] - visibility[i]);
-            ratioWorst = Math.max(ratioWorst, d);
-            if (!(d <= 2 * R8_STEP + 1e-3)) ++ratioOutside;
-        }
+        ({outside: ratioOutside, lit, worst: ratioWorst} = compareRatio(await page.evaluate(() => window.penumbraThree.materialRatio()), visibility));
         if (lit === 0) failures.push("the RectAreaLight lights no pixel");
         if (ratioOutside > PIXELS_ALLOWED * lit) failures.push(`the lit image is not visibility × unshadowed at ${ratioOutside} of ${lit} lit pixels`);
     }
 
     // 4. the same casters as a moved Mesh, an InstancedMesh, a SkinnedMesh and a morph target
-    const variants = await page.evaluate(() => window.penumbraThree.variants());
-    const differing = (a, b, tolerance) => a.reduce((n, v, i) => n + (Math.abs(v - b[i]) > tolerance ? 1 : 0), 0);
+    const variants = compareVariants(await page.evaluate(() => window.penumbraThree.variants()));
     const variantText = [];
     for (const name of ["instanced", "skinned", "morphed"]) {
-        const n = differing(variants[name], variants.mesh, 2 * R8_STEP);
+        const n = variants[name];
         variantText.push(`${name} ${n}`);
         if (n > VARIANT_PIXELS_ALLOWED * gl.length) failures.push(`the ${name} casters and receivers differ from the moved Mesh at ${n} pixels`);
     }
-    const movedPixels = differing(variants.mesh, variants.unmoved, 2 * R8_STEP);
+    const movedPixels = variants.moved;
     if (movedPixels === 0) failures.push("moving the mesh changed no pixel: the variants prove nothing");
 
     // 5. updates and dispose
@@ -185,7 +218,7 @@ async function checkBundle(browser, port, index, dir, wasm) {
         emitterText = `; WebAssembly emitter vs emission folder: max |Δ| ${worstEmitted.toExponential(2)}`;
     }
     console.log(`${failures.length ? "FAIL" : "ok  "} three r${info.three} ${label} (${((Date.now() - started) / 1000).toFixed(1)} s)\n` +
-                `     light frame vs desktop ${uniformError.toExponential(2)} (relative); visibility vs desktop: mean |Δ| ${(sumDiff / Math.max(geometry, 1)).toExponential(2)}, ` +
+                `     light frame vs desktop ${uniformError.toExponential(2)} (relative); visibility vs desktop: mean |Δ| ${v.mean.toExponential(2)}, ` +
                 `max ${worst.toFixed(4)}, ${outside} of ${geometry} interior pixels outside 2·bound + q (${shadowed} shadowed; ${silhouette} silhouette pixels left out)\n` +
                 `     material: lit-with / lit-without vs visibility max |Δ| ${ratioWorst.toFixed(4)}, ${ratioOutside} of ${lit} lit pixels outside 2q + 1e-3; ` +
                 `moved light changed ${changed} pixels\n` +
@@ -219,4 +252,4 @@ async function main() {
     process.exit(failures ? 1 : 0);
 }
 
-main();
+if (process.argv[1] && path.resolve(process.argv[1]) === fileURLToPath(import.meta.url)) main();

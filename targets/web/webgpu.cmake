@@ -28,7 +28,8 @@ if(TARGET penumbra-gen)
                      --out ${CMAKE_CURRENT_BINARY_DIR}/wgsl-matrix --web ${PROJECT_SOURCE_DIR}/web ${webgpu_wasm} --chromium ${PENUMBRA_CHROMIUM})
     set_tests_properties(wgsl_matrix PROPERTIES LABELS browser SKIP_RETURN_CODE 77 TIMEOUT 120)
 endif()
-# "webgpu_bundles": the WebGPU layout runner (web/webgpu_runner.js) over bundles (boxes; tree and spider for occlusion textures) at 64x64
+# "webgpu_bundles": the WebGPU layout runner (web/three/penumbra_webgpu_runner.js) over bundles (boxes; tree and spider
+# for occlusion textures) at 64x64
 # exported with --target wgsl (the desktop GL run of glsl450, emission/ in WGSL) for every technique
 # with WGSL (shadowmap, pcf, pcss, erosion, evsm, occlusion; rect and sun), each compared with the desktop run's
 # image (webgpu_bundle_test.mjs); with the WebAssembly emitter, the playground's renderer switch on

@@ -1,4 +1,4 @@
-// webgpu_bundle_test.mjs — the `webgpu_bundles` test: the WebGPU layout runner (web/webgpu_runner.js)
+// webgpu_bundle_test.mjs — the `webgpu_bundles` test: the WebGPU layout runner (web/three/penumbra_webgpu_runner.js)
 // in Debian's chromium (headless, WebGPU through SwiftShader) over bundles exported with
 // `penumbra-export-bundle --target wgsl` (the desktop GL runtime ran glsl450; emission/ holds the
 // wgsl emission of the same configuration). For each bundle the page builds the layout's textures,
@@ -84,8 +84,8 @@ function parseArguments(argv) {
             out.bundles.push(flag);
         }
     }
-    if (!out.web) usage("--web: missing (the web/ folder with webgpu_runner.js)");
-    if (!fs.existsSync(path.join(out.web, "webgpu_runner.js"))) usage(`--web: no webgpu_runner.js in ${out.web}`);
+    if (!out.web) usage("--web: missing (the web/ folder with three/penumbra_webgpu_runner.js)");
+    if (!fs.existsSync(path.join(out.web, "three/penumbra_webgpu_runner.js"))) usage(`--web: no three/penumbra_webgpu_runner.js in ${out.web}`);
     if (out.bundles.length === 0) usage("no bundle directories");
     if (out.wasm && !fs.existsSync(out.wasm)) usage(`--wasm: no file ${out.wasm} (cmake --build build --target penumbra-emitter-wasm)`);
     for (const b of out.bundles) if (!fs.existsSync(path.join(b, "uniforms.json"))) usage(`${b}: not a bundle (no uniforms.json)`);
@@ -99,7 +99,7 @@ function parseArguments(argv) {
 // 10 × array layer 0 + array layer 1 + 3D slice 1 + 100 × 3D slice 0, which is 0.25 + 0.5 = 0.75
 // only when every pass went to the layer and slice the layout names.
 async function conventionsInPage() {
-    const {WebGPULayoutRunner} = await import("/web/webgpu_runner.js");
+    const {WebGPULayoutRunner} = await import("/web/three/penumbra_webgpu_runner.js");
     const usage = (...u) => ({webgpu: {format: "rgba32float", usage: ["TEXTURE_BINDING", ...u]}});
     const texture = (name, target, depth, size, extra) => ({name, target, width: 4, height: 4, depth, mip_levels: 1, min_filter: "NEAREST",
                                                            mag_filter: "NEAREST", wrap: "CLAMP_TO_EDGE", size, source: "passes", ...extra});
@@ -156,7 +156,7 @@ async function conventionsInPage() {
 // `injectSlices`, the desktop run's slicing output (slices.f32, slice k of R² floats at k·R², rows
 // bottom first) takes the place of the slicing pass, as browser_test.mjs does for WebGL2.
 async function runInPage(index, injectSlices = false) {
-    const {WebGPULayoutRunner} = await import("/web/webgpu_runner.js");
+    const {WebGPULayoutRunner} = await import("/web/three/penumbra_webgpu_runner.js");
     const base = `/bundle/${index}/`;
     const get = async (name, kind) => {
         const response = await fetch(base + name);

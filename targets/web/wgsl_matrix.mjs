@@ -8,7 +8,7 @@
 // layout.json's programs (each present, one `fn main` with its stage's attribute) and compile with
 // zero errors. Each one of REFUSED must be refused by penumbra-gen as a user error (exit 2, one
 // `error: ...` line that names wgsl), so that a crash or an unrelated failure cannot pass as a refusal.
-// With --web (the folder of webgpu_runner.js), each configuration whose modules compile is also built
+// With --web (the folder of three/penumbra_webgpu_runner.js), each configuration whose modules compile is also built
 // by the WebGPU layout runner from its layout.json alone (bind group layouts from the parameters'
 // bindings, textures of its webgpu formats and usages, a pipeline for every shadow and screen pass):
 // WebGPU's validation then checks layout.json against the WGSL (binding types, inter-stage locations,
@@ -92,7 +92,7 @@ function parseArguments(argv) {
     if (!fs.existsSync(out.gen)) usage(`--gen: no file ${out.gen}`);
     if (!out.out) usage("--out: missing (a folder for the emissions)");
     if (out.wasm && !fs.existsSync(out.wasm)) usage(`--wasm: no file ${out.wasm} (cmake --build build --target penumbra-emitter-wasm)`);
-    if (out.web && !fs.existsSync(path.join(out.web, "webgpu_runner.js"))) usage(`--web: no webgpu_runner.js in ${out.web}`);
+    if (out.web && !fs.existsSync(path.join(out.web, "three/penumbra_webgpu_runner.js"))) usage(`--web: no three/penumbra_webgpu_runner.js in ${out.web}`);
     return out;
 }
 
@@ -200,7 +200,7 @@ async function main() {
                 if (Object.keys(e.files).some((f) => badModules.has(path.join(e.dir, f)))) continue;
                 const error = await gpu.page.evaluate(async (files) => {
                     try {
-                        const {WebGPULayoutRunner} = await import("/web/webgpu_runner.js");
+                        const {WebGPULayoutRunner} = await import("/web/three/penumbra_webgpu_runner.js");
                         const runner = await WebGPULayoutRunner.fromEmission(window.penumbraDevice, {files});
                         runner.dispose();
                         return null;

@@ -1,5 +1,5 @@
-// emissions.js — the emissions shipped in emissions/ (penumbra-gen --target essl300 output, one folder
-// per configuration: emissions/regenerate.sh), each file a literal `new URL("./…", import.meta.url)`
+// emissions.js — the emissions shipped in emissions/ (penumbra-gen output, one folder per configuration:
+// essl300, and "<key>-wgsl" in WGSL; emissions/regenerate.sh), each file a literal `new URL("./…", import.meta.url)`
 // so that bundlers (Vite, webpack, Parcel) copy it into the build. Written by
 // targets/web/three_emissions_table.mjs --write; do not edit.
 export const EMISSIONS = {
@@ -14,6 +14,18 @@ export const EMISSIONS = {
         "penumbra_slicing.vert": new URL("./emissions/rect-mipmap-16x512/penumbra_slicing.vert", import.meta.url),
         "penumbra_visibility.glsl": new URL("./emissions/rect-mipmap-16x512/penumbra_visibility.glsl", import.meta.url),
     },
+    "rect-mipmap-16x512-wgsl": {
+        "layout.json": new URL("./emissions/rect-mipmap-16x512-wgsl/layout.json", import.meta.url),
+        "penumbra_deferred.frag.wgsl": new URL("./emissions/rect-mipmap-16x512-wgsl/penumbra_deferred.frag.wgsl", import.meta.url),
+        "penumbra_fullscreen.vert.wgsl": new URL("./emissions/rect-mipmap-16x512-wgsl/penumbra_fullscreen.vert.wgsl", import.meta.url),
+        "penumbra_mip_level.frag.wgsl": new URL("./emissions/rect-mipmap-16x512-wgsl/penumbra_mip_level.frag.wgsl", import.meta.url),
+        "penumbra_pack_atlas.frag.wgsl": new URL("./emissions/rect-mipmap-16x512-wgsl/penumbra_pack_atlas.frag.wgsl", import.meta.url),
+        "penumbra_shading.frag.wgsl": new URL("./emissions/rect-mipmap-16x512-wgsl/penumbra_shading.frag.wgsl", import.meta.url),
+        "penumbra_shading.vert.wgsl": new URL("./emissions/rect-mipmap-16x512-wgsl/penumbra_shading.vert.wgsl", import.meta.url),
+        "penumbra_slicing.frag.wgsl": new URL("./emissions/rect-mipmap-16x512-wgsl/penumbra_slicing.frag.wgsl", import.meta.url),
+        "penumbra_slicing.vert.wgsl": new URL("./emissions/rect-mipmap-16x512-wgsl/penumbra_slicing.vert.wgsl", import.meta.url),
+        "penumbra_visibility.wgsl": new URL("./emissions/rect-mipmap-16x512-wgsl/penumbra_visibility.wgsl", import.meta.url),
+    },
     "rect-nbuffer-16x256": {
         "layout.json": new URL("./emissions/rect-nbuffer-16x256/layout.json", import.meta.url),
         "penumbra_deferred.frag": new URL("./emissions/rect-nbuffer-16x256/penumbra_deferred.frag", import.meta.url),
@@ -25,6 +37,18 @@ export const EMISSIONS = {
         "penumbra_slicing.frag": new URL("./emissions/rect-nbuffer-16x256/penumbra_slicing.frag", import.meta.url),
         "penumbra_slicing.vert": new URL("./emissions/rect-nbuffer-16x256/penumbra_slicing.vert", import.meta.url),
         "penumbra_visibility.glsl": new URL("./emissions/rect-nbuffer-16x256/penumbra_visibility.glsl", import.meta.url),
+    },
+    "rect-nbuffer-16x256-wgsl": {
+        "layout.json": new URL("./emissions/rect-nbuffer-16x256-wgsl/layout.json", import.meta.url),
+        "penumbra_deferred.frag.wgsl": new URL("./emissions/rect-nbuffer-16x256-wgsl/penumbra_deferred.frag.wgsl", import.meta.url),
+        "penumbra_fullscreen.vert.wgsl": new URL("./emissions/rect-nbuffer-16x256-wgsl/penumbra_fullscreen.vert.wgsl", import.meta.url),
+        "penumbra_nbuffer_level.frag.wgsl": new URL("./emissions/rect-nbuffer-16x256-wgsl/penumbra_nbuffer_level.frag.wgsl", import.meta.url),
+        "penumbra_pack_atlas.frag.wgsl": new URL("./emissions/rect-nbuffer-16x256-wgsl/penumbra_pack_atlas.frag.wgsl", import.meta.url),
+        "penumbra_shading.frag.wgsl": new URL("./emissions/rect-nbuffer-16x256-wgsl/penumbra_shading.frag.wgsl", import.meta.url),
+        "penumbra_shading.vert.wgsl": new URL("./emissions/rect-nbuffer-16x256-wgsl/penumbra_shading.vert.wgsl", import.meta.url),
+        "penumbra_slicing.frag.wgsl": new URL("./emissions/rect-nbuffer-16x256-wgsl/penumbra_slicing.frag.wgsl", import.meta.url),
+        "penumbra_slicing.vert.wgsl": new URL("./emissions/rect-nbuffer-16x256-wgsl/penumbra_slicing.vert.wgsl", import.meta.url),
+        "penumbra_visibility.wgsl": new URL("./emissions/rect-nbuffer-16x256-wgsl/penumbra_visibility.wgsl", import.meta.url),
     },
     "rect-nbuffer-16x512": {
         "layout.json": new URL("./emissions/rect-nbuffer-16x512/layout.json", import.meta.url),
@@ -38,6 +62,18 @@ export const EMISSIONS = {
         "penumbra_slicing.vert": new URL("./emissions/rect-nbuffer-16x512/penumbra_slicing.vert", import.meta.url),
         "penumbra_visibility.glsl": new URL("./emissions/rect-nbuffer-16x512/penumbra_visibility.glsl", import.meta.url),
     },
+    "rect-nbuffer-16x512-wgsl": {
+        "layout.json": new URL("./emissions/rect-nbuffer-16x512-wgsl/layout.json", import.meta.url),
+        "penumbra_deferred.frag.wgsl": new URL("./emissions/rect-nbuffer-16x512-wgsl/penumbra_deferred.frag.wgsl", import.meta.url),
+        "penumbra_fullscreen.vert.wgsl": new URL("./emissions/rect-nbuffer-16x512-wgsl/penumbra_fullscreen.vert.wgsl", import.meta.url),
+        "penumbra_nbuffer_level.frag.wgsl": new URL("./emissions/rect-nbuffer-16x512-wgsl/penumbra_nbuffer_level.frag.wgsl", import.meta.url),
+        "penumbra_pack_atlas.frag.wgsl": new URL("./emissions/rect-nbuffer-16x512-wgsl/penumbra_pack_atlas.frag.wgsl", import.meta.url),
+        "penumbra_shading.frag.wgsl": new URL("./emissions/rect-nbuffer-16x512-wgsl/penumbra_shading.frag.wgsl", import.meta.url),
+        "penumbra_shading.vert.wgsl": new URL("./emissions/rect-nbuffer-16x512-wgsl/penumbra_shading.vert.wgsl", import.meta.url),
+        "penumbra_slicing.frag.wgsl": new URL("./emissions/rect-nbuffer-16x512-wgsl/penumbra_slicing.frag.wgsl", import.meta.url),
+        "penumbra_slicing.vert.wgsl": new URL("./emissions/rect-nbuffer-16x512-wgsl/penumbra_slicing.vert.wgsl", import.meta.url),
+        "penumbra_visibility.wgsl": new URL("./emissions/rect-nbuffer-16x512-wgsl/penumbra_visibility.wgsl", import.meta.url),
+    },
     "rect-nbuffer-8x256": {
         "layout.json": new URL("./emissions/rect-nbuffer-8x256/layout.json", import.meta.url),
         "penumbra_deferred.frag": new URL("./emissions/rect-nbuffer-8x256/penumbra_deferred.frag", import.meta.url),
@@ -50,6 +86,18 @@ export const EMISSIONS = {
         "penumbra_slicing.vert": new URL("./emissions/rect-nbuffer-8x256/penumbra_slicing.vert", import.meta.url),
         "penumbra_visibility.glsl": new URL("./emissions/rect-nbuffer-8x256/penumbra_visibility.glsl", import.meta.url),
     },
+    "rect-nbuffer-8x256-wgsl": {
+        "layout.json": new URL("./emissions/rect-nbuffer-8x256-wgsl/layout.json", import.meta.url),
+        "penumbra_deferred.frag.wgsl": new URL("./emissions/rect-nbuffer-8x256-wgsl/penumbra_deferred.frag.wgsl", import.meta.url),
+        "penumbra_fullscreen.vert.wgsl": new URL("./emissions/rect-nbuffer-8x256-wgsl/penumbra_fullscreen.vert.wgsl", import.meta.url),
+        "penumbra_nbuffer_level.frag.wgsl": new URL("./emissions/rect-nbuffer-8x256-wgsl/penumbra_nbuffer_level.frag.wgsl", import.meta.url),
+        "penumbra_pack_atlas.frag.wgsl": new URL("./emissions/rect-nbuffer-8x256-wgsl/penumbra_pack_atlas.frag.wgsl", import.meta.url),
+        "penumbra_shading.frag.wgsl": new URL("./emissions/rect-nbuffer-8x256-wgsl/penumbra_shading.frag.wgsl", import.meta.url),
+        "penumbra_shading.vert.wgsl": new URL("./emissions/rect-nbuffer-8x256-wgsl/penumbra_shading.vert.wgsl", import.meta.url),
+        "penumbra_slicing.frag.wgsl": new URL("./emissions/rect-nbuffer-8x256-wgsl/penumbra_slicing.frag.wgsl", import.meta.url),
+        "penumbra_slicing.vert.wgsl": new URL("./emissions/rect-nbuffer-8x256-wgsl/penumbra_slicing.vert.wgsl", import.meta.url),
+        "penumbra_visibility.wgsl": new URL("./emissions/rect-nbuffer-8x256-wgsl/penumbra_visibility.wgsl", import.meta.url),
+    },
     "sun-mipmap-16x512": {
         "layout.json": new URL("./emissions/sun-mipmap-16x512/layout.json", import.meta.url),
         "penumbra_deferred.frag": new URL("./emissions/sun-mipmap-16x512/penumbra_deferred.frag", import.meta.url),
@@ -60,6 +108,18 @@ export const EMISSIONS = {
         "penumbra_slicing.frag": new URL("./emissions/sun-mipmap-16x512/penumbra_slicing.frag", import.meta.url),
         "penumbra_slicing.vert": new URL("./emissions/sun-mipmap-16x512/penumbra_slicing.vert", import.meta.url),
         "penumbra_visibility.glsl": new URL("./emissions/sun-mipmap-16x512/penumbra_visibility.glsl", import.meta.url),
+    },
+    "sun-mipmap-16x512-wgsl": {
+        "layout.json": new URL("./emissions/sun-mipmap-16x512-wgsl/layout.json", import.meta.url),
+        "penumbra_deferred.frag.wgsl": new URL("./emissions/sun-mipmap-16x512-wgsl/penumbra_deferred.frag.wgsl", import.meta.url),
+        "penumbra_fullscreen.vert.wgsl": new URL("./emissions/sun-mipmap-16x512-wgsl/penumbra_fullscreen.vert.wgsl", import.meta.url),
+        "penumbra_mip_level.frag.wgsl": new URL("./emissions/sun-mipmap-16x512-wgsl/penumbra_mip_level.frag.wgsl", import.meta.url),
+        "penumbra_pack_atlas.frag.wgsl": new URL("./emissions/sun-mipmap-16x512-wgsl/penumbra_pack_atlas.frag.wgsl", import.meta.url),
+        "penumbra_shading.frag.wgsl": new URL("./emissions/sun-mipmap-16x512-wgsl/penumbra_shading.frag.wgsl", import.meta.url),
+        "penumbra_shading.vert.wgsl": new URL("./emissions/sun-mipmap-16x512-wgsl/penumbra_shading.vert.wgsl", import.meta.url),
+        "penumbra_slicing.frag.wgsl": new URL("./emissions/sun-mipmap-16x512-wgsl/penumbra_slicing.frag.wgsl", import.meta.url),
+        "penumbra_slicing.vert.wgsl": new URL("./emissions/sun-mipmap-16x512-wgsl/penumbra_slicing.vert.wgsl", import.meta.url),
+        "penumbra_visibility.wgsl": new URL("./emissions/sun-mipmap-16x512-wgsl/penumbra_visibility.wgsl", import.meta.url),
     },
     "sun-nbuffer-16x512": {
         "layout.json": new URL("./emissions/sun-nbuffer-16x512/layout.json", import.meta.url),
@@ -72,5 +132,17 @@ export const EMISSIONS = {
         "penumbra_slicing.frag": new URL("./emissions/sun-nbuffer-16x512/penumbra_slicing.frag", import.meta.url),
         "penumbra_slicing.vert": new URL("./emissions/sun-nbuffer-16x512/penumbra_slicing.vert", import.meta.url),
         "penumbra_visibility.glsl": new URL("./emissions/sun-nbuffer-16x512/penumbra_visibility.glsl", import.meta.url),
+    },
+    "sun-nbuffer-16x512-wgsl": {
+        "layout.json": new URL("./emissions/sun-nbuffer-16x512-wgsl/layout.json", import.meta.url),
+        "penumbra_deferred.frag.wgsl": new URL("./emissions/sun-nbuffer-16x512-wgsl/penumbra_deferred.frag.wgsl", import.meta.url),
+        "penumbra_fullscreen.vert.wgsl": new URL("./emissions/sun-nbuffer-16x512-wgsl/penumbra_fullscreen.vert.wgsl", import.meta.url),
+        "penumbra_nbuffer_level.frag.wgsl": new URL("./emissions/sun-nbuffer-16x512-wgsl/penumbra_nbuffer_level.frag.wgsl", import.meta.url),
+        "penumbra_pack_atlas.frag.wgsl": new URL("./emissions/sun-nbuffer-16x512-wgsl/penumbra_pack_atlas.frag.wgsl", import.meta.url),
+        "penumbra_shading.frag.wgsl": new URL("./emissions/sun-nbuffer-16x512-wgsl/penumbra_shading.frag.wgsl", import.meta.url),
+        "penumbra_shading.vert.wgsl": new URL("./emissions/sun-nbuffer-16x512-wgsl/penumbra_shading.vert.wgsl", import.meta.url),
+        "penumbra_slicing.frag.wgsl": new URL("./emissions/sun-nbuffer-16x512-wgsl/penumbra_slicing.frag.wgsl", import.meta.url),
+        "penumbra_slicing.vert.wgsl": new URL("./emissions/sun-nbuffer-16x512-wgsl/penumbra_slicing.vert.wgsl", import.meta.url),
+        "penumbra_visibility.wgsl": new URL("./emissions/sun-nbuffer-16x512-wgsl/penumbra_visibility.wgsl", import.meta.url),
     },
 };

@@ -1,15 +1,20 @@
 // Types of penumbra_shadows.js (import {PenumbraShadows} from "penumbra-three"), checked with tsc
 // against @types/three r180 and r187 (targets/web/three_package_test.mjs).
 import type {Camera, DirectionalLight, RectAreaLight, Scene, WebGLRenderer} from "three";
+import type {WebGPURenderer} from "three/webgpu";
 import type {Emitter} from "./penumbra_emitter.js";
 
-/** The emissions shipped in the package (penumbra-gen --target essl300 output). */
+/**
+ * The emissions shipped in the package (penumbra-gen output): essl300 for WebGLRenderer; on
+ * WebGPURenderer the same name loads its "<name>-wgsl" twin (the "-mipmap-" ones have none: WGSL
+ * has no mipmap filter).
+ */
 export type EmissionName =
     | "rect-nbuffer-16x512" | "rect-mipmap-16x512" | "rect-nbuffer-16x256" | "rect-nbuffer-8x256"
     | "sun-nbuffer-16x512" | "sun-mipmap-16x512";
 
 /** Shipped emission → its files (name → URL, each a literal `new URL(…, import.meta.url)` bundlers copy). */
-export const EMISSIONS: Readonly<Record<EmissionName, Readonly<Record<string, URL>>>>;
+export const EMISSIONS: Readonly<Record<EmissionName | `${EmissionName}-wgsl`, Readonly<Record<string, URL>>>>;
 
 /** An emission in memory: what the WebAssembly emitter's emit() returns (files by name, layout.json parsed). */
 export interface EmissionFiles {
@@ -63,6 +68,12 @@ export class PenumbraShadows {
     /** Loads the emission and attaches an add-on to `light`: one add-on per shadowed light. */
     static load(renderer: WebGLRenderer, scene: Scene, light: RectAreaLight | DirectionalLight,
                 options?: PenumbraShadowsOptions): Promise<PenumbraShadows>;
+    /**
+     * On a WebGPURenderer (three/webgpu; it must run its WebGPU backend, not the WebGL2 fallback):
+     * the wgsl emission on the renderer's GPUDevice, the visibility in the node materials (TSL).
+     */
+    static load(renderer: WebGPURenderer, scene: Scene, light: RectAreaLight | DirectionalLight,
+                options?: PenumbraShadowsOptions): Promise<PenumbraShadowsWebGPU>;
     private constructor();
 
     readonly renderer: WebGLRenderer;
@@ -94,3 +105,15 @@ export class PenumbraShadows {
 
 /** The WebAssembly emitter, loaded once (wasm: its URL; default the package's penumbra_emitter.wasm). */
 export function loadEmitter(wasm?: string | URL | null): Promise<Emitter>;
+
+/**
+ * The add-on on a WebGPURenderer (what PenumbraShadows.load returns there): as PenumbraShadows, but
+ * renderVisibility is asynchronous (WebGPU reads back asynchronously) and info.error holds WebGPU's
+ * message when a shadow phase failed validation.
+ */
+export interface PenumbraShadowsWebGPU extends Omit<PenumbraShadows, "renderer" | "info" | "renderVisibility"> {
+    readonly renderer: WebGPURenderer;
+    readonly info: PenumbraShadowsInfo & {error: string | null};
+    /** The visibility the receivers get (0 shadowed … 1 lit), width × height, bottom row first. */
+    renderVisibility(camera: Camera, width: number, height: number): Promise<Float32Array>;
+}

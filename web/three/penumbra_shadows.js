@@ -21,40 +21,26 @@
 //     the sun), leaving every other light alone; several add-ons (one per light) share a material,
 //     each with its own names (penumbra<N>_…) and each scaling its own light's term only;
 //   - raw GL is bracketed by renderer.resetState(), so three's state cache stays right.
-import {Box3, Color, DoubleSide, ExternalTexture, FloatType, GLSL3, Matrix4, NoBlending, RGBAFormat, ShaderChunk,
-        ShaderMaterial, Vector3, WebGLRenderTarget} from "three";
+// On a WebGPURenderer (three/webgpu) the same load() returns a PenumbraShadowsWebGPU
+// (penumbra_shadows_webgpu.js: the wgsl emission on the renderer's GPUDevice, the visibility in
+// the node materials through TSL). What both do alike (the scene's casters and receivers, when to
+// re-run the shadow phase, the light frame, the emission's files) is penumbra_scene.js.
+import {DoubleSide, ExternalTexture, FloatType, GLSL3, Matrix4, NoBlending, RGBAFormat, ShaderMaterial,
+        WebGLRenderTarget} from "three";
+// (ShaderChunk through the namespace: a WebGPU page may map "three" to three.webgpu.js, which has
+// no ShaderChunk, and this module must still load there to hand over to penumbra_shadows_webgpu.js)
+import * as three from "three";
 import {LayoutRunner} from "./penumbra_runner.js";
-import {rectFrame, sunFrame} from "./light_frame.js";
-import {EMISSIONS} from "./emissions.js";
+import {EMISSIONS, PenumbraError, ShadowsBase, casterVertices, fail, forEachPlacement, isDeformed, kindOf, loadEmissionFiles,
+        loadEmitter, positionVersion, snippetParameters} from "./penumbra_scene.js";
 
-// The emissions shipped in emissions/ (penumbra-gen --target essl300 output, emissions/regenerate.sh):
-// key → {file name: URL}.
-export {EMISSIONS};
+// The emissions shipped in emissions/ (penumbra-gen output, emissions/regenerate.sh): key → {file name: URL};
+// "<key>" is essl300 (WebGLRenderer), "<key>-wgsl" the same configuration in WGSL (WebGPURenderer).
+export {EMISSIONS, PenumbraError, loadEmitter};
 
-const DEFAULTS = {
-    emission: null,           // a key of EMISSIONS, a folder URL (ending in "/"), {layout, files}, or a configuration
-                              // object ({slices, resolution, filter, ...}: needs the WebAssembly emitter)
-    angularDiameter: 0.0093,  // sun only: the DirectionalLight's angular diameter in radians (our sun: 0.53°)
-    autoUpdate: true,         // re-run the shadow phase by itself when something moved (like shadowMap.autoUpdate)
-    intensity: 1,             // 0: no shadow, 1: Penumbra's visibility (like LightShadow.intensity)
-    wasm: null,               // for a configuration object: the URL of penumbra_emitter.wasm (default: the one beside penumbra_emitter.js)
-};
-
-export class PenumbraError extends Error {}
-
-function fail(message) {
-    throw new PenumbraError(`PenumbraShadows: ${message}`);
-}
 
 // ---- shader patches -------------------------------------------------------------------------
 
-// Every add-on gets its own names: the emission's identifiers penumbra_x / penumbraX become
-// penumbra<N>_x / penumbra<N>X (N: the add-on's serial number), so that several add-ons (one per
-// light) can put their snippets into one material.
-let serial = 0;
-function renamer(prefix) {
-    return (text) => text.replace(/\bpenumbra(?=[_A-Z])/g, prefix);
-}
 
 // The calls of three's lights_fragment_begin that the patch wraps.
 const RECT_CALL = "RE_Direct_RectArea( rectAreaLight, geometryPosition, geometryNormal, geometryViewDir, geometryClearcoatNormal, material, reflectedLight );";
@@ -130,16 +116,6 @@ function snippetBody(text) {
     return text.replace(/^#version[^\n]*\n/, "");
 }
 
-// The uniforms of the visibility snippet, from layout.json: the parameters of the program of the
-// screen pass that writes the result (the deferred shading pass, which includes the snippet),
-// less the textures the caller fills (its G-buffer).
-function snippetParameters(layout) {
-    const pass = (layout.passes || []).find((p) => p.phase === "screen" && p.outputs.some((o) => o.texture === layout.result));
-    const program = pass && (layout.programs || []).find((p) => p.name === pass.program);
-    if (!program) fail(`layout.json: no screen pass writing '${layout.result}', so the visibility snippet's parameters are unknown`);
-    const caller = new Set(layout.textures.filter((t) => t.source === "caller").map((t) => t.name));
-    return program.parameters.filter((p) => !caller.has(p.name));
-}
 
 // Materials shadowed by add-ons: material → {previous: its own hooks, addons: the add-ons, in order}.
 // One onBeforeCompile per material puts in the snippets of all its add-ons.
@@ -150,7 +126,7 @@ function patchShader(shader, addons) {
     shader.vertexShader = shader.vertexShader
         .replace("#include <common>", "#include <common>\nout vec3 vPenumbraWorldPosition;")
         .replace("#include <project_vertex>", `#include <project_vertex>${WORLD_VERTEX}`);
-    let lights = ShaderChunk.lights_fragment_begin;
+    let lights = three.ShaderChunk.lights_fragment_begin;
     const rects = addons.filter((a) => a.kind === "rect"), suns = addons.filter((a) => a.kind === "sun");
     if (rects.length) lights = patchChunk(lights, RECT_CALL, rectPatch(rects), "the rect-area light loop");
     if (suns.length) lights = patchChunk(lights, DIR_CALL, dirPatch(suns), "the directional light loop");
@@ -162,56 +138,39 @@ function patchShader(shader, addons) {
 
 // ---- the add-on -----------------------------------------------------------------------------
 
-export class PenumbraShadows {
-    // Loads the emission (options.emission: a key of EMISSIONS, a folder URL, or {layout, files})
-    // and returns the add-on attached to `renderer`, `scene` and `light`.
+export class PenumbraShadows extends ShadowsBase {
+    // Loads the emission (options.emission: a key of EMISSIONS, a folder URL, {layout, files} or a
+    // configuration) and returns the add-on attached to `renderer`, `scene` and `light`: this class
+    // on a WebGLRenderer, PenumbraShadowsWebGPU (penumbra_shadows_webgpu.js, loaded only then, so
+    // that a WebGL2 page needs no three/webgpu) on a WebGPURenderer.
     static async load(renderer, scene, light, options = {}) {
-        if (!renderer || !renderer.isWebGLRenderer) fail("the first argument must be a THREE.WebGLRenderer");
-        const o = {...DEFAULTS, ...options};
+        if (renderer && renderer.isWebGPURenderer) {
+            const {PenumbraShadowsWebGPU} = await import("./penumbra_shadows_webgpu.js");
+            return PenumbraShadowsWebGPU.load(renderer, scene, light, options);
+        }
+        if (!renderer || !renderer.isWebGLRenderer) fail("the first argument must be a THREE.WebGLRenderer or a WebGPURenderer (three/webgpu)");
         const gl = renderer.getContext();
         const kind = kindOf(light);
-        const emission = o.emission ?? (kind === "sun" ? "sun-nbuffer-16x512" : "rect-nbuffer-16x512");
-        const runner = await loadRunner(gl, emission, kind, o.wasm);
-        return new PenumbraShadows(renderer, scene, light, {...o, runner});
+        const runner = await loadRunner(gl, options.emission ?? defaultEmission(kind), kind, options.wasm ?? null);
+        return new PenumbraShadows(renderer, scene, light, {...options, runner});
     }
 
     constructor(renderer, scene, light, options = {}) {
-        if (!renderer || !renderer.isWebGLRenderer) fail("the first argument must be a THREE.WebGLRenderer");
+        if (!renderer || !renderer.isWebGLRenderer) fail("the first argument must be a THREE.WebGLRenderer (a WebGPURenderer: use PenumbraShadows.load)");
         if (!renderer.capabilities.isWebGL2) fail("needs a WebGL2 context");
-        if (!scene || !scene.isScene) fail("the second argument must be a THREE.Scene");
-        const o = {...DEFAULTS, ...options};
-        if (!o.runner) fail("no emission: use `await PenumbraShadows.load(renderer, scene, light, options)`");
-        this.renderer = renderer;
-        this.scene = scene;
-        this.light = light;
-        this.kind = kindOf(light);
-        this.angularDiameter = o.angularDiameter;
-        this.autoUpdate = o.autoUpdate;
-        this.needsUpdate = true;
-        this.enabled = true;
-        this.wasm = o.wasm;
-        this.intensity = o.intensity;
-        this.info = {shadowUpdates: 0, lastShadowMs: 0, casters: 0, receivers: 0, contained: true};
-        this.disposed = false;
-        this._serial = ++serial;
-        this._rename = renamer(`penumbra${this._serial}`);
+        super(renderer, scene, light, options);
+        if (!options.runner) fail("no emission: use `await PenumbraShadows.load(renderer, scene, light, options)`");
         this._names = {lightIndex: `penumbra${this._serial}LightIndex`, intensity: `penumbra${this._serial}Intensity`,
                        shadow: `penumbra${this._serial}Shadow`, visibility: this._rename("penumbraVisibility")};
-        this._geometries = new Map(); // BufferGeometry (or SkinnedMesh) → {vao, buffers, count, version}
-        this._materials = new Set();  // materials we patched
-        this._signature = null;
-        this._frame = null;
         this._visibilityTarget = null;
         this._visibilityMaterial = null;
-        this._setRunner(o.runner);
+        this._setRunner(options.runner);
     }
 
     // The layout runner of the current emission; the materials recompile with its snippet.
     _setRunner(runner) {
         const layout = runner.layout;
-        const wanted = this.kind === "sun" ? "sun" : "rect";
-        if (layout.config.light !== wanted)
-            fail(`the emission is for a '${layout.config.light}' light but the light is a ${this.light.type} (needs '${wanted}')`);
+        this._checkLight(layout);
         this.runner = runner;
         this.config = layout.config;
         const snippet = runner.sources["penumbra_visibility.glsl"] || fail("the emission has no penumbra_visibility.glsl");
@@ -258,7 +217,7 @@ export class PenumbraShadows {
         const runner = await loadRunner(this.renderer.getContext(), emission, this.kind, this.wasm);
         const old = this.runner;
         this._setRunner(runner);
-        disposeRunner(old);
+        old.dispose();
         this.renderer.resetState();
     }
 
@@ -268,53 +227,10 @@ export class PenumbraShadows {
         if (this._visibilityTarget) this._visibilityTarget.setSize(width, height);
     }
 
-    // Call once per frame before renderer.render(): patches new receivers' materials, re-runs the
-    // shadow phase when the light or a caster or receiver changed, and sets the light's index.
-    update() {
-        this._alive("update()");
-        const scene = this.scene;
-        scene.updateMatrixWorld();
-        this.light.updateMatrixWorld();
-        if (this.light.target) this.light.target.updateMatrixWorld();
-        const casters = [], receivers = [];
-        scene.traverseVisible((object) => {
-            if (!object.isMesh) return;
-            if (object.castShadow && !object.isBatchedMesh) casters.push(object); // BatchedMesh: not drawn (README)
-            if (object.receiveShadow) {
-                receivers.push(object);
-                for (const material of Array.isArray(object.material) ? object.material : [object.material]) this._patch(material);
-            }
-        });
-        this.info.casters = casters.length;
-        this.info.receivers = receivers.length;
+    // Every update(): the light's index among three's lights (it changes as lights come and go).
+    _updateUniforms() {
         this.uniforms[this._names.lightIndex].value = this.enabled ? this._lightIndex() : -1;
         this.uniforms[this._names.intensity].value = this.intensity;
-        const signature = this._signatureOf(casters, receivers);
-        const changed = !this._signature || signature.length !== this._signature.length || signature.some((v, i) => v !== this._signature[i]);
-        if (this.needsUpdate || (this.autoUpdate && changed)) {
-            this._signature = signature;
-            this.needsUpdate = false;
-            this._renderShadow(casters, receivers);
-        }
-    }
-
-    // Everything the shadow phase depends on, as numbers.
-    _signatureOf(casters, receivers) {
-        const out = [];
-        const light = this.light;
-        out.push(...light.matrixWorld.elements);
-        if (this.kind === "rect") out.push(light.width, light.height);
-        else out.push(...light.target.matrixWorld.elements, this.angularDiameter);
-        for (const list of [casters, receivers]) {
-            out.push(list.length);
-            for (const object of list) {
-                out.push(object.id, ...object.matrixWorld.elements, object.geometry.id, positionVersion(object.geometry));
-                if (object.isInstancedMesh) out.push(object.count, object.instanceMatrix.version);
-                if (object.isSkinnedMesh) for (const bone of object.skeleton.bones) out.push(...bone.matrixWorld.elements);
-                if (object.morphTargetInfluences) out.push(...object.morphTargetInfluences);
-            }
-        }
-        return out;
     }
 
     // three's light order: lights in traversal order, shadow-casting (then textured) ones first
@@ -327,43 +243,7 @@ export class PenumbraShadows {
         return same.indexOf(this.light);
     }
 
-    _bounds(casters, receivers) {
-        const box = new Box3();
-        // exact (vertex by vertex) where the geometry's box is not the drawn one: skinned, instanced, morphed
-        const exact = (o) => o.isSkinnedMesh || o.isInstancedMesh || (o.morphTargetInfluences && o.morphTargetInfluences.some((w) => w !== 0));
-        for (const object of [...casters, ...receivers]) box.expandByObject(object, exact(object));
-        return box;
-    }
-
-    // The light-frame uniforms (light_frame.js) from the three.js light and the scene's bounds.
-    _lightFrame(box) {
-        const light = this.light;
-        const lo = box.min.toArray(), hi = box.max.toArray();
-        const slices = this.config.slices;
-        if (this.kind === "sun") {
-            const from = new Vector3().setFromMatrixPosition(light.matrixWorld);
-            const to = new Vector3().setFromMatrixPosition(light.target.matrixWorld);
-            const direction = to.sub(from).normalize().toArray();
-            return sunFrame({direction, angularDiameter: this.angularDiameter}, lo, hi, slices);
-        }
-        // RectAreaLight: width along local x, height along local y, emitting towards local -z; like
-        // three's own lighting (WebGLLights), the object's scale is ignored.
-        // Penumbra's frame wants n = u × v towards the scene: u = x, v = -y.
-        const e = light.matrixWorld.elements;
-        const x = new Vector3(e[0], e[1], e[2]).normalize(), y = new Vector3(e[4], e[5], e[6]).normalize();
-        const center = new Vector3().setFromMatrixPosition(light.matrixWorld).toArray();
-        return rectFrame({center, u: x.toArray(), v: y.negate().toArray(), width: light.width, height: light.height},
-                         lo, hi, slices);
-    }
-
-    _renderShadow(casters, receivers) {
-        const t0 = performance.now();
-        const box = this._bounds(casters, receivers);
-        if (box.isEmpty()) box.set(new Vector3(-1, -1, -1), new Vector3(1, 1, 1));
-        const frame = this._lightFrame(box);
-        if (!frame.contained && this.info.contained) console.warn("PenumbraShadows: the scene's bounds reach the light's plane; shadows above it are wrong (move the light up)");
-        this.info.contained = frame.contained;
-        this._frame = frame;
+    _renderShadow(casters, receivers, frame) {
         for (const [name, value] of Object.entries(frame.uniforms)) {
             const ours = this._uniformNames[name];
             if (ours) this.uniforms[ours].value = value;
@@ -379,8 +259,6 @@ export class PenumbraShadows {
         runner.runPhase("shadow", (programId) => this._drawCasters(programId, casters, drawn), null);
         gl.bindVertexArray(null);
         renderer.resetState();
-        this.info.shadowUpdates++;
-        this.info.lastShadowMs = performance.now() - t0;
     }
 
     // Draws every caster with each "...FromWorld" matrix of the program times its model matrix
@@ -391,7 +269,7 @@ export class PenumbraShadows {
         const matrices = program.desc.parameters.filter((p) => p.type === "mat4" && /FromWorld$/.test(p.name));
         const locations = matrices.map((p) => program.locations[p.name] || gl.getUniformLocation(programId, p.name));
         const base = matrices.map((p) => new Matrix4().fromArray(this.runner.uniformValues[p.name]));
-        const instance = new Matrix4(), world = new Matrix4(), m = new Matrix4();
+        const m = new Matrix4();
         const draw = (g, objectMatrix) => {
             matrices.forEach((p, k) => {
                 if (!locations[k]) return;
@@ -402,30 +280,17 @@ export class PenumbraShadows {
             if (g.indexType) gl.drawElements(gl.TRIANGLES, g.count, g.indexType, g.first * g.indexBytes);
             else gl.drawArrays(gl.TRIANGLES, g.first, g.count);
         };
-        casters.forEach((object, i) => {
-            const g = drawn[i];
-            if (!g) return;
-            // skinned and morphed positions come in the mesh's own space (getVertexPosition)
-            if (object.isInstancedMesh) {
-                for (let k = 0; k < object.count; ++k) {
-                    object.getMatrixAt(k, instance);
-                    draw(g, world.multiplyMatrices(object.matrixWorld, instance));
-                }
-            } else {
-                draw(g, object.matrixWorld);
-            }
-        });
+        // (skinned and morphed positions come in the mesh's own space: casterVertices)
+        casters.forEach((object, i) => forEachPlacement(object, (matrix) => draw(drawn[i], matrix)));
         gl.bindVertexArray(null);
     }
 
     // Our vertex array for a caster: its geometry's positions (attribute 0) and index, uploaded
     // once per geometry and again when the position attribute's version changes; skinned and
-    // morphed meshes get their positions from mesh.getVertexPosition() at every shadow update.
+    // morphed meshes get theirs (casterVertices) at every shadow update.
     _geometryOf(object) {
         const geometry = object.geometry;
-        const position = geometry.attributes.position;
-        if (!position) return null;
-        const deformed = object.isSkinnedMesh || (object.morphTargetInfluences && object.morphTargetInfluences.some((w) => w !== 0));
+        const deformed = isDeformed(object);
         const key = deformed ? object : geometry;
         const gl = this.renderer.getContext();
         let g = this._geometries.get(key);
@@ -436,36 +301,21 @@ export class PenumbraShadows {
             this._geometries.set(key, g);
             if (!deformed) geometry.addEventListener("dispose", () => this._dropGeometry(key));
         }
-        const n = position.count;
-        const data = new Float32Array(3 * n);
-        const v = new Vector3();
-        for (let i = 0; i < n; ++i) {
-            if (deformed) object.getVertexPosition(i, v);
-            else v.fromBufferAttribute(position, i);
-            data[3 * i] = v.x;
-            data[3 * i + 1] = v.y;
-            data[3 * i + 2] = v.z;
-        }
+        const v = casterVertices(object);
         gl.bindVertexArray(g.vao);
         gl.bindBuffer(gl.ARRAY_BUFFER, g.position);
-        gl.bufferData(gl.ARRAY_BUFFER, data, deformed ? gl.DYNAMIC_DRAW : gl.STATIC_DRAW);
+        gl.bufferData(gl.ARRAY_BUFFER, v.positions, deformed ? gl.DYNAMIC_DRAW : gl.STATIC_DRAW);
         gl.enableVertexAttribArray(0);
         gl.vertexAttribPointer(0, 3, gl.FLOAT, false, 0, 0);
-        const range = geometry.drawRange;
-        if (geometry.index) {
+        g.first = v.first;
+        g.count = v.count;
+        g.indexType = 0;
+        if (v.index) {
             if (!g.index) g.index = gl.createBuffer();
-            const big = geometry.index.array instanceof Uint32Array || n > 65535;
-            const indices = big ? Uint32Array.from(geometry.index.array) : Uint16Array.from(geometry.index.array);
             gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, g.index);
-            gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, indices, gl.STATIC_DRAW);
-            g.indexType = big ? gl.UNSIGNED_INT : gl.UNSIGNED_SHORT;
-            g.indexBytes = big ? 4 : 2;
-            g.first = range.start;
-            g.count = Math.min(range.count, geometry.index.count - range.start);
-        } else {
-            g.indexType = 0;
-            g.first = range.start;
-            g.count = Math.min(range.count, n - range.start);
+            gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, v.index, gl.STATIC_DRAW);
+            g.indexType = v.index instanceof Uint32Array ? gl.UNSIGNED_INT : gl.UNSIGNED_SHORT;
+            g.indexBytes = v.index.BYTES_PER_ELEMENT;
         }
         gl.bindVertexArray(null);
         gl.bindBuffer(gl.ARRAY_BUFFER, null);
@@ -526,39 +376,14 @@ export class PenumbraShadows {
         material.needsUpdate = true;
     }
 
-    _alive(what) {
-        if (this.disposed) fail(`${what} after dispose(): this add-on freed its resources; make another with PenumbraShadows.load()`);
-    }
-
     // The add-on's visibility (0 shadowed … 1 lit) as the camera sees the receivers, for debugging
     // and tests: Float32Array of width × height, bottom row first; 1 where no receiver is.
     renderVisibility(camera, width, height) {
         this._alive("renderVisibility()");
-        const renderer = this.renderer;
-        if (!this._visibilityTarget) this._visibilityTarget = new WebGLRenderTarget(width, height, {type: FloatType, format: RGBAFormat, depthBuffer: true});
-        const target = this._visibilityTarget;
-        if (target.width !== width || target.height !== height) target.setSize(width, height);
-        if (!this._visibilityMaterial || this._visibilityMaterial.userData.key !== this._cacheKey) {
-            if (this._visibilityMaterial) this._visibilityMaterial.dispose();
-            this._visibilityMaterial = this._makeVisibilityMaterial();
-        }
-        const hidden = [];
-        this.scene.traverse((o) => { if (o.isMesh && o.visible && !o.receiveShadow) { hidden.push(o); o.visible = false; } });
-        const previous = {target: renderer.getRenderTarget(), override: this.scene.overrideMaterial, background: this.scene.background};
-        this.scene.overrideMaterial = this._visibilityMaterial;
-        this.scene.background = null;
-        const clear = renderer.getClearColor(new Color()), alpha = renderer.getClearAlpha();
-        renderer.setRenderTarget(target);
-        renderer.setClearColor(0xffffff, 1);
-        renderer.clear();
-        renderer.render(this.scene, camera);
+        const target = this._renderReceivers(camera, width, height,
+            (w, h) => new WebGLRenderTarget(w, h, {type: FloatType, format: RGBAFormat, depthBuffer: true}), () => this._makeVisibilityMaterial());
         const rgba = new Float32Array(4 * width * height);
-        renderer.readRenderTargetPixels(target, 0, 0, width, height, rgba);
-        renderer.setRenderTarget(previous.target);
-        renderer.setClearColor(clear, alpha);
-        this.scene.overrideMaterial = previous.override;
-        this.scene.background = previous.background;
-        for (const o of hidden) o.visible = true;
+        this.renderer.readRenderTargetPixels(target, 0, 0, width, height, rgba);
         const out = new Float32Array(width * height);
         for (let i = 0; i < out.length; ++i) out[i] = rgba[4 * i];
         return out;
@@ -602,106 +427,31 @@ void main() {
 	penumbraOut = vec4( v, v, v, 1.0 );
 }`,
         });
-        material.userData.key = this._cacheKey;
         return material;
     }
 
-    // Frees every GPU resource of the add-on and restores the patched materials (other add-ons'
-    // shadows on them stay). Afterwards update(), setEmission() and renderVisibility() throw; a
-    // second dispose() does nothing.
-    dispose() {
-        if (this.disposed) return;
-        this.disposed = true;
-        for (const key of [...this._geometries.keys()]) this._dropGeometry(key);
-        for (const material of this._materials) this._unpatch(material);
-        this._materials.clear();
+    // dispose(): the external textures' GL names (the runner deleted them), three's state
+    _disposeResources() {
         for (const t of this._samplers) {
             this.renderer.properties.get(t).__webglTexture = undefined;
             if (t.isExternalTexture) t.sourceTexture = null;
             t.dispose();
         }
         this._samplers = [];
-        if (this._visibilityTarget) this._visibilityTarget.dispose();
-        if (this._visibilityMaterial) this._visibilityMaterial.dispose();
-        disposeRunner(this.runner);
-        this.runner = null;
         this.renderer.resetState();
     }
 }
 
-function kindOf(light) {
-    if (light && light.isRectAreaLight) return "rect";
-    if (light && light.isSunLight) fail("a cascaded SunLight has its own light loop in three; use a THREE.DirectionalLight");
-    if (light && light.isDirectionalLight) return "sun";
-    fail(`the light must be a THREE.RectAreaLight or a THREE.DirectionalLight (got ${light ? light.type : light})`);
+function defaultEmission(kind) {
+    return kind === "sun" ? "sun-nbuffer-16x512" : "rect-nbuffer-16x512";
 }
 
-function positionVersion(geometry) {
-    const p = geometry.attributes.position;
-    return p ? (p.isInterleavedBufferAttribute ? p.data.version : p.version) : -1;
-}
-
-// The layout runner for an emission: a key of EMISSIONS, a folder URL, or {layout, files}.
+// The WebGL2 layout runner for an emission (loadEmissionFiles: a key of EMISSIONS, a folder URL,
+// {layout, files} or a configuration), with the emission's files as `sources` (the snippet).
 async function loadRunner(gl, emission, kind, wasm) {
-    if (typeof emission === "string" && Object.hasOwn(EMISSIONS, emission)) {
-        const files = {};
-        await Promise.all(Object.entries(EMISSIONS[emission]).map(async ([name, url]) => {
-            const response = await fetch(url);
-            if (!response.ok) fail(`emission '${emission}': ${url}: HTTP ${response.status}`);
-            files[name] = await response.text();
-        }));
-        return loadRunner(gl, {layout: JSON.parse(files["layout.json"]), files}, kind);
-    }
-    if (typeof emission === "string") {
-        const folder = emission;
-        if (!folder.endsWith("/")) fail(`emission '${emission}': not one of ${Object.keys(EMISSIONS).join(", ")} nor a folder URL ending in '/'`);
-        const runner = await LayoutRunner.load(gl, folder);
-        runner.sources = runner.sources || (await fetchSources(folder, runner.layout));
-        return runner;
-    }
-    if (emission && emission.layout && emission.files) {
-        if (typeof LayoutRunner.fromEmission === "function") {
-            const runner = await LayoutRunner.fromEmission(gl, emission);
-            runner.sources = runner.sources || emission.files;
-            return runner;
-        }
-        const runner = new LayoutRunner(gl, emission.layout, emission.files);
-        runner.sources = emission.files;
-        return runner;
-    }
-    if (emission && typeof emission === "object") {
-        // A configuration (penumbra-gen --config's schema): emitted here by the WebAssembly emitter.
-        const emitter = await loadEmitter(wasm);
-        const result = emitter.emit({light: kind, ...emission, target: "essl300"});
-        if (!result.ok) fail(`emission: ${result.diagnostics.map((d) => d.message).join("; ") || result.error}`);
-        return loadRunner(gl, {layout: result.layout, files: result.files}, kind);
-    }
-    fail("options.emission: a key of EMISSIONS, a folder URL ending in '/', {layout, files}, or a configuration object");
+    const files = await loadEmissionFiles(emission, kind, wasm, "essl300");
+    const runner = LayoutRunner.fromEmission(gl, files);
+    runner.sources = files.files;
+    return runner;
 }
 
-// The WebAssembly emitter (penumbra_emitter.js; its .wasm at `wasm`, default the one beside it),
-// loaded once, on demand (bundlers split it and its .wasm off the main chunk).
-let emitterPromise = null;
-export function loadEmitter(wasm = null) {
-    if (!emitterPromise)
-        emitterPromise = import("./penumbra_emitter.js")
-            .then((m) => (wasm ? m.loadEmitter(wasm) : m.loadEmitter()))
-            .catch((e) => {
-                emitterPromise = null;
-                fail(`a configuration needs the WebAssembly emitter (penumbra_emitter.js and penumbra_emitter.wasm), which did not load: ${e.message}`);
-            });
-    return emitterPromise;
-}
-
-// The snippet is no program of the layout, so the runner does not fetch it: we do.
-async function fetchSources(folder, layout) {
-    const sources = {};
-    const response = await fetch(folder + "penumbra_visibility.glsl");
-    if (!response.ok) fail(`${folder}penumbra_visibility.glsl: HTTP ${response.status}`);
-    sources["penumbra_visibility.glsl"] = await response.text();
-    return sources;
-}
-
-function disposeRunner(runner) {
-    if (runner) runner.dispose(); // its textures, samplers, programs, framebuffers and queries
-}

@@ -1,7 +1,8 @@
 // check.ts — compiled with tsc --noEmit against @types/three (r180 and r187) by the npm package
 // test: the package's declarations, reached through its "exports", as a TypeScript user sees them.
 import * as THREE from "three";
-import {PenumbraShadows, PenumbraError, EMISSIONS, type PenumbraShadowsOptions} from "penumbra-three";
+import type {WebGPURenderer} from "three/webgpu";
+import {PenumbraShadows, PenumbraError, EMISSIONS, type PenumbraShadowsOptions, type PenumbraShadowsWebGPU} from "penumbra-three";
 import {loadEmitter, type EmitResult} from "penumbra-three/emitter";
 
 export async function attach(renderer: THREE.WebGLRenderer, scene: THREE.Scene, camera: THREE.Camera): Promise<number> {
@@ -22,4 +23,13 @@ export async function attach(renderer: THREE.WebGLRenderer, scene: THREE.Scene, 
     shadows.dispose();
     try { shadows.update(); } catch (e) { if (!(e instanceof PenumbraError)) throw e; }
     return visibility.length + Object.keys(files).length + shadows.info.shadowUpdates + (emitted.ok ? 1 : 0);
+}
+
+// On a WebGPURenderer the same load() gives the WebGPU add-on (renderVisibility is asynchronous).
+export async function attachWebGPU(renderer: WebGPURenderer, scene: THREE.Scene, camera: THREE.Camera): Promise<number> {
+    const shadows: PenumbraShadowsWebGPU = await PenumbraShadows.load(renderer, scene, new THREE.RectAreaLight(0xffffff, 5, 3, 2));
+    shadows.update();
+    const visibility: Float32Array = await shadows.renderVisibility(camera, 64, 64);
+    shadows.dispose();
+    return visibility.length + (shadows.info.error === null ? 0 : 1);
 }

@@ -3,8 +3,12 @@
 // the emission and compare with three's own PCFSoftShadowMap / VSMShadowMap from a SpotLight
 // placed where the rectangle is.
 //
-// URL parameters: ?light=rect|sun, ?size=WxH (a fixed canvas size, for screenshots and benchmarks),
-// ?wasm=URL (penumbra_emitter.wasm, for the configuration panel, e.g. /build/wasm/penumbra_emitter.wasm).
+// URL parameters: ?light=rect|sun, ?renderer=webgl|webgpu (three's WebGLRenderer, the default, or
+// WebGPURenderer from three/webgpu: the same scene, materials and PenumbraShadows.load(); the panel's
+// "renderer" switch reloads the page with the other), ?size=WxH (a fixed canvas size, for screenshots
+// and benchmarks), ?wasm=URL (penumbra_emitter.wasm, for the configuration panel, e.g. /build/wasm/penumbra_emitter.wasm),
+// ?offscreen=1 (frames into a render target, read by window.example.capture(): headless chromium's
+// SwiftShader loses the WebGPU device when a WebGPU canvas is presented, so screenshots go this way).
 // window.example (automation): ready, state, set(changes), render(), bench({mode, frames, moving}).
 import * as THREE from "three";
 import {OrbitControls} from "three/addons/controls/OrbitControls.js";
@@ -17,12 +21,28 @@ const params = new URLSearchParams(location.search);
 const fixedSize = params.get("size") ? params.get("size").split("x").map(Number) : null;
 const wasm = params.get("wasm"); // the WebAssembly emitter's module, where it is not beside web/three/penumbra_emitter.js
 
-const renderer = new THREE.WebGLRenderer({antialias: true});
+// The renderer: WebGL2, or WebGPU (three/webgpu, loaded only then; a RectAreaLight there needs
+// the LTC textures handed to its light node instead of RectAreaLightUniformsLib).
+const rendererKind = params.get("renderer") === "webgpu" ? "webgpu" : "webgl";
+let renderer;
+if (rendererKind === "webgpu") {
+    const [{WebGPURenderer, RectAreaLightNode}, {RectAreaLightTexturesLib}] = await Promise.all([
+        import("three/webgpu"), import("three/addons/lights/RectAreaLightTexturesLib.js")]);
+    renderer = new WebGPURenderer({antialias: true});
+    RectAreaLightNode.setLTC(RectAreaLightTexturesLib.init());
+    await renderer.init();
+} else {
+    renderer = new THREE.WebGLRenderer({antialias: true});
+    RectAreaLightUniformsLib.init();
+}
 renderer.setPixelRatio(fixedSize ? 1 : Math.min(window.devicePixelRatio, 2));
 renderer.setSize(...(fixedSize || [window.innerWidth, window.innerHeight]));
 renderer.toneMapping = THREE.ACESFilmicToneMapping;
 document.body.appendChild(renderer.domElement);
-RectAreaLightUniformsLib.init();
+// (WebGPURenderer: the output render target, which gets the canvas's tone mapping and sRGB output;
+// WebGLRenderer: a plain target, linear)
+const offscreen = params.get("offscreen") === "1" && fixedSize ? new THREE.RenderTarget(fixedSize[0], fixedSize[1], {samples: 4}) : null;
+if (offscreen && renderer.setOutputRenderTarget) renderer.setOutputRenderTarget(offscreen);
 
 const scene = new THREE.Scene();
 scene.background = new THREE.Color(0x20242a);
@@ -66,7 +86,7 @@ const state = {
     mode: "penumbra", // penumbra | pcf | vsm | none
     x: 0, y: 6.5, z: 0, tiltX: 0, tiltZ: 0, width: 3, height: 2, intensity: 6,
     azimuth: -60, elevation: 50, diameter: 5,
-    emission: null, shadowIntensity: 1, animate: false, helper: true,
+    emission: null, shadowIntensity: 1, animate: false, helper: true, renderer: rendererKind,
     pcfRadius: 8, vsmRadius: 16, mapSize: 1024,
 };
 const rect = new THREE.RectAreaLight(0xffffff, state.intensity, state.width, state.height);
@@ -156,7 +176,9 @@ async function attach() {
         old.dispose();
     }
     const light = state.light === "rect" ? rect : sun;
-    const keys = Object.keys(EMISSIONS).filter((k) => k.startsWith(state.light));
+    // the shipped emissions of this light that this renderer runs (WebGPU: those with a "-wgsl" twin)
+    const keys = Object.keys(EMISSIONS).filter((k) => k.startsWith(state.light) && !k.endsWith("-wgsl") &&
+                                                      (rendererKind === "webgl" || Object.hasOwn(EMISSIONS, `${k}-wgsl`)));
     if (!keys.includes(state.emission)) state.emission = `${state.light}-nbuffer-16x512`;
     const loaded = await PenumbraShadows.load(renderer, scene, light, {emission: state.emission, angularDiameter: state.diameter * Math.PI / 180, wasm});
     if (light !== (state.light === "rect" ? rect : sun)) { // switched again while loading
@@ -176,14 +198,13 @@ function render() {
         state.z = 2.0 * Math.cos(0.4 * t);
         placeLights();
     }
-    if (!shadows) { // between two lights' add-ons
-        renderer.render(scene, camera);
-        return;
-    }
-    shadows.update();
+    if (offscreen && !renderer.setOutputRenderTarget) renderer.setRenderTarget(offscreen);
+    if (shadows) shadows.update(); // (none between two lights' add-ons)
     renderer.render(scene, camera);
+    if (offscreen && !renderer.setOutputRenderTarget) renderer.setRenderTarget(null);
+    if (!shadows) return;
     const c = shadows.config;
-    status.textContent = `${state.mode === "penumbra" ? `Penumbra ${c.slices} slices ${c.resolution}² ${c.filter} (${state.emitted ? "emitted in the page" : state.emission})` : state.mode === "none" ? "no shadows" : `three ${state.mode.toUpperCase()} shadow map, radius ${state.mode === "vsm" ? state.vsmRadius : state.pcfRadius}`}` +
+    status.textContent = `${rendererKind === "webgpu" ? "WebGPURenderer" : "WebGLRenderer"}: ${state.mode === "penumbra" ? `Penumbra ${c.slices} slices ${c.resolution}² ${c.filter} (${state.emitted ? "emitted in the page" : state.emission})` : state.mode === "none" ? "no shadows" : `three ${state.mode.toUpperCase()} shadow map, radius ${state.mode === "vsm" ? state.vsmRadius : state.pcfRadius}`}` +
         ` — shadow phase runs: ${shadows.info.shadowUpdates}` + (shadows.info.contained ? "" : " — the scene reaches the light's plane: move it up");
 }
 
@@ -201,7 +222,7 @@ const onEmission = async (v) => { if (shadows) { await shadows.setEmission(v); s
 // The emissions of the light's kind in the GUI, and the light's own folder.
 function showLight(keys) {
     emissionController = emissionController.options(keys).name("emission").onChange(onEmission);
-    emissionController.setValue(state.emission);
+    emissionController.updateDisplay(); // (attach() loaded state.emission: setValue would load it again, racing a later setEmission)
     folders.rect.show(state.light === "rect");
     folders.sun.show(state.light === "sun");
 }
@@ -211,6 +232,11 @@ function buildGui(keys) {
     const changed = () => { placeLights(); applyMode(); };
     gui.add(state, "mode", {"Penumbra (occlusion textures)": "penumbra", "three PCFSoftShadowMap (SpotLight)": "pcf", "three VSMShadowMap (SpotLight)": "vsm", "no shadows": "none"}).onChange(changed);
     gui.add(state, "light", {"RectAreaLight": "rect", "DirectionalLight (sun)": "sun"}).onChange(async () => showLight(await attach()));
+    gui.add(state, "renderer", {"WebGLRenderer": "webgl", "WebGPURenderer (three/webgpu)": "webgpu"}).onChange((v) => {
+        params.set("renderer", v);
+        params.set("light", state.light);
+        location.search = params.toString(); // another renderer: the page again, with it
+    });
     emissionFolder = gui.addFolder("emission (shipped)");
     emissionController = emissionFolder.add(state, "emission", keys).name("emission").onChange(onEmission);
     gui.add(state, "shadowIntensity", 0, 1, 0.01).name("shadow intensity").onChange(changed);
@@ -234,7 +260,8 @@ function buildGui(keys) {
         const folder = gui.addFolder("configuration (emitted)");
         folder.add(custom, "slices", 1, 16, 1);
         folder.add(custom, "resolution", [128, 256, 512, 1024]);
-        folder.add(custom, "filter", ["mipmap", "nbuffer", "gaussian"]); // sat needs float textures ES 3.00 lacks
+        // (sat needs float textures ES 3.00 lacks; WGSL has no mipmap filter)
+        folder.add(custom, "filter", rendererKind === "webgpu" ? ["nbuffer", "gaussian"] : ["mipmap", "nbuffer", "gaussian"]);
         folder.add(custom, "fusion", ["probabilistic", "additive", "maximum", "average", "chained", "correlated", "extent"]);
         folder.add(custom, "packing", ["atlas", "array", "volume"]);
         folder.add(custom, "tangentClip").name("tangent clip");
@@ -274,6 +301,7 @@ const ready = (async () => {
 // ratios only). moving: the light moves every frame, so the add-on re-runs its shadow phase.
 async function bench({mode, frames = 30, moving = false}) {
     await ready;
+    if (rendererKind !== "webgl") throw new Error("bench(): times WebGL2 frames (readPixels); open the page without ?renderer=webgpu");
     renderer.setAnimationLoop(null);
     const saved = {...state};
     state.mode = mode;
@@ -317,8 +345,26 @@ window.example = {
         render();
     },
     render: () => render(),
+    // ?offscreen=1: the last frame as a PNG data URL (top row first, as the canvas would show it)
+    capture: async () => {
+        if (!offscreen) throw new Error("capture(): open the page with ?offscreen=1&size=WxH");
+        const [w, h] = fixedSize;
+        const pixels = await renderer.readRenderTargetPixelsAsync(offscreen, 0, 0, w, h);
+        const canvas = document.createElement("canvas");
+        canvas.width = w;
+        canvas.height = h;
+        const image = new ImageData(w, h);
+        // WebGL2 reads bottom row first, WebGPU top row first
+        for (let y = 0; y < h; ++y) {
+            const row = rendererKind === "webgl" ? h - 1 - y : y;
+            image.data.set(pixels.subarray(4 * row * w, 4 * (row + 1) * w), 4 * y * w);
+        }
+        canvas.getContext("2d").putImageData(image, 0, 0);
+        return canvas.toDataURL("image/png");
+    },
     emit: async (config) => { await ready; await shadows.setEmission(config); state.emitted = true; render(); return shadows.config; },
     bench,
-    info: () => ({shadows: {...shadows.info}, config: shadows.config, memory: {...renderer.info.memory}, three: THREE.REVISION}),
+    info: () => ({shadows: {...shadows.info}, config: shadows.config, memory: {...renderer.info.memory}, three: THREE.REVISION,
+                  renderer: rendererKind, backend: renderer.isWebGPURenderer ? (renderer.backend.isWebGPUBackend ? "webgpu" : "webgl2") : "webgl2"}),
 };
 ready.catch((e) => { window.example = {error: `${e.message}\n${e.stack}`}; console.error(e); });

@@ -52,3 +52,86 @@ export async function loadBundleScene(base) {
     scene.updateMatrixWorld();
     return {bundle, scene, camera, light, mesh, triangles};
 }
+
+// The same casters and receivers placed by matrix M four ways: a Mesh at M, an InstancedMesh
+// (identity) with instance matrix M, a SkinnedMesh whose one bone is at M, and morph target
+// (positions × M, influence 1) on a Mesh at identity. Their visibility images (render(): the
+// add-on's renderVisibility, a Float32Array or its Promise) must agree. Arrays by name.
+export async function placementVariants(scene, mesh, shadows, render) {
+    const box = new THREE.Box3().setFromObject(mesh);
+    const M = new THREE.Matrix4().makeTranslation(0.05 * (box.max.x - box.min.x), 0, 0.03 * (box.max.z - box.min.z));
+    const geometry = mesh.geometry;
+    const material = mesh.material;
+    let current = mesh;
+    const swap = async (object) => {
+        scene.remove(current);
+        current = object;
+        object.castShadow = object.receiveShadow = true;
+        scene.add(object);
+        scene.updateMatrixWorld(true);
+        shadows.update();
+        return render();
+    };
+    const out = {};
+    out.unmoved = await swap(mesh);
+    const moved = new THREE.Mesh(geometry, material);
+    moved.applyMatrix4(M);
+    out.mesh = await swap(moved);
+    const instanced = new THREE.InstancedMesh(geometry, material, 1);
+    instanced.setMatrixAt(0, M);
+    out.instanced = await swap(instanced);
+    const skinnedGeometry = geometry.clone();
+    const n = geometry.attributes.position.count;
+    skinnedGeometry.setAttribute("skinIndex", new THREE.Uint16BufferAttribute(new Uint16Array(4 * n), 4));
+    skinnedGeometry.setAttribute("skinWeight", new THREE.Float32BufferAttribute(new Float32Array(4 * n).map((_, i) => (i % 4 === 0 ? 1 : 0)), 4));
+    const bone = new THREE.Bone();
+    const skinned = new THREE.SkinnedMesh(skinnedGeometry, material);
+    skinned.add(bone);
+    skinned.bind(new THREE.Skeleton([bone]));
+    bone.applyMatrix4(M);
+    out.skinned = await swap(skinned);
+    const morphGeometry = geometry.clone();
+    morphGeometry.morphAttributes.position = [geometry.attributes.position.clone().applyMatrix4(M)];
+    const morphed = new THREE.Mesh(morphGeometry, material);
+    morphed.morphTargetInfluences = [1];
+    out.morphed = await swap(morphed);
+    await swap(mesh);
+    for (const k of Object.keys(out)) out[k] = Array.from(out[k]);
+    return out;
+}
+
+// The render with the add-on over the one without it (render(): RGBA floats of the frame, or their
+// Promise, in the bundle's row order): {ratio, unshadowed} a pixel, the light's term scaled by the
+// visibility where the scene has no other light.
+export async function materialRatio(scene, shadows, render) {
+    if (scene.children.some((o) => o.isAmbientLight)) throw new Error("the bundle scene has an ambient light");
+    const frame = async (enabled) => {
+        shadows.enabled = enabled;
+        shadows.update();
+        return render();
+    };
+    const on = await frame(true), off = await frame(false);
+    shadows.enabled = true;
+    shadows.update();
+    const n = on.length / 4, ratio = new Array(n), unshadowed = new Array(n);
+    for (let i = 0; i < n; ++i) {
+        const a = on[4 * i] + on[4 * i + 1] + on[4 * i + 2], b = off[4 * i] + off[4 * i + 1] + off[4 * i + 2];
+        unshadowed[i] = b / 3;
+        ratio[i] = b > 0 ? a / b : NaN;
+    }
+    return {ratio, unshadowed};
+}
+
+// What both test pages give the drivers to move the light and count the add-on's shadow phases.
+export function addonControls(light, shadows) {
+    return {
+        moveLight: (dx) => {
+            light.translateX(dx);
+            light.updateMatrixWorld();
+            shadows.update();
+            return shadows.info.shadowUpdates;
+        },
+        shadowUpdates: () => shadows.info.shadowUpdates,
+        update: () => { shadows.update(); return shadows.info.shadowUpdates; },
+    };
+}

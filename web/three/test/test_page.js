@@ -10,7 +10,7 @@
 import * as THREE from "three";
 import {RectAreaLightUniformsLib} from "three/addons/lights/RectAreaLightUniformsLib.js";
 import {PenumbraShadows} from "../penumbra_shadows.js";
-import {loadBundleScene} from "./bundle_scene.js";
+import {addonControls, loadBundleScene, materialRatio, placementVariants} from "./bundle_scene.js";
 
 function rendererName(gl) {
     const debug = gl.getExtension("WEBGL_debug_renderer_info");
@@ -118,85 +118,15 @@ async function main() {
         return out;
     };
 
-    // The same casters and receivers placed by matrix M four ways: a Mesh at M, an InstancedMesh
-    // (identity) with instance matrix M, a SkinnedMesh whose one bone is at M, and morph target
-    // (positions × M, influence 1) on a Mesh at identity. Their visibility images must agree.
-    const variants = () => {
-        const M = new THREE.Matrix4().makeTranslation(0.05 * (box.max.x - box.min.x), 0, 0.03 * (box.max.z - box.min.z));
-        const geometry = mesh.geometry;
-        const material = mesh.material;
-        const swap = (object) => {
-            scene.remove(current);
-            current = object;
-            object.castShadow = object.receiveShadow = true;
-            scene.add(object);
-            scene.updateMatrixWorld(true);
-            shadows.update();
-            return shadows.renderVisibility(camera, W, H);
-        };
-        let current = mesh;
-        const out = {};
-        out.unmoved = swap(mesh);
-        const moved = new THREE.Mesh(geometry, material);
-        moved.applyMatrix4(M);
-        out.mesh = swap(moved);
-        const instanced = new THREE.InstancedMesh(geometry, material, 1);
-        instanced.setMatrixAt(0, M);
-        out.instanced = swap(instanced);
-        const skinnedGeometry = geometry.clone();
-        const n = geometry.attributes.position.count;
-        skinnedGeometry.setAttribute("skinIndex", new THREE.Uint16BufferAttribute(new Uint16Array(4 * n), 4));
-        skinnedGeometry.setAttribute("skinWeight", new THREE.Float32BufferAttribute(new Float32Array(4 * n).map((_, i) => (i % 4 === 0 ? 1 : 0)), 4));
-        const bone = new THREE.Bone();
-        const skinned = new THREE.SkinnedMesh(skinnedGeometry, material);
-        skinned.add(bone);
-        skinned.bind(new THREE.Skeleton([bone]));
-        bone.applyMatrix4(M);
-        out.skinned = swap(skinned);
-        const morphGeometry = geometry.clone();
-        morphGeometry.morphAttributes.position = [geometry.attributes.position.clone().applyMatrix4(M)];
-        const morphed = new THREE.Mesh(morphGeometry, material);
-        morphed.morphTargetInfluences = [1];
-        out.morphed = swap(morphed);
-        swap(mesh);
-        for (const k of Object.keys(out)) out[k] = Array.from(out[k]);
-        return out;
-    };
-
     window.penumbraThree = {
         info: () => ({config: shadows.config, width: W, height: H, renderer: rendererName(renderer.getContext()),
                       three: THREE.REVISION, casters: shadows.info.casters, receivers: shadows.info.receivers}),
         visibility: () => Array.from(shadows.renderVisibility(camera, W, H)),
         frameUniforms: () => ({computed: shadows._frame.uniforms, bundle: bundle.uniforms}),
-        materialRatio: () => {
-            const ambient = scene.children.filter((o) => o.isAmbientLight);
-            if (ambient.length) throw new Error("the bundle scene has an ambient light");
-            shadows.enabled = true;
-            shadows.update();
-            const on = renderInto();
-            shadows.enabled = false;
-            shadows.update();
-            const off = renderInto();
-            shadows.enabled = true;
-            shadows.update();
-            const ratio = new Array(W * H), unshadowed = new Array(W * H);
-            for (let i = 0; i < W * H; ++i) {
-                const a = on[4 * i] + on[4 * i + 1] + on[4 * i + 2], b = off[4 * i] + off[4 * i + 1] + off[4 * i + 2];
-                unshadowed[i] = b / 3;
-                ratio[i] = b > 0 ? a / b : NaN;
-            }
-            return {ratio, unshadowed};
-        },
+        materialRatio: () => materialRatio(scene, shadows, renderInto),
         peer: (type, settings) => Array.from(peer(type, settings)),
-        moveLight: (dx) => {
-            light.translateX(dx);
-            light.updateMatrixWorld();
-            shadows.update();
-            return shadows.info.shadowUpdates;
-        },
-        shadowUpdates: () => shadows.info.shadowUpdates,
-        update: () => { shadows.update(); return shadows.info.shadowUpdates; },
-        variants,
+        ...addonControls(light, shadows), // moveLight(dx), shadowUpdates(), update()
+        variants: () => placementVariants(scene, mesh, shadows, () => shadows.renderVisibility(camera, W, H)),
         // dispose(): the runner's textures and programs are deleted, the materials restored
         dispose: () => {
             const gl = renderer.getContext();

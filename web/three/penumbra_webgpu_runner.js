@@ -1,4 +1,4 @@
-// webgpu_runner.js — runs a `wgsl` emission on WebGPU by following its layout.json alone, as
+// penumbra_webgpu_runner.js — runs a `wgsl` emission on WebGPU by following its layout.json alone, as
 // three/penumbra_runner.js does for the essl300 emission on WebGL2: the textures of `textures` (their
 // `webgpu` format and usage), the programs of `programs` (one WGSL module a stage, entry point
 // `main`; one bind group layout a program, from its parameters' `group`, `binding`,
@@ -394,9 +394,10 @@ export class WebGPULayoutRunner {
         return (this.pipelines[index] = {pipeline, program});
     }
 
-    // The uniform buffer of one block for one pass (its values: setUniforms and the pass's int_uniforms).
-    writeUniforms(index, pass, block) {
-        const key = `${index} ${block.name}`;
+    // The uniform buffer of one block for one pass (its values: setUniforms and the pass's int_uniforms;
+    // `draw`: {slot, values} of one draw of drawScene, its own buffer with `values` over those).
+    writeUniforms(index, pass, block, draw = null) {
+        const key = draw ? `${index} ${block.name} draw ${draw.slot}` : `${index} ${block.name}`;
         let buffer = this.uniformBuffers.get(key);
         if (!buffer) {
             buffer = this.device.createBuffer({label: key, size: block.size, usage: GPUBufferUsage.UNIFORM | GPUBufferUsage.COPY_DST});
@@ -405,7 +406,8 @@ export class WebGPULayoutRunner {
         const bytes = new ArrayBuffer(block.size);
         const views = {f32: new Float32Array(bytes), i32: new Int32Array(bytes), u32: new Uint32Array(bytes)};
         for (const param of block.members) {
-            const value = pass.int_uniforms && param.name in pass.int_uniforms ? pass.int_uniforms[param.name] : this.uniformValues[param.name];
+            const value = draw && param.name in draw.values ? draw.values[param.name]
+                : pass.int_uniforms && param.name in pass.int_uniforms ? pass.int_uniforms[param.name] : this.uniformValues[param.name];
             if (value === undefined) continue;
             const type = UNIFORM_TYPES[param.type];
             const v = typeof value === "number" || typeof value === "boolean" ? [Number(value)] : Array.from(value);
@@ -432,10 +434,10 @@ export class WebGPULayoutRunner {
 
     // The pass's bind group: each texture parameter reads the texture (and level) its pass input names
     // (or the parameter's own `texture`), through a sampler of the input's sampling.
-    bindGroup(index, pass, program) {
+    bindGroup(index, pass, program, draw = null) {
         const entries = [];
         for (const block of Object.values(program.blocks))
-            entries.push({binding: block.binding, resource: {buffer: this.writeUniforms(index, pass, block)}});
+            entries.push({binding: block.binding, resource: {buffer: this.writeUniforms(index, pass, block, draw)}});
         for (const {param, viewDimension} of program.textures) {
             const input = pass.inputs.find((i) => i.sampler === param.name);
             let view;
@@ -464,8 +466,11 @@ export class WebGPULayoutRunner {
         return this.device.createBindGroup({label: pass.name, layout: program.bindGroupLayout, entries});
     }
 
-    // Encodes one pass. `drawScene(renderPass, program)` draws the caller's triangles with the
-    // vertex buffers in the order of the program's vertex_inputs (sceneDrawer makes one).
+    // Encodes one pass. `drawScene(renderPass, program, setDrawUniforms)` draws the caller's triangles
+    // with the vertex buffers in the order of the program's vertex_inputs (sceneDrawer makes one);
+    // setDrawUniforms(values, slot) before a draw gives it uniform values of its own (e.g. a
+    // caster's model matrix in penumbra_lightFromWorld), in a buffer kept per pass and slot (queue
+    // writes land before the submission, so draws of one pass cannot share a buffer).
     encodePass(encoder, pass, index, drawScene, size) {
         if (pass.action === "copy") return this.encodeCopy(encoder, pass);
         const {pipeline, program} = this.pipeline(pass, index);
@@ -497,7 +502,7 @@ export class WebGPULayoutRunner {
         else if (size) render.setViewport(0, 0, size.width, size.height, 0, 1);
         if (pass.action === "draw_scene") {
             if (!drawScene) fail(`pass ${pass.name} draws the scene: runPhase needs a drawScene callback`);
-            drawScene(render, program.desc);
+            drawScene(render, program.desc, (values, slot) => render.setBindGroup(0, this.bindGroup(index, pass, program, {values, slot})));
         } else {
             render.draw(3);
         }
@@ -542,14 +547,28 @@ export class WebGPULayoutRunner {
     // Runs every pass of `phase` in layout order ("shadow": when the scene or light changes;
     // "screen": every frame at the output size) in one submission; fails with WebGPU's validation
     // message. Returns how many passes ran.
+    // `replace`: {<pass name>: callback} called where that pass would run (a test's own data in place
+    // of a pass's output, through uploadTexture).
     async runPhase(phase, drawScene, size, replace = {}) {
+        const {count, done} = this.submitPhase(phase, drawScene, size, replace);
+        await done;
+        return count;
+    }
+
+    // runPhase without waiting: the passes are encoded and submitted now (so that work submitted
+    // later on the same queue, e.g. a renderer's frame, sees their results); `done` settles when
+    // WebGPU has validated them (rejects with its message). {count, done}.
+    submitPhase(phase, drawScene, size, replace = {}) {
         if (phase === "example") fail("runPhase('example'): the example phase draws into the caller's framebuffer; this runner runs shadow and screen");
         if (phase === "screen") {
             if (!size) fail("runPhase('screen'): needs the output size {width, height}");
             this.allocateOutputSized(size.width, size.height);
         }
         let count = 0;
-        await validated(this.device, `in phase ${phase}`, () => {
+        // (an error scope opened and closed here, synchronously: nothing else lands in it)
+        this.device.pushErrorScope("validation");
+        let failure = null;
+        try {
             let encoder = this.device.createCommandEncoder({label: phase});
             this.layout.passes.forEach((pass, index) => {
                 if (pass.phase !== phase) return;
@@ -564,9 +583,16 @@ export class WebGPULayoutRunner {
                 ++count;
             });
             this.device.queue.submit([encoder.finish()]);
-        });
+        } catch (e) {
+            failure = e;
+        }
+        const popped = this.device.popErrorScope();
+        if (failure) throw failure;
         this.passCount += count;
-        return count;
+        const done = popped.then((error) => {
+            if (error) fail(`WebGPU validation error in phase ${phase}: ${error.message}`);
+        });
+        return {count, done};
     }
 
     // One level (and layer) of a colour texture as RGBA floats in memory row order (bottom row first

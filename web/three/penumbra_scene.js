@@ -1,0 +1,344 @@
+// penumbra_scene.js — what the add-on does the same on WebGLRenderer (penumbra_shadows.js) and
+// WebGPURenderer (penumbra_shadows_webgpu.js): the options, the light's kind, the emission's
+// files (shipped, a folder, in memory, or emitted by the WebAssembly emitter), the casters and
+// receivers of the scene, when the shadow phase must run again, the light frame from the three.js
+// light and the scene's bounds (light_frame.js), and the casters' vertices. Each renderer's module
+// subclasses ShadowsBase with its own GPU work: the runner, the caster draws, the material hooks.
+import {Box3, Color, Matrix4, Vector3} from "three";
+import {rectFrame, sunFrame} from "./light_frame.js";
+import {EMISSIONS} from "./emissions.js";
+
+export {EMISSIONS};
+
+export const DEFAULTS = {
+    emission: null,           // a key of EMISSIONS, a folder URL (ending in "/"), {layout, files}, or a configuration
+                              // object ({slices, resolution, filter, ...}: needs the WebAssembly emitter)
+    angularDiameter: 0.0093,  // sun only: the DirectionalLight's angular diameter in radians (our sun: 0.53°)
+    autoUpdate: true,         // re-run the shadow phase by itself when something moved (like shadowMap.autoUpdate)
+    intensity: 1,             // 0: no shadow, 1: Penumbra's visibility (like LightShadow.intensity)
+    wasm: null,               // for a configuration object: the URL of penumbra_emitter.wasm (default: the one beside penumbra_emitter.js)
+};
+
+export class PenumbraError extends Error {}
+
+export function fail(message) {
+    throw new PenumbraError(`PenumbraShadows: ${message}`);
+}
+
+export function kindOf(light) {
+    if (light && light.isRectAreaLight) return "rect";
+    if (light && light.isSunLight) fail("a cascaded SunLight has its own light loop in three; use a THREE.DirectionalLight");
+    if (light && light.isDirectionalLight) return "sun";
+    fail(`the light must be a THREE.RectAreaLight or a THREE.DirectionalLight (got ${light ? light.type : light})`);
+}
+
+export function positionVersion(geometry) {
+    const p = geometry.attributes.position;
+    return p ? (p.isInterleavedBufferAttribute ? p.data.version : p.version) : -1;
+}
+
+// Every add-on gets its own names: the emission's identifiers penumbra_x / penumbraX become
+// penumbra<N>_x / penumbra<N>X (N: the add-on's serial number), so that several add-ons (one per
+// light) can put their snippets into one material.
+let serial = 0;
+function renamer(prefix) {
+    return (text) => text.replace(/\bpenumbra(?=[_A-Z])/g, prefix);
+}
+
+// The emission's files for a renderer's target ("essl300" on WebGL2, "wgsl" on WebGPU):
+// {layout, files}. `emission`: a key of EMISSIONS (the wgsl one of a key is "<key>-wgsl"), a
+// folder URL ending in "/", {layout, files}, or a configuration object (the WebAssembly emitter).
+export async function loadEmissionFiles(emission, kind, wasm, target) {
+    const snippet = target === "wgsl" ? "penumbra_visibility.wgsl" : "penumbra_visibility.glsl";
+    const check = (em) => {
+        const t = em.layout && em.layout.config && em.layout.config.target;
+        if (t && t !== target)
+            fail(`the emission's target is '${t}', but this renderer runs '${target}' (penumbra-gen --target ${target}` +
+                 `${target === "wgsl" ? " for WebGPURenderer" : " for WebGLRenderer"})`);
+        if (typeof em.files[snippet] !== "string") fail(`the emission has no ${snippet}`);
+        return em;
+    };
+    if (typeof emission === "string") {
+        const shipped = target === "wgsl" ? `${emission}-wgsl` : emission;
+        if (Object.hasOwn(EMISSIONS, shipped)) {
+            const files = {};
+            await Promise.all(Object.entries(EMISSIONS[shipped]).map(async ([name, url]) => {
+                const response = await fetch(url);
+                if (!response.ok) fail(`emission '${emission}': ${url}: HTTP ${response.status}`);
+                files[name] = await response.text();
+            }));
+            return check({layout: JSON.parse(files["layout.json"]), files});
+        }
+        if (!emission.endsWith("/")) {
+            const keys = Object.keys(EMISSIONS).filter((k) => k.endsWith("-wgsl") === (target === "wgsl"))
+                .map((k) => k.replace(/-wgsl$/, ""));
+            fail(`emission '${emission}': not one of ${keys.join(", ")} (shipped for ${target}) nor a folder URL ending in '/'`);
+        }
+        const fetchText = async (name) => {
+            const response = await fetch(emission + name);
+            if (!response.ok) fail(`${emission}${name}: HTTP ${response.status}`);
+            return response.text();
+        };
+        const layout = JSON.parse(await fetchText("layout.json"));
+        const files = {};
+        // (the snippet is no program of the layout: fetched by name)
+        const names = new Set([...(layout.programs || []).flatMap((p) => p.files), snippet]);
+        await Promise.all([...names].map(async (name) => (files[name] = await fetchText(name))));
+        return check({layout, files});
+    }
+    if (emission && emission.layout && emission.files) return check(emission);
+    if (emission && typeof emission === "object") {
+        // A configuration (penumbra-gen --config's schema): emitted here by the WebAssembly emitter.
+        const emitter = await loadEmitter(wasm);
+        const result = emitter.emit({light: kind, ...emission, target});
+        if (!result.ok) fail(`emission: ${result.diagnostics.map((d) => d.message).join("; ") || result.error}`);
+        return check({layout: result.layout, files: result.files});
+    }
+    fail("options.emission: a key of EMISSIONS, a folder URL ending in '/', {layout, files}, or a configuration object");
+}
+
+// The WebAssembly emitter (penumbra_emitter.js; its .wasm at `wasm`, default the one beside it),
+// loaded once, on demand (bundlers split it and its .wasm off the main chunk).
+let emitterPromise = null;
+export function loadEmitter(wasm = null) {
+    if (!emitterPromise)
+        emitterPromise = import("./penumbra_emitter.js")
+            .then((m) => (wasm ? m.loadEmitter(wasm) : m.loadEmitter()))
+            .catch((e) => {
+                emitterPromise = null;
+                fail(`a configuration needs the WebAssembly emitter (penumbra_emitter.js and penumbra_emitter.wasm), which did not load: ${e.message}`);
+            });
+    return emitterPromise;
+}
+
+// The uniforms of the visibility snippet, from layout.json: the parameters of the program of the
+// screen pass that writes the result (the deferred shading pass, which includes the snippet),
+// less the textures the caller fills (its G-buffer).
+export function snippetParameters(layout) {
+    const pass = (layout.passes || []).find((p) => p.phase === "screen" && p.outputs.some((o) => o.texture === layout.result));
+    const program = pass && (layout.programs || []).find((p) => p.name === pass.program);
+    if (!program) fail(`layout.json: no screen pass writing '${layout.result}', so the visibility snippet's parameters are unknown`);
+    const caller = new Set(layout.textures.filter((t) => t.source === "caller").map((t) => t.name));
+    return program.parameters.filter((p) => !caller.has(p.name));
+}
+
+// A caster's triangles as the slicing pass draws them: positions in the mesh's own space (skinned
+// and morphed ones from mesh.getVertexPosition(), as three's own vertex stage places them), the
+// index (Uint16Array or Uint32Array, or null) and the draw range. {positions, index, first, count, deformed}.
+export function casterVertices(object) {
+    const geometry = object.geometry;
+    const position = geometry.attributes.position;
+    const deformed = isDeformed(object);
+    const n = position.count;
+    const positions = new Float32Array(3 * n);
+    const v = new Vector3();
+    for (let i = 0; i < n; ++i) {
+        if (deformed) object.getVertexPosition(i, v);
+        else v.fromBufferAttribute(position, i);
+        positions[3 * i] = v.x;
+        positions[3 * i + 1] = v.y;
+        positions[3 * i + 2] = v.z;
+    }
+    const range = geometry.drawRange;
+    let index = null, count;
+    if (geometry.index) {
+        const big = geometry.index.array instanceof Uint32Array || n > 65535;
+        index = big ? Uint32Array.from(geometry.index.array) : Uint16Array.from(geometry.index.array);
+        count = Math.min(range.count, geometry.index.count - range.start);
+    } else {
+        count = Math.min(range.count, n - range.start);
+    }
+    return {positions, index, first: range.start, count, deformed};
+}
+
+export function isDeformed(object) {
+    return object.isSkinnedMesh || !!(object.morphTargetInfluences && object.morphTargetInfluences.some((w) => w !== 0));
+}
+
+// Calls draw(matrix) with each placement of a caster: its matrixWorld, or matrixWorld × instance
+// matrix for each instance of an InstancedMesh.
+const instanceMatrix = new Matrix4(), worldMatrix = new Matrix4();
+export function forEachPlacement(object, draw) {
+    if (!object.isInstancedMesh) return draw(object.matrixWorld);
+    for (let k = 0; k < object.count; ++k) {
+        object.getMatrixAt(k, instanceMatrix);
+        draw(worldMatrix.multiplyMatrices(object.matrixWorld, instanceMatrix));
+    }
+}
+
+// The scene side of an add-on, whatever the renderer. A subclass gives _patch(material) (hooks a
+// receiver's material), _updateUniforms() (every update) and _renderShadow(casters, receivers,
+// frame) (the shadow phase with the light frame's uniforms).
+export class ShadowsBase {
+    constructor(renderer, scene, light, options) {
+        if (!scene || !scene.isScene) fail("the second argument must be a THREE.Scene");
+        const o = {...DEFAULTS, ...options};
+        this.renderer = renderer;
+        this.scene = scene;
+        this.light = light;
+        this.kind = kindOf(light);
+        this.angularDiameter = o.angularDiameter;
+        this.autoUpdate = o.autoUpdate;
+        this.needsUpdate = true;
+        this.enabled = true;
+        this.wasm = o.wasm;
+        this.intensity = o.intensity;
+        this.info = {shadowUpdates: 0, lastShadowMs: 0, casters: 0, receivers: 0, contained: true};
+        this.disposed = false;
+        this._serial = ++serial;
+        this._rename = renamer(`penumbra${this._serial}`);
+        this._materials = new Set(); // materials we hooked
+        this._geometries = new Map(); // BufferGeometry (or deformed mesh) → its GPU buffers (_geometryOf, _dropGeometry)
+        this._signature = null;
+        this._frame = null;
+    }
+
+    // The emission's light must be the add-on's.
+    _checkLight(layout) {
+        const wanted = this.kind === "sun" ? "sun" : "rect";
+        if (layout.config.light !== wanted)
+            fail(`the emission is for a '${layout.config.light}' light but the light is a ${this.light.type} (needs '${wanted}')`);
+    }
+
+    _alive(what) {
+        if (this.disposed) fail(`${what} after dispose(): this add-on freed its resources; make another with PenumbraShadows.load()`);
+    }
+
+    // Call once per frame before renderer.render(): hooks new receivers' materials, re-runs the
+    // shadow phase when the light or a caster or receiver changed.
+    update() {
+        this._alive("update()");
+        const scene = this.scene;
+        scene.updateMatrixWorld();
+        this.light.updateMatrixWorld();
+        if (this.light.target) this.light.target.updateMatrixWorld();
+        const casters = [], receivers = [];
+        scene.traverseVisible((object) => {
+            if (!object.isMesh) return;
+            if (object.castShadow && !object.isBatchedMesh && object.geometry.attributes.position) casters.push(object); // BatchedMesh: not drawn (README)
+            if (object.receiveShadow) {
+                receivers.push(object);
+                for (const material of Array.isArray(object.material) ? object.material : [object.material]) this._patch(material);
+            }
+        });
+        this.info.casters = casters.length;
+        this.info.receivers = receivers.length;
+        this._updateUniforms();
+        const signature = this._signatureOf(casters, receivers);
+        const changed = !this._signature || signature.length !== this._signature.length || signature.some((v, i) => v !== this._signature[i]);
+        if (this.needsUpdate || (this.autoUpdate && changed)) {
+            this._signature = signature;
+            this.needsUpdate = false;
+            const t0 = performance.now();
+            const box = this._bounds(casters, receivers);
+            if (box.isEmpty()) box.set(new Vector3(-1, -1, -1), new Vector3(1, 1, 1));
+            const frame = this._lightFrame(box);
+            if (!frame.contained && this.info.contained) console.warn("PenumbraShadows: the scene's bounds reach the light's plane; shadows above it are wrong (move the light up)");
+            this.info.contained = frame.contained;
+            this._frame = frame;
+            this._renderShadow(casters, receivers, frame);
+            this.info.shadowUpdates++;
+            this.info.lastShadowMs = performance.now() - t0;
+        }
+    }
+
+    // The debug view of renderVisibility(): the receivers alone, drawn with the visibility material
+    // (made by makeMaterial(), again when the emission changed) into the visibility target (made by
+    // makeTarget(width, height)) cleared to white (1: no receiver); the renderer's target and clear
+    // colour and the scene's override, background and visibilities are restored. Returns the target
+    // for the renderer's own read-back.
+    _renderReceivers(camera, width, height, makeTarget, makeMaterial) {
+        const renderer = this.renderer;
+        if (!this._visibilityTarget) this._visibilityTarget = makeTarget(width, height);
+        const target = this._visibilityTarget;
+        if (target.width !== width || target.height !== height) target.setSize(width, height);
+        if (!this._visibilityMaterial || this._visibilityMaterial.userData.key !== this._cacheKey) {
+            if (this._visibilityMaterial) this._visibilityMaterial.dispose();
+            this._visibilityMaterial = makeMaterial();
+            this._visibilityMaterial.userData.key = this._cacheKey;
+        }
+        const hidden = [];
+        this.scene.traverse((o) => { if (o.isMesh && o.visible && !o.receiveShadow) { hidden.push(o); o.visible = false; } });
+        const previous = {target: renderer.getRenderTarget(), override: this.scene.overrideMaterial, background: this.scene.background,
+                          clear: renderer.getClearColor(new Color()), alpha: renderer.getClearAlpha()};
+        this.scene.overrideMaterial = this._visibilityMaterial;
+        this.scene.background = null;
+        try {
+            renderer.setRenderTarget(target);
+            renderer.setClearColor(0xffffff, 1);
+            renderer.clear();
+            renderer.render(this.scene, camera);
+        } finally {
+            renderer.setRenderTarget(previous.target);
+            renderer.setClearColor(previous.clear, previous.alpha);
+            this.scene.overrideMaterial = previous.override;
+            this.scene.background = previous.background;
+            for (const o of hidden) o.visible = true;
+        }
+        return target;
+    }
+
+    // Frees every GPU resource of the add-on and restores the materials it hooked (other add-ons'
+    // shadows on them stay). Afterwards update(), setEmission() and renderVisibility() throw; a
+    // second dispose() does nothing. The subclass's _disposeResources() frees its own.
+    dispose() {
+        if (this.disposed) return;
+        this.disposed = true;
+        for (const key of [...this._geometries.keys()]) this._dropGeometry(key);
+        for (const material of this._materials) this._unpatch(material);
+        this._materials.clear();
+        if (this._visibilityTarget) this._visibilityTarget.dispose();
+        if (this._visibilityMaterial) this._visibilityMaterial.dispose();
+        if (this.runner) this.runner.dispose(); // its textures, samplers, programs or pipelines, framebuffers, buffers
+        this.runner = null;
+        this._disposeResources(); // (last: on WebGL2 it resets three's state after the runner's raw GL)
+    }
+
+    // Everything the shadow phase depends on, as numbers.
+    _signatureOf(casters, receivers) {
+        const out = [];
+        const light = this.light;
+        out.push(...light.matrixWorld.elements);
+        if (this.kind === "rect") out.push(light.width, light.height);
+        else out.push(...light.target.matrixWorld.elements, this.angularDiameter);
+        for (const list of [casters, receivers]) {
+            out.push(list.length);
+            for (const object of list) {
+                out.push(object.id, ...object.matrixWorld.elements, object.geometry.id, positionVersion(object.geometry));
+                if (object.isInstancedMesh) out.push(object.count, object.instanceMatrix.version);
+                if (object.isSkinnedMesh) for (const bone of object.skeleton.bones) out.push(...bone.matrixWorld.elements);
+                if (object.morphTargetInfluences) out.push(...object.morphTargetInfluences);
+            }
+        }
+        return out;
+    }
+
+    _bounds(casters, receivers) {
+        const box = new Box3();
+        // exact (vertex by vertex) where the geometry's box is not the drawn one: skinned, instanced, morphed
+        const exact = (o) => o.isInstancedMesh || isDeformed(o);
+        for (const object of [...casters, ...receivers]) box.expandByObject(object, exact(object));
+        return box;
+    }
+
+    // The light-frame uniforms (light_frame.js) from the three.js light and the scene's bounds.
+    _lightFrame(box) {
+        const light = this.light;
+        const lo = box.min.toArray(), hi = box.max.toArray();
+        const slices = this.config.slices;
+        if (this.kind === "sun") {
+            const from = new Vector3().setFromMatrixPosition(light.matrixWorld);
+            const to = new Vector3().setFromMatrixPosition(light.target.matrixWorld);
+            const direction = to.sub(from).normalize().toArray();
+            return sunFrame({direction, angularDiameter: this.angularDiameter}, lo, hi, slices);
+        }
+        // RectAreaLight: width along local x, height along local y, emitting towards local -z; like
+        // three's own lighting, the object's scale is ignored.
+        // Penumbra's frame wants n = u × v towards the scene: u = x, v = -y.
+        const e = light.matrixWorld.elements;
+        const x = new Vector3(e[0], e[1], e[2]).normalize(), y = new Vector3(e[4], e[5], e[6]).normalize();
+        const center = new Vector3().setFromMatrixPosition(light.matrixWorld).toArray();
+        return rectFrame({center, u: x.toArray(), v: y.negate().toArray(), width: light.width, height: light.height},
+                         lo, hi, slices);
+    }
+}
