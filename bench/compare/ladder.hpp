@@ -44,13 +44,22 @@ inline LadderEntry reduced_from_entry(Filter filter, int slices, int resolution,
 }
 
 // The paper's own model at the default size: probabilistic fusion (eq. 5) and whole-light kernels,
-// in its own family so that the tables show how far the default (chained fusion, tangent clip)
+// in its own family so that the tables show how far the default (extent fusion, tangent clip)
 // moved from it and never pick it as "occlusion textures".
 inline LadderEntry paper_entry(int slices, int resolution) {
     Config config{.slices = slices, .resolution = resolution, .filter = Filter::nbuffer};
     config.fusion = Fusion::probabilistic;
     config.tangent_clip = false;
     return {"paper", "paper nbuffer " + std::to_string(slices) + "/" + std::to_string(resolution), config, false};
+}
+
+// The default before extent fusion (docs/model.md §1.7.2): chained fusion, neighbouring slices by
+// maximum. Its own family, so that the tables show it beside the default and never pick it.
+inline LadderEntry chained_entry(int slices, int resolution) {
+    Config config{.slices = slices, .resolution = resolution, .filter = Filter::nbuffer};
+    config.fusion = Fusion::chained;
+    return {"chained-fusion", "OT nbuffer " + std::to_string(slices) + "/" + std::to_string(resolution) + " chained",
+            config, false};
 }
 
 // The default before it built only the levels its kernels reach, in RGBA8, at reduced resolution:
@@ -162,6 +171,7 @@ inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
         reduced_from_entry(Filter::nbuffer, 8, 256, 1),
         occlusion_entry(Filter::nbuffer, 16, 256),
         occlusion_entry(Filter::nbuffer, 16, 512, true), // the default configuration
+        chained_entry(16, 512),
         every_level_entry(16, 512),
         full_levels_entry(16, 512),
         compute_prefilter_entry(16, 512),

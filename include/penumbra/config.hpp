@@ -4,10 +4,11 @@
 //   penumbra::Config pcss{.technique = penumbra::Technique::pcss, .pcss = {.blocker_samples = 16, .filter_samples = 16}};
 //
 // `Config{}` is the default configuration (occlusion textures: 16 slices, 512², N-buffers,
-// chained fusion, the paper's atlas packing, rectangular light, leak fix, fade and tangent clip on,
-// uniform slice placement, OpenGL 4.5 core). Chained fusion and the tangent clip are where it departs
-// from the paper: on the built-in scenes they cut the penumbra error against a ray-traced,
-// orientation-aware truth by about two thirds at the same cost (docs/model.md); `fusion =
+// extent fusion, the paper's atlas packing, rectangular light, leak fix, fade and tangent clip on,
+// uniform slice placement, OpenGL 4.5 core). The fusion (extent: neighbouring slices between nested
+// and independent by the occluder's size and the parallax, docs/model.md §1.7.2) and the tangent clip
+// are where it departs from the paper: on the built-in scenes they cut the penumbra error against a
+// ray-traced, orientation-aware truth by about two thirds (docs/model.md); `fusion =
 // probabilistic, tangent_clip = false` is the paper's model, whose penumbraVisibility takes no
 // normal. `technique` picks the shadowing method; each technique reads only its own
 // fields plus `light` and `target` (occlusion textures: slices … self_shadow_fade; shadow map
@@ -202,7 +203,7 @@ struct Config {
                                             // 64 or 128 (sliced as bits of one RGBA32UI target, paper §3.7)
     int resolution = 512;                   // occlusion texture side in texels; a power of two, 32 to 4096
     Filter filter = Filter::nbuffer;        // prefilter of the occlusion textures
-    Fusion fusion = Fusion::chained;        // rule combining the slices' occlusion
+    Fusion fusion = Fusion::extent;         // rule combining the slices' occlusion
     Packing packing = Packing::atlas;       // storage of the filtered levels
     Light light = Light::rect;              // kind of area light
     bool leak_fix = true;                   // paper §3.4.1: a fragment of slice k also marks slice k+1

@@ -279,8 +279,9 @@ TEST_CASE("oracle: the GPU's atlas filter levels equal the oracle's, texel by te
                         "%zu beyond\n",
                         describe_config(config).c_str(), l, side, texels, fractional, off_by_one, beyond);
             CHECK_MESSAGE(beyond == 0, describe_config(config), " level ", l, ": ", beyond, " texels off the oracle's");
-            // the slicing output has penumbrae: the levels above 0 have fractional texels to compare
-            if (l > 0) CHECK_MESSAGE(fractional > 100, describe_config(config), " level ", l);
+            // the slicing output has penumbrae: the levels above 0 have fractional texels to compare (100, or
+            // an eighth of a level of fewer than 800 texels: the top one at level_reduction 0, 4 x 4 per slice)
+            if (l > 0) CHECK_MESSAGE(fractional > std::min<std::size_t>(100, texels / 8), describe_config(config), " level ", l);
         }
     }
 }

@@ -84,17 +84,21 @@ int shadowed_pixels(const std::vector<float>& visibility) {
 
 } // namespace
 
+// The rules that read only the kernel's window need the same levels; extent fusion (the default) also
+// reads a window twice as wide, one level more (the next test).
 TEST_CASE("reconfigure: changing fusion rebuilds only the shading programs and reallocates no texture") {
     Planes planes;
     REQUIRE_MESSAGE(planes.ready(), planes.error);
-    auto rt = planes.runtime(kSmall);
+    Config start = kSmall;
+    start.fusion = penumbra::Fusion::probabilistic;
+    auto rt = planes.runtime(start);
     REQUIRE_MESSAGE(rt, planes.error);
     const std::vector<float> probabilistic = planes.render(*rt);
     REQUIRE_MESSAGE(!probabilistic.empty(), planes.error);
     const auto programs_before = program_ids(*rt);
     const auto textures_before = texture_ids(*rt);
 
-    Config additive = kSmall;
+    Config additive = start;
     additive.fusion = penumbra::Fusion::additive;
     REQUIRE(rt->reconfigure(additive) == "");
     CHECK(rt->requested_config() == additive);
@@ -120,6 +124,48 @@ TEST_CASE("reconfigure: changing fusion rebuilds only the shading programs and r
     }
     CHECK(darker > 0);
     CHECK(lighter == 0);
+}
+
+// Extent fusion reads each slice over the kernel and over a window twice its side, so the fitted
+// level_bound is one higher (penumbra::kernel_level_bound): switching to it from a rule that reads only
+// the kernel builds that level (its texture and the programs that write or read the levels), switching
+// back drops it; the textures of the other levels are kept, and the image is a fresh runtime's.
+TEST_CASE("reconfigure: to and from extent fusion refits the level bound and adds or drops only its level") {
+    Planes planes;
+    REQUIRE_MESSAGE(planes.ready(), planes.error);
+    Config chained = kSmall;
+    chained.fusion = penumbra::Fusion::chained;
+    auto rt = planes.runtime(chained);
+    REQUIRE_MESSAGE(rt, planes.error);
+    REQUIRE(!planes.render(*rt).empty());
+    const int bound = rt->config().level_bound;
+    REQUIRE(bound >= 1);
+    REQUIRE(bound < penumbra::resolution_levels(kSmall)); // room for one more
+    const auto textures_chained = texture_ids(*rt);
+    const std::string top = "penumbra_level" + std::to_string(bound + 1);
+
+    Config extent = kSmall;
+    REQUIRE(extent.fusion == penumbra::Fusion::extent); // the default
+    REQUIRE(rt->reconfigure(extent) == "");
+    CHECK(rt->config().level_bound == bound + 1);
+    CHECK(rt->config().level_bound == penumbra::kernel_level_bound(rt->frame(), extent));
+    CHECK(rt->last_reconfigure().textures_reallocated == 1);
+    const auto textures_extent = texture_ids(*rt);
+    CHECK(textures_extent.size() == textures_chained.size() + 1);
+    CHECK(textures_extent.at(top) != 0);
+    for (const auto& [name, id] : textures_chained) CHECK_MESSAGE(textures_extent.at(name) == id, name);
+    const std::vector<float> reconfigured = planes.render(*rt);
+    REQUIRE_MESSAGE(!reconfigured.empty(), planes.error);
+    auto fresh = planes.runtime(extent);
+    REQUIRE_MESSAGE(fresh, planes.error);
+    CHECK(fresh->config().level_bound == bound + 1);
+    CHECK(identical(reconfigured, planes.render(*fresh)));
+
+    REQUIRE(rt->reconfigure(chained) == "");
+    CHECK(rt->config().level_bound == bound);
+    CHECK(rt->last_reconfigure().textures_reallocated == 0);
+    CHECK(texture_ids(*rt).count(top) == 0);
+    for (const auto& [name, id] : texture_ids(*rt)) CHECK_MESSAGE(id == textures_chained.at(name), name);
 }
 
 TEST_CASE("reconfigure: changing resolution reallocates every fixed-size texture") {

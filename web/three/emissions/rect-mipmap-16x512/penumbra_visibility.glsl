@@ -1,5 +1,5 @@
 // Penumbra 0.1.0 - penumbra_visibility.glsl: float penumbraVisibility(vec3 worldPos, vec3 worldNormal) (clipped to the tangent plane) and (vec3 worldPos)
-// slices 16 | resolution 512x512 | filter mipmap | fusion chained | packing atlas | light rect | leak fix on | fade on over 0.25 slice | tangent clip on, offset 1.0 texels + footprint | target essl300
+// slices 16 | resolution 512x512 | filter mipmap | fusion extent | packing atlas | light rect | leak fix on | fade on over 0.25 slice | tangent clip on, offset 1.0 texels + footprint | target essl300
 // Include after the #version line of a stage for this target. Bindings start at 0.
 
 // @penumbra:precision
@@ -68,17 +68,40 @@ vec3 penumbra_tangentClip(vec3 p, vec3 n)
     return vec3(alongX ? vec2(mid, 0.0) : vec2(0.0, mid), hi - lo);
 }
 
+// @penumbra:fusion
+// extent fusion: correlated fusion, the occluder's size from a window twice the kernel's side, docs/model.md §1.7.2
+float penumbra_extentStep(float q, vec4 kernel, float area, float prev, vec4 prevKernel, float prevArea)
+{
+    // parallax between the two kernels, RMS over the light's points, per axis (uv)
+    vec2 parallax = kernel.xy - prevKernel.xy;
+    float grow = kernel.z - prevKernel.z;
+    vec2 shift = sqrt(parallax * parallax + vec2(grow * grow / 12.0));
+    // the occluder's size (uv): the larger covered area either slice sees around its kernel
+    float feature = sqrt(max(area, prevArea));
+    vec2 overlap = clamp(1.0 - shift / max(feature, 1e-12), 0.0, 1.0);
+    // blocked by both: nested (the smaller) when the occluder overlaps itself, independent (product) when not
+    float both = mix(q * prev, min(q, prev), overlap.x * overlap.y);
+    return (1.0 - q - prev + both) / max(1.0 - prev, 1e-6);
+}
+
+// @penumbra:fusion
+// filter level of a window twice the kernel's side (extent fusion)
+float penumbra_wideLevel(vec4 kernel)
+{
+    return clamp(log2(max(2.0 * kernel.z * 512.0, 1.0)), 0.0, 9.0);
+}
+
 // @penumbra:visibility
 // The fused visibility at light-frame point p of the part of the light that penumbra_clip keeps.
 float penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)
 {
     // @penumbra:fusion
-    // chained fusion: eq. (5) assumes independent slices, but the leak fix (paper §3.4.1) copies every
-    // surface into the next slice and a solid covers consecutive slices alike. Neighbours are taken
-    // as nested (fused by maximum), slices further apart as independent (product): a chain whose
-    // step from the previous slice's q to this one's lets through (1 - max(q, prev)) / (1 - prev).
+    // extent fusion: correlated fusion, the occluder's size from the covered area in a window twice
+    // the kernel's side, so an edge of a solid that crosses the kernel stays nested
     float penumbra_lit = 1.0;
     float penumbra_prev = 0.0; // q of the slice visited before (its neighbour)
+    vec4 penumbra_prevKernel = vec4(0.0); // its kernel
+    float penumbra_prevArea = 0.0; // and its covered area
     // @penumbra:slice_loop
     // static loop over the slices, unrolled; i selects the slice's channel
     vec4 penumbra_i = vec4(0.0, 0.0, 0.0, 1.0);
@@ -86,144 +109,256 @@ float penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)
     {
         float zeta = penumbra_sliceDepths.x + 16.0 * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
-        float q = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 3.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(penumbra_filtered(kernel, 3.0), penumbra_i);
+        float q = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        vec4 penumbra_wide = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        float area = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 3.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 14: texture 3, channel b, bottom plane at z0 + 15 * thickness
     {
         float zeta = penumbra_sliceDepths.x + 15.0 * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
-        float q = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 3.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(penumbra_filtered(kernel, 3.0), penumbra_i);
+        float q = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        vec4 penumbra_wide = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        float area = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 3.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 13: texture 3, channel g, bottom plane at z0 + 14 * thickness
     {
         float zeta = penumbra_sliceDepths.x + 14.0 * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
-        float q = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 3.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(penumbra_filtered(kernel, 3.0), penumbra_i);
+        float q = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        vec4 penumbra_wide = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        float area = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 3.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 12: texture 3, channel r, bottom plane at z0 + 13 * thickness
     {
         float zeta = penumbra_sliceDepths.x + 13.0 * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
-        float q = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 3.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(penumbra_filtered(kernel, 3.0), penumbra_i);
+        float q = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        vec4 penumbra_wide = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        float area = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 3.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 11: texture 2, channel a, bottom plane at z0 + 12 * thickness
     {
         float zeta = penumbra_sliceDepths.x + 12.0 * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
-        float q = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 2.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(penumbra_filtered(kernel, 2.0), penumbra_i);
+        float q = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        vec4 penumbra_wide = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        float area = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 2.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 10: texture 2, channel b, bottom plane at z0 + 11 * thickness
     {
         float zeta = penumbra_sliceDepths.x + 11.0 * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
-        float q = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 2.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(penumbra_filtered(kernel, 2.0), penumbra_i);
+        float q = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        vec4 penumbra_wide = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        float area = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 2.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 9: texture 2, channel g, bottom plane at z0 + 10 * thickness
     {
         float zeta = penumbra_sliceDepths.x + 10.0 * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
-        float q = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 2.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(penumbra_filtered(kernel, 2.0), penumbra_i);
+        float q = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        vec4 penumbra_wide = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        float area = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 2.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 8: texture 2, channel r, bottom plane at z0 + 9 * thickness
     {
         float zeta = penumbra_sliceDepths.x + 9.0 * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
-        float q = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 2.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(penumbra_filtered(kernel, 2.0), penumbra_i);
+        float q = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        vec4 penumbra_wide = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        float area = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 2.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 7: texture 1, channel a, bottom plane at z0 + 8 * thickness
     {
         float zeta = penumbra_sliceDepths.x + 8.0 * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
-        float q = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 1.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(penumbra_filtered(kernel, 1.0), penumbra_i);
+        float q = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        vec4 penumbra_wide = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        float area = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 1.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 6: texture 1, channel b, bottom plane at z0 + 7 * thickness
     {
         float zeta = penumbra_sliceDepths.x + 7.0 * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
-        float q = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 1.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(penumbra_filtered(kernel, 1.0), penumbra_i);
+        float q = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        vec4 penumbra_wide = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        float area = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 1.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 5: texture 1, channel g, bottom plane at z0 + 6 * thickness
     {
         float zeta = penumbra_sliceDepths.x + 6.0 * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
-        float q = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 1.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(penumbra_filtered(kernel, 1.0), penumbra_i);
+        float q = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        vec4 penumbra_wide = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        float area = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 1.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 4: texture 1, channel r, bottom plane at z0 + 5 * thickness
     {
         float zeta = penumbra_sliceDepths.x + 5.0 * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
-        float q = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 1.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(penumbra_filtered(kernel, 1.0), penumbra_i);
+        float q = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        vec4 penumbra_wide = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        float area = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 1.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 3: texture 0, channel a, bottom plane at z0 + 4 * thickness
     {
         float zeta = penumbra_sliceDepths.x + 4.0 * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
-        float q = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 0.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(penumbra_filtered(kernel, 0.0), penumbra_i);
+        float q = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        vec4 penumbra_wide = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        float area = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 0.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 2: texture 0, channel b, bottom plane at z0 + 3 * thickness
     {
         float zeta = penumbra_sliceDepths.x + 3.0 * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
-        float q = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 0.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(penumbra_filtered(kernel, 0.0), penumbra_i);
+        float q = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        vec4 penumbra_wide = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        float area = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 0.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 1: texture 0, channel g, bottom plane at z0 + 2 * thickness
     {
         float zeta = penumbra_sliceDepths.x + 2.0 * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
-        float q = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 0.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(penumbra_filtered(kernel, 0.0), penumbra_i);
+        float q = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        vec4 penumbra_wide = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        float area = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 0.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 0: texture 0, channel r, bottom plane at z0 + 1 * thickness
     {
         float zeta = penumbra_sliceDepths.x + 1.0 * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
-        float q = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 0.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(penumbra_filtered(kernel, 0.0), penumbra_i);
+        float q = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        vec4 penumbra_wide = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        float area = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 0.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     // @penumbra:fusion_result
     return clamp(penumbra_lit, 0.0, 1.0);

@@ -1,6 +1,6 @@
 #version 300 es
 // Penumbra 0.1.0 - deferred visibility pass: penumbraVisibility of a G-buffer, fragment stage
-// slices 16 | resolution 256x256 | filter nbuffer | fusion chained | packing atlas | light rect | leak fix on | fade on over 0.25 slice | tangent clip on, offset 1.0 texels + footprint | target essl300
+// slices 16 | resolution 256x256 | filter nbuffer | fusion extent | packing atlas | light rect | leak fix on | fade on over 0.25 slice | tangent clip on, offset 1.0 texels + footprint | target essl300
 // 4 RGBA occlusion texture(s), filter levels 0 to 8. Generated: edit the configuration, not this file.
 // @penumbra:precision
 precision highp float;
@@ -72,17 +72,40 @@ vec3 penumbra_tangentClip(vec3 p, vec3 n)
     return vec3(alongX ? vec2(mid, 0.0) : vec2(0.0, mid), hi - lo);
 }
 
+// @penumbra:fusion
+// extent fusion: correlated fusion, the occluder's size from a window twice the kernel's side, docs/model.md §1.7.2
+float penumbra_extentStep(float q, vec4 kernel, float area, float prev, vec4 prevKernel, float prevArea)
+{
+    // parallax between the two kernels, RMS over the light's points, per axis (uv)
+    vec2 parallax = kernel.xy - prevKernel.xy;
+    float grow = kernel.z - prevKernel.z;
+    vec2 shift = sqrt(parallax * parallax + vec2(grow * grow / 12.0));
+    // the occluder's size (uv): the larger covered area either slice sees around its kernel
+    float feature = sqrt(max(area, prevArea));
+    vec2 overlap = clamp(1.0 - shift / max(feature, 1e-12), 0.0, 1.0);
+    // blocked by both: nested (the smaller) when the occluder overlaps itself, independent (product) when not
+    float both = mix(q * prev, min(q, prev), overlap.x * overlap.y);
+    return (1.0 - q - prev + both) / max(1.0 - prev, 1e-6);
+}
+
+// @penumbra:fusion
+// filter level of a window twice the kernel's side (extent fusion)
+float penumbra_wideLevel(vec4 kernel)
+{
+    return clamp(log2(max(2.0 * kernel.z * 256.0, 1.0)), 0.0, 8.0);
+}
+
 // @penumbra:visibility
 // The fused visibility at light-frame point p of the part of the light that penumbra_clip keeps.
 float penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)
 {
     // @penumbra:fusion
-    // chained fusion: eq. (5) assumes independent slices, but the leak fix (paper §3.4.1) copies every
-    // surface into the next slice and a solid covers consecutive slices alike. Neighbours are taken
-    // as nested (fused by maximum), slices further apart as independent (product): a chain whose
-    // step from the previous slice's q to this one's lets through (1 - max(q, prev)) / (1 - prev).
+    // extent fusion: correlated fusion, the occluder's size from the covered area in a window twice
+    // the kernel's side, so an edge of a solid that crosses the kernel stays nested
     float penumbra_lit = 1.0;
     float penumbra_prev = 0.0; // q of the slice visited before (its neighbour)
+    vec4 penumbra_prevKernel = vec4(0.0); // its kernel
+    float penumbra_prevArea = 0.0; // and its covered area
     // @penumbra:level_loop
     // start at the nearest slice above the point; slices below it have weight 0
     float penumbra_k = clamp(ceil((p.z - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 2.0, -1.0, 15.0);
@@ -93,11 +116,21 @@ float penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)
         float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 1.0) break;
-        vec4 texel = mix(textureLod(penumbra_level0, vec2(penumbra_delta + (kernel.x - 0.0) * 0.25, kernel.y - 0.0), 0.0),
-            textureLod(penumbra_level1, vec2(penumbra_delta + (kernel.x - 0.001953125) * 0.25, kernel.y - 0.001953125), 0.0), kernel.w - 0.0);
-        float q = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        vec4 penumbra_lo = textureLod(penumbra_level0, vec2(penumbra_delta + (kernel.x - 0.0) * 0.25, kernel.y - 0.0), 0.0);
+        vec4 penumbra_hi = textureLod(penumbra_level1, vec2(penumbra_delta + (kernel.x - 0.001953125) * 0.25, kernel.y - 0.001953125), 0.0);
+        vec4 texel = mix(penumbra_lo, penumbra_hi, kernel.w - 0.0);
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        float penumbra_wideAt = penumbra_wideLevel(kernel);
+        vec4 penumbra_wide = penumbra_wideAt < 1.0 ? mix(penumbra_lo, penumbra_hi, penumbra_wideAt - 0.0)
+            : mix(penumbra_hi, textureLod(penumbra_level2, vec2(penumbra_delta + (kernel.x - 0.005859375) * 0.25, kernel.y - 0.005859375), 0.0), penumbra_wideAt - 1.0);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(texel, penumbra_i);
+        float q = fade * coverage;
+        float area = fade * max(coverage, 4.0 * dot(penumbra_wide, penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
         // next slice up: the channel rotates; wrapping from r to a moves one tile left
         penumbra_k -= 1.0;
         penumbra_i = penumbra_i.yzwx;
@@ -108,11 +141,21 @@ float penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)
         float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 2.0) break;
-        vec4 texel = mix(textureLod(penumbra_level1, vec2(penumbra_delta + (kernel.x - 0.001953125) * 0.25, kernel.y - 0.001953125), 0.0),
-            textureLod(penumbra_level2, vec2(penumbra_delta + (kernel.x - 0.005859375) * 0.25, kernel.y - 0.005859375), 0.0), kernel.w - 1.0);
-        float q = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        vec4 penumbra_lo = textureLod(penumbra_level1, vec2(penumbra_delta + (kernel.x - 0.001953125) * 0.25, kernel.y - 0.001953125), 0.0);
+        vec4 penumbra_hi = textureLod(penumbra_level2, vec2(penumbra_delta + (kernel.x - 0.005859375) * 0.25, kernel.y - 0.005859375), 0.0);
+        vec4 texel = mix(penumbra_lo, penumbra_hi, kernel.w - 1.0);
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        float penumbra_wideAt = penumbra_wideLevel(kernel);
+        vec4 penumbra_wide = penumbra_wideAt < 2.0 ? mix(penumbra_lo, penumbra_hi, penumbra_wideAt - 1.0)
+            : mix(penumbra_hi, textureLod(penumbra_level3, vec2(penumbra_delta + (kernel.x - 0.01171875) * 0.25, kernel.y - 0.01171875), 0.0), penumbra_wideAt - 2.0);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(texel, penumbra_i);
+        float q = fade * coverage;
+        float area = fade * max(coverage, 4.0 * dot(penumbra_wide, penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
         // next slice up: the channel rotates; wrapping from r to a moves one tile left
         penumbra_k -= 1.0;
         penumbra_i = penumbra_i.yzwx;
@@ -123,11 +166,21 @@ float penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)
         float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 3.0) break;
-        vec4 texel = mix(textureLod(penumbra_level2, vec2(penumbra_delta + (kernel.x - 0.005859375) * 0.25, kernel.y - 0.005859375), 0.0),
-            textureLod(penumbra_level3, vec2(penumbra_delta + (kernel.x - 0.01171875) * 0.25, kernel.y - 0.01171875), 0.0), kernel.w - 2.0);
-        float q = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        vec4 penumbra_lo = textureLod(penumbra_level2, vec2(penumbra_delta + (kernel.x - 0.005859375) * 0.25, kernel.y - 0.005859375), 0.0);
+        vec4 penumbra_hi = textureLod(penumbra_level3, vec2(penumbra_delta + (kernel.x - 0.01171875) * 0.25, kernel.y - 0.01171875), 0.0);
+        vec4 texel = mix(penumbra_lo, penumbra_hi, kernel.w - 2.0);
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        float penumbra_wideAt = penumbra_wideLevel(kernel);
+        vec4 penumbra_wide = penumbra_wideAt < 3.0 ? mix(penumbra_lo, penumbra_hi, penumbra_wideAt - 2.0)
+            : mix(penumbra_hi, textureLod(penumbra_level4, vec2(penumbra_delta + (kernel.x - 0.0234375) * 0.25, kernel.y - 0.0234375), 0.0), penumbra_wideAt - 3.0);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(texel, penumbra_i);
+        float q = fade * coverage;
+        float area = fade * max(coverage, 4.0 * dot(penumbra_wide, penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
         // next slice up: the channel rotates; wrapping from r to a moves one tile left
         penumbra_k -= 1.0;
         penumbra_i = penumbra_i.yzwx;
@@ -138,11 +191,21 @@ float penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)
         float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 4.0) break;
-        vec4 texel = mix(textureLod(penumbra_level3, vec2(penumbra_delta + (kernel.x - 0.01171875) * 0.25, kernel.y - 0.01171875), 0.0),
-            textureLod(penumbra_level4, vec2(penumbra_delta + (kernel.x - 0.0234375) * 0.25, kernel.y - 0.0234375), 0.0), kernel.w - 3.0);
-        float q = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        vec4 penumbra_lo = textureLod(penumbra_level3, vec2(penumbra_delta + (kernel.x - 0.01171875) * 0.25, kernel.y - 0.01171875), 0.0);
+        vec4 penumbra_hi = textureLod(penumbra_level4, vec2(penumbra_delta + (kernel.x - 0.0234375) * 0.25, kernel.y - 0.0234375), 0.0);
+        vec4 texel = mix(penumbra_lo, penumbra_hi, kernel.w - 3.0);
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        float penumbra_wideAt = penumbra_wideLevel(kernel);
+        vec4 penumbra_wide = penumbra_wideAt < 4.0 ? mix(penumbra_lo, penumbra_hi, penumbra_wideAt - 3.0)
+            : mix(penumbra_hi, textureLod(penumbra_level5, vec2(penumbra_delta + (kernel.x - 0.046875) * 0.25, kernel.y - 0.046875), 0.0), penumbra_wideAt - 4.0);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(texel, penumbra_i);
+        float q = fade * coverage;
+        float area = fade * max(coverage, 4.0 * dot(penumbra_wide, penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
         // next slice up: the channel rotates; wrapping from r to a moves one tile left
         penumbra_k -= 1.0;
         penumbra_i = penumbra_i.yzwx;
@@ -153,11 +216,21 @@ float penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)
         float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 5.0) break;
-        vec4 texel = mix(textureLod(penumbra_level4, vec2(penumbra_delta + (kernel.x - 0.0234375) * 0.25, kernel.y - 0.0234375), 0.0),
-            textureLod(penumbra_level5, vec2(penumbra_delta + (kernel.x - 0.046875) * 0.25, kernel.y - 0.046875), 0.0), kernel.w - 4.0);
-        float q = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        vec4 penumbra_lo = textureLod(penumbra_level4, vec2(penumbra_delta + (kernel.x - 0.0234375) * 0.25, kernel.y - 0.0234375), 0.0);
+        vec4 penumbra_hi = textureLod(penumbra_level5, vec2(penumbra_delta + (kernel.x - 0.046875) * 0.25, kernel.y - 0.046875), 0.0);
+        vec4 texel = mix(penumbra_lo, penumbra_hi, kernel.w - 4.0);
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        float penumbra_wideAt = penumbra_wideLevel(kernel);
+        vec4 penumbra_wide = penumbra_wideAt < 5.0 ? mix(penumbra_lo, penumbra_hi, penumbra_wideAt - 4.0)
+            : mix(penumbra_hi, textureLod(penumbra_level6, vec2(penumbra_delta + (kernel.x - 0.09375) * 0.25, kernel.y - 0.09375), 0.0), penumbra_wideAt - 5.0);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(texel, penumbra_i);
+        float q = fade * coverage;
+        float area = fade * max(coverage, 4.0 * dot(penumbra_wide, penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
         // next slice up: the channel rotates; wrapping from r to a moves one tile left
         penumbra_k -= 1.0;
         penumbra_i = penumbra_i.yzwx;
@@ -168,11 +241,21 @@ float penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)
         float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 6.0) break;
-        vec4 texel = mix(textureLod(penumbra_level5, vec2(penumbra_delta + (kernel.x - 0.046875) * 0.25, kernel.y - 0.046875), 0.0),
-            textureLod(penumbra_level6, vec2(penumbra_delta + (kernel.x - 0.09375) * 0.25, kernel.y - 0.09375), 0.0), kernel.w - 5.0);
-        float q = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        vec4 penumbra_lo = textureLod(penumbra_level5, vec2(penumbra_delta + (kernel.x - 0.046875) * 0.25, kernel.y - 0.046875), 0.0);
+        vec4 penumbra_hi = textureLod(penumbra_level6, vec2(penumbra_delta + (kernel.x - 0.09375) * 0.25, kernel.y - 0.09375), 0.0);
+        vec4 texel = mix(penumbra_lo, penumbra_hi, kernel.w - 5.0);
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        float penumbra_wideAt = penumbra_wideLevel(kernel);
+        vec4 penumbra_wide = penumbra_wideAt < 6.0 ? mix(penumbra_lo, penumbra_hi, penumbra_wideAt - 5.0)
+            : mix(penumbra_hi, textureLod(penumbra_level7, vec2(penumbra_delta + (kernel.x - 0.1875) * 0.25, kernel.y - 0.1875), 0.0), penumbra_wideAt - 6.0);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(texel, penumbra_i);
+        float q = fade * coverage;
+        float area = fade * max(coverage, 4.0 * dot(penumbra_wide, penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
         // next slice up: the channel rotates; wrapping from r to a moves one tile left
         penumbra_k -= 1.0;
         penumbra_i = penumbra_i.yzwx;
@@ -183,11 +266,21 @@ float penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)
         float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 7.0) break;
-        vec4 texel = mix(textureLod(penumbra_level6, vec2(penumbra_delta + (kernel.x - 0.09375) * 0.25, kernel.y - 0.09375), 0.0),
-            textureLod(penumbra_level7, vec2(penumbra_delta + (kernel.x - 0.1875) * 0.25, kernel.y - 0.1875), 0.0), kernel.w - 6.0);
-        float q = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        vec4 penumbra_lo = textureLod(penumbra_level6, vec2(penumbra_delta + (kernel.x - 0.09375) * 0.25, kernel.y - 0.09375), 0.0);
+        vec4 penumbra_hi = textureLod(penumbra_level7, vec2(penumbra_delta + (kernel.x - 0.1875) * 0.25, kernel.y - 0.1875), 0.0);
+        vec4 texel = mix(penumbra_lo, penumbra_hi, kernel.w - 6.0);
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        float penumbra_wideAt = penumbra_wideLevel(kernel);
+        vec4 penumbra_wide = penumbra_wideAt < 7.0 ? mix(penumbra_lo, penumbra_hi, penumbra_wideAt - 6.0)
+            : mix(penumbra_hi, textureLod(penumbra_level8, vec2(penumbra_delta + (kernel.x - 0.375) * 0.25, kernel.y - 0.375), 0.0), penumbra_wideAt - 7.0);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(texel, penumbra_i);
+        float q = fade * coverage;
+        float area = fade * max(coverage, 4.0 * dot(penumbra_wide, penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
         // next slice up: the channel rotates; wrapping from r to a moves one tile left
         penumbra_k -= 1.0;
         penumbra_i = penumbra_i.yzwx;
@@ -198,11 +291,20 @@ float penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)
         float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 8.0) break;
-        vec4 texel = mix(textureLod(penumbra_level7, vec2(penumbra_delta + (kernel.x - 0.1875) * 0.25, kernel.y - 0.1875), 0.0),
-            textureLod(penumbra_level8, vec2(penumbra_delta + (kernel.x - 0.375) * 0.25, kernel.y - 0.375), 0.0), kernel.w - 7.0);
-        float q = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        vec4 penumbra_lo = textureLod(penumbra_level7, vec2(penumbra_delta + (kernel.x - 0.1875) * 0.25, kernel.y - 0.1875), 0.0);
+        vec4 penumbra_hi = textureLod(penumbra_level8, vec2(penumbra_delta + (kernel.x - 0.375) * 0.25, kernel.y - 0.375), 0.0);
+        vec4 texel = mix(penumbra_lo, penumbra_hi, kernel.w - 7.0);
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        float penumbra_wideAt = penumbra_wideLevel(kernel);
+        vec4 penumbra_wide = mix(penumbra_lo, penumbra_hi, penumbra_wideAt - 7.0);
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(texel, penumbra_i);
+        float q = fade * coverage;
+        float area = fade * max(coverage, 4.0 * dot(penumbra_wide, penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
         // next slice up: the channel rotates; wrapping from r to a moves one tile left
         penumbra_k -= 1.0;
         penumbra_i = penumbra_i.yzwx;
@@ -212,10 +314,17 @@ float penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)
     while (penumbra_k >= 0.0) {
         float zeta = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         vec4 kernel = penumbra_kernel(p, zeta, penumbra_clip);
-        vec4 texel = textureLod(penumbra_level8, vec2(penumbra_delta + (kernel.x - 0.375) * 0.25, kernel.y - 0.375), 0.0);
-        float q = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        vec4 penumbra_lo = textureLod(penumbra_level8, vec2(penumbra_delta + (kernel.x - 0.375) * 0.25, kernel.y - 0.375), 0.0);
+        vec4 texel = penumbra_lo;
+        vec4 penumbra_wide = penumbra_lo; // no wider window than the last level's
+        float fade = penumbra_weight(p.z, zeta);
+        float coverage = dot(texel, penumbra_i);
+        float q = fade * coverage;
+        float area = fade * max(coverage, 4.0 * dot(penumbra_wide, penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
         // next slice up: the channel rotates; wrapping from r to a moves one tile left
         penumbra_k -= 1.0;
         penumbra_i = penumbra_i.yzwx;

@@ -1,6 +1,6 @@
 #version 300 es
 // Penumbra 0.1.0 - slicing pass, fragment stage (blend equation MAX, clear to 0)
-// slices 16 | resolution 256x256 | filter nbuffer | fusion chained | packing atlas | light rect | leak fix on | fade on over 0.25 slice | tangent clip on, offset 1.0 texels + footprint | target essl300
+// slices 16 | resolution 256x256 | filter nbuffer | fusion extent | packing atlas | light rect | leak fix on | fade on over 0.25 slice | tangent clip on, offset 1.0 texels + footprint | target essl300
 // 4 RGBA occlusion texture(s), filter levels 0 to 8. Generated: edit the configuration, not this file.
 // @penumbra:precision
 precision highp float;
