@@ -37,7 +37,7 @@ mkdir -p "$DIR"
 DIR=$(realpath "$DIR")
 
 filters=(mipmap nbuffer sat gaussian)
-fusions=(probabilistic additive maximum average chained correlated)
+fusions=(probabilistic additive maximum average chained correlated extent)
 packings=(atlas array volume)
 targets=(glsl330 glsl450 essl300 vulkan)
 lights=(rect sun)

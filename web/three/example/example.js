@@ -256,7 +256,7 @@ function buildGui(keys) {
     folders.sun.add(state, "diameter", 0.2, 15, 0.1).name("angular diameter (°)").onChange(changed);
     // Any configuration, emitted in the page, where the WebAssembly emitter is there.
     loadEmitter(wasm).then(() => {
-        const custom = {slices: 16, resolution: 512, filter: "nbuffer", fusion: "chained", packing: "atlas", tangentClip: true};
+        const custom = {slices: 16, resolution: 512, filter: "nbuffer", fusion: "extent", packing: "atlas", tangentClip: true};
         const folder = gui.addFolder("configuration (emitted)");
         folder.add(custom, "slices", 1, 16, 1);
         folder.add(custom, "resolution", [128, 256, 512, 1024]);
