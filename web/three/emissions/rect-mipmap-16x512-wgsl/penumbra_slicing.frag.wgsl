@@ -1,5 +1,5 @@
 // Penumbra 0.1.0 - slicing pass, fragment stage (blend equation MAX, clear to 0)
-// slices 16 | resolution 512x512 | filter mipmap | fusion chained | packing atlas | light rect | leak fix on | fade on over 0.25 slice | tangent clip on, offset 1.0 texels + footprint | target wgsl
+// slices 16 | resolution 512x512 | filter mipmap | fusion extent | packing atlas | light rect | leak fix on | fade on over 0.25 slice | tangent clip on, offset 1.0 texels + footprint | target wgsl
 // 4 RGBA occlusion texture(s), filter levels 0 to 9. Generated: edit the configuration, not this file.
 
 // @penumbra:slicing_outputs

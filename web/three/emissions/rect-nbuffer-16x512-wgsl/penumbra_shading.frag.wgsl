@@ -1,5 +1,5 @@
 // Penumbra 0.1.0 - example shading pass: Lambert term times penumbraVisibility, fragment stage
-// slices 16 | resolution 512x512 | filter nbuffer | fusion chained | packing atlas | light rect | leak fix on | fade on over 0.25 slice | tangent clip on, offset 1.0 texels + footprint | target wgsl
+// slices 16 | resolution 512x512 | filter nbuffer | fusion extent | packing atlas | light rect | leak fix on | fade on over 0.25 slice | tangent clip on, offset 1.0 texels + footprint | target wgsl
 // 4 RGBA occlusion texture(s), filter levels 0 to 9. Generated: edit the configuration, not this file.
 
 // @penumbra:example_inputs
@@ -94,17 +94,40 @@ fn penumbra_tangentClip(p: vec3f, n: vec3f) -> vec3f
     return vec3(select(vec2(0.0, mid), vec2(mid, 0.0), alongX), hi - lo);
 }
 
+// @penumbra:fusion
+// extent fusion: correlated fusion, the occluder's size from a window twice the kernel's side, docs/model.md §1.7.2
+fn penumbra_extentStep(q: f32, kernel: vec4f, area: f32, prev: f32, prevKernel: vec4f, prevArea: f32) -> f32
+{
+    // parallax between the two kernels, RMS over the light's points, per axis (uv)
+    let parallax: vec2f = kernel.xy - prevKernel.xy;
+    let grow: f32 = kernel.z - prevKernel.z;
+    let shift: vec2f = sqrt(parallax * parallax + vec2(grow * grow / 12.0));
+    // the occluder's size (uv): the larger covered area either slice sees around its kernel
+    let feature: f32 = sqrt(max(area, prevArea));
+    let overlap: vec2f = saturate(1.0 - shift / max(feature, 1e-12));
+    // blocked by both: nested (the smaller) when the occluder overlaps itself, independent (product) when not
+    let both: f32 = mix(q * prev, min(q, prev), overlap.x * overlap.y);
+    return (1.0 - q - prev + both) / max(1.0 - prev, 1e-6);
+}
+
+// @penumbra:fusion
+// filter level of a window twice the kernel's side (extent fusion)
+fn penumbra_wideLevel(kernel: vec4f) -> f32
+{
+    return clamp(log2(max(2.0 * kernel.z * 512.0, 1.0)), 0.0, 9.0);
+}
+
 // @penumbra:visibility
 // The fused visibility at light-frame point p of the part of the light that penumbra_clip keeps.
 fn penumbra_clippedVisibility(p: vec3f, penumbra_clip: vec3f) -> f32
 {
     // @penumbra:fusion
-    // chained fusion: eq. (5) assumes independent slices, but the leak fix (paper §3.4.1) copies every
-    // surface into the next slice and a solid covers consecutive slices alike. Neighbours are taken
-    // as nested (fused by maximum), slices further apart as independent (product): a chain whose
-    // step from the previous slice's q to this one's lets through (1 - max(q, prev)) / (1 - prev).
+    // extent fusion: correlated fusion, the occluder's size from the covered area in a window twice
+    // the kernel's side, so an edge of a solid that crosses the kernel stays nested
     var penumbra_lit: f32 = 1.0;
     var penumbra_prev: f32 = 0.0; // q of the slice visited before (its neighbour)
+    var penumbra_prevKernel: vec4f = vec4(0.0); // its kernel
+    var penumbra_prevArea: f32 = 0.0; // and its covered area
     // @penumbra:level_loop
     // start at the nearest slice above the point; slices below it have weight 0
     var penumbra_k: f32 = clamp(ceil((p.z - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 2.0, -1.0, 15.0);
@@ -115,11 +138,20 @@ fn penumbra_clippedVisibility(p: vec3f, penumbra_clip: vec3f) -> f32
         let zeta: f32 = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 1.0) { break; }
-        let texel: vec4f = mix(textureSampleLevel(penumbra_level0, penumbra_level0_sampler, vec2(penumbra_delta + (kernel.x - 0.0) * 0.25, kernel.y - 0.0), 0.0),
-            textureSampleLevel(penumbra_level1, penumbra_level1_sampler, vec2(penumbra_delta + (kernel.x - 0.0009765625) * 0.25, kernel.y - 0.0009765625), 0.0), kernel.w - 0.0);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let penumbra_lo: vec4f = textureSampleLevel(penumbra_level0, penumbra_level0_sampler, vec2(penumbra_delta + (kernel.x - 0.0) * 0.25, kernel.y - 0.0), 0.0);
+        let penumbra_hi: vec4f = textureSampleLevel(penumbra_level1, penumbra_level1_sampler, vec2(penumbra_delta + (kernel.x - 0.0009765625) * 0.25, kernel.y - 0.0009765625), 0.0);
+        let texel: vec4f = mix(penumbra_lo, penumbra_hi, kernel.w - 0.0);
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wideAt: f32 = penumbra_wideLevel(kernel);
+        let penumbra_wide: vec4f = select(mix(penumbra_hi, textureSampleLevel(penumbra_level2, penumbra_level2_sampler, vec2(penumbra_delta + (kernel.x - 0.0029296875) * 0.25, kernel.y - 0.0029296875), 0.0), penumbra_wideAt - 1.0), mix(penumbra_lo, penumbra_hi, penumbra_wideAt - 0.0), penumbra_wideAt < 1.0);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(texel, penumbra_i);
+        let q: f32 = fade * coverage;
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_wide, penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
         // next slice up: the channel rotates; wrapping from r to a moves one tile left
         penumbra_k -= 1.0;
         penumbra_i = penumbra_i.yzwx;
@@ -130,11 +162,20 @@ fn penumbra_clippedVisibility(p: vec3f, penumbra_clip: vec3f) -> f32
         let zeta: f32 = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 2.0) { break; }
-        let texel: vec4f = mix(textureSampleLevel(penumbra_level1, penumbra_level1_sampler, vec2(penumbra_delta + (kernel.x - 0.0009765625) * 0.25, kernel.y - 0.0009765625), 0.0),
-            textureSampleLevel(penumbra_level2, penumbra_level2_sampler, vec2(penumbra_delta + (kernel.x - 0.0029296875) * 0.25, kernel.y - 0.0029296875), 0.0), kernel.w - 1.0);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let penumbra_lo: vec4f = textureSampleLevel(penumbra_level1, penumbra_level1_sampler, vec2(penumbra_delta + (kernel.x - 0.0009765625) * 0.25, kernel.y - 0.0009765625), 0.0);
+        let penumbra_hi: vec4f = textureSampleLevel(penumbra_level2, penumbra_level2_sampler, vec2(penumbra_delta + (kernel.x - 0.0029296875) * 0.25, kernel.y - 0.0029296875), 0.0);
+        let texel: vec4f = mix(penumbra_lo, penumbra_hi, kernel.w - 1.0);
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wideAt: f32 = penumbra_wideLevel(kernel);
+        let penumbra_wide: vec4f = select(mix(penumbra_hi, textureSampleLevel(penumbra_level3, penumbra_level3_sampler, vec2(penumbra_delta + (kernel.x - 0.005859375) * 0.25, kernel.y - 0.005859375), 0.0), penumbra_wideAt - 2.0), mix(penumbra_lo, penumbra_hi, penumbra_wideAt - 1.0), penumbra_wideAt < 2.0);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(texel, penumbra_i);
+        let q: f32 = fade * coverage;
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_wide, penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
         // next slice up: the channel rotates; wrapping from r to a moves one tile left
         penumbra_k -= 1.0;
         penumbra_i = penumbra_i.yzwx;
@@ -145,11 +186,20 @@ fn penumbra_clippedVisibility(p: vec3f, penumbra_clip: vec3f) -> f32
         let zeta: f32 = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 3.0) { break; }
-        let texel: vec4f = mix(textureSampleLevel(penumbra_level2, penumbra_level2_sampler, vec2(penumbra_delta + (kernel.x - 0.0029296875) * 0.25, kernel.y - 0.0029296875), 0.0),
-            textureSampleLevel(penumbra_level3, penumbra_level3_sampler, vec2(penumbra_delta + (kernel.x - 0.005859375) * 0.25, kernel.y - 0.005859375), 0.0), kernel.w - 2.0);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let penumbra_lo: vec4f = textureSampleLevel(penumbra_level2, penumbra_level2_sampler, vec2(penumbra_delta + (kernel.x - 0.0029296875) * 0.25, kernel.y - 0.0029296875), 0.0);
+        let penumbra_hi: vec4f = textureSampleLevel(penumbra_level3, penumbra_level3_sampler, vec2(penumbra_delta + (kernel.x - 0.005859375) * 0.25, kernel.y - 0.005859375), 0.0);
+        let texel: vec4f = mix(penumbra_lo, penumbra_hi, kernel.w - 2.0);
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wideAt: f32 = penumbra_wideLevel(kernel);
+        let penumbra_wide: vec4f = select(mix(penumbra_hi, textureSampleLevel(penumbra_level4, penumbra_level4_sampler, vec2(penumbra_delta + (kernel.x - 0.01171875) * 0.25, kernel.y - 0.01171875), 0.0), penumbra_wideAt - 3.0), mix(penumbra_lo, penumbra_hi, penumbra_wideAt - 2.0), penumbra_wideAt < 3.0);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(texel, penumbra_i);
+        let q: f32 = fade * coverage;
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_wide, penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
         // next slice up: the channel rotates; wrapping from r to a moves one tile left
         penumbra_k -= 1.0;
         penumbra_i = penumbra_i.yzwx;
@@ -160,11 +210,20 @@ fn penumbra_clippedVisibility(p: vec3f, penumbra_clip: vec3f) -> f32
         let zeta: f32 = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 4.0) { break; }
-        let texel: vec4f = mix(textureSampleLevel(penumbra_level3, penumbra_level3_sampler, vec2(penumbra_delta + (kernel.x - 0.005859375) * 0.25, kernel.y - 0.005859375), 0.0),
-            textureSampleLevel(penumbra_level4, penumbra_level4_sampler, vec2(penumbra_delta + (kernel.x - 0.01171875) * 0.25, kernel.y - 0.01171875), 0.0), kernel.w - 3.0);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let penumbra_lo: vec4f = textureSampleLevel(penumbra_level3, penumbra_level3_sampler, vec2(penumbra_delta + (kernel.x - 0.005859375) * 0.25, kernel.y - 0.005859375), 0.0);
+        let penumbra_hi: vec4f = textureSampleLevel(penumbra_level4, penumbra_level4_sampler, vec2(penumbra_delta + (kernel.x - 0.01171875) * 0.25, kernel.y - 0.01171875), 0.0);
+        let texel: vec4f = mix(penumbra_lo, penumbra_hi, kernel.w - 3.0);
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wideAt: f32 = penumbra_wideLevel(kernel);
+        let penumbra_wide: vec4f = select(mix(penumbra_hi, textureSampleLevel(penumbra_level5, penumbra_level5_sampler, vec2(penumbra_delta + (kernel.x - 0.0234375) * 0.25, kernel.y - 0.0234375), 0.0), penumbra_wideAt - 4.0), mix(penumbra_lo, penumbra_hi, penumbra_wideAt - 3.0), penumbra_wideAt < 4.0);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(texel, penumbra_i);
+        let q: f32 = fade * coverage;
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_wide, penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
         // next slice up: the channel rotates; wrapping from r to a moves one tile left
         penumbra_k -= 1.0;
         penumbra_i = penumbra_i.yzwx;
@@ -175,11 +234,20 @@ fn penumbra_clippedVisibility(p: vec3f, penumbra_clip: vec3f) -> f32
         let zeta: f32 = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 5.0) { break; }
-        let texel: vec4f = mix(textureSampleLevel(penumbra_level4, penumbra_level4_sampler, vec2(penumbra_delta + (kernel.x - 0.01171875) * 0.25, kernel.y - 0.01171875), 0.0),
-            textureSampleLevel(penumbra_level5, penumbra_level5_sampler, vec2(penumbra_delta + (kernel.x - 0.0234375) * 0.25, kernel.y - 0.0234375), 0.0), kernel.w - 4.0);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let penumbra_lo: vec4f = textureSampleLevel(penumbra_level4, penumbra_level4_sampler, vec2(penumbra_delta + (kernel.x - 0.01171875) * 0.25, kernel.y - 0.01171875), 0.0);
+        let penumbra_hi: vec4f = textureSampleLevel(penumbra_level5, penumbra_level5_sampler, vec2(penumbra_delta + (kernel.x - 0.0234375) * 0.25, kernel.y - 0.0234375), 0.0);
+        let texel: vec4f = mix(penumbra_lo, penumbra_hi, kernel.w - 4.0);
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wideAt: f32 = penumbra_wideLevel(kernel);
+        let penumbra_wide: vec4f = select(mix(penumbra_hi, textureSampleLevel(penumbra_level6, penumbra_level6_sampler, vec2(penumbra_delta + (kernel.x - 0.046875) * 0.25, kernel.y - 0.046875), 0.0), penumbra_wideAt - 5.0), mix(penumbra_lo, penumbra_hi, penumbra_wideAt - 4.0), penumbra_wideAt < 5.0);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(texel, penumbra_i);
+        let q: f32 = fade * coverage;
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_wide, penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
         // next slice up: the channel rotates; wrapping from r to a moves one tile left
         penumbra_k -= 1.0;
         penumbra_i = penumbra_i.yzwx;
@@ -190,11 +258,20 @@ fn penumbra_clippedVisibility(p: vec3f, penumbra_clip: vec3f) -> f32
         let zeta: f32 = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 6.0) { break; }
-        let texel: vec4f = mix(textureSampleLevel(penumbra_level5, penumbra_level5_sampler, vec2(penumbra_delta + (kernel.x - 0.0234375) * 0.25, kernel.y - 0.0234375), 0.0),
-            textureSampleLevel(penumbra_level6, penumbra_level6_sampler, vec2(penumbra_delta + (kernel.x - 0.046875) * 0.25, kernel.y - 0.046875), 0.0), kernel.w - 5.0);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let penumbra_lo: vec4f = textureSampleLevel(penumbra_level5, penumbra_level5_sampler, vec2(penumbra_delta + (kernel.x - 0.0234375) * 0.25, kernel.y - 0.0234375), 0.0);
+        let penumbra_hi: vec4f = textureSampleLevel(penumbra_level6, penumbra_level6_sampler, vec2(penumbra_delta + (kernel.x - 0.046875) * 0.25, kernel.y - 0.046875), 0.0);
+        let texel: vec4f = mix(penumbra_lo, penumbra_hi, kernel.w - 5.0);
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wideAt: f32 = penumbra_wideLevel(kernel);
+        let penumbra_wide: vec4f = select(mix(penumbra_hi, textureSampleLevel(penumbra_level7, penumbra_level7_sampler, vec2(penumbra_delta + (kernel.x - 0.09375) * 0.25, kernel.y - 0.09375), 0.0), penumbra_wideAt - 6.0), mix(penumbra_lo, penumbra_hi, penumbra_wideAt - 5.0), penumbra_wideAt < 6.0);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(texel, penumbra_i);
+        let q: f32 = fade * coverage;
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_wide, penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
         // next slice up: the channel rotates; wrapping from r to a moves one tile left
         penumbra_k -= 1.0;
         penumbra_i = penumbra_i.yzwx;
@@ -205,11 +282,20 @@ fn penumbra_clippedVisibility(p: vec3f, penumbra_clip: vec3f) -> f32
         let zeta: f32 = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 7.0) { break; }
-        let texel: vec4f = mix(textureSampleLevel(penumbra_level6, penumbra_level6_sampler, vec2(penumbra_delta + (kernel.x - 0.046875) * 0.25, kernel.y - 0.046875), 0.0),
-            textureSampleLevel(penumbra_level7, penumbra_level7_sampler, vec2(penumbra_delta + (kernel.x - 0.09375) * 0.25, kernel.y - 0.09375), 0.0), kernel.w - 6.0);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let penumbra_lo: vec4f = textureSampleLevel(penumbra_level6, penumbra_level6_sampler, vec2(penumbra_delta + (kernel.x - 0.046875) * 0.25, kernel.y - 0.046875), 0.0);
+        let penumbra_hi: vec4f = textureSampleLevel(penumbra_level7, penumbra_level7_sampler, vec2(penumbra_delta + (kernel.x - 0.09375) * 0.25, kernel.y - 0.09375), 0.0);
+        let texel: vec4f = mix(penumbra_lo, penumbra_hi, kernel.w - 6.0);
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wideAt: f32 = penumbra_wideLevel(kernel);
+        let penumbra_wide: vec4f = select(mix(penumbra_hi, textureSampleLevel(penumbra_level8, penumbra_level8_sampler, vec2(penumbra_delta + (kernel.x - 0.1875) * 0.25, kernel.y - 0.1875), 0.0), penumbra_wideAt - 7.0), mix(penumbra_lo, penumbra_hi, penumbra_wideAt - 6.0), penumbra_wideAt < 7.0);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(texel, penumbra_i);
+        let q: f32 = fade * coverage;
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_wide, penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
         // next slice up: the channel rotates; wrapping from r to a moves one tile left
         penumbra_k -= 1.0;
         penumbra_i = penumbra_i.yzwx;
@@ -220,11 +306,20 @@ fn penumbra_clippedVisibility(p: vec3f, penumbra_clip: vec3f) -> f32
         let zeta: f32 = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 8.0) { break; }
-        let texel: vec4f = mix(textureSampleLevel(penumbra_level7, penumbra_level7_sampler, vec2(penumbra_delta + (kernel.x - 0.09375) * 0.25, kernel.y - 0.09375), 0.0),
-            textureSampleLevel(penumbra_level8, penumbra_level8_sampler, vec2(penumbra_delta + (kernel.x - 0.1875) * 0.25, kernel.y - 0.1875), 0.0), kernel.w - 7.0);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let penumbra_lo: vec4f = textureSampleLevel(penumbra_level7, penumbra_level7_sampler, vec2(penumbra_delta + (kernel.x - 0.09375) * 0.25, kernel.y - 0.09375), 0.0);
+        let penumbra_hi: vec4f = textureSampleLevel(penumbra_level8, penumbra_level8_sampler, vec2(penumbra_delta + (kernel.x - 0.1875) * 0.25, kernel.y - 0.1875), 0.0);
+        let texel: vec4f = mix(penumbra_lo, penumbra_hi, kernel.w - 7.0);
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wideAt: f32 = penumbra_wideLevel(kernel);
+        let penumbra_wide: vec4f = select(mix(penumbra_hi, textureSampleLevel(penumbra_level9, penumbra_level9_sampler, vec2(penumbra_delta + (kernel.x - 0.375) * 0.25, kernel.y - 0.375), 0.0), penumbra_wideAt - 8.0), mix(penumbra_lo, penumbra_hi, penumbra_wideAt - 7.0), penumbra_wideAt < 8.0);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(texel, penumbra_i);
+        let q: f32 = fade * coverage;
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_wide, penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
         // next slice up: the channel rotates; wrapping from r to a moves one tile left
         penumbra_k -= 1.0;
         penumbra_i = penumbra_i.yzwx;
@@ -235,11 +330,20 @@ fn penumbra_clippedVisibility(p: vec3f, penumbra_clip: vec3f) -> f32
         let zeta: f32 = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
         if (kernel.w >= 9.0) { break; }
-        let texel: vec4f = mix(textureSampleLevel(penumbra_level8, penumbra_level8_sampler, vec2(penumbra_delta + (kernel.x - 0.1875) * 0.25, kernel.y - 0.1875), 0.0),
-            textureSampleLevel(penumbra_level9, penumbra_level9_sampler, vec2(penumbra_delta + (kernel.x - 0.375) * 0.25, kernel.y - 0.375), 0.0), kernel.w - 8.0);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let penumbra_lo: vec4f = textureSampleLevel(penumbra_level8, penumbra_level8_sampler, vec2(penumbra_delta + (kernel.x - 0.1875) * 0.25, kernel.y - 0.1875), 0.0);
+        let penumbra_hi: vec4f = textureSampleLevel(penumbra_level9, penumbra_level9_sampler, vec2(penumbra_delta + (kernel.x - 0.375) * 0.25, kernel.y - 0.375), 0.0);
+        let texel: vec4f = mix(penumbra_lo, penumbra_hi, kernel.w - 8.0);
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wideAt: f32 = penumbra_wideLevel(kernel);
+        let penumbra_wide: vec4f = mix(penumbra_lo, penumbra_hi, penumbra_wideAt - 8.0);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(texel, penumbra_i);
+        let q: f32 = fade * coverage;
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_wide, penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
         // next slice up: the channel rotates; wrapping from r to a moves one tile left
         penumbra_k -= 1.0;
         penumbra_i = penumbra_i.yzwx;
@@ -249,10 +353,17 @@ fn penumbra_clippedVisibility(p: vec3f, penumbra_clip: vec3f) -> f32
     while (penumbra_k >= 0.0) {
         let zeta: f32 = penumbra_sliceDepths.x + (penumbra_k + 1.0) * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
-        let texel: vec4f = textureSampleLevel(penumbra_level9, penumbra_level9_sampler, vec2(penumbra_delta + (kernel.x - 0.375) * 0.25, kernel.y - 0.375), 0.0);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(texel, penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let penumbra_lo: vec4f = textureSampleLevel(penumbra_level9, penumbra_level9_sampler, vec2(penumbra_delta + (kernel.x - 0.375) * 0.25, kernel.y - 0.375), 0.0);
+        let texel: vec4f = penumbra_lo;
+        let penumbra_wide: vec4f = penumbra_lo; // no wider window than the last level's
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(texel, penumbra_i);
+        let q: f32 = fade * coverage;
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_wide, penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
         // next slice up: the channel rotates; wrapping from r to a moves one tile left
         penumbra_k -= 1.0;
         penumbra_i = penumbra_i.yzwx;

@@ -1,5 +1,5 @@
 // Penumbra 0.1.0 - deferred visibility pass: penumbraVisibility of a G-buffer, fragment stage
-// slices 16 | resolution 512x512 | filter mipmap | fusion chained | packing atlas | light sun | leak fix on | fade on over 0.25 slice | tangent clip on, offset 1.0 texels + footprint | target wgsl
+// slices 16 | resolution 512x512 | filter mipmap | fusion extent | packing atlas | light sun | leak fix on | fade on over 0.25 slice | tangent clip on, offset 1.0 texels + footprint | target wgsl
 // 4 RGBA occlusion texture(s), filter levels 0 to 9. Generated: edit the configuration, not this file.
 
 var<private> penumbra_visibility: vec4f;
@@ -79,17 +79,40 @@ fn penumbra_tangentClip(p: vec3f, n: vec3f) -> vec3f
     return vec3(select(vec2(0.0, mid), vec2(mid, 0.0), alongX), hi - lo);
 }
 
+// @penumbra:fusion
+// extent fusion: correlated fusion, the occluder's size from a window twice the kernel's side, docs/model.md §1.7.2
+fn penumbra_extentStep(q: f32, kernel: vec4f, area: f32, prev: f32, prevKernel: vec4f, prevArea: f32) -> f32
+{
+    // parallax between the two kernels, RMS over the light's points, per axis (uv)
+    let parallax: vec2f = kernel.xy - prevKernel.xy;
+    let grow: f32 = kernel.z - prevKernel.z;
+    let shift: vec2f = sqrt(parallax * parallax + vec2(grow * grow / 12.0));
+    // the occluder's size (uv): the larger covered area either slice sees around its kernel
+    let feature: f32 = sqrt(max(area, prevArea));
+    let overlap: vec2f = saturate(1.0 - shift / max(feature, 1e-12));
+    // blocked by both: nested (the smaller) when the occluder overlaps itself, independent (product) when not
+    let both: f32 = mix(q * prev, min(q, prev), overlap.x * overlap.y);
+    return (1.0 - q - prev + both) / max(1.0 - prev, 1e-6);
+}
+
+// @penumbra:fusion
+// filter level of a window twice the kernel's side (extent fusion)
+fn penumbra_wideLevel(kernel: vec4f) -> f32
+{
+    return clamp(log2(max(2.0 * kernel.z * 512.0, 1.0)), 0.0, 9.0);
+}
+
 // @penumbra:visibility
 // The fused visibility at light-frame point p of the part of the light that penumbra_clip keeps.
 fn penumbra_clippedVisibility(p: vec3f, penumbra_clip: vec3f) -> f32
 {
     // @penumbra:fusion
-    // chained fusion: eq. (5) assumes independent slices, but the leak fix (paper §3.4.1) copies every
-    // surface into the next slice and a solid covers consecutive slices alike. Neighbours are taken
-    // as nested (fused by maximum), slices further apart as independent (product): a chain whose
-    // step from the previous slice's q to this one's lets through (1 - max(q, prev)) / (1 - prev).
+    // extent fusion: correlated fusion, the occluder's size from the covered area in a window twice
+    // the kernel's side, so an edge of a solid that crosses the kernel stays nested
     var penumbra_lit: f32 = 1.0;
     var penumbra_prev: f32 = 0.0; // q of the slice visited before (its neighbour)
+    var penumbra_prevKernel: vec4f = vec4(0.0); // its kernel
+    var penumbra_prevArea: f32 = 0.0; // and its covered area
     // @penumbra:slice_loop
     // static loop over the slices, unrolled; i selects the slice's channel
     var penumbra_i: vec4f = vec4(0.0, 0.0, 0.0, 1.0);
@@ -97,144 +120,256 @@ fn penumbra_clippedVisibility(p: vec3f, penumbra_clip: vec3f) -> f32
     {
         let zeta: f32 = penumbra_sliceDepths.x + 16.0 * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 3.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(penumbra_filtered(kernel, 3.0), penumbra_i);
+        let q: f32 = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wide: vec4f = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 3.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 14: texture 3, channel b, bottom plane at z0 + 15 * thickness
     {
         let zeta: f32 = penumbra_sliceDepths.x + 15.0 * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 3.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(penumbra_filtered(kernel, 3.0), penumbra_i);
+        let q: f32 = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wide: vec4f = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 3.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 13: texture 3, channel g, bottom plane at z0 + 14 * thickness
     {
         let zeta: f32 = penumbra_sliceDepths.x + 14.0 * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 3.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(penumbra_filtered(kernel, 3.0), penumbra_i);
+        let q: f32 = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wide: vec4f = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 3.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 12: texture 3, channel r, bottom plane at z0 + 13 * thickness
     {
         let zeta: f32 = penumbra_sliceDepths.x + 13.0 * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 3.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(penumbra_filtered(kernel, 3.0), penumbra_i);
+        let q: f32 = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wide: vec4f = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 3.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 11: texture 2, channel a, bottom plane at z0 + 12 * thickness
     {
         let zeta: f32 = penumbra_sliceDepths.x + 12.0 * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 2.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(penumbra_filtered(kernel, 2.0), penumbra_i);
+        let q: f32 = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wide: vec4f = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 2.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 10: texture 2, channel b, bottom plane at z0 + 11 * thickness
     {
         let zeta: f32 = penumbra_sliceDepths.x + 11.0 * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 2.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(penumbra_filtered(kernel, 2.0), penumbra_i);
+        let q: f32 = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wide: vec4f = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 2.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 9: texture 2, channel g, bottom plane at z0 + 10 * thickness
     {
         let zeta: f32 = penumbra_sliceDepths.x + 10.0 * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 2.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(penumbra_filtered(kernel, 2.0), penumbra_i);
+        let q: f32 = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wide: vec4f = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 2.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 8: texture 2, channel r, bottom plane at z0 + 9 * thickness
     {
         let zeta: f32 = penumbra_sliceDepths.x + 9.0 * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 2.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(penumbra_filtered(kernel, 2.0), penumbra_i);
+        let q: f32 = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wide: vec4f = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 2.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 7: texture 1, channel a, bottom plane at z0 + 8 * thickness
     {
         let zeta: f32 = penumbra_sliceDepths.x + 8.0 * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 1.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(penumbra_filtered(kernel, 1.0), penumbra_i);
+        let q: f32 = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wide: vec4f = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 1.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 6: texture 1, channel b, bottom plane at z0 + 7 * thickness
     {
         let zeta: f32 = penumbra_sliceDepths.x + 7.0 * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 1.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(penumbra_filtered(kernel, 1.0), penumbra_i);
+        let q: f32 = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wide: vec4f = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 1.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 5: texture 1, channel g, bottom plane at z0 + 6 * thickness
     {
         let zeta: f32 = penumbra_sliceDepths.x + 6.0 * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 1.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(penumbra_filtered(kernel, 1.0), penumbra_i);
+        let q: f32 = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wide: vec4f = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 1.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 4: texture 1, channel r, bottom plane at z0 + 5 * thickness
     {
         let zeta: f32 = penumbra_sliceDepths.x + 5.0 * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 1.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(penumbra_filtered(kernel, 1.0), penumbra_i);
+        let q: f32 = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wide: vec4f = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 1.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 3: texture 0, channel a, bottom plane at z0 + 4 * thickness
     {
         let zeta: f32 = penumbra_sliceDepths.x + 4.0 * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 0.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(penumbra_filtered(kernel, 0.0), penumbra_i);
+        let q: f32 = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wide: vec4f = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 0.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 2: texture 0, channel b, bottom plane at z0 + 3 * thickness
     {
         let zeta: f32 = penumbra_sliceDepths.x + 3.0 * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 0.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(penumbra_filtered(kernel, 0.0), penumbra_i);
+        let q: f32 = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wide: vec4f = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 0.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 1: texture 0, channel g, bottom plane at z0 + 2 * thickness
     {
         let zeta: f32 = penumbra_sliceDepths.x + 2.0 * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 0.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(penumbra_filtered(kernel, 0.0), penumbra_i);
+        let q: f32 = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wide: vec4f = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 0.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     penumbra_i = penumbra_i.yzwx;
     // slice 0: texture 0, channel r, bottom plane at z0 + 1 * thickness
     {
         let zeta: f32 = penumbra_sliceDepths.x + 1.0 * penumbra_sliceDepths.y;
         let kernel: vec4f = penumbra_kernel(p, zeta, penumbra_clip);
-        let q: f32 = penumbra_weight(p.z, zeta) * dot(penumbra_filtered(kernel, 0.0), penumbra_i);
-        penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);
+        let fade: f32 = penumbra_weight(p.z, zeta);
+        let coverage: f32 = dot(penumbra_filtered(kernel, 0.0), penumbra_i);
+        let q: f32 = fade * coverage;
+        // the same slice over a window twice the kernel's side: how far the occluder extends
+        let penumbra_wide: vec4f = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));
+        let area: f32 = fade * max(coverage, 4.0 * dot(penumbra_filtered(penumbra_wide, 0.0), penumbra_i)) * kernel.z * kernel.z;
+        penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);
         penumbra_prev = q;
+        penumbra_prevKernel = kernel;
+        penumbra_prevArea = area;
     }
     // @penumbra:fusion_result
     return clamp(penumbra_lit, 0.0, 1.0);
