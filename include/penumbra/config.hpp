@@ -352,8 +352,9 @@ constexpr int texture_count(const Config& config) { return (config.slices + 3) /
 inline constexpr int max_channel_slices = 32;
 
 // True when the slicing pass writes the slices as bits of one RGBA32UI target (logical OR) and an
-// unpack pass turns them into the RGBA occlusion textures (paper §3.7): slices > 32.
-constexpr bool slices_as_bits(const Config& config) { return config.slices > max_channel_slices; }
+// unpack pass turns them into the RGBA occlusion textures (paper §3.7): slices > 32. WGSL (WebGPU has
+// no logic op) draws the scene once per group of colour targets instead (occlusion's slicing_passes).
+constexpr bool slices_as_bits(const Config& config) { return config.slices > max_channel_slices && config.target != Target::wgsl; }
 
 // log2(resolution): the levels a full filter chain has above the full-resolution one (and the
 // summed-area table's doubling steps per axis, minus one).

@@ -53,6 +53,8 @@ if(TARGET penumbra-export-bundle)
         "occlusion-mipmap|--slices 8 --resolution 128 --filter mipmap --light rect --fusion extent"
         "occlusion-array|--slices 8 --resolution 128 --packing array --filter mipmap --light rect"
         "occlusion-adaptive|--slices 8 --resolution 128 --slice-placement adaptive --light rect"
+        # 64 slices: four slicing passes of four targets on WebGPU (the desktop writes bits, paper §3.7)
+        "occlusion-64|--scene tree --slices 64 --resolution 128 --light rect"
         "occlusion-sat|--scene tree --slices 8 --resolution 128 --filter sat --packing array --light rect --fusion extent"
         "occlusion-volume|--scene tree --slices 8 --resolution 128 --packing volume --filter gaussian --light sun --fusion extent"
         "occlusion-tree|--scene tree --slices 8 --resolution 128 --filter nbuffer --light rect"

@@ -175,11 +175,12 @@ async function runInPage(index, injectSlices = false) {
             const slices = await get("slices.f32");
             const {slices: S, resolution: R} = layout.config;
             if (slices.length !== S * R * R) throw new Error(`slices.f32: ${slices.length} floats, expected ${S}·${R}² = ${S * R * R}`);
-            // output t holds slices 4t … 4t+3 in its channels
-            replace.slicing = (pass) => pass.outputs.forEach((out, t) => {
+            // slice k is channel k % 4 of the slicing output layout.json's slice_map names (several slicing
+            // passes on WebGPU beyond four targets: each fills its own outputs)
+            replace.slicing = (pass) => pass.outputs.forEach((out) => {
                 const rgba = new Float32Array(4 * R * R);
-                for (let c = 0; c < 4 && 4 * t + c < S; ++c)
-                    for (let i = 0; i < R * R; ++i) rgba[4 * i + c] = slices[(4 * t + c) * R * R + i];
+                for (const m of layout.slice_map.filter((e) => e.texture === out.texture && e.layer === out.layer))
+                    for (let i = 0; i < R * R; ++i) rgba[4 * i + (m.slice % 4)] = slices[m.slice * R * R + i];
                 runner.uploadTexture(out.texture, out.level, out.layer, rgba);
             });
             // adaptive placement: the desktop's boundaries too (the oracle's), as float bits

@@ -27,8 +27,9 @@ constexpr TargetLimits limits(Target target) {
     // Vulkan 1.0 required limits; logicOp is a device feature (every desktop driver and lavapipe have it)
     case Target::vulkan: return {4096, 256, 256, 4, true, true, true};
     // WebGPU's default limits; float32-filterable is an optional feature, and WebGPU has neither a
-    // border colour nor logic operations
-    case Target::wgsl: return {8192, 2048, 256, 8, false, false, false};
+    // border colour nor logic operations. Eight colour attachments, but 32 bytes a sample across them
+    // (maxColorAttachmentBytesPerSample) and RGBA8 counts 8: four RGBA8 targets a pass
+    case Target::wgsl: return {8192, 2048, 256, 4, false, false, false};
     }
     return {};
 }

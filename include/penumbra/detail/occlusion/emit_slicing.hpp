@@ -52,7 +52,11 @@ constexpr Text slicing_fragment(const Config& config) {
         out.comment("not blend: the pass combines fragments by a logical OR.");
         out.line("layout(location = 0) out uvec4 penumbra_sliceBits; // slices 0 to ", format_int(config.slices - 1));
     }
-    for (int t = 0; !bits && t < texture_count(config); ++t) {
+    const bool grouped = slicing_passes(config) > 1;
+    for (int t = 0; !bits && grouped && t < slicing_targets(config); ++t)
+        out.line(stage_variable(out, config, "out", t, "vec4", cat("penumbra_occlusion", format_int(t)), true),
+                 " // slices 4 * penumbra_firstTexture + ", format_int(t * 4), " to + ", format_int(t * 4 + 3));
+    for (int t = 0; !bits && !grouped && t < texture_count(config); ++t) {
         const int last = t * 4 + 3 < config.slices - 1 ? t * 4 + 3 : config.slices - 1;
         out.line(stage_variable(out, config, "out", t, "vec4", cat("penumbra_occlusion", format_int(t)), true), " // slices ",
                  format_int(t * 4), " to ", format_int(last));
@@ -103,10 +107,16 @@ constexpr Text slicing_fragment(const Config& config) {
         for (int j = 1; j <= reach; ++j)
             out.line("penumbra_sliceBits |= penumbra_sliceBit(min(k + ", format_float(j), ", next));");
     }
-    for (int t = 0; !bits && t < texture_count(config); ++t) {
-        const Text first = cat("vec4(", format_float(4 * t), ", ", format_float(4 * t + 1), ", ", format_float(4 * t + 2),
-                               ", ", format_float(4 * t + 3), ")");
-        out.line("// texture ", format_int(t));
+    if (grouped) {
+        out.comment(cat("this pass writes occlusion textures penumbra_firstTexture to + ", format_int(slicing_targets(config) - 1),
+                        " (WebGPU: ", format_int(slicing_targets(config)), " colour targets a pass, no logic op)"));
+        out.line(value(config, "float", "base", construct(config, "float", "4 * penumbra_firstTexture")));
+    }
+    for (int t = 0; !bits && t < slicing_targets(config); ++t) {
+        Text first = cat("vec4(", format_float(4 * t), ", ", format_float(4 * t + 1), ", ", format_float(4 * t + 2),
+                         ", ", format_float(4 * t + 3), ")");
+        if (grouped) first = cat("(", first, " + vec4(base))");
+        out.line("// texture ", choose(grouped, cat("penumbra_firstTexture + ", format_int(t)), format_int(t)));
         if (reach > 0)
             out.line("penumbra_occlusion", format_int(t), " = ",
                      construct(config, "vec4", compare(config, "greaterThanEqual", first, "vec4(k)")), " * ",

@@ -226,6 +226,21 @@ inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
                     .viewport_width = R,
                     .viewport_height = R});
         }
+    } else if (slicing_passes(config) > 1) {
+        // WGSL: the scene once per group of colour targets (WebGPU has no logic op for bits)
+        const int group = slicing_targets(config);
+        for (int first = 0; first < T; first += group) {
+            const auto begin = slicing_outputs.begin() + first;
+            b.pass({.name = "slicing",
+                    .action = PassAction::draw_scene,
+                    .program = "slicing",
+                    .inputs = slicing_inputs,
+                    .outputs = {begin, begin + std::min(group, T - first)},
+                    .int_uniforms = {{"penumbra_firstTexture", first}},
+                    .viewport_width = R,
+                    .viewport_height = R,
+                    .state = max_blend});
+        }
     } else {
         b.pass({.name = "slicing",
                 .action = PassAction::draw_scene,

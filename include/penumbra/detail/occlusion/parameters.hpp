@@ -2,6 +2,7 @@
 #pragma once
 
 #include "../glsl_common.hpp"
+#include "../target_limits.hpp"
 #include "../uniform_params.hpp"
 
 namespace penumbra::detail {
@@ -84,10 +85,25 @@ constexpr std::vector<Param> slicing_camera_params() {
     };
 }
 
-// The slicing pass's fragment stage: the camera's parameters and, with adaptive placement, the boundaries.
+// Geometry passes of the slicing: one, but on WGSL one per group of the colour targets a WebGPU render
+// pass may have (WebGPU has no logic op to write more slices as bits, paper §3.7).
+constexpr int slicing_passes(const Config& config) {
+    if (config.target != Target::wgsl) return 1;
+    const int group = limits(config.target).max_draw_buffers;
+    return (texture_count(config) + group - 1) / group;
+}
+constexpr int slicing_targets(const Config& config) {
+    return slicing_passes(config) > 1 ? limits(config.target).max_draw_buffers : texture_count(config);
+}
+
+// The slicing pass's fragment stage: the camera's parameters and, with adaptive placement, the boundaries;
+// with several slicing passes, which occlusion texture the pass's first target holds.
 constexpr std::vector<Param> slicing_params(const Config& config) {
     std::vector<Param> params = slicing_camera_params();
     if (places_slices_adaptively(config)) params.push_back(slice_boundaries_sampler());
+    if (slicing_passes(config) > 1)
+        params.push_back({"penumbra_firstTexture", "int", "occlusion texture the pass's first colour target holds (slices "
+                          "4 x it to 4 x it + 3)", "", {}, UniformSource::pass});
     return params;
 }
 

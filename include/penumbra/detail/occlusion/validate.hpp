@@ -71,16 +71,20 @@ constexpr std::vector<Problem> occlusion_problems(const Config& config) {
         add("filter", Text("sat"),
             cat("needs renderable, filterable 32-bit float textures, which target '", target,
                 "' does not guarantee; allowed filters for ", target, ": mipmap, nbuffer, gaussian"));
-    const Text allowed_for_target = cat("1 to ", format_int(4 * limit.max_draw_buffers), limit.logic_op ? ", 64 or 128" : "");
+    // (WGSL slices in several passes: slicing_passes)
+    const bool many_passes = config.target == Target::wgsl;
+    const Text allowed_for_target =
+        cat("1 to ", format_int(many_passes ? max_channel_slices : 4 * limit.max_draw_buffers),
+            limit.logic_op || many_passes ? ", 64 or 128" : "");
     if (slices_as_bits(config) && !limit.logic_op)
         add("slices", format_int(config.slices),
             cat("needs a logical OR on the slicing target (more than 32 slices are written as bits, paper §3.7), "
                 "which target '", target, "' does not have; allowed for ", target, ": ", allowed_for_target));
-    else if (!slices_as_bits(config) && texture_count(config) > limit.max_draw_buffers)
+    else if (!slices_as_bits(config) && !many_passes && texture_count(config) > limit.max_draw_buffers)
         add("slices", format_int(config.slices),
             cat("needs ", format_int(texture_count(config)), " render targets (four slices each) but target '", target,
                 "' guarantees ", format_int(limit.max_draw_buffers), "; allowed for ", target, ": ", allowed_for_target));
-    if (slices_as_bits(config) && config.packing == Packing::volume)
+    if (config.slices > max_channel_slices && config.packing == Packing::volume)
         add("packing", Text("volume"),
             cat("needs ", format_int(texture_count(config)), " 3D textures for ", format_int(config.slices),
                 " slices, more samplers than a shading pass is guaranteed (16); allowed with more than 32 slices: atlas, "
