@@ -430,6 +430,7 @@ int main(int argc, char** argv) {
                 config.clip_footprint = variant.clip_footprint;
                 config.fade_ramp = variant.fade_ramp;
                 config.leak_fix = variant.leak_fix;
+                config.alpha_test = scene.mesh.cuts(); // cut-out casters cast as their materials cut, as the truth does
                 const std::string reduced =
                     reduction == penumbra::Config{}.level_reduction ? "" : " r" + std::to_string(reduction);
                 const std::string setting_label = std::string(penumbra::to_string(filter)) + " " + variant_name(variant) +
