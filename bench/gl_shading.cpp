@@ -165,7 +165,11 @@ int main(int argc, char** argv) {
             runtime->set_light(scene->light, glm::dvec3(scene->bounds_min), glm::dvec3(scene->bounds_max));
             if (std::string d = runtime->build([&](GLuint program) {
                     mesh.draw_materials(
-                        [&](GLuint alpha, float cutoff) { runtime->bind_caster_material(program, alpha, 0, cutoff); }, true);
+                        [&](GLuint alpha, float cutoff, bool closed) {
+                            runtime->bind_caster_material(program, alpha, 0, cutoff);
+                            runtime->bind_caster_closed(program, closed);
+                        },
+                        true);
                 }); !d.empty()) {
                 std::fprintf(stderr, "error: %s\n", d.c_str());
                 return 1;

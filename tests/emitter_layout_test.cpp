@@ -875,6 +875,52 @@ TEST_CASE("validate: the compute prefilter is refused outside N-buffers in the a
     CHECK(is_valid({.technique = Technique::pcf, .prefilter_stage = PrefilterStage::compute}));
 }
 
+// solid_casters: the slicing program takes the per-draw flag penumbra_casterClosed, its pass an OR that
+// the closed draws switch to XOR; refused where no logic op exists (and on the Vulkan runner); the default
+// layout does not change.
+TEST_CASE("solid casters: the per-draw flag, the OR pass, and the targets that refuse it") {
+    Config config{.slices = 16, .resolution = 256};
+    const Emission plain = *emit(config).value;
+    config.solid_casters = true;
+    REQUIRE(is_valid(config));
+    const Emission solid = *emit(config).value;
+    const PassDesc* slicing = nullptr;
+    for (const PassDesc& p : solid.layout.passes)
+        if (p.name == "slicing") slicing = &p;
+    REQUIRE(slicing);
+    CHECK(slicing->state.logic_op == LogicOp::bitwise_or);
+    CHECK(!slicing->state.blend);
+    bool flag = false;
+    for (const ProgramDesc& p : solid.layout.programs)
+        for (const ParamDesc& param : p.parameters)
+            if (param.name == "penumbra_casterClosed") {
+                flag = true;
+                CHECK(p.name == "slicing");
+                CHECK(param.source == UniformSource::draw);
+            }
+    CHECK(flag);
+    CHECK(emit_file(config, "penumbra_slicing.frag").text.find("gl_FrontFacing ? k + 1.0 : k") != std::string::npos);
+    CHECK(to_json(solid.layout).find("\"solid_casters\": true") != std::string::npos);
+    CHECK(to_json(plain.layout).find("solid_casters") == std::string::npos); // absent means false
+    for (Target target : {Target::essl300, Target::wgsl, Target::vulkan}) {
+        Config refused = config;
+        refused.target = target;
+        refused.resolution = 128;
+        const std::vector<ConfigError> errors = validate(refused);
+        REQUIRE(errors.size() == 1);
+        CHECK(errors[0].field == "solid_casters");
+        CHECK(errors[0].message.find("logical XOR") != std::string::npos);
+        CHECK(errors[0].message.find("allowed for") != std::string::npos);
+    }
+    config.target = Target::glsl330;
+    config.resolution = 128;
+    CHECK(is_valid(config));
+    config.slices = 64; // the bits path: the closed draws toggle bit ranges
+    config.target = Target::glsl450;
+    REQUIRE(is_valid(config));
+    CHECK(emit_file(config, "penumbra_slicing.frag").text.find("penumbra_slicesFrom(first)") != std::string::npos);
+}
+
 TEST_CASE("layout enums: every name round-trips, and the names are layout.json's words") {
     auto round_trips = [](auto values) {
         for (auto v : values) CHECK(parse_enum<decltype(v)>(to_string(v)) == v);

@@ -242,6 +242,10 @@ struct Config {
                                             // shadow-map depth) discard fragments whose alpha, read from the draw's
                                             // penumbra_alphaTexture at its penumbra_uv, is below the draw's
                                             // penumbra_alphaCutoff (per-draw caller parameters; oim: its bake)
+    bool solid_casters = false;             // occlusion: closed caster meshes fill the slices between their surfaces
+                                            // (a volume, not its shell); the caller flags each draw closed or open
+                                            // (penumbra_casterClosed) and draws the closed ones first. Desktop
+                                            // OpenGL only (a logical XOR on the slicing targets)
 
     friend constexpr bool operator==(const Config&, const Config&) = default;
 };

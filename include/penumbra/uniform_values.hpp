@@ -109,6 +109,7 @@ inline constexpr UniformReader uniform_readers[] = {
     {Uniform::time_window},
     {Uniform::alpha_texture},
     {Uniform::alpha_cutoff},
+    {Uniform::caster_closed},
 };
 
 constexpr bool readers_match_registry() {

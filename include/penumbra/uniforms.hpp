@@ -81,6 +81,7 @@ enum class Uniform : std::uint8_t {
     time_window,
     alpha_texture,
     alpha_cutoff,
+    caster_closed,
 };
 
 struct UniformDef {
@@ -221,6 +222,16 @@ inline constexpr UniformDef uniform_defs[] = {
      {"", ""},
      {"per draw: the caster's material alpha cutoff (glTF alphaCutoff, 0.5 when absent; 0.5 for a blended "
       "material cast as a cut-out; 0 for a solid draw)",
+      ""}},
+    {Uniform::caster_closed, "penumbra_casterClosed", GlslType::float_, UniformSource::draw, UniformInput::per_draw,
+     {"1 when the caster draw is a closed mesh whose slices between its surfaces are filled (solid_casters), 0 "
+      "for open casters",
+      ""},
+     {"", ""},
+     {"per draw: 1 for a closed caster mesh (watertight, counter-clockwise outward faces), drawn with the logic op "
+      "XOR instead of the pass's OR: it toggles every slice from where the slicing camera's ray enters it (a face "
+      "towards the light: from its own slice) or leaves it (from the next slice), which fills the solid; 0 for "
+      "open casters (cards, planes, unclosed meshes), drawn after every closed one with the pass's OR",
       ""}},
 };
 

@@ -328,6 +328,26 @@ public:
         }
     }
 
+    // solid_casters: inside the slicing pass's `draw`, whether the next draws of `program` are a closed
+    // mesh (watertight, counter-clockwise outward faces: the slices between its surfaces are filled, by
+    // a logical XOR) or open casters (their surfaces only, OR). Draw every closed mesh before the open
+    // ones: an XOR after them would toggle their marks. A program without penumbra_casterClosed
+    // (solid_casters off, or one that draws no slices) is left alone.
+    void bind_caster_closed(GLuint program, bool closed) const {
+        for (const auto& [name, id] : programs_) {
+            if (id != program) continue;
+            for (const ProgramDesc& p : emission_.layout.programs) {
+                if (p.name != name) continue;
+                for (const ParamDesc& param : p.parameters)
+                    if (param.source == UniformSource::draw && param.name == uniform_def(Uniform::caster_closed).name)
+                        if (const GLint at = glGetUniformLocation(program, param.name.c_str()); at >= 0) {
+                            glProgramUniform1f(program, at, closed ? 1.0f : 0.0f);
+                            glLogicOp(closed ? GL_XOR : GL_OR);
+                        }
+            }
+        }
+    }
+
     // Runs the layout's passes of phase "shadow" in order (draw_scene passes call `draw`).
     // Returns an empty string on success, else a diagnostic (GL errors raised inside `draw` included).
     // With `timings`, one entry per pass (GL_TIME_ELAPSED queries; waits for the results).

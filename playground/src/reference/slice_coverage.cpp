@@ -43,6 +43,27 @@ Coverage cut_at(const CutMaterial& m, glm::dvec2 uv) {
     return solid ? Coverage::covered : Coverage::empty;
 }
 
+// solid_casters: one fragment of a closed part toggles every slice from `first` down; from `either`
+// down (either <= first) it may or may not (a texel at the triangle's edge, a depth on a slice boundary).
+struct Toggle {
+    int either, first;
+    bool certain; // false: the texel centre may be outside the triangle
+};
+
+// The slices a closed part's toggles mark (odd count) at one texel, merged into `out`.
+void apply_toggles(SliceCoverage& out, int x, int y, const std::vector<Toggle>& toggles) {
+    for (int s = 0; s < out.slices; ++s) {
+        int parity = 0;
+        bool unsure = false;
+        for (const Toggle& t : toggles) {
+            if (s >= t.first && t.certain) parity ^= 1;
+            if (s >= t.either && (!t.certain || s < t.first)) unsure = true;
+        }
+        const Coverage c = unsure ? Coverage::either : parity ? Coverage::covered : Coverage::empty;
+        out.at(s, x, y) = std::max(out.at(s, x, y), c);
+    }
+}
+
 } // namespace
 
 SliceCoverage cpu_slice_coverage(const Mesh& mesh, const Config& config, const SliceFrame& frame, int reach,
@@ -50,7 +71,9 @@ SliceCoverage cpu_slice_coverage(const Mesh& mesh, const Config& config, const S
     const int R = config.resolution, S = config.slices;
     SliceCoverage out{R, S, std::vector<Coverage>(static_cast<std::size_t>(S) * R * R, Coverage::empty)};
     const double z0 = frame.slice_depths.x, thickness = frame.slice_depths.y;
+    std::vector<std::vector<Toggle>> toggles(config.solid_casters ? static_cast<std::size_t>(R) * R : 0);
     for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+        const bool closed = config.solid_casters && mesh.closed(t);
         Projected v[3];
         for (int k = 0; k < 3; ++k)
             v[k] = project(config, frame, glm::dvec3(mesh.positions[mesh.indices[3 * t + k]]));
@@ -92,6 +115,15 @@ SliceCoverage cpu_slice_coverage(const Mesh& mesh, const Config& config, const S
                 const double position = (z - z0) / thickness;
                 const int slice = std::clamp(static_cast<int>(std::ceil(position)) - 1, 0, S - 1);
                 const bool on_boundary = std::abs(position - std::round(position)) < 1e-4;
+                if (closed) {
+                    // The slicing camera mirrors OpenGL's eye space, so a face towards the light winds
+                    // clockwise in texel space (area < 0): the ray enters there and toggles from its own
+                    // slice; where it leaves (area > 0), from the next one.
+                    const int first = std::min(slice + (area > 0 ? 1 : 0), S);
+                    toggles[static_cast<std::size_t>(y) * R + x].push_back(
+                        {first, on_boundary ? std::min(first + 1, S) : first, mark == Coverage::covered});
+                    continue;
+                }
                 for (int s = slice; s <= std::min(slice + (on_boundary ? 1 : 0), S - 1); ++s) {
                     const Coverage m = on_boundary ? Coverage::either : mark;
                     // paper §3.4.1 leak fix: a fragment of slice k also marks slices k+1 to k+reach
@@ -100,6 +132,9 @@ SliceCoverage cpu_slice_coverage(const Mesh& mesh, const Config& config, const S
                 }
             }
     }
+    for (int y = 0; y < R && !toggles.empty(); ++y)
+        for (int x = 0; x < R; ++x)
+            if (const auto& list = toggles[static_cast<std::size_t>(y) * R + x]; !list.empty()) apply_toggles(out, x, y, list);
     return out;
 }
 

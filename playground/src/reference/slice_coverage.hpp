@@ -34,7 +34,9 @@ struct SliceCoverage {
 // inside its projection, in the slice of its depth there, and the next `reach` slices (the leak fix,
 // penumbra::leak_fix_reach). Depth and texture coordinates are interpolated perspective-correctly,
 // as the rasteriser does. With `cut`, a triangle of a cut material covers a texel centre only where
-// its texture's alpha there is at least the cutoff (nearest texel, repeat).
+// its texture's alpha there is at least the cutoff (nearest texel, repeat). With config.solid_casters
+// the triangles of closed parts (Mesh::triangle_closed) toggle every slice from theirs (a face towards
+// the light) or the next one (a face away from it) down instead, as the GPU's logic op XOR does.
 SliceCoverage cpu_slice_coverage(const Mesh& mesh, const Config& config, const SliceFrame& frame, int reach,
                                  bool cut);
 

@@ -90,11 +90,12 @@ MeshBuffers::MeshBuffers(const Mesh& mesh) {
     glCreateBuffers(1, &indices_);
     glCreateBuffers(1, &uvs_);
     glCreateBuffers(1, &material_uvs_);
-    // The triangles grouped by material, solid (-1) first; one range per material.
-    std::vector<std::vector<std::uint32_t>> groups(mesh.cut_materials.size() + 1); // material m in groups[m + 1]
+    // The triangles grouped by material, the closed parts' first (never cut), then the other solid ones
+    // (-1), then one range per cut material.
+    std::vector<std::vector<std::uint32_t>> groups(mesh.cut_materials.size() + 2); // material m in groups[m + 2]
     for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-        const int m = mesh.triangle_materials.empty() ? -1 : mesh.triangle_materials[t];
-        std::vector<std::uint32_t>& group = groups[static_cast<std::size_t>(m + 1)];
+        const int m = mesh.closed(t) ? -2 : mesh.triangle_materials.empty() ? -1 : mesh.triangle_materials[t];
+        std::vector<std::uint32_t>& group = groups[static_cast<std::size_t>(m + 2)];
         group.insert(group.end(), mesh.indices.begin() + static_cast<std::ptrdiff_t>(3 * t),
                      mesh.indices.begin() + static_cast<std::ptrdiff_t>(3 * t + 3));
     }
@@ -102,15 +103,15 @@ MeshBuffers::MeshBuffers(const Mesh& mesh) {
     indices.reserve(mesh.indices.size());
     const std::uint8_t opaque = 255;
     textures_.push_back(alpha_texture(1, 1, &opaque));
-    for (int m = -1; m < static_cast<int>(mesh.cut_materials.size()); ++m) {
-        Range range{static_cast<GLsizei>(indices.size()), 0, textures_.front(), 0.0f};
+    for (int m = -2; m < static_cast<int>(mesh.cut_materials.size()); ++m) {
+        Range range{static_cast<GLsizei>(indices.size()), 0, textures_.front(), 0.0f, m == -2};
         if (m >= 0) {
             const CutMaterial& material = mesh.cut_materials[static_cast<std::size_t>(m)];
             textures_.push_back(alpha_texture(material.texture.width, material.texture.height, material.texture.alpha.data()));
             range.texture = textures_.back();
             range.cutoff = material.cutoff;
         }
-        const std::vector<std::uint32_t>& group = groups[static_cast<std::size_t>(m + 1)];
+        const std::vector<std::uint32_t>& group = groups[static_cast<std::size_t>(m + 2)];
         indices.insert(indices.end(), group.begin(), group.end());
         range.count = static_cast<GLsizei>(group.size());
         if (range.count > 0) ranges_.push_back(range);
@@ -166,11 +167,11 @@ void MeshBuffers::draw() const {
     glBindVertexArray(0);
 }
 
-void MeshBuffers::draw_materials(const std::function<void(GLuint alpha_texture, float cutoff)>& material,
+void MeshBuffers::draw_materials(const std::function<void(GLuint alpha_texture, float cutoff, bool closed)>& material,
                                  bool caster) const {
     glBindVertexArray(caster ? caster_vao_ : vao_);
     for (const Range& r : ranges_) {
-        material(r.texture, r.cutoff);
+        material(r.texture, r.cutoff, r.closed);
         glDrawElements(GL_TRIANGLES, r.count, GL_UNSIGNED_INT,
                        reinterpret_cast<const void*>(static_cast<std::uintptr_t>(r.first) * sizeof(std::uint32_t)));
     }
@@ -229,7 +230,7 @@ void GBuffer::render(const MeshBuffers& mesh, const glm::mat4& clip_from_world) 
     glUniformMatrix4fv(glGetUniformLocation(program_, "clipFromWorld"), 1, GL_FALSE, &clip_from_world[0][0]);
     glUniform1i(glGetUniformLocation(program_, "alphaTexture"), 0);
     const GLint cutoff_location = glGetUniformLocation(program_, "alphaCutoff");
-    mesh.draw_materials([&](GLuint alpha, float cutoff) {
+    mesh.draw_materials([&](GLuint alpha, float cutoff, bool) {
         glBindTextureUnit(0, alpha);
         glBindSampler(0, 0);
         glUniform1f(cutoff_location, cutoff);

@@ -41,16 +41,20 @@ public:
     MeshBuffers& operator=(const MeshBuffers&) = delete;
     // Every triangle in one draw (attributes 0 to 3).
     void draw() const;
-    // Each material's triangles in a draw of its own, `material(alpha_texture, cutoff)` called before
-    // each. `caster`: the layout's caster convention, the material texture coordinates as attribute 2
-    // (penumbra_uv; detail/alpha_test.hpp) instead of the unique ones.
-    void draw_materials(const std::function<void(GLuint alpha_texture, float cutoff)>& material, bool caster) const;
+    // Each material's triangles in a draw of its own, `material(alpha_texture, cutoff, closed)` called
+    // before each; the triangles of closed parts (Mesh::triangle_closed) come first, in a draw of their
+    // own (solid_casters: closed meshes before open casters). `caster`: the layout's caster convention,
+    // the material texture coordinates as attribute 2 (penumbra_uv; detail/alpha_test.hpp) instead of
+    // the unique ones.
+    void draw_materials(const std::function<void(GLuint alpha_texture, float cutoff, bool closed)>& material,
+                        bool caster) const;
 
 private:
     struct Range {
         GLsizei first = 0, count = 0; // indices
         GLuint texture = 0;
         float cutoff = 0.0f;
+        bool closed = false;
     };
     GLuint vao_ = 0, caster_vao_ = 0, positions_ = 0, normals_ = 0, indices_ = 0, uvs_ = 0, material_uvs_ = 0;
     GLsizei count_ = 0;

@@ -23,11 +23,14 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
     std::unique_ptr<GBuffer> gbuffer = GBuffer::create(width, height, error);
     if (!gbuffer) return false;
     MeshBuffers mesh(scene.mesh);
-    // The casters, each material's triangles with its alpha texture and cutoff (alpha_test; a program
-    // without the parameters ignores them).
+    // The casters, each material's triangles with its alpha texture and cutoff (alpha_test), the closed
+    // parts first and flagged (solid_casters); a program without the parameters ignores them.
     const penumbra::gl::Runtime& rt = *runtime;
     const auto draw_casters = [&](GLuint program) {
-        mesh.draw_materials([&](GLuint alpha, float cutoff) { rt.bind_caster_material(program, alpha, 0, cutoff); }, true);
+        mesh.draw_materials([&](GLuint alpha, float cutoff, bool closed) {
+            rt.bind_caster_material(program, alpha, 0, cutoff);
+            rt.bind_caster_closed(program, closed);
+        }, true);
     };
     gbuffer->render(mesh, scene.camera.projection_matrix(static_cast<float>(width) / height) * scene.camera.view_matrix());
 

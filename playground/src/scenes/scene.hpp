@@ -58,8 +58,12 @@ struct Mesh {
     std::vector<CutMaterial> cut_materials;
     std::vector<glm::vec2> material_uvs;
     std::vector<std::int32_t> triangle_materials;
+    // One entry per triangle: 1 where it belongs to a closed part (scenes/closed_parts.hpp), whose slices
+    // between its surfaces solid_casters fills. Set by finish_scene.
+    std::vector<std::uint8_t> triangle_closed;
 
     std::size_t triangle_count() const { return indices.size() / 3; }
+    bool closed(std::size_t t) const { return t < triangle_closed.size() && triangle_closed[t] != 0; }
     bool cuts() const { return !cut_materials.empty(); }
     // The cut material of triangle `t`, or nullptr when it is solid.
     const CutMaterial* material_of(std::size_t t) const {

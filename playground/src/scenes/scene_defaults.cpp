@@ -1,6 +1,7 @@
 // playground/src/scenes/scene_defaults.cpp
 #include "scenes/scene_defaults.hpp"
 
+#include "scenes/closed_parts.hpp"
 #include "scenes/mesh_builder.hpp"
 
 #include <algorithm>
@@ -48,6 +49,7 @@ OrbitCamera default_camera(glm::vec3 bounds_min, glm::vec3 bounds_max) {
 
 void finish_scene(Scene& scene) {
     complete_cut_materials(scene.mesh); // a floor added under cut-out casters is solid
+    scene.mesh.triangle_closed = closed_triangles(scene.mesh);
     std::tie(scene.bounds_min, scene.bounds_max) = compute_bounds(scene.mesh);
     scene.light = default_rect_light(scene.bounds_min, scene.bounds_max);
     scene.sun = default_sun_light();

@@ -151,7 +151,11 @@ std::string FrameRenderer::render(penumbra::gl::Runtime& left, penumbra::gl::Run
         if (std::string d = runtime->update(
                 [&](GLuint program) { // each material's casters with its alpha texture and cutoff (alpha_test)
                     mesh_->draw_materials(
-                        [&](GLuint alpha, float cutoff) { runtime->bind_caster_material(program, alpha, 0, cutoff); }, true);
+                        [&](GLuint alpha, float cutoff, bool closed) {
+                            runtime->bind_caster_material(program, alpha, 0, cutoff);
+                            runtime->bind_caster_closed(program, closed); // solid_casters
+                        },
+                        true);
                 },
                 geometry_changed, nullptr, &timings); !d.empty())
             return prefix + d;

@@ -174,3 +174,58 @@ TEST_CASE("adaptive slice placement: the GPU's boundaries gather at the depths t
         }
     }
 }
+
+// solid_casters: on "boxes" (closed boxes, some floating, on an open ground) a closed part fills the slices
+// between where the slicing camera's rays enter and leave it, as the CPU's parity says; the ground is
+// marked as a surface. Without solid_casters the same texels hold only the boxes' tops and bottoms.
+TEST_CASE("slicing: solid casters fill the slices between a closed mesh's surfaces") {
+    std::string error;
+    auto context = HeadlessContext::create(&error);
+    REQUIRE_MESSAGE(context, error);
+    const std::optional<Scene> scene = make_scene("boxes");
+    REQUIRE(scene);
+    const std::vector<Config> configs{
+        {.slices = 16, .resolution = 128, .packing = Packing::atlas},
+        {.slices = 8, .resolution = 128, .packing = Packing::array, .light = Light::sun, .leak_fix = false},
+        // more than 32 slices: the XOR on the bits of one RGBA32UI target
+        {.slices = 64, .resolution = 64, .packing = Packing::atlas},
+    };
+    for (Config config : configs) {
+        config.solid_casters = true;
+        const std::string name = std::string(to_string(config.light)) + " S=" + std::to_string(config.slices) + " " +
+                                 std::string(to_string(config.packing));
+        SliceTextures gpu;
+        SliceFrame frame;
+        bool read = false;
+        RenderOptions options{.inspect = [&](const gl::Runtime& runtime) {
+            read = read_slice_textures(runtime, gpu, &error);
+            frame = runtime.frame();
+        }};
+        HeadlessResult result;
+        REQUIRE_MESSAGE(render_headless(*scene, config, 16, 16, result, &error, options), name, ": ", error);
+        REQUIRE_MESSAGE(read, name, ": ", error);
+        const SliceCoverage expected = expected_slices(scene->mesh, config, frame, leak_fix_reach(config));
+        Config shells = config;
+        shells.solid_casters = false;
+        const SliceCoverage surfaces = expected_slices(scene->mesh, shells, frame, leak_fix_reach(config));
+        const int R = config.resolution;
+        std::size_t wrong = 0, filled = 0, filled_marked = 0;
+        for (int s = 0; s < config.slices; ++s)
+            for (int y = 0; y < R; ++y)
+                for (int x = 0; x < R; ++x) {
+                    const float g = gpu.at(s, x, y);
+                    const Expect e = expected.at(s, x, y);
+                    wrong += (e == Expect::covered && g != 1.0f) || (e == Expect::empty && g != 0.0f);
+                    if (e == Expect::covered && surfaces.at(s, x, y) == Expect::empty) {
+                        ++filled;
+                        filled_marked += g == 1.0f;
+                    }
+                }
+        std::printf("solid slicing %-24s texels filled inside the boxes %zu (marked %zu), wrong %zu\n", name.c_str(),
+                    filled, filled_marked, wrong);
+        CHECK_MESSAGE(wrong == 0, name, ": ", wrong, " texels disagree with the CPU's parity away from edges");
+        CHECK_MESSAGE(filled > 100, name, ": only ", filled,
+                      " texels inside the boxes, the fill should matter on boxes");
+        CHECK_MESSAGE(filled_marked == filled, name, ": ", filled - filled_marked, " texels inside the boxes not marked");
+    }
+}

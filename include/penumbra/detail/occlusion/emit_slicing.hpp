@@ -10,6 +10,15 @@
 
 namespace penumbra::detail {
 
+// solid_casters: the per-draw flag of the slicing program (closed mesh or open casters), after the
+// material's parameters.
+inline constexpr std::string_view solid_caster_block = "PenumbraCaster";
+
+constexpr std::vector<Param> solid_caster_params(const Config& config) {
+    if (!config.solid_casters) return {};
+    return {uniform_param(Uniform::caster_closed, config.light)};
+}
+
 // The scene seen from the slicing camera, with its depth along the light normal: the vertex stage of
 // the slicing pass and of the depth-bin pre-pass (emit_slice_placement.hpp), each declaring its
 // program's parameters so the stages agree on the uniform block.
@@ -33,6 +42,29 @@ constexpr Text slicing_camera_vertex(const Config& config, std::string_view titl
 
 constexpr Text slicing_vertex(const Config& config) {
     return slicing_camera_vertex(config, "slicing pass, vertex stage", slicing_camera_params(), "PenumbraSlicing");
+}
+
+// solid_casters, a closed caster's fragment: it toggles (logic op XOR) every slice from its own down, so the
+// slices between where the slicing camera's ray enters the mesh and where it leaves it are marked, both ends'
+// slices included, and the ones below cancel out. The slicing camera looks along the light normal with the
+// light frame's axes, a mirror of OpenGL's eye space: faces towards the light are its back faces.
+constexpr void write_closed_caster(LineWriter& out, const Config& config, bool bits) {
+    out.comment("solid_casters: a closed mesh toggles (logic op XOR) every slice from where the ray enters it (a face");
+    out.comment("towards the light, back-facing in the slicing camera's mirrored frame: from its own slice) or leaves it");
+    out.comment("(from the next slice), so the slices between are filled");
+    out.line("if (penumbra_casterClosed > 0.5)");
+    out.line("{");
+    out.line(value(config, "float", "first", "gl_FrontFacing ? k + 1.0 : k"));
+    if (bits) {
+        out.line("penumbra_sliceBits = penumbra_slicesFrom(first);");
+    } else {
+        for (int t = 0; t < slicing_targets(config); ++t)
+            out.line("penumbra_occlusion", format_int(t), " = vec4(greaterThanEqual(vec4(", format_float(4 * t), ", ",
+                     format_float(4 * t + 1), ", ", format_float(4 * t + 2), ", ", format_float(4 * t + 3),
+                     "), vec4(first)));");
+    }
+    out.line("return;");
+    out.line("}");
 }
 
 constexpr Text slicing_fragment(const Config& config) {
@@ -65,6 +97,7 @@ constexpr Text slicing_fragment(const Config& config) {
     int binding = 0;
     write_params(out, config, slicing_params(config), "PenumbraSlicing", binding);
     write_alpha_test_params(out, config, binding);
+    if (config.solid_casters) write_params(out, config, solid_caster_params(config), solid_caster_block, binding);
     if (bits) {
         out.chunk("slice_bit");
         out.comment("the uvec4 with only the bit of slice `slice` set");
@@ -74,6 +107,15 @@ constexpr Text slicing_fragment(const Config& config) {
         out.line("return uvec4(equal(ivec4(s / 32), ivec4(0, 1, 2, 3))) << uint(s % 32);");
         out.line("}");
         out.blank();
+        if (config.solid_casters) {
+            out.comment("the uvec4 with the bits of slices `first` to 127 set (solid_casters)");
+            out.line("uvec4 penumbra_slicesFrom(float first)");
+            out.line("{");
+            out.line("ivec4 below = clamp(ivec4(first) - ivec4(0, 32, 64, 96), 0, 32); // bits of each component before `first`");
+            out.line("return uvec4(notEqual(below, ivec4(32))) * (uvec4(0xffffffffu) << uvec4(min(below, ivec4(31))));");
+            out.line("}");
+            out.blank();
+        }
     }
     if (places_slices_adaptively(config)) write_boundary_function(out, config);
     out.chunk("slicing_fragment_main");
@@ -90,6 +132,7 @@ constexpr Text slicing_fragment(const Config& config) {
                        cat("clamp(ceil((penumbra_depth - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 1.0, 0.0, ",
                            format_float(config.slices - 1), ")")));
     }
+    if (config.solid_casters) write_closed_caster(out, config, bits);
     const int reach = leak_fix_reach(config);
     if (reach == 1) out.comment("paper §3.4.1 leak fix: also mark the next slice away from the light");
     if (reach > 1) {

@@ -105,6 +105,18 @@ constexpr auto occlusion_fields() {
                        "target glsl450): \"dispatch\" passes, each building several levels of one workgroup's tile "
                        "in shared memory (penumbra_nbuffer_levels.comp)",
              .techniques = "occlusion", .omit_default = true}),
+        member<&Config::solid_casters>(
+            {.key = "solid_casters", .flag = "--solid-casters",
+             .help = "closed caster meshes fill the slices between their surfaces (volumes, not shells; desktop "
+                     "OpenGL)",
+             .detail = "closed caster meshes fill the slices between where the slicing camera's rays enter and "
+                       "leave them, so a wall seen edge-on by the light still blocks the grazing rays of a large "
+                       "light (absent means false). The slicing program takes the per-draw parameter "
+                       "penumbra_casterClosed (source \"draw\"): 1 for a closed mesh (watertight, "
+                       "counter-clockwise outward faces), drawn with a logical XOR instead of the pass's OR; 0 for "
+                       "open casters (cards, planes), drawn after every closed one. Targets with a logical "
+                       "operation on colour targets only (glsl450, glsl330)",
+             .techniques = "occlusion", .omit_default = true}),
     };
 }
 

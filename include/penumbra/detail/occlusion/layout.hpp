@@ -15,7 +15,11 @@ inline std::vector<ParamGroup> occlusion_param_groups(const Config& config, std:
     if (program == "shading_example" || program == "shading_deferred")
         return shading_param_groups(program, visibility_params(config), deferred_params(config),
                                     example_fragment_params(), example_vertex_params());
-    if (program == "slicing") return caster_param_groups(config, "PenumbraSlicing", slicing_params(config));
+    if (program == "slicing") {
+        std::vector<ParamGroup> groups = caster_param_groups(config, "PenumbraSlicing", slicing_params(config));
+        if (config.solid_casters) groups.push_back({solid_caster_block, solid_caster_params(config)});
+        return groups;
+    }
     if (program == "depth_bins") return caster_param_groups(config, "PenumbraPass", depth_bins_params());
     std::vector<Param> params;
     if (program == "slice_boundaries") params = slice_boundaries_params();
@@ -242,6 +246,9 @@ inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
                     .state = max_blend});
         }
     } else {
+        // solid_casters: the targets' texels are 0 or 1, so a logical OR marks them as MAX does, and the
+        // closed casters' draws switch it to XOR (emit_slicing.hpp)
+        const RenderState logic_or{.clear_color = max_blend.clear_color, .logic_op = LogicOp::bitwise_or};
         b.pass({.name = "slicing",
                 .action = PassAction::draw_scene,
                 .program = "slicing",
@@ -249,7 +256,7 @@ inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
                 .outputs = slicing_outputs,
                 .viewport_width = R,
                 .viewport_height = R,
-                .state = max_blend});
+                .state = config.solid_casters ? logic_or : max_blend});
     }
 
     // Prefilter passes.

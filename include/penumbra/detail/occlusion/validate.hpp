@@ -84,6 +84,12 @@ constexpr std::vector<Problem> occlusion_problems(const Config& config) {
         add("slices", format_int(config.slices),
             cat("needs ", format_int(texture_count(config)), " render targets (four slices each) but target '", target,
                 "' guarantees ", format_int(limit.max_draw_buffers), "; allowed for ", target, ": ", allowed_for_target));
+    if (config.solid_casters && (!limit.logic_op || config.target == Target::vulkan))
+        add("solid_casters", Text("true"),
+            cat("needs a logical XOR on the slicing targets, switched per draw, which ",
+                choose(config.target == Target::vulkan, Text("the Vulkan runner (targets/vulkan) does not do yet"),
+                       cat("target '", target, "' does not have")),
+                "; allowed for ", target, ": false; solid_casters with target glsl450 or glsl330"));
     if (config.slices > max_channel_slices && config.packing == Packing::volume)
         add("packing", Text("volume"),
             cat("needs ", format_int(texture_count(config)), " 3D textures for ", format_int(config.slices),
