@@ -402,6 +402,56 @@ Row alpha_test_row() {
             .check_row = [](const RowResult& r) { CHECK(r.valid == 4 * 2 * 9 + 3 * 2); }};
 }
 
+// Solid casters (solid_casters): every GLSL target × light, the slices as channels and as bits, with
+// adaptive placement and with the cut. Valid on glsl450 and glsl330, refused on essl300 (no logic op) and
+// vulkan (its runner does not switch the logic op per draw); only the slicing program changes.
+Row solid_casters_row() {
+    std::vector<Config> configs;
+    for (Target target : glsl_targets())
+        for (Light light : all_values<Light>()) {
+            auto with = [&](Config c) {
+                c.light = light;
+                c.target = target;
+                c.solid_casters = true;
+                configs.push_back(c);
+            };
+            with({.resolution = 256});
+            with({.slices = 5, .resolution = 64, .filter = Filter::mipmap, .packing = Packing::array});
+            with({.slices = 16, .resolution = 256, .slice_placement = SlicePlacement::adaptive});
+            with({.slices = 64, .resolution = 32});
+            Config cut{.slices = 8, .resolution = 128};
+            cut.alpha_test = true;
+            with(cut);
+        }
+    return {.name = "solid casters",
+            .configurations = configs,
+            .expect = [](const Config& c) {
+                return c.target == Target::glsl450 || c.target == Target::glsl330 ? Expect::valid : Expect::refused;
+            },
+            .check_emission = [](const Config& c, const Emitted& e) {
+                Config shells = c;
+                shells.solid_casters = false;
+                const Emitted without = emit_all(shells);
+                REQUIRE(without.programs.size() == e.programs.size());
+                for (std::size_t i = 0; i < e.programs.size(); ++i) {
+                    const bool slicing = e.programs[i].name == "slicing";
+                    const std::string fragment = e.programs[i].stages.back().text;
+                    CHECK_MESSAGE((fragment.find("penumbra_casterClosed > 0.5") != std::string::npos) == slicing,
+                                  name_of(c), " ", e.programs[i].name);
+                    if (!slicing) CHECK_MESSAGE(fragment == without.programs[i].stages.back().text, name_of(c));
+                }
+            },
+            .check_refusal = [](const Config& c, const Emitted& e) {
+                CHECK_MESSAGE(std::any_of(e.errors.begin(), e.errors.end(),
+                                          [](const ConfigError& error) { return error.field == "solid_casters"; }),
+                              name_of(c));
+            },
+            .check_row = [](const RowResult& r) {
+                CHECK(r.valid == 2 * 2 * 5);
+                CHECK(r.refused == 2 * 2 * 5);
+            }};
+}
+
 // --- the one check -------------------------------------------------------------------------------
 
 // Emits every configuration of `row` and compiles and links each program with glslang for its
@@ -444,7 +494,8 @@ RowResult run_row(const Row& row) {
 
 TEST_CASE("the glslang matrix: every program of every valid configuration of each technique compiles and links") {
     const Row rows[] = {occlusion_row(), tangent_clip_row(), many_slices_row(), adaptive_row(), compute_prefilter_row(),
-                        generic_row(), shadow_map_row(), erosion_row(), evsm_row(), oim_row(), alpha_test_row()};
+                        generic_row(), shadow_map_row(), erosion_row(), evsm_row(), oim_row(), alpha_test_row(),
+                        solid_casters_row()};
     int configurations = 0, programs = 0, compiled = 0;
     for (const Row& row : rows) {
         CAPTURE(row.name);
