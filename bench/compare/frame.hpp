@@ -84,9 +84,14 @@ inline bool run_frame(gl::Runtime& runtime, const MeshBuffers& mesh, const Pixel
     out.passes.clear();
     const auto start = std::chrono::steady_clock::now();
     if (std::string d = runtime.build(
-            [&](GLuint program) { // each material's casters with its alpha texture and cutoff (alpha_test)
+            [&](GLuint program) { // each material's casters with its alpha texture and cutoff (alpha_test), closed
+                                  // parts first and flagged (solid_casters)
                 mesh.draw_materials(
-                    [&](GLuint alpha, float cutoff) { runtime.bind_caster_material(program, alpha, 0, cutoff); }, true);
+                    [&](GLuint alpha, float cutoff, bool closed) {
+                        runtime.bind_caster_material(program, alpha, 0, cutoff);
+                        runtime.bind_caster_closed(program, closed);
+                    },
+                    true);
             },
             &out.passes); !d.empty()) {
         if (error) *error = d;

@@ -62,6 +62,16 @@ inline LadderEntry chained_entry(int slices, int resolution) {
             config, false};
 }
 
+// Solid casters (docs/model.md §1.3b): closed meshes fill the slices between their surfaces. Desktop
+// OpenGL only, so its own family: the tables show it beside the default and never pick it.
+inline LadderEntry solid_casters_entry(Filter filter, int slices, int resolution) {
+    LadderEntry entry = occlusion_entry(filter, slices, resolution);
+    entry.config.solid_casters = true;
+    entry.family = "solid-casters";
+    entry.label += " solid";
+    return entry;
+}
+
 // The default before it built only the levels its kernels reach, in RGBA8, at reduced resolution:
 // every level, RGBA16F, at full resolution (85 MiB at 16/512). Its own family, so that the tables show it beside the default and never pick it.
 inline LadderEntry every_level_entry(int slices, int resolution) {
@@ -172,6 +182,8 @@ inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
         occlusion_entry(Filter::nbuffer, 16, 256),
         occlusion_entry(Filter::nbuffer, 16, 512, true), // the default configuration
         chained_entry(16, 512),
+        solid_casters_entry(Filter::nbuffer, 8, 256),
+        solid_casters_entry(Filter::nbuffer, 16, 512),
         every_level_entry(16, 512),
         full_levels_entry(16, 512),
         compute_prefilter_entry(16, 512),
