@@ -44,7 +44,8 @@ std::string describe_config(const Config& c) {
            " R=" + std::to_string(c.resolution) + (c.leak_fix ? "" : " leak-fix-off") +
            (c.self_shadow_fade ? "" : " fade-off") + (c.tangent_clip ? " tangent-clip" : "") +
            (c.slice_placement == SlicePlacement::adaptive ? " adaptive" : "") +
-           (c.level_reduction == Config{}.level_reduction ? "" : " level-reduction " + std::to_string(c.level_reduction));
+           (c.level_reduction == Config{}.level_reduction ? "" : " level-reduction " + std::to_string(c.level_reduction)) +
+           (c.solid_casters ? " solid-casters" : "");
 }
 
 // The GPU run of one configuration: visibility at the shaded world positions, and what the
@@ -151,6 +152,13 @@ std::vector<Config> oracle_matrix() {
                        .light = Light::sun};
     reduced_sun.level_reduction = 0;
     configs.push_back(reduced_sun);
+    // solid casters: the boxes fill the slices between their surfaces (logic op XOR), as channels and as
+    // bits; the oracle filters and fuses what the GPU sliced, so the fill reaches it through the slices
+    for (int slices : {16, 64}) {
+        Config solid{.slices = slices, .resolution = slices == 16 ? 256 : 64};
+        solid.solid_casters = true;
+        configs.push_back(solid);
+    }
     return configs;
 }
 
