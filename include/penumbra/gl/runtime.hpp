@@ -312,20 +312,13 @@ public:
     // `sampler` (0: the texture's own filtering and wrap), and its cutoff (penumbra_alphaCutoff). A
     // program without those parameters (alpha_test off, or one that draws no casters) is left alone.
     void bind_caster_material(GLuint program, GLuint alpha_texture, GLuint sampler, float cutoff) const {
-        for (const auto& [name, id] : programs_) {
-            if (id != program) continue;
-            for (const ProgramDesc& p : emission_.layout.programs) {
-                if (p.name != name) continue;
-                for (const ParamDesc& param : p.parameters) {
-                    if (param.source != UniformSource::draw) continue;
-                    if (param.name == uniform_def(Uniform::alpha_texture).name && param.binding >= 0)
-                        detail::bind_sampler(program, param.name, param.binding, alpha_texture, sampler);
-                    if (param.name == uniform_def(Uniform::alpha_cutoff).name)
-                        if (const GLint at = glGetUniformLocation(program, param.name.c_str()); at >= 0)
-                            glProgramUniform1f(program, at, cutoff);
-                }
-            }
-        }
+        for_each_draw_param(program, [&](const ParamDesc& param) {
+            if (param.name == uniform_def(Uniform::alpha_texture).name && param.binding >= 0)
+                detail::bind_sampler(program, param.name, param.binding, alpha_texture, sampler);
+            if (param.name == uniform_def(Uniform::alpha_cutoff).name)
+                if (const GLint at = glGetUniformLocation(program, param.name.c_str()); at >= 0)
+                    glProgramUniform1f(program, at, cutoff);
+        });
     }
 
     // solid_casters: inside the slicing pass's `draw`, whether the next draws of `program` are a closed
@@ -334,18 +327,13 @@ public:
     // ones: an XOR after them would toggle their marks. A program without penumbra_casterClosed
     // (solid_casters off, or one that draws no slices) is left alone.
     void bind_caster_closed(GLuint program, bool closed) const {
-        for (const auto& [name, id] : programs_) {
-            if (id != program) continue;
-            for (const ProgramDesc& p : emission_.layout.programs) {
-                if (p.name != name) continue;
-                for (const ParamDesc& param : p.parameters)
-                    if (param.source == UniformSource::draw && param.name == uniform_def(Uniform::caster_closed).name)
-                        if (const GLint at = glGetUniformLocation(program, param.name.c_str()); at >= 0) {
-                            glProgramUniform1f(program, at, closed ? 1.0f : 0.0f);
-                            glLogicOp(closed ? GL_XOR : GL_OR);
-                        }
-            }
-        }
+        for_each_draw_param(program, [&](const ParamDesc& param) {
+            if (param.name == uniform_def(Uniform::caster_closed).name)
+                if (const GLint at = glGetUniformLocation(program, param.name.c_str()); at >= 0) {
+                    glProgramUniform1f(program, at, closed ? 1.0f : 0.0f);
+                    glLogicOp(closed ? GL_XOR : GL_OR);
+                }
+        });
     }
 
     // Runs the layout's passes of phase "shadow" in order (draw_scene passes call `draw`).
@@ -443,6 +431,17 @@ public:
     }
 
 private:
+    // `visit` on each per-draw parameter (source "draw") of the layout program compiled as `program`.
+    template <class Visit> void for_each_draw_param(GLuint program, Visit&& visit) const {
+        for (const auto& [name, id] : programs_) {
+            if (id != program) continue;
+            for (const ProgramDesc& p : emission_.layout.programs)
+                if (p.name == name)
+                    for (const ParamDesc& param : p.parameters)
+                        if (param.source == UniformSource::draw) visit(param);
+        }
+    }
+
     Runtime() = default;
 
     static std::string invalid_configuration(const std::vector<ConfigError>& errors) {
