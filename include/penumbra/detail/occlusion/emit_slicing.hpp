@@ -44,6 +44,12 @@ constexpr Text slicing_vertex(const Config& config) {
     return slicing_camera_vertex(config, "slicing pass, vertex stage", slicing_camera_params(), "PenumbraSlicing");
 }
 
+// The slices slicing target t holds, one per channel: vec4(4t, 4t + 1, 4t + 2, 4t + 3).
+constexpr Text target_slices(int t) {
+    return cat("vec4(", format_float(4 * t), ", ", format_float(4 * t + 1), ", ", format_float(4 * t + 2), ", ",
+               format_float(4 * t + 3), ")");
+}
+
 // solid_casters, a closed caster's fragment: it toggles (logic op XOR) every slice from its own down, so the
 // slices between where the slicing camera's ray enters the mesh and where it leaves it are marked, both ends'
 // slices included, and the ones below cancel out. The slicing camera looks along the light normal with the
@@ -59,9 +65,8 @@ constexpr void write_closed_caster(LineWriter& out, const Config& config, bool b
         out.line("penumbra_sliceBits = penumbra_slicesFrom(first);");
     } else {
         for (int t = 0; t < slicing_targets(config); ++t)
-            out.line("penumbra_occlusion", format_int(t), " = vec4(greaterThanEqual(vec4(", format_float(4 * t), ", ",
-                     format_float(4 * t + 1), ", ", format_float(4 * t + 2), ", ", format_float(4 * t + 3),
-                     "), vec4(first)));");
+            out.line("penumbra_occlusion", format_int(t), " = ",
+                     construct(config, "vec4", compare(config, "greaterThanEqual", target_slices(t), "vec4(first)")), ";");
     }
     out.line("return;");
     out.line("}");
@@ -156,8 +161,7 @@ constexpr Text slicing_fragment(const Config& config) {
         out.line(value(config, "float", "base", construct(config, "float", "4 * penumbra_firstTexture")));
     }
     for (int t = 0; !bits && t < slicing_targets(config); ++t) {
-        Text first = cat("vec4(", format_float(4 * t), ", ", format_float(4 * t + 1), ", ", format_float(4 * t + 2),
-                         ", ", format_float(4 * t + 3), ")");
+        Text first = target_slices(t);
         if (grouped) first = cat("(", first, " + vec4(base))");
         out.line("// texture ", choose(grouped, cat("penumbra_firstTexture + ", format_int(t)), format_int(t)));
         if (reach > 0)
