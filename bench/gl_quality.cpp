@@ -192,7 +192,7 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                     parts.empty() ? std::nullopt : penumbra::parse_enum<penumbra::Fusion>(parts.front());
                 if (!fusion) {
                     error = "--variants: '" + std::string(name) + "' does not start with a fusion rule; allowed: "
-                            "probabilistic, additive, maximum, average, chained, correlated, extent";
+                            "probabilistic, additive, maximum, average, chained, correlated, extent, clustered";
                     return std::nullopt;
                 }
                 v.fusion = *fusion;

@@ -37,7 +37,7 @@ mkdir -p "$DIR"
 DIR=$(realpath "$DIR")
 
 filters=(mipmap nbuffer sat gaussian)
-fusions=(probabilistic additive maximum average chained correlated extent)
+fusions=(probabilistic additive maximum average chained correlated extent clustered)
 packings=(atlas array volume)
 targets=(glsl330 glsl450 essl300 vulkan)
 lights=(rect sun)

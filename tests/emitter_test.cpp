@@ -62,8 +62,10 @@ TEST_CASE("the shading function is specialized: unrolled, swizzled, constants ba
             function_body(snippet, config.tangent_clip ? "\nfloat penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)"
                                                        : "\nfloat penumbraVisibility(vec3 worldPos)");
         const int S = config.slices, L = max_level(config);
-        // extent fusion reads each slice once more, over a window twice the kernel's side
-        const int lookups = config.fusion == Fusion::extent ? 2 : 1;
+        // extent fusion reads each slice once more, over a window twice the kernel's side; clustered fusion
+        // also over the kernel's four quadrants
+        const bool clustered = config.fusion == Fusion::clustered;
+        const int lookups = config.fusion == Fusion::extent ? 2 : clustered ? 6 : 1;
 
         // no loop statement for the static loop; the atlas level loop keeps one bounded walk per level
         CHECK(count(body, "for (") == 0);
@@ -82,7 +84,9 @@ TEST_CASE("the shading function is specialized: unrolled, swizzled, constants ba
             for (int level = 0; level <= L; ++level)
                 CHECK(body.find("// level " + std::to_string(level) + ":") != std::string_view::npos);
             // extent: the doubled window's level two above, where there is one (the others are read already)
-            CHECK(count(body, "textureLod(") == 2 * L + 1 + (lookups - 1) * (L - 1));
+            // clustered: each quadrant from the level below and this one (level 0: level 0 alone)
+            CHECK(count(body, "textureLod(") ==
+                  2 * L + 1 + (reads_doubled_window(config.fusion) ? L - 1 : 0) + (clustered ? 4 + 8 * L : 0));
         } else {
             // one labelled block per slice, each with its baked plane index, one filtered lookup each
             for (int s = 0; s < S; ++s) {
@@ -116,6 +120,7 @@ TEST_CASE("fusion rules") {
         {Fusion::chained, "penumbra_lit *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);"},
         {Fusion::correlated, "penumbra_lit *= penumbra_correlatedStep(q, kernel, penumbra_prev, penumbra_prevKernel);"},
         {Fusion::extent, "penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);"},
+        {Fusion::clustered, "area = fade * max(coverage, 4.0 * dot(penumbra_wide, penumbra_i)) * kernel.z * kernel.z / penumbra_clusterCount(penumbra_quadrants);"},
     };
     for (const auto& [fusion, line] : expected)
         CHECK(emit_file(Config{.fusion = fusion}, "penumbra_visibility.glsl").text.find(line) != std::string::npos);
@@ -252,7 +257,7 @@ TEST_CASE("invalid configurations: each names the field, the value and what is a
         {{.resolution = 8192}, "resolution", "resolution: 8192 is not allowed"},
         {{.resolution = 16}, "resolution", "resolution: 16 is not allowed"},
         {{.filter = static_cast<Filter>(9)}, "filter", "filter: 9 is not a known value; allowed: mipmap, nbuffer, sat, gaussian"},
-        {{.fusion = static_cast<Fusion>(7)}, "fusion", "allowed: probabilistic, additive, maximum, average"},
+        {{.fusion = static_cast<Fusion>(8)}, "fusion", "allowed: probabilistic, additive, maximum, average"},
         {{.packing = static_cast<Packing>(5)}, "packing", "allowed: atlas, array, volume"},
         {{.light = static_cast<Light>(2)}, "light", "allowed: rect, sun"},
         {{.target = static_cast<Target>(5)}, "target", "allowed: glsl330, glsl450, essl300, vulkan, wgsl"},

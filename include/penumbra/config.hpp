@@ -45,7 +45,13 @@ enum class Fusion : std::uint8_t {
                    // the occluder the two kernels see, displaced by the parallax between them (docs/model.md §1.7)
     extent,        // correlated, the occluder's size from the covered area in a window twice the kernel's side
                    // (one more lookup per slice; docs/model.md §1.7.2)
+    clustered,     // extent, that area shared by the occluders counted from the spread of the kernel's four
+                   // quadrants: crowds and foliage (four more lookups per slice; docs/model.md §1.7.3)
 };
+
+// Whether a fusion rule reads each slice over a window twice the kernel's side as well (one filter level
+// more than the widest kernel's).
+constexpr bool reads_doubled_window(Fusion fusion) { return fusion == Fusion::extent || fusion == Fusion::clustered; }
 
 // How the filtered occlusion textures are stored (paper §3.6–3.7, docs/model.md §3).
 enum class Packing : std::uint8_t {
@@ -263,8 +269,8 @@ template <> struct EnumNames<Filter> {
     static constexpr std::array<std::string_view, 4> names{"mipmap", "nbuffer", "sat", "gaussian"};
 };
 template <> struct EnumNames<Fusion> {
-    static constexpr std::array<std::string_view, 7> names{"probabilistic", "additive", "maximum", "average",
-                                                           "chained", "correlated", "extent"};
+    static constexpr std::array<std::string_view, 8> names{"probabilistic", "additive", "maximum", "average",
+                                                           "chained", "correlated", "extent", "clustered"};
 };
 template <> struct EnumNames<Packing> {
     static constexpr std::array<std::string_view, 3> names{"atlas", "array", "volume"};

@@ -47,7 +47,7 @@ inline double widest_kernel(const SliceFrame& frame, const Config& config) {
 // levels (summed-area tables) and techniques other than occlusion textures: -1 (not used).
 inline int kernel_level_bound(const SliceFrame& frame, const Config& config) {
     if (config.technique != Technique::occlusion || config.filter == Filter::sat) return -1;
-    const double window = config.fusion == Fusion::extent ? 2.0 : 1.0; // extent: the doubled window
+    const double window = reads_doubled_window(config.fusion) ? 2.0 : 1.0; // extent, clustered: the doubled window
     const double texels = window * widest_kernel(frame, config) * config.resolution;
     // log2(√6/4): the Gaussian levels' bias (detail/occlusion/emit_visibility.hpp)
     const double bias = config.filter == Filter::gaussian ? -0.70751874963942190927 : 0.0;

@@ -224,8 +224,8 @@ public:
     // is compared without comments (see detail::code_of). The frame is recomputed for the new slice count
     // from the last set_light; after changing config.light, call set_light again. Kept textures keep their
     // old contents until the next build(). A level_bound of -1 is fitted to the last light and to `config`
-    // (see RuntimeOptions::fit_level_bound): extent fusion reads one level more than the other rules, so
-    // a switch to or from it adds or drops that level's texture.
+    // (see RuntimeOptions::fit_level_bound): extent and clustered fusion read one level more than the
+    // other rules, so a switch to or from them adds or drops that level's texture.
     std::string reconfigure(const Config& config) {
         const bool fits = options_.fit_level_bound && config.level_bound < 0;
         Config next = config;

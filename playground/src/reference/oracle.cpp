@@ -400,6 +400,13 @@ double extent_step(double q, glm::dvec3 kernel, double area, double previous, gl
     const double both = q * previous + rho * (std::min(q, previous) - q * previous);
     return (1.0 - q - previous + both) / std::max(1.0 - previous, 1e-6);
 }
+// Clustered fusion (docs/model.md §1.7.3, penumbra_clusterCount in detail/occlusion/emit_visibility.hpp): how
+// many occluders share the covered area, from the spread of the four quadrants' coverage.
+double cluster_count(glm::dvec4 quadrants) {
+    const double mean = 0.25 * (quadrants.x + quadrants.y + quadrants.z + quadrants.w);
+    const double spread = std::max(0.25 * glm::dot(quadrants, quadrants) - mean * mean, 0.0);
+    return std::max(3.0 * mean * mean / std::max(spread, 1e-10), 1.0);
+}
 } // namespace
 
 OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion) const {
@@ -464,10 +471,21 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
         const double q = weight * o.value;
         // extent fusion: the same slice over a window twice the kernel's side (only that rule reads it)
         double area = 0.0;
-        if (fusion == Fusion::extent) {
+        if (reads_doubled_window(fusion)) {
             const Sample wide = filtered(s, centre, 2.0 * side);
             area = weight * std::max(o.value, 4.0 * wide.value) * side * side;
             bound += weight * wide.bound;
+        }
+        // clustered fusion: that area shared by the occluders counted from the kernel's four quadrants
+        if (fusion == Fusion::clustered) {
+            glm::dvec4 quadrants(0.0);
+            const glm::dvec2 corners[4] = {{-1.0, -1.0}, {1.0, -1.0}, {-1.0, 1.0}, {1.0, 1.0}};
+            for (int i = 0; i < 4; ++i) {
+                const Sample quadrant = filtered(s, centre + 0.25 * side * corners[i], 0.5 * side);
+                quadrants[i] = quadrant.value;
+                bound += weight * quadrant.bound;
+            }
+            area /= cluster_count(quadrants);
         }
         lit *= 1.0 - q;
         sum += q;
@@ -488,7 +506,8 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
     case Fusion::average: v = 1.0 - 0.5 * (std::min(1.0, sum) + maximum); break; // Soler & Sillion
     case Fusion::chained: v = std::clamp(chain, 0.0, 1.0); break;
     case Fusion::correlated: v = std::clamp(correlated, 0.0, 1.0); break;
-    case Fusion::extent: v = std::clamp(extent, 0.0, 1.0); break;
+    case Fusion::extent:
+    case Fusion::clustered: v = std::clamp(extent, 0.0, 1.0); break;
     }
     return {v, bound, beyond};
 }

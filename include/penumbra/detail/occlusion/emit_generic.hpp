@@ -245,12 +245,39 @@ constexpr void write_generic_level_read(LineWriter& out, const Config& config) {
     out.blank();
 }
 
+// The extent and clustered rules' test: only they pay for the wider window's lookups.
+constexpr Text generic_extent_test() {
+    return cat("penumbra_fusion == ", format_int(static_cast<int>(Fusion::extent)), " || penumbra_fusion == ",
+               format_int(static_cast<int>(Fusion::clustered)));
+}
+
+// The clustered rule's test: only it pays for the quadrants' lookups.
+constexpr Text generic_clustered_test() {
+    return cat("penumbra_fusion == ", format_int(static_cast<int>(Fusion::clustered)));
+}
+
+// Clustered fusion: the covered area divided by the occluders counted from the kernel's quadrants, each read
+// by `lookup(quadrant)` (a vec4 of the slice's texture, the quadrant's kernel named `quadrant`).
+template <class Lookup> constexpr void write_generic_clustered_area(LineWriter& out, Lookup lookup) {
+    out.line("if (", generic_clustered_test(), ") {");
+    out.line("vec4 penumbra_quadrants;");
+    for (int i = 0; i < 4; ++i) {
+        out.line("{");
+        out.line("vec4 quadrant = penumbra_quadrant(kernel, ", quadrant_corners[i], ");");
+        out.line("penumbra_quadrants[", format_int(i), "] = ", lookup("quadrant"), "[s % 4];");
+        out.line("}");
+    }
+    out.line("area /= penumbra_clusterCount(penumbra_quadrants);");
+    out.line("}");
+}
+
 constexpr void write_generic_fusion(LineWriter& out) {
     out.chunk("fusion_result");
     out.comment("every rule's accumulator is kept; the uniform picks the result (paper §3.3)");
     out.line("float penumbra_fused(float lit, float sum, float maximum, float chain, float correlated, float extent)");
     out.line("{");
-    out.line("if (penumbra_fusion == ", format_int(static_cast<int>(Fusion::extent)), ") return clamp(extent, 0.0, 1.0);");
+    out.comment("clustered fusion is extent fusion over one occluder's area: the same accumulator");
+    out.line("if (", generic_extent_test(), ") return clamp(extent, 0.0, 1.0);");
     out.line("if (penumbra_fusion == ", format_int(static_cast<int>(Fusion::correlated)), ") return clamp(correlated, 0.0, 1.0);");
     out.line("if (penumbra_fusion == ", format_int(static_cast<int>(Fusion::chained)), ") return clamp(chain, 0.0, 1.0);");
     out.line("if (penumbra_fusion == ", format_int(static_cast<int>(Fusion::probabilistic)), ") return lit;");
@@ -269,16 +296,11 @@ constexpr void write_generic_accumulate(LineWriter& out) {
     out.line("penumbra_chain *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);");
     out.comment("correlated: neighbours between nested and independent by the parallax between their kernels");
     out.line("penumbra_correlated *= penumbra_correlatedStep(q, kernel, penumbra_prev, penumbra_prevKernel);");
-    out.comment("extent: the same, the occluder's size from a window twice the kernel's side");
+    out.comment("extent: the same, the occluder's size from a window twice the kernel's side (clustered: one occluder's)");
     out.line("penumbra_extent *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);");
     out.line("penumbra_prev = q;");
     out.line("penumbra_prevKernel = kernel;");
     out.line("penumbra_prevArea = area;");
-}
-
-// The extent rule's test: only that rule pays for the wider window's lookups.
-constexpr Text generic_extent_test() {
-    return cat("penumbra_fusion == ", format_int(static_cast<int>(Fusion::extent)));
 }
 
 // A `for` loop over the slices, from the bottom one up to the light, one lookup each.
@@ -296,6 +318,7 @@ constexpr void write_generic_slice_loop(LineWriter& out, const Config& config) {
     out.line("vec4 penumbra_wide = vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel));");
     out.line("area = ", extent_area("fade", "coverage", "penumbra_filtered(penumbra_wide, s / 4)[s % 4]"), ";");
     out.line("}");
+    write_generic_clustered_area(out, [](std::string_view quadrant) { return cat("penumbra_filtered(", quadrant, ", s / 4)"); });
     write_generic_accumulate(out);
     out.line("}");
 }
@@ -328,6 +351,11 @@ constexpr void write_generic_level_loop(LineWriter& out, const Config& config) {
     out.line("    : mix(penumbra_hi, penumbra_atlasLevel(min(level + 2, penumbra_maxLevel), kernel, s / 4), t - 1.0);");
     out.line("area = ", extent_area("fade", "texel[s % 4]", "penumbra_wide[s % 4]"), ";");
     out.line("}");
+    out.comment("a quadrant's level lies between the level below this one and this one (level 0: level 0)");
+    write_generic_clustered_area(out, [](std::string_view quadrant) {
+        return cat("mix(penumbra_atlasLevel(max(level - 1, 0), ", quadrant, ", s / 4), penumbra_atlasLevel(level, ", quadrant,
+                   ", s / 4), clamp(", quadrant, ".w - float(level - 1), 0.0, 1.0))");
+    });
     write_generic_accumulate(out);
     out.line("penumbra_k -= 1.0;");
     out.line("}");
@@ -344,6 +372,7 @@ constexpr Text generic_fragment(const Config& config) {
     write_correlated_step_function(out);
     write_extent_step_function(out);
     write_wide_level_function(out, config, "penumbra_resolution", "float(penumbra_maxLevel)");
+    write_cluster_functions(out, config, "penumbra_resolution", "float(penumbra_maxLevel)");
     write_generic_fusion(out);
     out.chunk("visibility");
     const bool clip = clips_to_tangent_plane(config);

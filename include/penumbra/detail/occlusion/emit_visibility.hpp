@@ -426,19 +426,57 @@ constexpr void write_extent_step_function(LineWriter& out, const Config& config)
                              "sqrt(max(area, prevArea))");
 }
 
-// The filter level of a window twice the kernel's side (extent fusion), as penumbra_kernel picks levels.
+// The filter level of a window `factor` times the kernel's side, as penumbra_kernel picks levels.
 // `resolution` and `max_level` as for write_kernel_function.
-constexpr void write_wide_level_function(LineWriter& out, const Config& config, std::string_view resolution,
-                                         std::string_view max_level) {
+constexpr void write_window_level_function(LineWriter& out, const Config& config, std::string_view name, std::string_view factor,
+                                           std::string_view comment, std::string_view resolution, std::string_view max_level) {
     out.chunk("fusion");
-    out.comment("filter level of a window twice the kernel's side (extent fusion)");
-    out.line(signature(config, "float", "penumbra_wideLevel", {{"vec4", "kernel"}}));
+    out.comment(comment);
+    out.line(signature(config, "float", name, {{"vec4", "kernel"}}));
     out.line("{");
     const Text bias = choose(config.filter == Filter::gaussian, cat(" + (", format_float(gaussian_level_bias), ")"), Text());
-    out.line("return clamp(log2(max(2.0 * kernel.z * ", resolution, ", 1.0))", bias, ", 0.0, ", max_level, ");");
+    out.line("return clamp(log2(max(", factor, " * kernel.z * ", resolution, ", 1.0))", bias, ", 0.0, ", max_level, ");");
     out.line("}");
     out.blank();
 }
+
+// The filter level of a window twice the kernel's side (extent and clustered fusion).
+constexpr void write_wide_level_function(LineWriter& out, const Config& config, std::string_view resolution,
+                                         std::string_view max_level) {
+    write_window_level_function(out, config, "penumbra_wideLevel", "2.0",
+                                "filter level of a window twice the kernel's side (extent fusion)", resolution, max_level);
+}
+
+// Clustered fusion (docs/model.md §1.7.3): the covered area extent fusion reads is shared by however many
+// occluders lie in the kernel. Counted from the kernel's four quadrants: N small occluders thrown at random
+// fall into the quadrants as a binomial, whose coverage then spreads by var = 3 mean² / N around its mean,
+// so N = 3 mean² / var (one occluder in one quadrant: 1; a crowd, evenly spread: many). The occluder's size
+// for the parallax is then the size of one of them, sqrt(area / N). Generic program and oracle share it.
+constexpr void write_cluster_functions(LineWriter& out, const Config& config, std::string_view resolution,
+                                       std::string_view max_level) {
+    write_window_level_function(out, config, "penumbra_quarterLevel", "0.5",
+                                "filter level of a window half the kernel's side: one quadrant (clustered fusion)", resolution,
+                                max_level);
+    out.comment("the kernel of one quadrant: corner (-1 or 1 per axis) picks which");
+    out.line(signature(config, "vec4", "penumbra_quadrant", {{"vec4", "kernel"}, {"vec2", "corner"}}));
+    out.line("{");
+    out.line("return vec4(kernel.xy + 0.25 * kernel.z * corner, 0.5 * kernel.z, penumbra_quarterLevel(kernel));");
+    out.line("}");
+    out.blank();
+    out.comment("clustered fusion: how many occluders share the covered area, from the spread of the four quadrants'");
+    out.comment("coverage (a binomial's: var = 3 mean^2 / N); at least one");
+    out.line(signature(config, "float", "penumbra_clusterCount", {{"vec4", "quadrants"}}));
+    out.line("{");
+    out.line(value(config, "float", "m", "0.25 * (quadrants.x + quadrants.y + quadrants.z + quadrants.w)"));
+    out.line(value(config, "float", "spread", "max(0.25 * dot(quadrants, quadrants) - m * m, 0.0)"));
+    out.line("return max(3.0 * m * m / max(spread, 1e-10), 1.0);");
+    out.line("}");
+    out.blank();
+}
+
+// The four quadrant corners, in the order penumbra_clusterCount's vector holds them.
+inline constexpr std::array<std::string_view, 4> quadrant_corners{"vec2(-1.0, -1.0)", "vec2(1.0, -1.0)", "vec2(-1.0, 1.0)",
+                                                                  "vec2(1.0, 1.0)"};
 
 // The covered area (uv²) extent fusion takes for a slice: `fade` times the larger of the kernel's coverage
 // and four times the doubled window's (`wide`, a channel of a vec4 expression), times the kernel's area.
@@ -482,6 +520,14 @@ constexpr void write_fusion_start(LineWriter& out, const Config& config) {
         out.line(variable(config, "vec4", "penumbra_prevKernel", "vec4(0.0)"), " // its kernel");
         out.line(variable(config, "float", "penumbra_prevArea", "0.0"), " // and its covered area");
         break;
+    case Fusion::clustered:
+        out.comment("clustered fusion: extent fusion, the covered area shared by the occluders counted from the");
+        out.comment("spread of the kernel's four quadrants, so a crowd's or a canopy's neighbours stay independent");
+        out.line(variable(config, "float", "penumbra_lit", "1.0"));
+        out.line(variable(config, "float", "penumbra_prev", "0.0"), " // q of the slice visited before (its neighbour)");
+        out.line(variable(config, "vec4", "penumbra_prevKernel", "vec4(0.0)"), " // its kernel");
+        out.line(variable(config, "float", "penumbra_prevArea", "0.0"), " // and one occluder's area");
+        break;
     }
 }
 
@@ -504,6 +550,7 @@ constexpr void write_accumulate(LineWriter& out, const Config& config) {
         out.line("penumbra_prevKernel = kernel;");
         break;
     case Fusion::extent:
+    case Fusion::clustered:
         out.line("penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);");
         out.line("penumbra_prev = q;");
         out.line("penumbra_prevKernel = kernel;");
@@ -524,7 +571,22 @@ constexpr void write_fusion_result(LineWriter& out, const Config& config) {
         break;
     case Fusion::chained:
     case Fusion::correlated:
-    case Fusion::extent: out.line("return clamp(penumbra_lit, 0.0, 1.0);"); break;
+    case Fusion::extent:
+    case Fusion::clustered: out.line("return clamp(penumbra_lit, 0.0, 1.0);"); break;
+    }
+}
+
+// Clustered fusion: the slice's coverage in the kernel's four quadrants, into penumbra_quadrants.
+// `lookup(quadrant)` reads the four channels over the quadrant kernel named `quadrant`.
+template <class Lookup> constexpr void write_quadrants(LineWriter& out, const Config& config, Lookup lookup) {
+    constexpr std::array<std::string_view, 4> names{"lower left", "lower right", "upper left", "upper right"};
+    out.line(variable(config, "vec4", "penumbra_quadrants", "vec4(0.0)"));
+    for (int i = 0; i < 4; ++i) {
+        out.line("{");
+        out.line(value(config, "vec4", "quadrant", cat("penumbra_quadrant(kernel, ", quadrant_corners[i], ")")), " // ",
+                 names[i]);
+        out.line("penumbra_quadrants.", channel_name(i), " = dot(", lookup("quadrant"), ", penumbra_i);");
+        out.line("}");
     }
 }
 
@@ -556,7 +618,7 @@ constexpr void write_slice_loop(LineWriter& out, const Config& config) {
         out.line(value(config, "vec4", "kernel", kernel_call(config)));
         const Text lookup = choose(config.packing == Packing::volume, cat("penumbra_filtered", format_int(tile), "(kernel)"),
                                    cat("penumbra_filtered(kernel, ", format_float(tile), ")"));
-        if (config.fusion == Fusion::extent) {
+        if (reads_doubled_window(config.fusion)) {
             const Text wide = choose(config.packing == Packing::volume,
                                      cat("penumbra_filtered", format_int(tile), "(penumbra_wide)"),
                                      cat("penumbra_filtered(penumbra_wide, ", format_float(tile), ")"));
@@ -565,7 +627,18 @@ constexpr void write_slice_loop(LineWriter& out, const Config& config) {
             out.line(value(config, "float", "q", "fade * coverage"));
             out.comment("the same slice over a window twice the kernel's side: how far the occluder extends");
             out.line(value(config, "vec4", "penumbra_wide", "vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel))"));
-            out.line(value(config, "float", "area", extent_area("fade", "coverage", cat("dot(", wide, ", penumbra_i)"))));
+            if (config.fusion == Fusion::clustered) {
+                out.comment("the kernel's four quadrants: how many occluders share the covered area");
+                write_quadrants(out, config, [&](std::string_view quadrant) {
+                    return choose(config.packing == Packing::volume, cat("penumbra_filtered", format_int(tile), "(", quadrant, ")"),
+                                  cat("penumbra_filtered(", quadrant, ", ", format_float(tile), ")"));
+                });
+                out.line(value(config, "float", "area",
+                               cat(extent_area("fade", "coverage", cat("dot(", wide, ", penumbra_i)")),
+                                   " / penumbra_clusterCount(penumbra_quadrants)")));
+            } else {
+                out.line(value(config, "float", "area", extent_area("fade", "coverage", cat("dot(", wide, ", penumbra_i)"))));
+            }
         } else {
             out.line(value(config, "float", "q", cat(weight_call(config), " * dot(", lookup, ", penumbra_i)")));
         }
@@ -630,7 +703,7 @@ constexpr void write_level_loop(LineWriter& out, const Config& config) {
                                     level_read_coordinate(config, l, "kernel.y"), ")"),
                                 "0.0");
         };
-        if (config.fusion == Fusion::extent) {
+        if (reads_doubled_window(config.fusion)) {
             // the doubled window's level lies between this level and two above it (clamped to the last)
             const Text L1 = format_float(level + 1);
             if (!last) out.line(if_then(config, cat("kernel.w >= ", L1), "break;"));
@@ -660,7 +733,26 @@ constexpr void write_level_loop(LineWriter& out, const Config& config) {
             out.line(value(config, "float", "fade", weight_call(config)));
             out.line(value(config, "float", "coverage", "dot(texel, penumbra_i)"));
             out.line(value(config, "float", "q", "fade * coverage"));
-            out.line(value(config, "float", "area", extent_area("fade", "coverage", "dot(penumbra_wide, penumbra_i)")));
+            if (config.fusion == Fusion::clustered) {
+                // a quadrant's level lies between the level below this one and this one (level 0: level 0)
+                auto read_quadrant = [&](int l) {
+                    return sample_level(config, atlas_level_name(l),
+                                        cat("vec2(penumbra_delta + (", level_read_coordinate(config, l, "quadrant.x"), ") * ", k.inv_T,
+                                            ", ", level_read_coordinate(config, l, "quadrant.y"), ")"),
+                                        "0.0");
+                };
+                out.comment("the kernel's four quadrants, read a level below: how many occluders share the covered area");
+                write_quadrants(out, config, [&](std::string_view quadrant) {
+                    return choose(level == 0, read_quadrant(0),
+                                  cat("mix(", read_quadrant(level == 0 ? 0 : level - 1), ", ", read_quadrant(level), ", ", quadrant,
+                                      ".w - ", format_float(level - 1), ")"));
+                });
+                out.line(value(config, "float", "area",
+                               cat(extent_area("fade", "coverage", "dot(penumbra_wide, penumbra_i)"),
+                                   " / penumbra_clusterCount(penumbra_quadrants)")));
+            } else {
+                out.line(value(config, "float", "area", extent_area("fade", "coverage", "dot(penumbra_wide, penumbra_i)")));
+            }
         } else {
             if (last) {
                 out.line(value(config, "vec4", "texel", read(level)));
@@ -693,10 +785,11 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
     if (!uses_level_loop(config)) write_lookup_function(out, config);
     if (config.tangent_clip) write_tangent_clip_function(out, config);
     if (config.fusion == Fusion::correlated) write_correlated_step_function(out, config);
-    if (config.fusion == Fusion::extent) {
+    if (reads_doubled_window(config.fusion)) {
         const VisibilityConstants k = constants(config);
         write_extent_step_function(out, config);
         write_wide_level_function(out, config, k.R, k.L);
+        if (config.fusion == Fusion::clustered) write_cluster_functions(out, config, k.R, k.L);
     }
     out.chunk("visibility");
     if (config.tangent_clip) {

@@ -110,7 +110,10 @@ inline long long occlusion_texels_per_fragment(const Config& c, const PassDesc& 
         else per_slice = 2 * 4;
         // extent fusion reads each slice once more over a window twice the kernel's side: one more level
         // in the atlas level loop, one more filtered lookup elsewhere (docs/model.md §1.7.2)
-        if (c.fusion == Fusion::extent) per_slice += uses_level_loop(c) ? 4 : per_slice;
+        const long long kernel_lookup = per_slice;
+        if (reads_doubled_window(c.fusion)) per_slice += uses_level_loop(c) ? 4 : kernel_lookup;
+        // clustered fusion reads the kernel's four quadrants too: two levels each in the level loop
+        if (c.fusion == Fusion::clustered) per_slice += uses_level_loop(c) ? 4 * 2 * 4 : 4 * kernel_lookup;
         const long long boundaries = places_slices_adaptively(c) ? c.slices : 0;
         return g_buffer_texels(c) + per_slice * c.slices + boundaries;
     }
