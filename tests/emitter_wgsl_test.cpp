@@ -42,6 +42,10 @@ std::vector<Config> wgsl_configs() {
     out.push_back({.slices = 32, .resolution = 128, .self_shadow_fade = false, .level_reduction = -1, .target = Target::wgsl});
     // the mip chain as passes (WebGPU has no generateMipmap), with the extent fusion's second read
     out.push_back({.slices = 8, .resolution = 128, .filter = Filter::mipmap, .fusion = Fusion::extent, .target = Target::wgsl});
+    // clustered fusion: the kernel's quadrants in the atlas level loop (two levels each) and through the lookup function
+    out.push_back({.slices = 8, .resolution = 128, .fusion = Fusion::clustered, .target = Target::wgsl});
+    out.push_back({.slices = 5, .resolution = 64, .filter = Filter::sat, .fusion = Fusion::clustered, .packing = Packing::array,
+                   .target = Target::wgsl});
     // the array and volume packings: levels built in a scratch texture and copied into a layer / depth
     out.push_back({.slices = 8, .resolution = 128, .filter = Filter::mipmap, .packing = Packing::array, .target = Target::wgsl});
     out.push_back({.slices = 8, .resolution = 128, .packing = Packing::array, .target = Target::wgsl});

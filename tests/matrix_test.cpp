@@ -109,18 +109,20 @@ Row occlusion_row() {
 }
 
 // The tangent clip changes the visibility function, the kernel and the deferred pass's inputs:
-// every filter × packing × light × target with it on (three slice counts: 5 with correlated fusion, whose
-// step reads each slice's kernel, 6 with extent fusion, which also reads a doubled window, 16 with chained).
+// every filter × packing × light × target with it on (four slice counts: 5 with correlated fusion, whose
+// step reads each slice's kernel, 6 with extent fusion, which also reads a doubled window, 7 with clustered
+// fusion, which also reads the kernel's quadrants, 16 with chained).
 Row tangent_clip_row() {
     std::vector<Config> configs;
     for (Filter filter : all_values<Filter>())
         for (Packing packing : all_values<Packing>())
             for (Target target : glsl_targets())
                 for (Light light : all_values<Light>())
-                    for (int slices : {5, 6, 16})
+                    for (int slices : {5, 6, 7, 16})
                         configs.push_back({.slices = slices, .resolution = 256, .filter = filter,
                                            .fusion = slices == 5   ? Fusion::correlated
                                                      : slices == 6 ? Fusion::extent
+                                                     : slices == 7 ? Fusion::clustered
                                                                    : Fusion::chained,
                                            .packing = packing,
                                            .light = light, .tangent_clip = true, .target = target});

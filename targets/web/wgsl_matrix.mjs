@@ -38,6 +38,8 @@ const VARIANTS = {
     "evsm-small": "--technique evsm --evsm-blur-taps 4 --evsm-max-blur 4 --evsm-bleeding 0",
     "occlusion": "--technique occlusion",
     "occlusion-small": "--technique occlusion --slices 8 --resolution 128 --fusion additive --no-tangent-clip",
+    "occlusion-clustered": "--technique occlusion --slices 8 --resolution 128 --fusion clustered",
+    "occlusion-clustered-sat": "--technique occlusion --slices 5 --resolution 64 --filter sat --packing array --fusion clustered",
     "occlusion-probabilistic": "--technique occlusion --slices 4 --resolution 64 --fusion probabilistic",
     "occlusion-gaussian": "--technique occlusion --filter gaussian --slices 8 --resolution 128",
     "occlusion-mipmap": "--technique occlusion --filter mipmap --slices 8 --resolution 128",
