@@ -56,7 +56,7 @@ const OCCLUSION = {
     slices: [1, 2, 3, 4, 8, 12, 16, 24, 32, 64, 128, BAD, 0, 40, 256, "16"],
     resolution: [32, 64, 128, 256, 512, 1024, 2048, 4096, BAD, 100, 8192, 2.5],
     filter: ["mipmap", "nbuffer", "sat", "gaussian", BAD, "box"],
-    fusion: ["probabilistic", "additive", "maximum", "average", "chained", "correlated", "extent", BAD, "product"],
+    fusion: ["probabilistic", "additive", "maximum", "average", "chained", "correlated", "extent", "clustered", BAD, "product"],
     packing: ["atlas", "array", "volume", BAD, "tiles"],
     light: ["rect", "sun", BAD, "point"],
     target: ["glsl330", "glsl450", "essl300", "vulkan", "essl300", "essl300", BAD, "metal"],

@@ -27,7 +27,7 @@ export interface EmissionConfig {
     slices?: number;
     resolution?: number;
     filter?: "mipmap" | "nbuffer" | "gaussian" | "sat";
-    fusion?: "probabilistic" | "additive" | "maximum" | "average" | "chained" | "correlated" | "extent";
+    fusion?: "probabilistic" | "additive" | "maximum" | "average" | "chained" | "correlated" | "extent" | "clustered";
     packing?: "atlas" | "array" | "volume";
     tangent_clip?: boolean;
     [key: string]: unknown;

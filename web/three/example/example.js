@@ -262,7 +262,7 @@ function buildGui(keys) {
         folder.add(custom, "resolution", [128, 256, 512, 1024]);
         // (sat needs float textures ES 3.00 lacks; WGSL has no mipmap filter)
         folder.add(custom, "filter", rendererKind === "webgpu" ? ["nbuffer", "gaussian"] : ["mipmap", "nbuffer", "gaussian"]);
-        folder.add(custom, "fusion", ["probabilistic", "additive", "maximum", "average", "chained", "correlated", "extent"]);
+        folder.add(custom, "fusion", ["probabilistic", "additive", "maximum", "average", "chained", "correlated", "extent", "clustered"]);
         folder.add(custom, "packing", ["atlas", "array", "volume"]);
         folder.add(custom, "tangentClip").name("tangent clip");
         const message = {text: ""};
