@@ -401,11 +401,15 @@ double extent_step(double q, glm::dvec3 kernel, double area, double previous, gl
     return (1.0 - q - previous + both) / std::max(1.0 - previous, 1e-6);
 }
 // Clustered fusion (docs/model.md §1.7.3, penumbra_clusterCount in detail/occlusion/emit_visibility.hpp): how
-// many occluders share the covered area, from the spread of the four quadrants' coverage.
+// many occluders share the covered area, from the spread of the four quadrants' coverage and the saddle
+// pattern's share of it.
 double cluster_count(glm::dvec4 quadrants) {
     const double mean = 0.25 * (quadrants.x + quadrants.y + quadrants.z + quadrants.w);
-    const double spread = std::max(0.25 * glm::dot(quadrants, quadrants) - mean * mean, 0.0);
-    return std::max(3.0 * mean * mean / std::max(spread, 1e-10), 1.0);
+    const glm::dvec4 deviation = quadrants - glm::dvec4(mean);
+    const double spread = 0.25 * glm::dot(deviation, deviation);
+    const double saddle = 0.5 * (deviation.x - deviation.y - deviation.z + deviation.w);
+    const double scattered = std::min(0.75 * saddle * saddle / std::max(spread, 1e-10), 1.0);
+    return std::max((1.0 + 2.0 * scattered) * mean * mean / std::max(spread, 1e-10), 1.0);
 }
 } // namespace
 

@@ -448,10 +448,13 @@ constexpr void write_wide_level_function(LineWriter& out, const Config& config, 
 }
 
 // Clustered fusion (docs/model.md §1.7.3): the covered area extent fusion reads is shared by however many
-// occluders lie in the kernel. Counted from the kernel's four quadrants: N small occluders thrown at random
-// fall into the quadrants as a binomial, whose coverage then spreads by var = 3 mean² / N around its mean,
-// so N = 3 mean² / var (one occluder in one quadrant: 1; a crowd, evenly spread: many). The occluder's size
-// for the parallax is then the size of one of them, sqrt(area / N). Generic program and oracle share it.
+// occluders lie in the kernel, counted from the coverage of the kernel's four quadrants. Their deviations from
+// the mean split into three orthogonal patterns: two gradients and a saddle. An edge or any smooth large
+// occluder is linear across the kernel (no saddle) and counts as one: its coverage spreads by var = mean².
+// N small occluders thrown at random fall into the quadrants as a binomial, spreading by var = 3 mean² / N
+// and evenly over the three patterns. So N = c mean² / var, c from 1 (no saddle) to 3 (the saddle's share
+// of the spread a third or more). The occluder's size for the parallax is then one occluder's,
+// sqrt(area / N). Generic program and oracle share it.
 constexpr void write_cluster_functions(LineWriter& out, const Config& config, std::string_view resolution,
                                        std::string_view max_level) {
     write_window_level_function(out, config, "penumbra_quarterLevel", "0.5",
@@ -464,12 +467,16 @@ constexpr void write_cluster_functions(LineWriter& out, const Config& config, st
     out.line("}");
     out.blank();
     out.comment("clustered fusion: how many occluders share the covered area, from the spread of the four quadrants'");
-    out.comment("coverage (a binomial's: var = 3 mean^2 / N); at least one");
+    out.comment("coverage (lower left, lower right, upper left, upper right); at least one");
     out.line(signature(config, "float", "penumbra_clusterCount", {{"vec4", "quadrants"}}));
     out.line("{");
     out.line(value(config, "float", "m", "0.25 * (quadrants.x + quadrants.y + quadrants.z + quadrants.w)"));
-    out.line(value(config, "float", "spread", "max(0.25 * dot(quadrants, quadrants) - m * m, 0.0)"));
-    out.line("return max(3.0 * m * m / max(spread, 1e-10), 1.0);");
+    out.line(value(config, "vec4", "deviation", "quadrants - vec4(m)"));
+    out.line(value(config, "float", "spread", "0.25 * dot(deviation, deviation)"));
+    out.comment("the saddle pattern's share of the spread: 0 for an edge, a third on average for scattered occluders");
+    out.line(value(config, "float", "saddle", "0.5 * (deviation.x - deviation.y - deviation.z + deviation.w)"));
+    out.line(value(config, "float", "scattered", "min(0.75 * saddle * saddle / max(spread, 1e-10), 1.0)"));
+    out.line("return max((1.0 + 2.0 * scattered) * m * m / max(spread, 1e-10), 1.0);");
     out.line("}");
     out.blank();
 }
