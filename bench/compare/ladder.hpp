@@ -72,6 +72,17 @@ inline LadderEntry solid_casters_entry(Filter filter, int slices, int resolution
     return entry;
 }
 
+// Clustered fusion (docs/model.md §1.7.3): the occluders counted from the kernel's quadrants, for crowds and
+// foliage. Four more lookups per slice: its own family, so that the tables show it beside the default and
+// never pick it.
+inline LadderEntry clustered_entry(int slices, int resolution) {
+    LadderEntry entry = occlusion_entry(Filter::nbuffer, slices, resolution);
+    entry.config.fusion = Fusion::clustered;
+    entry.family = "clustered-fusion";
+    entry.label += " clustered";
+    return entry;
+}
+
 // The default before it built only the levels its kernels reach, in RGBA8, at reduced resolution:
 // every level, RGBA16F, at full resolution (85 MiB at 16/512). Its own family, so that the tables show it beside the default and never pick it.
 inline LadderEntry every_level_entry(int slices, int resolution) {
@@ -184,6 +195,8 @@ inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
         chained_entry(16, 512),
         solid_casters_entry(Filter::nbuffer, 8, 256),
         solid_casters_entry(Filter::nbuffer, 16, 512),
+        clustered_entry(8, 256),
+        clustered_entry(16, 512),
         every_level_entry(16, 512),
         full_levels_entry(16, 512),
         compute_prefilter_entry(16, 512),
