@@ -54,8 +54,8 @@ list_configurations() {
         done; done; done
     done; done; done
     for f in "${filters[@]}"; do for p in "${packings[@]}"; do for t in "${targets[@]}"; do for l in "${lights[@]}"; do
-        for s in 5 6 16; do # as in matrix_test.cpp: 5 correlated, 6 extent, 16 chained
-            u=chained; if ((s == 5)); then u=correlated; fi; if ((s == 6)); then u=extent; fi
+        for s in 5 6 7 16; do # as in matrix_test.cpp: 5 correlated, 6 extent, 7 clustered, 16 chained
+            u=chained; if ((s == 5)); then u=correlated; fi; if ((s == 6)); then u=extent; fi; if ((s == 7)); then u=clustered; fi
             echo "tangent_clip/$f-$p-$t-$l-S$s --slices $s --resolution 256 --filter $f --fusion $u" \
                  "--packing $p --target $t --light $l --tangent-clip"
         done
