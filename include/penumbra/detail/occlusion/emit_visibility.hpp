@@ -520,21 +520,22 @@ constexpr void write_fusion_start(LineWriter& out, const Config& config) {
         out.line(variable(config, "vec4", "penumbra_prevKernel", "vec4(0.0)"), " // and its kernel");
         break;
     case Fusion::extent:
-        out.comment("extent fusion: correlated fusion, the occluder's size from the covered area in a window twice");
-        out.comment("the kernel's side, so an edge of a solid that crosses the kernel stays nested");
+    case Fusion::clustered: {
+        const bool clustered = config.fusion == Fusion::clustered;
+        if (clustered) {
+            out.comment("clustered fusion: extent fusion, the covered area shared by the occluders counted from the");
+            out.comment("spread of the kernel's four quadrants, so a crowd's or a canopy's neighbours stay independent");
+        } else {
+            out.comment("extent fusion: correlated fusion, the occluder's size from the covered area in a window twice");
+            out.comment("the kernel's side, so an edge of a solid that crosses the kernel stays nested");
+        }
         out.line(variable(config, "float", "penumbra_lit", "1.0"));
         out.line(variable(config, "float", "penumbra_prev", "0.0"), " // q of the slice visited before (its neighbour)");
         out.line(variable(config, "vec4", "penumbra_prevKernel", "vec4(0.0)"), " // its kernel");
-        out.line(variable(config, "float", "penumbra_prevArea", "0.0"), " // and its covered area");
+        out.line(variable(config, "float", "penumbra_prevArea", "0.0"),
+                 choose(clustered, " // and one occluder's area", " // and its covered area"));
         break;
-    case Fusion::clustered:
-        out.comment("clustered fusion: extent fusion, the covered area shared by the occluders counted from the");
-        out.comment("spread of the kernel's four quadrants, so a crowd's or a canopy's neighbours stay independent");
-        out.line(variable(config, "float", "penumbra_lit", "1.0"));
-        out.line(variable(config, "float", "penumbra_prev", "0.0"), " // q of the slice visited before (its neighbour)");
-        out.line(variable(config, "vec4", "penumbra_prevKernel", "vec4(0.0)"), " // its kernel");
-        out.line(variable(config, "float", "penumbra_prevArea", "0.0"), " // and one occluder's area");
-        break;
+    }
     }
 }
 
