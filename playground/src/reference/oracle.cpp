@@ -400,9 +400,10 @@ double extent_step(double q, glm::dvec3 kernel, double area, double previous, gl
     const double both = q * previous + rho * (std::min(q, previous) - q * previous);
     return (1.0 - q - previous + both) / std::max(1.0 - previous, 1e-6);
 }
-// Clustered fusion (docs/model.md §1.7.3, penumbra_clusterCount in detail/occlusion/emit_visibility.hpp): how
-// many occluders share the covered area, from the spread of the four quadrants' coverage and the saddle
-// pattern's share of it.
+} // namespace
+
+// penumbra_clusterCount in detail/occlusion/emit_visibility.hpp: the spread of the four quadrants' coverage
+// and the saddle pattern's share of it.
 double cluster_count(glm::dvec4 quadrants) {
     const double mean = 0.25 * (quadrants.x + quadrants.y + quadrants.z + quadrants.w);
     const glm::dvec4 deviation = quadrants - glm::dvec4(mean);
@@ -411,7 +412,6 @@ double cluster_count(glm::dvec4 quadrants) {
     const double scattered = std::min(0.75 * saddle * saddle / std::max(spread, 1e-10), 1.0);
     return std::max((1.0 + 2.0 * scattered) * mean * mean / std::max(spread, 1e-10), 1.0);
 }
-} // namespace
 
 OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion) const {
     glm::dvec3 p = glm::dvec3(light_from_world_ * glm::dvec4(glm::dvec3(world), 1.0));

@@ -56,6 +56,11 @@ bool read_slice_textures(const penumbra::gl::Runtime& runtime, SliceTextures& ou
 // *error set when a read fails.
 bool read_slice_boundaries(const penumbra::gl::Runtime& runtime, std::vector<float>& out, std::string* error);
 
+// Clustered fusion (docs/model.md §1.7.3): how many occluders share a kernel's covered area, from its four
+// quadrants' coverage (lower left, lower right, upper left, upper right); at least one. The double-precision
+// twin of the emitted penumbra_clusterCount.
+double cluster_count(glm::dvec4 quadrants);
+
 struct OracleValue {
     double visibility = 1.0;
     double bound = 0.0; // |GPU − oracle| that texture precision explains at this point

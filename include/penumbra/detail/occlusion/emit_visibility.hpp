@@ -449,8 +449,9 @@ constexpr void write_wide_level_function(LineWriter& out, const Config& config, 
 
 // Clustered fusion (docs/model.md §1.7.3): the covered area extent fusion reads is shared by however many
 // occluders lie in the kernel, counted from the coverage of the kernel's four quadrants. Their deviations from
-// the mean split into three orthogonal patterns: two gradients and a saddle. An edge or any smooth large
-// occluder is linear across the kernel (no saddle) and counts as one: its coverage spreads by var = mean².
+// the mean split into three orthogonal patterns: two gradients and a saddle. An edge, or any smooth occluder
+// larger than the kernel, is linear across it (no saddle): along an axis its coverage spreads by
+// var = mean² and it counts as one (a diagonal one through the centre, var = mean² / 2, as two).
 // N small occluders thrown at random fall into the quadrants as a binomial, spreading by var = 3 mean² / N
 // and evenly over the three patterns. So N = c mean² / var, c from 1 (no saddle) to 3 (the saddle's share
 // of the spread a third or more). The occluder's size for the parallax is then one occluder's,
