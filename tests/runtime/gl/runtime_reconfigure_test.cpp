@@ -130,7 +130,7 @@ TEST_CASE("reconfigure: changing fusion rebuilds only the shading programs and r
 // level_bound is one higher (penumbra::kernel_level_bound): switching to it from a rule that reads only
 // the kernel builds that level (its texture and the programs that write or read the levels), switching
 // back drops it; the textures of the other levels are kept, and the image is a fresh runtime's.
-TEST_CASE("reconfigure: to and from extent fusion refits the level bound and adds or drops only its level") {
+TEST_CASE("reconfigure: to and from extent (and clustered) fusion refits the level bound and adds or drops only its level") {
     Planes planes;
     REQUIRE_MESSAGE(planes.ready(), planes.error);
     Config chained = kSmall;
@@ -160,6 +160,20 @@ TEST_CASE("reconfigure: to and from extent fusion refits the level bound and add
     REQUIRE_MESSAGE(fresh, planes.error);
     CHECK(fresh->config().level_bound == bound + 1);
     CHECK(identical(reconfigured, planes.render(*fresh)));
+
+    // clustered fusion reads the same doubled window (and the kernel's quadrants, within it): the same
+    // bound, every texture kept, the image a fresh runtime's
+    Config clustered = kSmall;
+    clustered.fusion = penumbra::Fusion::clustered;
+    REQUIRE(rt->reconfigure(clustered) == "");
+    CHECK(rt->config().level_bound == bound + 1);
+    CHECK(rt->last_reconfigure().textures_reallocated == 0);
+    for (const auto& [name, id] : texture_ids(*rt)) CHECK_MESSAGE(id == textures_extent.at(name), name);
+    const std::vector<float> clustered_image = planes.render(*rt);
+    REQUIRE_MESSAGE(!clustered_image.empty(), planes.error);
+    auto fresh_clustered = planes.runtime(clustered);
+    REQUIRE_MESSAGE(fresh_clustered, planes.error);
+    CHECK(identical(clustered_image, planes.render(*fresh_clustered)));
 
     REQUIRE(rt->reconfigure(chained) == "");
     CHECK(rt->config().level_bound == bound);
