@@ -482,6 +482,9 @@ constexpr void write_cluster_functions(LineWriter& out, const Config& config, st
     out.blank();
 }
 
+// What clustered fusion divides extent's covered area by: the occluders sharing it.
+inline constexpr std::string_view clustered_area_divisor = " / penumbra_clusterCount(penumbra_quadrants)";
+
 // The four quadrant corners, in the order penumbra_clusterCount's vector holds them.
 inline constexpr std::array<std::string_view, 4> quadrant_corners{"vec2(-1.0, -1.0)", "vec2(1.0, -1.0)", "vec2(-1.0, 1.0)",
                                                                   "vec2(1.0, 1.0)"};
@@ -636,18 +639,16 @@ constexpr void write_slice_loop(LineWriter& out, const Config& config) {
             out.line(value(config, "float", "q", "fade * coverage"));
             out.comment("the same slice over a window twice the kernel's side: how far the occluder extends");
             out.line(value(config, "vec4", "penumbra_wide", "vec4(kernel.xy, 2.0 * kernel.z, penumbra_wideLevel(kernel))"));
+            Text area = extent_area("fade", "coverage", cat("dot(", wide, ", penumbra_i)"));
             if (config.fusion == Fusion::clustered) {
                 out.comment("the kernel's four quadrants: how many occluders share the covered area");
                 write_quadrants(out, config, [&](std::string_view quadrant) {
                     return choose(config.packing == Packing::volume, cat("penumbra_filtered", format_int(tile), "(", quadrant, ")"),
                                   cat("penumbra_filtered(", quadrant, ", ", format_float(tile), ")"));
                 });
-                out.line(value(config, "float", "area",
-                               cat(extent_area("fade", "coverage", cat("dot(", wide, ", penumbra_i)")),
-                                   " / penumbra_clusterCount(penumbra_quadrants)")));
-            } else {
-                out.line(value(config, "float", "area", extent_area("fade", "coverage", cat("dot(", wide, ", penumbra_i)"))));
+                area = cat(area, clustered_area_divisor);
             }
+            out.line(value(config, "float", "area", area));
         } else {
             out.line(value(config, "float", "q", cat(weight_call(config), " * dot(", lookup, ", penumbra_i)")));
         }
@@ -742,8 +743,8 @@ constexpr void write_level_loop(LineWriter& out, const Config& config) {
             out.line(value(config, "float", "fade", weight_call(config)));
             out.line(value(config, "float", "coverage", "dot(texel, penumbra_i)"));
             out.line(value(config, "float", "q", "fade * coverage"));
+            Text area = extent_area("fade", "coverage", "dot(penumbra_wide, penumbra_i)");
             if (config.fusion == Fusion::clustered) {
-                // a quadrant's level lies between the level below this one and this one (level 0: level 0)
                 auto read_quadrant = [&](int l) {
                     return sample_level(config, atlas_level_name(l),
                                         cat("vec2(penumbra_delta + (", level_read_coordinate(config, l, "quadrant.x"), ") * ", k.inv_T,
@@ -752,16 +753,14 @@ constexpr void write_level_loop(LineWriter& out, const Config& config) {
                 };
                 out.comment("the kernel's four quadrants, read a level below: how many occluders share the covered area");
                 write_quadrants(out, config, [&](std::string_view quadrant) {
-                    return choose(level == 0, read_quadrant(0),
-                                  cat("mix(", read_quadrant(level == 0 ? 0 : level - 1), ", ", read_quadrant(level), ", ", quadrant,
-                                      ".w - ", format_float(level - 1), ")"));
+                    // a quadrant's level lies between the level below this one and this one (level 0: level 0)
+                    if (level == 0) return read_quadrant(0);
+                    return cat("mix(", read_quadrant(level - 1), ", ", read_quadrant(level), ", ", quadrant, ".w - ",
+                               format_float(level - 1), ")");
                 });
-                out.line(value(config, "float", "area",
-                               cat(extent_area("fade", "coverage", "dot(penumbra_wide, penumbra_i)"),
-                                   " / penumbra_clusterCount(penumbra_quadrants)")));
-            } else {
-                out.line(value(config, "float", "area", extent_area("fade", "coverage", "dot(penumbra_wide, penumbra_i)")));
+                area = cat(area, clustered_area_divisor);
             }
+            out.line(value(config, "float", "area", area));
         } else {
             if (last) {
                 out.line(value(config, "vec4", "texel", read(level)));
