@@ -473,7 +473,7 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
         beyond = beyond || (o.clamped && weight > 0.0);
         bound += ambiguous ? o.value + o.bound : clip_ambiguous ? 1.0 : weight * o.bound + arithmetic_error;
         const double q = weight * o.value;
-        // extent fusion: the same slice over a window twice the kernel's side (only that rule reads it)
+        // extent and clustered fusion: the same slice over a window twice the kernel's side (only they read it)
         double area = 0.0;
         if (reads_doubled_window(fusion)) {
             const Sample wide = filtered(s, centre, 2.0 * side);
