@@ -18,6 +18,8 @@
 #include "reference/ground_truth.hpp"
 #include "scenes/mesh_builder.hpp"
 
+#include <glm/gtc/constants.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -214,4 +216,65 @@ TEST_CASE("ground truth: sun visibility across a straight shadow edge") {
     // are far below 0.01 at N = 64).
     CHECK(std::abs(v[3] - (1.0 - disk_fraction_beyond(0.5 * r))) < 0.01);
     CHECK(std::abs(v[4] - (1.0 - disk_fraction_beyond(-0.3 * r))) < 0.01);
+}
+
+TEST_CASE("ground truth: a coarse smooth-shaded sphere has no shadow terminator") {
+    // A UV sphere of 8 × 6 faces with shared corners and smooth normals: a polyhedron shaded as if
+    // round. Nothing else is in the scene, so a point on it sees all of the light above its
+    // (smooth) tangent plane. Rays that start on the flat face run under the face's own plane near
+    // the terminator and hit the neighbouring faces; the truth lifts the origin onto the smooth
+    // surface (GroundTruth's origin_for), which must leave every point fully lit.
+    constexpr int segments = 8, rings = 6;
+    constexpr float radius = 0.5f;
+    const glm::vec3 centre(0.0f, 1.0f, 0.0f);
+    Mesh sphere;
+    sphere.positions.push_back(centre + glm::vec3(0.0f, radius, 0.0f)); // north pole: 0
+    for (int r = 1; r < rings; ++r)
+        for (int s = 0; s < segments; ++s) {
+            const float theta = glm::pi<float>() * float(r) / rings, phi = 2.0f * glm::pi<float>() * float(s) / segments;
+            sphere.positions.push_back(
+                centre + radius * glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)));
+        }
+    sphere.positions.push_back(centre - glm::vec3(0.0f, radius, 0.0f)); // south pole: last
+    const auto south = static_cast<std::uint32_t>(sphere.positions.size() - 1);
+    auto corner = [](int r, int s) { return static_cast<std::uint32_t>(1 + (r - 1) * segments + s % segments); };
+    // counter-clockwise seen from outside, so that the normals point out
+    for (int s = 0; s < segments; ++s) {
+        sphere.indices.insert(sphere.indices.end(), {0, corner(1, s + 1), corner(1, s)});
+        for (int r = 1; r + 1 < rings; ++r)
+            sphere.indices.insert(sphere.indices.end(), {corner(r, s), corner(r, s + 1), corner(r + 1, s + 1),
+                                                         corner(r, s), corner(r + 1, s + 1), corner(r + 1, s)});
+        sphere.indices.insert(sphere.indices.end(), {south, corner(rings - 1, s), corner(rings - 1, s + 1)});
+    }
+    compute_vertex_normals(sphere);
+    for (std::size_t i = 0; i < sphere.positions.size(); ++i)
+        REQUIRE(glm::dot(sphere.normals[i], sphere.positions[i] - centre) > 0.0f);
+
+    // Points inside every face below the equator's row and above the bottom (where some of the
+    // light is above the tangent plane), with the interpolated normal a G-buffer would hold.
+    std::vector<glm::vec3> points, normals;
+    for (std::size_t t = 0; t < sphere.indices.size(); t += 3)
+        for (const glm::vec3 b : {glm::vec3(0.6f, 0.2f, 0.2f), glm::vec3(0.2f, 0.6f, 0.2f), glm::vec3(0.2f, 0.2f, 0.6f),
+                                  glm::vec3(1.0f / 3.0f)}) {
+            glm::vec3 p(0.0f), n(0.0f);
+            for (int k = 0; k < 3; ++k) {
+                p += b[k] * sphere.positions[sphere.indices[t + k]];
+                n += b[k] * sphere.normals[sphere.indices[t + k]];
+            }
+            points.push_back(p);
+            normals.push_back(glm::normalize(n));
+        }
+    const GroundTruth gt(sphere);
+    const GroundTruth::Oriented fair = gt.oriented(points, normals, test_light(), 16);
+    int lit_points = 0, terminator_points = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        if (std::isnan(fair.oriented[i])) continue; // none of the light above the tangent plane
+        ++lit_points;
+        if (normals[i].y < 0.2f) ++terminator_points;
+        CAPTURE(i);
+        CAPTURE(normals[i].y);
+        CHECK(fair.oriented[i] == doctest::Approx(1.0f));
+    }
+    CHECK(lit_points > 100);
+    CHECK(terminator_points > 20); // points near the terminator, where the faces shadow each other
 }

@@ -61,6 +61,9 @@ struct GroundTruth::Impl {
     RTCScene scene = nullptr;
     float offset = 0.0f;
     unsigned threads = 1;
+    // The mesh's triangles and vertex normals, for the shadow terminator (origin_for()).
+    std::vector<glm::vec3> positions, normals;
+    std::vector<std::uint32_t> indices;
     // The cut materials, their texture coordinates and the triangles' indices and materials (no
     // positions): what the occlusion filter reads. Empty when nothing cuts.
     Mesh cuts;
@@ -118,6 +121,47 @@ struct GroundTruth::Impl {
         for (unsigned t = 1; t < n; ++t) pool.emplace_back(worker);
         worker();
         for (std::thread& t : pool) t.join();
+    }
+
+    // Where the rays of a surface point start: on the smooth surface that the vertex normals
+    // describe, then `offset` along n (the normal of the lit side). A triangle mesh with
+    // interpolated normals is a polyhedron shaded as if curved: near its terminator, rays above
+    // the smooth tangent plane run under the flat triangle's own plane and hit the neighbouring
+    // triangles, a dark band along every row of triangles that no renderer shading the same
+    // normals would draw (the "shadow terminator" problem). Each corner's tangent plane lifts the
+    // point by how far it lies below that plane; the barycentric mean of the three lifts puts it
+    // on a curved surface through the corners (Hanika, "Hacking the Shadow Terminator", Ray
+    // Tracing Gems II, 2021). Flat triangles (equal normals) keep the point where it is.
+    glm::vec3 origin_for(glm::vec3 p, glm::vec3 n) const {
+        if (n == glm::vec3(0.0f)) return p;
+        const float reach = 8.0f * offset;
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        RTCRayHit query{};
+        query.ray.org_x = p.x + reach * n.x;
+        query.ray.org_y = p.y + reach * n.y;
+        query.ray.org_z = p.z + reach * n.z;
+        query.ray.dir_x = -n.x;
+        query.ray.dir_y = -n.y;
+        query.ray.dir_z = -n.z;
+        query.ray.tnear = 0.0f;
+        query.ray.tfar = 2.0f * reach;
+        query.ray.mask = 0xffffffffU;
+        query.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(scene, &context, &query);
+        glm::vec3 lifted = p;
+        if (query.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+            const std::size_t t = 3 * static_cast<std::size_t>(query.hit.primID);
+            const float b[3] = {1.0f - query.hit.u - query.hit.v, query.hit.u, query.hit.v};
+            for (int k = 0; k < 3; ++k) {
+                const std::uint32_t corner = indices[t + k];
+                glm::vec3 corner_normal = normals[corner];
+                if (glm::dot(corner_normal, n) < 0.0f) corner_normal = -corner_normal; // the lit side's
+                const float below = std::min(0.0f, glm::dot(p - positions[corner], corner_normal));
+                lifted -= b[k] * below * corner_normal;
+            }
+        }
+        return lifted + offset * n;
     }
 
     // True if nothing in the scene lies on the segment origin + t·dir, t in (0, tfar).
@@ -183,6 +227,9 @@ GroundTruth::GroundTruth(const Mesh& mesh, float ray_offset, unsigned thread_cou
             vertices[3 * i + 2] = mesh.positions[i].z;
         }
         std::copy(mesh.indices.begin(), mesh.indices.end(), indices);
+        impl_->positions = mesh.positions;
+        impl_->normals = mesh.normals;
+        impl_->indices = mesh.indices;
         if (mesh.cuts()) {
             impl_->cuts.indices = mesh.indices;
             impl_->cuts.material_uvs = mesh.material_uvs;
@@ -238,7 +285,7 @@ std::vector<float> GroundTruth::visibility(std::span<const glm::vec3> positions,
             return;
         }
         const glm::vec3 n = facing_normal(normals[index], glm::vec3(centre - pd));
-        const glm::vec3 origin = p + impl_->offset * n;
+        const glm::vec3 origin = impl_->origin_for(p, n);
         const auto point = static_cast<std::uint32_t>(index);
         std::uint32_t visible = 0;
         for (std::uint32_t s = 0; s < sample_count; ++s) {
@@ -329,7 +376,7 @@ GroundTruth::Oriented GroundTruth::oriented(std::span<const glm::vec3> positions
         const glm::dvec3 pd(p);
         // Behind the light's plane or without a normal: sees none of the light (sums stay empty).
         if (glm::dot(pd - centre, light_normal) > 0.0 && n != glm::vec3(0.0f)) {
-            const glm::vec3 origin = p + impl_->offset * n;
+            const glm::vec3 origin = impl_->origin_for(p, n);
             for (std::uint32_t s = 0; s < sample_count; ++s) {
                 const glm::vec2 xi = stratified_sample(static_cast<std::uint32_t>(index), s, samples_per_axis);
                 const glm::dvec3 target = centre + (static_cast<double>(xi.x) - 0.5) * u + (static_cast<double>(xi.y) - 0.5) * v;
@@ -364,7 +411,7 @@ GroundTruth::Oriented GroundTruth::oriented(std::span<const glm::vec3> positions
         OrientedSums sums;
         const glm::vec3 n = unit_or_zero(normals[index]);
         if (n != glm::vec3(0.0f)) {
-            const glm::vec3 origin = p + impl_->offset * n;
+            const glm::vec3 origin = impl_->origin_for(p, n);
             for (std::uint32_t s = 0; s < sample_count; ++s) {
                 const glm::dvec3 dir = frame.direction(stratified_sample(static_cast<std::uint32_t>(index), s, samples_per_axis));
                 const double cos_receiver = glm::dot(dir, glm::dvec3(n));
@@ -390,7 +437,7 @@ std::vector<float> GroundTruth::visibility(std::span<const glm::vec3> positions,
         const glm::vec3 p = positions[index];
         if (has_nan(p)) return;
         const glm::vec3 n = facing_normal(normals[index], glm::vec3(w));
-        const glm::vec3 origin = p + impl_->offset * n;
+        const glm::vec3 origin = impl_->origin_for(p, n);
         const auto point = static_cast<std::uint32_t>(index);
         std::uint32_t visible = 0;
         for (std::uint32_t s = 0; s < sample_count; ++s) {
@@ -412,7 +459,7 @@ std::vector<std::uint8_t> GroundTruth::unoccluded(std::span<const glm::vec3> pos
         const glm::vec3 p = positions[index];
         if (has_nan(p)) return;
         for (std::size_t d = 0; d < count; ++d) {
-            const glm::vec3 origin = p + impl_->offset * facing_normal(normals[index], directions[d]);
+            const glm::vec3 origin = impl_->origin_for(p, facing_normal(normals[index], directions[d]));
             result[index * count + d] =
                 impl_->unoccluded(origin, directions[d], std::numeric_limits<float>::infinity()) ? 1 : 0;
         }
