@@ -458,8 +458,11 @@ std::vector<std::uint8_t> GroundTruth::unoccluded(std::span<const glm::vec3> pos
     impl_->parallel_for(positions.size(), [&](std::size_t index) {
         const glm::vec3 p = positions[index];
         if (has_nan(p)) return;
+        // the normal turns towards each direction, so it is one of two sides: lift each once
+        const glm::vec3 front = facing_normal(normals[index], normals[index]);
+        const glm::vec3 origins[2] = {impl_->origin_for(p, front), impl_->origin_for(p, -front)};
         for (std::size_t d = 0; d < count; ++d) {
-            const glm::vec3 origin = impl_->origin_for(p, facing_normal(normals[index], directions[d]));
+            const glm::vec3 origin = origins[glm::dot(front, directions[d]) < 0.0f ? 1 : 0];
             result[index * count + d] =
                 impl_->unoccluded(origin, directions[d], std::numeric_limits<float>::infinity()) ? 1 : 0;
         }
