@@ -46,8 +46,7 @@ enum class Fusion : std::uint8_t {
     extent,        // correlated, the occluder's size from the covered area in a window twice the kernel's side
                    // (one more lookup per slice; docs/model.md §1.7.2)
     clustered,     // extent, that area shared by the occluders counted from the spread of the kernel's four
-                   // quadrants, and the light between each occluder's images in neighbouring slices blocked:
-                   // crowds, foliage, large lights (four more lookups per slice; docs/model.md §1.7.3, §1.7.4)
+                   // quadrants: crowds and foliage (four more lookups per slice; docs/model.md §1.7.3)
 };
 
 // Whether a fusion rule reads each slice over a window twice the kernel's side as well (one filter level

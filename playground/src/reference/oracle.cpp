@@ -387,13 +387,10 @@ double correlated_step(double q, glm::dvec3 kernel, double previous, glm::dvec3 
     return (1.0 - q - previous + both) / std::max(1.0 - previous, 1e-6);
 }
 
-} // namespace
-
 // Extent fusion (docs/model.md §1.7.2, penumbra_extentStep): the same with the occluder's size from the
-// covered areas (uv²) the two slices see in windows twice their kernels' sides. `hull`: clustered fusion's
-// step (§1.7.3, penumbra_clusteredStep), which also counts the light points between each occluder's two images.
+// covered areas (uv²) the two slices see in windows twice their kernels' sides.
 double extent_step(double q, glm::dvec3 kernel, double area, double previous, glm::dvec3 previous_kernel,
-                   double previous_area, bool hull) {
+                   double previous_area) {
     const glm::dvec2 parallax = glm::dvec2(kernel) - glm::dvec2(previous_kernel);
     const double grow = kernel.z - previous_kernel.z;
     const glm::dvec2 shift = glm::sqrt(parallax * parallax + glm::dvec2(grow * grow / 12.0));
@@ -401,11 +398,9 @@ double extent_step(double q, glm::dvec3 kernel, double area, double previous, gl
     const glm::dvec2 overlap = glm::clamp(1.0 - shift / std::max(feature, 1e-12), 0.0, 1.0);
     const double rho = overlap.x * overlap.y;
     const double both = q * previous + rho * (std::min(q, previous) - q * previous);
-    if (!hull) return (1.0 - q - previous + both) / std::max(1.0 - previous, 1e-6);
-    const double sweep = std::min(shift.x, kernel.z) + std::min(shift.y, kernel.z);
-    const double between = std::min(q, previous) * std::clamp(sweep / std::max(feature, 1e-12) - 1.0 + rho, 0.0, 1.0);
-    return std::max(1.0 - q - previous + both - between, 0.0) / std::max(1.0 - previous, 1e-6);
+    return (1.0 - q - previous + both) / std::max(1.0 - previous, 1e-6);
 }
+} // namespace
 
 // penumbra_clusterCount in detail/occlusion/emit_visibility.hpp: the spread of the four quadrants' coverage
 // and the saddle pattern's share of it.
@@ -502,7 +497,7 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
         // chained: the neighbour visited before is nested with this slice, the others independent
         chain *= (1.0 - std::max(q, previous)) / std::max(1.0 - previous, 1e-6);
         correlated *= correlated_step(q, {centre, side}, previous, previous_kernel);
-        extent *= extent_step(q, {centre, side}, area, previous, previous_kernel, previous_area, fusion == Fusion::clustered);
+        extent *= extent_step(q, {centre, side}, area, previous, previous_kernel, previous_area);
         previous = q;
         previous_kernel = {centre, side};
         previous_area = area;

@@ -61,13 +61,6 @@ bool read_slice_boundaries(const penumbra::gl::Runtime& runtime, std::vector<flo
 // twin of the emitted penumbra_clusterCount.
 double cluster_count(glm::dvec4 quadrants);
 
-// The step of extent fusion's chain (docs/model.md §1.7.2): the light slice `q` (kernel: centre and side in uv,
-// `area`: its covered area in uv²) lets through given the slice visited before; with `hull`, clustered fusion's
-// (§1.7.3), which counts the light points between each occluder's two images as blocked. The double-precision twin of
-// the emitted penumbra_extentStep and penumbra_clusteredStep.
-double extent_step(double q, glm::dvec3 kernel, double area, double previous, glm::dvec3 previous_kernel,
-                   double previous_area, bool hull);
-
 struct OracleValue {
     double visibility = 1.0;
     double bound = 0.0; // |GPU − oracle| that texture precision explains at this point

@@ -1,6 +1,5 @@
-// Clustered fusion (docs/model.md §1.7.3): its occluder count and its step, through the oracle's
-// double-precision twins of the emitted penumbra_clusterCount and penumbra_clusteredStep (penumbra-tests-gl
-// checks the GPU against the oracle).
+// Clustered fusion's occluder count (docs/model.md §1.7.3), through the oracle's double-precision twin of
+// the emitted penumbra_clusterCount (penumbra-tests-gl checks the GPU against the oracle).
 #include "reference/oracle.hpp"
 
 #include <doctest/doctest.h>
@@ -10,7 +9,6 @@
 #include <vector>
 
 using penumbra::playground::cluster_count;
-using penumbra::playground::extent_step;
 
 TEST_CASE("cluster count: an edge and a single occluder count as one") {
     for (double a : {0.1, 0.5, 1.0}) {
@@ -60,32 +58,4 @@ TEST_CASE("cluster count: scattered occluders are counted") {
         CHECK(median >= 0.5 * n);
         CHECK(median <= 2.0 * n);
     }
-}
-
-// One square occluder of side f seen by two neighbouring slices whose kernels (side 0.1 uv) are moved apart by
-// `shift` along u: each slice sees it whole (q = f² / side²). What the pair lets through: (1 − q) for the slice
-// visited first, times the step.
-TEST_CASE("clustered step: the rays between an occluder's two images are blocked, at most one image more") {
-    const double side = 0.1, f = 0.02, q = f * f / (side * side);
-    auto pair = [&](double shift, bool hull) {
-        const glm::dvec3 previous_kernel(0.5, 0.5, side), kernel(0.5 + shift, 0.5, side);
-        return (1.0 - q) * extent_step(q, kernel, f * f, q, previous_kernel, f * f, hull);
-    };
-    // nested (no parallax) and overlapping images (moved by half the occluder): the hull is their union
-    for (double shift : {0.0, 0.5 * f}) {
-        CAPTURE(shift);
-        CHECK(pair(shift, true) == doctest::Approx(pair(shift, false)));
-    }
-    CHECK(pair(0.0, true) == doctest::Approx(1.0 - q));
-    // moved by twice the occluder: the images are disjoint (extent: two images, the product of independent
-    // slices), the hull spans f² + 2f·f, three images
-    CHECK(pair(2.0 * f, false) == doctest::Approx(1.0 - 2.0 * q + q * q));
-    CHECK(pair(2.0 * f, true) == doctest::Approx(1.0 - 3.0 * q + q * q));
-    // moved by 1.5 occluders: half an image between them
-    CHECK(pair(1.5 * f, true) == doctest::Approx(1.0 - 2.5 * q + q * q));
-    // further apart the data cannot say the two images are one occluder's: at most one image more
-    CHECK(pair(5.0 * f, true) == doctest::Approx(pair(2.0 * f, true)));
-    // a slice that sees nothing adds nothing between
-    const glm::dvec3 previous_kernel(0.5, 0.5, side), kernel(0.5 + 2.0 * f, 0.5, side);
-    CHECK(extent_step(q, kernel, f * f, 0.0, previous_kernel, 0.0, true) == doctest::Approx(1.0 - q));
 }

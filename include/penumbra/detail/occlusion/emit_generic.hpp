@@ -296,11 +296,8 @@ constexpr void write_generic_accumulate(LineWriter& out) {
     out.line("penumbra_chain *= (1.0 - max(q, penumbra_prev)) / max(1.0 - penumbra_prev, 1e-6);");
     out.comment("correlated: neighbours between nested and independent by the parallax between their kernels");
     out.line("penumbra_correlated *= penumbra_correlatedStep(q, kernel, penumbra_prev, penumbra_prevKernel);");
-    out.comment("extent: the same, the occluder's size from a window twice the kernel's side (clustered: one occluder's,");
-    out.comment("and the hull of its two images)");
-    out.line("penumbra_extent *= ", generic_clustered_test(),
-             " ? penumbra_clusteredStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea)");
-    out.line("    : penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);");
+    out.comment("extent: the same, the occluder's size from a window twice the kernel's side (clustered: one occluder's)");
+    out.line("penumbra_extent *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);");
     out.line("penumbra_prev = q;");
     out.line("penumbra_prevKernel = kernel;");
     out.line("penumbra_prevArea = area;");
@@ -374,7 +371,6 @@ constexpr Text generic_fragment(const Config& config) {
     else write_generic_lookup(out, config);
     write_correlated_step_function(out);
     write_extent_step_function(out);
-    write_clustered_step_function(out);
     write_wide_level_function(out, config, "penumbra_resolution", "float(penumbra_maxLevel)");
     write_cluster_functions(out, config, "penumbra_resolution", "float(penumbra_maxLevel)");
     write_generic_fusion(out);

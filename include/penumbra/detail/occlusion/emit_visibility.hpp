@@ -379,9 +379,8 @@ constexpr void write_lookup_function(LineWriter& out, const Config& config) {
 // The body both the correlated and the extent step share: the parallax between the kernels, then the
 // weight between nested and independent slices for an occluder of size `feature` (a GLSL expression, and
 // the comment saying where that size comes from).
-// `hull`: clustered fusion also counts the light points between the two images of each occluder (§1.7.3).
 constexpr void write_parallax_step_body(LineWriter& out, const Config& config, std::string_view feature_comment,
-                                        std::string_view feature, bool hull = false) {
+                                        std::string_view feature) {
     out.comment("parallax between the two kernels, RMS over the light's points, per axis (uv)");
     out.line(value(config, "vec2", "parallax", "kernel.xy - prevKernel.xy"));
     out.line(value(config, "float", "grow", "kernel.z - prevKernel.z"));
@@ -391,18 +390,7 @@ constexpr void write_parallax_step_body(LineWriter& out, const Config& config, s
     out.line(value(config, "vec2", "overlap", saturate(config, "1.0 - shift / max(feature, 1e-12)")));
     out.comment("blocked by both: nested (the smaller) when the occluder overlaps itself, independent (product) when not");
     out.line(value(config, "float", "both", "mix(q * prev, min(q, prev), overlap.x * overlap.y)"));
-    if (hull) {
-        out.comment("an occluder seen in both slices runs on between their planes: the rays between its two images hit it.");
-        out.comment("Its images, moved apart by the parallax (at most the kernel per axis), span the hull of both, which");
-        out.comment("exceeds their union by (sweep / size - 1 + overlap) images; counted for the occluders both slices");
-        out.comment("see (the smaller coverage), at most one image more");
-        out.line(value(config, "float", "sweep", "min(shift.x, kernel.z) + min(shift.y, kernel.z)"));
-        out.line(value(config, "float", "between",
-                       cat("min(q, prev) * ", saturate(config, "sweep / max(feature, 1e-12) - 1.0 + overlap.x * overlap.y"))));
-        out.line("return max(1.0 - q - prev + both - between, 0.0) / max(1.0 - prev, 1e-6);");
-    } else {
-        out.line("return (1.0 - q - prev + both) / max(1.0 - prev, 1e-6);");
-    }
+    out.line("return (1.0 - q - prev + both) / max(1.0 - prev, 1e-6);");
     out.line("}");
     out.blank();
 }
@@ -437,23 +425,6 @@ constexpr void write_extent_step_function(LineWriter& out, const Config& config)
     write_parallax_step_body(out, config, "the occluder's size (uv): the larger covered area either slice sees around its kernel",
                              "sqrt(max(area, prevArea))");
 }
-
-// Clustered fusion's step (docs/model.md §1.7.3): extent's, over one occluder's area, with the light points
-// between the two slices' images of each occluder counted as blocked (the hull of the images, not their union).
-// Generic program and oracle share it.
-constexpr void write_clustered_step_function(LineWriter& out, const Config& config) {
-    out.chunk("fusion");
-    out.comment("clustered fusion: extent fusion over one occluder's area, the hull of its two images, docs/model.md §1.7.3");
-    out.line(signature(config, "float", "penumbra_clusteredStep",
-                       {{"float", "q"}, {"vec4", "kernel"}, {"float", "area"}, {"float", "prev"}, {"vec4", "prevKernel"},
-                        {"float", "prevArea"}}));
-    out.line("{");
-    write_parallax_step_body(out, config, "one occluder's size (uv): the larger covered area either slice sees, over the occluders counted",
-                             "sqrt(max(area, prevArea))", true);
-}
-
-// The generic reference program's (GLSL only).
-constexpr void write_clustered_step_function(LineWriter& out) { write_clustered_step_function(out, Config{}); }
 
 // The filter level of a window `factor` times the kernel's side, as penumbra_kernel picks levels.
 // `resolution` and `max_level` as for write_kernel_function.
@@ -592,8 +563,7 @@ constexpr void write_accumulate(LineWriter& out, const Config& config) {
         break;
     case Fusion::extent:
     case Fusion::clustered:
-        out.line("penumbra_lit *= ", choose(config.fusion == Fusion::clustered, "penumbra_clusteredStep", "penumbra_extentStep"),
-                 "(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);");
+        out.line("penumbra_lit *= penumbra_extentStep(q, kernel, area, penumbra_prev, penumbra_prevKernel, penumbra_prevArea);");
         out.line("penumbra_prev = q;");
         out.line("penumbra_prevKernel = kernel;");
         out.line("penumbra_prevArea = area;");
@@ -825,8 +795,7 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
     if (config.fusion == Fusion::correlated) write_correlated_step_function(out, config);
     if (reads_doubled_window(config.fusion)) {
         const VisibilityConstants k = constants(config);
-        if (config.fusion == Fusion::clustered) write_clustered_step_function(out, config);
-        else write_extent_step_function(out, config);
+        write_extent_step_function(out, config);
         write_wide_level_function(out, config, k.R, k.L);
         if (config.fusion == Fusion::clustered) write_cluster_functions(out, config, k.R, k.L);
     }
