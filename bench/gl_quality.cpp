@@ -60,6 +60,7 @@ struct Variant {
     bool clip_footprint = penumbra::Config{}.clip_footprint;
     bool leak_fix = penumbra::Config{}.leak_fix;
     bool solid_casters = penumbra::Config{}.solid_casters;
+    bool irradiance_window = penumbra::Config{}.irradiance_window;
 };
 
 std::string variant_name(const Variant& v) {
@@ -74,7 +75,8 @@ std::string variant_name(const Variant& v) {
            (v.tangent_clip && v.clip_footprint != d.clip_footprint ? (v.clip_footprint ? "+footprint" : "+nofootprint") : "") +
            (v.fade_ramp != d.fade_ramp ? "+ramp" + number(v.fade_ramp) : "") + (v.leak_fix ? "" : "+noleak") +
            (v.placement == penumbra::SlicePlacement::adaptive ? "+adaptive" : "") +
-           (v.solid_casters != d.solid_casters ? (v.solid_casters ? "+solid" : "+nosolid") : "");
+           (v.solid_casters != d.solid_casters ? (v.solid_casters ? "+solid" : "+nosolid") : "") +
+           (v.irradiance_window != d.irradiance_window ? (v.irradiance_window ? "+irradiance" : "+area") : "");
 }
 
 // A scene to measure: a built-in name or a mesh file, and the name its rows carry.
@@ -110,7 +112,8 @@ constexpr const char* usage_text =
     "  --variants  model variants: a fusion rule, optionally +clip for the tangent clip, +offsetT for its offset\n"
     "              (slicing texels), +nofootprint / +footprint for its footprint move, +rampF for the fade's ramp\n"
     "              (fraction of a slice), +noleak for the leak fix off, +adaptive for adaptive slice placement and +solid\n"
-    "              for solid casters (closed meshes fill the slices between their surfaces), e.g.\n"
+    "              for solid casters (closed meshes fill the slices between their surfaces), +irradiance for the\n"
+    "              irradiance window (kernels cover the part of the light that carries the irradiance), e.g.\n"
     "              probabilistic,chained+clip,chained+clip+offset3+nofootprint+ramp1,chained+clip+adaptive\n"
     "              (default: Config{}'s)\n"
     "  --level-reductions  level_reduction values to measure, each a row (-1: every level at full\n"
@@ -206,11 +209,13 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                     else if (part == "footprint" || part == "nofootprint") v.clip_footprint = part == "footprint";
                     else if (part == "noleak") v.leak_fix = false;
                     else if (part == "solid" || part == "nosolid") v.solid_casters = part == "solid";
+                    else if (part == "irradiance" || part == "area") v.irradiance_window = part == "irradiance";
                     else if (part.starts_with("offset") && parse_number(part.substr(6), number)) v.tangent_clip_offset = number;
                     else if (part.starts_with("ramp") && parse_number(part.substr(4), number)) v.fade_ramp = number;
                     else {
                         error = "--variants: '" + std::string(part) + "' in '" + std::string(name) +
-                                "' is not allowed; allowed after the fusion rule: +clip, +adaptive, +[no]footprint, +noleak, +[no]solid, +offsetT "
+                                "' is not allowed; allowed after the fusion rule: +clip, +adaptive, +[no]footprint, +noleak, +[no]solid, "
+                                "+irradiance / +area (the irradiance window on or off), +offsetT "
                                 "(tangent clip offset, texels), +rampF (fade ramp, fraction of a slice)";
                         return std::nullopt;
                     }
@@ -439,6 +444,7 @@ int main(int argc, char** argv) {
                 config.fade_ramp = variant.fade_ramp;
                 config.leak_fix = variant.leak_fix;
                 config.solid_casters = variant.solid_casters;
+                config.irradiance_window = variant.irradiance_window;
                 config.alpha_test = scene.mesh.cuts(); // cut-out casters cast as their materials cut, as the truth does
                 const std::string reduced =
                     reduction == penumbra::Config{}.level_reduction ? "" : " r" + std::to_string(reduction);

@@ -454,6 +454,55 @@ Row solid_casters_row() {
             }};
 }
 
+// The irradiance window (irradiance_window): every GLSL target × light, with and without the tangent clip.
+// Valid under the rectangle with the clip, refused under the sun or without the clip; only the programs
+// that compute the visibility change, and they call the window.
+Row irradiance_window_row() {
+    std::vector<Config> configs;
+    for (Target target : glsl_targets())
+        for (Light light : all_values<Light>())
+            for (bool clip : {true, false}) {
+                auto with = [&](Config c) {
+                    c.light = light;
+                    c.target = target;
+                    c.tangent_clip = clip;
+                    c.irradiance_window = true;
+                    configs.push_back(c);
+                };
+                with({.resolution = 256});
+                with({.slices = 5, .resolution = 64, .filter = Filter::mipmap, .fusion = Fusion::clustered,
+                      .packing = Packing::array});
+            }
+    return {.name = "irradiance window",
+            .configurations = configs,
+            .expect = [](const Config& c) {
+                return c.light == Light::rect && c.tangent_clip ? Expect::valid : Expect::refused;
+            },
+            .check_emission = [](const Config& c, const Emitted& e) {
+                Config whole = c;
+                whole.irradiance_window = false;
+                const Emitted without = emit_all(whole);
+                REQUIRE(without.programs.size() == e.programs.size());
+                int windowed = 0;
+                for (std::size_t i = 0; i < e.programs.size(); ++i) {
+                    const std::string fragment = e.programs[i].stages.back().text;
+                    const bool calls = fragment.find("penumbra_irradianceWindow(p, penumbra_tangentClip(p, n))") != std::string::npos;
+                    windowed += calls;
+                    if (!calls) CHECK_MESSAGE(fragment == without.programs[i].stages.back().text, name_of(c), " ", e.programs[i].name);
+                }
+                CHECK_MESSAGE(windowed >= 1, name_of(c));
+            },
+            .check_refusal = [](const Config& c, const Emitted& e) {
+                CHECK_MESSAGE(std::any_of(e.errors.begin(), e.errors.end(),
+                                          [](const ConfigError& error) { return error.field == "irradiance_window"; }),
+                              name_of(c));
+            },
+            .check_row = [](const RowResult& r) {
+                CHECK(r.valid == 4 * 2);
+                CHECK(r.refused == 4 * 2 * 3);
+            }};
+}
+
 // --- the one check -------------------------------------------------------------------------------
 
 // Emits every configuration of `row` and compiles and links each program with glslang for its
@@ -497,7 +546,7 @@ RowResult run_row(const Row& row) {
 TEST_CASE("the glslang matrix: every program of every valid configuration of each technique compiles and links") {
     const Row rows[] = {occlusion_row(), tangent_clip_row(), many_slices_row(), adaptive_row(), compute_prefilter_row(),
                         generic_row(), shadow_map_row(), erosion_row(), evsm_row(), oim_row(), alpha_test_row(),
-                        solid_casters_row()};
+                        solid_casters_row(), irradiance_window_row()};
     int configurations = 0, programs = 0, compiled = 0;
     for (const Row& row : rows) {
         CAPTURE(row.name);

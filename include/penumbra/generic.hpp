@@ -99,6 +99,10 @@ inline Result<GenericShading> emit_generic(const Config& config) {
         result.errors.push_back({"slice_placement", "adaptive",
                                  "slice_placement: adaptive is not implemented by the generic reference (its slices "
                                  "are uniform, from penumbra_sliceDepths); allowed: uniform"});
+    if (config.irradiance_window)
+        result.errors.push_back({"irradiance_window", "true",
+                                 "irradiance_window: not implemented by the generic reference (its kernels cover the "
+                                 "tangent clip's part of the whole light); allowed: false"});
     if (config.target == Target::wgsl)
         result.errors.push_back({"target", "wgsl",
                                  "target: wgsl is not written by the generic reference (a GLSL program for the desktop "

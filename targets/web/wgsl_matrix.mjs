@@ -49,12 +49,13 @@ const VARIANTS = {
     "occlusion-adaptive": "--technique occlusion --slice-placement adaptive --slices 8 --resolution 128",
     "occlusion-sat": "--technique occlusion --filter sat --slices 8 --resolution 128",
     "occlusion-sat-array": "--technique occlusion --filter sat --packing array --slices 5 --resolution 64 --fusion extent",
+    "occlusion-irradiance-window": "--technique occlusion --slices 8 --resolution 128 --irradiance-window",
     // beyond 16 slices WebGPU slices in several passes (four RGBA8 targets a pass under its default limits)
     "occlusion-32": "--technique occlusion --slices 32 --resolution 128",
     "occlusion-64": "--technique occlusion --slices 64 --resolution 128",
 };
-// Variants that exist under one light only (the Gaussian stands for the sun's disk).
-const VARIANT_LIGHTS = {"occlusion-gaussian": ["sun"]};
+// Variants that exist under one light only (the Gaussian stands for the sun's disk; the irradiance window weighs a rectangle).
+const VARIANT_LIGHTS = {"occlusion-gaussian": ["sun"], "occlusion-irradiance-window": ["rect"]};
 const NORMAL_OFFSET_TECHNIQUES = ["shadowmap", "pcf", "pcss"];
 const LIGHTS = ["rect", "sun"];
 const NORMAL_OFFSETS = ["0", "1"];

@@ -440,6 +440,17 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
             return x ? glm::dvec3(mid, 0.0, hi - lo) : glm::dvec3(0.0, mid, hi - lo);
         };
         clip = clip_along(std::abs(slopes.x) >= std::abs(slopes.y));
+        // irradiance window (penumbra_irradianceWindow): the square 2 p.z wide around the light point above p,
+        // kept inside the light, intersected with the clip; where they do not meet, the clip's nearest point
+        if (config_.irradiance_window) {
+            const double width = std::min(1.0, 2.0 * p.z / std::max(light_size_.x, light_size_.y));
+            const glm::dvec2 foot = glm::clamp(glm::dvec2(p) / light_size_, glm::dvec2(0.5 * width - 0.5),
+                                               glm::dvec2(0.5 - 0.5 * width));
+            const glm::dvec2 clip_lo = glm::dvec2(clip) - 0.5 * clip.z, clip_hi = glm::dvec2(clip) + 0.5 * clip.z;
+            const glm::dvec2 lo = glm::max(foot - 0.5 * width, clip_lo), hi = glm::min(foot + 0.5 * width, clip_hi);
+            const glm::dvec2 centre = glm::clamp(0.5 * (lo + hi), clip_lo, clip_hi);
+            clip = glm::dvec3(centre, std::max(std::min(hi.x - lo.x, hi.y - lo.y), 0.0));
+        }
         // fp32 may pick the other axis where both slopes are (nearly) equal; it matters only
         // where the two cuts differ
         clip_ambiguous = std::abs(std::abs(slopes.x) - std::abs(slopes.y)) <= 1e-5 * std::abs(slopes.x) &&

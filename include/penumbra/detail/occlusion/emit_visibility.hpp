@@ -118,6 +118,30 @@ constexpr void write_tangent_clip_function(LineWriter& out, const Config& config
     out.blank();
 }
 
+// Config::irradiance_window (docs/model.md §1.7.5): the part of the light that carries a receiver's
+// irradiance. A light point at lateral distance r from the point straight above a receiver facing the light,
+// at depth z, sends it irradiance in proportion to z² / (z² + r²)², whose density across any line through
+// that point falls from 1 / (2 z) at its centre; a box 2 z wide has the same density there, so it changes
+// the visibility at the same rate as an edge crosses the foot. Applied to the tangent clip's part (a square
+// in the light's unit square: xy centre, z side), once per receiver.
+constexpr void write_irradiance_window_function(LineWriter& out, const Config& config) {
+    out.chunk("tangent_clip");
+    out.comment("The window of the light that carries the irradiance at p, within the tangent clip's part `clip` of");
+    out.comment("the light's unit square (xy centre, z side): a square 2 p.z wide around the light point above p,");
+    out.comment("kept inside the light, intersected with the clip (docs/model.md §1.7.5). Where they do not meet,");
+    out.comment("the point of the clip nearest the window, with no width");
+    out.line(signature(config, "vec3", "penumbra_irradianceWindow", {{"vec3", "p"}, {"vec3", "clip"}}));
+    out.line("{");
+    out.line(value(config, "float", "width", "min(1.0, 2.0 * p.z / max(penumbra_lightSize.x, penumbra_lightSize.y))"));
+    out.line(value(config, "vec2", "foot", "clamp(p.xy / penumbra_lightSize, vec2(0.5 * width - 0.5), vec2(0.5 - 0.5 * width))"));
+    out.line(value(config, "vec2", "lo", "max(foot - vec2(0.5 * width), clip.xy - vec2(0.5 * clip.z))"));
+    out.line(value(config, "vec2", "hi", "min(foot + vec2(0.5 * width), clip.xy + vec2(0.5 * clip.z))"));
+    out.line(value(config, "vec2", "centre", "clamp(0.5 * (lo + hi), clip.xy - vec2(0.5 * clip.z), clip.xy + vec2(0.5 * clip.z))"));
+    out.line("return vec3(centre, max(min(hi.x - lo.x, hi.y - lo.y), 0.0));");
+    out.line("}");
+    out.blank();
+}
+
 // The receiver in the light frame, p, at the start of every penumbraVisibility (and its generic twin).
 constexpr void write_light_frame_point(LineWriter& out, const Config& config) {
     out.line(variable(config, "vec3", "p", "(penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz"));
@@ -156,7 +180,9 @@ constexpr TangentClipOffsets tangent_clip_offsets(const Config& config) {
 constexpr void write_tangent_clip_setup(LineWriter& out, const Config& config, const TangentClipOffsets& k) {
     out.line(variable(config, "vec3", "n", cat(upper_3x3(config, "penumbra_lightFromWorld"), " * worldNormal")));
     out.line("n *= ", builtin(config, "inversesqrt"), "(max(dot(n, n), 1e-20));");
-    out.line(value(config, "vec3", "penumbra_clip", "penumbra_tangentClip(p, n)"));
+    out.line(value(config, "vec3", "penumbra_clip",
+                   choose(config.irradiance_window, "penumbra_irradianceWindow(p, penumbra_tangentClip(p, n))",
+                          "penumbra_tangentClip(p, n)")));
     const bool rect = config.light == Light::rect;
     if (!k.footprint_reach.empty()) {
         out.comment("footprint of the receiver's own tangent plane in the slice above it, along its normal (scene units)");
@@ -792,6 +818,7 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
     write_weight_function(out, config);
     if (!uses_level_loop(config)) write_lookup_function(out, config);
     if (config.tangent_clip) write_tangent_clip_function(out, config);
+    if (config.irradiance_window) write_irradiance_window_function(out, config);
     if (config.fusion == Fusion::correlated) write_correlated_step_function(out, config);
     if (reads_doubled_window(config.fusion)) {
         const VisibilityConstants k = constants(config);
@@ -828,12 +855,15 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
     out.line("return penumbra_clippedVisibility(p, penumbra_clip);");
     out.line("}");
     out.blank();
-    out.comment("Without a normal: the fraction of the whole light that is visible (the paper's kernels, no clip),");
+    out.comment(choose(config.irradiance_window,
+                       "Without a normal: the fraction of the light's irradiance window that is visible (no clip),",
+                       "Without a normal: the fraction of the whole light that is visible (the paper's kernels, no clip),"));
     out.comment("for shaders written against penumbraVisibility(vec3 worldPos) of every technique.");
     out.line(signature(config, "float", "penumbraVisibility", {{"vec3", "worldPos"}}));
     out.line("{");
     write_light_frame_point(out, config);
-    out.line("return penumbra_clippedVisibility(p, vec3(0.0, 0.0, 1.0));");
+    out.line("return penumbra_clippedVisibility(p, ",
+             choose(config.irradiance_window, "penumbra_irradianceWindow(p, vec3(0.0, 0.0, 1.0))", "vec3(0.0, 0.0, 1.0)"), ");");
     out.line("}");
 }
 

@@ -117,6 +117,19 @@ constexpr auto occlusion_fields() {
                        "open casters (cards, planes), drawn after every closed one. Targets with a logical "
                        "operation on colour targets only (glsl450, glsl330)",
              .techniques = "occlusion", .omit_default = true}),
+        member<&Config::irradiance_window>(
+            {.key = "irradiance_window", .flag = "--irradiance-window",
+             .help = "kernels cover the part of the light that carries the receiver's irradiance (a window about "
+                     "twice its height wide around the point above it), not the whole light (rect light, tangent "
+                     "clip)",
+             .detail = "each kernel covers the window of the light that carries a receiver's irradiance instead of "
+                       "the whole light (absent means false): a square twice the receiver's depth below the light "
+                       "wide, around the light point straight above it, kept inside the light and intersected with "
+                       "the tangent clip's part. The visibility then weighs the light as the irradiance of a "
+                       "receiver facing it does (cosines over squared distance) rather than by area: the factor the "
+                       "unoccluded irradiance needs under lights much wider than their height above the receiver. "
+                       "Rect light with the tangent clip only",
+             .techniques = "occlusion", .omit_default = true}),
     };
 }
 
