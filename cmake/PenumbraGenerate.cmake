@@ -3,7 +3,7 @@
 #   penumbra_generate_shaders(<target> OUT_DIR <dir>
 #       [NAME <name>]                      # a second call on <target>: defines PENUMBRA_SHADER_DIR_<NAME>
 #       [TECHNIQUE <t>] [SLICES <n>] [RESOLUTION <r>] [FILTER <f>] ...   # every penumbra-gen flag
-#       [NO_FADE] [NO_ROTATION] [ALPHA_TEST] [SOLID_CASTERS] ...                      # every penumbra-gen switch
+#       [NO_FADE] [NO_ROTATION] [ALPHA_TEST] [SOLID_CASTERS] [IRRADIANCE_WINDOW] ...  # every penumbra-gen switch
 #       [CONFIG <file.json>] [FLAGS <penumbra-gen flags>...] [VALIDATE]
 #       [FILES_VARIABLE <var>])
 #
@@ -48,7 +48,7 @@ function(penumbra_generate_flags value_var switch_var)
         PARENT_SCOPE)
     set(${switch_var}
         --no-leak-fix --no-fade --tangent-clip --no-tangent-clip --no-clip-footprint
-        --no-rotation --no-receiver-plane-bias --alpha-test --solid-casters --validate
+        --no-rotation --no-receiver-plane-bias --alpha-test --solid-casters --irradiance-window --validate
         PARENT_SCOPE)
 endfunction()
 

@@ -483,12 +483,20 @@ Row irradiance_window_row() {
                 whole.irradiance_window = false;
                 const Emitted without = emit_all(whole);
                 REQUIRE(without.programs.size() == e.programs.size());
+                // the header's configuration line names the window in every program
+                auto body = [](std::string text) {
+                    const std::size_t line = text.find(" | target ");
+                    if (line != std::string::npos) text.erase(text.rfind('\n', line), text.find('\n', line) - text.rfind('\n', line));
+                    return text;
+                };
                 int windowed = 0;
                 for (std::size_t i = 0; i < e.programs.size(); ++i) {
                     const std::string fragment = e.programs[i].stages.back().text;
                     const bool calls = fragment.find("penumbra_irradianceWindow(p, penumbra_tangentClip(p, n))") != std::string::npos;
                     windowed += calls;
-                    if (!calls) CHECK_MESSAGE(fragment == without.programs[i].stages.back().text, name_of(c), " ", e.programs[i].name);
+                    if (!calls)
+                        CHECK_MESSAGE(body(fragment) == body(without.programs[i].stages.back().text), name_of(c), " ",
+                                      e.programs[i].name);
                 }
                 CHECK_MESSAGE(windowed >= 1, name_of(c));
             },
