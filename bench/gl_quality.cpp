@@ -113,7 +113,7 @@ constexpr const char* usage_text =
     "              (slicing texels), +nofootprint / +footprint for its footprint move, +rampF for the fade's ramp\n"
     "              (fraction of a slice), +noleak for the leak fix off, +adaptive for adaptive slice placement and +solid\n"
     "              for solid casters (closed meshes fill the slices between their surfaces), +irradiance for the\n"
-    "              irradiance window (kernels cover the part of the light that carries the irradiance), e.g.\n"
+    "              irradiance window (the light weighed by the irradiance it sends, not by area), e.g.\n"
     "              probabilistic,chained+clip,chained+clip+offset3+nofootprint+ramp1,chained+clip+adaptive\n"
     "              (default: Config{}'s)\n"
     "  --level-reductions  level_reduction values to measure, each a row (-1: every level at full\n"

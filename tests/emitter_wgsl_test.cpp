@@ -49,7 +49,7 @@ std::vector<Config> wgsl_configs() {
     // the array and volume packings: levels built in a scratch texture and copied into a layer / depth
     out.push_back({.slices = 8, .resolution = 128, .filter = Filter::mipmap, .packing = Packing::array, .target = Target::wgsl});
     out.push_back({.slices = 8, .resolution = 128, .packing = Packing::array, .target = Target::wgsl});
-    // the irradiance window (rect light, tangent clip): the clip narrowed once per receiver
+    // the irradiance window (rect light, tangent clip): two passes of the slice loop, mixed by the irradiance
     Config window{.slices = 8, .resolution = 128, .target = Target::wgsl};
     window.irradiance_window = true;
     out.push_back(window);

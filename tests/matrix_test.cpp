@@ -456,7 +456,7 @@ Row solid_casters_row() {
 
 // The irradiance window (irradiance_window): every GLSL target × light, with and without the tangent clip.
 // Valid under the rectangle with the clip, refused under the sun or without the clip; only the programs
-// that compute the visibility change, and they call the window.
+// that compute the visibility change, and they weigh it by the irradiance window.
 Row irradiance_window_row() {
     std::vector<Config> configs;
     for (Target target : glsl_targets())
@@ -492,7 +492,7 @@ Row irradiance_window_row() {
                 int windowed = 0;
                 for (std::size_t i = 0; i < e.programs.size(); ++i) {
                     const std::string fragment = e.programs[i].stages.back().text;
-                    const bool calls = fragment.find("penumbra_irradianceWindow(p, penumbra_tangentClip(p, n))") != std::string::npos;
+                    const bool calls = fragment.find("penumbra_irradianceWindow(p, n, penumbra_clip)") != std::string::npos;
                     windowed += calls;
                     if (!calls)
                         CHECK_MESSAGE(body(fragment) == body(without.programs[i].stages.back().text), name_of(c), " ",

@@ -252,11 +252,11 @@ struct Config {
                                             // (a volume, not its shell); the caller flags each draw closed or open
                                             // (penumbra_casterClosed) and draws the closed ones first. Desktop
                                             // OpenGL only (a logical XOR on the slicing targets)
-    bool irradiance_window = false;         // occlusion, rect light, tangent clip: each kernel covers the window of
-                                            // the light that carries a receiver's irradiance (about 2 z wide around
-                                            // the point above it) instead of the whole light: the visibility the
-                                            // shading's irradiance needs under lights much wider than z
-                                            // (docs/model.md §1.7.5)
+    bool irradiance_window = false;         // occlusion, rect light, tangent clip: the visibility weighs the light
+                                            // by the irradiance it sends the receiver, not by area: the clip's
+                                            // and its core's (half as wide, around the point above the receiver)
+                                            // visibilities mixed by their share of the irradiance; two passes of
+                                            // the slice loop (docs/model.md §1.7.5)
 
     friend constexpr bool operator==(const Config&, const Config&) = default;
 };

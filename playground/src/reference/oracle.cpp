@@ -400,6 +400,38 @@ double extent_step(double q, glm::dvec3 kernel, double area, double previous, gl
     const double both = q * previous + rho * (std::min(q, previous) - q * previous);
     return (1.0 - q - previous + both) / std::max(1.0 - previous, 1e-6);
 }
+
+// penumbra_formFactorCorner and penumbra_irradianceOf (detail/occlusion/emit_visibility.hpp): the irradiance,
+// over pi, that p of unit normal n (light frame) gets from the part `part` of the light's unit square (xy centre,
+// z side), the part below its tangent plane counting 0.
+double form_factor_corner(glm::dvec2 a, glm::dvec3 n) {
+    const glm::dvec2 s = 1.0 / glm::sqrt(1.0 + a * a);
+    return -0.5 * (s.x * std::atan(a.y * s.x) * (n.x + n.z * a.x) + s.y * std::atan(a.x * s.y) * (n.y + n.z * a.y));
+}
+double irradiance_of(glm::dvec3 p, glm::dvec3 n, glm::dvec3 part, glm::dvec2 light_size) {
+    const glm::dvec2 lo = ((glm::dvec2(part) - 0.5 * part.z) * light_size - glm::dvec2(p)) / p.z;
+    const glm::dvec2 hi = ((glm::dvec2(part) + 0.5 * part.z) * light_size - glm::dvec2(p)) / p.z;
+    return std::max(form_factor_corner(hi, n) - form_factor_corner({lo.x, hi.y}, n) - form_factor_corner({hi.x, lo.y}, n) +
+                        form_factor_corner(lo, n),
+                    0.0);
+}
+
+// penumbra_irradianceWindow: the core, half the clip's side around the weight's peak inside the clip (xyz), and the weight of the whole clip's visibility (w), which gives the core and the ring around it their
+// share of the irradiance.
+glm::dvec4 irradiance_window(glm::dvec3 p, glm::dvec3 n, glm::dvec3 clip, glm::dvec2 light_size) {
+    const double side = 0.5 * clip.z;
+    // the weight's peak: the foot, moved towards the normal's side by up to z / sqrt(3) on a wall
+    const double facing = std::max(-n.z, 0.0);
+    const glm::dvec2 across(n);
+    const glm::dvec2 peak = glm::dvec2(p) + p.z * across /
+                                                std::max(2.0 * facing + std::sqrt(4.0 * facing * facing + 3.0 * glm::dot(across, across)), 1e-6);
+    const glm::dvec2 centre = glm::clamp(peak / light_size, glm::dvec2(clip) - 0.5 * side, glm::dvec2(clip) + 0.5 * side);
+    const double whole = irradiance_of(p, n, clip, light_size);
+    const double core = irradiance_of(p, n, glm::dvec3(centre, side), light_size);
+    const double ring = whole > 1e-12 ? (1.0 - core / whole) / 0.75 : 1.0;
+    return {centre, side, std::clamp(ring, 0.0, 1.0)};
+}
+
 } // namespace
 
 // penumbra_clusterCount in detail/occlusion/emit_visibility.hpp: the spread of the four quadrants' coverage
@@ -416,14 +448,13 @@ double cluster_count(glm::dvec4 quadrants) {
 OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion) const {
     glm::dvec3 p = glm::dvec3(light_from_world_ * glm::dvec4(glm::dvec3(world), 1.0));
     p.z = std::max(p.z, 1e-6); // points on or behind the light plane
-    double lit = 1.0, sum = 0.0, maximum = 0.0, bound = 0.0, chain = 1.0, previous = 0.0, correlated = 1.0, extent = 1.0;
-    glm::dvec3 previous_kernel(0.0); // centre and side of the slice visited before (correlated fusion)
-    double previous_area = 0.0;      // and its covered area in the doubled window (extent fusion)
-    bool beyond = false;
+    const glm::dvec3 p_receiver = p;
     // Tangent clip (detail/occlusion/emit_visibility.hpp): the part of the light above the tangent plane, in the
     // light's unit square, cut along the axis the plane crosses most steeply; then the point
     // moves config.tangent_clip_offset slicing texels sideways along its normal.
     glm::dvec3 clip(0.0, 0.0, 1.0);
+    glm::dvec3 receiver_normal(0.0, 0.0, -1.0); // in the light frame, unit
+    glm::dvec4 window(0.0, 0.0, 0.0, 1.0); // irradiance window: core (xyz) and the clip's weight (w); 1: the clip alone
     bool clip_ambiguous = false;
     if (config_.tangent_clip) {
         glm::dvec3 n = glm::dmat3(light_from_world_) * glm::dvec3(normal);
@@ -440,17 +471,10 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
             return x ? glm::dvec3(mid, 0.0, hi - lo) : glm::dvec3(0.0, mid, hi - lo);
         };
         clip = clip_along(std::abs(slopes.x) >= std::abs(slopes.y));
-        // irradiance window (penumbra_irradianceWindow): the square 2 p.z wide around the light point above p,
-        // kept inside the light, intersected with the clip; where they do not meet, the clip's nearest point
-        if (config_.irradiance_window) {
-            const double width = std::min(1.0, 2.0 * p.z / std::max(light_size_.x, light_size_.y));
-            const glm::dvec2 foot = glm::clamp(glm::dvec2(p) / light_size_, glm::dvec2(0.5 * width - 0.5),
-                                               glm::dvec2(0.5 - 0.5 * width));
-            const glm::dvec2 clip_lo = glm::dvec2(clip) - 0.5 * clip.z, clip_hi = glm::dvec2(clip) + 0.5 * clip.z;
-            const glm::dvec2 lo = glm::max(foot - 0.5 * width, clip_lo), hi = glm::min(foot + 0.5 * width, clip_hi);
-            const glm::dvec2 centre = glm::clamp(0.5 * (lo + hi), clip_lo, clip_hi);
-            clip = glm::dvec3(centre, std::max(std::min(hi.x - lo.x, hi.y - lo.y), 0.0));
-        }
+        // irradiance window (penumbra_irradianceWindow), at the receiver before it moves: the core, half the clip's
+        // side around the light point above p, and the weight of the whole clip's visibility
+        if (config_.irradiance_window) window = irradiance_window(p, n, clip, light_size_);
+        receiver_normal = n;
         // fp32 may pick the other axis where both slopes are (nearly) equal; it matters only
         // where the two cuts differ
         clip_ambiguous = std::abs(std::abs(slopes.x) - std::abs(slopes.y)) <= 1e-5 * std::abs(slopes.x) &&
@@ -472,59 +496,75 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
         else p += glm::dvec3(glm::dvec2(n) * (2.0 * window_half_size_ * texels), 0.0);
         p += glm::dvec3(glm::dvec2(n) / across * footprint, 0.0);
     }
-    for (int s = config_.slices - 1; s >= 0; --s) {
-        const double weight = fade_weight(p.z, s);
-        // without the fade, a point within fp32 rounding of a plane may fall on either side
-        const bool ambiguous = !config_.self_shadow_fade && std::abs(p.z - zeta(s)) <= 1e-5 * std::max(1.0, p.z);
-        if (weight == 0.0 && !ambiguous) continue;
-        auto [centre, side] = kernel(p, zeta(s));
-        centre += glm::dvec2(clip) * side; // tangent clip (identity when off)
-        side *= clip.z;
-        const Sample o = filtered(s, centre, side);
-        beyond = beyond || (o.clamped && weight > 0.0);
-        bound += ambiguous ? o.value + o.bound : clip_ambiguous ? 1.0 : weight * o.bound + arithmetic_error;
-        const double q = weight * o.value;
-        // extent and clustered fusion: the same slice over a window twice the kernel's side (only they read it)
-        double area = 0.0;
-        if (reads_doubled_window(fusion)) {
-            const Sample wide = filtered(s, centre, 2.0 * side);
-            area = weight * std::max(o.value, 4.0 * wide.value) * side * side;
-            bound += weight * wide.bound;
-        }
-        // clustered fusion: that area shared by the occluders counted from the kernel's four quadrants
-        if (fusion == Fusion::clustered) {
-            glm::dvec4 quadrants(0.0);
-            const glm::dvec2 corners[4] = {{-1.0, -1.0}, {1.0, -1.0}, {-1.0, 1.0}, {1.0, 1.0}};
-            for (int i = 0; i < 4; ++i) {
-                const Sample quadrant = filtered(s, centre + 0.25 * side * corners[i], 0.5 * side);
-                quadrants[i] = quadrant.value;
-                bound += weight * quadrant.bound;
+    // the fused visibility of the part `part` of the light's unit square (penumbra_clippedVisibility)
+    auto fused = [&](glm::dvec3 part) -> OracleValue {
+        double lit = 1.0, sum = 0.0, maximum = 0.0, bound = 0.0, chain = 1.0, previous = 0.0, correlated = 1.0, extent = 1.0;
+        glm::dvec3 previous_kernel(0.0); // centre and side of the slice visited before (correlated fusion)
+        double previous_area = 0.0;      // and its covered area in the doubled window (extent fusion)
+        bool beyond = false;
+        for (int s = config_.slices - 1; s >= 0; --s) {
+            const double weight = fade_weight(p.z, s);
+            // without the fade, a point within fp32 rounding of a plane may fall on either side
+            const bool ambiguous = !config_.self_shadow_fade && std::abs(p.z - zeta(s)) <= 1e-5 * std::max(1.0, p.z);
+            if (weight == 0.0 && !ambiguous) continue;
+            auto [centre, side] = kernel(p, zeta(s));
+            centre += glm::dvec2(part) * side; // tangent clip (identity when off)
+            side *= part.z;
+            const Sample o = filtered(s, centre, side);
+            beyond = beyond || (o.clamped && weight > 0.0);
+            bound += ambiguous ? o.value + o.bound : clip_ambiguous ? 1.0 : weight * o.bound + arithmetic_error;
+            const double q = weight * o.value;
+            // extent and clustered fusion: the same slice over a window twice the kernel's side (only they read it)
+            double area = 0.0;
+            if (reads_doubled_window(fusion)) {
+                const Sample wide = filtered(s, centre, 2.0 * side);
+                area = weight * std::max(o.value, 4.0 * wide.value) * side * side;
+                bound += weight * wide.bound;
             }
-            area /= cluster_count(quadrants);
+            // clustered fusion: that area shared by the occluders counted from the kernel's four quadrants
+            if (fusion == Fusion::clustered) {
+                glm::dvec4 quadrants(0.0);
+                const glm::dvec2 corners[4] = {{-1.0, -1.0}, {1.0, -1.0}, {-1.0, 1.0}, {1.0, 1.0}};
+                for (int i = 0; i < 4; ++i) {
+                    const Sample quadrant = filtered(s, centre + 0.25 * side * corners[i], 0.5 * side);
+                    quadrants[i] = quadrant.value;
+                    bound += weight * quadrant.bound;
+                }
+                area /= cluster_count(quadrants);
+            }
+            lit *= 1.0 - q;
+            sum += q;
+            maximum = std::max(maximum, q);
+            // chained: the neighbour visited before is nested with this slice, the others independent
+            chain *= (1.0 - std::max(q, previous)) / std::max(1.0 - previous, 1e-6);
+            correlated *= correlated_step(q, {centre, side}, previous, previous_kernel);
+            extent *= extent_step(q, {centre, side}, area, previous, previous_kernel, previous_area);
+            previous = q;
+            previous_kernel = {centre, side};
+            previous_area = area;
         }
-        lit *= 1.0 - q;
-        sum += q;
-        maximum = std::max(maximum, q);
-        // chained: the neighbour visited before is nested with this slice, the others independent
-        chain *= (1.0 - std::max(q, previous)) / std::max(1.0 - previous, 1e-6);
-        correlated *= correlated_step(q, {centre, side}, previous, previous_kernel);
-        extent *= extent_step(q, {centre, side}, area, previous, previous_kernel, previous_area);
-        previous = q;
-        previous_kernel = {centre, side};
-        previous_area = area;
-    }
-    double v = lit;
-    switch (fusion) {
-    case Fusion::probabilistic: v = lit; break;
-    case Fusion::additive: v = std::max(0.0, 1.0 - sum); break;
-    case Fusion::maximum: v = 1.0 - maximum; break;
-    case Fusion::average: v = 1.0 - 0.5 * (std::min(1.0, sum) + maximum); break; // Soler & Sillion
-    case Fusion::chained: v = std::clamp(chain, 0.0, 1.0); break;
-    case Fusion::correlated: v = std::clamp(correlated, 0.0, 1.0); break;
-    case Fusion::extent:
-    case Fusion::clustered: v = std::clamp(extent, 0.0, 1.0); break;
-    }
-    return {v, bound, beyond};
+        double v = lit;
+        switch (fusion) {
+        case Fusion::probabilistic: v = lit; break;
+        case Fusion::additive: v = std::max(0.0, 1.0 - sum); break;
+        case Fusion::maximum: v = 1.0 - maximum; break;
+        case Fusion::average: v = 1.0 - 0.5 * (std::min(1.0, sum) + maximum); break; // Soler & Sillion
+        case Fusion::chained: v = std::clamp(chain, 0.0, 1.0); break;
+        case Fusion::correlated: v = std::clamp(correlated, 0.0, 1.0); break;
+        case Fusion::extent:
+        case Fusion::clustered: v = std::clamp(extent, 0.0, 1.0); break;
+        }
+        return {v, bound, beyond};
+    };
+    if (window.w >= 1.0) return fused(clip);
+    // penumbra_windowedVisibility: the clip's and the core's visibilities mixed; fp32 cancels in the
+    // irradiance of a small clip (differences of four form-factor corners of order one), which moves the
+    // weight by about 1e-6 over that irradiance
+    const OracleValue whole = fused(clip), core = fused(glm::dvec3(window));
+    const double weight_error = std::min(1.0, 2e-6 / std::max(irradiance_of(p_receiver, receiver_normal, clip, light_size_), 1e-30)) + arithmetic_error;
+    return {window.w * whole.visibility + (1.0 - window.w) * core.visibility,
+            window.w * whole.bound + (1.0 - window.w) * core.bound + weight_error * std::abs(whole.visibility - core.visibility),
+            whole.beyond_level_bound || core.beyond_level_bound};
 }
 
 } // namespace penumbra::playground

@@ -1,7 +1,7 @@
 // The irradiance window (Config::irradiance_window, docs/model.md §1.7.5) on "boxes" under a light 16 times
-// its default: the GPU's visibility equals the oracle's within its bound, the window changes it where the
-// light is much wider than the receiver's depth, and against the Embree irradiance truth the estimate is
-// closer with the window than without. Label "gl".
+// its default: the GPU's visibility equals the oracle's within its bound, the window changes it, and against the
+// Embree irradiance truth the estimate is closer with the window than without, under the default light and
+// the large one. Label "gl".
 #include "reference/oracle.hpp"
 #include "rendering/egl_context.hpp"
 #include "rendering/headless_render.hpp"
@@ -80,11 +80,11 @@ TEST_CASE("irradiance window: the GPU's visibility equals the oracle's within it
                     name.c_str(), max_difference, beyond, pixels, penumbra, changed);
         CHECK_MESSAGE(beyond == 0, name, ": ", beyond, " pixels beyond the bound, max |diff| ", max_difference);
         CHECK_MESSAGE(penumbra > 100, name, ": too few penumbra pixels for a meaningful comparison");
-        CHECK_MESSAGE(changed > pixels / 10, name, ": the window changed only ", changed, " of ", pixels, " pixels");
+        CHECK_MESSAGE(changed > pixels / 20, name, ": the window changed only ", changed, " of ", pixels, " pixels");
     }
 }
 
-TEST_CASE("irradiance window: closer to the irradiance truth under a large light, the same under the default one") {
+TEST_CASE("irradiance window: closer to the irradiance truth under the default light and a large one") {
     std::string error;
     auto context = HeadlessContext::create(&error);
     REQUIRE_MESSAGE(context, error);
@@ -101,7 +101,6 @@ TEST_CASE("irradiance window: closer to the irradiance truth under a large light
         std::printf("irradiance window on boxes x%g: irradiance penumbra MAE %.4f without, %.4f with\n", scale, mae[0],
                     mae[1]);
         CAPTURE(scale);
-        if (scale == 1.0) CHECK(mae[1] == doctest::Approx(mae[0]).epsilon(1e-3)); // the window is the whole light there
-        else CHECK(mae[1] < 0.9 * mae[0]);
+        CHECK(mae[1] < (scale == 1.0 ? 0.97 : 0.7) * mae[0]);
     }
 }

@@ -118,26 +118,73 @@ constexpr void write_tangent_clip_function(LineWriter& out, const Config& config
     out.blank();
 }
 
-// Config::irradiance_window (docs/model.md §1.7.5): the part of the light that carries a receiver's
-// irradiance. A light point at lateral distance r from the point straight above a receiver facing the light,
-// at depth z, sends it irradiance in proportion to z² / (z² + r²)², whose density across any line through
-// that point falls from 1 / (2 z) at its centre; a box 2 z wide has the same density there, so it changes
-// the visibility at the same rate as an edge crosses the foot. Applied to the tangent clip's part (a square
-// in the light's unit square: xy centre, z side), once per receiver.
+// Config::irradiance_window (docs/model.md §1.7.5): the visibility weighs the light by the irradiance each of
+// its points sends the receiver, as the shading's unoccluded irradiance does, not by its area. A light point at
+// offset d = l - p from a receiver of unit normal n at depth z sends it cos θ_receiver cos θ_light / r², that is
+// dot(n, d) z / r⁴, which integrates over a rectangle of the light in closed form (its form factor). The
+// weight is approximated by two nested windows: the tangent clip's part, and its core, a square half as wide
+// around the weight's peak (the light point straight above a receiver facing the light, moved towards the side
+// its normal leans to, by z / sqrt(3) on a wall). Their visibilities, mixed with the weights that
+// give the core and the ring around it their true share of the irradiance, are exact for occluders spread
+// evenly over each; the slice loop runs once for each window.
 constexpr void write_irradiance_window_function(LineWriter& out, const Config& config) {
     out.chunk("tangent_clip");
-    out.comment("The window of the light that carries the irradiance at p, within the tangent clip's part `clip` of");
-    out.comment("the light's unit square (xy centre, z side): a square 2 p.z wide around the light point above p,");
-    out.comment("kept inside the light, intersected with the clip (docs/model.md §1.7.5). Where they do not meet,");
-    out.comment("the point of the clip nearest the window, with no width");
-    out.line(signature(config, "vec3", "penumbra_irradianceWindow", {{"vec3", "p"}, {"vec3", "clip"}}));
+    out.comment("The irradiance, over pi, that a receiver of unit normal n (light frame) gets from the light's part");
+    out.comment("between its foot and the corner a (offsets over its depth): the rectangle's form factor, a corner's term");
+    out.line(signature(config, "float", "penumbra_formFactorCorner", {{"vec2", "a"}, {"vec3", "n"}}));
     out.line("{");
-    out.line(value(config, "float", "width", "min(1.0, 2.0 * p.z / max(penumbra_lightSize.x, penumbra_lightSize.y))"));
-    out.line(value(config, "vec2", "foot", "clamp(p.xy / penumbra_lightSize, vec2(0.5 * width - 0.5), vec2(0.5 - 0.5 * width))"));
-    out.line(value(config, "vec2", "lo", "max(foot - vec2(0.5 * width), clip.xy - vec2(0.5 * clip.z))"));
-    out.line(value(config, "vec2", "hi", "min(foot + vec2(0.5 * width), clip.xy + vec2(0.5 * clip.z))"));
-    out.line(value(config, "vec2", "centre", "clamp(0.5 * (lo + hi), clip.xy - vec2(0.5 * clip.z), clip.xy + vec2(0.5 * clip.z))"));
-    out.line("return vec3(centre, max(min(hi.x - lo.x, hi.y - lo.y), 0.0));");
+    out.line(value(config, "vec2", "s", cat(builtin(config, "inversesqrt"), "(1.0 + a * a)")));
+    out.line("return -0.5 * (s.x * atan(a.y * s.x) * (n.x + n.z * a.x) + s.y * atan(a.x * s.y) * (n.y + n.z * a.y));");
+    out.line("}");
+    out.blank();
+    out.chunk("tangent_clip");
+    out.comment("The irradiance, over pi, at p (unit normal n) from the part `part` of the light's unit square (xy centre,");
+    out.comment("z side); the part of the light below the tangent plane, which the clip leaves where it cuts aslant, counts 0");
+    out.line(signature(config, "float", "penumbra_irradianceOf", {{"vec3", "p"}, {"vec3", "n"}, {"vec3", "part"}}));
+    out.line("{");
+    out.line(value(config, "vec2", "lo", "((part.xy - vec2(0.5 * part.z)) * penumbra_lightSize - p.xy) / p.z"));
+    out.line(value(config, "vec2", "hi", "((part.xy + vec2(0.5 * part.z)) * penumbra_lightSize - p.xy) / p.z"));
+    out.line("return max(penumbra_formFactorCorner(hi, n) - penumbra_formFactorCorner(vec2(lo.x, hi.y), n)");
+    out.line("    - penumbra_formFactorCorner(vec2(hi.x, lo.y), n) + penumbra_formFactorCorner(lo, n), 0.0);");
+    out.line("}");
+    out.blank();
+    out.chunk("tangent_clip");
+    out.comment("The irradiance window at p (unit normal n) within the part `clip` of the light's unit square (xy centre,");
+    out.comment("z side): xyz the core, a square half the clip's side around the weight's peak, kept inside the clip;");
+    out.comment("w the weight of the whole clip's visibility, the core's being 1 - w (docs/model.md §1.7.5)");
+    out.line(signature(config, "vec4", "penumbra_irradianceWindow", {{"vec3", "p"}, {"vec3", "n"}, {"vec3", "clip"}}));
+    out.line("{");
+    out.line(value(config, "float", "side", "0.5 * clip.z"));
+    out.comment("the weight's peak: the foot, moved towards the normal's side by up to z / sqrt(3) on a wall");
+    out.line(value(config, "float", "facing", "max(-n.z, 0.0)"));
+    out.line(value(config, "vec2", "peak", "p.xy + p.z * n.xy / max(2.0 * facing + sqrt(4.0 * facing * facing + 3.0 * dot(n.xy, n.xy)), 1e-6)"));
+    out.line(value(config, "vec2", "centre", clamp_vector(config, "vec2", "peak / penumbra_lightSize",
+                                                        "clip.xy - vec2(0.5 * side)", "clip.xy + vec2(0.5 * side)")));
+    out.line(value(config, "float", "whole", "penumbra_irradianceOf(p, n, clip)"));
+    out.line(value(config, "float", "core", "penumbra_irradianceOf(p, n, vec3(centre, side))"));
+    out.comment("the ring holds 3/4 of the clip's area and 1 - core / whole of its irradiance; an empty clip is one pass");
+    out.line(value(config, "float", "ring", conditional(config, "whole > 1e-12", "(1.0 - core / max(whole, 1e-12)) / 0.75", "1.0")));
+    out.line("return vec4(centre, side, clamp(ring, 0.0, 1.0));");
+    out.line("}");
+    out.blank();
+}
+
+// Config::irradiance_window: the visibility of the clip and of the irradiance window's core, mixed. A loop
+// whose bound the compiler cannot fold keeps one copy of the unrolled slice loop in the program.
+constexpr void write_windowed_visibility_function(LineWriter& out, const Config& config) {
+    out.chunk("visibility");
+    out.comment("The visibility at light-frame point p weighed by the irradiance: the clip's with weight window.w, the");
+    out.comment("core's (window.xyz) with 1 - window.w; a window whose core carries no weight needs the first only");
+    out.line(signature(config, "float", "penumbra_windowedVisibility", {{"vec3", "p"}, {"vec3", "clip"}, {"vec4", "window"}}));
+    out.line("{");
+    out.line(variable(config, "float", "visibility", "0.0"));
+    out.line(value(config, "int", "passes", conditional(config, "window.w < 1.0", "2", "1")));
+    out.line(counted_loop(config, "penumbra_pass", "passes"), " {");
+    out.line(value(config, "bool", "core", "penumbra_pass == 1"));
+    out.line("visibility += (", conditional(config, "core", "1.0 - window.w", "window.w"),
+             ") * penumbra_clippedVisibility(p, ", conditional(config, "core", "window.xyz", "clip"), ");");
+    out.line("}");
+    out.line("return visibility;");
     out.line("}");
     out.blank();
 }
@@ -180,9 +227,11 @@ constexpr TangentClipOffsets tangent_clip_offsets(const Config& config) {
 constexpr void write_tangent_clip_setup(LineWriter& out, const Config& config, const TangentClipOffsets& k) {
     out.line(variable(config, "vec3", "n", cat(upper_3x3(config, "penumbra_lightFromWorld"), " * worldNormal")));
     out.line("n *= ", builtin(config, "inversesqrt"), "(max(dot(n, n), 1e-20));");
-    out.line(value(config, "vec3", "penumbra_clip",
-                   choose(config.irradiance_window, "penumbra_irradianceWindow(p, penumbra_tangentClip(p, n))",
-                          "penumbra_tangentClip(p, n)")));
+    out.line(value(config, "vec3", "penumbra_clip", "penumbra_tangentClip(p, n)"));
+    if (config.irradiance_window) {
+        out.comment("weighed by the irradiance at the receiver, before it moves (docs/model.md §1.7.5)");
+        out.line(value(config, "vec4", "penumbra_window", "penumbra_irradianceWindow(p, n, penumbra_clip)"));
+    }
     const bool rect = config.light == Light::rect;
     if (!k.footprint_reach.empty()) {
         out.comment("footprint of the receiver's own tangent plane in the slice above it, along its normal (scene units)");
@@ -845,6 +894,7 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
     out.line("}");
     if (!config.tangent_clip) return;
     out.blank();
+    if (config.irradiance_window) write_windowed_visibility_function(out, config);
     out.chunk("visibility");
     out.comment("Fraction of the part of the light above the tangent plane at worldPos (worldNormal: the normal of");
     out.comment("the side being lit, any length but not zero) that is visible: 1 lit, 0 in umbra.");
@@ -852,18 +902,21 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
     out.line("{");
     write_light_frame_point(out, config);
     write_tangent_clip_setup(out, config);
-    out.line("return penumbra_clippedVisibility(p, penumbra_clip);");
+    out.line(choose(config.irradiance_window, "return penumbra_windowedVisibility(p, penumbra_clip, penumbra_window);",
+                    "return penumbra_clippedVisibility(p, penumbra_clip);"));
     out.line("}");
     out.blank();
     out.comment(choose(config.irradiance_window,
-                       "Without a normal: the fraction of the light's irradiance window that is visible (no clip),",
+                       "Without a normal: the visible fraction of the whole light's irradiance (no clip),",
                        "Without a normal: the fraction of the whole light that is visible (the paper's kernels, no clip),"));
     out.comment("for shaders written against penumbraVisibility(vec3 worldPos) of every technique.");
     out.line(signature(config, "float", "penumbraVisibility", {{"vec3", "worldPos"}}));
     out.line("{");
     write_light_frame_point(out, config);
-    out.line("return penumbra_clippedVisibility(p, ",
-             choose(config.irradiance_window, "penumbra_irradianceWindow(p, vec3(0.0, 0.0, 1.0))", "vec3(0.0, 0.0, 1.0)"), ");");
+    if (config.irradiance_window)
+        out.line("return penumbra_windowedVisibility(p, vec3(0.0, 0.0, 1.0), penumbra_irradianceWindow(p, vec3(0.0, 0.0, -1.0), vec3(0.0, 0.0, 1.0)));");
+    else
+        out.line("return penumbra_clippedVisibility(p, vec3(0.0, 0.0, 1.0));");
     out.line("}");
 }
 

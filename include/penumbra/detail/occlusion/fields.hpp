@@ -119,16 +119,16 @@ constexpr auto occlusion_fields() {
              .techniques = "occlusion", .omit_default = true}),
         member<&Config::irradiance_window>(
             {.key = "irradiance_window", .flag = "--irradiance-window",
-             .help = "kernels cover the part of the light that carries the receiver's irradiance (a window about "
-                     "twice its height wide around the point above it), not the whole light (rect light, tangent "
-                     "clip)",
-             .detail = "each kernel covers the window of the light that carries a receiver's irradiance instead of "
-                       "the whole light (absent means false): a square twice the receiver's depth below the light "
-                       "wide, around the light point straight above it, kept inside the light and intersected with "
-                       "the tangent clip's part. The visibility then weighs the light as the irradiance of a "
-                       "receiver facing it does (cosines over squared distance) rather than by area: the factor the "
-                       "unoccluded irradiance needs under lights much wider than their height above the receiver. "
-                       "Rect light with the tangent clip only",
+             .help = "weigh the light by the irradiance it sends the receiver, not by its area: the visibility "
+                     "of the clip and of its core around the point above the receiver, mixed (two passes of the "
+                     "slice loop; rect light, tangent clip)",
+             .detail = "the visibility weighs each light point by the irradiance it sends a receiver facing the "
+                       "light (cosines over squared distance), as the shading's unoccluded irradiance does, instead "
+                       "of by area (absent means false): the slice loop runs for the tangent clip's part and for its "
+                       "core, a square half as wide around the light point straight above the receiver, and the two "
+                       "visibilities are mixed so that the core and the ring around it carry their share of the "
+                       "irradiance (the rectangle's form factor, in closed form). Costs a second pass of the slice "
+                       "loop per receiver. Rect light with the tangent clip only",
              .techniques = "occlusion", .omit_default = true}),
     };
 }
