@@ -3,6 +3,7 @@
 // the GPU's visibility equals the oracle's within its bound; the G-buffer has no surface where the
 // receivers are cut; and against the Embree truth, which honours the cut, each technique is
 // measurably closer with alpha_test on than with the casters solid. Label "gl".
+#include "oracle_agreement.hpp"
 #include "reference/ground_truth.hpp"
 #include "reference/oracle.hpp"
 #include "reference/slice_coverage.hpp"
@@ -117,37 +118,14 @@ TEST_CASE("cut-out casters: the GPU's visibility equals the oracle's within its 
     };
     for (const Config& config : configs) {
         const std::string name = name_of(config);
-        SliceTextures slices;
-        SliceFrame frame;
-        Config ran;
-        bool read = false;
-        RenderOptions options{.inspect = [&](const gl::Runtime& runtime) {
-            read = read_slice_textures(runtime, slices, &error);
-            frame = runtime.frame();
-            ran = runtime.config();
-        }};
-        HeadlessResult result;
-        REQUIRE_MESSAGE(render_headless(*scene, config, 64, 64, result, &error, options), name, ": ", error);
-        REQUIRE_MESSAGE(read, name, ": ", error);
-        const Oracle oracle(ran, frame, std::move(slices));
-        std::size_t pixels = 0, beyond = 0, penumbra = 0;
-        double max_difference = 0;
-        for (std::size_t i = 0; i < result.visibility.size(); ++i) {
-            if (!result.geometry[i]) continue;
-            const OracleValue expected =
-                oracle.visibility(result.positions[i], result.normals[i], config.fusion);
-            const double difference = std::abs(result.visibility[i] - expected.visibility);
-            ++pixels;
-            beyond += difference > expected.bound;
-            max_difference = std::max(max_difference, difference);
-            penumbra += expected.visibility > 0.02 && expected.visibility < 0.98;
-        }
-        std::printf(
-            "cutout oracle %-40s max |GPU - oracle| %.2e, beyond the bound %zu of %zu, penumbra %zu\n",
-            name.c_str(), max_difference, beyond, pixels, penumbra);
-        CHECK_MESSAGE(beyond == 0, name, ": ", beyond, " pixels beyond the bound, max |diff| ",
-                      max_difference);
-        CHECK_MESSAGE(penumbra > 100, name, ": too few penumbra pixels for a meaningful comparison");
+        GpuRun run;
+        REQUIRE_MESSAGE(render_for_oracle(*scene, config, 64, run, &error), name, ": ", error);
+        const Agreement a = agreement(oracle_of(run), run.result, config.fusion, name);
+        std::printf("cutout oracle %-40s max |GPU - oracle| %.2e, beyond the bound %zu of %zu, penumbra %zu\n",
+                    name.c_str(), a.max_difference, a.beyond_bound, a.pixels, a.penumbra_pixels);
+        CHECK_MESSAGE(a.beyond_bound == 0, name, ": ", a.beyond_bound, " pixels beyond the bound, max |diff| ",
+                      a.max_difference);
+        CHECK_MESSAGE(a.penumbra_pixels > 100, name, ": too few penumbra pixels for a meaningful comparison");
     }
 }
 

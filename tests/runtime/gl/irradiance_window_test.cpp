@@ -2,6 +2,7 @@
 // its default: the GPU's visibility equals the oracle's within its bound, the window changes it, and against the
 // Embree irradiance truth the estimate is closer with the window than without, under the default light and
 // the large one. Label "gl".
+#include "oracle_agreement.hpp"
 #include "reference/oracle.hpp"
 #include "rendering/egl_context.hpp"
 #include "rendering/headless_render.hpp"
@@ -47,40 +48,24 @@ TEST_CASE("irradiance window: the GPU's visibility equals the oracle's within it
         const std::string name = std::string(to_string(config.filter)) + " " + std::string(to_string(config.fusion)) + " " +
                                  std::string(to_string(config.packing)) + " S=" + std::to_string(config.slices) +
                                  " R=" + std::to_string(config.resolution);
-        SliceTextures slices;
-        SliceFrame frame;
-        Config ran;
-        bool read = false;
-        RenderOptions options{.inspect = [&](const gl::Runtime& runtime) {
-            read = read_slice_textures(runtime, slices, &error);
-            frame = runtime.frame();
-            ran = runtime.config();
-        }};
-        HeadlessResult result;
-        REQUIRE_MESSAGE(render_headless(scene, config, 64, 64, result, &error, options), name, ": ", error);
-        REQUIRE_MESSAGE(read, name, ": ", error);
-        Config whole = ran;
+        GpuRun run;
+        REQUIRE_MESSAGE(render_for_oracle(scene, config, 64, run, &error), name, ": ", error);
+        Config whole = run.config;
         whole.irradiance_window = false;
-        const Oracle oracle(ran, frame, slices), whole_light(whole, frame, slices);
-        std::size_t pixels = 0, beyond = 0, penumbra = 0, changed = 0;
-        double max_difference = 0;
-        for (std::size_t i = 0; i < result.visibility.size(); ++i) {
-            if (!result.geometry[i]) continue;
-            const OracleValue expected = oracle.visibility(result.positions[i], result.normals[i], config.fusion);
-            const double difference = std::abs(result.visibility[i] - expected.visibility);
-            ++pixels;
-            beyond += difference > expected.bound;
-            max_difference = std::max(max_difference, difference);
-            penumbra += expected.visibility > 0.02 && expected.visibility < 0.98;
-            changed += std::abs(expected.visibility -
-                                whole_light.visibility(result.positions[i], result.normals[i], config.fusion).visibility) > 0.05;
-        }
+        const Oracle oracle = oracle_of(run), whole_light(whole, run.frame, run.slices);
+        const Agreement a = agreement(oracle, run.result, config.fusion, name);
+        std::size_t changed = 0;
+        for (std::size_t i = 0; i < run.result.visibility.size(); ++i)
+            if (run.result.geometry[i])
+                changed += std::abs(oracle.visibility(run.result.positions[i], run.result.normals[i], config.fusion).visibility -
+                                    whole_light.visibility(run.result.positions[i], run.result.normals[i], config.fusion).visibility) >
+                           0.05;
         std::printf("irradiance window oracle %-34s max |GPU - oracle| %.2e, beyond the bound %zu of %zu, penumbra %zu, "
                     "changed by the window %zu\n",
-                    name.c_str(), max_difference, beyond, pixels, penumbra, changed);
-        CHECK_MESSAGE(beyond == 0, name, ": ", beyond, " pixels beyond the bound, max |diff| ", max_difference);
-        CHECK_MESSAGE(penumbra > 100, name, ": too few penumbra pixels for a meaningful comparison");
-        CHECK_MESSAGE(changed > pixels / 20, name, ": the window changed only ", changed, " of ", pixels, " pixels");
+                    name.c_str(), a.max_difference, a.beyond_bound, a.pixels, a.penumbra_pixels, changed);
+        CHECK_MESSAGE(a.beyond_bound == 0, name, ": ", a.beyond_bound, " pixels beyond the bound, max |diff| ", a.max_difference);
+        CHECK_MESSAGE(a.penumbra_pixels > 100, name, ": too few penumbra pixels for a meaningful comparison");
+        CHECK_MESSAGE(changed > a.pixels / 20, name, ": the window changed only ", changed, " of ", a.pixels, " pixels");
     }
 }
 

@@ -8,6 +8,7 @@
 // sub-texel weights, 2^-8 × the spread of the texels a fetch blends, or × the coverage along a
 // summed-area window's edges; plus fp32 coordinates), since every fusion rule is 1-Lipschitz in
 // each slice's occlusion. On llvmpipe the measured differences stay below a third of it.
+#include "oracle_agreement.hpp"
 #include "rendering/egl_context.hpp"
 #include "rendering/headless_render.hpp"
 #include "reference/oracle.hpp"
@@ -28,16 +29,6 @@ using namespace penumbra::playground;
 
 namespace {
 
-struct Agreement {
-    std::string name;
-    double max_difference = 0, mean_difference = 0;
-    double max_bound = 0;   // the largest per-pixel bound
-    double worst_ratio = 0; // max over the pixels of |GPU − oracle| / bound
-    std::size_t pixels = 0, beyond_bound = 0, penumbra_pixels = 0;
-    std::size_t beyond_level_bound = 0; // pixels whose kernel asked for a level above config.level_bound
-    int level_bound = -1;               // the level_bound the runtime fitted to the light
-};
-
 std::string describe_config(const Config& c) {
     return std::string(to_string(c.light)) + " " + std::string(to_string(c.filter)) + " " +
            std::string(to_string(c.fusion)) + " " + std::string(to_string(c.packing)) + " S=" + std::to_string(c.slices) +
@@ -46,51 +37,6 @@ std::string describe_config(const Config& c) {
            (c.slice_placement == SlicePlacement::adaptive ? " adaptive" : "") +
            (c.level_reduction == Config{}.level_reduction ? "" : " level-reduction " + std::to_string(c.level_reduction)) +
            (c.solid_casters ? " solid-casters" : "");
-}
-
-// The GPU run of one configuration: visibility at the shaded world positions, and what the
-// oracle needs from the runtime (the slicing output and the frame).
-struct GpuRun {
-    HeadlessResult result;
-    SliceTextures slices;
-    SliceFrame frame;
-    std::vector<float> boundaries; // adaptive slice placement: the GPU's S + 1 boundaries
-    Config config;                 // what ran: level_bound fitted to the light
-};
-
-bool render(const Scene& scene, const Config& config, int size, GpuRun& run, std::string* error) {
-    bool read = false;
-    std::string read_error;
-    RenderOptions options{.inspect = [&](const gl::Runtime& runtime) {
-        read = read_slice_textures(runtime, run.slices, &read_error) &&
-               read_slice_boundaries(runtime, run.boundaries, &read_error);
-        run.frame = runtime.frame();
-        run.config = runtime.config();
-    }};
-    if (!render_headless(scene, config, size, size, run.result, error, options)) return false;
-    if (!read) *error = read_error;
-    return read;
-}
-
-Agreement compare(const Oracle& oracle, const Config& config, const HeadlessResult& result) {
-    Agreement out;
-    out.name = describe_config(config);
-    double sum = 0;
-    for (std::size_t i = 0; i < result.visibility.size(); ++i) {
-        if (!result.geometry[i]) continue;
-        const OracleValue expected = oracle.visibility(result.positions[i], result.normals[i], config.fusion);
-        const double difference = std::abs(result.visibility[i] - expected.visibility);
-        ++out.pixels;
-        sum += difference;
-        out.max_difference = std::max(out.max_difference, difference);
-        out.max_bound = std::max(out.max_bound, expected.bound);
-        out.worst_ratio = std::max(out.worst_ratio, difference / std::max(expected.bound, 1e-12));
-        out.beyond_bound += difference > expected.bound;
-        out.beyond_level_bound += expected.beyond_level_bound;
-        out.penumbra_pixels += expected.visibility > 0.02 && expected.visibility < 0.98;
-    }
-    out.mean_difference = out.pixels ? sum / out.pixels : 0.0;
-    return out;
 }
 
 // Every valid light × slices {4, 16} × resolution {64, 256} × filter × packing (fusion is
@@ -188,7 +134,7 @@ TEST_CASE("oracle: GPU matches the CPU oracle within texture precision, every fi
             Config config = base;
             config.fusion = fusion;
             GpuRun run;
-            const bool rendered = render(*scene, config, image_size, run, &error);
+            const bool rendered = render_for_oracle(*scene, config, image_size, run, &error);
             CHECK_MESSAGE(rendered, describe_config(config), ": ", error);
             if (!rendered) continue;
             // The filter does not depend on the fusion: one oracle serves the four rules, as long
@@ -202,7 +148,7 @@ TEST_CASE("oracle: GPU matches the CPU oracle within texture precision, every fi
                 CHECK_MESSAGE(run.slices.coverage == oracle_input.coverage, describe_config(config),
                               ": the slicing output changed with the fusion rule");
             }
-            Agreement a = compare(*oracle, config, run.result);
+            Agreement a = agreement(*oracle, run.result, config.fusion, describe_config(config));
             a.level_bound = run.config.level_bound;
             std::printf("oracle %-44s max %.2e mean %.2e  bound max %.2e  worst diff/bound %.3f  beyond %zu/%zu  "
                         "penumbra %zu  level bound %d (over it %zu)\n",
