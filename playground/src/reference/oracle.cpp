@@ -416,9 +416,16 @@ double irradiance_of(glm::dvec3 p, glm::dvec3 n, glm::dvec3 part, glm::dvec2 lig
                     0.0);
 }
 
-// penumbra_irradianceWindow: the core, half the clip's side around the weight's peak inside the clip (xyz), and the weight of the whole clip's visibility (w), which gives the core and the ring around it their
-// share of the irradiance.
-glm::dvec4 irradiance_window(glm::dvec3 p, glm::dvec3 n, glm::dvec3 clip, glm::dvec2 light_size) {
+// penumbra_irradianceWindow: the core, half the clip's side around the weight's peak inside the clip, and the
+// weight of the whole clip's visibility, which gives the core and the ring around it their share of the
+// irradiance. fp32 cancels in the irradiance of a small clip (differences of four form-factor corners of order
+// one), which moves the GPU's weight by about 1e-6 over that irradiance.
+struct IrradianceWindow {
+    glm::dvec3 core{0.0};
+    double clip_weight = 1.0;  // 1: the clip alone
+    double weight_error = 0.0; // |GPU − oracle| of clip_weight
+};
+IrradianceWindow irradiance_window(glm::dvec3 p, glm::dvec3 n, glm::dvec3 clip, glm::dvec2 light_size) {
     const double side = 0.5 * clip.z;
     // the weight's peak: the foot, moved towards the normal's side by up to z / sqrt(3) on a wall
     const double facing = std::max(-n.z, 0.0);
@@ -429,7 +436,8 @@ glm::dvec4 irradiance_window(glm::dvec3 p, glm::dvec3 n, glm::dvec3 clip, glm::d
     const double whole = irradiance_of(p, n, clip, light_size);
     const double core = irradiance_of(p, n, glm::dvec3(centre, side), light_size);
     const double ring = whole > 1e-12 ? (1.0 - core / whole) / 0.75 : 1.0;
-    return {centre, side, std::clamp(ring, 0.0, 1.0)};
+    return {glm::dvec3(centre, side), std::clamp(ring, 0.0, 1.0),
+            std::min(1.0, 2e-6 / std::max(whole, 1e-30)) + arithmetic_error};
 }
 
 } // namespace
@@ -448,13 +456,11 @@ double cluster_count(glm::dvec4 quadrants) {
 OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion) const {
     glm::dvec3 p = glm::dvec3(light_from_world_ * glm::dvec4(glm::dvec3(world), 1.0));
     p.z = std::max(p.z, 1e-6); // points on or behind the light plane
-    const glm::dvec3 p_receiver = p;
     // Tangent clip (detail/occlusion/emit_visibility.hpp): the part of the light above the tangent plane, in the
     // light's unit square, cut along the axis the plane crosses most steeply; then the point
     // moves config.tangent_clip_offset slicing texels sideways along its normal.
     glm::dvec3 clip(0.0, 0.0, 1.0);
-    glm::dvec3 receiver_normal(0.0, 0.0, -1.0); // in the light frame, unit
-    glm::dvec4 window(0.0, 0.0, 0.0, 1.0); // irradiance window: core (xyz) and the clip's weight (w); 1: the clip alone
+    IrradianceWindow window; // the clip alone unless config.irradiance_window
     bool clip_ambiguous = false;
     if (config_.tangent_clip) {
         glm::dvec3 n = glm::dmat3(light_from_world_) * glm::dvec3(normal);
@@ -472,9 +478,8 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
         };
         clip = clip_along(std::abs(slopes.x) >= std::abs(slopes.y));
         // irradiance window (penumbra_irradianceWindow), at the receiver before it moves: the core, half the clip's
-        // side around the light point above p, and the weight of the whole clip's visibility
+        // side around the weight's peak, and the weight of the whole clip's visibility
         if (config_.irradiance_window) window = irradiance_window(p, n, clip, light_size_);
-        receiver_normal = n;
         // fp32 may pick the other axis where both slopes are (nearly) equal; it matters only
         // where the two cuts differ
         clip_ambiguous = std::abs(std::abs(slopes.x) - std::abs(slopes.y)) <= 1e-5 * std::abs(slopes.x) &&
@@ -556,14 +561,12 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
         }
         return {v, bound, beyond};
     };
-    if (window.w >= 1.0) return fused(clip);
-    // penumbra_windowedVisibility: the clip's and the core's visibilities mixed; fp32 cancels in the
-    // irradiance of a small clip (differences of four form-factor corners of order one), which moves the
-    // weight by about 1e-6 over that irradiance
-    const OracleValue whole = fused(clip), core = fused(glm::dvec3(window));
-    const double weight_error = std::min(1.0, 2e-6 / std::max(irradiance_of(p_receiver, receiver_normal, clip, light_size_), 1e-30)) + arithmetic_error;
-    return {window.w * whole.visibility + (1.0 - window.w) * core.visibility,
-            window.w * whole.bound + (1.0 - window.w) * core.bound + weight_error * std::abs(whole.visibility - core.visibility),
+    if (window.clip_weight >= 1.0) return fused(clip);
+    // penumbra_windowedVisibility: the clip's and the core's visibilities mixed
+    const double w = window.clip_weight;
+    const OracleValue whole = fused(clip), core = fused(window.core);
+    return {w * whole.visibility + (1.0 - w) * core.visibility,
+            w * whole.bound + (1.0 - w) * core.bound + window.weight_error * std::abs(whole.visibility - core.visibility),
             whole.beyond_level_bound || core.beyond_level_bound};
 }
 
