@@ -254,7 +254,7 @@ struct Config {
                                             // OpenGL only (a logical XOR on the slicing targets)
     bool irradiance_window = false;         // occlusion, rect light, tangent clip: the visibility weighs the light
                                             // by the irradiance it sends the receiver, not by area: the clip's
-                                            // and its core's (half as wide, around the point above the receiver)
+                                            // and its core's (half as wide, around the irradiance's peak)
                                             // visibilities mixed by their share of the irradiance; two passes of
                                             // the slice loop (docs/model.md §1.7.5)
 
