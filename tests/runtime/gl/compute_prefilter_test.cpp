@@ -1,10 +1,15 @@
 // The compute prefilter (Config::prefilter_stage compute): the N-buffer levels its dispatches write
 // are the fragment passes', at full and reduced resolution, RGBA8 and RGBA16F, with tiles smaller
 // than a workgroup's block. RGBA16F: texel for texel. RGBA8: the compute program rounds each level
-// to 1/255 in shared memory before building the next from it; where the fp32 sum of four texels lies
-// on a rounding tie (a mean of four multiples of 1/255 often ends in .5 units) the two paths may round
-// it apart, so a few texels per level are one unit off (at most 5% of the fractional ones; llvmpipe:
-// none below level 4) and the visibility within 0.005. Label "gl".
+// to 1/255 in shared memory before building the next from it, the fragment passes let the render
+// target convert. A mean of four multiples of 1/255 often ends in half a unit, and there GL lets a
+// conversion pick either neighbour (the spec's float-to-normalized conversion returns "one of the two
+// closest" values), so the two paths may round a tie apart: texels one unit off (a difference could
+// carry into the next level's mean; on llvmpipe and an NVIDIA H200 none went past one unit). How many
+// depends on the implementation (llvmpipe: a few per level from level 4; the H200: up to half the
+// fractional texels of a level), so only the unit is checked. The visibility then moves by one unit per
+// slice whose lookup reads such a texel (the fusion is 1-Lipschitz in each slice): within 2/255 here.
+// Label "gl".
 #include "rendering/egl_context.hpp"
 #include "rendering/headless_render.hpp"
 #include "scenes/scenes.hpp"
@@ -57,7 +62,7 @@ std::string describe(const Config& c) {
 
 } // namespace
 
-TEST_CASE("compute prefilter: the dispatches write the fragment passes' levels (RGBA8: up to one unit at ties)") {
+TEST_CASE("compute prefilter: the dispatches write the fragment passes' levels (RGBA8: one unit apart at most)") {
     std::string error;
     auto context = HeadlessContext::create(&error);
     REQUIRE_MESSAGE(context, error);
@@ -106,7 +111,6 @@ TEST_CASE("compute prefilter: the dispatches write the fragment passes' levels (
                 CHECK_MESSAGE(differ == 0, describe(base), " level ", l, ": ", differ, " values differ");
             } else {
                 CHECK_MESSAGE(worst <= 1.0 + 1e-3, describe(base), " level ", l, ": worst ", worst, " units");
-                CHECK_MESSAGE(differ <= std::max<std::size_t>(2, fractional / 20), describe(base), " level ", l, ": ", differ, " values differ");
             }
             // penumbrae reach the level: 20 values between 0 and 1, or an eighth of a level that holds fewer
             // than 160 (the top one of 16/256 at level_reduction 0: one texel per slice)
@@ -116,6 +120,8 @@ TEST_CASE("compute prefilter: the dispatches write the fragment passes' levels (
         for (std::size_t i = 0; i < a.result.visibility.size(); ++i)
             worst = std::max(worst, double(std::abs(a.result.visibility[i] - b.result.visibility[i])));
         std::printf("compute prefilter %-40s visibility differs by up to %.5f\n", describe(base).c_str(), worst);
-        CHECK_MESSAGE(worst <= (base.level_format == LevelFormat::rgba16f ? 0.0 : 0.005), describe(base), ": visibility differs by up to ", worst);
+        // measured: up to .0016 on llvmpipe, .0051 on an NVIDIA H200
+        CHECK_MESSAGE(worst <= (base.level_format == LevelFormat::rgba16f ? 0.0 : 2.0 / 255.0), describe(base),
+                      ": visibility differs by up to ", worst);
     }
 }

@@ -29,7 +29,14 @@ namespace {
 // repeated subtraction); mipmap atlas within 2.5e-5 here, 8e-5 at 512x512 and 32 slices in
 // penumbra-bench-shading (still there with nearest filtering, so it is a texel flip on a faded or
 // filtered slice, not filter-weight precision). An RGBA8 texel step is 1/255 = 3.9e-3.
-constexpr double max_difference = 1e-4;
+// GPUs quantize the sub-texel fraction and the fraction between two levels to 8 bits (oracle.cpp,
+// point 2), so there the same ulp, where it carries a coordinate across a 1/256 step, moves that
+// fetch by 1/256 of the spread of the texels it blends: measured on an NVIDIA H200 (driver 580),
+// up to 2.9e-3 over these configurations. The check allows 1e-4 on llvmpipe, where it was measured
+// and where CI runs, and two such steps on any other renderer.
+double allowed_difference(const HeadlessContext& context) {
+    return context.renderer().find("llvmpipe") != std::string::npos ? 1e-4 : 2.0 / 256.0;
+}
 
 constexpr int image_size = 96;
 
@@ -84,10 +91,11 @@ std::string name_of(const Config& c) {
 
 } // namespace
 
-TEST_CASE("specialized vs generic: same images within 1e-4, every filter x packing x fusion") {
+TEST_CASE("specialized vs generic: same images within 1e-4 (a GPU: its filtering precision), every filter x packing x fusion") {
     std::string error;
     auto context = HeadlessContext::create(&error);
     REQUIRE_MESSAGE(context, error);
+    const double max_difference = allowed_difference(*context);
     const SceneOnGpu boxes = upload("boxes", &error);
     int geometry = 0;
     for (const glm::vec4& p : boxes.positions) geometry += p.w > 0.5f;
@@ -151,6 +159,7 @@ TEST_CASE("specialized vs generic: tangent clip, every storage (the normals G-bu
     std::string error;
     auto context = HeadlessContext::create(&error);
     REQUIRE_MESSAGE(context, error);
+    const double max_difference = allowed_difference(*context);
     const SceneOnGpu box = upload("box", &error);
     int compared = 0;
     for (Filter filter : all_values<Filter>())
@@ -198,6 +207,7 @@ TEST_CASE("specialized vs generic: the 3.30 and ES 3.00 dialects (sampler arrays
     std::string error;
     auto context = HeadlessContext::create(&error);
     REQUIRE_MESSAGE(context, error);
+    const double max_difference = allowed_difference(*context);
     const SceneOnGpu boxes = upload("boxes", &error);
     const Config configs[] = {
         {.slices = 8, .resolution = 64, .filter = Filter::nbuffer, .packing = Packing::atlas, .target = Target::glsl330},

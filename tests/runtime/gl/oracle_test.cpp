@@ -176,7 +176,11 @@ TEST_CASE("oracle: GPU matches the CPU oracle within texture precision, every fi
 // resolution. RGBA16F: equal up to level 5 (N-buffer means of level l are multiples of 4^-l, exact
 // in half floats up to 2^-10), then within l - 5 units of 2^-11 (the oracle does not round half
 // floats). RGBA8: equal, or one unit off where the exact mean lies on a rounding tie (the GPU's fp32
-// sum of rounded texels against the oracle's double).
+// sum of rounded texels against the oracle's double; GL lets a conversion pick either neighbour). A
+// tie rounded the other way carries into the next level's mean, so level l may be up to l units off
+// (an NVIDIA H200: 31 and 336 texels two units off at levels 5 and 6 of every level at full
+// resolution, a thousandth of their fractional texels; llvmpipe: none); the check allows l units,
+// and more than one on at most a hundredth of a level's fractional texels.
 TEST_CASE("oracle: the GPU's atlas filter levels equal the oracle's, texel by texel") {
     std::string error;
     auto context = HeadlessContext::create(&error);
@@ -214,7 +218,7 @@ TEST_CASE("oracle: the GPU's atlas filter levels equal the oracle's, texel by te
         const int T = texture_count(run.config);
         for (int l = 0; l < static_cast<int>(levels.size()); ++l) {
             const int side = run.config.resolution / level_spacing(run.config, l);
-            std::size_t texels = 0, off_by_one = 0, beyond = 0, fractional = 0;
+            std::size_t texels = 0, off_by_one = 0, beyond = 0, fractional = 0, carried = 0;
             for (int slice = 0; slice < run.config.slices; ++slice) {
                 REQUIRE(oracle.level_side(slice, l) == side);
                 const int t = slice / 4, c = slice % 4;
@@ -226,13 +230,16 @@ TEST_CASE("oracle: the GPU's atlas filter levels equal the oracle's, texel by te
                         ++texels;
                         fractional += expected > 0.0 && expected < 1.0;
                         off_by_one += units > 1e-3;
-                        beyond += units > (rgba8 ? 1.0 : std::max(l - 5, 0)) + 1e-3;
+                        beyond += units > (rgba8 ? std::max(l, 1) : std::max(l - 5, 0)) + 1e-3;
+                        carried += rgba8 && units > 1.0 + 1e-3;
                     }
             }
-            std::printf("levels %-40s level %d (%d texels per side): %zu texels, %zu between 0 and 1, %zu one unit off, "
-                        "%zu beyond\n",
-                        describe_config(config).c_str(), l, side, texels, fractional, off_by_one, beyond);
+            std::printf("levels %-40s level %d (%d texels per side): %zu texels, %zu between 0 and 1, %zu off (%zu by more "
+                        "than a unit), %zu beyond\n",
+                        describe_config(config).c_str(), l, side, texels, fractional, off_by_one, carried, beyond);
             CHECK_MESSAGE(beyond == 0, describe_config(config), " level ", l, ": ", beyond, " texels off the oracle's");
+            CHECK_MESSAGE(carried <= fractional / 100, describe_config(config), " level ", l, ": ", carried,
+                          " texels more than a unit off the oracle's");
             // the slicing output has penumbrae: the levels above 0 have fractional texels to compare (100, or
             // an eighth of a level of fewer than 800 texels: the top one at level_reduction 0, 4 x 4 per slice)
             if (l > 0) CHECK_MESSAGE(fractional > std::min<std::size_t>(100, texels / 8), describe_config(config), " level ", l);

@@ -310,10 +310,12 @@ TEST_CASE("replace_program: a syntax error names file and line and keeps the las
     CHECK(rt->emission().programs.back().stages == original);
     CHECK(identical(planes.render(*rt), before));
 
-    // A link error (no main) is reported and also keeps the program.
-    std::vector<penumbra::ShaderFile> no_main = original;
-    no_main[1].text = "#version 450 core\nout vec4 colour;\n";
-    const std::string link_diagnostic = rt->replace_program("shading_deferred", no_main);
+    // A link error (a function declared and called, never defined: it compiles, and no linker can
+    // resolve it) is reported and also keeps the program. A stage without main() is no such test: an
+    // NVIDIA H200 linked one.
+    std::vector<penumbra::ShaderFile> unresolved = original;
+    unresolved[1].text = "#version 450 core\nout vec4 colour;\nvec4 penumbra_nowhere();\nvoid main()\n{\n    colour = penumbra_nowhere();\n}\n";
+    const std::string link_diagnostic = rt->replace_program("shading_deferred", unresolved);
     CHECK(link_diagnostic.find("shading_deferred (link)") != std::string::npos);
     CHECK(rt->program("shading_deferred") == running);
 
