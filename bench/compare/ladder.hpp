@@ -83,6 +83,18 @@ inline LadderEntry clustered_entry(int slices, int resolution) {
     return entry;
 }
 
+// The irradiance window (docs/model.md §1.7.5): the light weighed by the irradiance it sends the
+// receiver, a second pass of the slice loop. Rectangle light only (validation refuses the sun). It
+// estimates the shaded image rather than the area fraction the conclusions' `oriented` reference
+// measures, so its own family: the tables show it beside the default and never pick it.
+inline LadderEntry irradiance_window_entry(int slices, int resolution) {
+    LadderEntry entry = occlusion_entry(Filter::nbuffer, slices, resolution);
+    entry.config.irradiance_window = true;
+    entry.family = "irradiance-window";
+    entry.label += " irradiance";
+    return entry;
+}
+
 // The default before it built only the levels its kernels reach, in RGBA8, at reduced resolution:
 // every level, RGBA16F, at full resolution (85 MiB at 16/512). Its own family, so that the tables show it beside the default and never pick it.
 inline LadderEntry every_level_entry(int slices, int resolution) {
@@ -197,6 +209,7 @@ inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
         solid_casters_entry(Filter::nbuffer, 16, 512),
         clustered_entry(8, 256),
         clustered_entry(16, 512),
+        irradiance_window_entry(16, 512),
         every_level_entry(16, 512),
         full_levels_entry(16, 512),
         compute_prefilter_entry(16, 512),

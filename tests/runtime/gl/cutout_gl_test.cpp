@@ -124,7 +124,7 @@ TEST_CASE("cut-out casters: the GPU's visibility equals the oracle's within its 
         std::printf("cutout oracle %-40s max |GPU - oracle| %.2e, beyond the bound %zu of %zu, penumbra %zu\n",
                     name.c_str(), a.max_difference, a.beyond_bound, a.pixels, a.penumbra_pixels);
         CHECK_MESSAGE(a.beyond_bound == 0, name, ": ", a.beyond_bound, " pixels beyond the bound, max |diff| ",
-                      a.max_difference);
+                      a.max_difference, "; the worst, ", a.worst);
         CHECK_MESSAGE(a.penumbra_pixels > 100, name, ": too few penumbra pixels for a meaningful comparison");
     }
 }

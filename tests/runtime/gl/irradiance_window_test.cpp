@@ -63,7 +63,8 @@ TEST_CASE("irradiance window: the GPU's visibility equals the oracle's within it
         std::printf("irradiance window oracle %-34s max |GPU - oracle| %.2e, beyond the bound %zu of %zu, penumbra %zu, "
                     "changed by the window %zu\n",
                     name.c_str(), a.max_difference, a.beyond_bound, a.pixels, a.penumbra_pixels, changed);
-        CHECK_MESSAGE(a.beyond_bound == 0, name, ": ", a.beyond_bound, " pixels beyond the bound, max |diff| ", a.max_difference);
+        CHECK_MESSAGE(a.beyond_bound == 0, name, ": ", a.beyond_bound, " pixels beyond the bound, max |diff| ", a.max_difference,
+                      "; the worst, ", a.worst);
         CHECK_MESSAGE(a.penumbra_pixels > 100, name, ": too few penumbra pixels for a meaningful comparison");
         CHECK_MESSAGE(changed > a.pixels / 20, name, ": the window changed only ", changed, " of ", a.pixels, " pixels");
     }

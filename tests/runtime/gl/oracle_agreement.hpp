@@ -54,6 +54,9 @@ struct Agreement {
     std::size_t pixels = 0, beyond_bound = 0, penumbra_pixels = 0;
     std::size_t beyond_level_bound = 0; // pixels whose kernel asked for a level above config.level_bound
     int level_bound = -1;               // the level_bound the runtime fitted to the light
+    // The pixel of the largest |GPU − oracle| / bound, as a failure's message needs it on a renderer nobody
+    // here can run: where, both values, the bound, and every slice's faded occlusion q_k there.
+    std::string worst;
 };
 
 // The GPU's visibility in `result` against the oracle's, over the pixels with geometry.
@@ -69,7 +72,16 @@ inline Agreement agreement(const Oracle& oracle, const HeadlessResult& result, F
         sum += difference;
         out.max_difference = std::max(out.max_difference, difference);
         out.max_bound = std::max(out.max_bound, expected.bound);
-        out.worst_ratio = std::max(out.worst_ratio, difference / std::max(expected.bound, 1e-12));
+        const double ratio = difference / std::max(expected.bound, 1e-12);
+        if (ratio > out.worst_ratio) {
+            out.worst_ratio = ratio;
+            out.worst = "pixel " + std::to_string(i % result.width) + "," + std::to_string(i / result.width) + ": GPU " +
+                        std::to_string(result.visibility[i]) + ", oracle " + std::to_string(expected.visibility) + " +- " +
+                        std::to_string(expected.bound) + "; q by slice (light first):";
+            const std::vector<double> q = oracle.occlusions(result.positions[i]);
+            for (std::size_t k = 0; k < q.size(); ++k)
+                if (q[k] > 0.0) out.worst += " " + std::to_string(k) + ":" + std::to_string(q[k]);
+        }
         out.beyond_bound += difference > expected.bound;
         out.beyond_level_bound += expected.beyond_level_bound;
         out.penumbra_pixels += expected.visibility > 0.02 && expected.visibility < 0.98;

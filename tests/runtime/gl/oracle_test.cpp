@@ -157,7 +157,7 @@ TEST_CASE("oracle: GPU matches the CPU oracle within texture precision, every fi
             CHECK_MESSAGE(a.beyond_level_bound == 0, a.name, ": ", a.beyond_level_bound,
                           " pixels asked for a level above the fitted level_bound ", a.level_bound);
             CHECK_MESSAGE(a.beyond_bound == 0, a.name, ": ", a.beyond_bound, " pixels beyond the bound, max |diff| ",
-                          a.max_difference);
+                          a.max_difference, "; the worst, ", a.worst);
             // (the small sun's additive penumbrae with the clip: 37 pixels of 64², measured)
             CHECK_MESSAGE(a.penumbra_pixels > 30, a.name, ": too few penumbra pixels for a meaningful comparison");
             runs.push_back(a);
