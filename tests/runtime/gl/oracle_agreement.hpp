@@ -64,6 +64,8 @@ inline Agreement agreement(const Oracle& oracle, const HeadlessResult& result, F
     Agreement out;
     out.name = std::move(name);
     double sum = 0;
+    std::size_t worst_pixel = 0;
+    OracleValue worst_expected;
     for (std::size_t i = 0; i < result.visibility.size(); ++i) {
         if (!result.geometry[i]) continue;
         const OracleValue expected = oracle.visibility(result.positions[i], result.normals[i], fusion);
@@ -75,18 +77,23 @@ inline Agreement agreement(const Oracle& oracle, const HeadlessResult& result, F
         const double ratio = difference / std::max(expected.bound, 1e-12);
         if (ratio > out.worst_ratio) {
             out.worst_ratio = ratio;
-            out.worst = "pixel " + std::to_string(i % result.width) + "," + std::to_string(i / result.width) + ": GPU " +
-                        std::to_string(result.visibility[i]) + ", oracle " + std::to_string(expected.visibility) + " +- " +
-                        std::to_string(expected.bound) + "; q by slice (light first):";
-            const std::vector<double> q = oracle.occlusions(result.positions[i]);
-            for (std::size_t k = 0; k < q.size(); ++k)
-                if (q[k] > 0.0) out.worst += " " + std::to_string(k) + ":" + std::to_string(q[k]);
+            worst_pixel = i;
+            worst_expected = expected;
         }
         out.beyond_bound += difference > expected.bound;
         out.beyond_level_bound += expected.beyond_level_bound;
         out.penumbra_pixels += expected.visibility > 0.02 && expected.visibility < 0.98;
     }
     out.mean_difference = out.pixels ? sum / out.pixels : 0.0;
+    if (out.pixels) {
+        const std::size_t i = worst_pixel;
+        out.worst = "pixel " + std::to_string(i % result.width) + "," + std::to_string(i / result.width) + ": GPU " +
+                    std::to_string(result.visibility[i]) + ", oracle " + std::to_string(worst_expected.visibility) + " +- " +
+                    std::to_string(worst_expected.bound) + "; q by slice (light first):";
+        const std::vector<double> q = oracle.occlusions(result.positions[i]);
+        for (std::size_t k = 0; k < q.size(); ++k)
+            if (q[k] > 0.0) out.worst += " " + std::to_string(k) + ":" + std::to_string(q[k]);
+    }
     return out;
 }
 
