@@ -8,10 +8,11 @@
 //      exact value is 0 or 1 are exact (a mean of zeros or of ones rounds to itself). RGBA8
 //      N-buffer and Gaussian levels are modelled: the oracle rounds each level to the nearest
 //      1/255 before building the next, so what is left is the GPU's fp32 sum at a rounding tie.
-//   2. bilinear weights: GPUs quantize the sub-texel fraction to 8 bits, so each weight is off by
-//      up to δ = 2^-8; a bilinear fetch is then off by ≤ (2δ + δ²)·(max − min of its 4 texels).
-//      The same δ applies to the hardware's fraction between two levels (mipmap trilinear, the
-//      volume's depth): ≤ δ·|level lo − level hi|.
+//   2. bilinear weights: GPUs quantize the sub-texel fraction, usually to 8 bits, so each weight is
+//      off by up to δ (TexturePrecision::sub_texel, 2^-8 unless measured coarser); a bilinear fetch
+//      is then off by ≤ (2δ + δ²)·(max − min of its 4 texels). The same δ applies to the volume's
+//      depth: ≤ δ·|slice lo − slice hi|. The hardware's fraction between two mip levels (mipmap
+//      trilinear) has its own, δ_λ (TexturePrecision::level_fraction): ≤ δ_λ·|level lo − level hi|.
 //   3. fp32 coordinates: kernel centres and N-buffer anchors are computed in fp32, off by about
 //      2^-20 in uv, i.e. η = R·2^-19 texels (with margin), worth η·(texel spread) per axis; the
 //      level λ (log2, fp32) is off by ~2^-16, worth 2^-16·|level lo − level hi|.
@@ -36,7 +37,6 @@ namespace penumbra::playground {
 
 namespace {
 
-constexpr double weight_step = 1.0 / 256.0;       // δ: 8-bit sub-texel fraction
 constexpr double level_error = 1.0 / 65536.0;     // fp32 log2 and level arithmetic
 constexpr double arithmetic_error = 1.0 / 65536.0; // fp32 fade weight and fusion, per slice
 constexpr double fp32_epsilon = 1.0 / 16777216.0;  // 2^-24
@@ -104,8 +104,9 @@ bool read_slice_boundaries(const penumbra::gl::Runtime& runtime, std::vector<flo
     return true;
 }
 
-Oracle::Oracle(const Config& config, const SliceFrame& frame, SliceTextures slices, std::vector<float> boundaries)
-    : config_(config) {
+Oracle::Oracle(const Config& config, const SliceFrame& frame, SliceTextures slices, std::vector<float> boundaries,
+               TexturePrecision precision)
+    : config_(config), precision_(precision) {
     const std::size_t R = static_cast<std::size_t>(config.resolution);
     if (slices.resolution != config.resolution || slices.slices != config.slices ||
         slices.coverage.size() != R * R * static_cast<std::size_t>(config.slices))
@@ -253,14 +254,15 @@ Oracle::Sample Oracle::bilinear(int slice, int level, glm::dvec2 coords) const {
     }
     const double spread = *std::max_element(t, t + 4) - *std::min_element(t, t + 4);
     const double eta = config_.resolution * std::ldexp(1.0, -19);
-    s.bound = storage + (2 * weight_step + weight_step * weight_step + 2 * eta) * spread;
+    const double delta = precision_.sub_texel;
+    s.bound = storage + (2 * delta + delta * delta + 2 * eta) * spread;
     return s;
 }
 
-Oracle::Sample Oracle::mix_levels(const Sample& lo, const Sample& hi, double t, bool hardware) const {
+Oracle::Sample Oracle::mix_levels(const Sample& lo, const Sample& hi, double t, double fraction_error) const {
     const double difference = std::abs(hi.value - lo.value);
     return {(1 - t) * lo.value + t * hi.value,
-            (1 - t) * lo.bound + t * hi.bound + (level_error + (hardware ? weight_step : 0.0)) * difference};
+            (1 - t) * lo.bound + t * hi.bound + (level_error + fraction_error) * difference};
 }
 
 // Bilinear interpolation of the prefix table at a corner (in texels, 0..R): exact for box-shaped
@@ -295,7 +297,8 @@ Oracle::Sample Oracle::box_filtered(int slice, glm::dvec2 centre, double side) c
     const double eta = R * std::ldexp(1.0, -19);
     const double edges = column(lo.x) + column(hi.x) + row(lo.y) + row(hi.y);
     const double largest = prefix(slice, glm::min(glm::floor(hi) + 1.0, glm::dvec2(R)));
-    const double sum_bound = (weight_step + eta) * edges + 4 * weight_step * weight_step + 16 * fp32_epsilon * largest;
+    const double delta = precision_.sub_texel;
+    const double sum_bound = (delta + eta) * edges + 4 * delta * delta + 16 * fp32_epsilon * largest;
     return {std::clamp(sum / (width * width), 0.0, 1.0), sum_bound / (width * width)};
 }
 
@@ -319,7 +322,7 @@ Oracle::Sample Oracle::filtered_at(int slice, glm::dvec2 centre, double level, i
     if (config_.filter == Filter::mipmap) {
         // hardware trilinear: each level read at the same uv in its own texel grid
         auto at_level = [&](int l) { return bilinear(slice, l, centre * static_cast<double>(R >> l)); };
-        return mix_levels(at_level(lo), lo < L ? at_level(lo + 1) : at_level(lo), t, true);
+        return mix_levels(at_level(lo), lo < L ? at_level(lo + 1) : at_level(lo), t, precision_.level_fraction);
     }
     const bool nbuffer = config_.filter == Filter::nbuffer;
     // N-buffer anchor: a window of 2^l texels centred at c starts 2^(l-1) texels left of it
@@ -329,7 +332,7 @@ Oracle::Sample Oracle::filtered_at(int slice, glm::dvec2 centre, double level, i
         // the last level is the border (0, weight t = 0 there)
         const glm::dvec2 coords = centre * static_cast<double>(R) - anchor_shift(level);
         const Sample hi = lo < L ? bilinear(slice, lo + 1, coords) : Sample{};
-        return mix_levels(bilinear(slice, lo, coords), hi, t, true);
+        return mix_levels(bilinear(slice, lo, coords), hi, t, precision_.sub_texel);
     }
     // atlas and array: each level at its own anchor, then a lerp in the shader; a reduced level
     // (spacing s) has texel j at level-0 texel s·j: its centre, level-0 coordinate s·j + s/2, stands
@@ -338,7 +341,7 @@ Oracle::Sample Oracle::filtered_at(int slice, glm::dvec2 centre, double level, i
         const double s = level_spacing(config_, l);
         return bilinear(slice, l, (centre * static_cast<double>(R) - anchor_shift(l) + 0.5 * (s - 1.0)) / s);
     };
-    return mix_levels(at_level(lo), at_level(std::min(lo + 1, L)), t, false);
+    return mix_levels(at_level(lo), at_level(std::min(lo + 1, L)), t, 0.0);
 }
 
 // paper §3.4.2 fade: 0 at or below the point, a ramp over fade_ramp of the nearest slice above, then 1

@@ -69,13 +69,25 @@ struct OracleValue {
     bool beyond_level_bound = false;
 };
 
+// What the renderer's texture units round, as fractions: the weight between two texels of a bilinear fetch
+// (and between a volume's depth slices), and the weight between two mip levels of a trilinear fetch. GL
+// leaves both to the implementation; 2^-8 is what GPUs have long used, llvmpipe included. A renderer may
+// blend mip levels more coarsely (an NVIDIA H200 does; docs/model.md §4): the GL tests measure it
+// (tests/runtime/gl/texture_precision.hpp) and pass it here.
+struct TexturePrecision {
+    double sub_texel = 1.0 / 256.0;
+    double level_fraction = 1.0 / 256.0;
+};
+
 class Oracle {
 public:
     // Builds the filter of `config` from `slices`. Precondition: the slices match the config's
     // slice count and resolution (the constructor checks and throws std::invalid_argument).
     // `boundaries`: the S + 1 slice boundaries of adaptive placement (read_slice_boundaries); empty:
     // the uniform slices of frame.slice_depths.
-    Oracle(const Config& config, const SliceFrame& frame, SliceTextures slices, std::vector<float> boundaries = {});
+    // `precision`: what the bound assumes the texture units round.
+    Oracle(const Config& config, const SliceFrame& frame, SliceTextures slices, std::vector<float> boundaries = {},
+           TexturePrecision precision = {});
 
     OracleValue visibility(glm::vec3 world) const { return visibility(world, config_.fusion); }
     // The same with another fusion rule (the filter does not depend on it).
@@ -124,11 +136,13 @@ private:
     double storage_error(int level) const;
     Sample bilinear(int slice, int level, glm::dvec2 texel_coords) const;
     Sample filtered_at(int slice, glm::dvec2 centre, double level, int lo, double t) const;
-    Sample mix_levels(const Sample& lo, const Sample& hi, double t, bool hardware) const;
+    // `fraction_error`: how far the hardware's weight t may be off (0 for a mix in the shader)
+    Sample mix_levels(const Sample& lo, const Sample& hi, double t, double fraction_error) const;
     Sample box_filtered(int slice, glm::dvec2 centre, double side) const;
     double prefix(int slice, glm::dvec2 corner) const;
 
     Config config_;
+    TexturePrecision precision_;
     glm::dmat4 light_from_world_{1.0};
     double cop_distance_ = 0, window_half_size_ = 0, tan_angular_radius_ = 0;
     glm::dvec2 light_size_{0.0};

@@ -43,8 +43,11 @@ inline bool render_for_oracle(const Scene& scene, const Config& config, int size
     return read;
 }
 
-// The oracle built from what `run` read back.
-inline Oracle oracle_of(const GpuRun& run) { return Oracle(run.config, run.frame, run.slices, run.boundaries); }
+// The oracle built from what `run` read back; `precision`: what the renderer's texture units round
+// (measure_texture_precision().for_oracle() where a test reads mip chains).
+inline Oracle oracle_of(const GpuRun& run, TexturePrecision precision = {}) {
+    return Oracle(run.config, run.frame, run.slices, run.boundaries, precision);
+}
 
 struct Agreement {
     std::string name;

@@ -1,0 +1,166 @@
+// What the current renderer's texture units round, measured with two draws: the weight between two
+// texels of a bilinear fetch, and the weight between two mip levels of a trilinear one. GL leaves
+// both to the implementation (Vulkan states them as subTexelPrecisionBits and mipmapPrecisionBits,
+// at least 4 bits each), and drivers may also skip the blend near whole levels ("brilinear"). The
+// oracle's bound takes what is measured here, never less than its 8-bit default: an NVIDIA H200
+// read faint penumbrae between two mip levels further from the exact blend than 2^-8 allows.
+// Needs a current GL 4.5 context.
+#pragma once
+
+#include "reference/oracle.hpp"
+
+#include <penumbra/gl/link_program.hpp>
+#include <penumbra/program.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace penumbra::playground {
+
+struct MeasuredTexturePrecision {
+    // the largest |fetched − exact| over the probed fractions (the exact blend of a 0 and a 1)
+    double sub_texel = 0.0;
+    double level_fraction = 0.0;
+    // the trilinear blend at a few fractions, "t → fetched", for messages and notes
+    std::string level_curve;
+    std::string error; // non-empty when the probe could not run (then the values above are 0)
+
+    // What the oracle's bound should assume: the measured error, at least the 8-bit default.
+    TexturePrecision for_oracle() const {
+        const TexturePrecision defaults;
+        return {.sub_texel = std::max(defaults.sub_texel, sub_texel),
+                .level_fraction = std::max(defaults.level_fraction, level_fraction)};
+    }
+};
+
+namespace texture_precision_detail {
+
+// One fetch per pixel of a probes × 1 R32F target, pixel i at fraction i / probes: a bilinear fetch
+// between a 0 texel and a 1 texel at that sub-texel fraction, or a trilinear one between a level of
+// zeros and a level of ones at that level fraction (levels 0 → 1 for i < probes / 2, 1 → 2 above).
+constexpr int probes = 2048;
+
+inline const char* vertex_source() {
+    return "#version 450 core\n"
+           "void main() {\n"
+           "    vec2 corner = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));\n"
+           "    gl_Position = vec4(corner * 2.0 - 1.0, 0.0, 1.0);\n"
+           "}\n";
+}
+
+inline std::string fragment_source(bool levels) {
+    const std::string n = std::to_string(probes / 2) + ".0";
+    std::string body = levels
+        ? "    // levels 0, 1, 2 hold 0, 1, 0: the fetch is the weight of level 1\n"
+          "    fraction = textureLod(probe, vec3(0.5, 0.5, 0.0), float(i) / " + n + ").r;\n"
+        : "    // texels 0 and 1 of a 2 x 1 level hold 0 and 1: at x = (0.5 + f) / 2 the fetch is f\n"
+          "    float f = float(i % " + std::to_string(probes / 2) + ") / " + n + ";\n"
+          "    fraction = textureLod(probe, vec3((0.5 + f) / 2.0, 0.5, 0.0), 0.0).r;\n";
+    return "#version 450 core\n"
+           "layout(binding = 0) uniform sampler2DArray probe;\n"
+           "layout(location = 0) out float fraction;\n"
+           "void main() {\n"
+           "    int i = int(gl_FragCoord.x);\n" +
+           body + "}\n";
+}
+
+// An RGBA8 array texture of one layer, as the runtime's mip chains are, with `levels` given level by
+// level (each a side × side square of one value) and trilinear filtering.
+inline GLuint probe_texture(int side, const std::vector<unsigned char>& level_values, const std::vector<unsigned char>& texels0) {
+    GLuint texture = 0;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture);
+    const int levels = static_cast<int>(std::max<std::size_t>(level_values.size(), 1));
+    const int width0 = texels0.empty() ? side : static_cast<int>(texels0.size());
+    const int height0 = texels0.empty() ? side : 1;
+    glTextureStorage3D(texture, levels, GL_RGBA8, width0, height0, 1);
+    if (!texels0.empty()) {
+        std::vector<unsigned char> rgba;
+        for (unsigned char v : texels0) rgba.insert(rgba.end(), {v, v, v, v});
+        glTextureSubImage3D(texture, 0, 0, 0, 0, width0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    } else {
+        for (int l = 0; l < levels; ++l) {
+            const int s = std::max(side >> l, 1);
+            const std::vector<unsigned char> rgba(std::size_t(4) * s * s, level_values[l]);
+            glTextureSubImage3D(texture, l, 0, 0, 0, s, s, 1, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+        }
+    }
+    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, texels0.empty() ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
+    glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture, GL_TEXTURE_MAX_LEVEL, levels - 1);
+    return texture;
+}
+
+// The probes' fetched fractions, or empty with *error set.
+inline std::vector<float> fetch_fractions(bool levels, std::string* error) {
+    const Program program{.name = levels ? "probe_levels" : "probe_sub_texel",
+                          .stages = {{"probe.vert", Stage::vertex, vertex_source()},
+                                     {"probe.frag", Stage::fragment, fragment_source(levels)}}};
+    std::string log;
+    const GLuint id = gl::link_program(program, &log);
+    if (!id) {
+        *error = "texture precision probe: " + log;
+        return {};
+    }
+    const GLuint texture = levels ? probe_texture(4, {0, 255, 0}, {}) : probe_texture(0, {}, {0, 255});
+    GLuint target = 0, framebuffer = 0, vertex_array = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &target);
+    glTextureStorage2D(target, 1, GL_R32F, probes, 1);
+    glCreateFramebuffers(1, &framebuffer);
+    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, target, 0);
+    glCreateVertexArrays(1, &vertex_array);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glViewport(0, 0, probes, 1);
+    glUseProgram(id);
+    glBindTextureUnit(0, texture);
+    glBindVertexArray(vertex_array);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    std::vector<float> fetched(probes);
+    glGetTextureImage(target, 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(fetched.size() * sizeof(float)), fetched.data());
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glDeleteVertexArrays(1, &vertex_array);
+    glDeleteFramebuffers(1, &framebuffer);
+    glDeleteTextures(1, &target);
+    glDeleteTextures(1, &texture);
+    glDeleteProgram(id);
+    if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
+        *error = "texture precision probe: GL error " + std::to_string(e);
+        return {};
+    }
+    return fetched;
+}
+
+} // namespace texture_precision_detail
+
+inline MeasuredTexturePrecision measure_texture_precision() {
+    using namespace texture_precision_detail;
+    MeasuredTexturePrecision out;
+    const std::vector<float> sub_texel = fetch_fractions(false, &out.error);
+    if (!out.error.empty()) return out;
+    const std::vector<float> levels = fetch_fractions(true, &out.error);
+    if (!out.error.empty()) return out;
+    constexpr int half = probes / 2;
+    for (int i = 0; i < probes; ++i) {
+        const double f = double(i % half) / half;
+        out.sub_texel = std::max(out.sub_texel, std::abs(sub_texel[i] - f));
+        // level 1's weight: the fraction going up from level 0, one minus it going up from level 1
+        const double weight = i < half ? f : 1.0 - f;
+        out.level_fraction = std::max(out.level_fraction, std::abs(levels[i] - weight));
+    }
+    for (double t : {1.0 / 64, 0.05, 0.1, 0.15, 0.25, 0.5, 0.75, 0.9, 0.95}) {
+        char entry[48];
+        std::snprintf(entry, sizeof entry, "%s%.3f → %.4f", out.level_curve.empty() ? "" : ", ", t,
+                      levels[static_cast<std::size_t>(std::lround(t * half))]);
+        out.level_curve += entry;
+    }
+    return out;
+}
+
+} // namespace penumbra::playground
