@@ -114,17 +114,22 @@ SliceCoverage cpu_slice_coverage(const Mesh& mesh, const Config& config, const S
                 const double z = weight[0] * v[0].depth + weight[1] * v[1].depth + weight[2] * v[2].depth;
                 const double position = (z - z0) / thickness;
                 const int slice = std::clamp(static_cast<int>(std::ceil(position)) - 1, 0, S - 1);
-                const bool on_boundary = std::abs(position - std::round(position)) < 1e-4;
+                // within rounding of plane n, the GPU's fp32 depth may fall in slice n − 1 or n, whichever
+                // side of it the exact depth is
+                const double plane = std::round(position);
+                const bool on_boundary = std::abs(position - plane) < 1e-4;
+                const int upper = on_boundary ? std::clamp(static_cast<int>(plane) - 1, 0, S - 1) : slice;
+                const int lower = on_boundary ? std::clamp(static_cast<int>(plane), 0, S - 1) : slice;
                 if (closed) {
                     // The slicing camera mirrors OpenGL's eye space, so a face towards the light winds
                     // clockwise in texel space (area < 0): the ray enters there and toggles from its own
                     // slice; where it leaves (area > 0), from the next one.
-                    const int first = std::min(slice + (area > 0 ? 1 : 0), S);
+                    const int exit = area > 0 ? 1 : 0;
                     toggles[static_cast<std::size_t>(y) * R + x].push_back(
-                        {first, on_boundary ? std::min(first + 1, S) : first, mark == Coverage::covered});
+                        {std::min(upper + exit, S), std::min(lower + exit, S), mark == Coverage::covered});
                     continue;
                 }
-                for (int s = slice; s <= std::min(slice + (on_boundary ? 1 : 0), S - 1); ++s) {
+                for (int s = upper; s <= lower; ++s) {
                     const Coverage m = on_boundary ? Coverage::either : mark;
                     // paper §3.4.1 leak fix: a fragment of slice k also marks slices k+1 to k+reach
                     for (int j = 0; j <= reach && s + j < S; ++j)
