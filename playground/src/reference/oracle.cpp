@@ -30,6 +30,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstdint>
+#include <cstdio>
 #include <cmath>
 #include <stdexcept>
 
@@ -361,6 +362,35 @@ Oracle::Kernel Oracle::kernel(glm::dvec3 p, double zeta) const {
     // journal §3.5: orthographic slicing, the cone towards the sun grows linearly
     return {0.5 + glm::dvec2(p) / (2.0 * window_half_size_),
             std::max(p.z - zeta, 0.0) * tan_angular_radius_ / window_half_size_};
+}
+
+std::string Oracle::describe_lookups(glm::vec3 world) const {
+    glm::dvec3 p = glm::dvec3(light_from_world_ * glm::dvec4(glm::dvec3(world), 1.0));
+    p.z = std::max(p.z, 1e-6);
+    const double R = config_.resolution;
+    std::string out;
+    for (int s = 0; s < config_.slices; ++s) {
+        const double weight = fade_weight(p.z, s);
+        if (weight == 0.0) continue;
+        const Kernel k = kernel(p, zeta(s));
+        const Sample filtered_here = filtered(s, k.centre, k.side);
+        if (filtered_here.value <= 0.0) continue;
+        char text[320];
+        int length = std::snprintf(text, sizeof text, "%sslice %d: weight %.4f, kernel at %.4f,%.4f side %.4f texels, ",
+                                   out.empty() ? "" : "; ", s, weight, k.centre.x * R, k.centre.y * R, k.side * R);
+        if (config_.filter != Filter::sat) {
+            // the level as filtered() picks it; each level alone is the mix at t = 0
+            const double bias = config_.filter == Filter::gaussian ? gaussian_bias : 0.0;
+            const double level = std::clamp(std::log2(std::max(k.side * R, 1.0)) + bias, 0.0, double(levels_top_));
+            const int lo = static_cast<int>(std::floor(level)), hi = std::min(lo + 1, levels_top_);
+            length += std::snprintf(text + length, sizeof text - length, "level %.5f (level %d alone %.6f, level %d %.6f), ",
+                                    level, lo, filtered_at(s, k.centre, lo, lo, 0.0).value, hi,
+                                    filtered_at(s, k.centre, hi, hi, 0.0).value);
+        }
+        std::snprintf(text + length, sizeof text - length, "filtered %.6f +- %.2e", filtered_here.value, filtered_here.bound);
+        out += text;
+    }
+    return out.empty() ? "no slice above it reads any occlusion" : out;
 }
 
 std::vector<double> Oracle::occlusions(glm::vec3 world) const {

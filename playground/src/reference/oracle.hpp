@@ -98,6 +98,10 @@ public:
     // Every slice's faded occlusion q_k = w_k · o_k at a world point, slice 0 (nearest the light)
     // first: what the fusion rules combine. For diagnostics and studies of new rules.
     std::vector<double> occlusions(glm::vec3 world) const;
+    // The same per slice as text, with what each lookup read: the kernel's centre and side in texels, and
+    // for the level filters the level λ and the values of levels ⌊λ⌋ and ⌊λ⌋ + 1 alone; slices with
+    // nothing to read are left out. For the failure messages of tests on renderers nobody here can run.
+    std::string describe_lookups(glm::vec3 world) const;
 
     // Filtered occlusion of one slice for a kernel (centre in uv, side in uv), with its bound;
     // exposed for diagnostics and for the exact-answer tests.

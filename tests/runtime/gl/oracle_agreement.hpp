@@ -58,7 +58,7 @@ struct Agreement {
     std::size_t beyond_level_bound = 0; // pixels whose kernel asked for a level above config.level_bound
     int level_bound = -1;               // the level_bound the runtime fitted to the light
     // The pixel of the largest |GPU − oracle| / bound, as a failure's message needs it on a renderer nobody
-    // here can run: where, both values, the bound, and every slice's faded occlusion q_k there.
+    // here can run: where, both values, the bound, and every slice's lookup there (Oracle::describe_lookups).
     std::string worst;
 };
 
@@ -92,10 +92,8 @@ inline Agreement agreement(const Oracle& oracle, const HeadlessResult& result, F
         const std::size_t i = worst_pixel;
         out.worst = "pixel " + std::to_string(i % result.width) + "," + std::to_string(i / result.width) + ": GPU " +
                     std::to_string(result.visibility[i]) + ", oracle " + std::to_string(worst_expected.visibility) + " +- " +
-                    std::to_string(worst_expected.bound) + "; q by slice (light first):";
-        const std::vector<double> q = oracle.occlusions(result.positions[i]);
-        for (std::size_t k = 0; k < q.size(); ++k)
-            if (q[k] > 0.0) out.worst += " " + std::to_string(k) + ":" + std::to_string(q[k]);
+                    std::to_string(worst_expected.bound) + "; by slice (light first, before any tangent clip): " +
+                    oracle.describe_lookups(result.positions[i]);
     }
     return out;
 }

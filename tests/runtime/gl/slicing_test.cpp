@@ -31,6 +31,21 @@ SliceCoverage expected_slices(const Mesh& mesh, const Config& config, const Slic
     return cpu_slice_coverage(mesh, config, frame, reach, /*cut=*/false);
 }
 
+// One texel's column, slice 0 (nearest the light) first, as a failure's message needs it on a renderer
+// nobody here can run: the GPU's slices (1 covered, 0 empty), the CPU's (? either way), and the CPU's
+// surfaces alone, without the solid fill.
+std::string describe_column(const SliceTextures& gpu, const SliceCoverage& expected, const SliceCoverage& surfaces,
+                            int slice, int x, int y) {
+    std::string g, e, f;
+    for (int k = 0; k < expected.slices; ++k) {
+        g += gpu.at(k, x, y) == 1.0f ? '1' : gpu.at(k, x, y) == 0.0f ? '0' : 'x';
+        e += "0?1"[static_cast<int>(expected.at(k, x, y))];
+        f += "0?1"[static_cast<int>(surfaces.at(k, x, y))];
+    }
+    return "slice " + std::to_string(slice) + " of texel " + std::to_string(x) + "," + std::to_string(y) + ": GPU " + g +
+           ", CPU " + e + ", its surfaces alone " + f;
+}
+
 } // namespace
 
 TEST_CASE("slicing: planes, the occlusion textures are the analytic coverage of each slice") {
@@ -210,12 +225,14 @@ TEST_CASE("slicing: solid casters fill the slices between a closed mesh's surfac
         const SliceCoverage surfaces = expected_slices(scene->mesh, shells, frame, leak_fix_reach(config));
         const int R = config.resolution;
         std::size_t wrong = 0, filled = 0, filled_marked = 0;
+        std::string first_wrong;
         for (int s = 0; s < config.slices; ++s)
             for (int y = 0; y < R; ++y)
                 for (int x = 0; x < R; ++x) {
                     const float g = gpu.at(s, x, y);
                     const Expect e = expected.at(s, x, y);
-                    wrong += (e == Expect::covered && g != 1.0f) || (e == Expect::empty && g != 0.0f);
+                    const bool bad = (e == Expect::covered && g != 1.0f) || (e == Expect::empty && g != 0.0f);
+                    if (bad && wrong++ == 0) first_wrong = describe_column(gpu, expected, surfaces, s, x, y);
                     if (e == Expect::covered && surfaces.at(s, x, y) == Expect::empty) {
                         ++filled;
                         filled_marked += g == 1.0f;
@@ -223,7 +240,8 @@ TEST_CASE("slicing: solid casters fill the slices between a closed mesh's surfac
                 }
         std::printf("solid slicing %-24s texels filled inside the boxes %zu (marked %zu), wrong %zu\n", name.c_str(),
                     filled, filled_marked, wrong);
-        CHECK_MESSAGE(wrong == 0, name, ": ", wrong, " texels disagree with the CPU's parity away from edges");
+        CHECK_MESSAGE(wrong == 0, name, ": ", wrong, " texels disagree with the CPU's parity away from edges; the first, ",
+                      first_wrong);
         CHECK_MESSAGE(filled > 100, name, ": only ", filled,
                       " texels inside the boxes, the fill should matter on boxes");
         CHECK_MESSAGE(filled_marked == filled, name, ": ", filled - filled_marked, " texels inside the boxes not marked");
