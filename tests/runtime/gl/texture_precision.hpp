@@ -25,7 +25,7 @@ struct MeasuredTexturePrecision {
     // the largest |fetched − exact| over the probed fractions (the exact blend of a 0 and a 1)
     double sub_texel = 0.0;
     double level_fraction = 0.0;
-    // the trilinear blend at a few fractions, "t → fetched", for messages and notes
+    // the upper level's weight at a few fractions t of each pair of levels, "t → weight", for messages and notes
     std::string level_curve;
     std::string error; // non-empty when the probe could not run (then the values above are 0)
 
@@ -39,10 +39,15 @@ struct MeasuredTexturePrecision {
 
 namespace texture_precision_detail {
 
-// One fetch per pixel of a probes × 1 R32F target, pixel i at fraction i / probes: a bilinear fetch
-// between a 0 texel and a 1 texel at that sub-texel fraction, or a trilinear one between a level of
-// zeros and a level of ones at that level fraction (levels 0 → 1 for i < probes / 2, 1 → 2 above).
+// One fetch per pixel of a probes × 1 R32F target. Sub-texel: a bilinear fetch between a 0 texel and a
+// 1 texel at fraction f = (i mod per_range) / per_range. Levels: a trilinear fetch at level
+// λ = i / per_range of a 64² mip chain cut at level 3, as the runtime cuts its chains at the fitted
+// level bound, whose levels hold 0, 1, 0, 1: between levels l and l + 1 it reads the weight of the
+// level of ones, the fraction going up from an even level, one minus it from an odd one; the last
+// range ends at the last level.
 constexpr int probes = 2048;
+constexpr int per_range = 512;
+constexpr int level_ranges = 3;
 
 inline const char* vertex_source() {
     return "#version 450 core\n"
@@ -53,12 +58,12 @@ inline const char* vertex_source() {
 }
 
 inline std::string fragment_source(bool levels) {
-    const std::string n = std::to_string(probes / 2) + ".0";
+    const std::string n = std::to_string(per_range) + ".0";
     std::string body = levels
-        ? "    // levels 0, 1, 2 hold 0, 1, 0: the fetch is the weight of level 1\n"
+        ? "    // levels 0, 1, 2, 3 hold 0, 1, 0, 1: the fetch is the weight of the levels of ones\n"
           "    fraction = textureLod(probe, vec3(0.5, 0.5, 0.0), float(i) / " + n + ").r;\n"
         : "    // texels 0 and 1 of a 2 x 1 level hold 0 and 1: at x = (0.5 + f) / 2 the fetch is f\n"
-          "    float f = float(i % " + std::to_string(probes / 2) + ") / " + n + ";\n"
+          "    float f = float(i % " + std::to_string(per_range) + ") / " + n + ";\n"
           "    fraction = textureLod(probe, vec3((0.5 + f) / 2.0, 0.5, 0.0), 0.0).r;\n";
     return "#version 450 core\n"
            "layout(binding = 0) uniform sampler2DArray probe;\n"
@@ -107,7 +112,7 @@ inline std::vector<float> fetch_fractions(bool levels, std::string* error) {
         *error = "texture precision probe: " + log;
         return {};
     }
-    const GLuint texture = levels ? probe_texture(4, {0, 255, 0}, {}) : probe_texture(0, {}, {0, 255});
+    const GLuint texture = levels ? probe_texture(64, {0, 255, 0, 255}, {}) : probe_texture(0, {}, {0, 255});
     GLuint target = 0, framebuffer = 0, vertex_array = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &target);
     glTextureStorage2D(target, 1, GL_R32F, probes, 1);
@@ -146,19 +151,23 @@ inline MeasuredTexturePrecision measure_texture_precision() {
     if (!out.error.empty()) return out;
     const std::vector<float> levels = fetch_fractions(true, &out.error);
     if (!out.error.empty()) return out;
-    constexpr int half = probes / 2;
     for (int i = 0; i < probes; ++i) {
-        const double f = double(i % half) / half;
+        const double f = double(i % per_range) / per_range;
         out.sub_texel = std::max(out.sub_texel, std::abs(sub_texel[i] - f));
-        // level 1's weight: the fraction going up from level 0, one minus it going up from level 1
-        const double weight = i < half ? f : 1.0 - f;
+        const int range = i / per_range;
+        if (range >= level_ranges) continue;
+        const double weight = range % 2 == 0 ? f : 1.0 - f;
         out.level_fraction = std::max(out.level_fraction, std::abs(levels[i] - weight));
     }
-    for (double t : {1.0 / 64, 0.05, 0.1, 0.15, 0.25, 0.5, 0.75, 0.9, 0.95}) {
-        char entry[48];
-        std::snprintf(entry, sizeof entry, "%s%.3f → %.4f", out.level_curve.empty() ? "" : ", ", t,
-                      levels[static_cast<std::size_t>(std::lround(t * half))]);
-        out.level_curve += entry;
+    // the weight of level l + 1 at a few fractions t, in each range l → l + 1
+    for (int range = 0; range < level_ranges; ++range) {
+        out.level_curve += (range ? "; levels " : "levels ") + std::to_string(range) + "-" + std::to_string(range + 1) + ":";
+        for (double t : {1.0 / 64, 0.05, 0.1, 0.5, 0.9, 0.95}) {
+            const float fetched = levels[static_cast<std::size_t>(range * per_range + std::lround(t * per_range))];
+            char entry[40];
+            std::snprintf(entry, sizeof entry, " %.3f → %.4f", t, range % 2 == 0 ? fetched : 1.0f - fetched);
+            out.level_curve += entry;
+        }
     }
     return out;
 }

@@ -17,7 +17,7 @@ TEST_CASE("texture precision: the renderer's bilinear and trilinear weights, mea
     const MeasuredTexturePrecision measured = measure_texture_precision();
     REQUIRE_MESSAGE(measured.error.empty(), measured.error);
     std::printf("texture precision on %s: sub-texel weight off by up to %.2e, mip level weight by up to %.2e; "
-                "level 1's weight at t: %s\n",
+                "the upper level's weight at t, %s\n",
                 context->renderer().c_str(), measured.sub_texel, measured.level_fraction, measured.level_curve.c_str());
     // Vulkan's least precision (4 bits) is within 1/16 of the exact weight; a "trilinear" fetch that read
     // the nearest level alone would be a half off
