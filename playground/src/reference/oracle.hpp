@@ -71,9 +71,9 @@ struct OracleValue {
 
 // What the renderer's texture units round, as fractions: the weight between two texels of a bilinear fetch
 // (and between a volume's depth slices), and the weight between two mip levels of a trilinear fetch. GL
-// leaves both to the implementation; 2^-8 is what GPUs have long used, llvmpipe included. A renderer may
-// blend mip levels more coarsely (an NVIDIA H200 does; docs/model.md §4): the GL tests measure it
-// (tests/runtime/gl/texture_precision.hpp) and pass it here.
+// leaves both to the implementation; 2^-8 is what GPUs have long used, llvmpipe included, but a renderer
+// may round more coarsely or skip the blend near whole levels: the GL tests measure both
+// (tests/runtime/gl/texture_precision.hpp) and pass what they find here.
 struct TexturePrecision {
     double sub_texel = 1.0 / 256.0;
     double level_fraction = 1.0 / 256.0;
