@@ -303,18 +303,22 @@ Oracle::Sample Oracle::box_filtered(int slice, glm::dvec2 centre, double side) c
     return {std::clamp(sum / (width * width), 0.0, 1.0), sum_bound / (width * width)};
 }
 
-Oracle::Sample Oracle::filtered(int slice, glm::dvec2 centre, double side) const {
-    if (config_.filter == Filter::sat) return box_filtered(slice, centre, side);
-    const int R = config_.resolution, L = levels_top_;
+Oracle::Level Oracle::level_for(double side) const {
     const double bias = config_.filter == Filter::gaussian ? gaussian_bias : 0.0;
     // windows narrower than one texel read level 0
     // (clamped to the highest level built: config.level_bound)
-    const double wanted = std::log2(std::max(side * R, 1.0)) + bias;
-    const double level = std::clamp(wanted, 0.0, static_cast<double>(L));
-    const int lo = static_cast<int>(std::floor(level));
-    const double t = level - lo;
-    Sample result = filtered_at(slice, centre, level, lo, t);
-    result.clamped = L < resolution_levels(config_) && wanted > L + 1e-6;
+    const double wanted = std::log2(std::max(side * config_.resolution, 1.0)) + bias;
+    return {std::clamp(wanted, 0.0, static_cast<double>(levels_top_)), wanted};
+}
+
+Oracle::Sample Oracle::filtered(int slice, glm::dvec2 centre, double side) const {
+    if (config_.filter == Filter::sat) return box_filtered(slice, centre, side);
+    const int L = levels_top_;
+    const Level level = level_for(side);
+    const int lo = static_cast<int>(std::floor(level.level));
+    const double t = level.level - lo;
+    Sample result = filtered_at(slice, centre, level.level, lo, t);
+    result.clamped = L < resolution_levels(config_) && level.wanted > L + 1e-6;
     return result;
 }
 
@@ -353,6 +357,12 @@ double Oracle::fade_weight(double z, int slice) const {
                                      : (plane < z ? 1.0 : 0.0);
 }
 
+glm::dvec3 Oracle::light_point(glm::vec3 world) const {
+    glm::dvec3 p = glm::dvec3(light_from_world_ * glm::dvec4(glm::dvec3(world), 1.0));
+    p.z = std::max(p.z, 1e-6); // points on or behind the light plane
+    return p;
+}
+
 Oracle::Kernel Oracle::kernel(glm::dvec3 p, double zeta) const {
     if (config_.light == Light::rect) {
         // docs/model.md §1.4: the rays from p to the light rectangle cut the plane in a square
@@ -365,8 +375,7 @@ Oracle::Kernel Oracle::kernel(glm::dvec3 p, double zeta) const {
 }
 
 std::string Oracle::describe_lookups(glm::vec3 world) const {
-    glm::dvec3 p = glm::dvec3(light_from_world_ * glm::dvec4(glm::dvec3(world), 1.0));
-    p.z = std::max(p.z, 1e-6);
+    const glm::dvec3 p = light_point(world);
     const double R = config_.resolution;
     std::string out;
     for (int s = 0; s < config_.slices; ++s) {
@@ -379,9 +388,8 @@ std::string Oracle::describe_lookups(glm::vec3 world) const {
         int length = std::snprintf(text, sizeof text, "%sslice %d: weight %.4f, kernel at %.4f,%.4f side %.4f texels, ",
                                    out.empty() ? "" : "; ", s, weight, k.centre.x * R, k.centre.y * R, k.side * R);
         if (config_.filter != Filter::sat) {
-            // the level as filtered() picks it; each level alone is the mix at t = 0
-            const double bias = config_.filter == Filter::gaussian ? gaussian_bias : 0.0;
-            const double level = std::clamp(std::log2(std::max(k.side * R, 1.0)) + bias, 0.0, double(levels_top_));
+            // each level alone is the mix at t = 0
+            const double level = level_for(k.side).level;
             const int lo = static_cast<int>(std::floor(level)), hi = std::min(lo + 1, levels_top_);
             length += std::snprintf(text + length, sizeof text - length, "level %.5f (level %d alone %.6f, level %d %.6f), ",
                                     level, lo, filtered_at(s, k.centre, lo, lo, 0.0).value, hi,
@@ -394,8 +402,7 @@ std::string Oracle::describe_lookups(glm::vec3 world) const {
 }
 
 std::vector<double> Oracle::occlusions(glm::vec3 world) const {
-    glm::dvec3 p = glm::dvec3(light_from_world_ * glm::dvec4(glm::dvec3(world), 1.0));
-    p.z = std::max(p.z, 1e-6);
+    const glm::dvec3 p = light_point(world);
     std::vector<double> q(config_.slices, 0.0);
     for (int s = 0; s < config_.slices; ++s) {
         const double weight = fade_weight(p.z, s);
@@ -487,8 +494,7 @@ double cluster_count(glm::dvec4 quadrants) {
 }
 
 OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion) const {
-    glm::dvec3 p = glm::dvec3(light_from_world_ * glm::dvec4(glm::dvec3(world), 1.0));
-    p.z = std::max(p.z, 1e-6); // points on or behind the light plane
+    glm::dvec3 p = light_point(world);
     // Tangent clip (detail/occlusion/emit_visibility.hpp): the part of the light above the tangent plane, in the
     // light's unit square, cut along the axis the plane crosses most steeply; then the point
     // moves config.tangent_clip_offset slicing texels sideways along its normal.

@@ -131,7 +131,14 @@ private:
         glm::dvec2 centre;
         double side = 0;
     };
+    // A world point in the light frame, kept in front of the light plane.
+    glm::dvec3 light_point(glm::vec3 world) const;
     Kernel kernel(glm::dvec3 p, double zeta) const;
+    // The filter level a window of `side` (uv) reads, clamped to the levels built, and the unclamped one.
+    struct Level {
+        double level = 0, wanted = 0;
+    };
+    Level level_for(double side) const;
     double zeta(int slice) const { return planes_[slice + 1]; } // the slice's bottom plane
     double fade_weight(double z, int slice) const;
 

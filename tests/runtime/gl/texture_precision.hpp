@@ -73,31 +73,38 @@ inline std::string fragment_source(bool levels) {
            body + "}\n";
 }
 
-// An RGBA8 array texture of one layer, as the runtime's mip chains are, with `levels` given level by
-// level (each a side × side square of one value) and trilinear filtering.
-inline GLuint probe_texture(int side, const std::vector<unsigned char>& level_values, const std::vector<unsigned char>& texels0) {
+// An RGBA8 array texture of one layer, as the runtime's mip chains are, clamped at its edges.
+inline GLuint probe_texture(int width, int height, int levels, GLint min_filter) {
     GLuint texture = 0;
     glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture);
-    const int levels = static_cast<int>(std::max<std::size_t>(level_values.size(), 1));
-    const int width0 = texels0.empty() ? side : static_cast<int>(texels0.size());
-    const int height0 = texels0.empty() ? side : 1;
-    glTextureStorage3D(texture, levels, GL_RGBA8, width0, height0, 1);
-    if (!texels0.empty()) {
-        std::vector<unsigned char> rgba;
-        for (unsigned char v : texels0) rgba.insert(rgba.end(), {v, v, v, v});
-        glTextureSubImage3D(texture, 0, 0, 0, 0, width0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-    } else {
-        for (int l = 0; l < levels; ++l) {
-            const int s = std::max(side >> l, 1);
-            const std::vector<unsigned char> rgba(std::size_t(4) * s * s, level_values[l]);
-            glTextureSubImage3D(texture, l, 0, 0, 0, s, s, 1, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-        }
-    }
-    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, texels0.empty() ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
+    glTextureStorage3D(texture, levels, GL_RGBA8, width, height, 1);
+    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, min_filter);
     glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     glTextureParameteri(texture, GL_TEXTURE_MAX_LEVEL, levels - 1);
+    return texture;
+}
+
+// A side × side mip chain with one value per level, filtered trilinearly.
+inline GLuint level_chain_texture(int side, const std::vector<unsigned char>& levels) {
+    const int count = static_cast<int>(levels.size());
+    const GLuint texture = probe_texture(side, side, count, GL_LINEAR_MIPMAP_LINEAR);
+    for (int l = 0; l < count; ++l) {
+        const int s = std::max(side >> l, 1);
+        const std::vector<unsigned char> rgba(std::size_t(4) * s * s, levels[l]);
+        glTextureSubImage3D(texture, l, 0, 0, 0, s, s, 1, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    }
+    return texture;
+}
+
+// One level: a row of texels, filtered bilinearly.
+inline GLuint texel_row_texture(const std::vector<unsigned char>& row) {
+    const int width = static_cast<int>(row.size());
+    const GLuint texture = probe_texture(width, 1, 1, GL_LINEAR);
+    std::vector<unsigned char> rgba;
+    for (unsigned char v : row) rgba.insert(rgba.end(), {v, v, v, v});
+    glTextureSubImage3D(texture, 0, 0, 0, 0, width, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
     return texture;
 }
 
@@ -112,7 +119,7 @@ inline std::vector<float> fetch_fractions(bool levels, std::string* error) {
         *error = "texture precision probe: " + log;
         return {};
     }
-    const GLuint texture = levels ? probe_texture(64, {0, 255, 0, 255}, {}) : probe_texture(0, {}, {0, 255});
+    const GLuint texture = levels ? level_chain_texture(64, {0, 255, 0, 255}) : texel_row_texture({0, 255});
     GLuint target = 0, framebuffer = 0, vertex_array = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &target);
     glTextureStorage2D(target, 1, GL_R32F, probes, 1);
