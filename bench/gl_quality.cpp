@@ -12,7 +12,8 @@
 // MAE and mean signed error (estimate − truth), the same against the irradiance reference (the shaded
 // image's relative error; the two disagree under large lights, docs/model.md §1.7.4), and near the terminator (pixels within 3 of where a
 // surface turns away from the light's centre) the p95 of |error| and the total variation of the
-// error (sawtooth and seams), the built-in scenes and the mesh files apart.
+// error (sawtooth and seams), the built-in scenes and the mesh files apart; with more than one light
+// scale, each scene's fair penumbra MAE and signed error by light scale.
 #include "arguments.hpp"
 #include "corpus/manifest.hpp"
 
@@ -123,7 +124,8 @@ constexpr const char* usage_text =
     "              penumbra MAE and mean signed error (estimate - truth), built-in scenes and files apart,\n"
     "              the same against the irradiance reference (the shaded image's relative error), then\n"
     "              near the terminator (within 3 pixels of where a surface turns away from the light's\n"
-    "              centre): p95 of |error| and the error's total variation (sawtooth, seams)\n";
+    "              centre): p95 of |error| and the error's total variation (sawtooth, seams); with more\n"
+    "              than one scale, a table per scene and setting: fair MAE / signed error by scale\n";
 
 bool parse_pair(std::string_view text, int& a, int& b) {
     const std::size_t x = text.find('x');
@@ -401,6 +403,10 @@ int main(int argc, char** argv) {
     };
     std::map<std::pair<std::string, double>, Summary> summaries[2]; // [0] built-in scenes, [1] mesh files
     std::vector<std::string> summary_order;
+    // Each scene's fair penumbra MAE and signed error by light scale, for the per-scene table after the
+    // summary (scenes in the order measured).
+    std::map<std::pair<std::string, std::string>, std::map<double, std::pair<double, double>>> per_scene;
+    std::vector<std::string> scene_order;
     std::optional<HeadlessContext> context = HeadlessContext::create(&error);
     if (!context) {
         std::cerr << "error: no OpenGL 4.5 context: " << error << "\n";
@@ -478,6 +484,9 @@ int main(int argc, char** argv) {
                 if (std::find(summary_order.begin(), summary_order.end(), setting_label) == summary_order.end())
                     summary_order.push_back(setting_label);
                 Summary& sum = summaries[file ? 1 : 0][{setting_label, light_scale}];
+                if (std::find(scene_order.begin(), scene_order.end(), scene.name) == scene_order.end())
+                    scene_order.push_back(scene.name);
+                per_scene[{scene.name, setting_label}][light_scale] = {q.oriented.penumbra.mae, q.oriented.penumbra.bias};
                 sum.mae += q.oriented.penumbra.mae;
                 sum.bias += q.oriented.penumbra.bias;
                 sum.irradiance_mae += q.irradiance.penumbra.mae;
@@ -555,6 +564,27 @@ int main(int argc, char** argv) {
         print_by_scale(group, [](const Summary& sum) {
             std::printf(" %.4f / %.4f |", sum.terminator_p95 / sum.count, sum.terminator_variation / sum.count);
         });
+    }
+    if (options->light_scales.size() > 1) {
+        std::printf("\nper scene, fair (oriented) penumbra MAE / signed error by light scale\n\n| scene | filter | S/R |");
+        for (double scale : options->light_scales) std::printf(" x%g |", scale);
+        std::printf("\n|---|---|---|");
+        for (std::size_t k = 0; k < options->light_scales.size(); ++k) std::printf("---|");
+        std::printf("\n");
+        for (const std::string& scene_name : scene_order)
+            for (const std::string& label : summary_order) {
+                const auto row = per_scene.find({scene_name, label});
+                if (row == per_scene.end()) continue;
+                std::printf("| %s | %s |", scene_name.c_str(), label.c_str());
+                for (double scale : options->light_scales) {
+                    const auto it = row->second.find(scale);
+                    if (it == row->second.end())
+                        std::printf(" - |");
+                    else
+                        std::printf(" %.4f / %+.4f |", it->second.first, it->second.second);
+                }
+                std::printf("\n");
+            }
     }
     std::printf("\nper-pass GPU ms (xN: N instances of the pass, summed):\n");
     for (const std::string& line : pass_lines) std::printf("  %s\n", line.c_str());
