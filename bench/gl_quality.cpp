@@ -527,12 +527,16 @@ int main(int argc, char** argv) {
     }
     std::printf("\nfair (oriented) penumbra error by light scale: mean MAE / mean signed error (estimate - truth) "
                 "/ worst scene's MAE, over the scenes measured\n");
+    // The rest of a table's header after its first columns: a column per light scale.
+    const auto print_scale_columns = [&](std::size_t first_columns) {
+        for (double scale : options->light_scales) std::printf(" x%g |", scale);
+        std::printf("\n|");
+        for (std::size_t k = 0; k < first_columns + options->light_scales.size(); ++k) std::printf("---|");
+        std::printf("\n");
+    };
     // One table per group: a row per setting, a column per light scale, each cell written by `cell`.
     const auto print_by_scale = [&](int group, const auto& cell) {
-        for (double scale : options->light_scales) std::printf(" x%g |", scale);
-        std::printf("\n|---|---|");
-        for (std::size_t k = 0; k < options->light_scales.size(); ++k) std::printf("---|");
-        std::printf("\n");
+        print_scale_columns(2);
         for (const std::string& label : summary_order) {
             std::printf("| %s |", label.c_str());
             for (double scale : options->light_scales) {
@@ -567,10 +571,7 @@ int main(int argc, char** argv) {
     }
     if (options->light_scales.size() > 1) {
         std::printf("\nper scene, fair (oriented) penumbra MAE / signed error by light scale\n\n| scene | filter | S/R |");
-        for (double scale : options->light_scales) std::printf(" x%g |", scale);
-        std::printf("\n|---|---|---|");
-        for (std::size_t k = 0; k < options->light_scales.size(); ++k) std::printf("---|");
-        std::printf("\n");
+        print_scale_columns(3);
         for (const std::string& scene_name : scene_order)
             for (const std::string& label : summary_order) {
                 const auto row = per_scene.find({scene_name, label});
