@@ -374,14 +374,16 @@ Oracle::Kernel Oracle::kernel(glm::dvec3 p, double zeta) const {
             std::max(p.z - zeta, 0.0) * tan_angular_radius_ / window_half_size_};
 }
 
-std::string Oracle::describe_lookups(glm::vec3 world) const {
-    const glm::dvec3 p = light_point(world);
+std::string Oracle::describe_lookups(glm::vec3 world, glm::vec3 normal) const {
+    const Receiver r = receiver(world, normal);
     const double R = config_.resolution;
     std::string out;
     for (int s = 0; s < config_.slices; ++s) {
-        const double weight = fade_weight(p.z, s);
+        const double weight = fade_weight(r.point.z, s);
         if (weight == 0.0) continue;
-        const Kernel k = kernel(p, zeta(s));
+        Kernel k = kernel(r.point, zeta(s));
+        k.centre += glm::dvec2(r.clip) * k.side; // tangent clip (identity when off), as visibility() reads it
+        k.side *= r.clip.z;
         const Sample filtered_here = filtered(s, k.centre, k.side);
         if (filtered_here.value <= 0.0) continue;
         char text[320];
@@ -493,17 +495,17 @@ double cluster_count(glm::dvec4 quadrants) {
     return std::max((1.0 + 2.0 * scattered) * mean * mean / std::max(spread, 1e-10), 1.0);
 }
 
-OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion) const {
+Oracle::Receiver Oracle::receiver(glm::vec3 world, glm::vec3 normal) const {
+    Receiver r;
     glm::dvec3 p = light_point(world);
+    r.unmoved = p;
     // Tangent clip (detail/occlusion/emit_visibility.hpp): the part of the light above the tangent plane, in the
     // light's unit square, cut along the axis the plane crosses most steeply; then the point
     // moves config.tangent_clip_offset slicing texels sideways along its normal.
-    glm::dvec3 clip(0.0, 0.0, 1.0);
-    IrradianceWindow window; // the clip alone unless config.irradiance_window
-    bool clip_ambiguous = false;
     if (config_.tangent_clip) {
         glm::dvec3 n = glm::dmat3(light_from_world_) * glm::dvec3(normal);
         n *= 1.0 / std::sqrt(std::max(glm::dot(n, n), 1e-20));
+        r.normal = n;
         const bool rect = config_.light == Light::rect;
         const glm::dvec2 slopes = glm::dvec2(n) * (rect ? light_size_ : glm::dvec2(2.0 * tan_angular_radius_));
         const double level = rect ? glm::dot(n, p) : n.z;
@@ -515,14 +517,11 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
             const double mid = 0.5 * (lo + hi);
             return x ? glm::dvec3(mid, 0.0, hi - lo) : glm::dvec3(0.0, mid, hi - lo);
         };
-        clip = clip_along(std::abs(slopes.x) >= std::abs(slopes.y));
-        // irradiance window (penumbra_irradianceWindow), at the receiver before it moves: the core, half the clip's
-        // side around the weight's peak, and the weight of the whole clip's visibility
-        if (config_.irradiance_window) window = irradiance_window(p, n, clip, light_size_);
+        r.clip = clip_along(std::abs(slopes.x) >= std::abs(slopes.y));
         // fp32 may pick the other axis where both slopes are (nearly) equal; it matters only
         // where the two cuts differ
-        clip_ambiguous = std::abs(std::abs(slopes.x) - std::abs(slopes.y)) <= 1e-5 * std::abs(slopes.x) &&
-                         glm::length(clip_along(true) - clip_along(false)) > 1e-9;
+        r.clip_ambiguous = std::abs(std::abs(slopes.x) - std::abs(slopes.y)) <= 1e-5 * std::abs(slopes.x) &&
+                           glm::length(clip_along(true) - clip_along(false)) > 1e-9;
         // clip_footprint: the receiver's own tangent plane in the slice above it, capped
         const double across = std::max(glm::length(glm::dvec2(n)), 1e-6);
         double footprint = 0.0;
@@ -540,6 +539,18 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
         else p += glm::dvec3(glm::dvec2(n) * (2.0 * window_half_size_ * texels), 0.0);
         p += glm::dvec3(glm::dvec2(n) / across * footprint, 0.0);
     }
+    r.point = p;
+    return r;
+}
+
+OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion) const {
+    const Receiver r = receiver(world, normal);
+    const glm::dvec3 p = r.point, clip = r.clip;
+    const bool clip_ambiguous = r.clip_ambiguous;
+    // irradiance window (penumbra_irradianceWindow), at the receiver before it moves: the core, half the clip's
+    // side around the weight's peak, and the weight of the whole clip's visibility
+    IrradianceWindow window; // the clip alone unless config.irradiance_window
+    if (config_.tangent_clip && config_.irradiance_window) window = irradiance_window(r.unmoved, r.normal, clip, light_size_);
     // the fused visibility of the part `part` of the light's unit square (penumbra_clippedVisibility)
     auto fused = [&](glm::dvec3 part) -> OracleValue {
         double lit = 1.0, sum = 0.0, maximum = 0.0, bound = 0.0, chain = 1.0, previous = 0.0, correlated = 1.0, extent = 1.0;

@@ -98,10 +98,11 @@ public:
     // Every slice's faded occlusion q_k = w_k · o_k at a world point, slice 0 (nearest the light)
     // first: what the fusion rules combine. For diagnostics and studies of new rules.
     std::vector<double> occlusions(glm::vec3 world) const;
-    // The same per slice as text, with what each lookup read: the kernel's centre and side in texels, and
-    // for the level filters the level λ and the values of levels ⌊λ⌋ and ⌊λ⌋ + 1 alone; slices with
-    // nothing to read are left out. For the failure messages of tests on renderers nobody here can run.
-    std::string describe_lookups(glm::vec3 world) const;
+    // The lookups visibility(world, normal, ·) makes, slice by slice as text: the weight, the kernel's centre
+    // and side in texels after the tangent clip (its part of the light; the irradiance window's core is not
+    // listed), and for the level filters the level λ and the values of levels ⌊λ⌋ and ⌊λ⌋ + 1 alone; slices
+    // with nothing to read are left out. For the failure messages of tests on renderers nobody here can run.
+    std::string describe_lookups(glm::vec3 world, glm::vec3 normal) const;
 
     // Filtered occlusion of one slice for a kernel (centre in uv, side in uv), with its bound;
     // exposed for diagnostics and for the exact-answer tests.
@@ -133,6 +134,17 @@ private:
     };
     // A world point in the light frame, kept in front of the light plane.
     glm::dvec3 light_point(glm::vec3 world) const;
+    // A receiver as the lookups see it (the tangent clip, detail/occlusion/emit_visibility.hpp): the point
+    // moved off its own texels, the part of the light's unit square above its tangent plane (centre, side; the
+    // whole square when the clip is off), whether fp32 may cut along the other axis, and the point before the
+    // move and the normal in the light frame, which the irradiance window weighs.
+    struct Receiver {
+        glm::dvec3 point{0.0};
+        glm::dvec3 clip{0.0, 0.0, 1.0};
+        bool clip_ambiguous = false;
+        glm::dvec3 unmoved{0.0}, normal{0.0};
+    };
+    Receiver receiver(glm::vec3 world, glm::vec3 normal) const;
     Kernel kernel(glm::dvec3 p, double zeta) const;
     // The filter level a window of `side` (uv) reads, clamped to the levels built, and the unclamped one.
     struct Level {

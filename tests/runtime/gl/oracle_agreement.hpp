@@ -92,8 +92,8 @@ inline Agreement agreement(const Oracle& oracle, const HeadlessResult& result, F
         const std::size_t i = worst_pixel;
         out.worst = "pixel " + std::to_string(i % result.width) + "," + std::to_string(i / result.width) + ": GPU " +
                     std::to_string(result.visibility[i]) + ", oracle " + std::to_string(worst_expected.visibility) + " +- " +
-                    std::to_string(worst_expected.bound) + "; by slice (light first, before any tangent clip): " +
-                    oracle.describe_lookups(result.positions[i]);
+                    std::to_string(worst_expected.bound) + "; by slice (light first): " +
+                    oracle.describe_lookups(result.positions[i], result.normals[i]);
     }
     return out;
 }
