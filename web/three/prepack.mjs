@@ -14,5 +14,11 @@ if (!fs.existsSync(wasm)) {
                   "or name it with PENUMBRA_EMITTER_WASM=FILE; the package ships the WebAssembly emitter");
     process.exit(1);
 }
-fs.copyFileSync(wasm, path.join(here, "penumbra_emitter.wasm"));
-fs.copyFileSync(path.join(root, "LICENSE"), path.join(here, "LICENSE"));
+// Each file whole or not at all (a copy beside it, then a rename): a page or test reading the
+// package folder while this runs never sees half a file.
+function copyWhole(from, to) {
+    fs.copyFileSync(from, `${to}.partial`);
+    fs.renameSync(`${to}.partial`, to);
+}
+copyWhole(wasm, path.join(here, "penumbra_emitter.wasm"));
+copyWhole(path.join(root, "LICENSE"), path.join(here, "LICENSE"));

@@ -11,8 +11,12 @@
 
 #include <algorithm>
 #include <charconv>
+#include <chrono>
+#include <functional>
+#include <mutex>
 #include <string>
 #include <string_view>
+#include <unordered_set>
 #include <vector>
 
 namespace penumbra::gl {
@@ -69,7 +73,43 @@ inline std::string located_log(const std::string& file_name, std::string_view lo
     return out;
 }
 
+// The process's tally behind link_counts(): a driver that compiles at link or at first draw
+// (llvmpipe compiles every program with LLVM) pays for each of these, so tests and tools print it.
+struct LinkTally {
+    std::mutex mutex;
+    long compiles = 0, links = 0, repeated_links = 0;
+    double seconds = 0.0;                   // inside link_program (drivers that compile at first draw: less)
+    std::unordered_set<std::size_t> linked; // hashes of every linked program's stage texts
+};
+inline LinkTally& link_tally() {
+    static LinkTally tally;
+    return tally;
+}
+inline void count_link(const Program& program, double seconds) {
+    std::string stages;
+    for (const ShaderFile& file : program.stages) stages += file.text + '\0';
+    LinkTally& tally = link_tally();
+    const std::lock_guard lock(tally.mutex);
+    tally.compiles += static_cast<long>(program.stages.size());
+    ++tally.links;
+    tally.seconds += seconds;
+    if (!tally.linked.insert(std::hash<std::string>{}(stages)).second) ++tally.repeated_links;
+}
+
 } // namespace detail
+
+// What link_program did in this process so far: shaders compiled, programs linked, and how many of
+// those links repeated the exact text of a program linked before (in any context), and the time spent
+// in link_program (a driver may compile more at a program's first draw: llvmpipe does).
+struct LinkCounts {
+    long compiles = 0, links = 0, repeated_links = 0;
+    double seconds = 0.0;
+};
+inline LinkCounts link_counts() {
+    detail::LinkTally& tally = detail::link_tally();
+    const std::lock_guard lock(tally.mutex);
+    return {tally.compiles, tally.links, tally.repeated_links, tally.seconds};
+}
 
 inline GLenum stage_enum(Stage stage) {
     switch (stage) {
@@ -82,6 +122,7 @@ inline GLenum stage_enum(Stage stage) {
 // The program id, or 0 with the compile logs ("file:line: message", one per line) or the link
 // log ("<program> (link): …") appended to *log.
 inline GLuint link_program(const Program& program, std::string* log) {
+    const auto start = std::chrono::steady_clock::now();
     const GLuint id = glCreateProgram();
     std::vector<GLuint> shaders;
     bool ok = true;
@@ -119,6 +160,7 @@ inline GLuint link_program(const Program& program, std::string* log) {
         }
     }
     for (GLuint s : shaders) glDeleteShader(s);
+    detail::count_link(program, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     if (!ok) {
         glDeleteProgram(id);
         return 0;

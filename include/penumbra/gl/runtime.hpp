@@ -13,6 +13,7 @@
 //   std::string error;
 //   auto runtime = penumbra::gl::Runtime::create(config, &error);
 //   runtime->set_light(light, bounds_min, bounds_max); // fits config.level_bound to the light (RuntimeOptions)
+//   // or, lit from the start (each program linked once, fitted): create(config, light, bounds_min, bounds_max, &error)
 //   runtime->build([&](GLuint program) { /* bind VAO: location 0 = world position; draw */ });
 //   GLuint visibility = runtime->shade_deferred(world_positions_texture, width, height); // R32F
 //   runtime->reconfigure(other_config);            // recreates only what changed
@@ -37,6 +38,7 @@
 #include <epoxy/gl.h>
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cstdint>
@@ -126,28 +128,34 @@ public:
         if (rt) rt->fits_levels_ = options.fit_level_bound && config.level_bound < 0;
         return rt;
     }
+    // The same, already lit by `light` in `bounds` (as create then set_light): with a level_bound of -1
+    // and RuntimeOptions::fit_level_bound, each program is linked once, with the levels this light
+    // reaches, where create then set_light links every level's programs first and the fitted ones at
+    // set_light (on a driver that compiles at link, llvmpipe's, that is twice the compile time).
+    static std::unique_ptr<Runtime> create(const Config& config, const RectLight& light, glm::dvec3 bounds_min,
+                                           glm::dvec3 bounds_max, std::string* error = nullptr,
+                                           const RuntimeOptions& options = {}) {
+        return create_lit(config, light, bounds_min, bounds_max, error, options);
+    }
+    static std::unique_ptr<Runtime> create(const Config& config, const SunLight& sun, glm::dvec3 bounds_min,
+                                           glm::dvec3 bounds_max, std::string* error = nullptr,
+                                           const RuntimeOptions& options = {}) {
+        return create_lit(config, sun, bounds_min, bounds_max, error, options);
+    }
     // The same from an emission (a layout and its programs), e.g. one edited or built by hand.
     static std::unique_ptr<Runtime> create(Emission emission, std::string* error = nullptr,
                                            const RuntimeOptions& options = {}) {
-        auto fail = [&](std::string message) -> std::unique_ptr<Runtime> {
-            if (error) *error = std::move(message);
-            return nullptr;
-        };
         std::unique_ptr<Runtime> rt(new Runtime());
         rt->options_ = options;
         // From an empty runtime, adopt builds every program and allocates every texture.
-        if (std::string d = rt->adopt(std::move(emission)); !d.empty()) return fail(d);
-        rt->last_reconfigure_ = {};
+        if (std::string d = rt->adopt(std::move(emission)); !d.empty()) return failed(d, error);
         rt->requested_ = rt->config_;
-        detail::DebugCapture capture(options.debug_output);
-        glCreateVertexArrays(1, &rt->empty_vao_);
-        glCreateFramebuffers(1, &rt->fbo_);
-        if (std::string d = capture.take_diagnostic("setup"); !d.empty()) return fail(d);
-        return rt;
+        return finish_create(std::move(rt), error);
     }
 
     ~Runtime() {
         for (auto& [name, id] : programs_) glDeleteProgram(id);
+        for (const RetiredProgram& retired : retired_) glDeleteProgram(retired.id);
         for (auto& [name, id] : textures_) glDeleteTextures(1, &id);
         for (auto& [name, id] : output_textures_) glDeleteTextures(1, &id);
         if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
@@ -243,8 +251,11 @@ public:
         fitted_ = fits && has_frame();
         return {};
     }
+    // programs_rebuilt: programs whose code changed; programs_linked: those of them compiled and linked
+    // anew, the others taken back from the programs a recent reconfiguration retired (switching to a
+    // setting and back links nothing the second time).
     struct ReconfigureStats {
-        int programs_rebuilt = 0, textures_reallocated = 0;
+        int programs_rebuilt = 0, textures_reallocated = 0, programs_linked = 0;
     };
     const ReconfigureStats& last_reconfigure() const { return last_reconfigure_; }
 
@@ -272,6 +283,15 @@ public:
                    stage_list(running->stages);
         detail::DebugCapture capture(options_.debug_output);
         const Program candidate{name, stages};
+        if (const auto retired = find_retired(candidate); retired != retired_.end()) {
+            const GLuint id = retired->id; // an edit undone: the program it had is still linked
+            retired_.erase(retired);
+            retire(*running, programs_.at(name));
+            programs_[name] = id;
+            running->stages = stages;
+            shadow_current_ = false;
+            return {};
+        }
         std::string log;
         const GLuint id = link_program(candidate, &log);
         if (!id) {
@@ -282,7 +302,7 @@ public:
             glDeleteProgram(id);
             return d;
         }
-        glDeleteProgram(programs_.at(name));
+        retire(*running, programs_.at(name));
         programs_[name] = id;
         running->stages = stages;
         shadow_current_ = false; // a replaced program may be one of the shadow phase
@@ -478,6 +498,7 @@ private:
         detail::DebugCapture capture(options_.debug_output);
         TextureMap next_programs, next_textures;
         std::vector<GLuint> new_programs, new_textures;
+        std::vector<GLuint> unretired; // retired programs this emission takes back (at commit)
         auto discard = [&](std::string diagnostic) {
             for (GLuint id : new_programs) glDeleteProgram(id);
             for (GLuint id : new_textures) glDeleteTextures(1, &id);
@@ -488,6 +509,12 @@ private:
             const Program* running = find_program(p.name);
             if (running && detail::same_code(*running, p)) {
                 next_programs[p.name] = programs_.at(p.name);
+                continue;
+            }
+            if (const auto retired = find_retired(p); retired != retired_.end() &&
+                std::find(unretired.begin(), unretired.end(), retired->id) == unretired.end()) {
+                next_programs[p.name] = retired->id;
+                unretired.push_back(retired->id);
                 continue;
             }
             std::string log;
@@ -511,9 +538,17 @@ private:
         }
         if (std::string d = capture.take_diagnostic("reconfigure"); !d.empty()) return discard(d);
 
-        // Commit: release what the new layout no longer uses.
+        // Commit: retire the programs the new layout no longer uses, release the textures.
+        const int rebuilt = static_cast<int>(new_programs.size() + unretired.size());
+        std::erase_if(retired_, [&](const RetiredProgram& r) {
+            return std::find(unretired.begin(), unretired.end(), r.id) != unretired.end();
+        });
         for (auto& [name, id] : programs_)
-            if (next_programs.count(name) == 0 || next_programs.at(name) != id) glDeleteProgram(id);
+            if (next_programs.count(name) == 0 || next_programs.at(name) != id)
+            {
+                if (const Program* p = find_program(name)) retire(*p, id);
+                else glDeleteProgram(id);
+            }
         for (auto& [name, id] : textures_)
             if (next_textures.count(name) == 0 || next_textures.at(name) != id) glDeleteTextures(1, &id);
         for (auto it = output_textures_.begin(); it != output_textures_.end();) {
@@ -542,8 +577,53 @@ private:
             frame_ = slice_frame(*rect, bounds_min_, bounds_max_, config_.slices);
         if (const auto* sun = std::get_if<SunLight>(&light_))
             frame_ = slice_frame(*sun, bounds_min_, bounds_max_, config_.slices);
-        last_reconfigure_ = {static_cast<int>(new_programs.size()), static_cast<int>(new_textures.size())};
+        last_reconfigure_ = {rebuilt, static_cast<int>(new_textures.size()), static_cast<int>(new_programs.size())};
         return {};
+    }
+
+    // Programs a reconfiguration or replace_program took out of use, newest last, kept linked so that
+    // going back to a setting (or undoing an edit) links nothing; the oldest go past kRetiredPrograms.
+    struct RetiredProgram {
+        Program program;
+        GLuint id = 0;
+    };
+    static constexpr std::size_t kRetiredPrograms = 32;
+    std::vector<RetiredProgram>::iterator find_retired(const Program& program) {
+        return std::find_if(retired_.begin(), retired_.end(),
+                            [&](const RetiredProgram& r) { return detail::same_code(r.program, program); });
+    }
+    void retire(const Program& program, GLuint id) {
+        retired_.push_back({program, id});
+        if (retired_.size() > kRetiredPrograms) {
+            glDeleteProgram(retired_.front().id);
+            retired_.erase(retired_.begin());
+        }
+    }
+
+    static std::unique_ptr<Runtime> failed(const std::string& message, std::string* error) {
+        if (error) *error = message;
+        return nullptr;
+    }
+    // create's last steps, once the first emission is adopted.
+    static std::unique_ptr<Runtime> finish_create(std::unique_ptr<Runtime> rt, std::string* error) {
+        rt->last_reconfigure_ = {};
+        detail::DebugCapture capture(rt->options_.debug_output);
+        glCreateVertexArrays(1, &rt->empty_vao_);
+        glCreateFramebuffers(1, &rt->fbo_);
+        if (std::string d = capture.take_diagnostic("setup"); !d.empty()) return failed(d, error);
+        return rt;
+    }
+    template <class AnyLight>
+    static std::unique_ptr<Runtime> create_lit(const Config& config, const AnyLight& light, glm::dvec3 bounds_min,
+                                               glm::dvec3 bounds_max, std::string* error, const RuntimeOptions& options) {
+        std::unique_ptr<Runtime> rt(new Runtime());
+        rt->options_ = options;
+        rt->light_ = light;
+        rt->bounds_min_ = bounds_min;
+        rt->bounds_max_ = bounds_max;
+        // From an empty runtime lit by `light`, reconfigure emits fitted to it and adopts everything.
+        if (std::string d = rt->reconfigure(config); !d.empty()) return failed(d, error);
+        return finish_create(std::move(rt), error);
     }
 
     Program* find_program(const std::string& name) {
@@ -676,6 +756,7 @@ private:
     std::optional<glm::vec4> time_window_;                    // last set_time_window
     glm::dvec3 bounds_min_{0.0}, bounds_max_{0.0};
     ReconfigureStats last_reconfigure_;
+    std::vector<RetiredProgram> retired_;
 };
 
 } // namespace penumbra::gl

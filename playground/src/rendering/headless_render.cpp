@@ -18,7 +18,11 @@ Light shading_light(const Config& config) {
 
 bool render_headless(const Scene& scene, const Config& config, int width, int height, HeadlessResult& out,
                      std::string* error, const RenderOptions& options) {
-    auto runtime = penumbra::gl::Runtime::create(config, error);
+    // Created lit, so its programs are linked once, with the levels this light reaches.
+    const glm::dvec3 bounds_min(scene.bounds_min), bounds_max(scene.bounds_max);
+    auto runtime = shading_light(config) == Light::sun
+                       ? penumbra::gl::Runtime::create(config, scene.sun, bounds_min, bounds_max, error)
+                       : penumbra::gl::Runtime::create(config, scene.light, bounds_min, bounds_max, error);
     if (!runtime) return false;
     std::unique_ptr<GBuffer> gbuffer = GBuffer::create(width, height, error);
     if (!gbuffer) return false;
@@ -41,8 +45,6 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
             return false;
         }
     if (options.time_window) runtime->set_time_window(*options.time_window);
-    if (shading_light(config) == Light::sun) runtime->set_light(scene.sun, glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
-    else runtime->set_light(scene.light, glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
     // Every G-buffer texture the layouts know; each technique's screen pass reads the ones it declares.
     const penumbra::gl::Runtime::TextureMap gbuffer_textures{{"penumbra_worldPositions", gbuffer->positions()},
                                                              {"penumbra_worldNormals", gbuffer->normals()},

@@ -251,9 +251,9 @@ TEST_CASE("debug views: slice and level of each pixel match a CPU computation fr
         REQUIRE_MESSAGE(gbuffer, error);
         gbuffer->render(mesh, scene.camera.projection_matrix(float(W) / H) * scene.camera.view_matrix());
         const penumbra::Config config{.slices = S, .resolution = R};
-        auto runtime = penumbra::gl::Runtime::create(config, &error);
+        auto runtime = penumbra::gl::Runtime::create(config, scene.light, glm::dvec3(scene.bounds_min),
+                                                     glm::dvec3(scene.bounds_max), &error);
         REQUIRE_MESSAGE(runtime, error);
-        runtime->set_light(scene.light, glm::dvec3(scene.bounds_min), glm::dvec3(scene.bounds_max));
         const penumbra::SliceFrame& frame = runtime->frame();
 
         std::vector<glm::vec4> positions(std::size_t(W) * H);

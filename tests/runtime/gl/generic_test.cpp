@@ -66,11 +66,10 @@ struct Images {
 // Builds the runtime's textures for `config`, then shades with both programs.
 Images shade_both(const SceneOnGpu& s, const Config& config, gl::GenericVisibilityPass& generic) {
     std::string error;
-    auto runtime = gl::Runtime::create(config, &error);
-    REQUIRE_MESSAGE(runtime, error);
     const glm::dvec3 lo(s.scene.bounds_min), hi(s.scene.bounds_max);
-    if (config.light == Light::sun) runtime->set_light(s.scene.sun, lo, hi);
-    else runtime->set_light(s.scene.light, lo, hi);
+    auto runtime = config.light == Light::sun ? gl::Runtime::create(config, s.scene.sun, lo, hi, &error)
+                                              : gl::Runtime::create(config, s.scene.light, lo, hi, &error);
+    REQUIRE_MESSAGE(runtime, error);
     const std::string built = runtime->build([&](GLuint) { s.mesh->draw(); });
     REQUIRE_MESSAGE(built.empty(), built);
     REQUIRE_MESSAGE(runtime->shade_deferred(s.gbuffer->positions(), image_size, image_size, &error, nullptr,
@@ -195,9 +194,9 @@ TEST_CASE("specialized vs generic: tangent clip, every storage (the normals G-bu
     const Config config{.slices = 8, .resolution = 64, .tangent_clip = true};
     auto generic = gl::GenericVisibilityPass::create(config, &error);
     REQUIRE_MESSAGE(generic, error);
-    auto runtime = gl::Runtime::create(config, &error);
+    auto runtime = gl::Runtime::create(config, box.scene.light, glm::dvec3(box.scene.bounds_min),
+                                       glm::dvec3(box.scene.bounds_max), &error);
     REQUIRE_MESSAGE(runtime, error);
-    runtime->set_light(box.scene.light, glm::dvec3(box.scene.bounds_min), glm::dvec3(box.scene.bounds_max));
     REQUIRE(runtime->build([&](GLuint) { box.mesh->draw(); }).empty());
     const std::string refused = generic->shade(*runtime, box.gbuffer->positions(), 8, 8);
     CHECK(refused.find("penumbra_worldNormals") != std::string::npos);

@@ -112,6 +112,19 @@ std::vector<Config> oracle_matrix() {
     return configs;
 }
 
+struct Shard {
+    std::size_t index = 0, count = 1; // index from 0
+    std::string error;
+};
+Shard oracle_shard(const char* text) {
+    if (!text || !*text) return {};
+    std::size_t k = 0, n = 0;
+    char end = 0;
+    if (std::sscanf(text, "%zu/%zu%c", &k, &n, &end) != 2 || n == 0 || k == 0 || k > n)
+        return {0, 1, std::string("PENUMBRA_ORACLE_SHARD '") + text + "': expected K/N with 1 <= K <= N, e.g. 2/3"};
+    return {k - 1, n, {}};
+}
+
 // The boxes scene with a 20-degree sun: the default sun (5x the real one) casts penumbrae under 2
 // texels wide at R = 256, which reach only level 0 of the filters; this one reaches the upper
 // Gaussian and N-buffer levels.
@@ -141,8 +154,13 @@ TEST_CASE("oracle: GPU matches the CPU oracle within texture precision, every fi
     // may take minutes over the whole matrix; a session with little time on one runs the rows that failed.
     const char* only = std::getenv("PENUMBRA_ORACLE_CONFIGS");
     const std::string wanted = only ? std::string(";") + only + ";" : "";
-    std::size_t chosen = 0;
+    // PENUMBRA_ORACLE_SHARD=K/N: only the configurations whose index in the matrix is K-1 modulo N, so
+    // that ctest runs the matrix as N parts side by side (tests/runtime/CMakeLists.txt).
+    const Shard shard = oracle_shard(std::getenv("PENUMBRA_ORACLE_SHARD"));
+    REQUIRE_MESSAGE(shard.error.empty(), shard.error);
+    std::size_t chosen = 0, index = 0;
     for (const Config& base : oracle_matrix()) {
+        if (index++ % shard.count != shard.index) continue;
         if (only && wanted.find(";" + describe_config(base) + ";") == std::string::npos) continue;
         ++chosen;
         std::optional<Oracle> oracle;
@@ -184,7 +202,8 @@ TEST_CASE("oracle: GPU matches the CPU oracle within texture precision, every fi
                     "' (the names are printed by a run without it, with the fusion the matrix starts from, ",
                     to_string(Config{}.fusion), ")");
     std::sort(runs.begin(), runs.end(), [](const Agreement& x, const Agreement& y) { return x.max_difference > y.max_difference; });
-    std::printf("oracle: %zu configurations on %s; largest max |GPU - oracle|:\n", runs.size(), context->renderer().c_str());
+    std::printf("oracle: %zu configurations (%zu of the matrix's %zu, shard %zu/%zu) on %s; largest max |GPU - oracle|:\n",
+                runs.size(), chosen, index, shard.index + 1, shard.count, context->renderer().c_str());
     for (std::size_t i = 0; i < std::min<std::size_t>(5, runs.size()); ++i)
         std::printf("  %-44s max %.2e mean %.2e (bound there up to %.2e)\n", runs[i].name.c_str(), runs[i].max_difference,
                     runs[i].mean_difference, runs[i].max_bound);

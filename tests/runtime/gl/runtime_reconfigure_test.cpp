@@ -328,7 +328,8 @@ TEST_CASE("replace_program: a syntax error names file and line and keeps the las
                         "    penumbra_visibility = vec4(vec3(1.0 - penumbra_visibility.x), 1.0);\n}\n";
     REQUIRE(rt->replace_program("shading_deferred", inverted) == "");
     CHECK(rt->program("shading_deferred") != running);
-    CHECK(!glIsProgram(running));
+    CHECK(glIsProgram(running)); // retired, not deleted: an undo links nothing
+    const GLuint edited = rt->program("shading_deferred");
     CHECK(rt->emission().programs.back().stages == inverted);
     const std::vector<float> after = planes.render(*rt);
     REQUIRE(after.size() == before.size());
@@ -337,10 +338,17 @@ TEST_CASE("replace_program: a syntax error names file and line and keeps the las
         mismatches += std::abs(after[i] - (1.0f - before[i])) > 1e-6f;
     CHECK(mismatches == 0);
 
-    // Reconfiguring to the same configuration brings the emitted program back (its code differs).
+    // Reconfiguring to the same configuration brings the emitted program back (its code differs): the
+    // one retired at the edit, linked again by nobody.
     REQUIRE(rt->reconfigure(kSmall) == "");
     CHECK(rt->last_reconfigure().programs_rebuilt == 1);
+    CHECK(rt->last_reconfigure().programs_linked == 0);
+    CHECK(rt->program("shading_deferred") == running);
     CHECK(identical(planes.render(*rt), before));
+    // The runtime deletes what it retired when it goes.
+    rt.reset();
+    CHECK(!glIsProgram(running));
+    CHECK(!glIsProgram(edited));
 }
 
 TEST_CASE("replace_program: unknown program or other stages give a diagnostic") {
@@ -456,4 +464,58 @@ TEST_CASE("update: the shadow phase runs only when the light, the geometry or th
     REQUIRE(rt->reconfigure(other) == "");
     REQUIRE(rt->update(draw, false, &ran) == "");
     CHECK(ran); // a new configuration may have new textures
+}
+
+// A setting and back: the second switch takes the programs the first retired, links nothing, and
+// renders what it rendered before.
+TEST_CASE("reconfigure: switching to a setting and back links nothing the second time") {
+    Planes planes;
+    REQUIRE_MESSAGE(planes.ready(), planes.error);
+    auto rt = planes.runtime(kSmall);
+    REQUIRE_MESSAGE(rt, planes.error);
+    const std::vector<float> before = planes.render(*rt);
+    REQUIRE_MESSAGE(!before.empty(), planes.error);
+    const auto programs_before = program_ids(*rt);
+
+    Config probabilistic = kSmall;
+    probabilistic.fusion = penumbra::Fusion::probabilistic;
+    REQUIRE(rt->reconfigure(probabilistic) == "");
+    CHECK(rt->last_reconfigure().programs_linked > 0);
+    CHECK(rt->last_reconfigure().programs_linked == rt->last_reconfigure().programs_rebuilt);
+
+    const long links = penumbra::gl::link_counts().links;
+    REQUIRE(rt->reconfigure(kSmall) == "");
+    CHECK(rt->last_reconfigure().programs_rebuilt > 0);
+    CHECK(rt->last_reconfigure().programs_linked == 0);
+    CHECK(penumbra::gl::link_counts().links == links);
+    CHECK(program_ids(*rt) == programs_before);
+    CHECK(identical(planes.render(*rt), before));
+}
+
+// Created lit, a runtime links each program once, fitted to the light; created and then lit, it links
+// every level's programs first. Both end with the same code.
+TEST_CASE("create lit: each program linked once, the programs of create then set_light") {
+    Planes planes;
+    REQUIRE_MESSAGE(planes.ready(), planes.error);
+    const glm::dvec3 lo(planes.scene->bounds_min), hi(planes.scene->bounds_max);
+
+    const long before_lit = penumbra::gl::link_counts().links;
+    std::string error;
+    auto lit = Runtime::create(kSmall, planes.scene->light, lo, hi, &error);
+    REQUIRE_MESSAGE(lit, error);
+    const long lit_links = penumbra::gl::link_counts().links - before_lit;
+    CHECK(lit_links == static_cast<long>(lit->emission().programs.size()));
+
+    const long before_unlit = penumbra::gl::link_counts().links;
+    auto unlit = planes.runtime(kSmall);
+    REQUIRE_MESSAGE(unlit, planes.error);
+    const long unlit_links = penumbra::gl::link_counts().links - before_unlit;
+    CHECK(unlit_links > lit_links); // planes at this size fit fewer levels than every level
+
+    CHECK(lit->config() == unlit->config());
+    REQUIRE(lit->emission().programs.size() == unlit->emission().programs.size());
+    for (std::size_t i = 0; i < lit->emission().programs.size(); ++i)
+        CHECK_MESSAGE(penumbra::gl::detail::same_code(lit->emission().programs[i], unlit->emission().programs[i]),
+                      lit->emission().programs[i].name);
+    CHECK(identical(planes.render(*lit), planes.render(*unlit)));
 }
