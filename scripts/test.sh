@@ -9,6 +9,7 @@
 #   mesa/   MESA_SHADER_CACHE_DIR: llvmpipe compiles every shader with LLVM; a warm cache hides
 #           most of that cost, which a new machine (or CI on one) pays in full
 #   xdg/    XDG_CACHE_HOME: the corpus (scripts/get_corpus.sh) and penumbra-playground's bakes
+#           (PENUMBRA_CACHE_DIR, which would name another folder for the bakes, is unset)
 #   npm/    npm_config_cache: the package tests install offline, from files the setup put in place
 # PENUMBRA_WARM_CACHES=1 keeps your own caches instead (faster, and runs the corpus cases).
 # After ctest, scripts/test_budget.py prints each test's time against its timeout and fails the
@@ -23,6 +24,7 @@ if [ "${PENUMBRA_WARM_CACHES:-0}" != 1 ]; then
     export MESA_SHADER_CACHE_DIR="$PWD/build/cold-caches/mesa"
     export XDG_CACHE_HOME="$PWD/build/cold-caches/xdg"
     export npm_config_cache="$PWD/build/cold-caches/npm"
+    unset PENUMBRA_CACHE_DIR
     echo "test: caches start empty in build/cold-caches (PENUMBRA_WARM_CACHES=1 keeps yours)"
 fi
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
