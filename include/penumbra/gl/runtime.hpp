@@ -283,24 +283,21 @@ public:
                    stage_list(running->stages);
         detail::DebugCapture capture(options_.debug_output);
         const Program candidate{name, stages};
+        GLuint id = 0;
         if (const auto retired = find_retired(candidate); retired != retired_.end()) {
-            const GLuint id = retired->id; // an edit undone: the program it had is still linked
+            id = retired->id; // an edit undone: the program it had is still linked
             retired_.erase(retired);
-            retire(*running, programs_.at(name));
-            programs_[name] = id;
-            running->stages = stages;
-            shadow_current_ = false;
-            return {};
-        }
-        std::string log;
-        const GLuint id = link_program(candidate, &log);
-        if (!id) {
-            capture.take_diagnostic("replace_program");
-            return log;
-        }
-        if (std::string d = capture.take_diagnostic("replace_program " + name); !d.empty()) {
-            glDeleteProgram(id);
-            return d;
+        } else {
+            std::string log;
+            id = link_program(candidate, &log);
+            if (!id) {
+                capture.take_diagnostic("replace_program");
+                return log;
+            }
+            if (std::string d = capture.take_diagnostic("replace_program " + name); !d.empty()) {
+                glDeleteProgram(id);
+                return d;
+            }
         }
         retire(*running, programs_.at(name));
         programs_[name] = id;
@@ -544,11 +541,7 @@ private:
             return std::find(unretired.begin(), unretired.end(), r.id) != unretired.end();
         });
         for (auto& [name, id] : programs_)
-            if (next_programs.count(name) == 0 || next_programs.at(name) != id)
-            {
-                if (const Program* p = find_program(name)) retire(*p, id);
-                else glDeleteProgram(id);
-            }
+            if (next_programs.count(name) == 0 || next_programs.at(name) != id) retire(*find_program(name), id);
         for (auto& [name, id] : textures_)
             if (next_textures.count(name) == 0 || next_textures.at(name) != id) glDeleteTextures(1, &id);
         for (auto it = output_textures_.begin(); it != output_textures_.end();) {
