@@ -8,12 +8,13 @@
 //   penumbra-bench-quality [--scenes planes,boxes] [FILE ...] [--corpus [DIR]] [--no-ground] [--filters sat,nbuffer]
 //                          [--configs 16x512,4x128] [--size 256x256] [--samples 16] [--repeat 1]
 //                          [--light-scales 1,2,4,8,16,32]
-// After the rows, a summary: per variant, setting and light scale, the mean fair (oriented) penumbra
-// MAE and mean signed error (estimate − truth), the same against the irradiance reference (the shaded
-// image's relative error; the two disagree under large lights, docs/model.md §1.7.4), and near the terminator (pixels within 3 of where a
-// surface turns away from the light's centre) the p95 of |error| and the total variation of the
-// error (sawtooth and seams), the built-in scenes and the mesh files apart; with more than one light
-// scale, each scene's fair penumbra MAE and signed error by light scale.
+// After the rows, a summary: per variant, setting and light scale, the mean penumbra MAE and mean signed
+// error (estimate − truth) against the irradiance reference first (the shaded image's relative error),
+// then against the oriented one (the two disagree under large lights, docs/model.md §1.7.4), the mean
+// false light and false shadow (reference/metrics.hpp), and near the terminator (pixels within 3 of where
+// a surface turns away from the light's centre) the p95 of |error| and the total variation of the error
+// (sawtooth and seams), the built-in scenes and the mesh files apart; with more than one light scale,
+// each scene's MAE and signed error by light scale, irradiance then oriented.
 #include "arguments.hpp"
 #include "corpus/manifest.hpp"
 
@@ -120,12 +121,13 @@ constexpr const char* usage_text =
     "  --level-reductions  level_reduction values to measure, each a row (-1: every level at full\n"
     "              resolution; default: Config{}'s); rows of another value than the default say 'rN'\n"
     "  --light-scales  multiples of each scene's default rectangle (both sides), each a row 'xK'\n"
-    "              (default 1; e.g. 1,2,4,8,16,32); a summary per scale follows the rows: mean fair\n"
-    "              penumbra MAE and mean signed error (estimate - truth), built-in scenes and files apart,\n"
-    "              the same against the irradiance reference (the shaded image's relative error), then\n"
-    "              near the terminator (within 3 pixels of where a surface turns away from the light's\n"
-    "              centre): p95 of |error| and the error's total variation (sawtooth, seams); with more\n"
-    "              than one scale, a table per scene and setting: fair MAE / signed error by scale\n";
+    "              (default 1; e.g. 1,2,4,8,16,32); a summary per scale follows the rows, built-in scenes\n"
+    "              and files apart: mean penumbra MAE and mean signed error (estimate - truth) against the\n"
+    "              irradiance reference (the shaded image's relative error), the same against the oriented\n"
+    "              one, mean false light and false shadow, then near the terminator (within 3 pixels of\n"
+    "              where a surface turns away from the light's centre): p95 of |error| and the error's\n"
+    "              total variation (sawtooth, seams); with more than one scale, a table per scene and\n"
+    "              setting: MAE / signed error by scale, irradiance then oriented\n";
 
 bool parse_pair(std::string_view text, int& a, int& b) {
     const std::size_t x = text.find('x');
@@ -397,15 +399,19 @@ int main(int argc, char** argv) {
     // against the oriented reference and against the irradiance one.
     struct Summary {
         double mae = 0, bias = 0, worst = 0, terminator_p95 = 0, terminator_variation = 0;
-        double irradiance_mae = 0, irradiance_bias = 0;
+        double irradiance_mae = 0, irradiance_bias = 0, irradiance_worst = 0;
+        double false_light = 0, false_shadow = 0; // fractions, summed over the scenes
         int count = 0;
-        std::string worst_scene;
+        std::string worst_scene, irradiance_worst_scene;
     };
     std::map<std::pair<std::string, double>, Summary> summaries[2]; // [0] built-in scenes, [1] mesh files
     std::vector<std::string> summary_order;
-    // Each scene's fair penumbra MAE and signed error by light scale, for the per-scene table after the
-    // summary (scenes in the order measured).
-    std::map<std::pair<std::string, std::string>, std::map<double, std::pair<double, double>>> per_scene;
+    // Each scene's penumbra MAE and signed error by light scale against irradiance, then oriented, for the
+    // per-scene table after the summary (scenes in the order measured).
+    struct SceneCell {
+        double irradiance_mae, irradiance_bias, oriented_mae, oriented_bias;
+    };
+    std::map<std::pair<std::string, std::string>, std::map<double, SceneCell>> per_scene;
     std::vector<std::string> scene_order;
     std::optional<HeadlessContext> context = HeadlessContext::create(&error);
     if (!context) {
@@ -420,8 +426,9 @@ int main(int argc, char** argv) {
                 options->repeat);
     std::printf("| scene | filter | S/R | MAE | RMSE | p95 | penumbra MAE | penumbra RMSE | penumbra p95 | penumbra px "
                 "| oriented penumbra MAE | oriented p95 | irradiance penumbra MAE | irradiance p95 "
-                "| slicing ms | prefilter ms | shading ms | terminator p95 | terminator TV | terminator px |\n");
-    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+                "| slicing ms | prefilter ms | shading ms | terminator p95 | terminator TV | terminator px "
+                "| false light % | false shadow % |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     std::vector<std::string> pass_lines;
     for (std::size_t scene_index = 0; scene_index < scenes.size(); ++scene_index)
     for (double light_scale : options->light_scales) {
@@ -486,11 +493,18 @@ int main(int argc, char** argv) {
                 Summary& sum = summaries[file ? 1 : 0][{setting_label, light_scale}];
                 if (std::find(scene_order.begin(), scene_order.end(), scene.name) == scene_order.end())
                     scene_order.push_back(scene.name);
-                per_scene[{scene.name, setting_label}][light_scale] = {q.oriented.penumbra.mae, q.oriented.penumbra.bias};
+                per_scene[{scene.name, setting_label}][light_scale] = {q.irradiance.penumbra.mae, q.irradiance.penumbra.bias,
+                                                                       q.oriented.penumbra.mae, q.oriented.penumbra.bias};
                 sum.mae += q.oriented.penumbra.mae;
                 sum.bias += q.oriented.penumbra.bias;
                 sum.irradiance_mae += q.irradiance.penumbra.mae;
                 sum.irradiance_bias += q.irradiance.penumbra.bias;
+                sum.false_light += q.false_light.fraction();
+                sum.false_shadow += q.false_shadow.fraction();
+                if (q.irradiance.penumbra.mae >= sum.irradiance_worst) {
+                    sum.irradiance_worst = q.irradiance.penumbra.mae;
+                    sum.irradiance_worst_scene = scene.name;
+                }
                 const BoundaryStats terminator = terminator_error(result, truth.oriented, scene.light.center);
                 sum.terminator_p95 += terminator.p95;
                 sum.terminator_variation += terminator.total_variation;
@@ -515,18 +529,20 @@ int main(int argc, char** argv) {
                 }
                 pass_lines.push_back(line);
                 std::printf("| %s | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %zu | %.4f | %.4f | %.4f | %.4f | %.1f | %.1f "
-                            "| %.1f | %.4f | %.4f | %zu |\n",
+                            "| %.1f | %.4f | %.4f | %zu | %.1f | %.1f |\n",
                             label.c_str(), m.all.mae, m.all.rmse, m.all.p95, m.penumbra.mae, m.penumbra.rmse,
                             m.penumbra.p95, m.penumbra.count, q.oriented.penumbra.mae, q.oriented.penumbra.p95,
                             q.irradiance.penumbra.mae, q.irradiance.penumbra.p95, slicing, prefilter, shading,
-                            terminator.p95, terminator.total_variation, terminator.count);
+                            terminator.p95, terminator.total_variation, terminator.count, 100.0 * q.false_light.fraction(),
+                            100.0 * q.false_shadow.fraction());
                 std::fflush(stdout);
             }
         std::printf("|   (%s ground truth: %.0f ms CPU, Embree) |\n", scene_name.c_str(), truth_ms);
         scene.light = default_light;
     }
-    std::printf("\nfair (oriented) penumbra error by light scale: mean MAE / mean signed error (estimate - truth) "
-                "/ worst scene's MAE, over the scenes measured\n");
+    std::printf("\npenumbra error by light scale, over the scenes measured: against the irradiance reference first (the "
+                "shaded image's relative error), then the oriented one (the visibility of the part of the light above "
+                "the surface)\n");
     // The rest of a table's header after its first columns: a column per light scale.
     const auto print_scale_columns = [&](std::size_t first_columns) {
         for (double scale : options->light_scales) std::printf(" x%g |", scale);
@@ -552,16 +568,22 @@ int main(int argc, char** argv) {
     for (int group = 0; group < 2; ++group) {
         if (summaries[group].empty()) continue;
         const char* group_name = group == 0 ? "built-in scenes" : "mesh files";
-        std::printf("\n%s\n\n| filter | S/R |", group_name);
+        std::printf("\n%s, irradiance (the shaded image's reference): mean penumbra MAE / mean signed error (estimate - "
+                    "truth) / worst scene's MAE (scenes)\n\n| filter | S/R |",
+                    group_name);
+        print_by_scale(group, [](const Summary& sum) {
+            std::printf(" %.4f / %+.4f / %.3f %s (%d) |", sum.irradiance_mae / sum.count, sum.irradiance_bias / sum.count,
+                        sum.irradiance_worst, sum.irradiance_worst_scene.c_str(), sum.count);
+        });
+        std::printf("\n%s, oriented: mean penumbra MAE / mean signed error / worst scene's MAE (scenes)\n\n| filter | S/R |",
+                    group_name);
         print_by_scale(group, [](const Summary& sum) {
             std::printf(" %.4f / %+.4f / %.3f %s (%d) |", sum.mae / sum.count, sum.bias / sum.count, sum.worst,
                         sum.worst_scene.c_str(), sum.count);
         });
-        std::printf("\nagainst the irradiance reference (%s; the shaded image's relative error): mean penumbra MAE / "
-                    "mean signed error\n\n| filter | S/R |",
-                    group_name);
+        std::printf("\n%s: mean false light %% / false shadow %% (reference/metrics.hpp)\n\n| filter | S/R |", group_name);
         print_by_scale(group, [](const Summary& sum) {
-            std::printf(" %.4f / %+.4f |", sum.irradiance_mae / sum.count, sum.irradiance_bias / sum.count);
+            std::printf(" %.1f / %.1f |", 100.0 * sum.false_light / sum.count, 100.0 * sum.false_shadow / sum.count);
         });
         std::printf("\nnear the terminator (%s): mean p95 of |error| / mean total variation of the error\n\n| filter | S/R |",
                     group_name);
@@ -570,7 +592,8 @@ int main(int argc, char** argv) {
         });
     }
     if (options->light_scales.size() > 1) {
-        std::printf("\nper scene, fair (oriented) penumbra MAE / signed error by light scale\n\n| scene | filter | S/R |");
+        std::printf("\nper scene, penumbra MAE / signed error by light scale: irradiance, then oriented\n\n"
+                    "| scene | filter | S/R |");
         print_scale_columns(3);
         for (const std::string& scene_name : scene_order)
             for (const std::string& label : summary_order) {
@@ -582,7 +605,8 @@ int main(int argc, char** argv) {
                     if (it == row->second.end())
                         std::printf(" - |");
                     else
-                        std::printf(" %.4f / %+.4f |", it->second.first, it->second.second);
+                        std::printf(" %.4f / %+.4f; %.4f / %+.4f |", it->second.irradiance_mae, it->second.irradiance_bias,
+                                    it->second.oriented_mae, it->second.oriented_bias);
                 }
                 std::printf("\n");
             }

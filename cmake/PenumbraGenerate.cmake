@@ -2,7 +2,7 @@
 #
 #   penumbra_generate_shaders(<target> OUT_DIR <dir>
 #       [NAME <name>]                      # a second call on <target>: defines PENUMBRA_SHADER_DIR_<NAME>
-#       [TECHNIQUE <t>] [SLICES <n>] [RESOLUTION <r>] [FILTER <f>] ...   # every penumbra-gen flag
+#       [TECHNIQUE <t>] [PROFILE <p>] [SLICES <n>] [RESOLUTION <r>] [FILTER <f>] ...   # every penumbra-gen flag
 #       [NO_FADE] [NO_ROTATION] [ALPHA_TEST] [SOLID_CASTERS] [IRRADIANCE_WINDOW] ...  # every penumbra-gen switch
 #       [CONFIG <file.json>] [FLAGS <penumbra-gen flags>...] [VALIDATE]
 #       [FILES_VARIABLE <var>])
@@ -35,7 +35,7 @@ cmake_policy(VERSION 3.20)
 # would hide variables from sibling directories.
 function(penumbra_generate_flags value_var switch_var)
     set(${value_var}
-        --technique --slices --resolution --filter --fusion --packing --light --target
+        --technique --profile --slices --resolution --filter --fusion --packing --light --target
         --slice-placement --level-bound --level-format --level-reduction --prefilter-stage
         --tangent-clip-offset --fade-ramp
         --shadow-resolution --shadow-bias --shadow-slope-bias --shadow-normal-offset
@@ -48,7 +48,8 @@ function(penumbra_generate_flags value_var switch_var)
         PARENT_SCOPE)
     set(${switch_var}
         --no-leak-fix --no-fade --tangent-clip --no-tangent-clip --no-clip-footprint
-        --no-rotation --no-receiver-plane-bias --alpha-test --solid-casters --irradiance-window --validate
+        --no-rotation --no-receiver-plane-bias --alpha-test --no-alpha-test --solid-casters --irradiance-window
+        --validate
         PARENT_SCOPE)
 endfunction()
 

@@ -7,9 +7,10 @@ targets/web/three_peers.mjs wrote DIR/three_peers.md, appends its three.js table
 
 Every conclusion in the report is computed here from the raw numbers: the Pareto fronts, the
 equal-time table, the light-size tables, the per-scene and per-mesh tables and the excess flicker.
-The conclusions use the fair reference (`oriented`, the part of the light above the receiver's
-tangent plane) unless --metric says otherwise; the other references follow, named for what they
-are. Figures use Debian's matplotlib (python3-matplotlib), without a display (Agg backend).
+The conclusions use the shaded image's reference (`irradiance`: an engine multiplies the visibility
+into its own unoccluded area-light shading, so what it needs is the light weighed by the irradiance it
+sends) unless --metric says otherwise; the other references follow, named for what they are (`oriented`,
+the visibility of the part of the light above the receiver's tangent plane, first). Figures use Debian's matplotlib (python3-matplotlib), without a display (Agg backend).
 """
 import argparse
 import json
@@ -40,16 +41,18 @@ def fmt_scale(scale):
     return f"x{scale:g}"
 
 
-# The reference the conclusions use (--metric, default the fair `oriented`); the others are shown
-# beside it, in this order, each under the name that says what it measures.
+# The reference the conclusions use (--metric, default `irradiance`, the shaded image's); the others are
+# shown beside it, in this order, each under the name that says what it measures.
 METRICS = {
+    "irradiance": "irradiance relative to the unoccluded irradiance from the part of the light above the receiver's "
+                  "tangent plane (the shaded image's reference)",
     "oriented": "visibility of the part of the light above the receiver's tangent plane (fair)",
-    "irradiance": "irradiance relative to the unoccluded irradiance from that part (fair)",
     "visibility": "visibility of the whole light (rays behind the receiver's tangent plane count as blocked: "
                   "unfair to a model that clips to the tangent plane, which the default does)",
 }
-METRIC_NAMES = {"oriented": "oriented (fair)", "irradiance": "irradiance (fair)", "visibility": "whole-light visibility"}
-METRIC = "oriented"
+METRIC_NAMES = {"irradiance": "irradiance (the shaded image's)", "oriented": "oriented (fair)",
+                "visibility": "whole-light visibility"}
+METRIC = "irradiance"
 
 
 def metric_name(metric=None):
@@ -355,7 +358,7 @@ def write_report(results, directory, thresholds, figures):
       "scene's default rectangle (2×2 for the built-in scenes).\n")
     w(f"Reference of the conclusions (*MAE* below): **{metric_name()}**, the {METRICS[METRIC]}. Beside it, the "
       f"penumbra MAE against the other references ({other_metrics()}); pixels that see none of the light are "
-      "left out of the fair ones. `compare_report.py DIR --metric visibility` (or `irradiance`) rebuilds the "
+      "left out of the fair ones. `compare_report.py DIR --metric oriented` (or `visibility`) rebuilds the "
       "report on another reference.\n")
     w("Techniques in this run: " + ", ".join(
         f"{family_name(f)} ({sum(1 for l in {m['label'] for m in measurements if m['family'] == f})} settings)"
@@ -782,9 +785,9 @@ def main():
     parser.add_argument("directory", help="the folder holding results.json (penumbra-bench-compare --out)")
     parser.add_argument("--mae-thresholds", default="0.1,0.15,0.2",
                         help="penumbra MAEs the light-size table keeps each technique under (default 0.1,0.15,0.2)")
-    parser.add_argument("--metric", choices=list(METRICS), default="oriented",
-                        help="the reference the conclusions use (default oriented, the fair one; the others are "
-                             "shown beside it: irradiance, and visibility of the whole light)")
+    parser.add_argument("--metric", choices=list(METRICS), default="irradiance",
+                        help="the reference the conclusions use (default irradiance, the shaded image's; the others "
+                             "are shown beside it: oriented, and visibility of the whole light)")
     parser.add_argument("--check", action="store_true", help="check an existing report instead of writing one")
     args = parser.parse_args()
     global METRIC

@@ -195,6 +195,40 @@ TEST_CASE("layout.json (version 2): phases, structured state, the deferred pass 
     CHECK(layout.at("passes").at(0).at("state").at("blend_equation") == "MAX");
 }
 
+TEST_CASE("--profile and the JSON key profile: the preset, with the fields given beside it winning") {
+    auto config_of = [](const fs::path& dir) { return nlohmann::json::parse(read_text(dir / "layout.json")).at("config"); };
+    const fs::path large = scratch().fresh("profile-large");
+    REQUIRE(run_gen(with_out({"--profile", "large"}, large)).exit_code == 0);
+    const nlohmann::json c = config_of(large);
+    CHECK(c.at("profile") == "large");
+    CHECK(c.at("slices") == 16);
+    CHECK(c.at("fusion") == "clustered");
+    CHECK(c.at("irradiance_window") == true);
+    // a flag given beside it wins, before or after it; --light sun leaves the irradiance window off (rect only)
+    const fs::path mixed = scratch().fresh("profile-mixed");
+    REQUIRE(run_gen(with_out({"--fusion", "chained", "--profile", "large", "--light", "sun"}, mixed)).exit_code == 0);
+    const nlohmann::json m = config_of(mixed);
+    CHECK(m.at("fusion") == "chained");
+    CHECK_FALSE(m.value("irradiance_window", false));
+    // the same from JSON, whatever the order of its keys; layout.json reads back to the same emission
+    const fs::path from_json = scratch().fresh("profile-json");
+    REQUIRE(run_gen(with_out({"--config", write_text("profile.json", R"({"fusion": "extent", "profile": "large"})").string()},
+                             from_json))
+                .exit_code == 0);
+    CHECK(config_of(from_json).at("fusion") == "extent");
+    CHECK(config_of(from_json).at("irradiance_window") == true);
+    const fs::path again = scratch().fresh("profile-again");
+    REQUIRE(run_gen(with_out({"--config", (large / "layout.json").string()}, again)).exit_code == 0);
+    CHECK(read_text(again / "layout.json") == read_text(large / "layout.json"));
+    // the default writes no profile key (layouts of earlier versions stay as they were)
+    const fs::path plain = scratch().fresh("profile-none");
+    REQUIRE(run_gen(with_out({}, plain)).exit_code == 0);
+    CHECK_FALSE(config_of(plain).contains("profile"));
+    const Run wrong = run_gen(with_out({"--profile", "huge"}, scratch().fresh("profile-wrong")));
+    CHECK(wrong.exit_code == 2);
+    CHECK(wrong.err.find("--profile: 'huge' is not allowed; allowed: balanced, large") != std::string::npos);
+}
+
 TEST_CASE("--config reads a config object or a whole layout.json; flags override it") {
     const fs::path first = scratch().fresh("from-json");
     REQUIRE(run_gen(with_out({"--config", write_text("config.json", valid_config_json).string()}, first))
@@ -273,7 +307,7 @@ struct BadInput {
 
 TEST_CASE("bad arguments and bad config files: exit 2, one clear error line, nothing written") {
     const std::vector<BadInput> cases{
-        {"unknown flag", {"--slcies", "8"}, "unknown flag '--slcies'; allowed: --technique, --light, --target, --alpha-test, --slices"},
+        {"unknown flag", {"--slcies", "8"}, "unknown flag '--slcies'; allowed: --technique, --profile, --light, --target, --alpha-test, --no-alpha-test, --slices"},
         {"short unknown flag", {"-s"}, "unknown flag '-s'"},
         {"positional", {"extra"}, "unexpected argument 'extra'"},
         {"missing value", {"--slices"}, "--slices: missing value", nullptr, true},

@@ -4,6 +4,7 @@
 // hold of each emission and of the row as a whole.
 #include <penumbra/generic.hpp>
 #include <penumbra/penumbra.hpp>
+#include <penumbra/profiles.hpp>
 #include <penumbra/validation.hpp>
 
 #include <doctest/doctest.h>
@@ -511,6 +512,32 @@ Row irradiance_window_row() {
             }};
 }
 
+// The profiles (penumbra/profiles.hpp): every GLSL target × light, at 256² (OpenGL 3.3 guarantees a
+// 1024-texel atlas, too narrow for the default 512² with 16 slices). Each preset is valid everywhere;
+// `balanced` is the default configuration itself, `large` its own preset (the irradiance window on the
+// rectangle only).
+Row profiles_row() {
+    std::vector<Config> configs;
+    for (Target target : glsl_targets())
+        for (Light light : all_values<Light>())
+            for (Profile profile : all_values<Profile>())
+                configs.push_back(apply_profile({.resolution = 256, .light = light, .target = target}, profile));
+    return {.name = "profiles",
+            .configurations = configs,
+            .expect = [](const Config&) { return Expect::valid; },
+            .check_emission = [](const Config& c, const Emitted&) {
+                const Config plain{.resolution = 256, .light = c.light, .target = c.target};
+                if (c.profile == Profile::balanced) {
+                    CHECK_MESSAGE(c == plain, name_of(c));
+                    return;
+                }
+                CHECK(c.slices == plain.slices);
+                CHECK(c.fusion == Fusion::clustered);
+                CHECK(c.irradiance_window == (c.light == Light::rect));
+            },
+            .check_row = [](const RowResult& r) { CHECK(r.valid == 4 * 2 * 2); }};
+}
+
 // --- the one check -------------------------------------------------------------------------------
 
 // Emits every configuration of `row` and compiles and links each program with glslang for its
@@ -554,7 +581,7 @@ RowResult run_row(const Row& row) {
 TEST_CASE("the glslang matrix: every program of every valid configuration of each technique compiles and links") {
     const Row rows[] = {occlusion_row(), tangent_clip_row(), many_slices_row(), adaptive_row(), compute_prefilter_row(),
                         generic_row(), shadow_map_row(), erosion_row(), evsm_row(), oim_row(), alpha_test_row(),
-                        solid_casters_row(), irradiance_window_row()};
+                        solid_casters_row(), irradiance_window_row(), profiles_row()};
     int configurations = 0, programs = 0, compiled = 0;
     for (const Row& row : rows) {
         CAPTURE(row.name);

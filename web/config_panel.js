@@ -69,7 +69,8 @@ export class ConfigPanel {
                 input.inputMode = "decimal";
             }
             input.dataset.key = field.key;
-            input.addEventListener("change", () => this.changed());
+            this.emitter = emitter;
+            input.addEventListener("change", () => field.key === "profile" ? this.applyProfile() : this.changed());
             const note = Object.assign(document.createElement("span"), {className: "message"});
             const help = Object.assign(document.createElement("span"), {className: "help",
                                                                          textContent: field.help + (field.note ? ` (${field.note})` : "")});
@@ -103,6 +104,17 @@ export class ConfigPanel {
             else input.value = String(value);
         }
         this.changed();
+    }
+
+    // A profile is a preset of fields (penumbra/profiles.hpp): the panel shows the values it sets, as the
+    // emitter resolves them for this light, and the user may change them after.
+    applyProfile() {
+        const current = this.config();
+        const emission = this.emitter.emit({profile: current.profile, light: current.light, tangent_clip: current.tangent_clip,
+                                            target: current.target});
+        if (!emission.ok || !emission.layout) return this.changed();
+        const preset = emission.layout.config;
+        this.set({fusion: preset.fusion, irradiance_window: preset.irradiance_window ?? false});
     }
 
     changed() {

@@ -107,6 +107,13 @@ enum class Technique : std::uint8_t {
                // moments of the exponentially warped depth, blurred over the light's size, Chebyshev bound
 };
 
+// A shadow quality tier: a named preset of occlusion-texture fields (penumbra/profiles.hpp), as engines
+// ship shadow quality settings.
+enum class Profile : std::uint8_t {
+    balanced, // the default configuration, Config{}
+    large,    // lights several times the scene's default rectangle: more accurate there, at a higher cost
+};
+
 // Where the PCF taps lie in the kernel.
 enum class TapPattern : std::uint8_t {
     grid,    // N x N taps on a regular grid over the square of half-side `radius`
@@ -205,6 +212,8 @@ struct EvsmParams {
 
 struct Config {
     Technique technique = Technique::occlusion; // which method the programs implement
+    Profile profile = Profile::balanced;    // the preset the occlusion fields started from (penumbra/profiles.hpp);
+                                            // setting it through the table of fields applies that preset
     int slices = 16;                        // slices along the light normal; 1 to 32 (four per RGBA texture),
                                             // 64 or 128 (sliced as bits of one RGBA32UI target, paper §3.7)
     int resolution = 512;                   // occlusion texture side in texels; a power of two, 32 to 4096
@@ -291,6 +300,9 @@ template <> struct EnumNames<PrefilterStage> {
 };
 template <> struct EnumNames<Light> {
     static constexpr std::array<std::string_view, 2> names{"rect", "sun"};
+};
+template <> struct EnumNames<Profile> {
+    static constexpr std::array<std::string_view, 2> names{"balanced", "large"};
 };
 template <> struct EnumNames<Target> {
     static constexpr std::array<std::string_view, 5> names{"glsl330", "glsl450", "essl300", "vulkan", "wgsl"};

@@ -16,6 +16,7 @@
 #pragma once
 
 #include "config_field.hpp"
+#include "profiles.hpp"
 #include "detail/techniques.hpp"
 #include "detail/text.hpp"
 
@@ -31,16 +32,34 @@
 namespace penumbra {
 namespace detail {
 
+// The profile's row: setting it applies the preset (penumbra/profiles.hpp), so every way a field is set
+// (a flag, a JSON key, a panel) reaches it; the readers of a whole configuration apply it again last, so that
+// the fields given beside it win (apply_profile's explicit keys).
+constexpr ConfigField profile_field() {
+    ConfigField row = member<&Config::profile>(
+        {.key = "profile", .flag = "--profile", .metavar = "P",
+         .help = "shadow quality tier: balanced (the default) or large (lights x4 and up: clustered fusion and "
+                 "the irradiance window); the fields given beside it win",
+         .detail = "a named preset of the occlusion fields fusion and irradiance_window (absent means "
+                   "balanced, the defaults): large is for lights several times the scene's own rectangle and costs "
+                   "more; a key given beside it overrides the preset's value",
+         .techniques = "occlusion",
+         .omit_default = true});
+    row.set = [](Config& c, double v) { c = apply_profile(c, detail::from_field_value<Profile>(v)); };
+    return row;
+}
+
 constexpr auto common_fields() {
     return std::array{
         member<&Config::technique>({.key = "technique", .flag = "--technique", .metavar = "T",
                                     .help = "shadowing technique",
                                     .detail = "the method the programs implement; only its own fields shape the "
                                               "programs"}),
+        profile_field(),
         member<&Config::light>({.key = "light", .flag = "--light", .metavar = "L", .help = "area light"}),
         member<&Config::target>({.key = "target", .flag = "--target", .metavar = "T", .help = "shading language"}),
         member<&Config::alpha_test>(
-            {.key = "alpha_test", .flag = "--alpha-test",
+            {.key = "alpha_test", .flag = "--[no-]alpha-test",
              .help = "cut-out casters: the passes that draw casters from the light discard fragments whose alpha "
                      "(the draw's penumbra_alphaTexture at its penumbra_uv) is below its penumbra_alphaCutoff",
              .detail = "cut-out casters, every technique (absent means false): the programs that draw the casters "

@@ -33,6 +33,7 @@
 #include "layout.hpp"
 #include "level_bound.hpp"
 #include "light_frame.hpp"
+#include "profiles.hpp"
 #include "program.hpp"
 #include "static_glsl.hpp"
 #include "uniform_values.hpp"

@@ -190,7 +190,12 @@ Parsed<penumbra::Config> parse_config_json(std::string_view text, std::string_vi
     }
 
     penumbra::Config config;
+    // "profile" first (its preset), so that the keys beside it win over it
+    if (const auto profile = object->find("profile"); profile != object->end())
+        if (std::string error = read_field(*penumbra::find_config_field("profile"), *profile, config); !error.empty())
+            return {{}, where + ": " + error};
     for (const auto& [key, value] : object->items()) {
+        if (key == "profile") continue;
         std::string error;
         const penumbra::ConfigField* field = penumbra::find_config_field(key);
         if (field && penumbra::field_section(*field).empty()) // "pcss.rotate" is a key of "pcss", not of the top level
@@ -200,6 +205,12 @@ Parsed<penumbra::Config> parse_config_json(std::string_view text, std::string_vi
         else
             error = "unknown key '" + printable(key) + "'; allowed keys: " + penumbra::config_key_list();
         if (!error.empty()) return {{}, where + ": " + error};
+    }
+    // "profile": its preset again, now that "light" and the rest are read, except the keys beside it
+    if (object->contains("profile")) {
+        std::vector<std::string_view> given;
+        for (const auto& [key, value] : object->items()) given.push_back(key);
+        config = penumbra::apply_profile(config, config.profile, given);
     }
     return {config, {}};
 }

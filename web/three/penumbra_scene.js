@@ -25,6 +25,20 @@ export function fail(message) {
     throw new PenumbraError(`PenumbraShadows: ${message}`);
 }
 
+// What load() emits or fetches: options.emission, or the profile's (penumbra/profiles.hpp) configuration
+// for this light, through the WebAssembly emitter; "balanced" alone is the shipped default emission.
+export function requestedEmission(options, kind) {
+    const shipped = kind === "sun" ? "sun-nbuffer-16x512" : "rect-nbuffer-16x512";
+    const profile = options.profile;
+    if (profile === undefined) return options.emission ?? shipped;
+    if (profile !== "balanced" && profile !== "large") fail(`profile '${profile}' is not allowed; allowed: balanced, large`);
+    const emission = options.emission;
+    if (emission === undefined) return profile === "balanced" ? shipped : {profile, light: kind};
+    if (emission && typeof emission === "object" && !emission.layout) return {...emission, profile};
+    fail("profile applies to a configuration (options.emission a configuration object, or none); " +
+         "this emission is already emitted");
+}
+
 export function kindOf(light) {
     if (light && light.isRectAreaLight) return "rect";
     if (light && light.isSunLight) fail("a cascaded SunLight has its own light loop in three; use a THREE.DirectionalLight");

@@ -42,6 +42,12 @@ export type Emission = EmissionName | string | EmissionFiles | EmissionConfig;
 export interface PenumbraShadowsOptions {
     /** Default "rect-nbuffer-16x512" (RectAreaLight) or "sun-nbuffer-16x512" (DirectionalLight). */
     emission?: Emission;
+    /**
+     * A shadow quality tier (penumbra-gen --profile): "balanced" (the default) or "large" (lights x4 and up:
+     * more slices, clustered fusion, the irradiance window; emitted by penumbra_emitter.wasm). With a
+     * configuration object as `emission`, its fields win over the profile's.
+     */
+    profile?: "balanced" | "large";
     /** Sun only: the angular diameter in radians (default 0.0093, 0.53°). */
     angularDiameter?: number;
     /** Re-run the shadow phase when the light, a caster or a receiver changed (default true). */

@@ -31,7 +31,7 @@ import {DoubleSide, ExternalTexture, FloatType, GLSL3, Matrix4, NoBlending, RGBA
 // no ShaderChunk, and this module must still load there to hand over to penumbra_shadows_webgpu.js)
 import * as three from "three";
 import {LayoutRunner} from "./penumbra_runner.js";
-import {EMISSIONS, PenumbraError, ShadowsBase, casterVertices, fail, forEachPlacement, isDeformed, kindOf, loadEmissionFiles,
+import {EMISSIONS, PenumbraError, ShadowsBase, casterVertices, fail, forEachPlacement, isDeformed, kindOf, loadEmissionFiles, requestedEmission,
         loadEmitter, positionVersion, snippetParameters} from "./penumbra_scene.js";
 
 // The emissions shipped in emissions/ (penumbra-gen output, emissions/regenerate.sh): key → {file name: URL};
@@ -151,7 +151,7 @@ export class PenumbraShadows extends ShadowsBase {
         if (!renderer || !renderer.isWebGLRenderer) fail("the first argument must be a THREE.WebGLRenderer or a WebGPURenderer (three/webgpu)");
         const gl = renderer.getContext();
         const kind = kindOf(light);
-        const runner = await loadRunner(gl, options.emission ?? defaultEmission(kind), kind, options.wasm ?? null);
+        const runner = await loadRunner(gl, requestedEmission(options, kind), kind, options.wasm ?? null);
         return new PenumbraShadows(renderer, scene, light, {...options, runner});
     }
 
@@ -440,10 +440,6 @@ void main() {
         this._samplers = [];
         this.renderer.resetState();
     }
-}
-
-function defaultEmission(kind) {
-    return kind === "sun" ? "sun-nbuffer-16x512" : "rect-nbuffer-16x512";
 }
 
 // The WebGL2 layout runner for an emission (loadEmissionFiles: a key of EMISSIONS, a folder URL,

@@ -36,7 +36,7 @@ import {ClampToEdgeWrapping, DoubleSide, ExternalTexture, FloatType, LinearFilte
         NoBlending, RepeatWrapping, RenderTarget, Vector2, Vector3, Vector4} from "three/webgpu";
 import {cameraPosition, float, normalWorld, positionWorld, renderGroup, sampler, texture, uniform, vec4, wgsl, wgslFn} from "three/tsl";
 import {WebGPULayoutRunner} from "./penumbra_webgpu_runner.js";
-import {ShadowsBase, casterVertices, fail, forEachPlacement, isDeformed, kindOf, loadEmissionFiles, positionVersion,
+import {ShadowsBase, casterVertices, fail, forEachPlacement, isDeformed, kindOf, loadEmissionFiles, requestedEmission, positionVersion,
         snippetParameters} from "./penumbra_scene.js";
 
 // Materials shadowed by add-ons: material → {previous: its own hooks, addons}; one wrapper per
@@ -53,7 +53,7 @@ export class PenumbraShadowsWebGPU extends ShadowsBase {
             fail("this WebGPURenderer runs its WebGL2 fallback backend (no WebGPU in this browser, or forceWebGL), " +
                  "where the add-on has no GPUDevice to run the wgsl emission on; use a THREE.WebGLRenderer there");
         const kind = kindOf(light);
-        const runner = await loadRunner(renderer.backend.device, options.emission ?? defaultEmission(kind), kind, options.wasm ?? null);
+        const runner = await loadRunner(renderer.backend.device, requestedEmission(options, kind), kind, options.wasm ?? null);
         return new PenumbraShadowsWebGPU(renderer, scene, light, {...options, runner});
     }
 
@@ -347,10 +347,6 @@ export class PenumbraShadowsWebGPU extends ShadowsBase {
         this._textures = [];
         if (this._zeros) this._zeros.destroy();
     }
-}
-
-function defaultEmission(kind) {
-    return kind === "sun" ? "sun-nbuffer-16x512" : "rect-nbuffer-16x512";
 }
 
 async function loadRunner(device, emission, kind, wasm) {

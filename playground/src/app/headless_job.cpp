@@ -48,7 +48,7 @@ double milliseconds_since(std::chrono::steady_clock::time_point start) {
 }
 
 nlohmann::ordered_json stats_json(const ErrorStats& s) {
-    return {{"mae", s.mae}, {"rmse", s.rmse}, {"p95", s.p95}, {"pixels", s.count}};
+    return {{"mae", s.mae}, {"rmse", s.rmse}, {"p95", s.p95}, {"signed", s.bias}, {"pixels", s.count}};
 }
 
 int fail(const std::string& message, int code = 1) {
@@ -205,7 +205,7 @@ nlohmann::ordered_json run_metrics(const PlaygroundOptions& options, const Scene
     return metrics;
 }
 
-// --reference: the ray-traced truth, its files (truth, oriented truth, error image), the printed
+// --reference: the ray-traced truth, its files (the three truths, error image), the printed
 // comparison and metrics["reference"].
 bool add_reference(RunOutputs& out, nlohmann::ordered_json& metrics, const PlaygroundOptions& options,
                    const Scene& scene, const HeadlessResult& result, int width, int height, std::string* error) {
@@ -213,56 +213,67 @@ bool add_reference(RunOutputs& out, nlohmann::ordered_json& metrics, const Playg
     const References references = reference_all(scene, result, options.samples, shading_light(options.config));
     const double reference_ms = milliseconds_since(reference_start);
     const QualityMetrics q = compare_quality(result, references);
-    // The headline is the fair reference, `oriented`: the visibility of the part of the light
-    // above each surface's tangent plane, which is what the default model (tangent clip)
-    // estimates and what a viewer sees. The whole light's visibility (the paper's kernels)
-    // follows under its own name: against it, correct pixels on faces turned away from part
-    // of the light count as errors.
-    const Metrics& headline = q.oriented;
-    const Metrics& whole = q.visibility;
+    // The headline is `irradiance`, the reference of the shaded image: an engine multiplies the
+    // visibility into its own unoccluded area-light shading, so the visibility it needs weighs each
+    // part of the light by the irradiance it sends. `oriented` (the visibility of the part of the light
+    // above each surface's tangent plane) and the whole light's visibility follow under their names.
+    const Metrics& headline = q.irradiance;
     const std::string truth_path =
         options.reference_path.empty() ? sibling_path(options.out_path, ".reference.pfm") : options.reference_path;
     const std::string error_path =
         options.error_image_path.empty() ? sibling_path(options.out_path, ".error.png") : options.error_image_path;
-    // estimate − oriented truth; NaN (green) where a pixel sees none of the light.
-    std::vector<float> signed_error(references.oriented.size());
+    // estimate − irradiance truth; NaN (green) where a pixel sees none of the light.
+    std::vector<float> signed_error(references.irradiance.size());
     for (std::size_t i = 0; i < signed_error.size(); ++i)
-        signed_error[i] = result.geometry[i] ? result.visibility[i] - references.oriented[i] : 0.0f;
-    // The whole-light truth at --reference-out, the fair one beside it.
+        signed_error[i] = result.geometry[i] ? result.visibility[i] - references.irradiance[i] : 0.0f;
+    // The whole-light truth at --reference-out, the fair ones beside it.
     const std::string oriented_path = sibling_path(truth_path, ".oriented.pfm");
+    const std::string irradiance_path = sibling_path(truth_path, ".irradiance.pfm");
     if (!out.add(truth_path, encode_pfm({width, height, 1, references.visibility}, error)) ||
         !out.add(oriented_path, encode_pfm({width, height, 1, references.oriented}, error)) ||
+        !out.add(irradiance_path, encode_pfm({width, height, 1, references.irradiance}, error)) ||
         !out.add(error_path, encode_png_rgb(width, height, signed_error_colors(signed_error, error_image_range),
                                             RowOrder::top_down, error)))
         return false;
-    out.wrote.push_back(truth_path + " (whole-light visibility), " + oriented_path + " (oriented) and " + error_path +
-                        " (against oriented; red: estimate too bright, blue: too dark, saturating at ±" +
+    out.wrote.push_back(truth_path + " (whole-light visibility), " + oriented_path + " (oriented), " + irradiance_path +
+                        " (irradiance) and " + error_path +
+                        " (against irradiance; red: estimate too bright, blue: too dark, saturating at ±" +
                         std::to_string(error_image_range).substr(0, 4) + ", green: sees none of the light)");
-    std::printf("ground truth %dx%d rays/pixel, %.0f ms; oriented (the part of the light above each surface's "
-                "tangent plane):\n"
-                "  all:      MAE %.4f  RMSE %.4f  p95 %.4f  (%zu px)\n"
-                "  penumbra: MAE %.4f  RMSE %.4f  p95 %.4f  (%zu px)\n",
-                options.samples, options.samples, reference_ms, headline.all.mae, headline.all.rmse,
-                headline.all.p95, headline.all.count, headline.penumbra.mae, headline.penumbra.rmse,
-                headline.penumbra.p95, headline.penumbra.count);
+    std::printf("ground truth %dx%d rays/pixel, %.0f ms; irradiance (the shaded image's reference: the light "
+                "weighed by the irradiance it sends, above each surface's tangent plane):\n"
+                "  all:      MAE %.4f  RMSE %.4f  p95 %.4f  signed %+.4f  (%zu px)\n"
+                "  penumbra: MAE %.4f  RMSE %.4f  p95 %.4f  signed %+.4f  (%zu px)\n",
+                options.samples, options.samples, reference_ms, headline.all.mae, headline.all.rmse, headline.all.p95,
+                headline.all.bias, headline.all.count, headline.penumbra.mae, headline.penumbra.rmse,
+                headline.penumbra.p95, headline.penumbra.bias, headline.penumbra.count);
     auto print_other = [](const char* name, const Metrics& f) {
-        std::printf("  %-24s all MAE %.4f  p95 %.4f  (%zu px); penumbra MAE %.4f  RMSE %.4f  p95 %.4f  (%zu px)\n",
+        std::printf("  %-24s all MAE %.4f  p95 %.4f  (%zu px); penumbra MAE %.4f  RMSE %.4f  p95 %.4f  signed %+.4f  "
+                    "(%zu px)\n",
                     name, f.all.mae, f.all.p95, f.all.count, f.penumbra.mae, f.penumbra.rmse, f.penumbra.p95,
-                    f.penumbra.count);
+                    f.penumbra.bias, f.penumbra.count);
     };
-    print_other("irradiance:", q.irradiance);
-    print_other("whole-light visibility:", whole);
+    print_other("oriented:", q.oriented);
+    print_other("whole-light visibility:", q.visibility);
+    std::printf("  false light %.1f %% (%zu of %zu px the shading lights that get no light, estimate >= %.2f); "
+                "false shadow %.1f %% (%zu of %zu px fully lit, estimate < %.2f)\n",
+                100.0 * q.false_light.fraction(), q.false_light.wrong, q.false_light.pixels, false_light_estimate,
+                100.0 * q.false_shadow.fraction(), q.false_shadow.wrong, q.false_shadow.pixels, false_shadow_estimate);
     auto metrics_json = [](const Metrics& f) {
         return nlohmann::ordered_json{{"all", stats_json(f.all)}, {"penumbra", stats_json(f.penumbra)}};
     };
+    auto rate_json = [](const ErrorRate& r) {
+        return nlohmann::ordered_json{{"fraction", r.fraction()}, {"pixels", r.wrong}, {"of", r.pixels}};
+    };
     metrics["reference"] = {{"samples_per_axis", options.samples},
                             {"ms", reference_ms},
-                            {"headline", "oriented"},
+                            {"headline", "irradiance"},
                             {"all", stats_json(headline.all)},
                             {"penumbra", stats_json(headline.penumbra)},
-                            {"oriented", metrics_json(q.oriented)},
                             {"irradiance", metrics_json(q.irradiance)},
-                            {"whole_light_visibility", metrics_json(whole)}};
+                            {"oriented", metrics_json(q.oriented)},
+                            {"whole_light_visibility", metrics_json(q.visibility)},
+                            {"false_light", rate_json(q.false_light)},
+                            {"false_shadow", rate_json(q.false_shadow)}};
     return true;
 }
 
@@ -276,11 +287,24 @@ void print_pass_times(const HeadlessResult& result) {
 
 } // namespace
 
+PlaygroundOptions follow_asset_cuts(PlaygroundOptions options, const Scene& scene, std::string* note) {
+    if (options.alpha_test_given || options.config.alpha_test || !scene.mesh.cuts()) return options;
+    options.config.alpha_test = true;
+    if (note)
+        *note = "alpha test on: " + std::to_string(scene.mesh.cut_materials.size()) +
+                " of the scene's materials cut, so they cast the shadow of their cut (--no-alpha-test: of their "
+                "triangles)";
+    return options;
+}
+
 // scene → context → (bake) → render → files and metrics → (reference) → one transaction.
-int run_headless(const PlaygroundOptions& options) {
-    SceneLoad loaded = load_scene(options.scene, options.ground);
+int run_headless(const PlaygroundOptions& given) {
+    SceneLoad loaded = load_scene(given.scene, given.ground);
     if (!loaded.scene) return fail(loaded.error, 2);
     Scene& scene = *loaded.scene;
+    std::string cut_note;
+    const PlaygroundOptions options = follow_asset_cuts(given, scene, &cut_note);
+    if (!cut_note.empty()) std::printf("%s\n", cut_note.c_str());
     if (options.light_size) apply_light_size(scene, shading_light(options.config), *options.light_size);
     const int width = options.width > 0 ? options.width : 512;
     const int height = options.height > 0 ? options.height : 512;

@@ -42,6 +42,11 @@ SceneLoad load_scene(const std::string& name_or_path, bool ground = true);
 // diameter in degrees.
 void apply_light_size(Scene& scene, Light light, double size);
 
+// The asset decides alpha_test unless the user did (--alpha-test, --no-alpha-test, or a --config file that
+// turns it on): a mesh whose materials cut (glTF MASK or BLEND, OBJ map_d) casts the shadow of its cut.
+// Returns the options to run with; *note says so when it turned the cut on.
+PlaygroundOptions follow_asset_cuts(PlaygroundOptions options, const Scene& scene, std::string* note);
+
 // Fraction of geometry pixels whose visibility is below 0.5 (0 when there is no geometry).
 double shadowed_fraction(const HeadlessResult& result);
 

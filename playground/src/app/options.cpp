@@ -180,6 +180,8 @@ ParsedOptions parse_options(const std::vector<std::string>& args) {
         base = *read.value;
     }
     options.config = penumbra_gen::apply(flags, base);
+    options.alpha_test_given = base.alpha_test;
+    for (const auto& [field, value] : flags.values) options.alpha_test_given |= field->key == "alpha_test";
     if (std::string error = check(options); !error.empty()) return fail(error);
     return {options, false, {}};
 }
@@ -227,7 +229,8 @@ std::string usage() {
     out += "\nconfiguration (as penumbra-gen; flags override the --config file; --target vulkan and wgsl cannot run\n"
            "here, the playground renders with OpenGL):\n\n";
     out += penumbra::config_usage(24);
-    out += "  (--alpha-test here: materials that cut cast the shadow of their texture's alpha, not of their\n"
+    out += "  (--alpha-test here, on by default when the scene's materials cut (--no-alpha-test: off): materials\n"
+           "  that cut cast the shadow of their texture's alpha, not of their\n"
            "  triangles: glTF alphaMode MASK (baseColorFactor.a x baseColorTexture.a below alphaCutoff, default\n"
            "  0.5), BLEND cast as a cut-out at 0.5, OBJ map_d (or map_Kd's alpha) at 0.5; the oim bake cuts the\n"
            "  same. The Embree truth and the receivers are cut either way: cut-out pixels are not surfaces)\n";
@@ -244,22 +247,26 @@ std::string usage() {
     out += "\nheadless output:\n";
     out += line("--out FILE.png", "the shaded image (required with --headless)");
     out += line("--visibility FILE.pfm", "the estimated visibility, one float per pixel (1 on background)");
-    out += line("--reference", "also ray-trace the ground truth (Embree) and report MAE, RMSE and p95 |error|\n"
-                               "                        over all geometry pixels and over penumbra pixels "
-                               "(truth or estimate < 0.98). The\n"
-                               "                        headline (printed first, metrics.json reference.all and "
+    out += line("--reference", "also ray-trace the ground truth (Embree) and report MAE, RMSE, p95 |error| and the\n"
+                               "                        mean signed error (+ too bright, - too dark) over all geometry "
+                               "pixels and over\n"
+                               "                        penumbra pixels (truth or estimate < 0.98), and the false "
+                               "light and false shadow.\n"
+                               "                        The headline (printed first, metrics.json reference.all and "
                                ".penumbra, the error\n"
-                               "                        PNG) is the fair reference, oriented: the part of the "
-                               "light above each surface's\n"
-                               "                        tangent plane; irradiance and whole-light visibility "
-                               "(the paper's kernels) follow.\n"
-                               "                        Writes both truths as PFM and a false-colour error PNG "
-                               "(red: too bright, blue:\n"
-                               "                        too dark, green: sees none of the light)");
+                               "                        PNG) is irradiance, the shaded image's reference: the light "
+                               "weighed by the\n"
+                               "                        irradiance it sends, above each surface's tangent plane; "
+                               "oriented (its visibility\n"
+                               "                        unweighed) and the whole light's visibility follow. Writes "
+                               "the three truths as\n"
+                               "                        PFM and a false-colour error PNG (red: too bright, blue: too "
+                               "dark, green: sees\n"
+                               "                        none of the light)");
     out += line("--samples N", "ground-truth rays per light axis, N×N per pixel: 1 to 1024 (default 32)");
     out += line("--reference-out FILE", "where the whole-light truth goes (default <out stem>.reference.pfm next to\n"
-                                        "                        --out); the oriented one beside it, "
-                                        "<stem>.oriented.pfm");
+                                        "                        --out); the others beside it, "
+                                        "<stem>.oriented.pfm and <stem>.irradiance.pfm");
     out += line("--error-out FILE", "where the error image goes (default <out stem>.error.png next to --out)");
     out += line("--metrics FILE.json", "scene, renderer, configuration, sizes, the GPU time of each pass in ms and,\n"
                                        "                        with --reference, the error statistics");

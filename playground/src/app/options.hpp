@@ -15,6 +15,8 @@ struct PlaygroundOptions {
     std::string scene = "boxes";   // a built-in scene name or a path ending in .obj, .gltf or .glb
     bool ground = true;             // a mesh file gets a floor under it (--no-ground: not)
     penumbra::Config config;
+    bool alpha_test_given = false;  // --[no-]alpha-test, or a --config file that turns it on; else the scene's
+                                    // materials decide (follow_asset_cuts)
     int width = 0, height = 0;      // 0: mode default (headless 512x512, window 1280x720)
     std::optional<double> light_size; // --light-size: rectangle side / sun angular diameter (degrees)
     // technique oim: the sun on its path (penumbra/sun_path.hpp) and where bakes are cached

@@ -49,8 +49,20 @@ Metrics compare(std::span<const float> estimate, std::span<const unsigned char> 
 QualityMetrics compare_quality(std::span<const float> estimate, std::span<const unsigned char> geometry,
                                std::span<const float> visibility, std::span<const float> oriented,
                                std::span<const float> irradiance) {
-    return {compare(estimate, geometry, visibility), compare(estimate, geometry, oriented),
-            compare(estimate, geometry, irradiance)};
+    QualityMetrics q{compare(estimate, geometry, visibility), compare(estimate, geometry, oriented),
+                     compare(estimate, geometry, irradiance), {}, {}};
+    for (std::size_t i = 0; i < estimate.size(); ++i) {
+        if (!geometry[i] || std::isnan(irradiance[i])) continue; // the shading lights none of it
+        if (irradiance[i] <= false_light_truth) {
+            ++q.false_light.pixels;
+            if (estimate[i] >= false_light_estimate) ++q.false_light.wrong;
+        }
+        if (irradiance[i] >= false_shadow_truth) {
+            ++q.false_shadow.pixels;
+            if (estimate[i] < false_shadow_estimate) ++q.false_shadow.wrong;
+        }
+    }
+    return q;
 }
 
 } // namespace penumbra::playground

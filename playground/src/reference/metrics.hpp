@@ -29,8 +29,24 @@ Metrics compare(std::span<const float> estimate, std::span<const unsigned char> 
 //               plane count as blocked), today's metric;
 //   oriented:   the visibility of the part of the light above the tangent plane;
 //   irradiance: the ray-traced irradiance relative to the unoccluded irradiance from that part.
+// A share of wrong pixels: `wrong` of the `pixels` a condition selects.
+struct ErrorRate {
+    std::size_t wrong = 0, pixels = 0;
+    double fraction() const { return pixels ? static_cast<double>(wrong) / pixels : 0.0; }
+};
+
+// What a viewer sees at once, which a mean hides, on the pixels the shading lights (some of the light is
+// above the surface: the irradiance truth is defined; elsewhere the shading is dark whatever the estimate):
+//   false light:  of the pixels that get no light (irradiance truth ≤ .01), those the estimate gives ≥ .05;
+//   false shadow: of the pixels fully lit (irradiance truth ≥ .99), those the estimate gives < .95.
+// Not the whole-light truth: a face that sees a corner of a large light above it, unblocked, gets under 1 %
+// of the whole light and is rightly lit (dimly, as its shading's irradiance is small).
+inline constexpr float false_light_truth = 0.01f, false_light_estimate = 0.05f;
+inline constexpr float false_shadow_truth = 0.99f, false_shadow_estimate = 0.95f;
+
 struct QualityMetrics {
     Metrics visibility, oriented, irradiance;
+    ErrorRate false_light, false_shadow;
 };
 
 QualityMetrics compare_quality(std::span<const float> estimate, std::span<const unsigned char> geometry,

@@ -518,10 +518,18 @@ Oracle::Receiver Oracle::receiver(glm::vec3 world, glm::vec3 normal) const {
             return x ? glm::dvec3(mid, 0.0, hi - lo) : glm::dvec3(0.0, mid, hi - lo);
         };
         r.clip = clip_along(std::abs(slopes.x) >= std::abs(slopes.y));
+        // or the largest square in the corner the plane spares, where it is larger
+        const double slope_sum = std::abs(slopes.x) + std::abs(slopes.y);
+        const double corner = std::clamp((0.5 * slope_sum - level) / std::max(slope_sum, 1e-12), 0.0, 1.0);
+        const glm::dvec3 centre_line = r.clip, corner_square(glm::sign(slopes) * (0.5 - 0.5 * corner), corner);
+        if (corner > centre_line.z) r.clip = corner_square;
         // fp32 may pick the other axis where both slopes are (nearly) equal; it matters only
         // where the two cuts differ
         r.clip_ambiguous = std::abs(std::abs(slopes.x) - std::abs(slopes.y)) <= 1e-5 * std::abs(slopes.x) &&
                            glm::length(clip_along(true) - clip_along(false)) > 1e-9;
+        // and either square where their sides (nearly) tie
+        r.clip_ambiguous = r.clip_ambiguous || (std::abs(corner - centre_line.z) <= 1e-5 &&
+                                                glm::length(corner_square - centre_line) > 1e-9);
         // clip_footprint: the receiver's own tangent plane in the slice above it, capped
         const double across = std::max(glm::length(glm::dvec2(n)), 1e-6);
         double footprint = 0.0;
@@ -547,6 +555,10 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
     const Receiver r = receiver(world, normal);
     const glm::dvec3 p = r.point, clip = r.clip;
     const bool clip_ambiguous = r.clip_ambiguous;
+    // a receiver turned away from all of the light: none (fp32 may find a sliver of light where the
+    // clip closes, or none where a sliver opens)
+    const bool clip_closing = config_.tangent_clip && clip.z < 1e-5;
+    if (config_.tangent_clip && clip.z <= 0.0) return {0.0, clip_closing ? 1.0 : 0.0, false};
     // irradiance window (penumbra_irradianceWindow), at the receiver before it moves: the core, half the clip's
     // side around the weight's peak, and the weight of the whole clip's visibility
     IrradianceWindow window; // the clip alone unless config.irradiance_window
@@ -609,7 +621,7 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
         case Fusion::extent:
         case Fusion::clustered: v = std::clamp(extent, 0.0, 1.0); break;
         }
-        return {v, bound, beyond};
+        return {v, clip_closing ? 1.0 : bound, beyond};
     };
     if (window.clip_weight >= 1.0) return fused(clip);
     // penumbra_windowedVisibility: the clip's and the core's visibilities mixed

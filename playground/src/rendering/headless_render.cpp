@@ -2,6 +2,7 @@
 
 #include "rendering/gpu_scene.hpp"
 #include "reference/ground_truth.hpp"
+#include "rendering/light_term.hpp"
 
 #include <penumbra/gl/runtime.hpp>
 #include <penumbra/texture_memory.hpp>
@@ -89,7 +90,7 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
         return false;
     }
 
-    // Flip to top row first; Lambert shading on the CPU.
+    // Flip to top row first; the example shading on the CPU (rendering/light_term.hpp).
     out.width = width;
     out.height = height;
     const std::size_t n = pos.size();
@@ -99,7 +100,7 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
     out.tex_coords.assign(n, glm::vec2(0.0f));
     out.geometry.assign(n, 0);
     out.rgb.assign(3 * n, 0.0f);
-    const glm::vec3 light_centre(scene.light.center);
+    const glm::vec3 eye = scene.camera.eye_position();
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
             const std::size_t src = static_cast<std::size_t>(y) * width + x;
@@ -114,10 +115,10 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
             out.normals[dst] = glm::vec3(nrm[src]);
             out.tex_coords[dst] = glm::vec2(uv[src]);
             out.visibility[dst] = vis[src];
-            const glm::vec3 to_light = shading_light(config) == Light::sun ? -glm::vec3(glm::normalize(scene.sun.direction))
-                                                                  : glm::normalize(light_centre - glm::vec3(pos[src]));
-            const float lambert = std::abs(glm::dot(glm::vec3(nrm[src]), to_light));
-            const float shade = 0.15f + 0.85f * lambert * vis[src];
+            const float light_term = shading_light(config) == Light::sun
+                                         ? sun_light_term(glm::vec3(pos[src]), glm::vec3(nrm[src]), eye, scene.sun)
+                                         : rect_light_term(glm::vec3(pos[src]), glm::vec3(nrm[src]), eye, scene.light);
+            const float shade = 0.15f + 0.85f * light_term * vis[src];
             for (int c = 0; c < 3; ++c) out.rgb[3 * dst + c] = shade * 0.9f;
         }
     return true;
@@ -144,10 +145,10 @@ References reference_all(const Scene& scene, const HeadlessResult& result, int s
     References out;
     GroundTruth::Oriented fair;
     if (light == Light::sun) {
-        out.visibility = truth.visibility(result.positions, result.normals, scene.sun, samples_per_axis);
+        out.visibility = truth.visibility(result.positions, facing, scene.sun, samples_per_axis);
         fair = truth.oriented(result.positions, facing, scene.sun, samples_per_axis);
     } else {
-        out.visibility = truth.visibility(result.positions, result.normals, scene.light, samples_per_axis);
+        out.visibility = truth.visibility(result.positions, facing, scene.light, samples_per_axis);
         fair = truth.oriented(result.positions, facing, scene.light, samples_per_axis);
     }
     out.oriented = std::move(fair.oriented);

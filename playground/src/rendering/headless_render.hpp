@@ -25,7 +25,7 @@ struct HeadlessResult {
     std::vector<glm::vec3> normals;      // unit normals, zero on background
     std::vector<glm::vec2> tex_coords;   // the mesh's texture coordinates (0 without them or on background)
     std::vector<unsigned char> geometry; // 1 where a surface was rasterised
-    std::vector<float> rgb;              // Lambert shading, 3 floats per pixel, top row first
+    std::vector<float> rgb;              // the example shading (rendering/light_term.hpp), 3 floats per pixel, top row first
     std::vector<penumbra::gl::PassTiming> timings; // GPU time of each pass (timer queries), shading last
     bool warm = false;                             // timings of a second run (RenderOptions::warm_up)
     long long texture_bytes = 0;                   // the layout's textures at this output size

@@ -87,7 +87,8 @@ void print_summary(WindowApp& app, int width, int height) {
 
 } // namespace
 
-int run_window(const PlaygroundOptions& options) {
+int run_window(const PlaygroundOptions& given) {
+    PlaygroundOptions options = given;
     std::optional<ScriptRunner> script;
     if (!options.script_path.empty()) {
         ScriptParse parsed = load_script(options.script_path);
@@ -103,6 +104,9 @@ int run_window(const PlaygroundOptions& options) {
         std::cerr << "error: " << loaded.error << "\n";
         return 2;
     }
+    std::string cut_note;
+    options = follow_asset_cuts(options, *loaded.scene, &cut_note);
+    if (!cut_note.empty()) std::cout << cut_note << "\n";
     const bool automated = options.frames > 0 || script.has_value();
 
     glfwSetErrorCallback(record_glfw_error);

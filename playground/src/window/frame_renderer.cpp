@@ -1,5 +1,6 @@
 #include "frame_renderer.hpp"
 
+#include "rendering/light_term.hpp"
 #include "scenes/mesh_builder.hpp"
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -12,8 +13,8 @@ namespace penumbra::playground {
 
 namespace {
 
-// The same Lambert shading as the headless renderer (headless_render.cpp), on the GPU.
-constexpr const char* compose_fragment = R"(#version 450 core
+// The same example shading as the headless renderer (rendering/light_term.hpp), on the GPU.
+constexpr const char* compose_fragment_head = R"(#version 450 core
 layout(binding = 0) uniform sampler2D worldPositions;
 layout(binding = 1) uniform sampler2D worldNormals;
 layout(binding = 2) uniform sampler2D visibilityLeft;
@@ -22,8 +23,14 @@ uniform int view;            // 0 shaded, 1 visibility
 uniform int splitColumn;     // first pixel column of the right half; -1: no split
 uniform int lightIsSun;
 uniform vec3 lightCentre;    // world, rectangle light
+uniform vec3 lightHalfU;     // world, half its side along u
+uniform vec3 lightHalfV;     // world, half its side along v
 uniform vec3 sunDirection;   // world, direction the sunlight travels
+uniform vec3 eye;            // world, the camera
 out vec4 color;
+)";
+
+constexpr const char* compose_fragment_main = R"(
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -34,8 +41,9 @@ void main() {
     float v = right ? texelFetch(visibilityRight, pixel, 0).r : texelFetch(visibilityLeft, pixel, 0).r;
     if (view == 1) { color = vec4(vec3(v), 1.0); return; }
     vec3 normal = texelFetch(worldNormals, pixel, 0).xyz;
-    vec3 toLight = lightIsSun != 0 ? -normalize(sunDirection) : normalize(lightCentre - position.xyz);
-    float shade = 0.15 + 0.85 * abs(dot(normal, toLight)) * v;
+    float lightTerm = lightIsSun != 0 ? penumbra_sunLightTerm(position.xyz, normal, eye, sunDirection)
+                                      : penumbra_rectLightTerm(position.xyz, normal, eye, lightCentre, lightHalfU, lightHalfV);
+    float shade = 0.15 + 0.85 * lightTerm * v;
     color = vec4(vec3(shade * 0.9), 1.0);
 }
 )";
@@ -65,7 +73,8 @@ const char* to_string(View view) {
 std::unique_ptr<FrameRenderer> FrameRenderer::create(const Scene& scene, std::string* error) {
     std::unique_ptr<FrameRenderer> r(new FrameRenderer());
     r->scene_ = &scene;
-    r->compose_program_ = build_program("compose", fullscreen_triangle_vertex, compose_fragment, error);
+    r->compose_program_ = build_program("compose", fullscreen_triangle_vertex,
+                                        std::string(compose_fragment_head) + light_term_glsl + compose_fragment_main, error);
     if (!r->compose_program_) return nullptr;
     glCreateVertexArrays(1, &r->empty_vao_);
     glGenQueries(3, r->queries_);
@@ -212,7 +221,12 @@ std::string FrameRenderer::render(penumbra::gl::Runtime& left, penumbra::gl::Run
     glUniform1i(location("splitColumn"), split_column);
     glUniform1i(location("lightIsSun"), left.config().light == Light::sun ? 1 : 0);
     glUniform3fv(location("lightCentre"), 1, glm::value_ptr(glm::vec3(settings.rect.center)));
+    glUniform3fv(location("lightHalfU"), 1,
+                 glm::value_ptr(glm::vec3(0.5 * settings.rect.width * glm::normalize(settings.rect.u_axis))));
+    glUniform3fv(location("lightHalfV"), 1,
+                 glm::value_ptr(glm::vec3(0.5 * settings.rect.height * glm::normalize(settings.rect.v_axis))));
     glUniform3fv(location("sunDirection"), 1, glm::value_ptr(glm::vec3(settings.sun.direction)));
+    glUniform3fv(location("eye"), 1, glm::value_ptr(settings.camera.eye_position()));
     glBindVertexArray(empty_vao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);

@@ -136,7 +136,8 @@ TEST_CASE("playground cli: --reference writes the image, the visibility, the tru
                                          "metrics.json"});
     REQUIRE_MESSAGE(run.exit_code == 0, run.err);
     CHECK(run.out.find("penumbra: MAE") != std::string::npos);
-    for (const char* file : {"planes.png", "vis.pfm", "planes.reference.pfm", "planes.error.png", "metrics.json"}) {
+    for (const char* file : {"planes.png", "vis.pfm", "planes.reference.pfm", "planes.reference.oriented.pfm",
+                             "planes.reference.irradiance.pfm", "planes.error.png", "metrics.json"}) {
         CAPTURE(file);
         CHECK(fs::exists(dir.file(file)));
     }
@@ -158,12 +159,22 @@ TEST_CASE("playground cli: --reference writes the image, the visibility, the tru
     CHECK(m["config"]["slices"] == 8);
     CHECK(m["reference"]["samples_per_axis"] == 4);
     // The headline is the fair reference; the whole light's numbers follow under their own name.
-    CHECK(m["reference"]["headline"] == "oriented");
-    CHECK(m["reference"]["all"] == m["reference"]["oriented"]["all"]);
-    CHECK(m["reference"]["penumbra"] == m["reference"]["oriented"]["penumbra"]);
+    CHECK(m["reference"]["headline"] == "irradiance");
+    CHECK(m["reference"]["all"] == m["reference"]["irradiance"]["all"]);
+    CHECK(m["reference"]["penumbra"] == m["reference"]["irradiance"]["penumbra"]);
     CHECK(m["reference"]["whole_light_visibility"]["penumbra"]["pixels"].get<int>() > 0);
+    CHECK(m["reference"]["oriented"]["penumbra"]["pixels"].get<int>() > 0);
     CHECK(run.out.find("whole-light visibility:") != std::string::npos);
-    CHECK(run.out.find("oriented (the part of the light above") < run.out.find("  penumbra: MAE"));
+    CHECK(run.out.find("irradiance (the shaded image's reference") < run.out.find("  penumbra: MAE"));
+    CHECK(run.out.find("false light") != std::string::npos);
+    // the false light and false shadow: shares of pixels the planes scene has (lit floor, shadowed floor)
+    for (const char* rate : {"false_light", "false_shadow"}) {
+        CAPTURE(rate);
+        const nlohmann::json& r = m["reference"][rate];
+        CHECK(r["of"].get<int>() > 0);
+        CHECK(r["pixels"].get<int>() <= r["of"].get<int>());
+        CHECK(r["fraction"].get<double>() == doctest::Approx(r["pixels"].get<double>() / r["of"].get<double>()));
+    }
     for (const char* set : {"all", "penumbra"}) {
         CAPTURE(set);
         const nlohmann::json& s = m["reference"][set];
@@ -172,6 +183,7 @@ TEST_CASE("playground cli: --reference writes the image, the visibility, the tru
         CHECK(s["mae"].get<double>() <= s["rmse"].get<double>());
         CHECK(s["rmse"].get<double>() <= 1.0);
         CHECK(s["p95"].get<double>() <= 1.0);
+        CHECK(std::abs(s["signed"].get<double>()) <= s["mae"].get<double>() + 1e-12);
     }
     std::vector<std::string> pass_names;
     for (const nlohmann::json& pass : m["passes"]) {
@@ -239,8 +251,10 @@ TEST_CASE("playground cli: a .glb written by the test stands on a floor; --no-gr
     double shadowed[2] = {0, 0};
     for (const bool ground : {true, false}) {
         CAPTURE(ground);
+        // --no-tangent-clip: the whole light's visibility, so that a side turned from the light (which the clip
+        // gives 0: it receives none) does not count as shadowed; only what casts on something does
         std::vector<std::string> args{"--headless", "--scene", "t.glb", "--size", "48x48", "--slices", "4",
-                                      "--resolution", "64", "--out", "t.png", "--metrics", "t.json"};
+                                      "--resolution", "64", "--no-tangent-clip", "--out", "t.png", "--metrics", "t.json"};
         if (!ground) args.push_back("--no-ground");
         const Run run = run_playground(dir, args);
         REQUIRE_MESSAGE(run.exit_code == 0, run.err);

@@ -94,7 +94,7 @@ constexpr void write_tangent_clip_function(LineWriter& out, const Config& config
     out.comment("The part of the light above the tangent plane at p (unit normal n, light frame), in the light's");
     out.comment("unit square [-0.5, 0.5]^2: xy = centre of the clipped rectangle, z = its shorter side. The plane");
     out.comment("is cut along the axis it crosses most steeply, at the other axis' centre line (exact for planes");
-    out.comment("parallel to a light axis, the same area otherwise).");
+    out.comment("parallel to a light axis, the same area otherwise), or where that leaves less, in the corner it spares.");
     out.line(signature(config, "vec3", "penumbra_tangentClip", {{"vec3", "p"}, {"vec3", "n"}}));
     out.line("{");
     if (config.light == Light::rect) {
@@ -113,7 +113,13 @@ constexpr void write_tangent_clip_function(LineWriter& out, const Config& config
     out.line(value(config, "float", "lo", conditional(config, "safe > 0.0", "cut", "-0.5")));
     out.line(value(config, "float", "hi", conditional(config, "safe > 0.0", "0.5", "cut")));
     out.line(value(config, "float", "mid", "0.5 * (lo + hi)"));
-    out.line("return vec3(", conditional(config, "alongX", "vec2(mid, 0.0)", "vec2(0.0, mid)"), ", hi - lo);");
+    out.line(variable(config, "vec3", "clip", cat("vec3(", conditional(config, "alongX", "vec2(mid, 0.0)", "vec2(0.0, mid)"), ", hi - lo)")));
+    out.comment("a plane that leaves a corner of the light above it (the centre line may lie wholly below): the");
+    out.comment("largest square in that corner, where it is larger; 0 where the whole light is below the plane");
+    out.line(value(config, "float", "slopeSum", "abs(slopes.x) + abs(slopes.y)"));
+    out.line(value(config, "float", "corner", "clamp((0.5 * slopeSum - level) / max(slopeSum, 1e-12), 0.0, 1.0)"));
+    out.line("if (corner > clip.z) { clip = vec3(sign(slopes) * (0.5 - 0.5 * corner), corner); }");
+    out.line("return clip;");
     out.line("}");
     out.blank();
 }
@@ -228,6 +234,9 @@ constexpr void write_tangent_clip_setup(LineWriter& out, const Config& config, c
     out.line(variable(config, "vec3", "n", cat(upper_3x3(config, "penumbra_lightFromWorld"), " * worldNormal")));
     out.line("n *= ", builtin(config, "inversesqrt"), "(max(dot(n, n), 1e-20));");
     out.line(value(config, "vec3", "penumbra_clip", "penumbra_tangentClip(p, n)"));
+    out.comment("a receiver turned away from all of the light receives none of it: its lookups would read the");
+    out.comment("occluders beside it, or none, and light it");
+    out.line("if (penumbra_clip.z <= 0.0) { return 0.0; }");
     if (config.irradiance_window) {
         out.comment("weighed by the irradiance at the receiver, before it moves (docs/model.md §1.7.5)");
         out.line(value(config, "vec4", "penumbra_window", "penumbra_irradianceWindow(p, n, penumbra_clip)"));

@@ -67,7 +67,7 @@ fn penumbra_filtered(kernel: vec4f, tile: f32) -> vec4f
 // The part of the light above the tangent plane at p (unit normal n, light frame), in the light's
 // unit square [-0.5, 0.5]^2: xy = centre of the clipped rectangle, z = its shorter side. The plane
 // is cut along the axis it crosses most steeply, at the other axis' centre line (exact for planes
-// parallel to a light axis, the same area otherwise).
+// parallel to a light axis, the same area otherwise), or where that leaves less, in the corner it spares.
 fn penumbra_tangentClip(p: vec3f, n: vec3f) -> vec3f
 {
     // light point (X w, Y h, 0) is above the plane where n.x X w + n.y Y h > dot(n, p)
@@ -80,7 +80,13 @@ fn penumbra_tangentClip(p: vec3f, n: vec3f) -> vec3f
     let lo: f32 = select(-0.5, cut, safe > 0.0);
     let hi: f32 = select(cut, 0.5, safe > 0.0);
     let mid: f32 = 0.5 * (lo + hi);
-    return vec3(select(vec2(0.0, mid), vec2(mid, 0.0), alongX), hi - lo);
+    var clip: vec3f = vec3(select(vec2(0.0, mid), vec2(mid, 0.0), alongX), hi - lo);
+    // a plane that leaves a corner of the light above it (the centre line may lie wholly below): the
+    // largest square in that corner, where it is larger; 0 where the whole light is below the plane
+    let slopeSum: f32 = abs(slopes.x) + abs(slopes.y);
+    let corner: f32 = clamp((0.5 * slopeSum - level) / max(slopeSum, 1e-12), 0.0, 1.0);
+    if (corner > clip.z) { clip = vec3(sign(slopes) * (0.5 - 0.5 * corner), corner); }
+    return clip;
 }
 
 // @penumbra:fusion
@@ -389,6 +395,9 @@ fn penumbraVisibilityWithNormal(worldPos: vec3f, worldNormal: vec3f) -> f32
     var n: vec3f = mat3x3f(penumbra_lightFromWorld[0].xyz, penumbra_lightFromWorld[1].xyz, penumbra_lightFromWorld[2].xyz) * worldNormal;
     n *= inverseSqrt(max(dot(n, n), 1e-20));
     let penumbra_clip: vec3f = penumbra_tangentClip(p, n);
+    // a receiver turned away from all of the light receives none of it: its lookups would read the
+    // occluders beside it, or none, and light it
+    if (penumbra_clip.z <= 0.0) { return 0.0; }
     // footprint of the receiver's own tangent plane in the slice above it, along its normal (scene units)
     let penumbra_across: f32 = max(length(n.xy), 1e-6);
     let penumbra_spread: f32 = max(n.z / penumbra_across + dot(p.xy, n.xy) / (penumbra_across * (penumbra_copDistance + p.z)), 0.0);

@@ -58,7 +58,7 @@ vec4 penumbra_filtered(vec4 kernel, float tile)
 // The part of the light above the tangent plane at p (unit normal n, light frame), in the light's
 // unit square [-0.5, 0.5]^2: xy = centre of the clipped rectangle, z = its shorter side. The plane
 // is cut along the axis it crosses most steeply, at the other axis' centre line (exact for planes
-// parallel to a light axis, the same area otherwise).
+// parallel to a light axis, the same area otherwise), or where that leaves less, in the corner it spares.
 vec3 penumbra_tangentClip(vec3 p, vec3 n)
 {
     // light point (X w, Y h, 0) is above the plane where n.x X w + n.y Y h > dot(n, p)
@@ -71,7 +71,13 @@ vec3 penumbra_tangentClip(vec3 p, vec3 n)
     float lo = safe > 0.0 ? cut : -0.5;
     float hi = safe > 0.0 ? 0.5 : cut;
     float mid = 0.5 * (lo + hi);
-    return vec3(alongX ? vec2(mid, 0.0) : vec2(0.0, mid), hi - lo);
+    vec3 clip = vec3(alongX ? vec2(mid, 0.0) : vec2(0.0, mid), hi - lo);
+    // a plane that leaves a corner of the light above it (the centre line may lie wholly below): the
+    // largest square in that corner, where it is larger; 0 where the whole light is below the plane
+    float slopeSum = abs(slopes.x) + abs(slopes.y);
+    float corner = clamp((0.5 * slopeSum - level) / max(slopeSum, 1e-12), 0.0, 1.0);
+    if (corner > clip.z) { clip = vec3(sign(slopes) * (0.5 - 0.5 * corner), corner); }
+    return clip;
 }
 
 // @penumbra:fusion
@@ -380,6 +386,9 @@ float penumbraVisibility(vec3 worldPos, vec3 worldNormal)
     vec3 n = mat3(penumbra_lightFromWorld) * worldNormal;
     n *= inversesqrt(max(dot(n, n), 1e-20));
     vec3 penumbra_clip = penumbra_tangentClip(p, n);
+    // a receiver turned away from all of the light receives none of it: its lookups would read the
+    // occluders beside it, or none, and light it
+    if (penumbra_clip.z <= 0.0) { return 0.0; }
     // footprint of the receiver's own tangent plane in the slice above it, along its normal (scene units)
     float penumbra_across = max(length(n.xy), 1e-6);
     float penumbra_spread = max(n.z / penumbra_across + dot(p.xy, n.xy) / (penumbra_across * (penumbra_copDistance + p.z)), 0.0);

@@ -77,7 +77,7 @@ fn penumbra_weight(zPoint: f32, zeta: f32) -> f32
 // The part of the light above the tangent plane at p (unit normal n, light frame), in the light's
 // unit square [-0.5, 0.5]^2: xy = centre of the clipped rectangle, z = its shorter side. The plane
 // is cut along the axis it crosses most steeply, at the other axis' centre line (exact for planes
-// parallel to a light axis, the same area otherwise).
+// parallel to a light axis, the same area otherwise), or where that leaves less, in the corner it spares.
 fn penumbra_tangentClip(p: vec3f, n: vec3f) -> vec3f
 {
     // direction (X, Y) 2 tan(alpha) sideways, 1 up towards the sun is above where its dot with n > 0
@@ -90,7 +90,13 @@ fn penumbra_tangentClip(p: vec3f, n: vec3f) -> vec3f
     let lo: f32 = select(-0.5, cut, safe > 0.0);
     let hi: f32 = select(cut, 0.5, safe > 0.0);
     let mid: f32 = 0.5 * (lo + hi);
-    return vec3(select(vec2(0.0, mid), vec2(mid, 0.0), alongX), hi - lo);
+    var clip: vec3f = vec3(select(vec2(0.0, mid), vec2(mid, 0.0), alongX), hi - lo);
+    // a plane that leaves a corner of the light above it (the centre line may lie wholly below): the
+    // largest square in that corner, where it is larger; 0 where the whole light is below the plane
+    let slopeSum: f32 = abs(slopes.x) + abs(slopes.y);
+    let corner: f32 = clamp((0.5 * slopeSum - level) / max(slopeSum, 1e-12), 0.0, 1.0);
+    if (corner > clip.z) { clip = vec3(sign(slopes) * (0.5 - 0.5 * corner), corner); }
+    return clip;
 }
 
 // @penumbra:fusion
@@ -382,6 +388,9 @@ fn penumbraVisibilityWithNormal(worldPos: vec3f, worldNormal: vec3f) -> f32
     var n: vec3f = mat3x3f(penumbra_lightFromWorld[0].xyz, penumbra_lightFromWorld[1].xyz, penumbra_lightFromWorld[2].xyz) * worldNormal;
     n *= inverseSqrt(max(dot(n, n), 1e-20));
     let penumbra_clip: vec3f = penumbra_tangentClip(p, n);
+    // a receiver turned away from all of the light receives none of it: its lookups would read the
+    // occluders beside it, or none, and light it
+    if (penumbra_clip.z <= 0.0) { return 0.0; }
     // footprint of the receiver's own tangent plane in the slice above it, along its normal (scene units)
     let penumbra_across: f32 = max(length(n.xy), 1e-6);
     let penumbra_spread: f32 = max(n.z / penumbra_across, 0.0);

@@ -1,0 +1,59 @@
+// penumbra/profiles.hpp — shadow quality tiers: named presets of the occlusion-texture fields.
+//
+//   penumbra::Config config = penumbra::apply_profile({}, penumbra::Profile::large);
+//   // the same from the tools and the add-ons: --profile large, {"profile": "large"}, profile: "large"
+//
+// `balanced` is Config{}, the default. `large` is for lights several times the size of the scene's own
+// rectangle (a window, a sky panel, an overcast sky), where crowds and foliage under the light overlap
+// in many slices: it trades frame time for error there. Both run on every target (so neither takes more
+// than 16 slices, which OpenGL 3.3, ES 3.0 and Vulkan's guaranteed render targets and atlas width allow,
+// nor solid casters, which need a logic op). The measurements
+// behind each preset (error by light size against the irradiance reference, frame cost) are in
+// docs/model.md §1.10.
+//
+// A profile sets only the fields it names (profile_fields); the fields a caller gives explicitly win over
+// it whatever their order (apply_profile's `explicit_keys`: the command line's flags, a JSON file's keys).
+#pragma once
+
+#include "config.hpp"
+
+#include <array>
+#include <span>
+#include <string_view>
+
+namespace penumbra {
+
+// The keys of the table of fields (penumbra/config_fields.hpp) a profile sets.
+inline constexpr std::array<std::string_view, 2> profile_fields{"fusion", "irradiance_window"};
+
+// One line on what the profile is for (the tools' --help, the panels).
+constexpr std::string_view profile_summary(Profile profile) {
+    switch (profile) {
+    case Profile::balanced: return "the default: the lowest error within the default frame time at every light size";
+    case Profile::large: return "large lights (x4 and up): clustered fusion and the irradiance window";
+    }
+    return "";
+}
+
+// `config` with `profile`'s preset, except the fields in `explicit_keys`. The irradiance window needs a
+// rectangle and the tangent clip, so on other lights a profile leaves it off.
+constexpr Config apply_profile(Config config, Profile profile, std::span<const std::string_view> explicit_keys = {}) {
+    auto given = [&](std::string_view key) {
+        for (std::string_view k : explicit_keys)
+            if (k == key) return true;
+        return false;
+    };
+    const Config defaults{};
+    Config preset = defaults;
+    if (profile == Profile::large) {
+        preset.fusion = Fusion::clustered;
+        preset.irradiance_window = true;
+    }
+    config.profile = profile;
+    if (!given("fusion")) config.fusion = preset.fusion;
+    if (!given("irradiance_window"))
+        config.irradiance_window = preset.irradiance_window && config.light == Light::rect && config.tangent_clip;
+    return config;
+}
+
+} // namespace penumbra
