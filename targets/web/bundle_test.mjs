@@ -1,0 +1,242 @@
+// bundle_test.mjs — the `bundler-<bundler>` tests: the packed add-ons (npm pack tarballs) as a new
+// user's project bundles them, with one of Vite, esbuild, webpack 5 or Rollup, then the built
+// pages run in Debian's chromium (headless, WebGL2 through SwiftShader).
+//   1. A fresh project (WORK/app) installs the tarballs with npm, offline, beside three (and
+//      @babylonjs/core) linked from this folder's node_modules (scripts/setup.sh installs them).
+//   2. The bundler builds one page per package (bundle_pages/<package>.js: a ground, a box casting,
+//      one shadowed light) with no configuration beyond what its documentation gives for assets:
+//      Vite and webpack 5 copy the `new URL("./…", import.meta.url)` assets (the emissions, the
+//      WebAssembly emitter) themselves; esbuild and Rollup leave those URLs to the page, so the
+//      package's emissions/ and penumbra_emitter.wasm are copied beside the bundle (web/three/README.md).
+//      No `node:` import may reach a browser bundle (the emitter's node half sits behind the
+//      "node" condition of package.json's exports).
+//   3. In chromium each page renders lit without the add-on and lit with it: (lit with) / (lit
+//      without) is the add-on's visibility at the lit pixels, the box's shadow covers a share of the
+//      ground and the rest is lit; update() after dispose() throws the add-on's error.
+// The bundle's size (its JavaScript, unminified, and gzipped; the assets apart) is printed.
+//
+//   node targets/web/bundle_test.mjs --bundler vite|esbuild|webpack|rollup --work DIR --tarball three=FILE
+//        [--tarball babylon=FILE] [--chromium PATH]
+//
+// Exit 0 pass, 1 fail, 77 skip (no chromium), 2 bad arguments.
+import {execFileSync} from "node:child_process";
+import fs from "node:fs";
+import path from "node:path";
+import zlib from "node:zlib";
+import {fileURLToPath} from "node:url";
+import {serve, launchChromium, openPage} from "./harness.mjs";
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const modules = path.join(here, "node_modules");
+const BUNDLERS = ["vite", "esbuild", "webpack", "rollup"];
+// the npm package of each page and the peer dependencies its project links from node_modules here
+const PACKAGES = {
+    three: {name: "penumbra-three", peers: ["three"]},
+    babylon: {name: "penumbra-babylon", peers: ["@babylonjs/core"]},
+};
+const RATIO_TOLERANCE = 0.01; // (lit with) / (lit without) against the visibility, both float
+const PIXELS_ALLOWED = 0.01;  // share of lit pixels allowed outside it
+const SHADOW_PIXELS = 0.03;   // share of the image in the box's shadow (visibility < 0.5), at least
+const LIT_PIXELS = 0.3;       // share of the image fully lit (visibility > 0.9), at least
+
+function parseArguments(argv) {
+    const out = {bundler: null, work: null, chromium: "/usr/bin/chromium", tarballs: {}};
+    for (let i = 0; i < argv.length; i += 2) {
+        const flag = argv[i], value = argv[i + 1];
+        if (!["--bundler", "--work", "--chromium", "--tarball"].includes(flag))
+            usage(`unknown argument '${flag}'; allowed: --bundler, --work, --tarball, --chromium`);
+        if (value === undefined) usage(`${flag}: missing value`);
+        if (flag === "--tarball") {
+            const [page, file] = value.split(/=(.*)/s);
+            if (!PACKAGES[page] || !file) usage(`--tarball ${value}: wanted PAGE=FILE with PAGE one of ${Object.keys(PACKAGES).join(", ")}`);
+            out.tarballs[page] = path.resolve(file);
+        } else {
+            out[flag.slice(2)] = value;
+        }
+    }
+    if (!BUNDLERS.includes(out.bundler)) usage(`--bundler '${out.bundler}': allowed ${BUNDLERS.join(", ")}`);
+    if (!out.work || !Object.keys(out.tarballs).length) usage("--work and at least one --tarball are required");
+    return out;
+}
+
+function usage(message) {
+    console.error(`error: ${message}\nusage: node bundle_test.mjs --bundler vite|esbuild|webpack|rollup --work DIR --tarball three=FILE [--tarball babylon=FILE] [--chromium PATH]`);
+    process.exit(2);
+}
+
+function run(command, args, options = {}) {
+    try {
+        return execFileSync(command, args, {encoding: "utf8", stdio: ["ignore", "pipe", "pipe"], ...options});
+    } catch (e) {
+        throw new Error(`${[command, ...args].join(" ")} failed (exit ${e.status}):\n${e.stdout || ""}${e.stderr || ""}`);
+    }
+}
+
+// 1. the fresh project
+function project(work, tarballs) {
+    const app = path.join(work, "app");
+    fs.rmSync(app, {recursive: true, force: true});
+    fs.mkdirSync(app, {recursive: true});
+    const dependencies = {};
+    for (const [page, tarball] of Object.entries(tarballs)) {
+        for (const f of [`${page}.js`, `${page}.html`]) fs.copyFileSync(path.join(here, "bundle_pages", f), path.join(app, f));
+        dependencies[PACKAGES[page].name] = `file:${tarball}`;
+        for (const peer of PACKAGES[page].peers) {
+            if (!fs.existsSync(path.join(modules, peer, "package.json")))
+                throw new Error(`${path.join(modules, peer)} is missing: scripts/setup.sh runs npm ci in targets/web`);
+            dependencies[peer] = `file:${path.join(modules, peer)}`;
+        }
+    }
+    fs.writeFileSync(path.join(app, "package.json"), JSON.stringify({name: "penumbra-bundle-user", private: true, type: "module", dependencies}, null, 2));
+    const started = Date.now();
+    run("npm", ["install", "--offline", "--no-audit", "--no-fund", "--loglevel=error"], {cwd: app});
+    return {app, seconds: (Date.now() - started) / 1000};
+}
+
+// 2. the bundlers, each as its documentation shows; they write dist/<page>.js (and chunks)
+const build = {
+    async vite(app, pages, dist) {
+        fs.writeFileSync(path.join(app, "vite.config.js"), `export default {
+    base: "./",
+    logLevel: "warn",
+    build: {outDir: ${JSON.stringify(dist)}, emptyOutDir: true, minify: false,
+            rollupOptions: {input: ${JSON.stringify(Object.fromEntries(pages.map((p) => [p, `${p}.html`])))}}},
+};
+`);
+        return run(process.execPath, [path.join(modules, "vite/bin/vite.js"), "build"], {cwd: app});
+    },
+    async esbuild(app, pages, dist) {
+        const {build} = await import("esbuild");
+        const result = await build({entryPoints: pages.map((p) => path.join(app, `${p}.js`)), bundle: true, format: "esm",
+                                    splitting: true, outdir: dist, absWorkingDir: app, logLevel: "silent"});
+        return result.warnings.map((w) => w.text).join("\n");
+    },
+    async webpack(app, pages, dist) {
+        const {default: webpack} = await import("webpack");
+        const config = {mode: "production", target: "web", context: app,
+                        entry: Object.fromEntries(pages.map((p) => [p, `./${p}.js`])),
+                        output: {path: dist, filename: "[name].js", clean: true},
+                        optimization: {minimize: false}, performance: {hints: false}};
+        const stats = await new Promise((resolve, reject) => webpack(config, (e, s) => (e ? reject(e) : resolve(s))));
+        const text = stats.toString({all: false, errors: true, warnings: true});
+        if (stats.hasErrors()) throw new Error(`webpack: ${text}`);
+        return text;
+    },
+    async rollup(app, pages, dist) {
+        const {rollup} = await import("rollup");
+        const {nodeResolve} = await import("@rollup/plugin-node-resolve");
+        const warnings = [];
+        const bundle = await rollup({input: Object.fromEntries(pages.map((p) => [p, path.join(app, `${p}.js`)])),
+                                     plugins: [nodeResolve({browser: true})], onwarn: (w) => warnings.push(w.message)});
+        await bundle.write({dir: dist, format: "es"});
+        await bundle.close();
+        return warnings.join("\n");
+    },
+};
+
+// esbuild and Rollup leave `new URL("./…", import.meta.url)` alone: the package's assets go beside the bundle
+function copyAssets(app, pages, dist) {
+    for (const page of pages) {
+        const installed = path.join(app, "node_modules", PACKAGES[page].name);
+        fs.cpSync(path.join(installed, "emissions"), path.join(dist, "emissions"), {recursive: true});
+        fs.copyFileSync(path.join(installed, "penumbra_emitter.wasm"), path.join(dist, "penumbra_emitter.wasm"));
+    }
+}
+
+function sizes(dist) {
+    let js = 0, gzip = 0, assets = 0, files = 0;
+    const walk = (dir) => {
+        for (const entry of fs.readdirSync(dir, {withFileTypes: true})) {
+            const file = path.join(dir, entry.name);
+            if (entry.isDirectory()) { walk(file); continue; }
+            ++files;
+            const bytes = fs.readFileSync(file);
+            if (/\.m?js$/.test(entry.name)) {
+                js += bytes.length;
+                gzip += zlib.gzipSync(bytes).length;
+                if (/(\bfrom\s*|\bimport\s*\(\s*|\brequire\s*\(\s*)["'`]node:/.test(bytes.toString("utf8"))) nodeImports.push(path.relative(dist, file));
+            } else if (!/\.html$/.test(entry.name)) {
+                assets += bytes.length;
+            }
+        }
+    };
+    const nodeImports = [];
+    walk(dist);
+    return {js, gzip, assets, files, nodeImports};
+}
+
+// 3. one page's images
+function check(r) {
+    const failures = [];
+    const n = r.width * r.height;
+    const peak = Math.max(...r.unshadowed);
+    let lit = 0, outside = 0, worst = 0;
+    for (let i = 0; i < n; ++i) {
+        if (!(r.unshadowed[i] > 1e-3 * peak)) continue;
+        ++lit;
+        const d = Math.abs(r.shadowed[i] / r.unshadowed[i] - r.visibility[i]);
+        worst = Math.max(worst, d);
+        if (!(d <= RATIO_TOLERANCE)) ++outside;
+    }
+    const shadow = r.visibility.filter((v) => v < 0.5).length, full = r.visibility.filter((v) => v > 0.9).length;
+    if (lit < 0.5 * n) failures.push(`the light lights only ${lit} of ${n} pixels`);
+    if (outside > PIXELS_ALLOWED * lit)
+        failures.push(`(lit with the add-on) / (lit without) is not its visibility at ${outside} of ${lit} lit pixels (max |Δ| ${worst.toFixed(3)})`);
+    if (shadow < SHADOW_PIXELS * n) failures.push(`the box's shadow covers ${shadow} pixels (visibility < 0.5); wanted ≥ ${SHADOW_PIXELS * n}`);
+    if (full < LIT_PIXELS * n) failures.push(`only ${full} pixels are lit (visibility > 0.9); wanted ≥ ${LIT_PIXELS * n}`);
+    if (!/update\(\) after dispose\(\)/.test(r.afterDispose)) failures.push(`update() after dispose(): ${r.afterDispose}`);
+    return {failures, summary: `${r.library}: shadow on ${shadow} of ${n} pixels, lit ${full}, ratio vs visibility max |Δ| ${worst.toFixed(4)} (${outside} of ${lit} over ${RATIO_TOLERANCE})`};
+}
+
+async function main() {
+    const args = parseArguments(process.argv.slice(2));
+    if (!fs.existsSync(args.chromium)) {
+        console.log(`skip: no chromium at ${args.chromium} (scripts/setup.sh installs Debian's chromium)`);
+        process.exit(77);
+    }
+    for (const tarball of Object.values(args.tarballs))
+        if (!fs.existsSync(tarball)) usage(`${tarball}: no such tarball (the pack-web-packages test writes it)`);
+    const work = path.resolve(args.work);
+    fs.mkdirSync(work, {recursive: true});
+    const pages = Object.keys(args.tarballs);
+    const failures = [];
+    const {app, seconds: installSeconds} = project(work, args.tarballs);
+    console.log(`ok   npm install --offline of ${pages.map((p) => PACKAGES[p].name).join(", ")} into a fresh project (${installSeconds.toFixed(1)} s)`);
+    const dist = path.join(work, "dist");
+    fs.rmSync(dist, {recursive: true, force: true});
+    const started = Date.now();
+    const warnings = (await build[args.bundler](app, pages, dist)).trim();
+    if (args.bundler === "esbuild" || args.bundler === "rollup") copyAssets(app, pages, dist);
+    if (args.bundler !== "vite")
+        for (const page of pages)
+            fs.writeFileSync(path.join(dist, `${page}.html`), fs.readFileSync(path.join(app, `${page}.html`), "utf8"));
+    const size = sizes(dist);
+    if (size.nodeImports.length) failures.push(`a node: import in the browser bundle: ${size.nodeImports.join(", ")}`);
+    console.log(`${size.nodeImports.length ? "FAIL" : "ok  "} ${args.bundler} build of ${pages.join(" + ")} in ${((Date.now() - started) / 1000).toFixed(1)} s: ` +
+                `${(size.js / 1024).toFixed(0)} KiB of JavaScript unminified (${(size.gzip / 1024).toFixed(0)} KiB gzipped), ` +
+                `${(size.assets / 1024).toFixed(0)} KiB of assets, ${size.files} files` + (warnings ? `\n     ${warnings.split("\n").join("\n     ")}` : ""));
+
+    const {browser, close} = await launchChromium(args.chromium);
+    const server = await serve({dist});
+    try {
+        for (const page of pages) {
+            const {page: tab, problems} = await openPage(browser, `http://127.0.0.1:${server.address().port}/dist/${page}.html`, "bundleCheck");
+            const r = await tab.evaluate(() => window.bundleCheck.run());
+            if (r.error) throw new Error(`${page}.html: ${r.error}`);
+            const {failures: pageFailures, summary} = check(r);
+            pageFailures.push(...problems);
+            failures.push(...pageFailures.map((f) => `${page}.html: ${f}`));
+            console.log(`${pageFailures.length ? "FAIL" : "ok  "} ${args.bundler}, ${PACKAGES[page].name} in chromium: ${summary}`);
+            await tab.close();
+        }
+    } catch (e) {
+        failures.push(e.message);
+    } finally {
+        await close();
+        server.close();
+    }
+    for (const f of failures) console.log(`FAIL ${f}`);
+    process.exit(failures.length ? 1 : 0);
+}
+
+main();
