@@ -50,3 +50,10 @@ if [ ! -f "$three/node_modules/.package-lock.json" ] || [ "$three/package-lock.j
     echo "setup: npm ci in web/three"
     npm ci --prefix "$three" --no-audit --no-fund --loglevel=error
 fi
+# @babylonjs/core (the Babylon.js add-on's peer dependency, for its example), pinned by
+# web/babylon/package-lock.json; its "prepare" copies the modules shared with web/three into web/babylon/shared/.
+babylon="$(cd "$(dirname "$0")/.." && pwd)/web/babylon"
+if [ ! -f "$babylon/node_modules/.package-lock.json" ] || [ "$babylon/package-lock.json" -nt "$babylon/node_modules/.package-lock.json" ]; then
+    echo "setup: npm ci in web/babylon"
+    npm ci --prefix "$babylon" --no-audit --no-fund --loglevel=error
+fi

@@ -2,7 +2,8 @@
 // "penumbra-three" and "three" as a user's project does, bundled by Vite, esbuild, webpack 5 or
 // Rollup. A ground under a RectAreaLight, a box casting (on layer 1, which the camera does not
 // see, so that every pixel is ground). window.bundleCheck.run() returns the images the test
-// compares: lit without the add-on, lit with it, and the add-on's visibility.
+// compares: lit without the add-on, lit with it, and the add-on's visibility (one light: the
+// three-package test checks several).
 import * as THREE from "three";
 import {RectAreaLightUniformsLib} from "three/addons/lights/RectAreaLightUniformsLib.js";
 import {PenumbraShadows, PenumbraError} from "penumbra-three";
@@ -53,7 +54,8 @@ async function run() {
         afterDispose = e instanceof PenumbraError ? e.message : `not a PenumbraError: ${e}`;
     }
     const unshadowed = image();
-    return {width: W, height: H, shadowed, unshadowed, visibility, afterDispose, library: `three r${THREE.REVISION}`};
+    return {width: W, height: H, shadowed: [shadowed], unshadowed: [unshadowed], visibility: [visibility], afterDispose,
+            library: `three r${THREE.REVISION}`, lights: ["RectAreaLight"]};
 }
 
-window.bundleCheck = {run: () => run().catch((e) => ({error: `${e.message}\n${e.stack}`}))};
+window.bundleCheck = {run: () => run().catch((e) => ({error: `${e.message}\n${e.stack}`})), materials: ["standard"]};
