@@ -118,8 +118,11 @@ class PenumbraShadowsPlugin extends MaterialPluginBase {
         samplers.push(...this._addon._samplerNames);
     }
 
+    // The snippet's values, the light's index and the intensity in the material's uniform buffer
+    // (Babylon's documented way; the snippet's own declarations of them are taken out).
     getUniforms() {
-        return {externalUniforms: this._addon._valueNames};
+        const a = this._addon;
+        return {ubo: a._uboUniforms, fragment: a._uboUniforms.map((u) => `uniform ${u.type} ${u.name};`).join("\n")};
     }
 
     // The snippet and the add-on's shadow function among the fragment stage's declarations; in the
@@ -133,16 +136,16 @@ class PenumbraShadowsPlugin extends MaterialPluginBase {
             CUSTOM_FRAGMENT_DEFINITIONS: a._fragmentDefinitions,
             // (each add-on's key differs by its always-true look-ahead: keys of equal text would be joined)
             [`!aggShadow\\+=shadow;(?=[\\s\\S]*?LIGHTMAPEXCLUDED(\\d+))(?!${a._names.shadow})`]:
-                `if (${a._names.lightIndex}==$1) shadow*=${a._names.shadow}(normalW,vPositionW,vEyePosition.xyz);\naggShadow+=shadow;`,
+                `if (${a._names.lightIndex}==float($1)) shadow*=${a._names.shadow}(normalW,vPositionW,vEyePosition.xyz);\naggShadow+=shadow;`,
         };
     }
 
+    // Every draw (the light's index is the mesh's), before Babylon uploads the uniform buffer.
     hardBindForSubMesh(uniformBuffer, scene, engine, subMesh) {
-        const effect = subMesh.effect;
-        if (!effect || this._addon.disposed) return;
+        if (this._addon.disposed) return;
         const mesh = subMesh.getMesh();
         const index = this._addon.enabled ? (mesh.lightSources || []).indexOf(this._addon.light) : -1;
-        this._addon._bind(effect, index);
+        this._addon._bind(uniformBuffer, index);
     }
 }
 
@@ -223,7 +226,7 @@ export class PenumbraShadows {
         // the visibility at a fragment: the world normal turned to the side the camera sees (the
         // side whose light the tangent clip keeps); an emission without the clip looks up the whole light
         this._shadowFunction = `
-uniform int ${n.lightIndex};
+uniform float ${n.lightIndex};
 uniform float ${n.intensity};
 float ${n.shadow}(vec3 normalWorld, vec3 positionWorld, vec3 eye) {
 	vec3 n = normalize(normalWorld);
@@ -232,7 +235,13 @@ float ${n.shadow}(vec3 normalWorld, vec3 positionWorld, vec3 eye) {
 	return mix(1.0, v, ${n.intensity});
 }
 `;
-        this._fragmentDefinitions = `${this._snippet}\n${this._shadowFunction}`;
+        // (the material's copy: the values' declarations come from the uniform buffer)
+        const declared = new RegExp(`^uniform \\w+ (${[...Object.keys(this._values)].join("|")});[^\\n]*\\n`, "gm");
+        this._fragmentDefinitions = `${this._snippet.replace(declared, "")}\n${this._shadowFunction.replace(/^uniform [^\n]*\n/gm, "")}`;
+        this._visibilityDefinitions = `${this._snippet}\n${this._shadowFunction}`;
+        const sizes = {float: 1, vec2: 2, vec3: 3, vec4: 4, mat4: 16};
+        this._uboUniforms = [{name: this._names.lightIndex, size: 1, type: "float"}, {name: this._names.intensity, size: 1, type: "float"},
+                             ...Object.entries(this._values).map(([name, {type}]) => ({name, type, size: sizes[type] ?? fail(`the snippet's uniform ${name} has type ${type}, which this add-on does not set`)}))];
     }
 
     // A texture the runner made, as a Babylon texture that binds it as is: Babylon sets a
@@ -256,21 +265,22 @@ float ${n.shadow}(vec3 normalWorld, vec3 positionWorld, vec3 eye) {
         return texture;
     }
 
-    // The add-on's uniforms and textures on an effect (a receiver's material, or the visibility material).
-    _bind(effect, lightIndex) {
+    // The add-on's uniforms and textures into a receiver's uniform buffer, or onto the visibility
+    // material's effect (the same calls: updateX on a UniformBuffer, setX on an Effect).
+    _bind(target, lightIndex) {
+        const ubo = typeof target.updateFloat === "function";
+        const float = (name, x) => (ubo ? target.updateFloat(name, x) : target.setFloat(name, x));
         for (const [name, {type, value}] of Object.entries(this._values)) {
             if (value === null) continue;
-            if (type === "mat4") effect.setMatrices(name, value);
-            else if (type === "float") effect.setFloat(name, value);
-            else if (type === "int") effect.setInt(name, value);
-            else if (type === "vec2") effect.setFloat2(name, value[0], value[1]);
-            else if (type === "vec3") effect.setFloat3(name, value[0], value[1], value[2]);
-            else if (type === "vec4") effect.setFloat4(name, value[0], value[1], value[2], value[3]);
-            else fail(`the snippet's uniform ${name} has type ${type}, which this add-on does not set`);
+            if (type === "mat4") (ubo ? target.updateMatrices(name, value) : target.setMatrices(name, value));
+            else if (type === "float") float(name, value);
+            else if (type === "vec2") (ubo ? target.updateFloat2(name, value[0], value[1]) : target.setFloat2(name, value[0], value[1]));
+            else if (type === "vec3") (ubo ? target.updateFloat3 : target.setFloat3).call(target, name, value[0], value[1], value[2]);
+            else if (type === "vec4") (ubo ? target.updateFloat4 : target.setFloat4).call(target, name, value[0], value[1], value[2], value[3]);
         }
-        for (const name of this._samplerNames) effect.setTexture(name, this._textures[name]);
-        effect.setInt(this._names.lightIndex, lightIndex);
-        effect.setFloat(this._names.intensity, this.intensity);
+        for (const name of this._samplerNames) target.setTexture(name, this._textures[name]);
+        float(this._names.lightIndex, lightIndex);
+        float(this._names.intensity, this.intensity);
     }
 
     _alive(what) {
@@ -504,12 +514,12 @@ void main(void) {
 	gl_Position = viewProjection * p;
 }`,
             fragmentSource: `precision highp float;
-${this._fragmentDefinitions}
+${this._visibilityDefinitions}
 uniform vec3 penumbraEye;
 varying vec3 vPositionW;
 varying vec3 vNormalW;
 void main(void) {
-	float v = ${this._names.lightIndex} >= 0 ? ${this._names.shadow}(vNormalW, vPositionW, penumbraEye) : 1.0;
+	float v = ${this._names.lightIndex} >= 0.0 ? ${this._names.shadow}(vNormalW, vPositionW, penumbraEye) : 1.0;
 	gl_FragColor = vec4(v, v, v, 1.0);
 }`,
         }, {attributes: ["position", "normal"], uniforms: ["world", "viewProjection", "penumbraEye", ...this._valueNames],

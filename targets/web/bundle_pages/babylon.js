@@ -85,6 +85,7 @@ async function run(kind) {
             if (i > 600) throw new Error("the scene's materials never got ready");
             await frame();
         }
+        scene.render(); // (the frame updates the lights' uniforms, which Babylon 9.0 does not do for a target alone)
         target.render();
         const rgba = await target.readPixels();
         return Array.from({length: W * H}, (_, i) => (rgba[4 * i] + rgba[4 * i + 1] + rgba[4 * i + 2]) / 3);
