@@ -3,7 +3,7 @@
 // shadows, an ArcRotateCamera, and buttons to switch the light and the shadows off and on.
 // Babylon's WebGPUEngine is not supported by the add-on yet (its materials are WGSL), so there is
 // no engine switch. URL parameter ?size=WxH: a fixed canvas size (screenshots).
-// window.example (automation): ready, set({light, mode}), render(), info().
+// window.example (automation): ready, set({light, mode}), render(), info(), scene.
 import {Engine} from "@babylonjs/core/Engines/engine.js";
 import {Scene} from "@babylonjs/core/scene.js";
 import {ArcRotateCamera} from "@babylonjs/core/Cameras/arcRotateCamera.js";
@@ -18,6 +18,7 @@ import {CreateSphere} from "@babylonjs/core/Meshes/Builders/sphereBuilder.js";
 import {CreateTorusKnot} from "@babylonjs/core/Meshes/Builders/torusKnotBuilder.js";
 import {CreateCylinder} from "@babylonjs/core/Meshes/Builders/cylinderBuilder.js";
 import "@babylonjs/core/Meshes/thinInstanceMesh.js";
+import "@babylonjs/core/Meshes/instancedMesh.js";
 import {StandardMaterial} from "@babylonjs/core/Materials/standardMaterial.js";
 import {PBRMaterial} from "@babylonjs/core/Materials/PBR/pbrMaterial.js";
 import {Color3, Color4} from "@babylonjs/core/Maths/math.color.js";
@@ -119,4 +120,4 @@ const ready = attach().then(async () => {
     await scene.whenReadyAsync();
     engine.runRenderLoop(render);
 });
-window.example = {ready, set, render, info: () => ({light: state.light, mode: state.mode, shadows: shadows.info})};
+window.example = {ready, set, render, scene, info: () => ({light: state.light, mode: state.mode, shadows: shadows.info})};
