@@ -3,7 +3,8 @@
 // bundle's emission folder), checked as three_test.mjs checks the three.js add-on, with its
 // functions and tolerances: the add-on's light frame against the desktop's uniforms, and its
 // visibility against the desktop runtime's within 2·bound + q on all interior pixels but 1% of the
-// image. (The material's term, several lights, Standard and PBR materials and dispose(): the
+// image; the casters placed by a matrix five ways (Mesh, InstancedMesh, thin instance, skeleton,
+// morph target) agree within three_test.mjs's tolerance. (The material's term, several lights, Standard and PBR materials and dispose(): the
 // bundler-* tests.) Needs web/babylon's npm ci (its @babylonjs/core and shared/).
 //
 //   node targets/web/babylon_test.mjs --web web [--chromium PATH] BUNDLE_DIR...
@@ -13,7 +14,7 @@ import fs from "node:fs";
 import path from "node:path";
 import {serve, launchChromium, openPage} from "./harness.mjs";
 import {ltcTables, serveLtc} from "./ltc_tables.mjs";
-import {PIXELS_ALLOWED, compareWithDesktop, frameError} from "./three_test.mjs";
+import {PIXELS_ALLOWED, R8_STEP, VARIANT_PIXELS_ALLOWED, compareVariants, compareWithDesktop, frameError} from "./three_test.mjs";
 
 const UNIFORM_TOLERANCE = 1e-5; // relative: float32 of the same double-precision formulas
 
@@ -51,11 +52,20 @@ async function checkBundle(browser, port, index, dir, ltc) {
     const v = compareWithDesktop(await page.evaluate(() => window.penumbraBabylon.visibility()), dir, bundle);
     if (v.outside > PIXELS_ALLOWED * v.pixels)
         failures.push(`${v.outside} of ${v.geometry} interior pixels differ from the desktop run by more than 2·bound + q (allowed: ${100 * PIXELS_ALLOWED}% of the ${v.pixels} pixels)`);
+    // the casters placed five ways agree
+    const variants = await page.evaluate(() => window.penumbraBabylon.variants());
+    const differing = compareVariants(variants);
+    differing.thin = variants.thin.reduce((n, x, i) => n + (Math.abs(x - variants.mesh[i]) > 2 * R8_STEP ? 1 : 0), 0);
+    for (const name of ["instanced", "thin", "skinned", "morphed"])
+        if (differing[name] > VARIANT_PIXELS_ALLOWED * v.pixels) failures.push(`the ${name} caster's shadow differs from the moved Mesh's at ${differing[name]} pixels`);
+    if (differing.moved === 0) failures.push("moving the casters changed no pixel: the variants prove nothing");
     failures.push(...problems);
     await page.close();
     console.log(`${failures.length ? "FAIL" : "ok  "} babylon ${label} (${((Date.now() - started) / 1000).toFixed(1)} s)\n` +
                 `     light frame vs desktop ${uniformError.toExponential(2)} (relative); visibility vs desktop: mean |Δ| ${v.mean.toExponential(2)}, ` +
-                `max ${v.worst.toFixed(4)}, ${v.outside} of ${v.geometry} interior pixels outside 2·bound + q (${v.shadowed} shadowed; ${v.silhouette} silhouette pixels left out)`);
+                `max ${v.worst.toFixed(4)}, ${v.outside} of ${v.geometry} interior pixels outside 2·bound + q (${v.shadowed} shadowed; ${v.silhouette} silhouette pixels left out)\n` +
+                `     casters moved by M changed ${differing.moved} pixels; pixels differing from the moved Mesh: instanced ${differing.instanced}, ` +
+                `thin instance ${differing.thin}, skinned ${differing.skinned}, morphed ${differing.morphed}`);
     for (const f of failures) console.log(`FAIL ${f}`);
     return failures.length;
 }

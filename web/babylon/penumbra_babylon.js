@@ -311,7 +311,10 @@ float ${n.shadow}(vec3 normalWorld, vec3 positionWorld, vec3 eye) {
         this._alive("update()");
         const casters = [...this._casters].filter((m) => !m.isDisposed() && m.isEnabled() && (m.isVisible || (m.instances || []).length));
         const receivers = this.scene.meshes.filter((m) => m.receiveShadows && m.isEnabled() && m.isVisible);
-        for (const mesh of [...casters, ...receivers]) mesh.computeWorldMatrix(true);
+        for (const mesh of [...casters, ...receivers]) {
+            mesh.computeWorldMatrix(true);
+            if (mesh.skeleton) mesh.skeleton.prepare(true); // its bones' matrices now, for the CPU skinning below
+        }
         for (const mesh of receivers) {
             const material = mesh.sourceMesh ? mesh.sourceMesh.material : mesh.material;
             for (const m of material && material.subMaterials ? material.subMaterials : [material]) this._patch(m);
@@ -378,7 +381,8 @@ float ${n.shadow}(vec3 normalWorld, vec3 positionWorld, vec3 eye) {
                     if (p) for (let i = 0; i < p.length; i += 3) add(transformPoint(world, p[i], p[i + 1], p[i + 2]));
                     continue;
                 }
-                const box = source.getBoundingInfo().boundingBox;
+                // (the box without thin instances, which Babylon folds into the mesh's own box)
+                const box = (source.getRawBoundingInfo ? source.getRawBoundingInfo() : source.getBoundingInfo()).boundingBox;
                 const a = box.minimum, b = box.maximum;
                 for (let i = 0; i < 8; ++i) add(transformPoint(world, i & 1 ? b.x : a.x, i & 2 ? b.y : a.y, i & 4 ? b.z : a.z));
             }

@@ -6,6 +6,7 @@
 // emission folder. window.penumbraBabylon (targets/web/babylon_test.mjs):
 //   frameUniforms()   the add-on's light-frame uniforms and the bundle's
 //   visibility()      the add-on's visibility at the bundle's size, bottom row first
+//   variants()        the visibility with the casters placed by a matrix M five ways (below)
 import {Engine} from "@babylonjs/core/Engines/engine.js";
 import {Scene} from "@babylonjs/core/scene.js";
 import {FreeCamera} from "@babylonjs/core/Cameras/freeCamera.js";
@@ -13,6 +14,12 @@ import {RectAreaLight} from "@babylonjs/core/Lights/rectAreaLight.js";
 import {DirectionalLight} from "@babylonjs/core/Lights/directionalLight.js";
 import {TransformNode} from "@babylonjs/core/Meshes/transformNode.js";
 import {Mesh} from "@babylonjs/core/Meshes/mesh.js";
+import "@babylonjs/core/Meshes/instancedMesh.js";
+import "@babylonjs/core/Meshes/thinInstanceMesh.js";
+import {Skeleton} from "@babylonjs/core/Bones/skeleton.js";
+import {Bone} from "@babylonjs/core/Bones/bone.js";
+import {MorphTargetManager} from "@babylonjs/core/Morph/morphTargetManager.js";
+import {MorphTarget} from "@babylonjs/core/Morph/morphTarget.js";
 import {VertexData} from "@babylonjs/core/Meshes/mesh.vertexData.js";
 import {StandardMaterial} from "@babylonjs/core/Materials/standardMaterial.js";
 import {Matrix, Quaternion, Vector3} from "@babylonjs/core/Maths/math.vector.js";
@@ -72,11 +79,81 @@ async function start() {
     const shadows = await PenumbraShadows.load(engine, scene, light, options);
     shadows.addShadowCaster(mesh);
     shadows.update();
+    const render = async () => Array.from(await shadows.renderVisibility(camera, bundle.width, bundle.height));
     return {
+        variants: () => placementVariants(scene, mesh, shadows, render),
         frameUniforms: () => ({computed: shadows._frame.uniforms, bundle: bundle.uniforms}),
         visibility: async () => Array.from(await shadows.renderVisibility(camera, bundle.width, bundle.height)),
         info: () => ({...shadows.info, config: shadows.config}),
     };
+}
+
+// The casters placed by M (a shift across the scene) five ways, under one receiver (the triangles
+// moved by M, casting nothing): a Mesh at M ("mesh"), an InstancedMesh at M ("instanced"), a thin
+// instance M ("thin"), a skeleton whose one bone is at M ("skinned"), a morph target of the
+// positions × M at influence 1 ("morphed"); and a Mesh at identity ("unmoved", whose shadow must
+// differ). Their visibility images must agree (babylon_test.mjs, as three_test.mjs's).
+async function placementVariants(scene, mesh, shadows, render) {
+    const info = mesh.getBoundingInfo().boundingBox;
+    const size = info.maximum.subtract(info.minimum);
+    const M = Matrix.Translation(0.05 * size.x, 0, 0.03 * size.z);
+    const positions = mesh.getVerticesData("position"), count = positions.length / 3;
+    const copy = (name) => {
+        const m = mesh.clone(name);
+        m.makeGeometryUnique();
+        m.setEnabled(true); // (a clone of the disabled original)
+        m.receiveShadows = false;
+        return m;
+    };
+    mesh.setEnabled(false);
+    shadows.removeShadowCaster(mesh);
+    const receiver = mesh.clone("receiver");
+    receiver.setEnabled(true);
+    receiver.position = M.getTranslation();
+    receiver.receiveShadows = true;
+    const out = {};
+    const one = async (name, caster, hide = []) => {
+        shadows.addShadowCaster(caster);
+        shadows.update();
+        out[name] = await render();
+        shadows.removeShadowCaster(caster);
+        for (const m of [caster, ...hide]) m.dispose();
+    };
+    const unmoved = copy("unmoved");
+    await one("unmoved", unmoved);
+    const moved = copy("moved");
+    moved.position = M.getTranslation();
+    await one("mesh", moved);
+    const source = copy("source");
+    const instance = source.createInstance("instance");
+    instance.position = M.getTranslation();
+    await one("instanced", instance, [source]);
+    const thin = copy("thin");
+    thin.thinInstanceAdd(M);
+    await one("thin", thin);
+    const skinned = copy("skinned");
+    const skeleton = new Skeleton("skeleton", "skeleton", scene);
+    const bone = new Bone("bone", skeleton, null, Matrix.Identity());
+    skinned.setVerticesData("matricesIndices", new Float32Array(4 * count));
+    skinned.setVerticesData("matricesWeights", new Float32Array(4 * count).map((_, i) => (i % 4 === 0 ? 1 : 0)));
+    skinned.skeleton = skeleton;
+    bone.setPosition(M.getTranslation());
+    await one("skinned", skinned);
+    const morphed = copy("morphed");
+    const manager = new MorphTargetManager(scene);
+    const target = new MorphTarget("shifted", 1, scene);
+    const shifted = Float32Array.from(positions);
+    const t = M.getTranslation();
+    for (let i = 0; i < count; ++i) { shifted[3 * i] += t.x; shifted[3 * i + 1] += t.y; shifted[3 * i + 2] += t.z; }
+    target.setPositions(shifted);
+    manager.addTarget(target);
+    morphed.morphTargetManager = manager;
+    await one("morphed", morphed);
+    receiver.dispose();
+    mesh.setEnabled(true);
+    shadows.addShadowCaster(mesh);
+    shadows.update();
+    return out;
 }
 
 start().then((api) => { window.penumbraBabylon = api; },
