@@ -37,8 +37,8 @@ fi
 
 # puppeteer-core (never `puppeteer`, which downloads a browser), vite, typescript, @types/three and
 # three r180/r187 (three-package installs the add-on's tarball into a fresh project offline beside
-# them), esbuild, webpack, rollup with @rollup/plugin-node-resolve and @babylonjs/core (the
-# bundler-* tests), pinned by package-lock.json.
+# them), esbuild, webpack, rollup with @rollup/plugin-node-resolve, @babylonjs/core, and react,
+# react-dom and @react-three/fiber (the bundler-* tests), pinned by package-lock.json.
 web="$(cd "$(dirname "$0")/.." && pwd)/targets/web"
 if [ ! -f "$web/node_modules/.package-lock.json" ] || [ "$web/package-lock.json" -nt "$web/node_modules/.package-lock.json" ]; then
     echo "setup: npm ci in targets/web"

@@ -16,10 +16,12 @@
 //      page has two lights (a RectAreaLight and a sun), one add-on each on one material: each scales
 //      its own light's term only, both on is the sum of each alone, and the first light's image is
 //      unchanged after the second add-on's dispose(); on a StandardMaterial and on a PBRMaterial.
+//      The React Three Fiber page (Vite): web/three/r3f's <PenumbraShadows> component shadows the
+//      canvas, useFrame updates it, and unmounting disposes it.
 // The bundle's size (its JavaScript, unminified, and gzipped; the assets apart) is printed.
 //
 //   node targets/web/bundle_test.mjs --bundler vite|esbuild|webpack|rollup --work DIR --tarball three=FILE
-//        [--tarball babylon=FILE] [--chromium PATH]
+//        [--tarball babylon=FILE] [--tarball r3f=FILE (Vite only; penumbra-three's)] [--chromium PATH]
 //
 // Exit 0 pass, 1 fail, 77 skip (no chromium), 2 bad arguments.
 import {execFileSync} from "node:child_process";
@@ -38,6 +40,9 @@ const BUNDLERS = ["vite", "esbuild", "webpack", "rollup"];
 const PACKAGES = {
     three: {name: "penumbra-three", peers: ["three"], assets: "."},
     babylon: {name: "penumbra-babylon", peers: ["@babylonjs/core"], assets: "shared"},
+    // React Three Fiber (Vite only): the example's hook copied into the project, as a user does
+    r3f: {name: "penumbra-three", peers: ["three", "react", "react-dom", "@react-three/fiber"], assets: ".", entry: "r3f.jsx",
+          copied: ["../../web/three/r3f/usePenumbraShadows.js"]},
 };
 const RATIO_TOLERANCE = 0.01; // (lit with) / (lit without) against the visibility, both float
 const PIXELS_ALLOWED = 0.01;  // share of lit pixels allowed outside it
@@ -59,6 +64,7 @@ function parseArguments(argv) {
             out[flag.slice(2)] = value;
         }
     }
+    if (out.tarballs.r3f && out.bundler !== "vite") usage("--tarball r3f=FILE: the React Three Fiber page is built with Vite only");
     if (!BUNDLERS.includes(out.bundler)) usage(`--bundler '${out.bundler}': allowed ${BUNDLERS.join(", ")}`);
     if (!out.work || !Object.keys(out.tarballs).length) usage("--work and at least one --tarball are required");
     return out;
@@ -84,7 +90,8 @@ function project(work, tarballs) {
     fs.mkdirSync(app, {recursive: true});
     const dependencies = {};
     for (const [page, tarball] of Object.entries(tarballs)) {
-        for (const f of [`${page}.js`, `${page}.html`]) fs.copyFileSync(path.join(here, "bundle_pages", f), path.join(app, f));
+        for (const f of [PACKAGES[page].entry ?? `${page}.js`, `${page}.html`]) fs.copyFileSync(path.join(here, "bundle_pages", f), path.join(app, f));
+        for (const f of PACKAGES[page].copied ?? []) fs.copyFileSync(path.join(here, f), path.join(app, path.basename(f)));
         dependencies[PACKAGES[page].name] = `file:${tarball}`;
         for (const peer of PACKAGES[page].peers) {
             if (!fs.existsSync(path.join(modules, peer, "package.json")))
@@ -106,6 +113,7 @@ const build = {
         fs.writeFileSync(path.join(app, "vite.config.js"), `export default {
     base: "./",
     logLevel: "warn",
+    esbuild: {jsx: "automatic"}, // (JSX without @vitejs/plugin-react: React's automatic runtime)
     build: {outDir: ${JSON.stringify(dist)}, emptyOutDir: true, minify: false,
             rollupOptions: {input: ${JSON.stringify(Object.fromEntries(pages.map((p) => [p, `${p}.html`])))}}},
 };
@@ -176,6 +184,7 @@ function sizes(dist) {
 // shadow is there and the rest lit; with several lights, both on is the sum of each alone and the
 // first is unchanged after the second add-on's dispose()
 function check(r) {
+    if (r.kind === "r3f") return checkR3F(r);
     const failures = [], stats = [];
     const n = r.width * r.height;
     r.unshadowed.forEach((u, k) => {
@@ -216,6 +225,20 @@ function check(r) {
     return {failures, summary: `${r.library}: ${stats.join("; ")}`};
 }
 
+// The R3F page: the component's shadow is on the canvas (pixels differing from the frame after it
+// unmounted), useFrame updated the add-on, and unmounting disposed it.
+function checkR3F(r) {
+    const failures = [];
+    let differing = 0;
+    for (let i = 0; i < r.on.length; i += 4)
+        if (Math.abs(r.on[i] - r.off[i]) + Math.abs(r.on[i + 1] - r.off[i + 1]) + Math.abs(r.on[i + 2] - r.off[i + 2]) > 12) ++differing;
+    const n = r.width * r.height;
+    if (differing < SHADOW_PIXELS * n) failures.push(`with <PenumbraShadows> mounted the canvas differs from the frame after unmounting at ${differing} of ${n} pixels only`);
+    if (!(r.updates >= 1)) failures.push("useFrame never ran the add-on's update()");
+    if (!r.disposed) failures.push("unmounting <PenumbraShadows> did not dispose the add-on");
+    return {failures, summary: `${r.library}: the mounted component's shadow on ${differing} of ${n} pixels, ${r.updates} shadow update(s), disposed on unmount: ${r.disposed}`};
+}
+
 async function main() {
     const args = parseArguments(process.argv.slice(2));
     if (!fs.existsSync(args.chromium)) {
@@ -241,7 +264,7 @@ async function main() {
         if (args.bundler !== "vite") fs.copyFileSync(path.join(app, `${page}.html`), path.join(dist, `${page}.html`));
         const size = sizes(dist);
         if (size.nodeImports.length) failures.push(`a node: import in the browser bundle: ${size.nodeImports.join(", ")}`);
-        console.log(`${size.nodeImports.length ? "FAIL" : "ok  "} ${args.bundler} build of ${PACKAGES[page].name}'s page in ${((Date.now() - started) / 1000).toFixed(1)} s: ` +
+        console.log(`${size.nodeImports.length ? "FAIL" : "ok  "} ${args.bundler} build of the ${page} page (${PACKAGES[page].name}) in ${((Date.now() - started) / 1000).toFixed(1)} s: ` +
                     `${(size.js / 1024).toFixed(0)} KiB of JavaScript unminified (${(size.gzip / 1024).toFixed(0)} KiB gzipped, lazy chunks included), ` +
                     `${(size.assets / 1024).toFixed(0)} KiB of assets, ${size.files} files` + (warnings ? `\n     ${warnings.split("\n").join("\n     ")}` : ""));
     }
@@ -258,7 +281,7 @@ async function main() {
                 if (r.error) throw new Error(`${page}.html: ${r.error}`);
                 const {failures: pageFailures, summary} = check(r);
                 failures.push(...pageFailures.map((f) => `${page}.html (${material}): ${f}`));
-                console.log(`${pageFailures.length ? "FAIL" : "ok  "} ${args.bundler}, ${PACKAGES[page].name} in chromium: ${summary}`);
+                console.log(`${pageFailures.length ? "FAIL" : "ok  "} ${args.bundler}, the ${page} page (${PACKAGES[page].name}) in chromium: ${summary}`);
             }
             failures.push(...problems.map((f) => `${page}.html: ${f}`));
             await tab.close();
