@@ -89,14 +89,22 @@ const state = {light: params.get("light") === "sun" ? "sun" : "rect", mode: "pen
 let shadows = null;
 const status = document.getElementById("status");
 
+let attaching = 0;
 async function attach() {
-    if (shadows) shadows.dispose();
+    // (the render loop goes on while the new add-on loads: it must not update the disposed one;
+    // a switch during the load supersedes it)
+    const mine = ++attaching;
+    const old = shadows;
+    shadows = null;
+    if (old) old.dispose();
     const light = state.light === "sun" ? sun : rect;
     rect.setEnabled(light === rect);
     sun.setEnabled(light === sun);
-    shadows = await PenumbraShadows.load(engine, scene, light, light === sun ? {angularDiameter: 0.04} : {});
-    for (const m of [...shapes, ...post.instances]) shadows.addShadowCaster(m);
-    shadows.enabled = state.mode === "penumbra";
+    const loaded = await PenumbraShadows.load(engine, scene, light, light === sun ? {angularDiameter: 0.04} : {});
+    if (mine !== attaching) return loaded.dispose();
+    for (const m of [...shapes, ...post.instances]) loaded.addShadowCaster(m);
+    loaded.enabled = state.mode === "penumbra";
+    shadows = loaded;
 }
 
 async function set(changes) {
@@ -107,6 +115,7 @@ async function set(changes) {
 }
 
 function render() {
+    if (!shadows) return scene.render();
     shadows.update();
     scene.render();
     status.textContent = `${state.light}: ${shadows.info.casters} casters, ${shadows.info.receivers} receivers, last shadow update ${shadows.info.lastShadowMs.toFixed(1)} ms`;
