@@ -343,10 +343,14 @@ float ${n.shadow}(vec3 normalWorld, vec3 positionWorld, vec3 eye) {
     _patch(material) {
         if (!material || this._plugins.has(material) || !RECEIVING_MATERIALS.includes(material.getClassName())) return;
         this._plugins.set(material, new PenumbraShadowsPlugin(material, this));
-        const units = [...this._plugins.keys()].length && this._samplerNames.length;
-        if (units > 8 && !this._warnedUnits && material.pluginManager && material.pluginManager._plugins.filter((p) => p instanceof PenumbraShadowsPlugin).length > 1) {
+        // the add-ons' textures on this material beside Babylon's own (a few), within the stage's units
+        const ours = material.pluginManager._plugins.filter((p) => p instanceof PenumbraShadowsPlugin && !p._addon.disposed)
+            .reduce((n, p) => n + p._addon._samplerNames.length, 0);
+        const max = this.engine.getCaps().maxTexturesImageUnits;
+        if (ours + 4 > max && !this._warnedUnits) {
             this._warnedUnits = true;
-            console.warn("PenumbraShadows: several add-ons on one material sample many textures (WebGL2 has 16 units a stage); use emissions with one texture ('…-mipmap-…')");
+            console.warn(`PenumbraShadows: the add-ons on material '${material.name}' sample ${ours} textures, and Babylon needs some of the ` +
+                         `${max} texture units too; use emissions with one texture ('…-mipmap-…')`);
         }
     }
 
