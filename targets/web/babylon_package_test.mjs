@@ -4,7 +4,7 @@
 //      @babylonjs/core and typescript from this folder's node_modules, and `tsc --noEmit` checks
 //      babylon_package/check.ts against @babylonjs/core's declarations.
 //   2. The example (web/babylon/example/, served from the repository with web/babylon/node_modules
-//      and shared/ from `npm ci` there) in chromium: its light switch rect → sun → rect, Penumbra's
+//      from `npm ci` there, and shared/ from web/three) in chromium: its light switch rect → sun → rect, Penumbra's
 //      shadows against none after each switch, and screenshots of each into --images.
 // Babylon's RectAreaLight fetches its LTC tables from Babylon's CDN, which a test cannot reach:
 // the page gets the same fit from three's RectAreaLightTexturesLib (bundle_test.mjs's ltcTables).
@@ -127,7 +127,7 @@ async function main() {
     }
     const web = path.resolve(args.web);
     for (const need of [path.join(modules, "typescript/bin/tsc"), path.join(modules, "@babylonjs/core/package.json"),
-                        path.join(web, "babylon/node_modules/@babylonjs/core/package.json"), path.join(web, "babylon/shared/penumbra_runner.js")])
+                        path.join(web, "babylon/node_modules/@babylonjs/core/package.json")])
         if (!fs.existsSync(need)) {
             console.log(`error: ${need} is missing: scripts/setup.sh runs npm ci in targets/web and in web/babylon`);
             process.exit(1);
@@ -137,7 +137,8 @@ async function main() {
     const failures = typecheck(work, args.tarball);
     console.log(`${failures.length ? "FAIL" : "ok  "} npm install --offline of the tarball into a fresh project; tsc --noEmit of check.ts against @babylonjs/core's declarations`);
     const {browser, close} = await launchChromium(args.chromium);
-    const server = await serve({web});
+    // (web/babylon/shared/ served from its one source, web/three/: never a stale copy)
+    const server = await serve({web, "web/babylon/shared": path.join(web, "three")});
     try {
         failures.push(...(await checkExample(browser, server.address().port, args.images)));
     } catch (e) {

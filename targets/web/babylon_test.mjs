@@ -5,7 +5,8 @@
 // visibility against the desktop runtime's within 2·bound + q on all interior pixels but 1% of the
 // image; the casters placed by a matrix five ways (Mesh, InstancedMesh, thin instance, skeleton,
 // morph target) agree within three_test.mjs's tolerance. (The material's term, several lights, Standard and PBR materials and dispose(): the
-// bundler-* tests.) Needs web/babylon's npm ci (its @babylonjs/core and shared/).
+// bundler-* tests.) Needs web/babylon's npm ci (its @babylonjs/core); the page's shared/ modules are
+// served from web/three, where they live.
 //
 //   node targets/web/babylon_test.mjs --web web [--chromium PATH] BUNDLE_DIR...
 //
@@ -73,13 +74,14 @@ async function checkBundle(browser, port, index, dir, ltc) {
 async function main() {
     const args = parseArguments(process.argv.slice(2));
     const web = path.resolve(args.web);
-    for (const need of ["babylon/node_modules/@babylonjs/core/package.json", "babylon/shared/penumbra_runner.js"])
+    for (const need of ["babylon/node_modules/@babylonjs/core/package.json"])
         if (!fs.existsSync(path.join(web, need))) {
             console.log(`error: ${path.join(web, need)} is missing: scripts/setup.sh runs npm ci in web/babylon`);
             process.exit(1);
         }
     const {browser, close} = await launchChromium(args.chromium);
-    const roots = {web};
+    // (web/babylon/shared/ served from its one source, web/three/: never a stale copy)
+    const roots = {web, "web/babylon/shared": path.join(web, "three")};
     args.bundles.forEach((dir, i) => (roots[`bundle/${i}`] = dir));
     const server = await serve(roots);
     let failures = 0;
