@@ -2,7 +2,7 @@
 # Installs Penumbra's build and test dependencies from Debian (the platform notes say what each
 # is for; clang-16 and the wasm32 libraries build the WebAssembly emitter, wasm/) and
 # the browser tests' npm packages (into targets/web/node_modules: puppeteer-core, and vite,
-# typescript, @types/three and three r180/r187 for the npm package test). Idempotent:
+# typescript, @types/three and three r180/r187 for the npm package test, the bundlers and Babylon.js). Idempotent:
 # does nothing when every package is installed and node_modules matches package-lock.json.
 set -euo pipefail
 
@@ -37,7 +37,8 @@ fi
 
 # puppeteer-core (never `puppeteer`, which downloads a browser), vite, typescript, @types/three and
 # three r180/r187 (three-package installs the add-on's tarball into a fresh project offline beside
-# them), pinned by package-lock.json.
+# them), esbuild, webpack, rollup with @rollup/plugin-node-resolve, @babylonjs/core, and react,
+# react-dom and @react-three/fiber (the bundler-* tests), pinned by package-lock.json.
 web="$(cd "$(dirname "$0")/.." && pwd)/targets/web"
 if [ ! -f "$web/node_modules/.package-lock.json" ] || [ "$web/package-lock.json" -nt "$web/node_modules/.package-lock.json" ]; then
     echo "setup: npm ci in targets/web"
@@ -48,4 +49,11 @@ three="$(cd "$(dirname "$0")/.." && pwd)/web/three"
 if [ ! -f "$three/node_modules/.package-lock.json" ] || [ "$three/package-lock.json" -nt "$three/node_modules/.package-lock.json" ]; then
     echo "setup: npm ci in web/three"
     npm ci --prefix "$three" --no-audit --no-fund --loglevel=error
+fi
+# @babylonjs/core (the Babylon.js add-on's peer dependency, for its example), pinned by
+# web/babylon/package-lock.json; its "prepare" copies the modules shared with web/three into web/babylon/shared/.
+babylon="$(cd "$(dirname "$0")/.." && pwd)/web/babylon"
+if [ ! -f "$babylon/node_modules/.package-lock.json" ] || [ "$babylon/package-lock.json" -nt "$babylon/node_modules/.package-lock.json" ]; then
+    echo "setup: npm ci in web/babylon"
+    npm ci --prefix "$babylon" --no-audit --no-fund --loglevel=error
 fi

@@ -72,8 +72,10 @@ export async function launchChromium(executablePath, extraArgs = []) {
 }
 
 // Opens `url`, waits for window[name] and fails with the page's own error when it set one.
-export async function openPage(browser, url, name, viewport = {width: 800, height: 600}) {
+// `prepare(page)`, when given, runs before the page loads (request interception, say).
+export async function openPage(browser, url, name, viewport = {width: 800, height: 600}, prepare = null) {
     const page = await browser.newPage();
+    if (prepare) await prepare(page);
     await page.setViewport(viewport);
     const problems = [];
     page.on("pageerror", (e) => problems.push(`page error: ${e.message}`));

@@ -88,7 +88,7 @@ function pack(three, work, wasm) {
     for (const need of ["package.json", "penumbra_shadows.js", "penumbra_shadows.d.ts", "penumbra_runner.js", "light_frame.js",
                         "penumbra_emitter.js", "penumbra_emitter.d.ts", "penumbra_emitter.wasm", "emissions.js", "LICENSE",
                         "emissions/rect-nbuffer-16x512/layout.json", "emissions/sun-mipmap-16x512/penumbra_visibility.glsl",
-                        "penumbra_scene.js", "penumbra_shadows_webgpu.js", "penumbra_webgpu_runner.js",
+                        "penumbra_scene.js", "penumbra_emission.js", "penumbra_emitter_node.js", "penumbra_shadows_webgpu.js", "penumbra_webgpu_runner.js",
                         "emissions/rect-nbuffer-16x512-wgsl/penumbra_visibility.wgsl"])
         if (!files.includes(need)) failures.push(`the tarball lacks ${need}`);
     for (const f of files) if (/^(example|test|node_modules)\/|\.tgz$|prepack\.mjs$|regenerate\.sh$/.test(f)) failures.push(`the tarball holds ${f}`);

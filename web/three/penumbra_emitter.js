@@ -10,7 +10,9 @@
 //   emitter.fields()  // the table of configuration fields: [{key, flag, kind, min, max, help, techniques, names, default, …}]
 //
 // The module imports nothing (wasm/wasi_stubs.cpp defines the three WASI calls libc's stdio would
-// import): no WASI runtime and no import object, in a browser or in node.
+// import): no WASI runtime and no import object, in a browser or in node. Nothing here is for node
+// alone (esbuild and webpack 5 fail on such imports in a browser bundle): node reads file: URLs
+// through penumbra_emitter_node.js, which package.json's "node" condition of "./emitter" selects.
 
 const encoder = new TextEncoder();
 const decoder = new TextDecoder();
@@ -20,11 +22,12 @@ async function moduleFrom(source) {
     if (source instanceof ArrayBuffer || ArrayBuffer.isView(source)) return WebAssembly.compile(source);
     // The default as a literal `new URL("./…", import.meta.url)`: bundlers (Vite, webpack) copy
     // the module into the build only when they see that form.
-    const url = source == null ? new URL("./penumbra_emitter.wasm", import.meta.url) : new URL(source, import.meta.url);
-    if (url.protocol === "file:") { // node: fetch() does not read files
-        const {readFile} = await import("node:fs/promises");
-        return WebAssembly.compile(await readFile(url));
-    }
+    // (a caller's URL against a copy of import.meta.url: webpack warns "Critical dependency" on
+    // `new URL(expression, import.meta.url)`, a form it would bundle only with a literal)
+    const moduleUrl = import.meta.url;
+    const url = source == null ? new URL("./penumbra_emitter.wasm", import.meta.url) : new URL(source, moduleUrl);
+    if (url.protocol === "file:") // node's fetch() reads no file
+        throw new Error(`${url}: a file: URL; in node import "penumbra-three/emitter" (its "node" export reads files) or pass the module's bytes`);
     const response = await fetch(url);
     if (!response.ok) throw new Error(`${url}: HTTP ${response.status} (build the emitter: cmake --build build --target penumbra-emitter-wasm)`);
     return WebAssembly.compile(await response.arrayBuffer());
@@ -79,7 +82,11 @@ export class Emitter {
 // bytes, or a compiled WebAssembly.Module.
 export async function loadEmitter(source) {
     const started = performance.now();
-    const module = await moduleFrom(source);
+    return instantiate(await moduleFrom(source), started);
+}
+
+// (penumbra_emitter_node.js compiles from the file's bytes, then comes here)
+export async function instantiate(module, started = performance.now()) {
     const instance = await WebAssembly.instantiate(module, {});
     instance.exports._initialize(); // reactor: the static constructors, once
     return new Emitter(instance, performance.now() - started);

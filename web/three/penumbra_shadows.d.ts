@@ -4,47 +4,15 @@ import type {Camera, DirectionalLight, RectAreaLight, Scene, WebGLRenderer} from
 import type {WebGPURenderer} from "three/webgpu";
 import type {Emitter} from "./penumbra_emitter.js";
 
-/**
- * The emissions shipped in the package (penumbra-gen output): essl300 for WebGLRenderer; on
- * WebGPURenderer the same name loads its "<name>-wgsl" twin (the "-mipmap-" ones have none: WGSL
- * has no mipmap filter).
- */
-export type EmissionName =
-    | "rect-nbuffer-16x512" | "rect-mipmap-16x512" | "rect-nbuffer-16x256" | "rect-nbuffer-8x256"
-    | "sun-nbuffer-16x512" | "sun-mipmap-16x512";
-
-/** Shipped emission → its files (name → URL, each a literal `new URL(…, import.meta.url)` bundlers copy). */
-export const EMISSIONS: Readonly<Record<EmissionName | `${EmissionName}-wgsl`, Readonly<Record<string, URL>>>>;
-
-/** An emission in memory: what the WebAssembly emitter's emit() returns (files by name, layout.json parsed). */
-export interface EmissionFiles {
-    layout: Record<string, any> | null;
-    files: Record<string, string>;
-}
-
-/** A configuration in `penumbra-gen --config`'s schema, emitted in the page by the WebAssembly emitter. */
-export interface EmissionConfig {
-    slices?: number;
-    resolution?: number;
-    filter?: "mipmap" | "nbuffer" | "gaussian" | "sat";
-    fusion?: "probabilistic" | "additive" | "maximum" | "average" | "chained" | "correlated" | "extent" | "clustered";
-    packing?: "atlas" | "array" | "volume";
-    tangent_clip?: boolean;
-    [key: string]: unknown;
-}
-
-/**
- * A shipped emission's name, a folder URL ending in "/" holding `penumbra-gen --target essl300`
- * output, an emission in memory, or a configuration to emit.
- */
-export type Emission = EmissionName | string | EmissionFiles | EmissionConfig;
+export {EMISSIONS, PenumbraError, type Emission, type EmissionConfig, type EmissionFiles, type EmissionName} from "./penumbra_emission.js";
+import type {Emission} from "./penumbra_emission.js";
 
 export interface PenumbraShadowsOptions {
     /** Default "rect-nbuffer-16x512" (RectAreaLight) or "sun-nbuffer-16x512" (DirectionalLight). */
     emission?: Emission;
     /**
      * A shadow quality tier (penumbra-gen --profile): "balanced" (the default) or "large" (lights x4 and up:
-     * more slices, clustered fusion, the irradiance window; emitted by penumbra_emitter.wasm). With a
+     * clustered fusion and the irradiance window; emitted by penumbra_emitter.wasm). With a
      * configuration object as `emission`, its fields win over the profile's.
      */
     profile?: "balanced" | "large";
@@ -66,9 +34,6 @@ export interface PenumbraShadowsInfo {
     /** false when the scene's bounds reach the light's plane (shadows above it are wrong). */
     contained: boolean;
 }
-
-/** Thrown with a message naming what is wrong ("PenumbraShadows: …"). */
-export class PenumbraError extends Error {}
 
 export class PenumbraShadows {
     /** Loads the emission and attaches an add-on to `light`: one add-on per shadowed light. */

@@ -1,0 +1,101 @@
+// babylon_test.mjs — the `babylon` browser test: Penumbra's built-in scenes rebuilt in Babylon.js
+// from essl300 target bundles (web/babylon/test/: the same triangles, light and camera, the
+// bundle's emission folder), checked as three_test.mjs checks the three.js add-on, with its
+// functions and tolerances: the add-on's light frame against the desktop's uniforms, and its
+// visibility against the desktop runtime's within 2·bound + q on all interior pixels but 1% of the
+// image; the casters placed by a matrix five ways (Mesh, InstancedMesh, thin instance, skeleton,
+// morph target) agree within three_test.mjs's tolerance. (The material's term, several lights, Standard and PBR materials and dispose(): the
+// bundler-* tests.) Needs web/babylon's npm ci (its @babylonjs/core); the page's shared/ modules are
+// served from web/three, where they live.
+//
+//   node targets/web/babylon_test.mjs --web web [--chromium PATH] BUNDLE_DIR...
+//
+// Exit 0 pass, 1 fail, 77 skip (no chromium), 2 bad arguments.
+import fs from "node:fs";
+import path from "node:path";
+import {serve, launchChromium, openPage} from "./harness.mjs";
+import {ltcTables, serveLtc} from "./ltc_tables.mjs";
+import {PIXELS_ALLOWED, R8_STEP, VARIANT_PIXELS_ALLOWED, compareVariants, compareWithDesktop, frameError} from "./three_test.mjs";
+
+const UNIFORM_TOLERANCE = 1e-5; // relative: float32 of the same double-precision formulas
+
+function usage(message) {
+    console.error(`error: ${message}\nusage: node babylon_test.mjs --web DIR [--chromium PATH] BUNDLE_DIR...`);
+    process.exit(2);
+}
+
+function parseArguments(argv) {
+    const out = {web: null, chromium: "/usr/bin/chromium", bundles: []};
+    for (let i = 0; i < argv.length; ++i) {
+        if (argv[i] === "--web" || argv[i] === "--chromium") {
+            if (i + 1 >= argv.length) usage(`${argv[i]}: missing value`);
+            out[argv[i].slice(2)] = argv[++i];
+        } else if (argv[i].startsWith("--")) {
+            usage(`unknown argument '${argv[i]}'; allowed: --web, --chromium, bundle folders`);
+        } else {
+            out.bundles.push(argv[i]);
+        }
+    }
+    if (!out.web || !out.bundles.length) usage("--web and at least one bundle folder are required");
+    return out;
+}
+
+async function checkBundle(browser, port, index, dir, ltc) {
+    const bundle = JSON.parse(fs.readFileSync(path.join(dir, "uniforms.json"), "utf8"));
+    const c = bundle.config;
+    const label = `${bundle.scene} ${c.light} ${c.filter}/${c.packing} ${c.slices}×${c.resolution}² ${bundle.width}x${bundle.height}`;
+    const started = Date.now();
+    const {page, problems} = await openPage(browser, `http://127.0.0.1:${port}/web/babylon/test/index.html?bundle=/bundle/${index}/`, "penumbraBabylon",
+                                            undefined, (p) => serveLtc(p, ltc));
+    const failures = [];
+    const uniformError = frameError(await page.evaluate(() => window.penumbraBabylon.frameUniforms()));
+    if (!(uniformError <= UNIFORM_TOLERANCE)) failures.push(`the add-on's light frame differs from the desktop's by ${uniformError.toExponential(2)} (relative)`);
+    const v = compareWithDesktop(await page.evaluate(() => window.penumbraBabylon.visibility()), dir, bundle);
+    if (v.outside > PIXELS_ALLOWED * v.pixels)
+        failures.push(`${v.outside} of ${v.geometry} interior pixels differ from the desktop run by more than 2·bound + q (allowed: ${100 * PIXELS_ALLOWED}% of the ${v.pixels} pixels)`);
+    // the casters placed five ways agree
+    const variants = await page.evaluate(() => window.penumbraBabylon.variants());
+    const differing = compareVariants(variants);
+    differing.thin = variants.thin.reduce((n, x, i) => n + (Math.abs(x - variants.mesh[i]) > 2 * R8_STEP ? 1 : 0), 0);
+    for (const name of ["instanced", "thin", "skinned", "morphed"])
+        if (differing[name] > VARIANT_PIXELS_ALLOWED * v.pixels) failures.push(`the ${name} caster's shadow differs from the moved Mesh's at ${differing[name]} pixels`);
+    if (differing.moved === 0) failures.push("moving the casters changed no pixel: the variants prove nothing");
+    failures.push(...problems);
+    await page.close();
+    console.log(`${failures.length ? "FAIL" : "ok  "} babylon ${label} (${((Date.now() - started) / 1000).toFixed(1)} s)\n` +
+                `     light frame vs desktop ${uniformError.toExponential(2)} (relative); visibility vs desktop: mean |Δ| ${v.mean.toExponential(2)}, ` +
+                `max ${v.worst.toFixed(4)}, ${v.outside} of ${v.geometry} interior pixels outside 2·bound + q (${v.shadowed} shadowed; ${v.silhouette} silhouette pixels left out)\n` +
+                `     casters moved by M changed ${differing.moved} pixels; pixels differing from the moved Mesh: instanced ${differing.instanced}, ` +
+                `thin instance ${differing.thin}, skinned ${differing.skinned}, morphed ${differing.morphed}`);
+    for (const f of failures) console.log(`FAIL ${f}`);
+    return failures.length;
+}
+
+async function main() {
+    const args = parseArguments(process.argv.slice(2));
+    const web = path.resolve(args.web);
+    for (const need of ["babylon/node_modules/@babylonjs/core/package.json"])
+        if (!fs.existsSync(path.join(web, need))) {
+            console.log(`error: ${path.join(web, need)} is missing: scripts/setup.sh runs npm ci in web/babylon`);
+            process.exit(1);
+        }
+    const {browser, close} = await launchChromium(args.chromium);
+    // (web/babylon/shared/ served from its one source, web/three/: never a stale copy)
+    const roots = {web, "web/babylon/shared": path.join(web, "three")};
+    args.bundles.forEach((dir, i) => (roots[`bundle/${i}`] = dir));
+    const server = await serve(roots);
+    let failures = 0;
+    try {
+        const ltc = await ltcTables(); // (Babylon's RectAreaLight fetches them from its CDN: ltc_tables.mjs)
+        for (let i = 0; i < args.bundles.length; ++i) failures += await checkBundle(browser, server.address().port, i, args.bundles[i], ltc);
+    } catch (e) {
+        console.log(`FAIL ${e.message}`);
+        failures += 1;
+    } finally {
+        await close();
+        server.close();
+    }
+    process.exit(failures ? 1 : 0);
+}
+
+main();

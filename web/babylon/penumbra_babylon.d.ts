@@ -1,0 +1,84 @@
+// Types of penumbra_babylon.js (import {PenumbraShadows} from "penumbra-babylon"), checked with tsc
+// against @babylonjs/core's own declarations (targets/web/babylon_package_test.mjs).
+import type {AbstractEngine} from "@babylonjs/core/Engines/abstractEngine.js";
+import type {Scene} from "@babylonjs/core/scene.js";
+import type {Camera} from "@babylonjs/core/Cameras/camera.js";
+import type {RectAreaLight} from "@babylonjs/core/Lights/rectAreaLight.js";
+import type {DirectionalLight} from "@babylonjs/core/Lights/directionalLight.js";
+import type {AbstractMesh} from "@babylonjs/core/Meshes/abstractMesh.js";
+import type {Emitter} from "./shared/penumbra_emitter.js";
+
+export {EMISSIONS, PenumbraError, type Emission, type EmissionConfig, type EmissionFiles, type EmissionName} from "./shared/penumbra_emission.js";
+import type {Emission} from "./shared/penumbra_emission.js";
+
+export interface PenumbraShadowsOptions {
+    /** Default "rect-nbuffer-16x512" (RectAreaLight) or "sun-nbuffer-16x512" (DirectionalLight); only essl300 emissions. */
+    emission?: Emission;
+    /**
+     * A shadow quality tier (penumbra-gen --profile): "balanced" (the default) or "large" (lights x4 and up:
+     * clustered fusion and the irradiance window; emitted by penumbra_emitter.wasm). With a configuration
+     * object as `emission`, its fields win over the profile's.
+     */
+    profile?: "balanced" | "large";
+    /** Sun only: the angular diameter in radians (default 0.0093, 0.53°). */
+    angularDiameter?: number;
+    /** Re-run the shadow phase when the light, a caster or a receiver changed (default true). */
+    autoUpdate?: boolean;
+    /** 0 no shadow … 1 Penumbra's visibility (default 1). */
+    intensity?: number;
+    /** For a configuration object: the URL of penumbra_emitter.wasm (default: the package's). */
+    wasm?: string | URL | null;
+}
+
+export interface PenumbraShadowsInfo {
+    shadowUpdates: number;
+    lastShadowMs: number;
+    casters: number;
+    receivers: number;
+    /** false when the scene's bounds reach the light's plane (shadows above it are wrong). */
+    contained: boolean;
+}
+
+export class PenumbraShadows {
+    /**
+     * Loads the emission and attaches an add-on to `light` on a WebGL2 `Engine` (WebGPUEngine is
+     * refused with a PenumbraError): one add-on per shadowed light.
+     */
+    static load(engine: AbstractEngine, scene: Scene, light: RectAreaLight | DirectionalLight,
+                options?: PenumbraShadowsOptions): Promise<PenumbraShadows>;
+    private constructor();
+
+    readonly engine: AbstractEngine;
+    readonly scene: Scene;
+    readonly light: RectAreaLight | DirectionalLight;
+    readonly kind: "rect" | "sun";
+    /** The emission's configuration (layout.json's "config"). */
+    readonly config: Record<string, any>;
+    readonly info: PenumbraShadowsInfo;
+    readonly disposed: boolean;
+    /** false: the light's term is left unscaled (no shadow), without recompiling. */
+    enabled: boolean;
+    intensity: number;
+    angularDiameter: number;
+    autoUpdate: boolean;
+    /** Set to re-run the shadow phase at the next update() (with autoUpdate false). */
+    needsUpdate: boolean;
+
+    /** Casters, as ShadowGenerator's: the mesh and (by default) its descendants. */
+    addShadowCaster(mesh: AbstractMesh, includeDescendants?: boolean): this;
+    removeShadowCaster(mesh: AbstractMesh, includeDescendants?: boolean): this;
+    getShadowCasters(): AbstractMesh[];
+    /**
+     * Once per frame before scene.render(): hooks the materials (StandardMaterial, PBRMaterial) of
+     * meshes with receiveShadows, re-runs the shadow phase when something moved; throws a
+     * PenumbraError after dispose().
+     */
+    update(): void;
+    /** The visibility (0 shadowed … 1 lit) as `camera` sees the receivers, bottom row first; 1 where none is. */
+    renderVisibility(camera: Camera, width: number, height: number): Promise<Float32Array>;
+    /** Frees the add-on's GPU resources; its material plugins inject nothing any more. */
+    dispose(): void;
+}
+
+/** The package's WebAssembly emitter, loaded once (for configuration objects). */
+export function loadEmitter(wasm?: string | URL | null): Promise<Emitter>;
