@@ -289,7 +289,7 @@ TEST_CASE("bad arguments and bad config files: exit 2, one clear error line, not
          "--filter: 'box' is not allowed; allowed: mipmap, nbuffer, sat, gaussian"},
         {"enum case",
          {"--target", "GLSL450"},
-         "--target: 'GLSL450' is not allowed; allowed: glsl330, glsl450, essl300, vulkan, wgsl"},
+         "--target: 'GLSL450' is not allowed; allowed: glsl330, glsl450, essl300, vulkan, wgsl, hlsl"},
         {"fusion", {"--fusion=min"}, "allowed: probabilistic, additive, maximum, average"},
         {"packing", {"--packing", "cube"}, "allowed: atlas, array, volume"},
         {"light", {"--light", "point"}, "allowed: rect, sun"},
