@@ -150,6 +150,9 @@ TEST_CASE("--validate passes the emitted programs through glslang") {
         {"--slices", "5", "--fusion", "average", "--no-leak-fix", "--no-fade", "--resolution=32"},
         {"--slices", "64", "--resolution", "256", "--fusion", "chained", "--tangent-clip"},       // bits, unpacked
         {"--slices", "128", "--resolution", "64", "--packing", "array", "--target", "vulkan"},
+        // HLSL: glslang's HLSL front end, each stage linked alone
+        {"--target", "hlsl", "--slices", "8", "--resolution", "64"},
+        {"--target", "hlsl", "--technique", "pcss", "--alpha-test"},
     };
     for (const std::vector<std::string>& args : cases) {
         CAPTURE(joined(args));
