@@ -150,6 +150,9 @@ TEST_CASE("--validate passes the emitted programs through glslang") {
         {"--slices", "5", "--fusion", "average", "--no-leak-fix", "--no-fade", "--resolution=32"},
         {"--slices", "64", "--resolution", "256", "--fusion", "chained", "--tangent-clip"},       // bits, unpacked
         {"--slices", "128", "--resolution", "64", "--packing", "array", "--target", "vulkan"},
+        // HLSL: glslang's HLSL front end, each stage linked alone
+        {"--target", "hlsl", "--slices", "8", "--resolution", "64"},
+        {"--target", "hlsl", "--technique", "pcss", "--alpha-test"},
     };
     for (const std::vector<std::string>& args : cases) {
         CAPTURE(joined(args));
@@ -323,7 +326,7 @@ TEST_CASE("bad arguments and bad config files: exit 2, one clear error line, not
          "--filter: 'box' is not allowed; allowed: mipmap, nbuffer, sat, gaussian"},
         {"enum case",
          {"--target", "GLSL450"},
-         "--target: 'GLSL450' is not allowed; allowed: glsl330, glsl450, essl300, vulkan, wgsl"},
+         "--target: 'GLSL450' is not allowed; allowed: glsl330, glsl450, essl300, vulkan, wgsl, hlsl"},
         {"fusion", {"--fusion=min"}, "allowed: probabilistic, additive, maximum, average"},
         {"packing", {"--packing", "cube"}, "allowed: atlas, array, volume"},
         {"light", {"--light", "point"}, "allowed: rect, sun"},

@@ -30,11 +30,11 @@ std::string generic_fragment(const Config& config) {
 std::string specialized_snippet(const Config& config) { return emit_file(config, "penumbra_visibility.glsl").text; }
 
 // One configuration per filter × packing × light that validates.
-// The targets of the generic reference, a GLSL program (emit_generic refuses wgsl).
+// The targets of the generic reference, a GLSL program (emit_generic refuses wgsl and hlsl).
 std::vector<Target> glsl_targets() {
     std::vector<Target> targets;
     for (Target target : all_values<Target>())
-        if (target != Target::wgsl) targets.push_back(target);
+        if (target != Target::wgsl && target != Target::hlsl) targets.push_back(target);
     return targets;
 }
 

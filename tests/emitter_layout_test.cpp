@@ -127,7 +127,7 @@ TEST_CASE("layout: structured state, border colours, attachment kinds, levels") 
             // one level is bound only by a mip chain's pass, which renders the next level of that texture (WGSL:
             // WebGPU has no generateMipmap)
             for (const BindingDesc& in : pass.inputs)
-                CHECK((in.level == -1 || (config.target == Target::wgsl && pass.outputs.at(0).texture == in.texture &&
+                CHECK((in.level == -1 || (detail::binds_samplers_apart(config) && pass.outputs.at(0).texture == in.texture &&
                                           pass.outputs.at(0).level == in.level + 1)));
         }
         // a border colour exactly where the wrap is CLAMP_TO_BORDER, in textures and in samplings (ES 3.0
@@ -332,7 +332,7 @@ TEST_CASE("layout: adaptive slice placement runs the depth bins and the boundary
         CHECK(boundaries->width == config.slices + 1);
         CHECK(boundaries->height == 1);
         // the bins' mip chain: generateMipmap, or on WGSL a pass a level and layer (listed once here)
-        const bool wgsl = target == Target::wgsl;
+        const bool wgsl = target == Target::wgsl || target == Target::hlsl; // HLSL: WGSL's passes
         std::vector<std::string> order;
         int chain = 0;
         for (const PassDesc& pass : layout.passes) {
@@ -616,6 +616,21 @@ TEST_CASE("layout v3: vertex inputs as data, and the vertex stages declare exact
                                          std::string(detail::wgsl_type_name(in.type))) != std::string::npos);
                 continue;
             }
+            if (config.target == Target::hlsl) { // the entry point's parameters with their locations
+                const std::size_t entry = vertex_text.find(" main(");
+                REQUIRE(entry != std::string::npos);
+                const std::string signature = vertex_text.substr(entry, vertex_text.find('\n', entry + 1) - entry);
+                int declared = 0;
+                for (std::size_t at = signature.find("[[vk::location("); at != std::string::npos;
+                     at = signature.find("[[vk::location(", at + 1))
+                    ++declared;
+                CHECK(declared == static_cast<int>(program.vertex_inputs.size()));
+                for (const VertexInputDesc& in : program.vertex_inputs)
+                    CHECK(signature.find("[[vk::location(" + std::to_string(in.location) + ")]] " +
+                                         std::string(detail::hlsl_type_name(in.type)) + " " + in.name + "In : TEXCOORD" +
+                                         std::to_string(in.location)) != std::string::npos);
+                continue;
+            }
             int declared = 0;
             for (std::size_t at = vertex_text.find(") in "); at != std::string::npos; at = vertex_text.find(") in ", at + 1))
                 ++declared;
@@ -661,6 +676,7 @@ TEST_CASE("layout: every program file states its stage, the emitted file's own")
                 // WGSL: the GLSL name and .wgsl (penumbra_deferred.frag.wgsl)
                 std::string file = desc.files[f];
                 if (config.target == Target::wgsl && file.ends_with(".wgsl")) file.resize(file.size() - 5);
+                if (config.target == Target::hlsl && file.ends_with(".hlsl")) file.resize(file.size() - 5);
                 CHECK(std::string_view(file).substr(file.rfind('.') + 1) == stage_extension(desc.stages[f]));
             }
         }
@@ -692,7 +708,7 @@ TEST_CASE("layout v3: every binding states its sampling; only shadow samplers co
                 }
                 REQUIRE(p.sampling);
                 CHECK((p.sampling->compare == CompareFunc::lequal) == p.type.ends_with("Shadow"));
-                CHECK(p.set == (config.target == Target::vulkan || config.target == Target::wgsl ? 0 : -1));
+                CHECK(p.set == (config.target == Target::vulkan || detail::binds_samplers_apart(config) ? 0 : -1));
             }
         for (const PassDesc& pass : layout.passes)
             for (const BindingDesc& in : pass.inputs) {

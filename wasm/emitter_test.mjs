@@ -59,7 +59,7 @@ const OCCLUSION = {
     fusion: ["probabilistic", "additive", "maximum", "average", "chained", "correlated", "extent", "clustered", BAD, "product"],
     packing: ["atlas", "array", "volume", BAD, "tiles"],
     light: ["rect", "sun", BAD, "point"],
-    target: ["glsl330", "glsl450", "essl300", "vulkan", "essl300", "essl300", BAD, "metal"],
+    target: ["glsl330", "glsl450", "essl300", "vulkan", "essl300", "essl300", "hlsl", BAD, "metal"],
     leak_fix: [true, false, BAD, 1],
     self_shadow_fade: [true, false],
     tangent_clip: [true, false, BAD, "yes"],

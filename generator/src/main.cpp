@@ -66,8 +66,9 @@ int run(const std::vector<std::string>& args) {
     }
     const penumbra::Emission& emission = *emitted.value;
     if (arguments.validate && config.target == penumbra::Target::wgsl)
-        return fail("--validate: glslang reads GLSL, not WGSL; allowed: --validate with glsl330, glsl450, essl300 or "
-                    "vulkan (WGSL is checked by Chromium's compiler: ctest -R wgsl_matrix)");
+        return fail("--validate: glslang reads GLSL and HLSL, not WGSL; allowed: --validate with glsl330, "
+                    "glsl450, essl300, "
+                    "vulkan or hlsl (WGSL is checked by Chromium's compiler: ctest -R wgsl_matrix)");
 
     // 4. glslang, when asked: every diagnostic, with the path the file is written to.
     int rejected_programs = 0;

@@ -92,6 +92,7 @@ enum class Target : std::uint8_t {
     essl300, // OpenGL ES 3.0 / WebGL2, `#version 300 es`
     vulkan,  // GLSL 450 for SPIR-V: set/binding decorations, parameters in a uniform block
     wgsl,    // WGSL for WebGPU: one module per stage, bind group 0, parameters in a uniform buffer
+    hlsl,    // HLSL (Shader Model 5.0/6.0 style) for Direct3D 12: cbuffers and t#/s# registers in space 0
 };
 
 // The shadowing technique the emitted programs implement.
@@ -305,7 +306,8 @@ template <> struct EnumNames<Profile> {
     static constexpr std::array<std::string_view, 2> names{"balanced", "large"};
 };
 template <> struct EnumNames<Target> {
-    static constexpr std::array<std::string_view, 5> names{"glsl330", "glsl450", "essl300", "vulkan", "wgsl"};
+    static constexpr std::array<std::string_view, 6> names{"glsl330", "glsl450", "essl300",
+                                                           "vulkan",  "wgsl",    "hlsl"};
 };
 
 template <class Enum> constexpr std::string_view to_string(Enum value) {
@@ -380,8 +382,12 @@ inline constexpr int max_channel_slices = 32;
 
 // True when the slicing pass writes the slices as bits of one RGBA32UI target (logical OR) and an
 // unpack pass turns them into the RGBA occlusion textures (paper §3.7): slices > 32. WGSL (WebGPU has
-// no logic op) draws the scene once per group of colour targets instead (occlusion's slicing_passes).
-constexpr bool slices_as_bits(const Config& config) { return config.slices > max_channel_slices && config.target != Target::wgsl; }
+// no logic op) draws the scene once per group of colour targets instead (occlusion's slicing_passes),
+// and so does HLSL, which follows WGSL's passes (Direct3D 12's logic op is an optional feature).
+constexpr bool slices_as_bits(const Config& config) {
+    return config.slices > max_channel_slices && config.target != Target::wgsl &&
+           config.target != Target::hlsl;
+}
 
 // log2(resolution): the levels a full filter chain has above the full-resolution one (and the
 // summed-area table's doubling steps per axis, minus one).

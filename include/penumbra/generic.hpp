@@ -107,6 +107,11 @@ inline Result<GenericShading> emit_generic(const Config& config) {
         result.errors.push_back({"target", "wgsl",
                                  "target: wgsl is not written by the generic reference (a GLSL program for the desktop "
                                  "runtime); allowed: glsl330, glsl450, essl300, vulkan"});
+    if (config.target == Target::hlsl)
+        result.errors.push_back(
+            {"target", "hlsl",
+             "target: hlsl is not written by the generic reference (a GLSL program for the desktop "
+             "runtime); allowed: glsl330, glsl450, essl300, vulkan"});
     if (!result.errors.empty()) return result;
     Program program{"shading_generic",
                     {{"penumbra_generic.vert", Stage::vertex, detail::generic_vertex(config).str()},

@@ -184,6 +184,24 @@ inline std::string json_wgsl_binding(const Layout& layout, const ProgramDesc& pr
     return o + ", \"sampler_type\": " + json_string(kind);
 }
 
+// HLSL: the registers of a parameter for a Direct3D 12 root signature, beside the binding a Vulkan
+// build of the same HLSL keeps (glslang and DXC map b#, t#, s# to binding #, space to set).
+inline std::string json_hlsl_registers(const ParamDesc& d) {
+    const std::string space = ", \"space\": " + std::to_string(d.set) + "}";
+    if (d.offset >= 0)
+        return ", \"registers\": {\"cbuffer\": \"b" + std::to_string(d.block_binding) + "\"" + space;
+    if (d.binding < 0) return {};
+    std::string o = ", \"texture_type\": " + json_string(d.texture_type) +
+                    ", \"sampler_binding\": " + std::to_string(d.sampler_binding) +
+                    ", \"registers\": {\"texture\": \"t" + std::to_string(d.binding) + "\"";
+    if (d.sampler_binding >= 0) {
+        const bool compare = d.type.ends_with("Shadow"); // as write_hlsl_params declares it
+        o += ", \"sampler\": \"s" + std::to_string(d.sampler_binding) +
+             "\", \"sampler_type\": " + json_string(compare ? "SamplerComparisonState" : "SamplerState");
+    }
+    return o + space;
+}
+
 } // namespace detail
 
 // layout.json: the layout as JSON (two-space indentation, keys as in the C++ structs).
@@ -247,6 +265,7 @@ PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
                      ", \"offset\": " + std::to_string(d.offset);
             if (d.set >= 0) o += (wgsl ? ", \"group\": " : ", \"set\": ") + std::to_string(d.set);
             if (wgsl && d.binding >= 0) o += detail::json_wgsl_binding(layout, p, d);
+            if (c.target == Target::hlsl) o += detail::json_hlsl_registers(d);
             o += std::string("}") + (u + 1 < p.parameters.size() ? ",\n" : "\n");
         }
         o += std::string("    ]}") + (i + 1 < layout.programs.size() ? ",\n" : "\n");

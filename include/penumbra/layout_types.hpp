@@ -210,8 +210,10 @@ struct ParamDesc {
     int block_binding = -1;      // Vulkan: binding of that block
     int offset = -1;             // Vulkan: std140 byte offset in the block
     int set = -1;                // Vulkan: descriptor set of the block or sampler (vulkan_descriptor_set); WGSL: bind group
-    // WGSL: a sampler parameter binds its texture at `binding` and its sampler at `sampler_binding`
-    // (-1: none, texels are fetched); the texture's WGSL type ("texture_depth_2d", "texture_2d<f32>").
+    // WGSL and HLSL: a sampler parameter binds its texture at `binding` and its sampler at `sampler_binding`
+    // (-1: none, texels are fetched); the texture's WGSL type ("texture_depth_2d", "texture_2d<f32>") or
+    // HLSL type ("Texture2D<float>"). HLSL's registers are these numbers: b<block_binding>, t<binding>,
+    // s<sampler_binding>, in space <set>.
     int sampler_binding = -1;
     std::string texture_type;
 };

@@ -29,6 +29,15 @@ constexpr Text techniques_writing_wgsl() {
     return names;
 }
 
+// The techniques whose descriptors write HLSL, for the message of one that does not.
+constexpr Text techniques_writing_hlsl() {
+    Text names;
+    for (std::size_t i = 0; i < EnumNames<Technique>::names.size(); ++i)
+        if (technique_descriptor(static_cast<Technique>(i)).writes_hlsl)
+            names += cat(names.empty() ? "" : ", ", EnumNames<Technique>::names[i]);
+    return names;
+}
+
 constexpr std::vector<Problem> find_problems(const Config& config) {
     std::vector<Problem> problems;
     check_known(problems, "technique", config.technique);
@@ -39,6 +48,11 @@ constexpr std::vector<Problem> find_problems(const Config& config) {
                     cat("is not written for technique '", to_string(config.technique),
                         "' yet; allowed with target wgsl: technique ", techniques_writing_wgsl(),
                         "; other targets: glsl330, glsl450, essl300, vulkan"));
+    if (config.target == Target::hlsl && !technique.writes_hlsl)
+        add_problem(problems, "target", Text("hlsl"),
+                    cat("is not written for technique '", to_string(config.technique),
+                        "' yet; allowed with target hlsl: technique ", techniques_writing_hlsl(),
+                        "; other targets: glsl330, glsl450, essl300, vulkan, wgsl"));
     if (!problems.empty()) return problems;
     return technique.problems(config);
 }

@@ -144,15 +144,20 @@ inline void parse_info_log(std::string_view log, const std::string& program, con
 //   glsl330, glsl450, essl300: GLSL as an OpenGL / OpenGL ES driver reads it (the #version line
 //     of the text decides the dialect; 330, 450 and 300 es are the defaults when it is missing);
 //   vulkan: Vulkan 1.0 rules (KHR_vulkan_glsl), and SPIR-V 1.0 is generated to catch what only
-//     code generation rejects.
+//     code generation rejects;
+//   hlsl: glslang's HLSL front end (entry point main), SPIR-V for Vulkan as for vulkan, with every
+//     vertex stage's position inverted in y (glslang's --invert-y): the HLSL writes Direct3D's
+//     top-down rows (language.hpp), which a Vulkan build turns back. Each stage is linked alone, as
+//     Direct3D has no program link (a stage may see fewer members of a cbuffer than another).
 // Link is skipped when a stage fails to compile: its errors would only repeat.
-// With `spirv` (vulkan only), the SPIR-V of each stage, in the order of program.stages, is stored
+// With `spirv` (vulkan and hlsl), the SPIR-V of each stage, in the order of program.stages, is stored
 // there: the binaries a Vulkan runner creates its shader modules from.
 inline std::vector<ShaderDiagnostic> validate_program(const Program& program, Target target,
                                                       std::vector<std::vector<unsigned int>>* spirv = nullptr) {
     detail::ensure_glslang_initialized();
 
-    const bool vulkan = target == Target::vulkan;
+    const bool hlsl = target == Target::hlsl;
+    const bool vulkan = target == Target::vulkan || hlsl; // SPIR-V for Vulkan
     int default_version = 450;
     EProfile default_profile = ECoreProfile;
     if (target == Target::glsl330) default_version = 330;
@@ -160,12 +165,15 @@ inline std::vector<ShaderDiagnostic> validate_program(const Program& program, Ta
 
     // Vulkan rules must be asked for in the messages too, not only in the environment.
     const auto messages =
-        static_cast<EShMessages>(vulkan ? EShMsgSpvRules | EShMsgVulkanRules : EShMsgDefault);
+        static_cast<EShMessages>((vulkan ? EShMsgSpvRules | EShMsgVulkanRules : EShMsgDefault) |
+                                 (hlsl ? EShMsgReadHlsl : EShMsgDefault));
 
     std::vector<ShaderDiagnostic> diagnostics;
     // Shaders must outlive the program that links them, so they are declared first.
     std::vector<std::unique_ptr<glslang::TShader>> shaders;
-    glslang::TProgram linker;
+    // One linker for the program; HLSL: one a stage (the linker of stage i is linkers[i]).
+    std::vector<std::unique_ptr<glslang::TProgram>> linkers;
+    linkers.push_back(std::make_unique<glslang::TProgram>());
     bool compiled = true;
 
     for (const ShaderFile& file : program.stages) {
@@ -173,7 +181,13 @@ inline std::vector<ShaderDiagnostic> validate_program(const Program& program, Ta
         auto& shader = *shaders.emplace_back(std::make_unique<glslang::TShader>(stage));
         const char* text = file.text.c_str();
         shader.setStrings(&text, 1);
-        if (vulkan) {
+        if (hlsl) {
+            shader.setEnvInput(glslang::EShSourceHlsl, stage, glslang::EShClientVulkan, 100);
+            shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_0);
+            shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
+            shader.setEntryPoint("main");
+            shader.setInvertY(file.stage == Stage::vertex);
+        } else if (vulkan) {
             shader.setEnvInput(glslang::EShSourceGlsl, stage, glslang::EShClientVulkan, 100);
             shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_0);
             shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
@@ -195,21 +209,26 @@ inline std::vector<ShaderDiagnostic> validate_program(const Program& program, Ta
                     {.program = program.name, .file = file.file_name, .message = "compilation failed"});
             continue;
         }
-        linker.addShader(&shader);
+        if (hlsl && shaders.size() > 1) linkers.push_back(std::make_unique<glslang::TProgram>());
+        linkers.back()->addShader(&shader);
     }
     if (!compiled) return diagnostics;
 
-    const bool linked = linker.link(messages);
-    detail::parse_info_log(linker.getInfoLog(), program.name, nullptr, diagnostics);
-    if (!linked) {
-        if (!has_errors(diagnostics))
-            diagnostics.push_back({.program = program.name, .message = "link failed"});
-        return diagnostics;
+    for (const std::unique_ptr<glslang::TProgram>& linker : linkers) {
+        const bool linked = linker->link(messages);
+        detail::parse_info_log(linker->getInfoLog(), program.name, nullptr, diagnostics);
+        if (!linked) {
+            if (!has_errors(diagnostics))
+                diagnostics.push_back({.program = program.name, .message = "link failed"});
+            return diagnostics;
+        }
     }
 
     if (vulkan) {
         // Code generation rejects a few things the front end accepts; run it once per stage.
-        for (const ShaderFile& file : program.stages) {
+        for (std::size_t i = 0; i < program.stages.size(); ++i) {
+            const ShaderFile& file = program.stages[i];
+            const glslang::TProgram& linker = *linkers[hlsl ? i : 0];
             const glslang::TIntermediate* intermediate =
                 linker.getIntermediate(detail::glslang_stage(file.stage));
             if (!intermediate) {

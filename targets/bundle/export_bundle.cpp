@@ -4,10 +4,11 @@
 // output, the CPU oracle's per-pixel value and bound, and the emission of the requested target.
 // README.md in this folder documents the files.
 //
-//   penumbra-export-bundle --scene NAME|FILE [--no-ground] [configuration flags] [--size WxH] [--light-size X] --out DIR
+//   penumbra-export-bundle --scene NAME|FILE [--no-ground] [configuration flags] [--size WxH] [--light-size
+//   X] --out DIR
 //
 // The configuration flags are penumbra-gen's (the same parser); the GL run uses the same
-// configuration (with target glsl450 when the target is vulkan or wgsl). Exit status: 0 written,
+// configuration (with target glsl450 when the target is vulkan, wgsl or hlsl). Exit status: 0 written,
 // 1 rendering or writing failed, 2 bad arguments.
 #include <penumbra_tools/arguments.hpp>
 #include <penumbra_tools/cli.hpp>
@@ -52,7 +53,7 @@ struct BundleArguments {
     int width = 128, height = 128;
     std::optional<double> light_size;
     std::string out_dir;
-    Config config; // the target's; the GL run uses it (with Target::glsl450 for vulkan and wgsl)
+    Config config; // the target's; the GL run uses it (with Target::glsl450 for vulkan, wgsl and hlsl)
     bool ground = true;        // --no-ground: no floor under a mesh file
     int reference_samples = 0; // --reference N: truth.f32, N×N rays per pixel (0: none)
     double sun_time = 0.5;     // --sun-time (oim)
@@ -231,9 +232,12 @@ int run(const std::vector<std::string>& args) {
     Scene& scene = *loaded.scene;
     if (a.light_size) apply_light_size(scene, shading_light(a.config), *a.light_size);
     // The GL run emits the same configuration: the desktop runtime runs every GL dialect (glsl330
-    // and essl300 text inside its 4.5 context); the vulkan and wgsl text it cannot, so those run glsl450.
+    // and essl300 text inside its 4.5 context); the vulkan, wgsl and hlsl text it cannot, so those run
+    // glsl450.
     Config gl_config = a.config;
-    if (gl_config.target == Target::vulkan || gl_config.target == Target::wgsl) gl_config.target = Target::glsl450;
+    if (gl_config.target == Target::vulkan || gl_config.target == Target::wgsl ||
+        gl_config.target == Target::hlsl)
+        gl_config.target = Target::glsl450;
 
     // The GL run, and what the oracle needs from it.
     std::string error;

@@ -318,9 +318,13 @@ public:
             fail("layout.json has layout_version " + std::to_string(version) +
                  "; this runner follows versions 2 (structured render state, pass phases, texture sizes and sources) "
                  "and 3 (per-binding sampling, vertex inputs, descriptor sets, initial contents, copy and mipmap details)");
-        if (parse_enum<Target>(layout.at("config").at("target").get<std::string>()) != Target::vulkan)
+        // The vulkan target's GLSL, or the hlsl target's HLSL (compiled by glslang's HLSL front end,
+        // each texture and its sampler bound apart as layout.json's sampler_binding says).
+        target_ =
+            parse_enum<Target>(layout.at("config").at("target").get<std::string>()).value_or(Target::glsl450);
+        if (target_ != Target::vulkan && target_ != Target::hlsl)
             fail("layout.json is for target '" + layout.at("config").at("target").get<std::string>() +
-                 "'; this runner needs the vulkan target's");
+                 "'; this runner needs the vulkan or hlsl target's");
         check_required_limits(layout);
         std::vector<const json*> passes;
         for (const Phase phase : {Phase::shadow, Phase::screen})
@@ -693,7 +697,7 @@ private:
             source.stages.push_back({file, *stage, read_text(in_.emission_dir / file)});
         }
         std::vector<std::vector<unsigned int>> spirv;
-        const std::vector<ShaderDiagnostic> diagnostics = validate_program(source, Target::vulkan, &spirv);
+        const std::vector<ShaderDiagnostic> diagnostics = validate_program(source, target_, &spirv);
         if (has_errors(diagnostics)) fail("program " + name + ": " + format(diagnostics.front()));
         Program prog;
         for (std::size_t i = 0; i < source.stages.size(); ++i) {
@@ -739,9 +743,18 @@ private:
             bindings[where.first].push_back({static_cast<std::uint32_t>(where.second), VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
                                              VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
         }
-        for (const auto& [where, param] : prog.samplers)
-            bindings[where.first].push_back({static_cast<std::uint32_t>(where.second), VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
-                                             VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+        for (const auto& [where, param] : prog.samplers) {
+            const int separate = param.value("sampler_binding", -2); // -2: combined; -1: a texture alone
+            bindings[where.first].push_back({static_cast<std::uint32_t>(where.second),
+                                             separate == -2 ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER
+                                                            : VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE,
+                                             1, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+                                             nullptr});
+            if (separate >= 0)
+                bindings[where.first].push_back(
+                    {static_cast<std::uint32_t>(separate), VK_DESCRIPTOR_TYPE_SAMPLER, 1,
+                     VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+        }
         const int set_count = bindings.empty() ? 0 : bindings.rbegin()->first + 1;
         if (set_count > static_cast<int>(c_.properties().limits.maxBoundDescriptorSets))
             fail("program " + name + ": descriptor set " + std::to_string(set_count - 1) + "; the device binds " +
@@ -797,10 +810,12 @@ private:
     void create_descriptor_pool(std::size_t passes) {
         const auto sets = static_cast<std::uint32_t>(std::max<std::size_t>(passes, 1)) * RequiredLimits::bound_descriptor_sets;
         const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 12 * sets},
-                                              {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 16 * sets}};
+                                              {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 16 * sets},
+                                              {VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE, 16 * sets},
+                                              {VK_DESCRIPTOR_TYPE_SAMPLER, 16 * sets}};
         VkDescriptorPoolCreateInfo info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
         info.maxSets = sets;
-        info.poolSizeCount = 2;
+        info.poolSizeCount = 4;
         info.pPoolSizes = sizes;
         check(vkCreateDescriptorPool(device_, &info, nullptr, &pool_), "vkCreateDescriptorPool");
         on_cleanup([this] { vkDestroyDescriptorPool(device_, pool_, nullptr); });
@@ -1079,13 +1094,20 @@ private:
                 fail(what + ": the depth texture " + t.name + " is read through a " + type + "; allowed: sampler2D, sampler2DShadow");
             const VkSampler handle = sampler(input_sampling(pass, *input), type, what);
             image_infos.push_back({handle, sampled_view(t, input->value("level", -1)), VK_IMAGE_LAYOUT_GENERAL});
+            const int separate = param.value("sampler_binding", -2); // as in program()
             VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
             w.dstSet = sets.at(static_cast<std::size_t>(where.first));
             w.dstBinding = static_cast<std::uint32_t>(where.second);
             w.descriptorCount = 1;
-            w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+            w.descriptorType =
+                separate == -2 ? VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER : VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
             w.pImageInfo = &image_infos.back();
             writes.push_back(w);
+            if (separate >= 0) {
+                w.dstBinding = static_cast<std::uint32_t>(separate);
+                w.descriptorType = VK_DESCRIPTOR_TYPE_SAMPLER;
+                writes.push_back(w);
+            }
         }
         vkUpdateDescriptorSets(device_, static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
 
@@ -1361,6 +1383,7 @@ private:
     VkDevice device_;
     std::vector<std::function<void()>> cleanup_;
     std::map<std::string, Texture> textures_;
+    Target target_ = Target::vulkan;             // the layout's: vulkan (GLSL) or hlsl
     std::vector<std::string> caller_order_;      // the textures stage_caller_textures filled, in order
     std::map<std::string, VkImageView> views_;
     std::map<std::string, Program> programs_;

@@ -51,8 +51,8 @@ def references_errors(layout):
             errors.append(f"program {program['name']}: {len(program['stages'])} stages for "
                           f"{len(program['files'])} files")
         for f, stage in zip(program["files"], program["stages"]):
-            # WGSL: the GLSL name and .wgsl (penumbra_deferred.frag.wgsl)
-            expected = extension_stage.get(pathlib.PurePath(f.removesuffix(".wgsl")).suffix)
+            # WGSL and HLSL: the GLSL name and .wgsl or .hlsl (penumbra_deferred.frag.wgsl)
+            expected = extension_stage.get(pathlib.PurePath(f.removesuffix(".wgsl").removesuffix(".hlsl")).suffix)
             if stage != expected:
                 errors.append(f"program {program['name']}: file {f} has stage {stage}, its extension says {expected}")
     return errors
@@ -115,6 +115,16 @@ def main():
                 ["--technique", technique, "--light", light, "--target", "wgsl", *(["--alpha-test"] if alpha else [])])
                for technique, light, alpha in itertools.product(
                    ["shadowmap", "pcf", "pcss", "erosion", "evsm"], ["rect", "sun"], [False, True])]
+    # HLSL (Direct3D 12): registers beside the bindings; the techniques it writes, one occlusion variant a
+    # filter and packing.
+    matrix += [(f"hlsl-{technique}-{light}{'-alpha' if alpha else ''}",
+                ["--technique", technique, "--light", light, "--target", "hlsl", *(["--alpha-test"] if alpha else [])])
+               for technique, light, alpha in itertools.product(
+                   ["occlusion", "shadowmap", "pcf", "pcss", "erosion", "evsm"], ["rect", "sun"], [False, True])]
+    matrix += [(f"hlsl-{filt}-{packing}", ["--filter", filt, "--packing", packing, "--target", "hlsl", "--slices", "8",
+                                          "--resolution", "64"])
+               for filt, packing in [("mipmap", "atlas"), ("mipmap", "array"), ("sat", "atlas"), ("sat", "array"),
+                                     ("nbuffer", "array"), ("nbuffer", "volume")]]
     matrix += [(f"alpha-test-adaptive-{target}", ["--alpha-test", "--slice-placement", "adaptive", "--target", target,
                                                   "--slices", "5", "--resolution", "64"])
                for target in ["glsl330", "glsl450", "essl300", "vulkan"]]

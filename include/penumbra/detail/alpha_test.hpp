@@ -48,10 +48,12 @@ constexpr void write_caster_vertex_main(LineWriter& out, const Config& config, s
     out.line(main_signature(config));
     out.line("{");
     out.line(value(config, "vec4", "world", "vec4(penumbra_position, 1.0)"));
-    out.line("penumbra_depth = (penumbra_lightFromWorld * world).z;");
-    out.line(clip_position(config), " = ", clip_from_world, " * world;");
-    if (is_wgsl(config)) {
-        out.comment(cat("WebGPU's framebuffer rows run top down: flipped, ", target, " row 0 holds uv.y = 0 as on OpenGL"));
+    out.line("penumbra_depth = (", transform(config, "penumbra_lightFromWorld", "world"), ").z;");
+    out.line(clip_position(config), " = ", transform(config, Text(clip_from_world), "world"), ";");
+    if (binds_samplers_apart(config)) {
+        out.comment(cat(choose(is_hlsl(config), "Direct3D's", "WebGPU's"),
+                        " framebuffer rows run top down: flipped, ", target,
+                        " row 0 holds uv.y = 0 as on OpenGL"));
         out.line(clip_position(config), ".y = -", clip_position(config), ".y;");
     }
     write_alpha_test_vertex_copy(out, config);

@@ -87,12 +87,12 @@ constexpr Text example_fragment(const Config& config) {
 // The vertex stage's bindings follow the fragment stage's (visibility block, its samplers, the
 // example block), so both stages fit one Vulkan pipeline layout.
 constexpr int example_fragment_binding_count(const Config& config) {
-    if (!is_wgsl(config)) { // the block, the samplers, the example block
+    if (!binds_samplers_apart(config)) { // the block, the samplers, the example block
         int samplers = 0;
         for (const Param& p : technique_descriptor(config.technique).visibility_params(config)) samplers += is_sampler(p) ? 1 : 0;
         return 1 + samplers + 1;
     }
-    int binding = 0; // WGSL: a texture's sampler takes a binding too
+    int binding = 0; // WGSL and HLSL: a texture's sampler takes a binding too
     param_bindings(config, technique_descriptor(config.technique).visibility_params(config), binding);
     param_bindings(config, example_fragment_params(), binding);
     return binding;
@@ -115,7 +115,8 @@ constexpr Text example_vertex(const Config& config) {
     out.line("{");
     out.line("penumbra_worldPos = penumbra_position;");
     out.line("penumbra_worldNormal = penumbra_normal;");
-    out.line(clip_position(config), " = penumbra_clipFromWorld * vec4(penumbra_position, 1.0);");
+    out.line(clip_position(config), " = ",
+             transform(config, "penumbra_clipFromWorld", "vec4(penumbra_position, 1.0)"), ";");
     out.line("}");
     write_entry_point(out, config, Stage::vertex);
     return out.take();

@@ -68,11 +68,14 @@ constexpr void write_version(LineWriter& out, const Config& config) {
     case Target::essl300: out.line("#version 300 es"); break;
     case Target::vulkan: out.line("#version 450"); break;
     case Target::wgsl: break; // WGSL has no version directive
+    case Target::hlsl: break; // nor HLSL
     }
 }
 
 // ES has no default float precision in fragment shaders; everything Penumbra computes needs highp.
+// HLSL: what every file and snippet declares before its own text instead (write_hlsl_names).
 constexpr void write_precision(LineWriter& out, const Config& config) {
+    write_hlsl_names(out, config);
     if (config.target != Target::essl300) return;
     out.chunk("precision");
     out.line("precision highp float;");
@@ -143,11 +146,11 @@ constexpr Text wgsl_texture_type(const Param& p) {
 // uniform block takes the first binding, then the samplers follow in declaration order (on WGSL each
 // texture, then its sampler: binds_wgsl_sampler).
 constexpr std::vector<int> param_bindings(const Config& config, const std::vector<Param>& params, int& next_binding) {
-    if (has_values(params) && (is_vulkan(config) || is_wgsl(config))) ++next_binding;
+    if (has_values(params) && (is_vulkan(config) || binds_samplers_apart(config))) ++next_binding;
     std::vector<int> bindings;
     for (const Param& p : params) {
         bindings.push_back(is_sampler(p) ? next_binding++ : -1);
-        if (is_wgsl(config) && binds_wgsl_sampler(p)) ++next_binding;
+        if (binds_samplers_apart(config) && binds_wgsl_sampler(p)) ++next_binding;
     }
     return bindings;
 }
@@ -189,6 +192,51 @@ constexpr void write_wgsl_params(LineWriter& out, const std::vector<Param>& para
     }
 }
 
+// HLSL's texture type of a GLSL sampler parameter (depth textures hold one float).
+constexpr Text hlsl_texture_type(const Param& p) {
+    if (p.type.ends_with("Shadow") || p.depth_texture) return Text("Texture2D<float>");
+    const std::string_view element = p.type.starts_with("usampler")   ? "uint4"
+                                     : p.type.starts_with("isampler") ? "int4"
+                                                                      : "float4";
+    const std::string_view shape = p.type.ends_with("2DArray") ? "Texture2DArray"
+                                   : p.type.ends_with("3D")    ? "Texture3D"
+                                                               : "Texture2D";
+    return cat(shape, "<", element, ">");
+}
+
+// HLSL: the plain uniforms as one cbuffer at register b<binding>, members placed by packoffset where
+// std140 puts them (layout.json's offsets, Vulkan's and WGSL's: one layout whichever API reads it);
+// each sampler as its texture (t) and sampler (s) registers. Register numbers are the WGSL bindings,
+// so that b#, t# and s# never share a number and a Vulkan build keeps them as its bindings.
+constexpr void write_hlsl_params(LineWriter& out, const std::vector<Param>& params,
+                                 std::string_view block_name, const std::vector<int>& bindings,
+                                 int block_binding) {
+    constexpr std::string_view space = ", space0)";
+    if (has_values(params)) {
+        out.line("cbuffer ", block_name, " : register(b", format_int(block_binding), space);
+        out.line("{");
+        int offset = 0;
+        for (const Param& p : params) {
+            if (is_sampler(p)) continue;
+            const Std140 layout = std140(parse_enum<GlslType>(p.type).value_or(GlslType::float_));
+            offset = (offset + layout.align - 1) / layout.align * layout.align;
+            out.line(hlsl_type_name(p.type), " ", p.name, " : packoffset(c", format_int(offset / 16), ".",
+                     std::string_view("xyzw").substr(offset % 16 / 4, 1), ");", param_comment(p));
+            offset += layout.size;
+        }
+        out.line("};");
+    }
+    for (std::size_t i = 0; i < params.size(); ++i) {
+        const Param& p = params[i];
+        if (!is_sampler(p)) continue;
+        out.line(hlsl_texture_type(p), " ", p.name, " : register(t", format_int(bindings[i]), space, ";",
+                 param_comment(p));
+        if (binds_wgsl_sampler(p))
+            out.line(p.type.ends_with("Shadow") ? "SamplerComparisonState " : "SamplerState ",
+                     sampler_of(p.name), " : register(s", format_int(bindings[i] + 1), space, ";");
+    }
+}
+
 // Declares `params`: plain uniforms on OpenGL targets, one std140 block on Vulkan (which has no
 // loose uniforms), one uniform buffer on WGSL; samplers with explicit bindings where the dialect has
 // them. `next_binding` numbers blocks and samplers in declaration order.
@@ -199,6 +247,11 @@ constexpr void write_params(LineWriter& out, const Config& config, const std::ve
     const std::vector<int> bindings = param_bindings(config, params, next_binding);
     if (is_wgsl(config)) {
         write_wgsl_params(out, params, block_name, bindings, block_binding);
+        out.blank();
+        return;
+    }
+    if (is_hlsl(config)) {
+        write_hlsl_params(out, params, block_name, bindings, block_binding);
         out.blank();
         return;
     }

@@ -114,12 +114,12 @@ inline std::vector<ParamDesc> describe_params(const Config& config, const std::v
                 desc.filter = parse_enum<TextureFilter>(p.filter);
                 assert(desc.filter && "Param::filter names a TextureFilter");
             }
-            if (is_vulkan(config) || is_wgsl(config)) desc.set = vulkan_descriptor_set;
-            if (is_sampler(p) && is_wgsl(config)) {
+            if (is_vulkan(config) || binds_samplers_apart(config)) desc.set = vulkan_descriptor_set;
+            if (is_sampler(p) && binds_samplers_apart(config)) {
                 desc.sampler_binding = binds_wgsl_sampler(p) ? desc.binding + 1 : -1;
-                desc.texture_type = wgsl_texture_type(p).str();
+                desc.texture_type = is_hlsl(config) ? hlsl_texture_type(p).str() : wgsl_texture_type(p).str();
             }
-            if (!is_sampler(p) && (is_vulkan(config) || is_wgsl(config))) {
+            if (!is_sampler(p) && (is_vulkan(config) || binds_samplers_apart(config))) {
                 const std::optional<GlslType> type = parse_enum<GlslType>(p.type);
                 // std140 layout rules (WGSL's uniform address space places these types the same)
                 const Std140 layout = std140(type.value_or(GlslType::float_));

@@ -30,6 +30,11 @@ constexpr TargetLimits limits(Target target) {
     // border colour nor logic operations. Eight colour attachments, but 32 bytes a sample across them
     // (maxColorAttachmentBytesPerSample) and RGBA8 counts 8: four RGBA8 targets a pass
     case Target::wgsl: return {8192, 2048, 256, 4, false, false, false};
+    // Direct3D 12 at feature level 11_0 (D3D12_REQ_*) for the texture sizes. The passes are WGSL's
+    // (one set of passes for the two languages that bind samplers apart): four render targets a pass,
+    // 32-bit floats read texel by texel (Direct3D 12 could filter them) and no logic op (an optional
+    // feature there)
+    case Target::hlsl: return {16384, 2048, 2048, 4, false, true, false};
     }
     return {};
 }

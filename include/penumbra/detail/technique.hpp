@@ -94,6 +94,8 @@ struct TechniqueDescriptor {
 
     // Whether its emitters write WGSL too (detail/language.hpp); validate() refuses target wgsl otherwise.
     bool writes_wgsl = false;
+    // Whether its emitters write HLSL too (WGSL's passes in HLSL); validate() refuses target hlsl otherwise.
+    bool writes_hlsl = false;
 };
 
 // The descriptor of `technique`: detail/techniques.hpp. Precondition: a known value (validate()

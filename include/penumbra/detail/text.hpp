@@ -101,18 +101,20 @@ constexpr Text format_float(double value) {
     return out;
 }
 
-// A value a WGSL entry point passes in or out (detail/language.hpp): its attribute
-// ("@location(0)", "@builtin(position)"), the private global that holds it, the global's type, and
-// the type on the wire when it differs.
+// A value a WGSL or HLSL entry point passes in or out (detail/language.hpp): its attribute
+// ("@location(0)", "@builtin(position)"; HLSL's semantic, "TEXCOORD0", "SV_Position"), the private
+// global that holds it, the global's type, the type on the wire when it differs, and (HLSL) its
+// location for Vulkan, -1 for a system value.
 struct EntryVariable {
     Text attribute, name, type, wire_type;
+    int location = -1;
 };
 
 // Writes shader text line by line with four-space indentation driven by braces.
 class LineWriter {
 public:
-    // WGSL only: what the module's entry point (detail/language.hpp, write_entry_point) copies in,
-    // returns, and calls before the body (the uniform blocks' loads). Empty for GLSL.
+    // WGSL and HLSL: what the module's entry point (detail/language.hpp, write_entry_point) copies in,
+    // returns, and calls before the body (WGSL's uniform blocks' loads). Empty for GLSL.
     std::vector<EntryVariable> entry_inputs, entry_outputs;
     std::vector<Text> entry_calls;
 

@@ -85,7 +85,8 @@ std::string parse_light_size(std::string_view text, double& value) {
 std::string check(const PlaygroundOptions& o) {
     if (const std::vector<penumbra::ConfigError> errors = penumbra::validate(o.config); !errors.empty())
         return errors.front().message;
-    if (o.config.target == penumbra::Target::vulkan || o.config.target == penumbra::Target::wgsl)
+    if (o.config.target == penumbra::Target::vulkan || o.config.target == penumbra::Target::wgsl ||
+        o.config.target == penumbra::Target::hlsl)
         return "--target: '" + std::string(penumbra::to_string(o.config.target)) +
                "' cannot run here, the playground renders with OpenGL; allowed: glsl330, glsl450, essl300";
     const bool sun = o.config.light == penumbra::Light::sun || o.config.technique == penumbra::Technique::oim;
@@ -226,8 +227,9 @@ std::string usage() {
                                   "                        scene's, 2 for the procedural scenes); sun: angular "
                                   "diameter in degrees, below 90\n"
                                   "                        (default 2.66, five times the real sun)");
-    out += "\nconfiguration (as penumbra-gen; flags override the --config file; --target vulkan and wgsl cannot run\n"
-           "here, the playground renders with OpenGL):\n\n";
+    out += "\nconfiguration (as penumbra-gen; flags override the --config file; --target vulkan, wgsl and "
+           "hlsl cannot\n"
+           "run here, the playground renders with OpenGL):\n\n";
     out += penumbra::config_usage(24);
     out += "  (--alpha-test here, on by default when the scene's materials cut (--no-alpha-test: off): materials\n"
            "  that cut cast the shadow of their texture's alpha, not of their\n"

@@ -234,6 +234,9 @@ constexpr Text evsm_visibility_snippet(const Config& config) {
     if (is_wgsl(config))
         out.comment("Add to a module of the shading stage. Bindings start at 0 in group 0; call penumbra_loadVisibility()"
                     " first in the entry point.");
+    else if (is_hlsl(config))
+        out.comment(
+            "#include in a pixel shader. Registers start at 0 in space 0 (b#, t#, s# numbered together).");
     else
         out.comment("Include after the #version line of a stage for this target. Bindings start at 0.");
     out.blank();

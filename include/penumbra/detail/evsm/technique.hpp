@@ -73,6 +73,7 @@ constexpr TechniqueDescriptor evsm_technique() {
         .es_sampler_precision = evsm_es_samplers,
         .texels_per_fragment = evsm_texels_per_fragment,
         .writes_wgsl = true,
+        .writes_hlsl = true,
     };
 }
 

@@ -260,7 +260,7 @@ constexpr Text pack_atlas_fragment(const Config& config) {
         out.line(main_signature(config));
         out.line("{");
         out.line(value(config, "ivec2", "texel", construct(config, "ivec2", cat(frag_coord(config), ".xy"))));
-        if (is_wgsl(config))
+        if (binds_samplers_apart(config))
             out.line("penumbra_result = ",
                      fetch_layer(config, "penumbra_slices", cat(ivec2, "(texel.x % ", R, ", texel.y)"), cat("texel.x / ", R), "0"), ";");
         else

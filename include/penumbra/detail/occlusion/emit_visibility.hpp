@@ -197,7 +197,9 @@ constexpr void write_windowed_visibility_function(LineWriter& out, const Config&
 
 // The receiver in the light frame, p, at the start of every penumbraVisibility (and its generic twin).
 constexpr void write_light_frame_point(LineWriter& out, const Config& config) {
-    out.line(variable(config, "vec3", "p", "(penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz"));
+    out.line(
+        variable(config, "vec3", "p",
+                 cat("(", transform(config, "penumbra_lightFromWorld", "vec4(worldPos, 1.0)"), ").xyz")));
     out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
 }
 // The generic reference program's (GLSL only).
@@ -231,7 +233,8 @@ constexpr TangentClipOffsets tangent_clip_offsets(const Config& config) {
 // perspective of the slicing projection adds dot(p.xy, n.xy) / (|n.xy| (d + z)). Surfaces facing the
 // light have no footprint there (the fade takes their own slice); it is capped for the others.
 constexpr void write_tangent_clip_setup(LineWriter& out, const Config& config, const TangentClipOffsets& k) {
-    out.line(variable(config, "vec3", "n", cat(upper_3x3(config, "penumbra_lightFromWorld"), " * worldNormal")));
+    out.line(variable(config, "vec3", "n",
+                      transform(config, upper_3x3(config, "penumbra_lightFromWorld"), "worldNormal")));
     out.line("n *= ", builtin(config, "inversesqrt"), "(max(dot(n, n), 1e-20));");
     out.line(value(config, "vec3", "penumbra_clip", "penumbra_tangentClip(p, n)"));
     out.comment("a receiver turned away from all of the light receives none of it: its lookups would read the");
@@ -372,7 +375,7 @@ constexpr void write_lookup_function(LineWriter& out, const Config& config) {
         out.comment("(R+1)-texel tile; bilinear filtering between corners is exact for box-shaped coverage");
         out.line(signature(config, "vec4", "penumbra_prefix", {{"vec2", "corner"}, {"float", "tile"}}));
         out.line("{");
-        if (!is_wgsl(config)) {
+        if (!binds_samplers_apart(config)) {
             out.line("vec2 uv = (corner + 0.5) / ", R1, ";");
             if (config.packing == Packing::atlas)
                 out.line("return textureLod(penumbra_satAtlas, vec2((tile + uv.x) * ", k.inv_T, ", uv.y), 0.0);");
@@ -386,13 +389,22 @@ constexpr void write_lookup_function(LineWriter& out, const Config& config) {
             out.comment("the four texels around the corner (clamped to the tile) weighted by its fraction");
             out.line(value(config, "vec2", "base", "floor(corner)"));
             out.line(value(config, "vec2", "f", "corner - base"));
-            out.line(value(config, "ivec2", "a", cat("min(vec2i(base), vec2i(", last, "))")));
-            out.line(value(config, "ivec2", "b", cat("min(a + vec2i(1), vec2i(", last, "))")));
-            const Text offset = choose(atlas, cat(" + vec2i(i32(tile) * ", format_int(config.resolution + 1), ", 0)"), Text());
+            const Text tile_index = construct(config, "int", "tile");
+            out.line(value(config, "ivec2", "a",
+                           cat("min(", construct(config, "ivec2", "base"), ", ",
+                               construct(config, "ivec2", last), ")")));
+            out.line(value(config, "ivec2", "b",
+                           cat("min(a + ", construct(config, "ivec2", "1"), ", ",
+                               construct(config, "ivec2", last), ")")));
+            const Text offset = choose(
+                atlas,
+                cat(" + ", construct(config, "ivec2",
+                                     cat(tile_index, " * ", format_int(config.resolution + 1), ", 0"))),
+                Text());
             auto load = [&](std::string_view x, std::string_view y) {
-                const Text texel = cat("vec2i(", x, ".x, ", y, ".y)", offset);
+                const Text texel = cat(construct(config, "ivec2", cat(x, ".x, ", y, ".y")), offset);
                 return atlas ? fetch(config, "penumbra_satAtlas", texel, "0")
-                             : fetch_layer(config, "penumbra_sat", texel, "i32(tile)", "0");
+                             : fetch_layer(config, "penumbra_sat", texel, tile_index, "0");
             };
             out.line(value(config, "vec4", "bottom", cat("mix(", load("a", "a"), ", ", load("b", "a"), ", f.x)")));
             out.line(value(config, "vec4", "top", cat("mix(", load("a", "b"), ", ", load("b", "b"), ", f.x)")));
@@ -813,7 +825,7 @@ constexpr void write_level_loop(LineWriter& out, const Config& config) {
                 if (level + 1 == levels) {
                     out.line(value(config, "vec4", "penumbra_wide",
                                    cat("mix(penumbra_lo, penumbra_hi, penumbra_wideAt - ", format_float(level), ")")));
-                } else if (is_wgsl(config)) { // select() evaluates both: the same reads
+                } else if (binds_samplers_apart(config)) { // select() evaluates both: the same reads
                     out.line(value(config, "vec4", "penumbra_wide",
                                    conditional(config, cat("penumbra_wideAt < ", L1),
                                                cat("mix(penumbra_lo, penumbra_hi, penumbra_wideAt - ", format_float(level), ")"),
@@ -942,6 +954,15 @@ constexpr Text visibility_snippet(const Config& config) {
         out.line("// ", describe(config));
         out.comment("Add to a module of the shading stage. Bindings start at 0 in group 0; call penumbra_loadVisibility()"
                     " first in the entry point.");
+    } else if (is_hlsl(config)) {
+        out.line("// Penumbra ", version_string,
+                 " - penumbra_visibility.hlsl: float penumbraVisibility(float3 worldPos",
+                 choose(config.tangent_clip,
+                        ", float3 worldNormal) (clipped to the tangent plane) and (float3 worldPos", ""),
+                 ")");
+        out.line("// ", describe(config));
+        out.comment(
+            "#include in a pixel shader. Registers start at 0 in space 0 (b#, t#, s# numbered together).");
     } else {
         out.line("// Penumbra ", version_string, " - penumbra_visibility.glsl: float penumbraVisibility(vec3 worldPos",
                  choose(config.tangent_clip, ", vec3 worldNormal) (clipped to the tangent plane) and (vec3 worldPos", ""),

@@ -65,8 +65,8 @@ inline void describe_slice_placement_passes(LayoutBuilder& b, const Config& conf
                 .viewport_height = D,
                 .state = max_blend});
     }
-    if (config.target == Target::wgsl) {
-        // WebGPU has no generateMipmap: a pass a level and layer, reading level l - 1 alone
+    if (binds_samplers_apart(config)) {
+        // WebGPU has no generateMipmap (nor Direct3D 12): a pass a level and layer, reading level l - 1 alone
         for (int l = 1; l <= depth_bins_read_level; ++l)
             for (int t = 0; t < layers; ++t)
                 b.pass({.name = "depth_bins_level",
@@ -272,8 +272,9 @@ inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
                 .viewport_width = T * R,
                 .viewport_height = R});
     }
-    if (config.filter == Filter::mipmap && config.target == Target::wgsl) {
-        // WebGPU has no generateMipmap: one pass a level (and layer), reading level l - 1 alone
+    if (config.filter == Filter::mipmap && binds_samplers_apart(config)) {
+        // WebGPU has no generateMipmap (nor Direct3D 12): one pass a level (and layer), reading level l - 1
+        // alone
         const bool atlas = config.packing == Packing::atlas;
         const std::string storage = atlas ? "penumbra_occlusionAtlas" : "penumbra_occlusion";
         for (int l = 1; l <= L; ++l)

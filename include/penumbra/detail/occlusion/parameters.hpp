@@ -29,13 +29,23 @@ constexpr std::vector<Param> storage_samplers(const Config& config) {
                                 "one layer per RGBA occlusion texture, full mip chain", "", "penumbra_occlusion"});
     } else if (config.filter == Filter::sat) {
         if (config.packing == Packing::atlas)
-            samplers.push_back({"penumbra_satAtlas", "sampler2D",
-                                "exclusive summed-area tables, (R+1)-texel tiles side by side", "", "penumbra_satAtlas",
-                                UniformSource::light, {}, /*fetch_only=*/is_wgsl(config)});
+            samplers.push_back({"penumbra_satAtlas",
+                                "sampler2D",
+                                "exclusive summed-area tables, (R+1)-texel tiles side by side",
+                                "",
+                                "penumbra_satAtlas",
+                                UniformSource::light,
+                                {},
+                                /*fetch_only=*/binds_samplers_apart(config)});
         else
-            samplers.push_back({"penumbra_sat", "sampler2DArray",
-                                "exclusive summed-area tables, one (R+1)-texel layer per occlusion texture", "",
-                                "penumbra_sat", UniformSource::light, {}, /*fetch_only=*/is_wgsl(config)});
+            samplers.push_back({"penumbra_sat",
+                                "sampler2DArray",
+                                "exclusive summed-area tables, one (R+1)-texel layer per occlusion texture",
+                                "",
+                                "penumbra_sat",
+                                UniformSource::light,
+                                {},
+                                /*fetch_only=*/binds_samplers_apart(config)});
     } else if (config.packing == Packing::atlas) {
         for (int level = 0; level <= levels; ++level)
             samplers.push_back({atlas_level_name(level), "sampler2D", "filter level, occlusion tiles side by side",
@@ -88,7 +98,7 @@ constexpr std::vector<Param> slicing_camera_params() {
 // Geometry passes of the slicing: one, but on WGSL one per group of the colour targets a WebGPU render
 // pass may have (WebGPU has no logic op to write more slices as bits, paper §3.7).
 constexpr int slicing_passes(const Config& config) {
-    if (config.target != Target::wgsl) return 1;
+    if (!binds_samplers_apart(config)) return 1;
     const int group = limits(config.target).max_draw_buffers;
     return (texture_count(config) + group - 1) / group;
 }

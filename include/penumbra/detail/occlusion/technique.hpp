@@ -37,7 +37,8 @@ constexpr std::vector<ProgramPlan> occlusion_programs(const Config& config) {
     if (places_slices_adaptively(config)) { // paper §5: slice boundaries from the scene's depths, before slicing
         plan.push_back({"depth_bins", {depth_bins_vert, depth_bins_frag}});
         // WebGPU has no generateMipmap: the depth bins' mip chain as passes
-        if (config.target == Target::wgsl) plan.push_back({"depth_bins_level", {fullscreen_vert, depth_bins_level_frag}});
+        if (binds_samplers_apart(config))
+            plan.push_back({"depth_bins_level", {fullscreen_vert, depth_bins_level_frag}});
         plan.push_back({"slice_boundaries", {fullscreen_vert, slice_boundaries_frag}});
     }
     plan.push_back({"slicing", {slicing_vert, slicing_frag}});
@@ -52,7 +53,8 @@ constexpr std::vector<ProgramPlan> occlusion_programs(const Config& config) {
         plan.push_back({"nbuffer_level", {fullscreen_vert, nbuffer_level_frag}});
     if (config.filter == Filter::gaussian) plan.push_back({"gaussian_level", {fullscreen_vert, gaussian_level_frag}});
     // WebGPU has no generateMipmap: the mip chain as passes
-    if (config.filter == Filter::mipmap && config.target == Target::wgsl) plan.push_back({"mip_level", {fullscreen_vert, mip_level_frag}});
+    if (config.filter == Filter::mipmap && binds_samplers_apart(config))
+        plan.push_back({"mip_level", {fullscreen_vert, mip_level_frag}});
     if (config.filter == Filter::sat) {
         plan.push_back({"sat_shift", {fullscreen_vert, sat_shift_frag}});
         plan.push_back({"sat_pass", {fullscreen_vert, sat_pass_frag}});
@@ -138,7 +140,9 @@ constexpr TechniqueDescriptor occlusion_technique() {
         .storage_note = occlusion_storage_note,
         .es_sampler_precision = occlusion_es_samplers,
         .texels_per_fragment = occlusion_texels_per_fragment,
-        .writes_wgsl = true, // atlas N-buffers and Gaussian levels, up to 32 slices, uniform placement (validate.hpp)
+        .writes_wgsl =
+            true, // atlas N-buffers and Gaussian levels, up to 32 slices, uniform placement (validate.hpp)
+        .writes_hlsl = true, // WGSL's passes, in HLSL through the language layer
     };
 }
 

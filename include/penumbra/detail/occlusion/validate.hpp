@@ -67,12 +67,12 @@ constexpr std::vector<Problem> occlusion_problems(const Config& config) {
                 "' (a volume stores equal-size filter levels as depth; mipmap levels shrink and a summed-area table "
                 "has one level); allowed with this filter: atlas, array"));
     // (WGSL reads the tables texel by texel and filters them by hand: WebGPU renders 32-bit floats)
-    if (config.filter == Filter::sat && !limit.float32_render_filter && config.target != Target::wgsl)
+    if (config.filter == Filter::sat && !limit.float32_render_filter && !binds_samplers_apart(config))
         add("filter", Text("sat"),
             cat("needs renderable, filterable 32-bit float textures, which target '", target,
                 "' does not guarantee; allowed filters for ", target, ": mipmap, nbuffer, gaussian"));
     // (WGSL slices in several passes: slicing_passes)
-    const bool many_passes = config.target == Target::wgsl;
+    const bool many_passes = binds_samplers_apart(config); // and HLSL, which follows WGSL's passes
     const Text allowed_for_target =
         cat("1 to ", format_int(many_passes ? max_channel_slices : 4 * limit.max_draw_buffers),
             limit.logic_op || many_passes ? ", 64 or 128" : "");
@@ -134,6 +134,8 @@ constexpr std::vector<Problem> occlusion_problems(const Config& config) {
             if (config.target == Target::vulkan)
                 why = Text("the Vulkan runner (targets/vulkan) does not run (it has no compute pipelines)");
             if (config.target == Target::wgsl) why = Text("the WGSL emitters do not write yet (WebGPU has them)");
+            if (config.target == Target::hlsl)
+                why = Text("the HLSL emitters do not write yet (Direct3D 12 has them)");
             add("prefilter_stage", Text("compute"),
                 cat("needs compute shaders (OpenGL 4.3+), which ", why, "; allowed for ", target,
                     ": fragment; compute with target glsl450"));

@@ -35,7 +35,9 @@ constexpr void write_shadow_coord_function(LineWriter& out, const Config& config
     out.comment("xy: shadow-map uv, z: depth as stored, (z - near) / (far - near), w: depth along the light axis");
     out.line(signature(config, "vec4", "penumbra_shadowCoord", {{"vec3", "worldPos"}}));
     out.line("{");
-    out.line(variable(config, "vec3", "p", "(penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz"));
+    out.line(
+        variable(config, "vec3", "p",
+                 cat("(", transform(config, "penumbra_lightFromWorld", "vec4(worldPos, 1.0)"), ").xyz")));
     if (config.light == Light::rect) {
         out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
         out.comment("perspective from the light centre, square frustum");
@@ -93,7 +95,8 @@ constexpr void write_rotation_function(LineWriter& out, const Config& config) {
 
 constexpr Text tap_offset(const Config& config, const Tap& tap, std::string_view scale) {
     const Text v = cat("vec2(", format_float(tap.x), ", ", format_float(tap.y), ")");
-    return choose(rotates(config), cat("penumbra_rot * ", v, " * ", scale), cat(v, " * ", scale));
+    return choose(rotates(config), cat(transform(config, "penumbra_rot", v), " * ", scale),
+                  cat(v, " * ", scale));
 }
 
 // One line per tap (the blocker search: two), a comment before each group of `group` taps.
@@ -121,8 +124,10 @@ constexpr Text tap_depth(const Config& config, const Tap& tap, std::string_view 
 // tilt = the stored depth's change per unit of the literal tap offset: rot^T (slope * scale).
 constexpr void write_tilt(LineWriter& out, const Config& config, std::string_view tilt, std::string_view scale) {
     if (!tilts_taps_to_receiver_plane(config)) return;
-    out.line(value(config, "vec2", tilt, choose(rotates(config), cat("(depthSlope * ", scale, ") * penumbra_rot"),
-                                                  cat("depthSlope * ", scale))),
+    out.line(value(config, "vec2", tilt,
+                   choose(rotates(config),
+                          transform_row(config, cat("(depthSlope * ", scale, ")"), "penumbra_rot"),
+                          cat("depthSlope * ", scale))),
              " // depth change per unit of tap offset");
 }
 
@@ -235,8 +240,11 @@ constexpr void write_normal_visibility(LineWriter& out, const Config& config) {
     out.line(signature(config, "float", visibility_with_normal(config), {{"vec3", "worldPos"}, {"vec3", "worldNormal"}}));
     out.line("{");
     out.line(value(config, "vec3", "n", cat("worldNormal * ", builtin(config, "inversesqrt"), "(max(dot(worldNormal, worldNormal), 1e-20))")));
-    out.line(variable(config, "vec3", "p", "(penumbra_lightFromWorld * vec4(worldPos, 1.0)).xyz"));
-    out.line(value(config, "vec3", "nLight", cat(upper_3x3(config, "penumbra_lightFromWorld"), " * n")));
+    out.line(
+        variable(config, "vec3", "p",
+                 cat("(", transform(config, "penumbra_lightFromWorld", "vec4(worldPos, 1.0)"), ").xyz")));
+    out.line(value(config, "vec3", "nLight",
+                   transform(config, upper_3x3(config, "penumbra_lightFromWorld"), "n")));
     if (config.light == Light::rect) out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
     if (offset) write_normal_offset(out, config);
     if (tilt) write_receiver_plane_slope(out, config);

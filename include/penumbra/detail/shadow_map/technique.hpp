@@ -30,10 +30,14 @@ constexpr Text shadow_visibility_snippet(const Config& config) {
     if (is_wgsl(config))
         out.comment("Add to a module of the shading stage. Bindings start at 0 in group 0; call penumbra_loadVisibility()"
                     " first in the entry point.");
+    else if (is_hlsl(config))
+        out.comment(
+            "#include in a pixel shader. Registers start at 0 in space 0 (b#, t#, s# numbered together).");
     else
         out.comment("Include after the #version line of a stage for this target. Bindings start at 0.");
     if (config.target == Target::essl300) out.comment("ES: declare precision highp sampler2DShadow before it.");
     out.blank();
+    write_hlsl_names(out, config);
     int binding = 0;
     write_shadow_visibility(out, config, binding);
     return out.take();
@@ -108,6 +112,7 @@ constexpr TechniqueDescriptor shadow_map_technique() {
         .es_sampler_precision = shadow_map_es_samplers,
         .texels_per_fragment = shadow_map_texels_per_fragment,
         .writes_wgsl = true,
+        .writes_hlsl = true,
     };
 }
 
