@@ -400,7 +400,7 @@ int main(int argc, char** argv) {
     struct Summary {
         double mae = 0, bias = 0, worst = 0, terminator_p95 = 0, terminator_variation = 0;
         double irradiance_mae = 0, irradiance_bias = 0, irradiance_worst = 0;
-        double false_light = 0, false_shadow = 0; // fractions, summed over the scenes
+        ErrorRate false_light, false_shadow; // pooled over the scenes: a scene with few dark pixels weighs little
         int count = 0;
         std::string worst_scene, irradiance_worst_scene;
     };
@@ -499,8 +499,10 @@ int main(int argc, char** argv) {
                 sum.bias += q.oriented.penumbra.bias;
                 sum.irradiance_mae += q.irradiance.penumbra.mae;
                 sum.irradiance_bias += q.irradiance.penumbra.bias;
-                sum.false_light += q.false_light.fraction();
-                sum.false_shadow += q.false_shadow.fraction();
+                sum.false_light.wrong += q.false_light.wrong;
+                sum.false_light.pixels += q.false_light.pixels;
+                sum.false_shadow.wrong += q.false_shadow.wrong;
+                sum.false_shadow.pixels += q.false_shadow.pixels;
                 if (q.irradiance.penumbra.mae >= sum.irradiance_worst) {
                     sum.irradiance_worst = q.irradiance.penumbra.mae;
                     sum.irradiance_worst_scene = scene.name;
@@ -581,9 +583,11 @@ int main(int argc, char** argv) {
             std::printf(" %.4f / %+.4f / %.3f %s (%d) |", sum.mae / sum.count, sum.bias / sum.count, sum.worst,
                         sum.worst_scene.c_str(), sum.count);
         });
-        std::printf("\n%s: mean false light %% / false shadow %% (reference/metrics.hpp)\n\n| filter | S/R |", group_name);
+        std::printf("\n%s: false light %% / false shadow %% (reference/metrics.hpp), the scenes' pixels pooled\n\n"
+                    "| filter | S/R |",
+                    group_name);
         print_by_scale(group, [](const Summary& sum) {
-            std::printf(" %.1f / %.1f |", 100.0 * sum.false_light / sum.count, 100.0 * sum.false_shadow / sum.count);
+            std::printf(" %.1f / %.1f |", 100.0 * sum.false_light.fraction(), 100.0 * sum.false_shadow.fraction());
         });
         std::printf("\nnear the terminator (%s): mean p95 of |error| / mean total variation of the error\n\n| filter | S/R |",
                     group_name);
