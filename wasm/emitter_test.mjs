@@ -133,6 +133,19 @@ async function main() {
     const sample = emitter.emit({slices: 8, filter: "mipmap", target: "essl300"});
     if (!sample.ok) throw new Error(`the sample for the layout.json case is invalid: ${sample.error}`);
     cases.push(sample.files["layout.json"]);
+    // The profiles (penumbra/profiles.hpp), with keys beside them that win, in JSON's own order.
+    cases.push('{"profile": "large"}', '{"profile": "large", "light": "sun", "fusion": "chained"}',
+               '{"fusion": "extent", "profile": "large", "target": "essl300"}', '{"profile": "huge"}');
+    // The add-ons' profile option (penumbra_emission.js): the configuration it asks the module for.
+    const {requestedEmission} = await import(pathToFileURL(path.join(here, "../web/three/penumbra_emission.js")));
+    for (const kind of ["rect", "sun"]) {
+        const large = emitter.emit(requestedEmission({profile: "large"}, kind));
+        const c = large.ok ? large.layout.config : {};
+        if (c.profile !== "large" || c.fusion !== "clustered" || (c.irradiance_window ?? false) !== (kind === "rect"))
+            throw new Error(`profile large for ${kind}: ${large.ok ? JSON.stringify(c) : large.error}`);
+    }
+    if (requestedEmission({profile: "balanced"}, "rect") !== "rect-nbuffer-16x512")
+        throw new Error("profile balanced alone should be the shipped default emission");
     const root = fs.mkdtempSync(path.join(os.tmpdir(), "penumbra-emitter-test-"));
     let valid = 0, invalid = 0;
     const failures = [];
