@@ -9,7 +9,7 @@
 // than 16 slices, which OpenGL 3.3, ES 3.0 and Vulkan's guaranteed render targets and atlas width allow,
 // nor solid casters, which need a logic op). The measurements
 // behind each preset (error by light size against the irradiance reference, frame cost) are in
-// docs/model.md §1.10.
+// docs/model.md §1.11.
 //
 // A profile sets only the fields it names (profile_fields); the fields a caller gives explicitly win over
 // it whatever their order (apply_profile's `explicit_keys`: the command line's flags, a JSON file's keys).
