@@ -26,5 +26,5 @@ echo "no display: rendering the default scene headless"
 "$playground" --headless --scene boxes --size 512x512 --out out/boxes.png --reference --samples 16 \
     --metrics out/metrics.json "$@"
 echo
-echo "wrote out/boxes.png, out/boxes.reference.pfm, out/boxes.error.png and out/metrics.json"
+echo "wrote out/boxes.png, the truths (out/boxes.reference.pfm, .reference.oriented.pfm, .reference.irradiance.pfm), out/boxes.error.png and out/metrics.json"
 echo "for the interactive window on a machine without a display: xvfb-run -a $playground"
