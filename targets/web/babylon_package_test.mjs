@@ -12,11 +12,10 @@
 //   node targets/web/babylon_package_test.mjs --tarball FILE --work DIR --web web [--chromium PATH] [--images DIR]
 //
 // Exit 0 pass, 1 fail, 77 skip (no chromium), 2 bad arguments.
-import {execFileSync} from "node:child_process";
 import fs from "node:fs";
 import path from "node:path";
 import {fileURLToPath} from "node:url";
-import {serve, launchChromium, openPage} from "./harness.mjs";
+import {serve, launchChromium, openPage, run} from "./harness.mjs";
 import {ltcTables, serveLtc} from "./ltc_tables.mjs";
 
 const here = path.dirname(fileURLToPath(import.meta.url));
@@ -37,14 +36,6 @@ function parseArguments(argv) {
 function usage(message) {
     console.error(`error: ${message}\nusage: node babylon_package_test.mjs --tarball FILE --work DIR --web web [--chromium PATH] [--images DIR]`);
     process.exit(2);
-}
-
-function run(command, args, options = {}) {
-    try {
-        return execFileSync(command, args, {encoding: "utf8", stdio: ["ignore", "pipe", "pipe"], ...options});
-    } catch (e) {
-        throw new Error(`${[command, ...args].join(" ")} failed (exit ${e.status}):\n${e.stdout || ""}${e.stderr || ""}`);
-    }
 }
 
 // 1. tsc over check.ts in a fresh project

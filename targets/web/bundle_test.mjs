@@ -24,12 +24,11 @@
 //        [--tarball babylon=FILE] [--tarball r3f=FILE (Vite only; penumbra-three's)] [--chromium PATH]
 //
 // Exit 0 pass, 1 fail, 77 skip (no chromium), 2 bad arguments.
-import {execFileSync} from "node:child_process";
 import fs from "node:fs";
 import path from "node:path";
 import zlib from "node:zlib";
 import {fileURLToPath} from "node:url";
-import {serve, launchChromium, openPage} from "./harness.mjs";
+import {serve, launchChromium, openPage, run} from "./harness.mjs";
 import {ltcTables, serveLtc} from "./ltc_tables.mjs";
 
 const here = path.dirname(fileURLToPath(import.meta.url));
@@ -73,14 +72,6 @@ function parseArguments(argv) {
 function usage(message) {
     console.error(`error: ${message}\nusage: node bundle_test.mjs --bundler vite|esbuild|webpack|rollup --work DIR --tarball three=FILE [--tarball babylon=FILE] [--chromium PATH]`);
     process.exit(2);
-}
-
-function run(command, args, options = {}) {
-    try {
-        return execFileSync(command, args, {encoding: "utf8", stdio: ["ignore", "pipe", "pipe"], ...options});
-    } catch (e) {
-        throw new Error(`${[command, ...args].join(" ")} failed (exit ${e.status}):\n${e.stdout || ""}${e.stderr || ""}`);
-    }
 }
 
 // 1. the fresh project

@@ -1,6 +1,7 @@
 // harness.mjs — what the three.js add-on's browser tests share (three_test.mjs, three_peers.mjs,
 // three_bench.mjs): a localhost static server over named folders, Debian's chromium through
 // puppeteer-core (headless, WebGL2 on SwiftShader), and raw float32 files.
+import {execFileSync} from "node:child_process";
 import fs from "node:fs";
 import http from "node:http";
 import os from "node:os";
@@ -8,6 +9,16 @@ import path from "node:path";
 
 const CONTENT_TYPES = {".html": "text/html", ".js": "text/javascript", ".mjs": "text/javascript", ".json": "application/json",
                        ".wasm": "application/wasm"};
+
+// A command's standard output; its exit status, output and errors in the exception when it fails
+// (the package and bundler tests: npm, tsc, the bundlers).
+export function run(command, args, options = {}) {
+    try {
+        return execFileSync(command, args, {encoding: "utf8", stdio: ["ignore", "pipe", "pipe"], ...options});
+    } catch (e) {
+        throw new Error(`${[command, ...args].join(" ")} failed (exit ${e.status}):\n${e.stdout || ""}${e.stderr || ""}`);
+    }
+}
 
 // Headless chromium's flags for WebGL2 on SwiftShader in a container (every browser test).
 export const CHROMIUM_ARGS = ["--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
