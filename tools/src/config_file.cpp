@@ -190,12 +190,10 @@ Parsed<penumbra::Config> parse_config_json(std::string_view text, std::string_vi
     }
 
     penumbra::Config config;
-    // "profile" first (its preset), so that the keys beside it win over it
-    if (const auto profile = object->find("profile"); profile != object->end())
-        if (std::string error = read_field(*penumbra::find_config_field("profile"), *profile, config); !error.empty())
-            return {{}, where + ": " + error};
+    std::vector<std::string_view> given; // the keys, which win over the profile's preset
     for (const auto& [key, value] : object->items()) {
-        if (key == "profile") continue;
+        given.push_back(key);
+        if (key == "profile") continue; // last, below
         std::string error;
         const penumbra::ConfigField* field = penumbra::find_config_field(key);
         if (field && penumbra::field_section(*field).empty()) // "pcss.rotate" is a key of "pcss", not of the top level
@@ -206,11 +204,13 @@ Parsed<penumbra::Config> parse_config_json(std::string_view text, std::string_vi
             error = "unknown key '" + printable(key) + "'; allowed keys: " + penumbra::config_key_list();
         if (!error.empty()) return {{}, where + ": " + error};
     }
-    // "profile": its preset again, now that "light" and the rest are read, except the keys beside it
-    if (object->contains("profile")) {
-        std::vector<std::string_view> given;
-        for (const auto& [key, value] : object->items()) given.push_back(key);
-        config = penumbra::apply_profile(config, config.profile, given);
+    // "profile": its preset, now that "light" and the rest are read, on the fields no key set (read into a
+    // scratch configuration, since the row's own setter applies the preset to every field)
+    if (const auto profile = object->find("profile"); profile != object->end()) {
+        penumbra::Config chosen;
+        if (std::string error = read_field(*penumbra::find_config_field("profile"), *profile, chosen); !error.empty())
+            return {{}, where + ": " + error};
+        config = penumbra::apply_profile(config, chosen.profile, given);
     }
     return {config, {}};
 }

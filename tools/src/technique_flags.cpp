@@ -73,21 +73,16 @@ penumbra::Config apply(const ConfigFlags& flags, penumbra::Config config) {
                     f.implies(config);
                     break;
                 }
-    // --profile first (its preset), then the other values, so that they win over it whatever their order
-    bool profile = false;
-    for (const auto& [field, value] : flags.values)
-        if (field->key == "profile") {
-            field->set(config, value);
-            profile = true;
-        }
-    for (const auto& [field, value] : flags.values)
+    // the values, then --profile's preset (once --light and the rest are set) on the fields no flag set, so
+    // that they win over it whatever their order
+    std::vector<std::string_view> given;
+    for (const auto& [field, value] : flags.values) {
+        given.push_back(field->key);
         if (field->key != "profile") field->set(config, value);
-    // then the preset again, now that --light and the rest are set, except the fields the flags set
-    if (profile) {
-        std::vector<std::string_view> given;
-        for (const auto& [field, value] : flags.values) given.push_back(field->key);
-        config = penumbra::apply_profile(config, config.profile, given);
     }
+    for (const auto& [field, value] : flags.values)
+        if (field->key == "profile")
+            config = penumbra::apply_profile(config, static_cast<penumbra::Profile>(static_cast<int>(value)), given);
     return config;
 }
 
