@@ -21,45 +21,11 @@ import path from "node:path";
 import {spawnSync} from "node:child_process";
 import {adapterLine, compileModules, startWebGPU} from "./wgsl_compile.mjs";
 
-// ---- The matrix (edit here). Every combination of a technique variant × light × alpha test, and for the
-// techniques with a normal offset (NORMAL_OFFSET_TECHNIQUES) × normal offset.
-const VARIANTS = {
-    "shadowmap": "--technique shadowmap",
-    "pcf-grid": "--technique pcf --pcf-grid 3",
-    "pcf-grid-norot": "--technique pcf --pcf-grid 3 --no-rotation",
-    "pcf-poisson": "--technique pcf --pcf-taps 16",
-    "pcf-poisson-norot": "--technique pcf --pcf-taps 16 --no-rotation",
-    "pcf-poisson-noplane": "--technique pcf --pcf-taps 8 --no-receiver-plane-bias",
-    "pcss": "--technique pcss --pcss-blockers 8 --pcss-filter 8",
-    "pcss-norot": "--technique pcss --pcss-blockers 8 --pcss-filter 8 --no-rotation",
-    "erosion": "--technique erosion",
-    "erosion-small": "--technique erosion --erosion-radius 4 --erosion-search-taps 8 --erosion-blur-taps 4",
-    "evsm": "--technique evsm",
-    "evsm-small": "--technique evsm --evsm-blur-taps 4 --evsm-max-blur 4 --evsm-bleeding 0",
-    "occlusion": "--technique occlusion",
-    "occlusion-small": "--technique occlusion --slices 8 --resolution 128 --fusion additive --no-tangent-clip",
-    "occlusion-clustered": "--technique occlusion --slices 8 --resolution 128 --fusion clustered",
-    "occlusion-clustered-sat": "--technique occlusion --slices 5 --resolution 64 --filter sat --packing array --fusion clustered",
-    "occlusion-probabilistic": "--technique occlusion --slices 4 --resolution 64 --fusion probabilistic",
-    "occlusion-gaussian": "--technique occlusion --filter gaussian --slices 8 --resolution 128",
-    "occlusion-mipmap": "--technique occlusion --filter mipmap --slices 8 --resolution 128",
-    "occlusion-array": "--technique occlusion --packing array --slices 8 --resolution 128",
-    "occlusion-array-mipmap": "--technique occlusion --packing array --filter mipmap --slices 8 --resolution 128 --fusion extent",
-    "occlusion-volume": "--technique occlusion --packing volume --slices 8 --resolution 128 --fusion extent",
-    "occlusion-adaptive": "--technique occlusion --slice-placement adaptive --slices 8 --resolution 128",
-    "occlusion-sat": "--technique occlusion --filter sat --slices 8 --resolution 128",
-    "occlusion-sat-array": "--technique occlusion --filter sat --packing array --slices 5 --resolution 64 --fusion extent",
-    "occlusion-irradiance-window": "--technique occlusion --slices 8 --resolution 128 --irradiance-window",
-    // beyond 16 slices WebGPU slices in several passes (four RGBA8 targets a pass under its default limits)
-    "occlusion-32": "--technique occlusion --slices 32 --resolution 128",
-    "occlusion-64": "--technique occlusion --slices 64 --resolution 128",
-};
-// Variants that exist under one light only (the Gaussian stands for the sun's disk; the irradiance window weighs a rectangle).
-const VARIANT_LIGHTS = {"occlusion-gaussian": ["sun"], "occlusion-irradiance-window": ["rect"]};
-const NORMAL_OFFSET_TECHNIQUES = ["shadowmap", "pcf", "pcss"];
-const LIGHTS = ["rect", "sun"];
-const NORMAL_OFFSETS = ["0", "1"];
-const ALPHA_TEST = [false, true];
+// ---- The matrix: the variants tests/technique_variants.json lists (shared with tests/hlsl/hlsl_matrix.py),
+// each × light × alpha test, and for the techniques with a normal offset (normal_offset_techniques) × normal offset.
+const MATRIX = JSON.parse(fs.readFileSync(new URL("../../tests/technique_variants.json", import.meta.url), "utf8"));
+const {variants: VARIANTS, variant_lights: VARIANT_LIGHTS, normal_offset_techniques: NORMAL_OFFSET_TECHNIQUES,
+       lights: LIGHTS, normal_offsets: NORMAL_OFFSETS, alpha_test: ALPHA_TEST} = MATRIX;
 // What the wgsl target refuses today (the lead ports these next; move a line up into VARIANTS when it lands).
 const REFUSED = {
     "oim": "--technique oim",

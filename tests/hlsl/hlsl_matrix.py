@@ -23,50 +23,22 @@ import concurrent.futures
 import hashlib
 import json
 import os
+import pathlib
 import re
 import shutil
 import subprocess
 import sys
 import time
 
-# ---- The matrix (edit here): wgsl_matrix.mjs's variants, each × light × alpha test, and for the
-# techniques with a normal offset × normal offset.
-VARIANTS = {
-    "shadowmap": "--technique shadowmap",
-    "pcf-grid": "--technique pcf --pcf-grid 3",
-    "pcf-grid-norot": "--technique pcf --pcf-grid 3 --no-rotation",
-    "pcf-poisson": "--technique pcf --pcf-taps 16",
-    "pcf-poisson-norot": "--technique pcf --pcf-taps 16 --no-rotation",
-    "pcf-poisson-noplane": "--technique pcf --pcf-taps 8 --no-receiver-plane-bias",
-    "pcss": "--technique pcss --pcss-blockers 8 --pcss-filter 8",
-    "pcss-norot": "--technique pcss --pcss-blockers 8 --pcss-filter 8 --no-rotation",
-    "erosion": "--technique erosion",
-    "erosion-small": "--technique erosion --erosion-radius 4 --erosion-search-taps 8 --erosion-blur-taps 4",
-    "evsm": "--technique evsm",
-    "evsm-small": "--technique evsm --evsm-blur-taps 4 --evsm-max-blur 4 --evsm-bleeding 0",
-    "occlusion": "--technique occlusion",
-    "occlusion-small": "--technique occlusion --slices 8 --resolution 128 --fusion additive --no-tangent-clip",
-    "occlusion-clustered": "--technique occlusion --slices 8 --resolution 128 --fusion clustered",
-    "occlusion-clustered-sat": "--technique occlusion --slices 5 --resolution 64 --filter sat --packing array --fusion clustered",
-    "occlusion-probabilistic": "--technique occlusion --slices 4 --resolution 64 --fusion probabilistic",
-    "occlusion-gaussian": "--technique occlusion --filter gaussian --slices 8 --resolution 128",
-    "occlusion-mipmap": "--technique occlusion --filter mipmap --slices 8 --resolution 128",
-    "occlusion-array": "--technique occlusion --packing array --slices 8 --resolution 128",
-    "occlusion-array-mipmap": "--technique occlusion --packing array --filter mipmap --slices 8 --resolution 128 --fusion extent",
-    "occlusion-volume": "--technique occlusion --packing volume --slices 8 --resolution 128 --fusion extent",
-    "occlusion-adaptive": "--technique occlusion --slice-placement adaptive --slices 8 --resolution 128",
-    "occlusion-sat": "--technique occlusion --filter sat --slices 8 --resolution 128",
-    "occlusion-sat-array": "--technique occlusion --filter sat --packing array --slices 5 --resolution 64 --fusion extent",
-    "occlusion-irradiance-window": "--technique occlusion --slices 8 --resolution 128 --irradiance-window",
-    "occlusion-32": "--technique occlusion --slices 32 --resolution 128",
-    "occlusion-64": "--technique occlusion --slices 64 --resolution 128",
-}
-# Variants that exist under one light only (the Gaussian stands for the sun's disk; the irradiance window weighs a rectangle).
-VARIANT_LIGHTS = {"occlusion-gaussian": ["sun"], "occlusion-irradiance-window": ["rect"]}
-NORMAL_OFFSET_TECHNIQUES = ["shadowmap", "pcf", "pcss"]
-LIGHTS = ["rect", "sun"]
-NORMAL_OFFSETS = ["0", "1"]
-ALPHA_TEST = [False, True]
+# ---- The matrix: the variants tests/technique_variants.json lists (shared with wgsl_matrix.mjs), each ×
+# light × alpha test, and for the techniques with a normal offset × normal offset.
+MATRIX = json.loads((pathlib.Path(__file__).resolve().parent.parent / "technique_variants.json").read_text())
+VARIANTS = MATRIX["variants"]
+VARIANT_LIGHTS = MATRIX["variant_lights"]
+NORMAL_OFFSET_TECHNIQUES = MATRIX["normal_offset_techniques"]
+LIGHTS = MATRIX["lights"]
+NORMAL_OFFSETS = MATRIX["normal_offsets"]
+ALPHA_TEST = MATRIX["alpha_test"]
 # What the hlsl target refuses (move a line up into VARIANTS when it lands).
 REFUSED = {
     "oim": "--technique oim",
