@@ -8,7 +8,7 @@ set -euo pipefail
 
 packages=(
     cmake g++ make pkg-config
-    libglm-dev glslang-dev glslang-tools spirv-tools spirv-cross doctest-dev nlohmann-json3-dev
+    libglm-dev glslang-dev glslang-tools spirv-tools spirv-cross libspirv-cross-c-shared-dev doctest-dev nlohmann-json3-dev
     libglfw3-dev libepoxy-dev libgl1-mesa-dri libegl1-mesa-dev mesa-utils xvfb xauth
     libimgui-dev libstb-dev libtinyobjloader-dev libtinygltf-dev libembree-dev
     libdraco-dev libmeshoptimizer-dev gltfpack

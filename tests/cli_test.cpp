@@ -167,6 +167,33 @@ TEST_CASE("--validate passes the emitted programs through glslang") {
     }
 }
 
+TEST_CASE("--target msl: the vulkan programs through SPIRV-Cross, one function a .metal file, indices in layout.json") {
+    const fs::path dir = scratch().fresh("msl");
+    const Run run = run_gen(with_out({"--target", "msl", "--technique", "pcss"}, dir));
+    INFO(run.err);
+    REQUIRE(run.exit_code == 0);
+    CHECK(run.out.find("translated by SPIRV-Cross") != std::string::npos);
+    CHECK(listing(dir) == layout_files(dir));
+    const nlohmann::json layout = nlohmann::json::parse(read_text(dir / "layout.json"));
+    CHECK(layout.at("config").at("target") == "msl");
+    CHECK(layout.at("msl").at("first_free_buffer").get<int>() >= 1);
+    for (const nlohmann::json& program : layout.at("programs")) {
+        CAPTURE(program.at("name").get<std::string>());
+        REQUIRE(program.at("msl_functions").size() == program.at("files").size());
+        for (std::size_t i = 0; i < program.at("files").size(); ++i) {
+            const std::string file = program.at("files")[i], function = program.at("msl_functions")[i];
+            CHECK(file.ends_with(".metal"));
+            CHECK(read_text(dir / file).find(" " + function + "(") != std::string::npos);
+        }
+        for (const nlohmann::json& p : program.at("parameters"))
+            if (p.contains("binding") || p.contains("block")) CHECK(p.contains("msl"));
+    }
+    // What the vulkan target refuses, msl refuses in its own name.
+    const Run refused = run_gen(with_out({"--target", "msl", "--slices", "32"}, scratch().fresh("msl_refused")));
+    CHECK(refused.exit_code == 2);
+    CHECK(refused.err.find("target 'msl'") != std::string::npos);
+}
+
 TEST_CASE("layout.json (version 2): phases, structured state, the deferred pass and its textures") {
     const fs::path dir = scratch().fresh("layout_v2");
     REQUIRE(run_gen(with_out({"--packing", "array"}, dir)).exit_code == 0);
@@ -326,7 +353,7 @@ TEST_CASE("bad arguments and bad config files: exit 2, one clear error line, not
          "--filter: 'box' is not allowed; allowed: mipmap, nbuffer, sat, gaussian"},
         {"enum case",
          {"--target", "GLSL450"},
-         "--target: 'GLSL450' is not allowed; allowed: glsl330, glsl450, essl300, vulkan, wgsl, hlsl"},
+         "--target: 'GLSL450' is not allowed; allowed: glsl330, glsl450, essl300, vulkan, wgsl, hlsl, msl"},
         {"fusion", {"--fusion=min"}, "allowed: probabilistic, additive, maximum, average"},
         {"packing", {"--packing", "cube"}, "allowed: atlas, array, volume"},
         {"light", {"--light", "point"}, "allowed: rect, sun"},

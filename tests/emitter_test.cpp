@@ -260,7 +260,7 @@ TEST_CASE("invalid configurations: each names the field, the value and what is a
         {{.fusion = static_cast<Fusion>(8)}, "fusion", "allowed: probabilistic, additive, maximum, average"},
         {{.packing = static_cast<Packing>(5)}, "packing", "allowed: atlas, array, volume"},
         {{.light = static_cast<Light>(2)}, "light", "allowed: rect, sun"},
-        {{.target = static_cast<Target>(6)}, "target", "allowed: glsl330, glsl450, essl300, vulkan, wgsl, hlsl"},
+        {{.target = static_cast<Target>(7)}, "target", "allowed: glsl330, glsl450, essl300, vulkan, wgsl, hlsl, msl"},
         {{.filter = Filter::gaussian}, "filter", "filter: gaussian needs light 'sun'"},
         {{.filter = Filter::sat, .packing = Packing::volume}, "packing", "packing: volume cannot hold filter 'sat'"},
         {{.filter = Filter::mipmap, .packing = Packing::volume}, "packing", "packing: volume cannot hold filter 'mipmap'"},

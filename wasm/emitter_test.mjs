@@ -146,6 +146,11 @@ async function main() {
     }
     if (requestedEmission({profile: "balanced"}, "rect") !== "rect-nbuffer-16x512")
         throw new Error("profile balanced alone should be the shipped default emission");
+    // Metal: penumbra-gen translates it with SPIRV-Cross, which the module does not link; the module
+    // refuses it, naming where it is written.
+    const metal = emitter.emit({target: "msl"});
+    if (metal.ok || !metal.error.includes("penumbra-gen --target msl"))
+        throw new Error(`target msl: the module should refuse it naming penumbra-gen: ${metal.ok ? "emitted" : metal.error}`);
     const root = fs.mkdtempSync(path.join(os.tmpdir(), "penumbra-emitter-test-"));
     let valid = 0, invalid = 0;
     const failures = [];

@@ -9,7 +9,7 @@
 //   panel.showResult(emission);   // the diagnostics next to their fields, the error line on top
 
 // What the page adds beside a field's help (it runs the essl300 emission).
-const NOTES = {target: "the page runs essl300 on WebGL2, wgsl on WebGPU (the renderer switch); hlsl (Direct3D 12) to view and download", level_format: "essl300 (the page) stores rgba8"};
+const NOTES = {target: "the page runs essl300 on WebGL2, wgsl on WebGPU (the renderer switch); hlsl (Direct3D 12) to view and download; msl (Metal) is SPIRV-Cross's translation, written by penumbra-gen, not here", level_format: "essl300 (the page) stores rgba8"};
 
 // The panel's fields: the table of configuration fields (penumbra/config_fields.hpp) as the
 // WebAssembly module gives it (emitter.fields()): key (the JSON path), flag, kind ("integer", "real",

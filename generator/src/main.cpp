@@ -1,7 +1,8 @@
 // penumbra-gen — the shaders and layout.json of one Penumbra configuration, written to a directory.
 //
 // A straight pipeline: arguments → configuration (the --config file, then the flags) →
-// penumbra::validate/emit → glslang (--validate) → files → summary. Problems are values until
+// penumbra::validate/emit (emit_msl for target msl: glslang and SPIRV-Cross) → glslang (--validate)
+// → files → summary. Problems are values until
 // this file prints them as one `error: …` line each.
 //
 // Exit status: 0 written; 1 glslang rejected emitted code (a Penumbra bug; the files are still
@@ -13,6 +14,7 @@
 #include <penumbra_tools/write_files.hpp>
 
 #include <penumbra/emit.hpp>
+#include <penumbra/msl.hpp>
 #include <penumbra/validation.hpp>
 
 #include <filesystem>
@@ -58,7 +60,10 @@ int run(const std::vector<std::string>& args) {
     config = apply(arguments.flags, config);
 
     // 3. Validate and emit (emit runs penumbra::validate; every problem on the one error line).
-    penumbra::Result<penumbra::Emission> emitted = penumbra::emit(config);
+    //    Metal: the vulkan target's programs through glslang and SPIRV-Cross, which compile every
+    //    stage on the way (so --validate has nothing left to check there).
+    const bool msl = config.target == penumbra::Target::msl;
+    penumbra::Result<penumbra::Emission> emitted = msl ? penumbra::emit_msl(config) : penumbra::emit(config);
     if (!emitted.errors.empty()) {
         std::string message;
         for (const penumbra::ConfigError& e : emitted.errors) message += (message.empty() ? "" : "; ") + e.message;
@@ -68,11 +73,11 @@ int run(const std::vector<std::string>& args) {
     if (arguments.validate && config.target == penumbra::Target::wgsl)
         return fail("--validate: glslang reads GLSL and HLSL, not WGSL; allowed: --validate with glsl330, "
                     "glsl450, essl300, "
-                    "vulkan or hlsl (WGSL is checked by Chromium's compiler: ctest -R wgsl_matrix)");
+                    "vulkan, hlsl or msl (WGSL is checked by Chromium's compiler: ctest -R wgsl_matrix)");
 
     // 4. glslang, when asked: every diagnostic, with the path the file is written to.
     int rejected_programs = 0;
-    if (arguments.validate)
+    if (arguments.validate && !msl)
         for (const penumbra::Program& program : emission.programs) {
             std::vector<penumbra::ShaderDiagnostic> diagnostics =
                 penumbra::validate_program(program, config.target);
@@ -90,7 +95,10 @@ int run(const std::vector<std::string>& args) {
     // 6. Summary.
     std::cout << "penumbra-gen: wrote " << files.size() << " files to " << arguments.out_dir << " ("
               << describe(config) << ")";
-    if (!arguments.validate)
+    if (msl)
+        std::cout << "; " << emission.programs.size()
+                  << " programs compiled with glslang and translated by SPIRV-Cross (no Metal compiler here)\n";
+    else if (!arguments.validate)
         std::cout << "; not validated (--validate runs glslang)\n";
     else if (rejected_programs == 0)
         std::cout << "; " << emission.programs.size() << " programs validated with glslang\n";

@@ -93,6 +93,9 @@ enum class Target : std::uint8_t {
     vulkan,  // GLSL 450 for SPIR-V: set/binding decorations, parameters in a uniform block
     wgsl,    // WGSL for WebGPU: one module per stage, bind group 0, parameters in a uniform buffer
     hlsl,    // HLSL (Shader Model 5.0/6.0 style) for Direct3D 12: cbuffers and t#/s# registers in space 0
+    // Metal Shading Language 2.1: the vulkan target's SPIR-V translated by SPIRV-Cross, which this
+    // header-only emitter does not link; penumbra::emit_msl (penumbra/msl.hpp) and penumbra-gen write it
+    msl,
 };
 
 // The shadowing technique the emitted programs implement.
@@ -306,8 +309,8 @@ template <> struct EnumNames<Profile> {
     static constexpr std::array<std::string_view, 2> names{"balanced", "large"};
 };
 template <> struct EnumNames<Target> {
-    static constexpr std::array<std::string_view, 6> names{"glsl330", "glsl450", "essl300",
-                                                           "vulkan",  "wgsl",    "hlsl"};
+    static constexpr std::array<std::string_view, 7> names{"glsl330", "glsl450", "essl300", "vulkan",
+                                                           "wgsl",    "hlsl",    "msl"};
 };
 
 template <class Enum> constexpr std::string_view to_string(Enum value) {

@@ -32,7 +32,7 @@ struct Emission {
                 for (const ShaderFile& f : out) seen = seen || f.file_name == stage.file_name;
                 if (!seen) out.push_back(stage);
             }
-        out.push_back(snippet);
+        if (!snippet.file_name.empty()) out.push_back(snippet); // target msl has none (msl.hpp)
         return out;
     }
 };

@@ -30,6 +30,7 @@ std::string to_json(const Layout& layout);
 #include "detail/vertex_inputs.hpp"
 #include "validate.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <optional>
@@ -202,7 +203,35 @@ inline std::string json_hlsl_registers(const ParamDesc& d) {
     return o + space;
 }
 
+// MSL: the Metal argument-table indices of a parameter (emit_msl, penumbra/msl.hpp, sets them).
+inline std::string json_msl_indices(const ParamDesc& d) {
+    if (d.msl_buffer >= 0) return ", \"msl\": {\"buffer\": " + std::to_string(d.msl_buffer) + "}";
+    if (d.msl_texture < 0) return {};
+    std::string o = ", \"msl\": {\"texture\": " + std::to_string(d.msl_texture);
+    if (d.msl_sampler >= 0) o += ", \"sampler\": " + std::to_string(d.msl_sampler);
+    return o + "}";
+}
+
 } // namespace detail
+
+// MSL: the function a .metal file of target msl defines, named after its file
+// ("penumbra_slicing.vert.metal" defines penumbra_slicing_vert), so that every file of an emission
+// links into one Metal library without two functions of one name.
+inline std::string msl_function_name(std::string_view file_name) {
+    std::string name(file_name.substr(0, file_name.rfind(".metal")));
+    for (char& c : name)
+        if (c == '.') c = '_';
+    return name;
+}
+
+// MSL: the first buffer index no program's parameters use, where a Metal engine binds the vertex
+// buffers of the programs that draw its geometry ([[stage_in]] attributes).
+inline int msl_first_free_buffer(const Layout& layout) {
+    int first_free = 0;
+    for (const ProgramDesc& program : layout.programs)
+        for (const ParamDesc& d : program.parameters) first_free = std::max(first_free, d.msl_buffer + 1);
+    return first_free;
+}
 
 // layout.json: the layout as JSON (two-space indentation, keys as in the C++ structs).
 PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
@@ -242,6 +271,10 @@ PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
         for (std::size_t f = 0; f < p.files.size(); ++f) o += (f ? ", " : "") + json_string(p.files[f]);
         o += "], \"stages\": [";
         for (std::size_t f = 0; f < p.stages.size(); ++f) o += (f ? ", " : "") + json_string(stage_name(p.stages[f]));
+        if (c.target == Target::msl) {
+            o += "], \"msl_functions\": [";
+            for (std::size_t f = 0; f < p.files.size(); ++f) o += (f ? ", " : "") + json_string(msl_function_name(p.files[f]));
+        }
         o += "], \"vertex_inputs\": [";
         for (std::size_t v = 0; v < p.vertex_inputs.size(); ++v) {
             const VertexInputDesc& in = p.vertex_inputs[v];
@@ -266,6 +299,7 @@ PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
             if (d.set >= 0) o += (wgsl ? ", \"group\": " : ", \"set\": ") + std::to_string(d.set);
             if (wgsl && d.binding >= 0) o += detail::json_wgsl_binding(layout, p, d);
             if (c.target == Target::hlsl) o += detail::json_hlsl_registers(d);
+            if (c.target == Target::msl) o += detail::json_msl_indices(d);
             o += std::string("}") + (u + 1 < p.parameters.size() ? ",\n" : "\n");
         }
         o += std::string("    ]}") + (i + 1 < layout.programs.size() ? ",\n" : "\n");
@@ -341,6 +375,9 @@ PENUMBRA_ENTRY_POINT std::string to_json(const Layout& layout) {
              json_string(std::string(1, slice_channel(at))) + "}";
     }
     o += "],\n";
+    if (c.target == Target::msl)
+        o += "  \"msl\": {\"language_version\": \"2.1\", \"flip_vertex_y\": true, \"first_free_buffer\": " +
+             std::to_string(msl_first_free_buffer(layout)) + "},\n";
     o += "  \"files\": [";
     for (std::size_t f = 0; f < layout.files.size(); ++f) o += (f ? ", " : "") + json_string(layout.files[f]);
     o += "]\n}\n";

@@ -216,6 +216,9 @@ struct ParamDesc {
     // s<sampler_binding>, in space <set>.
     int sampler_binding = -1;
     std::string texture_type;
+    // MSL (target msl; penumbra/msl.hpp fills them): the Metal argument-table indices of the parameter's
+    // buffer, or of its texture and sampler, the same in every stage of the program; -1: none
+    int msl_buffer = -1, msl_texture = -1, msl_sampler = -1;
 };
 
 // A vertex attribute of a program that draws the caller's geometry (draw_scene).

@@ -43,6 +43,16 @@ constexpr std::vector<Problem> find_problems(const Config& config) {
     check_known(problems, "technique", config.technique);
     if (!problems.empty()) return problems;
     const TechniqueDescriptor technique = technique_descriptor(config.technique);
+    // Metal is SPIRV-Cross's translation of the vulkan target, made where SPIRV-Cross is linked.
+    if (config.target == Target::msl) {
+        add_problem(problems, "target", Text("msl"),
+                 Text("is translated from the vulkan target's SPIR-V by SPIRV-Cross, which this header-only "
+                      "emitter does not link; write it with penumbra-gen --target msl, "
+                      "penumbra_generate_shaders(... TARGET_API msl) or penumbra::emit_msl (penumbra/msl.hpp, "
+                      "CMake target penumbra::msl); targets emitted here: glsl330, glsl450, essl300, vulkan, "
+                      "wgsl, hlsl"));
+        return problems;
+    }
     if (config.target == Target::wgsl && !technique.writes_wgsl)
         add_problem(problems, "target", Text("wgsl"),
                     cat("is not written for technique '", to_string(config.technique),

@@ -30,37 +30,17 @@ import subprocess
 import sys
 import time
 
-# ---- The matrix: the variants tests/technique_variants.json lists (shared with wgsl_matrix.mjs), each ×
-# light × alpha test, and for the techniques with a normal offset × normal offset.
-MATRIX = json.loads((pathlib.Path(__file__).resolve().parent.parent / "technique_variants.json").read_text())
-VARIANTS = MATRIX["variants"]
-VARIANT_LIGHTS = MATRIX["variant_lights"]
-NORMAL_OFFSET_TECHNIQUES = MATRIX["normal_offset_techniques"]
-LIGHTS = MATRIX["lights"]
-NORMAL_OFFSETS = MATRIX["normal_offsets"]
-ALPHA_TEST = MATRIX["alpha_test"]
-# What the hlsl target refuses (move a line up into VARIANTS when it lands).
+# ---- The matrix: tests/technique_variants.json's configurations (technique_variants.py, shared with
+# the MSL matrix; wgsl_matrix.mjs reads the same JSON).
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent))
+from technique_variants import configurations  # noqa: E402
+# What the hlsl target refuses (move a line up into the JSON's variants when it lands).
 REFUSED = {
     "oim": "--technique oim",
 }
 # ----
 
 STAGE_FLAG = {"vertex": "vert", "fragment": "frag", "compute": "comp"}
-
-
-def configurations():
-    out = []
-    for variant, flags in VARIANTS.items():
-        offsets = NORMAL_OFFSETS if flags.split()[1] in NORMAL_OFFSET_TECHNIQUES else [None]
-        for light in VARIANT_LIGHTS.get(variant, LIGHTS):
-            for offset in offsets:
-                for alpha in ALPHA_TEST:
-                    name = f"{variant}-{light}" + ("" if offset is None else f"-n{offset}") + ("-alpha" if alpha else "")
-                    argv = flags.split() + ["--light", light]
-                    argv += [] if offset is None else ["--shadow-normal-offset", offset]
-                    argv += ["--alpha-test"] if alpha else []
-                    out.append((name, argv))
-    return out
 
 
 def run(argv):

@@ -51,8 +51,8 @@ def references_errors(layout):
             errors.append(f"program {program['name']}: {len(program['stages'])} stages for "
                           f"{len(program['files'])} files")
         for f, stage in zip(program["files"], program["stages"]):
-            # WGSL and HLSL: the GLSL name and .wgsl or .hlsl (penumbra_deferred.frag.wgsl)
-            expected = extension_stage.get(pathlib.PurePath(f.removesuffix(".wgsl").removesuffix(".hlsl")).suffix)
+            # WGSL, HLSL and MSL: the GLSL name and .wgsl, .hlsl or .metal (penumbra_deferred.frag.wgsl)
+            expected = extension_stage.get(pathlib.PurePath(f.removesuffix(".wgsl").removesuffix(".hlsl").removesuffix(".metal")).suffix)
             if stage != expected:
                 errors.append(f"program {program['name']}: file {f} has stage {stage}, its extension says {expected}")
     return errors
@@ -125,6 +125,11 @@ def main():
                                           "--resolution", "64"])
                for filt, packing in [("mipmap", "atlas"), ("mipmap", "array"), ("sat", "atlas"), ("sat", "array"),
                                      ("nbuffer", "array"), ("nbuffer", "volume")]]
+    # MSL (Metal, SPIRV-Cross from the vulkan target): msl indices, msl_functions, the msl object.
+    matrix += [(f"msl-{technique}-{light}{'-alpha' if alpha else ''}",
+                ["--technique", technique, "--light", light, "--target", "msl", *(["--alpha-test"] if alpha else [])])
+               for technique, light, alpha in itertools.product(
+                   ["occlusion", "shadowmap", "pcf", "pcss", "oim", "erosion", "evsm"], ["rect", "sun"], [False, True])]
     matrix += [(f"alpha-test-adaptive-{target}", ["--alpha-test", "--slice-placement", "adaptive", "--target", target,
                                                   "--slices", "5", "--resolution", "64"])
                for target in ["glsl330", "glsl450", "essl300", "vulkan"]]

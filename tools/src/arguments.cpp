@@ -75,7 +75,8 @@ std::string usage() {
     auto line = [](std::string_view flag, std::string_view text) { return penumbra::help_line(flag, text, column); };
     std::string out = "usage: penumbra-gen [configuration flags] [--config FILE.json] [--validate] --out DIR\n"
                       "\n"
-                      "Writes the GLSL of one Penumbra configuration and its layout.json into DIR.\n"
+                      "Writes the shaders of one Penumbra configuration (GLSL, WGSL, HLSL, or MSL translated from the\n"
+                      "vulkan target's SPIR-V by SPIRV-Cross) and its layout.json into DIR.\n"
                       "\n"
                       "configuration (flags override the --config file; a technique reads the fields of every technique\n"
                       "and its own, the others never change its output):\n\n";
@@ -91,7 +92,8 @@ std::string usage() {
                              "failure the directory is left as it was. Files an earlier run listed in DIR/layout.json "
                              "that this one does not write are removed");
     out += line("--validate", "compile and link every program with glslang; on errors, print them, still write the "
-                              "files (to inspect) and exit 1");
+                              "files (to inspect) and exit 1. Target msl is always compiled (its translation starts "
+                              "from glslang's SPIR-V), with or without it");
     out += line("--help, -h", "print this help and exit");
     out += "\nA value may also be given as --flag=value.\n"
            "exit status: 0 written; 1 glslang rejected the emitted code (files written); 2 bad arguments,\n"

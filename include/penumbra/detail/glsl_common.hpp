@@ -69,6 +69,7 @@ constexpr void write_version(LineWriter& out, const Config& config) {
     case Target::vulkan: out.line("#version 450"); break;
     case Target::wgsl: break; // WGSL has no version directive
     case Target::hlsl: break; // nor HLSL
+    case Target::msl: break;  // never emitted as text here: emit_msl translates the vulkan target's SPIR-V
     }
 }
 

@@ -35,6 +35,8 @@ constexpr TargetLimits limits(Target target) {
     // 32-bit floats read texel by texel (Direct3D 12 could filter them) and no logic op (an optional
     // feature there)
     case Target::hlsl: return {16384, 2048, 2048, 4, false, true, false};
+    // Metal: translated from the vulkan target's passes, which keep Vulkan's guaranteed limits
+    case Target::msl: return limits(Target::vulkan);
     }
     return {};
 }
