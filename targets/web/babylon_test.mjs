@@ -19,6 +19,7 @@ import path from "node:path";
 import {serve, launchChromium, openPage} from "./harness.mjs";
 import {ltcTables, serveLtc} from "./ltc_tables.mjs";
 import {PIXELS_ALLOWED, R8_STEP, VARIANT_PIXELS_ALLOWED, compareRatio, compareVariants, compareWithDesktop, frameError} from "./three_test.mjs";
+import {installOffscreenCanvas} from "./offscreen_canvas.mjs";
 import {adapterLine, startWebGPU} from "./wgsl_compile.mjs";
 
 const ENGINES = {webgl2: {name: "Engine (WebGL2)", target: "essl300"}, webgpu: {name: "WebGPUEngine", target: "wgsl"}};
@@ -57,7 +58,11 @@ async function checkBundle(browser, port, index, dir, ltc, engine) {
     const label = `${bundle.scene} ${c.light} ${c.filter}/${c.packing} ${c.slices}×${c.resolution}² ${bundle.width}x${bundle.height}`;
     const started = Date.now();
     const {page, problems} = await openPage(browser, `http://127.0.0.1:${port}/web/babylon/test/index.html?bundle=/bundle/${index}/&engine=${engine}`, "penumbraBabylon",
-                                            undefined, (p) => serveLtc(p, ltc));
+                                            undefined, async (p) => {
+        await serveLtc(p, ltc);
+        // (headless Chromium loses the WebGPU device when a WebGPU canvas is presented: offscreen_canvas.mjs)
+        if (engine === "webgpu") await p.evaluateOnNewDocument(installOffscreenCanvas);
+    });
     const failures = [];
     const info = await page.evaluate(() => window.penumbraBabylon.engine());
     if (info.isWebGPU !== (engine === "webgpu")) failures.push(`the page runs ${info.name}, not ${ENGINES[engine].name}`);

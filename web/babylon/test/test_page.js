@@ -30,7 +30,6 @@ import {VertexData} from "@babylonjs/core/Meshes/mesh.vertexData.js";
 import {StandardMaterial} from "@babylonjs/core/Materials/standardMaterial.js";
 import {Matrix, Quaternion, Vector3} from "@babylonjs/core/Maths/math.vector.js";
 import {PenumbraError, PenumbraShadows} from "../penumbra_babylon.js";
-import {installOffscreenCanvas} from "./offscreen_canvas.js";
 
 async function fetchOk(url) {
     const response = await fetch(url);
@@ -48,7 +47,6 @@ async function start() {
     canvas.height = bundle.height;
     let engine;
     if (webgpu) {
-        installOffscreenCanvas(); // (headless Chromium loses the device when a WebGPU canvas is presented)
         engine = new WebGPUEngine(canvas, {antialias: false});
         await engine.initAsync();
     } else {
