@@ -36,8 +36,6 @@ import {Vector3} from "@babylonjs/core/Maths/math.vector.js";
 import "@babylonjs/core/Shaders/ShadersInclude/instancesDeclaration.js";
 import "@babylonjs/core/Shaders/ShadersInclude/instancesVertex.js";
 import {LayoutRunner} from "./shared/penumbra_runner.js";
-import {WGSL_TYPES, WebGPUCasters, loadRunner as loadWebGPURunner, visibilityShadersWGSL, wgslForBabylon, wgslShadowFunction,
-        wrapTexture as wrapGPUTexture} from "./penumbra_babylon_webgpu.js";
 import {rectFrame, sunFrame} from "./shared/light_frame.js";
 import {EMISSIONS, PenumbraError, fail, loadEmissionFiles, loadEmitter, nextSerial, renamer, requestedEmission,
         snippetParameters} from "./shared/penumbra_emission.js";
@@ -174,8 +172,10 @@ export class PenumbraShadows {
         const kind = kindOf(light);
         if (engine.isWebGPU) {
             if (!engine._device) fail("the WebGPUEngine has no GPUDevice yet: await engine.initAsync() first");
-            const runner = await loadWebGPURunner(engine, requestedEmission(options, kind), kind, options.wasm ?? null);
-            return new PenumbraShadows(engine, scene, light, {...options, runner});
+            // (imported here: bundlers split it off, and WebGL2 pages never load it)
+            const gpu = await import("./penumbra_babylon_webgpu.js");
+            const runner = await gpu.loadRunner(engine, requestedEmission(options, kind), kind, options.wasm ?? null);
+            return new PenumbraShadows(engine, scene, light, {...options, runner, gpu});
         }
         if (!engine._gl || engine.webGLVersion < 2) fail("needs a WebGL2 Engine or a WebGPUEngine");
         const files = await loadEmissionFiles(requestedEmission(options, kind), kind, options.wasm ?? null, "essl300");
@@ -190,6 +190,8 @@ export class PenumbraShadows {
         const o = {...DEFAULTS, ...options};
         this.engine = engine;
         this.webgpu = !!engine.isWebGPU;
+        if (this.webgpu && !options.gpu) fail("no WebGPU module: use `await PenumbraShadows.load(engine, scene, light, options)`");
+        this._gpu = options.gpu ?? null; // penumbra_babylon_webgpu.js on WebGPUEngine
         this.scene = scene;
         this.light = light;
         this.kind = kindOf(light);
@@ -209,7 +211,7 @@ export class PenumbraShadows {
         this._casters = new Set();
         this._plugins = new Map(); // material → its plugin
         this._geometries = new Map(); // Geometry (or deformed mesh) → its GPU buffers (WebGL2)
-        this._gpuCasters = this.webgpu ? new WebGPUCasters(engine._device) : null; // (WebGPU)
+        this._gpuCasters = this.webgpu ? new this._gpu.WebGPUCasters(engine._device) : null; // (WebGPU)
         this._signature = null;
         this._setRunner(options.runner);
     }
@@ -235,7 +237,7 @@ export class PenumbraShadows {
             if (p.type.startsWith("sampler")) {
                 this._samplerNames.push(ours);
                 const t = runner.texture(p.texture ?? p.name);
-                this._textures[ours] = this.webgpu ? wrapGPUTexture(this.engine, this.scene, t, p.sampling ?? t.desc) : this._wrap(t);
+                this._textures[ours] = this.webgpu ? this._gpu.wrapTexture(this.engine, this.scene, t, p.sampling ?? t.desc) : this._wrap(t);
             } else {
                 this._values[ours] = {type: p.type, value: null};
             }
@@ -245,9 +247,9 @@ export class PenumbraShadows {
         if (this.webgpu) {
             // WGSL (penumbra_babylon_webgpu.js): the snippet reads the values from the material's
             // uniform buffer (uniforms.<name>), loaded into its private variables by its loader
-            const code = wgslForBabylon(this._rename(snippet));
+            const code = this._gpu.wgslForBabylon(this._rename(snippet));
             const load = (/\bfn\s+(penumbra\d*_loadVisibility)\s*\(/.exec(code) || [])[1] ?? null;
-            this._fragmentDefinitions = `${code}\n${wgslShadowFunction(n, load, n.visibility, tangentClip)}`;
+            this._fragmentDefinitions = `${code}\n${this._gpu.wgslShadowFunction(n, load, n.visibility, tangentClip)}`;
             this._visibilityDefinitions = this._fragmentDefinitions;
         } else {
             // (without its float precision line: Babylon puts its own first only where the shader has none)
@@ -558,9 +560,9 @@ float ${n.shadow}(vec3 normalWorld, vec3 positionWorld, vec3 eye) {
     _makeVisibilityMaterial() {
         const n = this._names;
         const wgslUniforms = () => [...Object.entries(this._values).map(([name, {type}]) => [name, type]), [n.lightIndex, "float"], [n.intensity, "float"]]
-            .map(([name, type]) => `uniform ${name}: ${WGSL_TYPES[type]};`).join("\n");
+            .map(([name, type]) => `uniform ${name}: ${this._gpu.WGSL_TYPES[type]};`).join("\n");
         const material = new ShaderMaterial(`penumbra${this._serial}Visibility`, this.scene, this.webgpu
-            ? visibilityShadersWGSL(this._visibilityDefinitions, wgslUniforms(), n) : {
+            ? this._gpu.visibilityShadersWGSL(this._visibilityDefinitions, wgslUniforms(), n) : {
             vertexSource: `precision highp float;
 attribute vec3 position;
 attribute vec3 normal;

@@ -7,7 +7,6 @@
 // visibility, and the first light after the second add-on's dispose(). run(material, "webgpu"): on a
 // WebGPUEngine (babylon_package_test.mjs runs it so, unbundled; the bundler tests run WebGL2).
 import {Engine} from "@babylonjs/core/Engines/engine.js";
-import {WebGPUEngine} from "@babylonjs/core/Engines/webgpuEngine.js";
 import {Scene} from "@babylonjs/core/scene.js";
 import {FreeCamera} from "@babylonjs/core/Cameras/freeCamera.js";
 import {RectAreaLight} from "@babylonjs/core/Lights/rectAreaLight.js";
@@ -32,7 +31,8 @@ async function run(kind, engineKind = "webgl2") {
     canvas.height = H;
     document.body.appendChild(canvas);
     let engine;
-    if (engineKind === "webgpu") {
+    if (engineKind === "webgpu") { // (imported here: the bundler tests' pages stay WebGL2's)
+        const {WebGPUEngine} = await import("@babylonjs/core/Engines/webgpuEngine.js");
         engine = new WebGPUEngine(canvas, {antialias: false});
         await engine.initAsync();
     } else {
