@@ -467,8 +467,9 @@ float ${n.shadow}(vec3 normalWorld, vec3 positionWorld, vec3 eye) {
         for (const mesh of casters) for (const [source, world] of placements(mesh)) {
             const deformed = isDeformed(source);
             const key = deformed ? source : source.geometry;
-            const positions = key && (deformed ? source.getPositionData(true, true) : source.getVerticesData("position"));
-            if (positions) drawn.push([this._gpuCasters.geometry(key, positions, source.getIndices(), !deformed), world]);
+            const g = key && this._gpuCasters.geometry(key, () => (deformed ? source.getPositionData(true, true) : source.getVerticesData("position")),
+                                                       () => source.getIndices(), !deformed);
+            if (g) drawn.push([g, world]);
         }
         const {done} = runner.submitPhase("shadow", this._gpuCasters.drawer(runner, drawn, multiply));
         done.then(() => (this.info.error = null), (e) => {

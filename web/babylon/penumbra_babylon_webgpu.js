@@ -129,10 +129,13 @@ export class WebGPUCasters {
         return buffer;
     }
 
-    // `key`: the Geometry (uploaded once) or a deformed mesh (uploaded at every shadow update).
-    geometry(key, positions, indices, once) {
+    // `key`: the Geometry (uploaded once) or a deformed mesh (uploaded at every shadow update);
+    // positionsOf(), indicesOf(): its vertex data, read only when uploaded. null without positions.
+    geometry(key, positionsOf, indicesOf, once) {
         let g = this.geometries.get(key);
         if (g && once) return g;
+        const positions = positionsOf(), indices = indicesOf();
+        if (!positions) return null;
         if (!g) this.geometries.set(key, (g = {position: null, index: null}));
         g.position = this._upload(g.position, Float32Array.from(positions), GPUBufferUsage.VERTEX);
         g.vertices = positions.length / 3;
