@@ -3,9 +3,23 @@
 # (web/babylon/test/, a right-handed scene with the bundle's triangles, light and camera) and checks
 # the add-on's light frame and visibility against the desktop runtime, with three_test.mjs's
 # functions and tolerances (2·bound + q on the interior pixels). Its packaging, materials and
-# several lights: bundlers.cmake (bundler-*, babylon-package).
+# several lights: bundlers.cmake (bundler-*, babylon-package). The material's light term and dispose(): here too.
 add_test(NAME babylon
          COMMAND ${PENUMBRA_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/babylon_test.mjs --web ${PROJECT_SOURCE_DIR}/web
                  --chromium ${PENUMBRA_CHROMIUM} ${bundles})
 set_tests_properties(babylon PROPERTIES LABELS browser SKIP_RETURN_CODE 77 TIMEOUT 120
                      FIXTURES_REQUIRED penumbra_essl300_bundles)
+# "babylon-webgpu": the same checks on Babylon's WebGPUEngine (--engine webgpu: WebGPU through
+# SwiftShader as three-webgpu, the canvas rendered offscreen: offscreen_canvas.mjs) over
+# three-webgpu's wgsl bundles of the same scenes (rect N-buffer, sun Gaussian, rect mipmap, the tree).
+if(TARGET penumbra-export-bundle)
+    set(babylon_webgpu_bundles "")
+    foreach(name IN ITEMS boxes-rect boxes-sun boxes-mipmap tree-rect)
+        list(APPEND babylon_webgpu_bundles ${PROJECT_BINARY_DIR}/target_bundles/three-webgpu-${name})
+    endforeach()
+    add_test(NAME babylon-webgpu
+             COMMAND ${PENUMBRA_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/babylon_test.mjs --web ${PROJECT_SOURCE_DIR}/web --engine webgpu
+                     --chromium ${PENUMBRA_CHROMIUM} ${babylon_webgpu_bundles})
+    set_tests_properties(babylon-webgpu PROPERTIES LABELS browser SKIP_RETURN_CODE 77 TIMEOUT 120
+                         FIXTURES_REQUIRED penumbra_three_webgpu_bundles)
+endif()

@@ -4,55 +4,77 @@
 // functions and tolerances: the add-on's light frame against the desktop's uniforms, and its
 // visibility against the desktop runtime's within 2·bound + q on all interior pixels but 1% of the
 // image; the casters placed by a matrix five ways (Mesh, InstancedMesh, thin instance, skeleton,
-// morph target) agree within three_test.mjs's tolerance. (The material's term, several lights, Standard and PBR materials and dispose(): the
-// bundler-* tests.) Needs web/babylon's npm ci (its @babylonjs/core); the page's shared/ modules are
-// served from web/three, where they live.
+// morph target) agree within three_test.mjs's tolerance; the StandardMaterial's light term is
+// scaled by that visibility (lit-with / lit-without, three_test.mjs's compareRatio); update() after
+// dispose() throws. (Several lights, PBR materials: the bundler-* tests and babylon-package.)
+// --engine webgl2 (the default: Engine, essl300 bundles) or webgpu (WebGPUEngine, WebGPU through
+// SwiftShader as three-webgpu; wgsl bundles). Needs web/babylon's npm ci (its @babylonjs/core);
+// the page's shared/ modules are served from web/three, where they live.
 //
-//   node targets/web/babylon_test.mjs --web web [--chromium PATH] BUNDLE_DIR...
+//   node targets/web/babylon_test.mjs --web web [--engine webgl2|webgpu] [--chromium PATH] BUNDLE_DIR...
 //
-// Exit 0 pass, 1 fail, 77 skip (no chromium), 2 bad arguments.
+// Exit 0 pass, 1 fail, 77 skip (no chromium; no WebGPU adapter only with PENUMBRA_WEBGPU_OPTIONAL=1), 2 bad arguments.
 import fs from "node:fs";
 import path from "node:path";
 import {serve, launchChromium, openPage} from "./harness.mjs";
 import {ltcTables, serveLtc} from "./ltc_tables.mjs";
-import {PIXELS_ALLOWED, R8_STEP, VARIANT_PIXELS_ALLOWED, compareVariants, compareWithDesktop, frameError} from "./three_test.mjs";
+import {PIXELS_ALLOWED, R8_STEP, VARIANT_PIXELS_ALLOWED, compareRatio, compareVariants, compareWithDesktop, frameError} from "./three_test.mjs";
+import {installOffscreenCanvas} from "./offscreen_canvas.mjs";
+import {adapterLine, startWebGPU} from "./wgsl_compile.mjs";
+
+const ENGINES = {webgl2: {name: "Engine (WebGL2)", target: "essl300"}, webgpu: {name: "WebGPUEngine", target: "wgsl"}};
 
 const UNIFORM_TOLERANCE = 1e-5; // relative: float32 of the same double-precision formulas
 
 function usage(message) {
-    console.error(`error: ${message}\nusage: node babylon_test.mjs --web DIR [--chromium PATH] BUNDLE_DIR...`);
+    console.error(`error: ${message}\nusage: node babylon_test.mjs --web DIR [--engine webgl2|webgpu] [--chromium PATH] BUNDLE_DIR...`);
     process.exit(2);
 }
 
 function parseArguments(argv) {
-    const out = {web: null, chromium: "/usr/bin/chromium", bundles: []};
+    const out = {web: null, chromium: "/usr/bin/chromium", engine: "webgl2", bundles: []};
     for (let i = 0; i < argv.length; ++i) {
-        if (argv[i] === "--web" || argv[i] === "--chromium") {
+        if (argv[i] === "--web" || argv[i] === "--chromium" || argv[i] === "--engine") {
             if (i + 1 >= argv.length) usage(`${argv[i]}: missing value`);
             out[argv[i].slice(2)] = argv[++i];
         } else if (argv[i].startsWith("--")) {
-            usage(`unknown argument '${argv[i]}'; allowed: --web, --chromium, bundle folders`);
+            usage(`unknown argument '${argv[i]}'; allowed: --web, --engine, --chromium, bundle folders`);
         } else {
             out.bundles.push(argv[i]);
         }
     }
     if (!out.web || !out.bundles.length) usage("--web and at least one bundle folder are required");
+    if (!ENGINES[out.engine]) usage(`--engine '${out.engine}': allowed ${Object.keys(ENGINES).join(", ")}`);
     return out;
 }
 
-async function checkBundle(browser, port, index, dir, ltc) {
+async function checkBundle(browser, port, index, dir, ltc, engine) {
     const bundle = JSON.parse(fs.readFileSync(path.join(dir, "uniforms.json"), "utf8"));
     const c = bundle.config;
+    if (c.target !== ENGINES[engine].target) {
+        console.log(`FAIL ${dir}: a bundle of target '${c.target}'; ${ENGINES[engine].name} runs ${ENGINES[engine].target} bundles`);
+        return 1;
+    }
     const label = `${bundle.scene} ${c.light} ${c.filter}/${c.packing} ${c.slices}×${c.resolution}² ${bundle.width}x${bundle.height}`;
     const started = Date.now();
-    const {page, problems} = await openPage(browser, `http://127.0.0.1:${port}/web/babylon/test/index.html?bundle=/bundle/${index}/`, "penumbraBabylon",
-                                            undefined, (p) => serveLtc(p, ltc));
+    const {page, problems} = await openPage(browser, `http://127.0.0.1:${port}/web/babylon/test/index.html?bundle=/bundle/${index}/&engine=${engine}`, "penumbraBabylon",
+                                            undefined, async (p) => {
+        await serveLtc(p, ltc);
+        // (headless Chromium loses the WebGPU device when a WebGPU canvas is presented: offscreen_canvas.mjs)
+        if (engine === "webgpu") await p.evaluateOnNewDocument(installOffscreenCanvas);
+    });
     const failures = [];
+    const info = await page.evaluate(() => window.penumbraBabylon.engine());
+    if (info.isWebGPU !== (engine === "webgpu")) failures.push(`the page runs ${info.name}, not ${ENGINES[engine].name}`);
     const uniformError = frameError(await page.evaluate(() => window.penumbraBabylon.frameUniforms()));
     if (!(uniformError <= UNIFORM_TOLERANCE)) failures.push(`the add-on's light frame differs from the desktop's by ${uniformError.toExponential(2)} (relative)`);
-    const v = compareWithDesktop(await page.evaluate(() => window.penumbraBabylon.visibility()), dir, bundle);
-    if (v.outside > PIXELS_ALLOWED * v.pixels)
-        failures.push(`${v.outside} of ${v.geometry} interior pixels differ from the desktop run by more than 2·bound + q (allowed: ${100 * PIXELS_ALLOWED}% of the ${v.pixels} pixels)`);
+    const visibility = await page.evaluate(() => window.penumbraBabylon.visibility());
+    const v = compareWithDesktop(visibility, dir, bundle);
+    // (on WebGPU one pixel a bundle, as three-webgpu; WebGL2's SwiftShader rasterizes the slicing
+    // pass's triangle edges unlike llvmpipe: 1% of the image, as three)
+    const allowed = engine === "webgpu" ? 1 : PIXELS_ALLOWED * v.pixels;
+    if (v.outside > allowed)
+        failures.push(`${v.outside} of ${v.geometry} interior pixels differ from the desktop run by more than 2·bound + q (allowed: ${allowed} of the ${v.pixels} pixels)`);
     // the casters placed five ways agree
     const variants = await page.evaluate(() => window.penumbraBabylon.variants());
     const differing = compareVariants(variants);
@@ -60,13 +82,21 @@ async function checkBundle(browser, port, index, dir, ltc) {
     for (const name of ["instanced", "thin", "skinned", "morphed"])
         if (differing[name] > VARIANT_PIXELS_ALLOWED * v.pixels) failures.push(`the ${name} caster's shadow differs from the moved Mesh's at ${differing[name]} pixels`);
     if (differing.moved === 0) failures.push("moving the casters changed no pixel: the variants prove nothing");
+    // the StandardMaterial's light term times the visibility (after the variants: the casters are back)
+    const ratio = compareRatio(await page.evaluate(() => window.penumbraBabylon.materialRatio()), await page.evaluate(() => window.penumbraBabylon.visibility()));
+    if (ratio.lit === 0) failures.push("the light lights no pixel");
+    if (ratio.outside > PIXELS_ALLOWED * ratio.lit) failures.push(`the lit image is not visibility × unshadowed at ${ratio.outside} of ${ratio.lit} lit pixels`);
+    const disposed = await page.evaluate(() => window.penumbraBabylon.dispose());
+    if (!disposed.refused) failures.push(`update() after dispose() was not refused with a PenumbraError (${disposed.message ?? "no error"})`);
     failures.push(...problems);
     await page.close();
-    console.log(`${failures.length ? "FAIL" : "ok  "} babylon ${label} (${((Date.now() - started) / 1000).toFixed(1)} s)\n` +
+    console.log(`${failures.length ? "FAIL" : "ok  "} babylon ${info.version} ${info.name} ${label} (${((Date.now() - started) / 1000).toFixed(1)} s)\n` +
                 `     light frame vs desktop ${uniformError.toExponential(2)} (relative); visibility vs desktop: mean |Δ| ${v.mean.toExponential(2)}, ` +
                 `max ${v.worst.toFixed(4)}, ${v.outside} of ${v.geometry} interior pixels outside 2·bound + q (${v.shadowed} shadowed; ${v.silhouette} silhouette pixels left out)\n` +
                 `     casters moved by M changed ${differing.moved} pixels; pixels differing from the moved Mesh: instanced ${differing.instanced}, ` +
-                `thin instance ${differing.thin}, skinned ${differing.skinned}, morphed ${differing.morphed}`);
+                `thin instance ${differing.thin}, skinned ${differing.skinned}, morphed ${differing.morphed}\n` +
+                `     material: lit-with / lit-without vs visibility max |Δ| ${ratio.worst.toFixed(4)}, ${ratio.outside} of ${ratio.lit} lit pixels outside 2q + 1e-3; ` +
+                `update() after dispose(): ${disposed.refused ? "refused" : "not refused"}`);
     for (const f of failures) console.log(`FAIL ${f}`);
     return failures.length;
 }
@@ -79,21 +109,33 @@ async function main() {
             console.log(`error: ${path.join(web, need)} is missing: scripts/setup.sh runs npm ci in web/babylon`);
             process.exit(1);
         }
-    const {browser, close} = await launchChromium(args.chromium);
     // (web/babylon/shared/ served from its one source, web/three/: never a stale copy)
     const roots = {web, "web/babylon/shared": path.join(web, "three")};
     args.bundles.forEach((dir, i) => (roots[`bundle/${i}`] = dir));
-    const server = await serve(roots);
+    let browser, port, close;
+    if (args.engine === "webgpu") { // (WebGPU's flags; exits 77 or 1 without an adapter, as three-webgpu)
+        const gpu = await startWebGPU(args.chromium, roots);
+        ({browser, port, close} = gpu);
+        console.log(adapterLine(gpu.adapter));
+    } else {
+        const server = await serve(roots);
+        const chromium = await launchChromium(args.chromium);
+        browser = chromium.browser;
+        port = server.address().port;
+        close = async () => {
+            await chromium.close();
+            server.close();
+        };
+    }
     let failures = 0;
     try {
         const ltc = await ltcTables(); // (Babylon's RectAreaLight fetches them from its CDN: ltc_tables.mjs)
-        for (let i = 0; i < args.bundles.length; ++i) failures += await checkBundle(browser, server.address().port, i, args.bundles[i], ltc);
+        for (let i = 0; i < args.bundles.length; ++i) failures += await checkBundle(browser, port, i, args.bundles[i], ltc, args.engine);
     } catch (e) {
         console.log(`FAIL ${e.message}`);
         failures += 1;
     } finally {
         await close();
-        server.close();
     }
     process.exit(failures ? 1 : 0);
 }

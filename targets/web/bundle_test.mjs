@@ -174,7 +174,7 @@ function sizes(dist) {
 // 3. one page's images: per light (lit with the add-on) / (lit without) is the add-on's visibility, its
 // shadow is there and the rest lit; with several lights, both on is the sum of each alone and the
 // first is unchanged after the second add-on's dispose()
-function check(r) {
+export function check(r) {
     if (r.kind === "r3f") return checkR3F(r);
     const failures = [], stats = [];
     const n = r.width * r.height;
@@ -287,4 +287,4 @@ async function main() {
     process.exit(failures.length ? 1 : 0);
 }
 
-main();
+if (process.argv[1] && path.resolve(process.argv[1]) === fileURLToPath(import.meta.url)) main();

@@ -36,11 +36,13 @@ foreach(case IN ITEMS vite|480 esbuild|120 webpack|240 rollup|240)
 endforeach()
 # "babylon-package" (babylon_package_test.mjs): penumbra-babylon's declarations checked with tsc
 # against @babylonjs/core's, from the tarball in a fresh project; the example (web/babylon/example/,
-# with web/babylon's npm ci) in chromium: its light switch keeps its shadows; screenshots into
-# babylon-package/images.
+# with web/babylon's npm ci) in chromium on both engines (Engine and WebGPUEngine): its light switch
+# keeps its shadows; screenshots into babylon-package/images; and the Babylon bundle page unbundled
+# on WebGPUEngine (two lights on a StandardMaterial and a PBRMaterial, as bundler-* check on WebGL2).
+# (timeout: about 70 s warm alone; the WebGPU half renders through SwiftShader)
 add_test(NAME babylon-package
          COMMAND ${PENUMBRA_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/babylon_package_test.mjs --tarball ${bundle_packs}/penumbra-babylon.tgz
                  --work ${CMAKE_CURRENT_BINARY_DIR}/babylon-package --web ${PROJECT_SOURCE_DIR}/web --chromium ${PENUMBRA_CHROMIUM}
                  --images ${CMAKE_CURRENT_BINARY_DIR}/babylon-package/images)
-set_tests_properties(babylon-package PROPERTIES LABELS "browser;web" SKIP_RETURN_CODE 77 TIMEOUT 150
+set_tests_properties(babylon-package PROPERTIES LABELS "browser;web" SKIP_RETURN_CODE 77 TIMEOUT 300
                      FIXTURES_REQUIRED penumbra_web_packs)

@@ -1,5 +1,5 @@
 // copy_shared.mjs — puts into shared/ the modules penumbra-babylon shares with penumbra-three, from
-// their one place, web/three/ (the layout runner, the light frame, the emission's files and the
+// their one place, web/three/ (the layout runners, WebGL2's and WebGPU's, the light frame, the emission's files and the
 // snippet's parameters, the WebAssembly emitter, the shipped emissions): npm runs it as "prepare"
 // (npm ci / npm install here) and, with --pack, as "prepack" (npm pack / npm publish), which also
 // puts in the emitter's .wasm (built by `cmake --build build --target penumbra-emitter-wasm`; another
@@ -11,7 +11,7 @@ import {fileURLToPath} from "node:url";
 const here = path.dirname(fileURLToPath(import.meta.url));
 const root = path.join(here, "../..");
 const three = path.join(root, "web/three");
-export const SHARED = ["penumbra_runner.js", "light_frame.js", "penumbra_emission.js", "penumbra_emission.d.ts", "penumbra_emitter.js",
+export const SHARED = ["penumbra_runner.js", "penumbra_webgpu_runner.js", "light_frame.js", "penumbra_emission.js", "penumbra_emission.d.ts", "penumbra_emitter.js",
                        "penumbra_emitter_node.js", "penumbra_emitter.d.ts", "emissions.js", "emissions"];
 const pack = process.argv.includes("--pack");
 

@@ -12,7 +12,11 @@ export {EMISSIONS, PenumbraError, type Emission, type EmissionConfig, type Emiss
 import type {Emission} from "./shared/penumbra_emission.js";
 
 export interface PenumbraShadowsOptions {
-    /** Default "rect-nbuffer-16x512" (RectAreaLight) or "sun-nbuffer-16x512" (DirectionalLight); only essl300 emissions. */
+    /**
+     * Default "rect-nbuffer-16x512" (RectAreaLight) or "sun-nbuffer-16x512" (DirectionalLight). A shipped
+     * emission's name picks its essl300 files on Engine (WebGL2) and its wgsl files on WebGPUEngine; a folder
+     * or an emission in memory must be of the engine's target (essl300 or wgsl); a configuration is emitted for it.
+     */
     emission?: Emission;
     /**
      * A shadow quality tier (penumbra-gen --profile): "balanced" (the default) or "large" (lights x4 and up:
@@ -31,6 +35,8 @@ export interface PenumbraShadowsOptions {
 }
 
 export interface PenumbraShadowsInfo {
+    /** WebGPUEngine: WebGPU's validation message of the last shadow phase that failed, else null. */
+    error?: string | null;
     shadowUpdates: number;
     lastShadowMs: number;
     casters: number;
@@ -41,14 +47,16 @@ export interface PenumbraShadowsInfo {
 
 export class PenumbraShadows {
     /**
-     * Loads the emission and attaches an add-on to `light` on a WebGL2 `Engine` (WebGPUEngine is
-     * refused with a PenumbraError): one add-on per shadowed light.
+     * Loads the emission and attaches an add-on to `light` on a WebGL2 `Engine` or an initialized
+     * `WebGPUEngine` (after `await engine.initAsync()`): one add-on per shadowed light.
      */
     static load(engine: AbstractEngine, scene: Scene, light: RectAreaLight | DirectionalLight,
                 options?: PenumbraShadowsOptions): Promise<PenumbraShadows>;
     private constructor();
 
     readonly engine: AbstractEngine;
+    /** true on WebGPUEngine (the wgsl emission, WGSL in the materials), false on Engine (WebGL2). */
+    readonly webgpu: boolean;
     readonly scene: Scene;
     readonly light: RectAreaLight | DirectionalLight;
     readonly kind: "rect" | "sun";

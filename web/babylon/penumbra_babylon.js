@@ -1,5 +1,6 @@
 // penumbra_babylon.js — soft shadows for a Babylon.js RectAreaLight (or a DirectionalLight used as a
-// sun with an angular size) from Penumbra's occlusion textures, on Babylon's WebGL2 Engine:
+// sun with an angular size) from Penumbra's occlusion textures, on Babylon's WebGL2 Engine and
+// WebGPUEngine:
 //
 //   import {PenumbraShadows} from "penumbra-babylon";
 //   const shadows = await PenumbraShadows.load(engine, scene, rectLight);
@@ -10,6 +11,8 @@
 //   - the emission (essl300 GLSL + layout.json: one shipped in emissions/, a folder, an in-memory one,
 //     or a configuration emitted in the page) runs on the engine's own WebGL2 context through the
 //     layout runner shared with penumbra-three (shared/penumbra_runner.js), which follows layout.json;
+//     on WebGPUEngine the wgsl emission runs on the engine's GPUDevice through the WebGPU layout
+//     runner shared with penumbra-three (shared/penumbra_webgpu_runner.js; penumbra_babylon_webgpu.js);
 //     its "shadow" phase (slicing + prefilter) draws the casters (their vertex data placed by their
 //     world matrices, instances and thin instances, skinned and morphed ones from the CPU) whenever
 //     the light, a caster or a receiver moved;
@@ -19,6 +22,7 @@
 //     (lightFragment) where Babylon's own shadow generators scale the light's diffuse, specular,
 //     clear coat and sheen terms; other lights are left alone, and several add-ons (one per light)
 //     share a material, each under its own names (penumbra<N>_…);
+//     on WebGPUEngine the same plugin injects WGSL (Babylon's WGSL materials, ShaderLanguage.WGSL);
 //   - raw GL is followed by engine.wipeCaches(true), so Babylon's state cache stays right.
 import {MaterialPluginBase} from "@babylonjs/core/Materials/materialPluginBase.js";
 import {ShaderMaterial} from "@babylonjs/core/Materials/shaderMaterial.js";
@@ -107,8 +111,9 @@ class PenumbraShadowsPlugin extends MaterialPluginBase {
         return "PenumbraShadowsPlugin";
     }
 
+    // ShaderLanguage.GLSL (0) on WebGL2, ShaderLanguage.WGSL (1) on WebGPUEngine: the language of the add-on's snippet
     isCompatible(shaderLanguage) {
-        return shaderLanguage === 0; // ShaderLanguage.GLSL (WebGL2); the WGSL materials of WebGPUEngine are not supported yet
+        return shaderLanguage === (this._addon.webgpu ? 1 : 0);
     }
 
     prepareDefines(defines) {
@@ -121,8 +126,10 @@ class PenumbraShadowsPlugin extends MaterialPluginBase {
 
     // The snippet's values, the light's index and the intensity in the material's uniform buffer
     // (Babylon's documented way; the snippet's own declarations of them are taken out).
+    // (WGSL: Babylon declares the uniform buffer's members itself, read as uniforms.<name>)
     getUniforms() {
         const a = this._addon;
+        if (a.webgpu) return {ubo: a._uboUniforms};
         return {ubo: a._uboUniforms, fragment: a._uboUniforms.map((u) => `uniform ${u.type} ${u.name};`).join("\n")};
     }
 
@@ -130,14 +137,18 @@ class PenumbraShadowsPlugin extends MaterialPluginBase {
     // light loop, before `aggShadow+=shadow;` (where each light's shadow factor is final), this
     // light's factor times the visibility. Light blocks are told apart by the index in their
     // LIGHTMAPEXCLUDED<index> define further on, which the regular expression captures as $1.
+    // Babylon's WGSL light loop (ShadersWGSL/ShadersInclude/lightFragment) has the same line and
+    // define; there the values are the uniform buffer's (uniforms.), the eye the scene's (scene.).
     getCustomCode(shaderType) {
-        const a = this._addon;
+        const a = this._addon, n = a._names;
         if (shaderType !== "fragment" || a.disposed) return null;
+        const call = a.webgpu
+            ? `if (uniforms.${n.lightIndex}==f32($1)) {shadow*=${n.shadow}(normalW,fragmentInputs.vPositionW,scene.vEyePosition.xyz);}`
+            : `if (${n.lightIndex}==float($1)) shadow*=${n.shadow}(normalW,vPositionW,vEyePosition.xyz);`;
         return {
             CUSTOM_FRAGMENT_DEFINITIONS: a._fragmentDefinitions,
             // (each add-on's key differs by its always-true look-ahead: keys of equal text would be joined)
-            [`!aggShadow\\+=shadow;(?=[\\s\\S]*?LIGHTMAPEXCLUDED(\\d+))(?!${a._names.shadow})`]:
-                `if (${a._names.lightIndex}==float($1)) shadow*=${a._names.shadow}(normalW,vPositionW,vEyePosition.xyz);\naggShadow+=shadow;`,
+            [`!aggShadow\\+=shadow;(?=[\\s\\S]*?LIGHTMAPEXCLUDED(\\d+))(?!${n.shadow})`]: `${call}\naggShadow+=shadow;`,
         };
     }
 
@@ -157,10 +168,16 @@ export class PenumbraShadows {
     // configuration) and returns the add-on attached to `engine`, `scene` and `light`.
     static async load(engine, scene, light, options = {}) {
         if (!engine || typeof engine.getClassName !== "function") fail("the first argument must be a Babylon.js Engine");
-        if (engine.isWebGPU) fail("WebGPUEngine is not supported yet (its materials are WGSL); use Engine (WebGL2)");
-        if (!engine._gl || engine.webGLVersion < 2) fail("needs a WebGL2 Engine");
         if (!scene || typeof scene.getClassName !== "function" || scene.getClassName() !== "Scene") fail("the second argument must be a Babylon.js Scene");
         const kind = kindOf(light);
+        if (engine.isWebGPU) {
+            if (!engine._device) fail("the WebGPUEngine has no GPUDevice yet: await engine.initAsync() first");
+            // (imported here: bundlers split it off, and WebGL2 pages never load it)
+            const gpu = await import("./penumbra_babylon_webgpu.js");
+            const runner = await gpu.loadRunner(engine, requestedEmission(options, kind), kind, options.wasm ?? null);
+            return new PenumbraShadows(engine, scene, light, {...options, runner, gpu});
+        }
+        if (!engine._gl || engine.webGLVersion < 2) fail("needs a WebGL2 Engine or a WebGPUEngine");
         const files = await loadEmissionFiles(requestedEmission(options, kind), kind, options.wasm ?? null, "essl300");
         const runner = LayoutRunner.fromEmission(engine._gl, files);
         runner.sources = files.files;
@@ -172,6 +189,9 @@ export class PenumbraShadows {
         if (!options.runner) fail("no emission: use `await PenumbraShadows.load(engine, scene, light, options)`");
         const o = {...DEFAULTS, ...options};
         this.engine = engine;
+        this.webgpu = !!engine.isWebGPU;
+        if (this.webgpu && !options.gpu) fail("no WebGPU module: use `await PenumbraShadows.load(engine, scene, light, options)`");
+        this._gpu = options.gpu ?? null; // penumbra_babylon_webgpu.js on WebGPUEngine
         this.scene = scene;
         this.light = light;
         this.kind = kindOf(light);
@@ -190,7 +210,8 @@ export class PenumbraShadows {
                        shadow: `penumbra${this._serial}Shadow`, visibility: this._rename("penumbraVisibility")};
         this._casters = new Set();
         this._plugins = new Map(); // material → its plugin
-        this._geometries = new Map(); // Geometry (or deformed mesh) → its GPU buffers
+        this._geometries = new Map(); // Geometry (or deformed mesh) → its GPU buffers (WebGL2)
+        this._gpuCasters = this.webgpu ? new this._gpu.WebGPUCasters(engine._device) : null; // (WebGPU)
         this._signature = null;
         this._setRunner(options.runner);
     }
@@ -202,30 +223,40 @@ export class PenumbraShadows {
             fail(`the emission is for a '${layout.config.light}' light but the light is a ${this.light.getClassName()} (needs '${wanted}')`);
         this.runner = runner;
         this.config = layout.config;
-        const snippet = runner.sources["penumbra_visibility.glsl"] || fail("the emission has no penumbra_visibility.glsl");
+        const file = this.webgpu ? "penumbra_visibility.wgsl" : "penumbra_visibility.glsl";
+        const snippet = runner.sources[file] || fail(`the emission has no ${file}`);
         const tangentClip = layout.config.tangent_clip !== false;
-        // (without its float precision line: Babylon puts its own first only where the shader has none)
-        this._snippet = this._rename(snippet.replace(/^#version[^\n]*\n/, "").replace(/^precision highp float;\n/m, ""));
         this._uniformNames = {}; // the emission's name → ours
         this._values = {}; // ours → {type, value}
         this._samplerNames = [];
         this._textures = {};
-        for (const {name, type} of snippetParameters(layout)) {
-            const ours = this._rename(name);
-            if (!snippet.includes(name)) fail(`penumbra_visibility.glsl has no uniform '${name}' that layout.json lists`);
-            this._uniformNames[name] = ours;
-            if (type.startsWith("sampler")) {
+        for (const p of snippetParameters(layout)) {
+            const ours = this._rename(p.name);
+            if (!snippet.includes(p.name)) fail(`${file} has no parameter '${p.name}' that layout.json lists`);
+            this._uniformNames[p.name] = ours;
+            if (p.type.startsWith("sampler")) {
                 this._samplerNames.push(ours);
-                this._textures[ours] = this._wrap(runner.texture(name));
+                const t = runner.texture(p.texture ?? p.name);
+                this._textures[ours] = this.webgpu ? this._gpu.wrapTexture(this.engine, this.scene, t, p.sampling ?? t.desc) : this._wrap(t);
             } else {
-                this._values[ours] = {type, value: null};
+                this._values[ours] = {type: p.type, value: null};
             }
         }
         this._valueNames = [...Object.keys(this._values), this._names.lightIndex, this._names.intensity];
         const n = this._names;
-        // the visibility at a fragment: the world normal turned to the side the camera sees (the
-        // side whose light the tangent clip keeps); an emission without the clip looks up the whole light
-        this._shadowFunction = `
+        if (this.webgpu) {
+            // WGSL (penumbra_babylon_webgpu.js): the snippet reads the values from the material's
+            // uniform buffer (uniforms.<name>), loaded into its private variables by its loader
+            const code = this._gpu.wgslForBabylon(this._rename(snippet));
+            const load = (/\bfn\s+(penumbra\d*_loadVisibility)\s*\(/.exec(code) || [])[1] ?? null;
+            this._fragmentDefinitions = `${code}\n${this._gpu.wgslShadowFunction(n, load, n.visibility, tangentClip)}`;
+            this._visibilityDefinitions = this._fragmentDefinitions;
+        } else {
+            // (without its float precision line: Babylon puts its own first only where the shader has none)
+            this._snippet = this._rename(snippet.replace(/^#version[^\n]*\n/, "").replace(/^precision highp float;\n/m, ""));
+            // the visibility at a fragment: the world normal turned to the side the camera sees (the
+            // side whose light the tangent clip keeps); an emission without the clip looks up the whole light
+            this._shadowFunction = `
 uniform float ${n.lightIndex};
 uniform float ${n.intensity};
 float ${n.shadow}(vec3 normalWorld, vec3 positionWorld, vec3 eye) {
@@ -235,10 +266,11 @@ float ${n.shadow}(vec3 normalWorld, vec3 positionWorld, vec3 eye) {
 	return mix(1.0, v, ${n.intensity});
 }
 `;
-        // (the material's copy: the values' declarations come from the uniform buffer)
-        const declared = new RegExp(`^uniform \\w+ (${[...Object.keys(this._values)].join("|")});[^\\n]*\\n`, "gm");
-        this._fragmentDefinitions = `${this._snippet.replace(declared, "")}\n${this._shadowFunction.replace(/^uniform [^\n]*\n/gm, "")}`;
-        this._visibilityDefinitions = `${this._snippet}\n${this._shadowFunction}`;
+            // (the material's copy: the values' declarations come from the uniform buffer)
+            const declared = new RegExp(`^uniform \\w+ (${[...Object.keys(this._values)].join("|")});[^\\n]*\\n`, "gm");
+            this._fragmentDefinitions = `${this._snippet.replace(declared, "")}\n${this._shadowFunction.replace(/^uniform [^\n]*\n/gm, "")}`;
+            this._visibilityDefinitions = `${this._snippet}\n${this._shadowFunction}`;
+        }
         const sizes = {float: 1, vec2: 2, vec3: 3, vec4: 4, mat4: 16};
         this._uboUniforms = [{name: this._names.lightIndex, size: 1, type: "float"}, {name: this._names.intensity, size: 1, type: "float"},
                              ...Object.entries(this._values).map(([name, {type}]) => ({name, type, size: sizes[type] ?? fail(`the snippet's uniform ${name} has type ${type}, which this add-on does not set`)}))];
@@ -409,7 +441,9 @@ float ${n.shadow}(vec3 normalWorld, vec3 positionWorld, vec3 eye) {
     }
 
     // The shadow phase on the engine's context, from a default GL state; Babylon's caches wiped after.
+    // On WebGPU: submitted on the engine's queue now, before Babylon submits the frame that samples it.
     _renderShadow(casters, frame) {
+        if (this.webgpu) return this._renderShadowWebGPU(casters, frame);
         const gl = this.engine._gl, runner = this.runner;
         gl.bindVertexArray(null);
         for (const cap of [gl.SCISSOR_TEST, gl.STENCIL_TEST, gl.POLYGON_OFFSET_FILL, gl.SAMPLE_ALPHA_TO_COVERAGE, gl.RASTERIZER_DISCARD]) gl.disable(cap);
@@ -424,6 +458,24 @@ float ${n.shadow}(vec3 normalWorld, vec3 positionWorld, vec3 eye) {
         gl.bindVertexArray(null);
         gl.pixelStorei(gl.UNPACK_ALIGNMENT, 4);
         this.engine.wipeCaches(true);
+    }
+
+    _renderShadowWebGPU(casters, frame) {
+        const runner = this.runner;
+        runner.setUniforms(frame.uniforms);
+        const drawn = [];
+        for (const mesh of casters) for (const [source, world] of placements(mesh)) {
+            const deformed = isDeformed(source);
+            const key = deformed ? source : source.geometry;
+            const g = key && this._gpuCasters.geometry(key, () => (deformed ? source.getPositionData(true, true) : source.getVerticesData("position")),
+                                                       () => source.getIndices(), !deformed);
+            if (g) drawn.push([g, world]);
+        }
+        const {done} = runner.submitPhase("shadow", this._gpuCasters.drawer(runner, drawn, multiply));
+        done.then(() => (this.info.error = null), (e) => {
+            this.info.error = e.message;
+            console.error(`PenumbraShadows: the shadow phase failed: ${e.message}`);
+        });
     }
 
     // Every placement with each "...FromWorld" matrix of the program times its world matrix.
@@ -499,7 +551,7 @@ float ${n.shadow}(vec3 normalWorld, vec3 positionWorld, vec3 eye) {
             target.render();
             const rgba = await target.readPixels();
             const out = new Float32Array(width * height);
-            for (let i = 0; i < out.length; ++i) out[i] = rgba[4 * i];
+            for (let i = 0; i < out.length; ++i) out[i] = rgba[4 * i]; // (bottom row first on both engines: Babylon's readPixels)
             return out;
         } finally {
             target.dispose();
@@ -507,7 +559,11 @@ float ${n.shadow}(vec3 normalWorld, vec3 positionWorld, vec3 eye) {
     }
 
     _makeVisibilityMaterial() {
-        const material = new ShaderMaterial(`penumbra${this._serial}Visibility`, this.scene, {
+        const n = this._names;
+        const wgslUniforms = () => [...Object.entries(this._values).map(([name, {type}]) => [name, type]), [n.lightIndex, "float"], [n.intensity, "float"]]
+            .map(([name, type]) => `uniform ${name}: ${this._gpu.WGSL_TYPES[type]};`).join("\n");
+        const material = new ShaderMaterial(`penumbra${this._serial}Visibility`, this.scene, this.webgpu
+            ? this._gpu.visibilityShadersWGSL(this._visibilityDefinitions, wgslUniforms(), n) : {
             vertexSource: `precision highp float;
 attribute vec3 position;
 attribute vec3 normal;
@@ -532,7 +588,7 @@ void main(void) {
 	gl_FragColor = vec4(v, v, v, 1.0);
 }`,
         }, {attributes: ["position", "normal"], uniforms: ["world", "viewProjection", "penumbraEye", ...this._valueNames],
-            samplers: this._samplerNames});
+            samplers: this._samplerNames, shaderLanguage: this.webgpu ? 1 /* ShaderLanguage.WGSL */ : 0});
         material.backFaceCulling = false;
         material.onBindObservable.add(() => {
             const effect = material.getEffect();
@@ -556,6 +612,7 @@ void main(void) {
             if (g.index) gl.deleteBuffer(g.index);
         }
         this._geometries.clear();
+        if (this._gpuCasters) this._gpuCasters.dispose();
         for (const plugin of this._plugins.values()) plugin.markAllDefinesAsDirty();
         this._plugins.clear();
         if (this._visibilityMaterial) this._visibilityMaterial.dispose();
@@ -567,6 +624,6 @@ void main(void) {
         this.runner.dispose();
         this.runner = null;
         this._casters.clear();
-        this.engine.wipeCaches(true);
+        if (!this.webgpu) this.engine.wipeCaches(true);
     }
 }

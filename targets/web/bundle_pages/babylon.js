@@ -4,7 +4,8 @@
 // (DirectionalLight), one add-on each on the same material, and a box casting (on a layer the
 // camera does not render, so that every pixel is ground). window.bundleCheck.run(material) returns the
 // images the test compares: each light alone without and with its shadow, both on, each add-on's
-// visibility, and the first light after the second add-on's dispose().
+// visibility, and the first light after the second add-on's dispose(). run(material, "webgpu"): on a
+// WebGPUEngine (babylon_package_test.mjs runs it so, unbundled; the bundler tests run WebGL2).
 import {Engine} from "@babylonjs/core/Engines/engine.js";
 import {Scene} from "@babylonjs/core/scene.js";
 import {FreeCamera} from "@babylonjs/core/Cameras/freeCamera.js";
@@ -23,13 +24,20 @@ import {PenumbraShadows, PenumbraError} from "penumbra-babylon";
 const W = 96, H = 96;
 const frame = () => new Promise((resolve) => requestAnimationFrame(resolve));
 
-// kind: "standard" or "pbr" (StandardMaterial or PBRMaterial on the ground)
-async function run(kind) {
+// kind: "standard" or "pbr" (StandardMaterial or PBRMaterial on the ground); engineKind: "webgl2" or "webgpu"
+async function run(kind, engineKind = "webgl2") {
     const canvas = document.createElement("canvas");
     canvas.width = W;
     canvas.height = H;
     document.body.appendChild(canvas);
-    const engine = new Engine(canvas, false, {preserveDrawingBuffer: true});
+    let engine;
+    if (engineKind === "webgpu") { // (imported here: the bundler tests' pages stay WebGL2's)
+        const {WebGPUEngine} = await import("@babylonjs/core/Engines/webgpuEngine.js");
+        engine = new WebGPUEngine(canvas, {antialias: false});
+        await engine.initAsync();
+    } else {
+        engine = new Engine(canvas, false, {preserveDrawingBuffer: true});
+    }
     const scene = new Scene(engine);
     scene.clearColor = new Color4(0, 0, 0, 1);
     const camera = new FreeCamera("camera", new Vector3(0, 7, 5), scene);
@@ -90,7 +98,7 @@ async function run(kind) {
         const rgba = await target.readPixels();
         return Array.from({length: W * H}, (_, i) => (rgba[4 * i] + rgba[4 * i + 1] + rgba[4 * i + 2]) / 3);
     };
-    const out = {width: W, height: H, library: `@babylonjs/core ${Engine.Version}, ${material.getClassName()}`, lights: ["RectAreaLight", "DirectionalLight (sun)"]};
+    const out = {width: W, height: H, library: `@babylonjs/core ${Engine.Version} ${engine.name}, ${material.getClassName()}`, lights: ["RectAreaLight", "DirectionalLight (sun)"]};
     out.unshadowed = [await image([1, 0], false), await image([0, 1], false)];
     out.shadowed = [await image([1, 0], true), await image([0, 1], true)];
     out.both = await image([1, 1], true);
@@ -111,4 +119,4 @@ async function run(kind) {
     return out;
 }
 
-window.bundleCheck = {run: (kind) => run(kind).catch((e) => ({error: `${e.message}\n${e.stack}`})), materials: ["standard", "pbr"]};
+window.bundleCheck = {run: (kind, engineKind) => run(kind, engineKind).catch((e) => ({error: `${e.message}\n${e.stack}`})), materials: ["standard", "pbr"]};

@@ -1,10 +1,11 @@
 // example.js — the add-on's example: a Babylon.js scene (a ground, a few shapes, instances and thin
 // instances of posts) lit by a RectAreaLight or a sun (DirectionalLight) with Penumbra's soft
-// shadows, an ArcRotateCamera, and buttons to switch the light and the shadows off and on.
-// Babylon's WebGPUEngine is not supported by the add-on yet (its materials are WGSL), so there is
-// no engine switch. URL parameter ?size=WxH: a fixed canvas size (screenshots).
+// shadows, an ArcRotateCamera, and buttons to switch the light, the shadows off and on, and the
+// engine (Engine, WebGL2, or WebGPUEngine: the page reloads with ?engine=webgl2|webgpu).
+// URL parameter ?size=WxH: a fixed canvas size (screenshots).
 // window.example (automation): ready, set({light, mode}), render(), info(), scene.
 import {Engine} from "@babylonjs/core/Engines/engine.js";
+import {WebGPUEngine} from "@babylonjs/core/Engines/webgpuEngine.js";
 import {Scene} from "@babylonjs/core/scene.js";
 import {ArcRotateCamera} from "@babylonjs/core/Cameras/arcRotateCamera.js";
 import "@babylonjs/core/Cameras/Inputs/arcRotateCameraPointersInput.js";
@@ -32,7 +33,24 @@ if (fixedSize) {
     canvas.style.width = `${fixedSize[0]}px`;
     canvas.style.height = `${fixedSize[1]}px`;
 }
-const engine = new Engine(canvas, true, {preserveDrawingBuffer: true});
+// the engine: WebGPUEngine where asked for and the browser has WebGPU, else Engine (WebGL2)
+const engineKind = params.get("engine") === "webgpu" ? "webgpu" : "webgl2";
+const status = document.getElementById("status");
+let engine;
+if (engineKind === "webgpu" && navigator.gpu) {
+    engine = new WebGPUEngine(canvas, {antialias: true});
+    await engine.initAsync();
+} else {
+    if (engineKind === "webgpu") status.textContent = "no WebGPU in this browser: WebGL2 ";
+    engine = new Engine(canvas, true, {preserveDrawingBuffer: true});
+}
+for (const button of document.querySelectorAll("[data-engine]")) {
+    button.disabled = button.dataset.engine === (engine.isWebGPU ? "webgpu" : "webgl2");
+    button.onclick = () => {
+        params.set("engine", button.dataset.engine);
+        location.search = params.toString();
+    };
+}
 const scene = new Scene(engine);
 scene.clearColor = new Color4(0.12, 0.14, 0.16, 1);
 const camera = new ArcRotateCamera("camera", -Math.PI / 3, 1.0, 16, new Vector3(0, 1, 0), scene);
@@ -87,7 +105,6 @@ sun.intensity = 1.6;
 
 const state = {light: params.get("light") === "sun" ? "sun" : "rect", mode: "penumbra"};
 let shadows = null;
-const status = document.getElementById("status");
 
 let attaching = 0;
 async function attach() {
@@ -118,7 +135,7 @@ function render() {
     if (!shadows) return scene.render();
     shadows.update();
     scene.render();
-    status.textContent = `${state.light}: ${shadows.info.casters} casters, ${shadows.info.receivers} receivers, last shadow update ${shadows.info.lastShadowMs.toFixed(1)} ms`;
+    status.textContent = `${engine.isWebGPU ? "WebGPU" : "WebGL2"}, ${state.light}: ${shadows.info.casters} casters, ${shadows.info.receivers} receivers, last shadow update ${shadows.info.lastShadowMs.toFixed(1)} ms`;
 }
 
 for (const button of document.querySelectorAll("[data-light]")) button.onclick = () => set({light: button.dataset.light});
@@ -129,4 +146,4 @@ const ready = attach().then(async () => {
     await scene.whenReadyAsync();
     engine.runRenderLoop(render);
 });
-window.example = {ready, set, render, scene, info: () => ({light: state.light, mode: state.mode, shadows: shadows.info})};
+window.example = {ready, set, render, scene, info: () => ({engine: engine.isWebGPU ? "webgpu" : "webgl2", light: state.light, mode: state.mode, shadows: shadows.info})};

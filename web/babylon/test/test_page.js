@@ -3,11 +3,17 @@
 // normals, one StandardMaterial, casting and receiving), the same light (a RectAreaLight whose axes
 // are the rows of the exported penumbra_lightFromWorld, or a DirectionalLight for the sun), the same
 // camera (a right-handed scene: glm::lookAt / glm::perspective), and the add-on with the bundle's
-// emission folder. window.penumbraBabylon (targets/web/babylon_test.mjs):
+// emission folder; ?engine=webgpu: on a WebGPUEngine (the bundle's emission then a wgsl one).
+// window.penumbraBabylon (targets/web/babylon_test.mjs):
 //   frameUniforms()   the add-on's light-frame uniforms and the bundle's
 //   visibility()      the add-on's visibility at the bundle's size, bottom row first
 //   variants()        the visibility with the casters placed by a matrix M five ways (below)
+//   materialRatio()   the StandardMaterial lit with the add-on over lit without it, per pixel (0 where unlit)
+//   dispose()         {refused}: update() after dispose() throws a PenumbraError
 import {Engine} from "@babylonjs/core/Engines/engine.js";
+import {WebGPUEngine} from "@babylonjs/core/Engines/webgpuEngine.js";
+import {RenderTargetTexture} from "@babylonjs/core/Materials/Textures/renderTargetTexture.js";
+import {Color4} from "@babylonjs/core/Maths/math.color.js";
 import {Scene} from "@babylonjs/core/scene.js";
 import {FreeCamera} from "@babylonjs/core/Cameras/freeCamera.js";
 import {RectAreaLight} from "@babylonjs/core/Lights/rectAreaLight.js";
@@ -23,7 +29,7 @@ import {MorphTarget} from "@babylonjs/core/Morph/morphTarget.js";
 import {VertexData} from "@babylonjs/core/Meshes/mesh.vertexData.js";
 import {StandardMaterial} from "@babylonjs/core/Materials/standardMaterial.js";
 import {Matrix, Quaternion, Vector3} from "@babylonjs/core/Maths/math.vector.js";
-import {PenumbraShadows} from "../penumbra_babylon.js";
+import {PenumbraError, PenumbraShadows} from "../penumbra_babylon.js";
 
 async function fetchOk(url) {
     const response = await fetch(url);
@@ -32,13 +38,20 @@ async function fetchOk(url) {
 }
 
 async function start() {
-    const base = new URLSearchParams(location.search).get("bundle");
+    const query = new URLSearchParams(location.search);
+    const base = query.get("bundle"), webgpu = query.get("engine") === "webgpu";
     const bundle = await (await fetchOk(base + "uniforms.json")).json();
     const triangles = new Float32Array(await (await fetchOk(base + "mesh.f32")).arrayBuffer());
     const canvas = document.getElementById("view");
     canvas.width = bundle.width;
     canvas.height = bundle.height;
-    const engine = new Engine(canvas, false);
+    let engine;
+    if (webgpu) {
+        engine = new WebGPUEngine(canvas, {antialias: false});
+        await engine.initAsync();
+    } else {
+        engine = new Engine(canvas, false);
+    }
     const scene = new Scene(engine);
     scene.useRightHandedSystem = true; // the desktop's conventions (glm)
 
@@ -81,11 +94,64 @@ async function start() {
     shadows.update();
     const render = async () => Array.from(await shadows.renderVisibility(camera, bundle.width, bundle.height));
     return {
+        engine: () => ({name: engine.name, isWebGPU: !!engine.isWebGPU, version: Engine.Version}),
         variants: () => placementVariants(scene, mesh, shadows, render),
+        materialRatio: () => materialRatio(scene, camera, mesh, shadows, bundle),
+        dispose: () => {
+            shadows.dispose();
+            try {
+                shadows.update();
+                return {refused: false};
+            } catch (e) {
+                return {refused: e instanceof PenumbraError, message: e.message};
+            }
+        },
         frameUniforms: () => ({computed: shadows._frame.uniforms, bundle: bundle.uniforms}),
         visibility: async () => Array.from(await shadows.renderVisibility(camera, bundle.width, bundle.height)),
         info: () => ({...shadows.info, config: shadows.config}),
     };
+}
+
+// The material's light term: the StandardMaterial's image (its red channel, float) with the
+// add-on enabled over the one with it disabled ({ratio, unshadowed}, as three_test.mjs's compareRatio reads).
+async function materialRatio(scene, camera, mesh, shadows, bundle) {
+    const target = new RenderTargetTexture("lit", {width: bundle.width, height: bundle.height}, scene,
+                                           {generateMipMaps: false, type: 1 /* Constants.TEXTURETYPE_FLOAT */});
+    target.activeCamera = camera;
+    target.renderList = [mesh];
+    target.clearColor = new Color4(0, 0, 0, 1);
+    mesh.material.specularColor.set(0, 0, 0); // (the diffuse term alone: lit-with / lit-without is the visibility)
+    mesh.material.twoSidedLighting = true; // (the bundle's faces are lit on the side the camera sees, as the visibility)
+    const image = async (enabled) => {
+        shadows.enabled = enabled;
+        shadows.update();
+        for (let i = 0; !target.isReadyForRendering() || !scene.isReady(); ++i) {
+            if (i > 600) throw new Error("the scene's materials never got ready");
+            await new Promise((resolve) => requestAnimationFrame(resolve));
+        }
+        scene.render(); // (the frame updates the lights' uniforms)
+        target.render();
+        return await target.readPixels();
+    };
+    // (the light scaled so that the brightest pixel is 0.7: the material clamps its diffuse term at
+    // 1, which would break the ratio, and a dim image has few pixels to compare)
+    let without = await image(false);
+    const light = shadows.light, intensity = light.intensity;
+    const brightest = without.reduce((m, v, i) => (i % 4 === 0 ? Math.max(m, v) : m), 0);
+    if (brightest > 0) {
+        light.intensity = intensity * 0.7 / brightest;
+        without = await image(false);
+    }
+    const lit = await image(true);
+    light.intensity = intensity;
+    shadows.enabled = true;
+    target.dispose();
+    const n = bundle.width * bundle.height, ratio = new Array(n).fill(0), unshadowed = new Array(n).fill(0);
+    for (let o = 0; o < n; ++o) { // (rows as renderVisibility's: bottom row first)
+        unshadowed[o] = without[4 * o];
+        ratio[o] = without[4 * o] > 1e-3 ? lit[4 * o] / without[4 * o] : 0;
+    }
+    return {ratio, unshadowed};
 }
 
 // The casters placed by M (a shift across the scene) five ways, under one receiver (the triangles
