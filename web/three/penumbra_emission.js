@@ -47,7 +47,8 @@ export async function loadEmissionFiles(emission, kind, wasm, target) {
         const t = em.layout && em.layout.config && em.layout.config.target;
         if (t && t !== target)
             fail(`the emission's target is '${t}', but this renderer runs '${target}' (penumbra-gen --target ${target}` +
-                 `${target === "wgsl" ? " for WebGPURenderer" : " for WebGLRenderer"})`);
+                 `${target === "wgsl" ? " for WebGPU: three's WebGPURenderer, Babylon's WebGPUEngine" :
+                                        " for WebGL2: three's WebGLRenderer, Babylon's Engine"})`);
         if (typeof em.files[snippet] !== "string") fail(`the emission has no ${snippet}`);
         return em;
     };
