@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Compile cost of a translation unit that includes the core and calls emit(), at -O2 (README.md,
+# Compile cost of a translation unit that includes the core and calls emit(), at -O2 (docs/getting-started.md,
 # "Compile cost"): header-only, then with PENUMBRA_SEPARATE_IMPLEMENTATION (the caller only declares
 # emit(); the emitter is compiled once, in the PENUMBRA_IMPLEMENTATION file). Prints wall and CPU
 # seconds and peak memory of each compile, and the load average (numbers on a busy machine grow).

@@ -6,7 +6,7 @@
 //
 // Header-only by default; with PENUMBRA_SEPARATE_IMPLEMENTATION one translation unit compiles the
 // emitter (#define PENUMBRA_IMPLEMENTATION before this include) and the others only declare it
-// (detail/api.hpp, README.md "Compile cost").
+// (detail/api.hpp, docs/getting-started.md "Compile cost").
 #pragma once
 
 #include "detail/api.hpp"

@@ -4,7 +4,7 @@
 //   penumbra::Layout layout = penumbra::describe_layout(config);
 //   std::string json = penumbra::to_json(layout); // the same, as layout.json
 //
-// layout_version 3; the JSON schema is docs/layout.schema.json and README.md ("Using it from an
+// layout_version 3; the JSON schema is docs/layout.schema.json and docs/engine-integration.md ("Using it from an
 // engine") walks through it. Run time only (it is data for an engine, not text for a compiler).
 // The structs (TextureDesc, ProgramDesc, PassDesc, Layout, …) and the enums of their words are in
 // penumbra/layout_types.hpp, the texture formats in penumbra/formats.hpp; the builder is
