@@ -14,7 +14,8 @@ endif()
 # desktop runtime (and, with the WebAssembly emitter built, the same configuration emitted in the
 # page); "three-peers" measures three's PCF/VSM shadow maps and the add-on against the Embree
 # truth of a small bundle (--quick: two settings of each); "three-emissions" checks that the
-# emissions shipped in web/three/emissions are what today's penumbra-gen writes.
+# emissions in web/three/emissions (written by the build, penumbra-web-emissions; not tracked) are
+# what today's penumbra-gen writes.
 add_test(NAME three
          COMMAND ${PENUMBRA_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/three_test.mjs --web ${PROJECT_SOURCE_DIR}/web
                  ${three_wasm} --chromium ${PENUMBRA_CHROMIUM} ${bundles})

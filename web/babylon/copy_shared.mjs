@@ -29,6 +29,13 @@ function copy(from, to) {
         copyWhole(from, to);
     }
 }
+// The emissions are penumbra-gen's output, written by the build (or web/three's prepack), not tracked:
+// npm ci's "prepare" runs before the first build and copies what there is; packing needs them.
+if (pack && !fs.readdirSync(path.join(three, "emissions")).some((name) => name.endsWith("-wgsl"))) {
+    console.error(`error: ${path.join(three, "emissions")} holds no emission: build first (cmake --build build ` +
+                  "writes them) or run npm pack in web/three; the package ships the emissions");
+    process.exit(1);
+}
 for (const name of SHARED) copy(path.join(three, name), path.join(here, "shared", name));
 const wasm = process.env.PENUMBRA_EMITTER_WASM || [path.join(three, "penumbra_emitter.wasm"), path.join(root, "build/wasm/penumbra_emitter.wasm")].find((f) => fs.existsSync(f));
 if (wasm && fs.existsSync(wasm)) {
