@@ -6,11 +6,13 @@
 //            shift also turned by smrt.frame for a temporal accumulation;
 //   march    smrt.samples per ray through the light's depth map, from the light end toward the
 //            receiver, at ((k + jitter) / N)² of the ray: the step grows with the distance from the
-//            receiver, dense where contact hardening needs it; a sample whose map depth is nearer the
-//            light than the ray (beyond the bias) blocks the ray;
+//            receiver, dense where contact hardening needs it; the ray is blocked where it crosses a
+//            surface of the map (in front of it, then behind it, the surface continuous between the
+//            two samples: depth slope at most smrt.extrapolate_max_slope), not where it only passes
+//            under an occluder's silhouette (penumbra_smrtRay says why);
 //   extrapolation  behind a silhouette the map shows what lies past the occluder's edge: the occluder's
-//            last surface (two samples whose depth slope is at most smrt.extrapolate_max_slope) is
-//            carried over the gap, and a ray that went behind it is blocked (0: no extrapolation);
+//            last surface is carried over the gap at its slope, and a ray that went behind it is
+//            blocked (0: no extrapolation);
 //   bias     the receiver's depth change across one shadow-map texel (its slope from the normal,
 //            at most smrt.max_slope_bias), and the rays' origin moved off the receiver along its normal
 //            by up to smrt.texel_dither texels at random.
@@ -110,10 +112,18 @@ constexpr void write_smrt_uv(LineWriter& out, const Config& config) {
     out.blank();
 }
 
-// penumbra_smrtRay: 1 when the ray reaches the light, 0 when the depth map blocks it.
+// penumbra_smrtRay: 1 when the ray reaches the light, 0 when the depth map blocks it. The map holds one
+// depth per texel, seen from the light centre: a ray sample behind it is in that surface's shadow from
+// the centre, not necessarily inside an occluder (under an occluder's edge it is free space). So a ray is
+// blocked where it crosses a surface: from in front of it at one sample to behind it at the next, the
+// surface continuous between them (its depth changes by at most extrapolate_max_slope per lateral unit).
+// A larger jump is a silhouette: the ray went under the nearer surface from its side, which blocks
+// nothing. And across a silhouette the other way (the map falls back behind the ray) the last surface is
+// carried over the gap at its slope: a ray behind that continuation passed behind the occluder's edge.
 constexpr void write_smrt_ray(LineWriter& out, const Config& config) {
     const SmrtParams& s = config.smrt;
     const bool extrapolates = s.extrapolate_max_slope > 0.0;
+    const Text max_slope = format_float(s.extrapolate_max_slope);
     out.chunk("smrt_ray");
     out.line("// one ray: ", format_int(s.samples), " depth-map samples from the light end toward the receiver, at");
     out.comment("((k + jitter) / N)² of the ray (the step grows away from the receiver); 1 lit, 0 blocked");
@@ -121,9 +131,10 @@ constexpr void write_smrt_ray(LineWriter& out, const Config& config) {
                        {{"vec3", "origin"}, {"vec3", "toLight"}, {"float", "jitter"}, {"float", "bias"}}));
     out.line("{");
     out.line(value(config, "vec2", "range", "penumbra_shadowDepthRange"));
+    out.line(variable(config, "float", "lastDepth", "0.0"), " // the previous sample's map depth (scene units)");
+    out.line(variable(config, "vec2", "lastXY", "vec2(0.0)"), " // and where it was, across the light");
+    out.line(variable(config, "bool", "front", "false"), " // the previous sample was in front of the map");
     if (extrapolates) {
-        out.line(variable(config, "float", "lastDepth", "0.0"), " // the previous sample's map depth (scene units)");
-        out.line(variable(config, "vec2", "lastXY", "vec2(0.0)"), " // and where it was, across the light");
         out.line(variable(config, "float", "slope", "0.0"), " // the surface's depth slope between the last two samples");
         out.line(variable(config, "bool", "surface", "false"), " // the last two samples lie on one surface");
     }
@@ -137,19 +148,23 @@ constexpr void write_smrt_ray(LineWriter& out, const Config& config) {
     out.line(value(config, "float", "mapDepth",
                    cat("range.x + ", sample_depth(config, "penumbra_shadowDepth", "penumbra_smrtUV(x)"),
                        " * (range.y - range.x)")));
-    out.comment("the map's surface nearer the light than the ray: the ray passes behind it");
-    out.line(if_then(config, "mapDepth < x.z - bias", "return 0.0;"));
+    out.line(value(config, "float", "gap", "max(distance(x.xy, lastXY), 1e-6)"));
+    out.line(value(config, "bool", "behind", "mapDepth < x.z - bias"));
+    out.line("// a crossing: behind the map now, in front of it before, the surface continuous between (its depth");
+    out.line("// changes by at most ", max_slope, " per lateral unit); or behind at the light end already");
+    out.line(if_then(config,
+                     cat("behind && (i == 0 || (front && abs(mapDepth - lastDepth) <= ", max_slope, " * gap + bias))"),
+                     "return 0.0;"));
     if (extrapolates) {
-        out.line("// behind a silhouette (the map sees past the ray): the occluder's last surface, carried over the");
-        out.line("// gap at its slope (at most ", format_float(s.extrapolate_max_slope),
-                 " depth per lateral unit), still in front of the ray");
-        out.line(value(config, "float", "gap", "max(distance(x.xy, lastXY), 1e-6)"));
-        out.line(if_then(config, "surface && mapDepth > x.z && lastDepth + slope * gap < x.z - bias", "return 0.0;"));
+        out.comment("behind a silhouette (the map falls back behind the ray): the last surface, carried over the gap");
+        out.comment("at its slope, in front of the ray");
+        out.line(if_then(config, "!behind && surface && lastDepth + slope * gap < x.z - bias", "return 0.0;"));
         out.line("slope = (mapDepth - lastDepth) / gap;");
-        out.line("surface = i > 0 && abs(slope) <= ", format_float(s.extrapolate_max_slope), ";");
-        out.line("lastDepth = mapDepth;");
-        out.line("lastXY = x.xy;");
+        out.line("surface = i > 0 && abs(slope) <= ", max_slope, ";");
     }
+    out.line("front = !behind;");
+    out.line("lastDepth = mapDepth;");
+    out.line("lastXY = x.xy;");
     out.line("}");
     out.line("return 1.0;");
     out.line("}");
