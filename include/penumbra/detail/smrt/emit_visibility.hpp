@@ -83,8 +83,8 @@ constexpr void write_smrt_to_light(LineWriter& out, const Config& config) {
     out.line("{");
     out.line(value(config, "float", "above", "max(origin.z - penumbra_shadowDepthRange.x, 0.0)"));
     if (config.light == Light::rect) {
-        out.line(value(config, "vec3", "target", "vec3((u - 0.5) * penumbra_lightSize, 0.0)"));
-        out.line("return (target - origin) * (above / max(origin.z, 1e-6));");
+        out.line(value(config, "vec3", "lightPoint", "vec3((u - 0.5) * penumbra_lightSize, 0.0)"));
+        out.line("return (lightPoint - origin) * (above / max(origin.z, 1e-6));");
     } else {
         out.line(value(config, "float", "radius", "sqrt(u.y) * penumbra_tanAngularRadius"));
         out.line(value(config, "float", "angle", "6.283185307 * u.x"));
@@ -174,7 +174,7 @@ constexpr void write_smrt_ray(LineWriter& out, const Config& config) {
 // The light-point line of ray i: fract(point + shift), the per-pixel Cranley-Patterson rotation.
 constexpr Text smrt_ray_line(const Config& config, int i) {
     const SmrtPoint q = smrt_pattern_point(i, config.smrt.rays);
-    return cat("lit += penumbra_smrtRay(origin, penumbra_smrtToLight(origin, fract(vec2(", format_float(q.u), ", ",
+    return cat("reached += penumbra_smrtRay(origin, penumbra_smrtToLight(origin, fract(vec2(", format_float(q.u), ", ",
                format_float(q.v), ") + shift)), jitter, bias); // ray ", format_int(i + 1), " of ",
                format_int(config.smrt.rays));
 }
@@ -235,9 +235,9 @@ constexpr void write_smrt_visibility(LineWriter& out, const Config& config, int&
     out.line("// the rays start off the receiver along its normal, up to ", format_float(s.texel_dither), " texels");
     out.line(value(config, "vec3", "origin",
                    cat("p + nLight * (texel * ", format_float(s.texel_dither), " * penumbra_smrtRandom(h4))")));
-    out.line(variable(config, "float", "lit", "0.0"));
+    out.line(variable(config, "float", "reached", "0.0"));
     for (int i = 0; i < s.rays; ++i) out.line(smrt_ray_line(config, i));
-    out.line("return lit * ", format_float(1.0 / s.rays), ";");
+    out.line("return reached * ", format_float(1.0 / s.rays), ";");
     out.line("}");
     out.blank();
     out.comment("Without a normal: no slope to follow, no dither.");
