@@ -7,12 +7,12 @@
 //   march    smrt.samples per ray through the light's depth map, from the light end toward the
 //            receiver, at ((k + jitter) / N)² of the ray: the step grows with the distance from the
 //            receiver, dense where contact hardening needs it; the ray is blocked where it crosses a
-//            surface of the map (in front of it, then behind it, the surface continuous between the
-//            two samples: depth slope at most smrt.extrapolate_max_slope), not where it only passes
-//            under an occluder's silhouette (penumbra_smrtRay says why);
+//            surface of the map (in front of it, then behind it, the surface within the depth the ray
+//            went through between the two samples), not where it only passes under an occluder's
+//            silhouette (penumbra_smrtRay says why);
 //   extrapolation  behind a silhouette the map shows what lies past the occluder's edge: the occluder's
-//            last surface is carried over the gap at its slope, and a ray that went behind it is
-//            blocked (0: no extrapolation);
+//            last surface (depth slope at most smrt.extrapolate_max_slope) is carried over the gap at
+//            its slope, and a ray that went behind it is blocked (0: no extrapolation);
 //   bias     the receiver's depth change across one shadow-map texel (its slope from the normal,
 //            at most smrt.max_slope_bias), and the rays' origin moved off the receiver along its normal
 //            by up to smrt.texel_dither texels at random.
@@ -115,11 +115,12 @@ constexpr void write_smrt_uv(LineWriter& out, const Config& config) {
 // penumbra_smrtRay: 1 when the ray reaches the light, 0 when the depth map blocks it. The map holds one
 // depth per texel, seen from the light centre: a ray sample behind it is in that surface's shadow from
 // the centre, not necessarily inside an occluder (under an occluder's edge it is free space). So a ray is
-// blocked where it crosses a surface: from in front of it at one sample to behind it at the next, the
-// surface continuous between them (its depth changes by at most extrapolate_max_slope per lateral unit).
-// A larger jump is a silhouette: the ray went under the nearer surface from its side, which blocks
-// nothing. And across a silhouette the other way (the map falls back behind the ray) the last surface is
-// carried over the gap at its slope: a ray behind that continuation passed behind the occluder's edge.
+// blocked where it crosses a surface: in front of the map at one sample, behind it at the next, and the
+// surface's depth there within the depth the ray went through between the two (not nearer the light
+// than the ray was at the first). A surface nearer than that is a silhouette the ray went under from
+// its side, which blocks nothing. And across a silhouette the other way (the map falls back behind the
+// ray) the last surface, if its depth slope is at most extrapolate_max_slope, is carried over the gap at
+// that slope: a ray behind that continuation passed behind the occluder's edge.
 constexpr void write_smrt_ray(LineWriter& out, const Config& config) {
     const SmrtParams& s = config.smrt;
     const bool extrapolates = s.extrapolate_max_slope > 0.0;
@@ -131,10 +132,11 @@ constexpr void write_smrt_ray(LineWriter& out, const Config& config) {
                        {{"vec3", "origin"}, {"vec3", "toLight"}, {"float", "jitter"}, {"float", "bias"}}));
     out.line("{");
     out.line(value(config, "vec2", "range", "penumbra_shadowDepthRange"));
-    out.line(variable(config, "float", "lastDepth", "0.0"), " // the previous sample's map depth (scene units)");
-    out.line(variable(config, "vec2", "lastXY", "vec2(0.0)"), " // and where it was, across the light");
+    out.line(variable(config, "float", "lastZ", "0.0"), " // the ray's depth at the previous sample");
     out.line(variable(config, "bool", "front", "false"), " // the previous sample was in front of the map");
     if (extrapolates) {
+        out.line(variable(config, "float", "lastDepth", "0.0"), " // the previous sample's map depth (scene units)");
+        out.line(variable(config, "vec2", "lastXY", "vec2(0.0)"), " // and where it was, across the light");
         out.line(variable(config, "float", "slope", "0.0"), " // the surface's depth slope between the last two samples");
         out.line(variable(config, "bool", "surface", "false"), " // the last two samples lie on one surface");
     }
@@ -148,23 +150,22 @@ constexpr void write_smrt_ray(LineWriter& out, const Config& config) {
     out.line(value(config, "float", "mapDepth",
                    cat("range.x + ", sample_depth(config, "penumbra_shadowDepth", "penumbra_smrtUV(x)"),
                        " * (range.y - range.x)")));
-    out.line(value(config, "float", "gap", "max(distance(x.xy, lastXY), 1e-6)"));
     out.line(value(config, "bool", "behind", "mapDepth < x.z - bias"));
-    out.line("// a crossing: behind the map now, in front of it before, the surface continuous between (its depth");
-    out.line("// changes by at most ", max_slope, " per lateral unit); or behind at the light end already");
-    out.line(if_then(config,
-                     cat("behind && (i == 0 || (front && abs(mapDepth - lastDepth) <= ", max_slope, " * gap + bias))"),
-                     "return 0.0;"));
+    out.comment("a crossing: behind the map now, in front of it before, the surface no nearer the light than the ray");
+    out.comment("was then (nearer: a silhouette the ray went under); or behind at the light end already");
+    out.line(if_then(config, "behind && (i == 0 || (front && mapDepth >= lastZ - bias))", "return 0.0;"));
     if (extrapolates) {
         out.comment("behind a silhouette (the map falls back behind the ray): the last surface, carried over the gap");
         out.comment("at its slope, in front of the ray");
+        out.line(value(config, "float", "gap", "max(distance(x.xy, lastXY), 1e-6)"));
         out.line(if_then(config, "!behind && surface && lastDepth + slope * gap < x.z - bias", "return 0.0;"));
         out.line("slope = (mapDepth - lastDepth) / gap;");
         out.line("surface = i > 0 && abs(slope) <= ", max_slope, ";");
+        out.line("lastDepth = mapDepth;");
+        out.line("lastXY = x.xy;");
     }
     out.line("front = !behind;");
-    out.line("lastDepth = mapDepth;");
-    out.line("lastXY = x.xy;");
+    out.line("lastZ = x.z;");
     out.line("}");
     out.line("return 1.0;");
     out.line("}");
