@@ -289,7 +289,9 @@ TEST_CASE("every shadow map technique renders every scene without a GL error and
             reference.visibility = fair;
             const double expected_fair = shadowed_fraction(reference);
             std::printf("%-24s shadowed %.3f (truth %.3f, fair %.3f)\n", label.c_str(), shadowed, expected, expected_fair);
-            CHECK(shadowed > 0.01);
+            // something shadowed: 1 % of the image, or half the fair truth's share where that is less (the
+            // lone box's shadow under the fair reference is 0.6 % at 64x64; SMRT follows that one)
+            CHECK(shadowed > std::min(0.01, 0.5 * expected_fair));
             // Between the two truths, give or take 0.1: the whole-light one counts a surface turned
             // from part of the light as shadowed by its own horizon, the fair one (the light above
             // the tangent plane) does not, and the normal offset (on by default, as in engines) moves
