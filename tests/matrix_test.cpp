@@ -419,7 +419,7 @@ Row alpha_test_row() {
                 CHECK_MESSAGE(casters == (c.technique == Technique::oim ? 0 : places_slices_adaptively(c) ? 2 : 1),
                               name_of(c));
             },
-            .check_row = [](const RowResult& r) { CHECK(r.valid == 4 * 2 * 9 + 3 * 2); }};
+            .check_row = [](const RowResult& r) { CHECK(r.valid == 4 * 2 * 10 + 3 * 2); }};
 }
 
 // Solid casters (solid_casters): every GLSL target × light, the slices as channels and as bits, with
