@@ -442,6 +442,7 @@ void set_light(gl::Runtime& runtime, const Scene& scene, Light kind, const SunPa
 struct Active {
     const bench::LadderEntry* entry = nullptr;
     std::unique_ptr<gl::Runtime> runtime;
+    std::vector<std::unique_ptr<gl::Runtime>> later_frames; // a temporal variant's frames 1 to N-1 (smrt.frame)
     std::optional<OimSetup> oim;
     std::unique_ptr<MeshBuffers> oim_mesh;
     std::optional<Pixels> oim_pixels;
@@ -711,6 +712,12 @@ private:
             }
             a.runtime = gl::Runtime::create(config, &error);
             if (!a.runtime) return where + ": " + error;
+            for (int f = 1; f < entry.accumulate; ++f) { // the temporal variant: one program per turn of the pattern
+                Config frame = config;
+                frame.smrt.frame = f;
+                a.later_frames.push_back(gl::Runtime::create(frame, &error));
+                if (!a.later_frames.back()) return where + ", frame " + std::to_string(f) + ": " + error;
+            }
             if (oim)
                 for (const auto& [name, texels] : a.oim->textures)
                     if (std::string d = a.runtime->supply_texture(name, texels); !d.empty()) return where + ": " + d;
@@ -720,6 +727,22 @@ private:
             active_.push_back(std::move(a));
         }
         return {};
+    }
+
+    // Frame f's runtime of a setting: a temporal variant turns its pattern per frame (f mod N).
+    gl::Runtime& runtime_of(Active& a, int f) {
+        const int n = static_cast<int>(a.later_frames.size()) + 1;
+        const int k = ((f % n) + n) % n;
+        return k == 0 ? *a.runtime : *a.later_frames[static_cast<std::size_t>(k - 1)];
+    }
+
+    // The visibility of frame f of a setting under `light` (a temporal variant: that frame's pattern).
+    std::optional<std::vector<float>> frame_visibility(Active& a, int f, const LightAt& light, std::string* error) {
+        gl::Runtime& runtime = runtime_of(a, f);
+        set_light(runtime, scene_, light_kind_, path_, light, a.oim.has_value());
+        FrameTimes times;
+        if (!run_frame(runtime, mesh_of(a), pixels_of(a), times, error)) return std::nullopt;
+        return read_visibility(runtime, pixels_of(a));
     }
 
     // Occlusion interval maps draw their own mesh (with the charts' texture coordinates) into their own G-buffer.
@@ -767,7 +790,16 @@ private:
             a.texture_bytes = static_cast<std::uint64_t>(penumbra::texture_bytes(a.runtime->layout(), options_.width, options_.height));
             a.config = json::parse(config_to_json(a.runtime->layout().config));
             cell.costs[e] = cost_model(a.runtime->layout(), options_.width, options_.height);
-            const std::vector<float> visibility = read_visibility(*a.runtime, pixels_of(a));
+            std::vector<float> visibility = read_visibility(*a.runtime, pixels_of(a));
+            if (!a.later_frames.empty()) { // a temporal variant under a still light: the mean of its N frames
+                for (int f = 1; f <= static_cast<int>(a.later_frames.size()); ++f) {
+                    const std::optional<std::vector<float>> v =
+                        frame_visibility(a, f, light_at(scene_, path_, cell.scale, step_, 0), &error);
+                    if (!v) return entry.label + ": " + error;
+                    for (std::size_t i = 0; i < visibility.size(); ++i) visibility[i] += (*v)[i];
+                }
+                for (float& v : visibility) v /= static_cast<float>(a.later_frames.size() + 1);
+            }
             const std::vector<unsigned char>& geometry = pixels_->frame.geometry;
             cell.quality[e] = compare_quality(visibility, geometry, truth.visibility, truth.oriented, truth.irradiance);
             cell.bias[e] = penumbra_bias(visibility, geometry, truth.visibility);
@@ -811,6 +843,7 @@ private:
         if (light_kind_ == Light::sun) record["sun_angular_diameter"] = scene_.sun.angular_diameter * scale;
         else record["light_size"] = {scene_.light.width * scale, scene_.light.height * scale};
         record["config"] = a.config;
+        if (entry.accumulate > 1) record["accumulate_frames"] = entry.accumulate; // time: one frame's
         record["texture_bytes"] = a.texture_bytes;
         if (a.oim) // a precomputation, like the truth: not in the frame's cost
             record["bake"] = {{"ms", a.oim->cached.bake.bake_ms}, {"from_cache", a.oim->cached.from_cache}};
@@ -854,12 +887,21 @@ private:
             if (!entry.representative) continue;
             progress_.step("flicker", scene_.name + ": flicker, " + std::to_string(options_.flicker_frames) +
                                           " frames of a moving " + lit_by_ + " light: " + entry.label);
+            // A temporal variant shows at frame f the mean of frames f-N+1 to f, each rendered under the
+            // light of its own frame with its own turn of the pattern (the history starts N-1 frames early).
+            const int n = static_cast<int>(a.later_frames.size()) + 1;
+            std::vector<std::vector<float>> rendered;
+            for (int f = 1 - n; f < options_.flicker_frames; ++f) {
+                std::optional<std::vector<float>> v = frame_visibility(a, f, light_at(scene_, path_, 1.0, step_, f), &error);
+                if (!v) return entry.label + ": " + error;
+                rendered.push_back(std::move(*v));
+            }
             std::vector<std::vector<float>> frames;
             for (int f = 0; f < options_.flicker_frames; ++f) {
-                set_light(*a.runtime, scene_, light_kind_, path_, light_at(scene_, path_, 1.0, step_, f), a.oim.has_value());
-                FrameTimes times;
-                if (!run_frame(*a.runtime, mesh_of(a), pixels_of(a), times, &error)) return entry.label + ": " + error;
-                frames.push_back(read_visibility(*a.runtime, pixels_of(a)));
+                std::vector<float> mean(rendered.front().size(), 0.0f);
+                for (int k = 0; k < n; ++k)
+                    for (std::size_t i = 0; i < mean.size(); ++i) mean[i] += rendered[static_cast<std::size_t>(f + k)][i] / n;
+                frames.push_back(std::move(mean));
             }
             double error_sum = 0;
             for (int f = 0; f < options_.flicker_frames; ++f)
@@ -871,6 +913,7 @@ private:
                                            {"label", entry.label},
                                            {"light_scale", 1.0},
                                            {"frames", options_.flicker_frames},
+                                           {"accumulate_frames", n},
                                            {"estimate_delta", delta},
                                            {"truth_delta", truth_delta_},
                                            {"excess", delta - truth_delta_},

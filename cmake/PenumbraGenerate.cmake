@@ -45,6 +45,7 @@ function(penumbra_generate_flags value_var switch_var)
         --erosion-radius --erosion-edge-threshold --erosion-search-taps --erosion-blur-taps
         --evsm-positive-exponent --evsm-negative-exponent --evsm-bleeding --evsm-variance-bias
         --evsm-blur-fraction --evsm-blur-taps --evsm-max-blur
+        --smrt-rays --smrt-samples --smrt-extrapolate-slope --smrt-max-slope-bias --smrt-texel-dither --smrt-frame
         PARENT_SCOPE)
     set(${switch_var}
         --no-leak-fix --no-fade --tangent-clip --no-tangent-clip --no-clip-footprint

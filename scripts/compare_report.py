@@ -22,10 +22,10 @@ from collections import defaultdict
 COST = "gpu_ms"  # the cost of a frame: median over the timed runs of the summed timer queries of every pass
 REFERENCE = "PCSS 16/16"  # ratios are given against this setting at the same scene and light size
 FALLBACK_REFERENCE = "OT nbuffer 16/512"  # when the run has no PCSS 16/16 (and says so)
-EQUAL_TIME_BUDGETS = ["PCSS 16/16", "PCSS 32/64"]
+EQUAL_TIME_BUDGETS = ["PCSS 16/16", "PCSS 32/64", "SMRT 8/16", "SMRT 4/8 TAA8"]
 DEFAULT_SETTING = "OT nbuffer 16/512"  # Config{}: the default occlusion-texture configuration
-KEY_SETTINGS = [DEFAULT_SETTING, "PCSS 16/16", "PCSS 32/64"]  # the per-scene and per-mesh tables
-FAMILY_NAMES = {"occlusion": "occlusion textures", "paper": "occlusion textures, the paper's model", "shadowmap": "hard shadow map", "pcf": "PCF", "pcss": "PCSS", "pcss-depth-bias-only": "PCSS with the depth bias only (no normal offset, no receiver-plane bias)", "erosion": "erosion", "oim": "occlusion interval maps", "compute-prefilter": "occlusion textures, compute prefilter", "chained-fusion": "occlusion textures, chained fusion (the default before extent)", "clustered-fusion": "occlusion textures, clustered fusion (crowds and foliage)", "irradiance-window": "occlusion textures, irradiance window (the light weighed by its irradiance)"}
+KEY_SETTINGS = [DEFAULT_SETTING, "PCSS 16/16", "PCSS 32/64", "SMRT 7/8", "SMRT 8/16", "SMRT 4/8 TAA8"]  # the per-scene and per-mesh tables
+FAMILY_NAMES = {"occlusion": "occlusion textures", "paper": "occlusion textures, the paper's model", "shadowmap": "hard shadow map", "pcf": "PCF", "pcss": "PCSS", "pcss-depth-bias-only": "PCSS with the depth bias only (no normal offset, no receiver-plane bias)", "erosion": "erosion", "evsm": "EVSM", "smrt": "shadow-map ray tracing (SMRT, one frame)", "smrt-temporal": "SMRT accumulated over N frames (time: one frame)", "oim": "occlusion interval maps", "compute-prefilter": "occlusion textures, compute prefilter", "chained-fusion": "occlusion textures, chained fusion (the default before extent)", "clustered-fusion": "occlusion textures, clustered fusion (crowds and foliage)", "irradiance-window": "occlusion textures, irradiance window (the light weighed by its irradiance)"}
 LIGHT_TITLES = {"rect": "the rectangle light", "sun": "the sun"}
 
 

@@ -13,7 +13,7 @@
 #                x resolution {32,256,2048}, and the same with --no-fade (the generic program's row;
 #                penumbra-gen does not emit the generic program itself)
 #   tangent_clip/, slices_64_128/, adaptive/   the other occlusion rows
-#   shadow_map/, erosion/, evsm/, oim/          the rows of those techniques (the first three for wgsl too)
+#   shadow_map/, erosion/, evsm/, smrt/, oim/    the rows of those techniques (all but oim for wgsl too)
 #   alpha_test/  the cut-out casters' row (every technique with --alpha-test)
 #   snippet/     matrix_snippet_test.cpp
 # Not covered: the generic reference program (penumbra::emit_generic), which penumbra-gen cannot
@@ -101,6 +101,11 @@ list_configurations() {
              "--evsm-variance-bias 0 --evsm-blur-taps 1 --evsm-max-blur 1"
         echo "evsm/$t-$l-largest --technique evsm $base --evsm-positive-exponent 42 --evsm-negative-exponent 42" \
              "--evsm-bleeding 0.9 --evsm-variance-bias 0.01 --evsm-blur-fraction 1 --evsm-blur-taps 64 --evsm-max-blur 64"
+        echo "smrt/$t-$l-default --technique smrt $base"
+        echo "smrt/$t-$l-smallest --technique smrt $base --shadow-resolution 32 --smrt-rays 1 --smrt-samples 2" \
+             "--smrt-extrapolate-slope 0 --smrt-max-slope-bias 0 --smrt-texel-dither 0"
+        echo "smrt/$t-$l-largest --technique smrt $base --smrt-rays 16 --smrt-samples 32 --smrt-extrapolate-slope 50" \
+             "--smrt-max-slope-bias 1000 --smrt-texel-dither 8 --smrt-frame 1023"
     done; done
     for t in "${targets[@]}"; do for n in 4 8 12 16; do for r in 32 256 2048; do
         echo "oim/$t-I$n-R$r --technique oim --target $t --oim-intervals $n --oim-resolution $r"
@@ -112,7 +117,7 @@ list_configurations() {
         echo "alpha_test/$t-$l-${f}_array --slices 5 --resolution 64 --filter $f --packing array $cut"
         echo "alpha_test/$t-$l-adaptive --slices 16 --resolution 256 --slice-placement adaptive $cut"
         [[ $t != essl300 ]] && echo "alpha_test/$t-$l-S64 --slices 64 --resolution 32 $cut"
-        for k in shadowmap pcf pcss erosion evsm oim; do echo "alpha_test/$t-$l-$k --technique $k $cut"; done
+        for k in shadowmap pcf pcss erosion evsm smrt oim; do echo "alpha_test/$t-$l-$k --technique $k $cut"; done
     done; done
     for f in "${filters[@]}"; do for p in "${packings[@]}"; do for l in "${lights[@]}"; do
         echo "snippet/$f-$p-$l --slices 6 --resolution 64 --filter $f --packing $p --light $l --target essl300"

@@ -210,7 +210,7 @@ TEST_CASE("invalid shadow map configurations: each names the field, the value an
     CHECK(first_message(Config{.technique = Technique::pcf, .pcf = {.radius = std::nan("")}}) ==
           "pcf.radius: nan is out of range; allowed: more than 0.0 to 1000.0 scene units");
     CHECK(first_message(Config{.technique = static_cast<Technique>(9)}) ==
-          "technique: 9 is not a known value; allowed: occlusion, shadowmap, pcf, pcss, oim, erosion, evsm");
+          "technique: 9 is not a known value; allowed: occlusion, shadowmap, pcf, pcss, oim, erosion, evsm, smrt");
     CHECK(first_message(Config{.technique = Technique::pcf, .pcf = {.pattern = static_cast<TapPattern>(5)}}) ==
           "pcf.pattern: 5 is not a known value; allowed: grid, poisson");
     // every engine setting is valid

@@ -31,7 +31,7 @@ int count(const std::string& text, const std::string& what) {
 std::vector<Config> wgsl_configs() {
     std::vector<Config> out;
     for (Technique technique : {Technique::shadowmap, Technique::pcf, Technique::pcss, Technique::erosion, Technique::evsm,
-                                Technique::occlusion})
+                                Technique::smrt, Technique::occlusion})
         for (Light light : {Light::rect, Light::sun})
             for (bool alpha : {false, true})
                 out.push_back({.technique = technique, .light = light, .target = Target::wgsl, .alpha_test = alpha});
@@ -263,7 +263,7 @@ TEST_CASE("wgsl: the techniques without WGSL are refused, naming those with it")
     REQUIRE(errors.size() == 1);
     CHECK(errors[0].field == "target");
     CHECK(errors[0].message == "target: wgsl is not written for technique 'oim' yet; allowed with target wgsl: technique "
-                               "occlusion, shadowmap, pcf, pcss, erosion, evsm; other targets: glsl330, glsl450, essl300, vulkan");
+                               "occlusion, shadowmap, pcf, pcss, erosion, evsm, smrt; other targets: glsl330, glsl450, essl300, vulkan");
 }
 
 TEST_CASE("wgsl: occlusion textures refuse what WebGPU or the WGSL emitters do not have, saying why") {

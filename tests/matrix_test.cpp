@@ -324,6 +324,22 @@ Row evsm_row() {
     return all_valid_row("evsm", configs, 6);
 }
 
+// Shadow-map ray tracing over its parameters (Unreal's defaults, both extremes, no extrapolation, a
+// later frame), on every target and light: depth, example, deferred.
+Row smrt_row() {
+    std::vector<Config> configs;
+    for (Target target : glsl_targets())
+        for (Light light : all_values<Light>())
+            for (auto [resolution, s] : {std::pair{1024, SmrtParams{}},
+                                         {32, SmrtParams{.rays = 1, .samples = 2, .extrapolate_max_slope = 0.0,
+                                                         .max_slope_bias = 0.0, .texel_dither = 0.0}},
+                                         {1024, SmrtParams{.rays = 16, .samples = 32, .extrapolate_max_slope = 50.0,
+                                                           .max_slope_bias = 1000.0, .texel_dither = 8.0, .frame = 1023}}})
+                configs.push_back({.technique = Technique::smrt, .light = light, .target = target,
+                                   .shadow_map = {.resolution = resolution}, .smrt = s});
+    return all_valid_row("smrt", configs, 3);
+}
+
 // Occlusion interval maps: every interval count, resolution and target. glsl330 guarantees 1024
 // texels, so 2048 is refused for each interval count.
 Row oim_row() {
@@ -374,6 +390,7 @@ Row alpha_test_row() {
             with({.technique = Technique::pcss});
             with({.technique = Technique::erosion});
             with({.technique = Technique::evsm});
+            with({.technique = Technique::smrt});
             with({.technique = Technique::oim});
         }
     return {.name = "alpha test (cut-out casters)",
@@ -403,7 +420,7 @@ Row alpha_test_row() {
                 CHECK_MESSAGE(casters == (c.technique == Technique::oim ? 0 : places_slices_adaptively(c) ? 2 : 1),
                               name_of(c));
             },
-            .check_row = [](const RowResult& r) { CHECK(r.valid == 4 * 2 * 9 + 3 * 2); }};
+            .check_row = [](const RowResult& r) { CHECK(r.valid == 4 * 2 * 10 + 3 * 2); }};
 }
 
 // Solid casters (solid_casters): every GLSL target × light, the slices as channels and as bits, with
@@ -581,7 +598,7 @@ RowResult run_row(const Row& row) {
 
 TEST_CASE("the glslang matrix: every program of every valid configuration of each technique compiles and links") {
     const Row rows[] = {occlusion_row(), tangent_clip_row(), many_slices_row(), adaptive_row(), compute_prefilter_row(),
-                        generic_row(), shadow_map_row(), erosion_row(), evsm_row(), oim_row(), alpha_test_row(),
+                        generic_row(), shadow_map_row(), erosion_row(), evsm_row(), smrt_row(), oim_row(), alpha_test_row(),
                         solid_casters_row(), irradiance_window_row(), profiles_row()};
     int configurations = 0, programs = 0, compiled = 0;
     for (const Row& row : rows) {

@@ -16,10 +16,13 @@ namespace penumbra::bench {
 
 struct LadderEntry {
     std::string family;  // the technique's name: "occlusion", "paper", "shadowmap", "pcf", "pcss", "erosion", "evsm",
-                         // "oim" (tables group by it)
+                         // "smrt", "smrt-temporal", "oim" (tables group by it)
     std::string label;   // short, unique name: "OT nbuffer 16/512"
     Config config;
     bool representative; // also in the flicker measurement and the image montage
+    int accumulate = 0;  // a temporal variant: the mean of this many frames, frame f rendered with config.smrt.frame
+                         // = f mod accumulate (a pattern turned per frame), reprojection-free (a static camera);
+                         // its time is one frame's. 0: one frame
 };
 
 enum class LadderSet { quick, standard, full };
@@ -169,6 +172,25 @@ inline LadderEntry evsm_entry(int blur_taps, int resolution, bool representative
     return {"evsm", "EVSM " + std::to_string(blur_taps) + "/" + std::to_string(resolution), config, representative};
 }
 
+// Shadow-map ray tracing (Unreal Engine 5's virtual shadow maps): rays per pixel / samples per ray, on
+// a depth map of 1024² like the other shadow-map techniques. Unreal's default is 7/8.
+inline LadderEntry smrt_entry(int rays, int samples, bool representative = false) {
+    Config config{.technique = Technique::smrt, .shadow_map = {.resolution = 1024}};
+    config.smrt.rays = rays;
+    config.smrt.samples = samples;
+    return {"smrt", "SMRT " + std::to_string(rays) + "/" + std::to_string(samples), config, representative};
+}
+
+// The same with temporal accumulation over `frames` frames (each its own turn of the pattern), as
+// Unreal smooths SMRT's noise with its temporal pass: its own family, so the tables show both.
+inline LadderEntry smrt_temporal_entry(int rays, int samples, int frames, bool representative = false) {
+    LadderEntry entry = smrt_entry(rays, samples, representative);
+    entry.family = "smrt-temporal";
+    entry.label += " TAA" + std::to_string(frames);
+    entry.accumulate = frames;
+    return entry;
+}
+
 // Occlusion interval maps (sun only): intervals/resolution of the baked maps, the fewest samples
 // along the path (256). Small by default: the bake is a precomputation of minutes at the default
 // 256² on two cores.
@@ -229,6 +251,12 @@ inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
         erosion_entry(),
         evsm_entry(16, 512, true), // HDRP's area-light shadows
         evsm_entry(32, 512),       // twice the blur for larger lights
+        smrt_entry(2, 8),          // the cheap end of the cost-quality front
+        smrt_entry(4, 8),
+        smrt_entry(7, 8),          // Unreal's defaults (RayCount, SamplesPerRay)
+        smrt_entry(8, 16, true),
+        smrt_temporal_entry(4, 8, 8, true), // the cheap rays, smoothed over 8 frames
+        smrt_temporal_entry(8, 16, 8),
         oim_entry(8, 128, true),   // the sun only (refusal); baked once per scene into --out's cache/oim
     };
     if (set == LadderSet::full) {

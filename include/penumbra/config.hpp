@@ -109,6 +109,9 @@ enum class Technique : std::uint8_t {
                // min-max chain, variable-size erosion, penumbra-wide blur
     evsm,      // exponential variance shadow maps (Lauritzen & McCool 2008; Unity HDRP's area-light shadows):
                // moments of the exponentially warped depth, blurred over the light's size, Chebyshev bound
+    smrt,      // shadow-map ray tracing (Unreal Engine 5's virtual shadow maps): per pixel, rays to points
+               // spread over the light, each marched through the depth map, occluders extrapolated behind
+               // silhouettes
 };
 
 // A shadow quality tier: a named preset of occlusion-texture fields (penumbra/profiles.hpp), as engines
@@ -214,6 +217,26 @@ struct EvsmParams {
     friend constexpr bool operator==(const EvsmParams&, const EvsmParams&) = default;
 };
 
+// Shadow-map ray tracing (detail/smrt/): rays from the receiver to points spread over the light, each
+// marched through the shadow map's depth. Names and defaults after Unreal Engine 5's
+// r.Shadow.Virtual.SMRT.* console variables (docs/techniques.md says which). Reads shadow_map's
+// resolution and the depth pass's biases.
+struct SmrtParams {
+    int rays = 7;                          // rays per pixel (RayCountLocal); 1 to 16
+    int samples = 8;                       // depth-map samples per ray (SamplesPerRayLocal); 2 to 32
+    double extrapolate_max_slope = 5.0;    // largest occluder depth slope (depth per lateral scene unit) carried
+                                           // past a silhouette (ExtrapolateMaxSlopeDirectional); 0 (no
+                                           // extrapolation) to 50
+    double max_slope_bias = 50.0;          // largest receiver slope (depth per lateral scene unit) the receiver
+                                           // bias follows (MaxSlopeBiasLocal); 0 to 1000
+    double texel_dither = 2.0;             // the ray's origin moves off the receiver along its normal by up to
+                                           // this many shadow-map texels (TexelDitherScaleLocal); 0 to 8
+    int frame = 0;                         // rotates the per-pixel pattern: frame f of a temporal accumulation;
+                                           // 0 to 1023
+
+    friend constexpr bool operator==(const SmrtParams&, const SmrtParams&) = default;
+};
+
 struct Config {
     Technique technique = Technique::occlusion; // which method the programs implement
     Profile profile = Profile::balanced;    // the preset the occlusion fields started from (penumbra/profiles.hpp);
@@ -256,6 +279,7 @@ struct Config {
     OimParams oim{};                        // oim: the interval maps (the sun's path: penumbra/sun_path.hpp)
     ErosionParams erosion{};                // erosion: edge search and blur (screen space)
     EvsmParams evsm{};                      // evsm: warp, Chebyshev bound, blur (with shadow_map's map and biases)
+    SmrtParams smrt{};                      // smrt: rays, samples, extrapolation, bias (with shadow_map's map)
     bool alpha_test = false;                // cut-out casters (leaf cards, fences, grilles), every technique: the
                                             // passes that draw the casters from the light (slicing, depth bins,
                                             // shadow-map depth) discard fragments whose alpha, read from the draw's
@@ -277,8 +301,8 @@ struct Config {
 // Names as they appear on the command line, in JSON and in diagnostics.
 template <class Enum> struct EnumNames;
 template <> struct EnumNames<Technique> {
-    static constexpr std::array<std::string_view, 7> names{"occlusion", "shadowmap", "pcf", "pcss", "oim",
-                                                           "erosion", "evsm"};
+    static constexpr std::array<std::string_view, 8> names{"occlusion", "shadowmap", "pcf", "pcss", "oim",
+                                                           "erosion", "evsm", "smrt"};
 };
 template <> struct EnumNames<TapPattern> {
     static constexpr std::array<std::string_view, 2> names{"grid", "poisson"};

@@ -20,7 +20,7 @@
 //      differ, and at most 1% of the pixels may leave 2·bound + q.
 //   3. light_frame.js reproduces the exported light-frame uniforms (relative 1e-5), and moving the
 //      light changes the image.
-// A bundle of another technique (shadowmap, pcf, pcss, erosion, evsm, oim with its bake) has no oracle:
+// A bundle of another technique (shadowmap, pcf, pcss, erosion, evsm, smrt, oim with its bake) has no oracle:
 // its image is compared with the desktop run's (TECHNIQUE_* in bundle_compare.mjs). A bundle with a
 // ray-traced truth (--reference) checks the error view's MAE.
 // On the first bundle also: an invalid value typed in the panel shows the emitter's message
@@ -50,6 +50,8 @@ const TECHNIQUE_FIELDS = {
     evsm: ["shadow_map.resolution", "shadow_map.constant_bias", "shadow_map.slope_bias", "evsm.positive_exponent",
            "evsm.negative_exponent", "evsm.light_bleeding_reduction", "evsm.variance_bias", "evsm.blur_fraction",
            "evsm.blur_taps", "evsm.max_blur_texels"],
+    smrt: ["shadow_map.resolution", "shadow_map.constant_bias", "shadow_map.slope_bias", "smrt.rays", "smrt.samples",
+           "smrt.extrapolate_max_slope", "smrt.max_slope_bias", "smrt.texel_dither", "smrt.frame"],
     oim: ["oim.resolution", "oim.intervals", "oim.samples"],
 };
 const valueAt = (object, key) => key.split(".").reduce((o, k) => (o === undefined ? undefined : o[k]), object);

@@ -31,7 +31,7 @@ endif()
 # "webgpu_bundles": the WebGPU layout runner (web/three/penumbra_webgpu_runner.js) over bundles (boxes; tree and spider
 # for occlusion textures) at 64x64
 # exported with --target wgsl (the desktop GL run of glsl450, emission/ in WGSL) for every technique
-# with WGSL (shadowmap, pcf, pcss, erosion, evsm, occlusion; rect and sun), each compared with the desktop run's
+# with WGSL (shadowmap, pcf, pcss, erosion, evsm, smrt, occlusion; rect and sun), each compared with the desktop run's
 # image (webgpu_bundle_test.mjs); with the WebAssembly emitter, the playground's renderer switch on
 # two of them (pcss rect, evsm sun) as well. Images of both runs and the playground's canvas go to
 # webgpu-bundles/images.
@@ -46,6 +46,8 @@ if(TARGET penumbra-export-bundle)
         # (a 256² shadow map: SwiftShader's 32-tap blur passes over 1024² take seconds)
         "evsm-rect|--technique evsm --light rect --shadow-resolution 256"
         "evsm-sun|--technique evsm --light sun --shadow-resolution 256"
+        "smrt-rect|--technique smrt --light rect --shadow-resolution 256"
+        "smrt-sun|--technique smrt --light sun --shadow-resolution 256"
         # occlusion textures: compared with the CPU oracle within its bound as well, with WebGPU's own
         # slices and with the desktop's; on the tree and a real mesh (Debian's assimp-testmodels) too
         "occlusion-rect|--slices 8 --resolution 128 --filter nbuffer --light rect"

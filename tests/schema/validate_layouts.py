@@ -80,7 +80,7 @@ def main():
     # Every other technique (its own textures, passes and uniforms), every light and target.
     matrix += [(f"{technique}-{light}-{target}", ["--technique", technique, "--light", light, "--target", target])
                for technique, light, target in itertools.product(
-                   ["shadowmap", "pcf", "pcss", "oim", "erosion", "evsm"], ["rect", "sun"],
+                   ["shadowmap", "pcf", "pcss", "oim", "erosion", "evsm", "smrt"], ["rect", "sun"],
                    ["glsl330", "glsl450", "essl300", "vulkan"])]
     matrix += [(f"occlusion-{fusion}-clip-{target}", ["--fusion", fusion, "--tangent-clip", "--target", target])
                for fusion in ["chained", "correlated", "extent"] for target in ["glsl330", "glsl450", "essl300", "vulkan"]]
@@ -109,18 +109,18 @@ def main():
     # every technique and target, the adaptive depth bins too.
     matrix += [(f"alpha-test-{technique}-{target}", ["--alpha-test", "--technique", technique, "--target", target])
                for technique, target in itertools.product(
-                   ["occlusion", "shadowmap", "pcf", "pcss", "oim", "erosion", "evsm"], ["glsl330", "glsl450", "essl300", "vulkan"])]
+                   ["occlusion", "shadowmap", "pcf", "pcss", "oim", "erosion", "evsm", "smrt"], ["glsl330", "glsl450", "essl300", "vulkan"])]
     # WGSL (WebGPU): bind groups, sampler bindings, texture formats and usages; the techniques it writes.
     matrix += [(f"wgsl-{technique}-{light}{'-alpha' if alpha else ''}",
                 ["--technique", technique, "--light", light, "--target", "wgsl", *(["--alpha-test"] if alpha else [])])
                for technique, light, alpha in itertools.product(
-                   ["shadowmap", "pcf", "pcss", "erosion", "evsm"], ["rect", "sun"], [False, True])]
+                   ["shadowmap", "pcf", "pcss", "erosion", "evsm", "smrt"], ["rect", "sun"], [False, True])]
     # HLSL (Direct3D 12): registers beside the bindings; the techniques it writes, one occlusion variant a
     # filter and packing.
     matrix += [(f"hlsl-{technique}-{light}{'-alpha' if alpha else ''}",
                 ["--technique", technique, "--light", light, "--target", "hlsl", *(["--alpha-test"] if alpha else [])])
                for technique, light, alpha in itertools.product(
-                   ["occlusion", "shadowmap", "pcf", "pcss", "erosion", "evsm"], ["rect", "sun"], [False, True])]
+                   ["occlusion", "shadowmap", "pcf", "pcss", "erosion", "evsm", "smrt"], ["rect", "sun"], [False, True])]
     matrix += [(f"hlsl-{filt}-{packing}", ["--filter", filt, "--packing", packing, "--target", "hlsl", "--slices", "8",
                                           "--resolution", "64"])
                for filt, packing in [("mipmap", "atlas"), ("mipmap", "array"), ("sat", "atlas"), ("sat", "array"),

@@ -8,6 +8,7 @@
 #include "occlusion/technique.hpp"
 #include "oim/technique.hpp"
 #include "shadow_map/technique.hpp"
+#include "smrt/technique.hpp"
 
 namespace penumbra::detail {
 
@@ -20,6 +21,7 @@ constexpr TechniqueDescriptor technique_descriptor(Technique technique) {
     case Technique::oim: return oim_technique();
     case Technique::erosion: return erosion_technique();
     case Technique::evsm: return evsm_technique();
+    case Technique::smrt: return smrt_technique();
     }
     return occlusion_technique(); // not reached for a known technique
 }
