@@ -71,25 +71,22 @@ std::string fields_markdown() {
     return out;
 }
 
-int guide(const std::string& mode, const std::string& path, std::string text) {
-    const std::size_t begin = text.find(guide_begin), end = text.find(guide_end);
-    if (begin == std::string::npos || end == std::string::npos || end < begin) {
-        std::cerr << "error: " << path << ": no generated part (the marker lines are:\n" << guide_begin << guide_end << ")\n";
-        return 2;
-    }
-    const std::size_t from = begin + guide_begin.size();
-    const std::string generated = "\n" + fields_markdown() + "\n";
-    if (mode == "--check-guide") {
-        if (text.compare(from, end - from, generated) == 0) {
-            std::cout << path << ": the fields are the table's (" << penumbra::config_fields().size() << " fields)\n";
+// The generated part of `text` at [begin, end): --check compares it with `generated`, --write puts
+// `generated` in its place and writes the file. `part` names it in the messages ("\"$defs\" \"config\"
+// is", "the fields are"), `write_flag` the mode that regenerates it.
+int check_or_write(bool check, const std::string& path, std::string text, std::size_t begin, std::size_t end,
+                   const std::string& generated, const std::string& part, const std::string& write_flag) {
+    if (check) {
+        if (text.compare(begin, end - begin, generated) == 0) {
+            std::cout << path << ": " << part << " the table's (" << penumbra::config_fields().size() << " fields)\n";
             return 0;
         }
-        std::cerr << "error: " << path << ": the fields are not what the table of configuration fields "
+        std::cerr << "error: " << path << ": " << part << " not what the table of configuration fields "
                   << "(penumbra/config_fields.hpp) gives; allowed: the generated ones (penumbra-config-schema "
-                  << "--write-guide " << path << ")\n";
+                  << write_flag << " " << path << ")\n";
         return 1;
     }
-    text.replace(from, end - from, generated);
+    text.replace(begin, end - begin, generated);
     std::ofstream out(path, std::ios::binary);
     out << text;
     if (!out) {
@@ -98,6 +95,17 @@ int guide(const std::string& mode, const std::string& path, std::string text) {
     }
     std::cout << "wrote " << path << "\n";
     return 0;
+}
+
+int guide(const std::string& mode, const std::string& path, std::string text) {
+    const std::size_t begin = text.find(guide_begin), end = text.find(guide_end);
+    if (begin == std::string::npos || end == std::string::npos || end < begin) {
+        std::cerr << "error: " << path << ": no generated part (the marker lines are:\n" << guide_begin << guide_end << ")\n";
+        return 2;
+    }
+    const std::size_t from = begin + guide_begin.size();
+    return check_or_write(mode == "--check-guide", path, text, from, end, "\n" + fields_markdown() + "\n",
+                          "the fields are", "--write-guide");
 }
 
 } // namespace
@@ -120,29 +128,10 @@ int main(int argc, char** argv) {
     }
     if (mode.ends_with("-guide")) return guide(mode, path, text);
     const auto [begin, end] = config_block(text);
-    if (!in || begin == std::string::npos) {
-        std::cerr << "error: " << path << ": cannot read it, or it has no \"$defs\" \"config\" object\n";
+    if (begin == std::string::npos) {
+        std::cerr << "error: " << path << ": it has no \"$defs\" \"config\" object\n";
         return 2;
     }
-    const std::string generated = penumbra::config_schema_json("    ");
-    if (mode == "--check") {
-        if (text.compare(begin, end - begin, generated) == 0) {
-            std::cout << path << ": \"$defs\" \"config\" is the table's (" << penumbra::config_fields().size()
-                      << " fields)\n";
-            return 0;
-        }
-        std::cerr << "error: " << path << ": \"$defs\" \"config\" is not what the table of configuration fields "
-                  << "(penumbra/config_fields.hpp) gives; allowed: the generated one (penumbra-config-schema --write "
-                  << path << ")\n";
-        return 1;
-    }
-    text.replace(begin, end - begin, generated);
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    if (!out) {
-        std::cerr << "error: " << path << ": cannot write it\n";
-        return 1;
-    }
-    std::cout << "wrote " << path << "\n";
-    return 0;
+    return check_or_write(mode == "--check", path, text, begin, end, penumbra::config_schema_json("    "),
+                          "\"$defs\" \"config\" is", "--write");
 }
