@@ -30,28 +30,29 @@ include_guard(GLOBAL)
 cmake_policy(PUSH)
 cmake_policy(VERSION 3.20)
 
-# penumbra-gen's flags that take a value, and its switches, which become keywords (tests/generate/
-# keeps these equal to the generator's own list). A function, not variables: include_guard(GLOBAL)
+# penumbra-gen's flags that take a value, and its switches, which become keywords. The lists are
+# written from the table of configuration fields (test "generate_flags" keeps them so; tests/generate/
+# checks them against the flags penumbra-gen accepts). A function, not variables: include_guard(GLOBAL)
 # would hide variables from sibling directories.
 function(penumbra_generate_flags value_var switch_var)
+    # generated from the table of configuration fields by
+    # penumbra-config-schema --write-cmake cmake/PenumbraGenerate.cmake
     set(${value_var}
-        --technique --profile --slices --resolution --filter --fusion --packing --light --target
-        --slice-placement --level-bound --level-format --level-reduction --prefilter-stage
-        --tangent-clip-offset --fade-ramp
-        --shadow-resolution --shadow-bias --shadow-slope-bias --shadow-normal-offset
-        --pcf-pattern --pcf-grid --pcf-taps --pcf-radius
-        --pcss-blockers --pcss-filter --pcss-max-texels
-        --oim-resolution --oim-intervals --oim-samples
-        --erosion-radius --erosion-edge-threshold --erosion-search-taps --erosion-blur-taps
-        --evsm-positive-exponent --evsm-negative-exponent --evsm-bleeding --evsm-variance-bias
-        --evsm-blur-fraction --evsm-blur-taps --evsm-max-blur
-        --smrt-rays --smrt-samples --smrt-extrapolate-slope --smrt-max-slope-bias --smrt-texel-dither --smrt-frame
+        --technique --profile --light --target --slices --resolution --filter --fusion --packing
+        --tangent-clip-offset --fade-ramp --slice-placement --level-bound --level-format --level-reduction
+        --prefilter-stage --shadow-resolution --shadow-bias --shadow-slope-bias --shadow-normal-offset
+        --pcf-pattern --pcf-grid --pcf-taps --pcf-radius --pcss-blockers --pcss-filter --pcss-max-texels
+        --oim-resolution --oim-intervals --oim-samples --erosion-radius --erosion-edge-threshold
+        --erosion-search-taps --erosion-blur-taps --evsm-positive-exponent --evsm-negative-exponent
+        --evsm-bleeding --evsm-variance-bias --evsm-blur-fraction --evsm-blur-taps --evsm-max-blur --smrt-rays
+        --smrt-samples --smrt-extrapolate-slope --smrt-max-slope-bias --smrt-texel-dither --smrt-frame
         PARENT_SCOPE)
     set(${switch_var}
-        --no-leak-fix --no-fade --tangent-clip --no-tangent-clip --no-clip-footprint
-        --no-rotation --no-receiver-plane-bias --alpha-test --no-alpha-test --solid-casters --irradiance-window
+        --alpha-test --no-alpha-test --no-leak-fix --no-fade --tangent-clip --no-tangent-clip
+        --no-clip-footprint --solid-casters --irradiance-window --no-receiver-plane-bias --no-rotation
         --validate
         PARENT_SCOPE)
+    # end of the generated flags
 endfunction()
 
 # The keyword of a flag: --slice-placement → SLICE_PLACEMENT; --target → TARGET_API (the first

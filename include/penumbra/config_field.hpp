@@ -47,6 +47,8 @@ struct ConfigField {
     std::string_view detail{};              // a longer description for docs/layout.schema.json ("": help)
     std::string_view section{};             // the first row of a section: the section's own description
     std::string_view techniques{};          // the techniques that read it, "pcf, pcss"; "": every technique
+    bool shared = false;                  // also read by every technique whose descriptor names this row's
+                                          // section in reads_shared_section (detail/technique.hpp)
     bool omit_default = false;            // layout.json writes it only when not the default (fields added
                                           // after layout_version 3, so that older layouts read as before)
     std::span<const std::string_view> names{}; // choice: the enumeration's names (EnumNames)

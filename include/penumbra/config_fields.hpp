@@ -161,7 +161,8 @@ constexpr std::string_view field_name(const ConfigField& field) {
 
 namespace detail {
 
-// The names in field.techniques ("pcf, pcss"): {"pcf", "pcss"}; none for every technique.
+// The techniques that read the field: the names in field.techniques ("pcf, pcss"), then for a shared
+// row every technique whose descriptor reads its section; none for every technique.
 inline std::vector<std::string_view> technique_names(const ConfigField& field) {
     std::vector<std::string_view> names;
     for (std::string_view rest = field.techniques; !rest.empty();) {
@@ -169,7 +170,19 @@ inline std::vector<std::string_view> technique_names(const ConfigField& field) {
         names.push_back(rest.substr(0, comma));
         rest = comma == std::string_view::npos ? std::string_view() : rest.substr(comma + 2);
     }
+    if (field.shared)
+        for (Technique t : all_values<Technique>())
+            if (technique_descriptor(t).reads_shared_section == field_section(field) &&
+                std::find(names.begin(), names.end(), to_string(t)) == names.end())
+                names.push_back(to_string(t));
     return names;
+}
+
+// technique_names as one line, "pcf, pcss"; "" for every technique.
+inline std::string technique_list(const ConfigField& field) {
+    std::string out;
+    for (std::string_view name : technique_names(field)) out += (out.empty() ? "" : ", ") + std::string(name);
+    return out;
 }
 
 } // namespace detail
@@ -297,9 +310,9 @@ inline std::string config_usage(std::size_t column, std::size_t width = 110) {
     for (const ConfigField& f : config_fields()) {
         if (f.flag.empty() || std::find(done.begin(), done.end(), f.flag) != done.end()) continue;
         done.push_back(f.flag);
-        std::string techniques(f.techniques);
+        std::string techniques = detail::technique_list(f);
         for (const ConfigField& g : config_fields())
-            if (&g != &f && g.flag == f.flag && !g.techniques.empty()) techniques += ", " + std::string(g.techniques);
+            if (&g != &f && g.flag == f.flag && !g.techniques.empty()) techniques += ", " + detail::technique_list(g);
         const std::string group = techniques.empty() ? "every technique" : techniques;
         if (group != heading) out += (out.empty() ? "" : "\n") + group + ":\n";
         heading = group;
@@ -374,7 +387,7 @@ inline std::string field_schema(const ConfigField& f, const std::string& indent)
     }
     const std::string_view text = f.detail.empty() ? f.help : f.detail;
     members.push_back("\"description\": " +
-                      json_quoted((f.techniques.empty() ? "" : std::string(f.techniques) + ": ") + std::string(text)));
+                      json_quoted((f.techniques.empty() ? "" : technique_list(f) + ": ") + std::string(text)));
     std::string out = "{";
     for (std::size_t i = 0; i < members.size(); ++i) out += (i ? ",\n" : "\n") + in + members[i];
     return out + "\n" + indent + "}";

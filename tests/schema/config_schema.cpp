@@ -3,10 +3,13 @@
 // (penumbra/config_fields.hpp): `--check FILE` fails when the file's differs (test "schema_config"),
 // `--write FILE` puts the generated one in its place. The same table gives docs/configuration.md its
 // reference of every field, between two marker lines: `--check-guide FILE` / `--write-guide FILE`
-// (test "configuration_guide").
+// (test "configuration_guide"), and cmake/PenumbraGenerate.cmake its keywords, one per flag of
+// penumbra-gen: `--check-cmake FILE` / `--write-cmake FILE` (test "generate_flags"). A new field or
+// technique edits none of these files by hand.
 //
 //   penumbra-config-schema --write docs/layout.schema.json
 //   penumbra-config-schema --write-guide docs/configuration.md
+//   penumbra-config-schema --write-cmake cmake/PenumbraGenerate.cmake
 #include <penumbra/config_fields.hpp>
 
 #include <algorithm>
@@ -38,6 +41,48 @@ constexpr std::string_view guide_begin = "<!-- fields: generated from include/pe
                                          "penumbra-config-schema --write-guide docs/configuration.md -->\n";
 constexpr std::string_view guide_end = "<!-- end of the generated fields -->\n";
 
+// The markers around the generated lists of cmake/PenumbraGenerate.cmake's penumbra_generate_flags().
+constexpr std::string_view cmake_begin = "    # generated from the table of configuration fields by\n"
+                                         "    # penumbra-config-schema --write-cmake cmake/PenumbraGenerate.cmake\n";
+constexpr std::string_view cmake_end = "    # end of the generated flags\n";
+
+// `flags` as CMake list lines of penumbra_generate_flags(): eight spaces in, wrapped before 110 columns.
+std::string cmake_list(const std::string& variable, const std::vector<std::string>& flags) {
+    std::string out = "    set(${" + variable + "}\n", line;
+    for (const std::string& flag : flags) {
+        if (!line.empty() && 8 + line.size() + 1 + flag.size() > 110) {
+            out += "        " + line + "\n";
+            line.clear();
+        }
+        line += (line.empty() ? "" : " ") + flag;
+    }
+    if (!line.empty()) out += "        " + line + "\n";
+    return out + "        PARENT_SCOPE)\n";
+}
+
+// penumbra-gen's flags as penumbra_generate_shaders() takes them: those with a value (the fields' that
+// are not true/false), then the switches (the true/false fields', "--[no-]x" as both, and --validate).
+// --config and --out are its CONFIG and OUT_DIR.
+std::string cmake_flags() {
+    std::vector<std::string> values, switches;
+    auto add = [](std::vector<std::string>& list, std::string flag) {
+        if (std::find(list.begin(), list.end(), flag) == list.end()) list.push_back(std::move(flag));
+    };
+    for (const penumbra::ConfigField& f : penumbra::config_fields()) {
+        if (f.flag.empty()) continue;
+        if (f.kind != penumbra::FieldKind::boolean) {
+            add(values, std::string(f.flag));
+        } else if (f.flag.starts_with("--[no-]")) {
+            add(switches, "--" + std::string(f.flag.substr(7)));
+            add(switches, "--no-" + std::string(f.flag.substr(7)));
+        } else {
+            add(switches, std::string(f.flag));
+        }
+    }
+    switches.push_back("--validate");
+    return cmake_list("value_var", values) + cmake_list("switch_var", switches);
+}
+
 // One Markdown table a group of fields (every technique, then each technique's own): key, flag, what
 // it allows, the default, what it means (the schema's longer description where a row has one).
 std::string fields_markdown() {
@@ -50,7 +95,7 @@ std::string fields_markdown() {
     // the groups in the order the table first names them, each with all of its rows
     std::vector<std::string> groups;
     auto group_of = [](const penumbra::ConfigField& f) {
-        return f.techniques.empty() ? std::string("every technique") : std::string(f.techniques);
+        return f.techniques.empty() ? std::string("every technique") : penumbra::detail::technique_list(f);
     };
     for (const penumbra::ConfigField& f : penumbra::config_fields())
         if (std::find(groups.begin(), groups.end(), group_of(f)) == groups.end()) groups.push_back(group_of(f));
@@ -97,24 +142,28 @@ int check_or_write(bool check, const std::string& path, std::string text, std::s
     return 0;
 }
 
-int guide(const std::string& mode, const std::string& path, std::string text) {
-    const std::size_t begin = text.find(guide_begin), end = text.find(guide_end);
+// The part of `text` between the marker lines `first` and `last`: checked or written (`check`).
+int marked_part(bool check, const std::string& path, const std::string& text, std::string_view first,
+                std::string_view last, const std::string& generated, const std::string& part,
+                const std::string& write_flag) {
+    const std::size_t begin = text.find(first), end = text.find(last);
     if (begin == std::string::npos || end == std::string::npos || end < begin) {
-        std::cerr << "error: " << path << ": no generated part (the marker lines are:\n" << guide_begin << guide_end << ")\n";
+        std::cerr << "error: " << path << ": no generated part (the marker lines are:\n" << first << last << ")\n";
         return 2;
     }
-    const std::size_t from = begin + guide_begin.size();
-    return check_or_write(mode == "--check-guide", path, text, from, end, "\n" + fields_markdown() + "\n",
-                          "the fields are", "--write-guide");
+    return check_or_write(check, path, text, begin + first.size(), end, generated, part, write_flag);
 }
 
 } // namespace
 
 int main(int argc, char** argv) {
     const std::string mode = argc == 3 ? argv[1] : "";
-    if (mode != "--check" && mode != "--write" && mode != "--check-guide" && mode != "--write-guide") {
-        std::cerr << "error: usage: penumbra-config-schema --check|--write docs/layout.schema.json, or "
-                     "--check-guide|--write-guide docs/configuration.md\n";
+    const std::vector<std::string> modes{"--check", "--write", "--check-guide", "--write-guide", "--check-cmake",
+                                         "--write-cmake"};
+    if (std::find(modes.begin(), modes.end(), mode) == modes.end()) {
+        std::cerr << "error: usage: penumbra-config-schema --check|--write docs/layout.schema.json, "
+                     "--check-guide|--write-guide docs/configuration.md, or --check-cmake|--write-cmake "
+                     "cmake/PenumbraGenerate.cmake\n";
         return 2;
     }
     const std::string path = argv[2];
@@ -126,7 +175,12 @@ int main(int argc, char** argv) {
         std::cerr << "error: " << path << ": cannot read it\n";
         return 2;
     }
-    if (mode.ends_with("-guide")) return guide(mode, path, text);
+    if (mode.ends_with("-guide"))
+        return marked_part(mode == "--check-guide", path, text, guide_begin, guide_end,
+                           "\n" + fields_markdown() + "\n", "the fields are", "--write-guide");
+    if (mode.ends_with("-cmake"))
+        return marked_part(mode == "--check-cmake", path, text, cmake_begin, cmake_end, cmake_flags(),
+                           "penumbra_generate_flags()'s lists are", "--write-cmake");
     const auto [begin, end] = config_block(text);
     if (begin == std::string::npos) {
         std::cerr << "error: " << path << ": it has no \"$defs\" \"config\" object\n";

@@ -88,6 +88,20 @@ constexpr void write_precision(LineWriter& out, const Config& config) {
         out.line("precision highp ", sampler, ";");
 }
 
+// The first lines of the includable snippet penumbra_visibility.*: what it is (`signatures`: the
+// functions it defines), the configuration, and where to include it in the target's language.
+constexpr void write_snippet_header(LineWriter& out, const Config& config, const Text& signatures) {
+    out.line("// Penumbra ", version_string, " - ", file_name(config, visibility_snippet_name), ": ", signatures);
+    out.line("// ", describe(config));
+    if (is_wgsl(config))
+        out.comment("Add to a module of the shading stage. Bindings start at 0 in group 0; call penumbra_loadVisibility()"
+                    " first in the entry point.");
+    else if (is_hlsl(config))
+        out.comment("#include in a pixel shader. Registers start at 0 in space 0 (b#, t#, s# numbered together).");
+    else
+        out.comment("Include after the #version line of a stage for this target. Bindings start at 0.");
+}
+
 // First lines of every stage: the version directive must come first, then what this file is
 // and the configuration it was specialized for.
 constexpr void write_preamble(LineWriter& out, const Config& config, std::string_view title) {

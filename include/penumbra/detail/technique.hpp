@@ -96,6 +96,11 @@ struct TechniqueDescriptor {
     bool writes_wgsl = false;
     // Whether its emitters write HLSL too (WGSL's passes in HLSL); validate() refuses target hlsl otherwise.
     bool writes_hlsl = false;
+
+    // The section of another folder's rows marked `shared` that it reads too ("shadow_map": the depth
+    // map's resolution and biases, for the techniques that build it as the shadow-map techniques do).
+    // The rows' readers (--help, the schema, the panels) follow from it.
+    std::string_view reads_shared_section = {};
 };
 
 // The descriptor of `technique`: detail/techniques.hpp. Precondition: a known value (validate()

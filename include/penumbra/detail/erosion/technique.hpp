@@ -58,6 +58,7 @@ constexpr TechniqueDescriptor erosion_technique() {
     erosion.problems = erosion_problems;
     erosion.summary = erosion_summary;
     erosion.texels_per_fragment = erosion_texels_per_fragment;
+    erosion.reads_shared_section = "shadow_map";
     return erosion;
 }
 

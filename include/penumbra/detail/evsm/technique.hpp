@@ -74,6 +74,7 @@ constexpr TechniqueDescriptor evsm_technique() {
         .texels_per_fragment = evsm_texels_per_fragment,
         .writes_wgsl = true,
         .writes_hlsl = true,
+        .reads_shared_section = "shadow_map",
     };
 }
 

@@ -44,21 +44,34 @@ constexpr std::vector<Param> level_params(const Config& config) {
     return params;
 }
 
-// penumbra_source_texel(origin, local) over an atlas level whose tiles are `tile` texels wide (a
-// literal, or a uniform where the level's size varies): 0 outside the tile, so the window sums treat
-// the outside as unoccluded. Shared by the fragment level passes and the compute prefilter.
-constexpr void write_atlas_source_texel(LineWriter& out, const Config& config, const Text& tile) {
+// penumbra_source_texel(origin, local): texel `local` of the previous level's part `size` texels wide
+// that starts at `origin`, 0 outside it, so the window sums treat the outside as unoccluded.
+// `write_value` declares `value`, the texel, from `origin`, `local` and `size`.
+template <class WriteValue>
+constexpr void write_source_texel_function(LineWriter& out, const Config& config, std::string_view comment,
+                                           const Text& size, WriteValue write_value) {
     const std::string_view ivec2 = type_name(config, "ivec2");
-    out.comment("texel `local` of the previous level's tile that starts at `origin`, 0 outside the tile");
+    out.comment(comment);
     out.line(signature(config, "vec4", "penumbra_source_texel", {{"ivec2", "origin"}, {"ivec2", "local"}}));
     out.line("{");
     out.line(value(config, "bool", "inside",
                    cat("all(", compare(config, "greaterThanEqual", "local", cat(ivec2, "(0)")), ") && all(",
-                       compare(config, "lessThan", "local", cat(ivec2, "(", tile, ")")), ")")));
-    out.line(value(config, "vec4", "value",
-                   fetch(config, "penumbra_source", cat("origin + clamp(local, ", ivec2, "(0), ", ivec2, "(", tile, " - 1))"), "0")));
+                       compare(config, "lessThan", "local", cat(ivec2, "(", size, ")")), ")")));
+    write_value();
     out.line("return ", conditional(config, "inside", "value", "vec4(0.0)"), ";");
     out.line("}");
+}
+
+// penumbra_source_texel over an atlas level whose tiles are `tile` texels wide (a literal, or a
+// uniform where the level's size varies). Shared by the fragment level passes and the compute prefilter.
+constexpr void write_atlas_source_texel(LineWriter& out, const Config& config, const Text& tile) {
+    const std::string_view ivec2 = type_name(config, "ivec2");
+    write_source_texel_function(out, config, "texel `local` of the previous level's tile that starts at `origin`, 0 outside the tile",
+                                tile, [&] {
+                                    out.line(value(config, "vec4", "value",
+                                                   fetch(config, "penumbra_source",
+                                                         cat("origin + clamp(local, ", ivec2, "(0), ", ivec2, "(", tile, " - 1))"), "0")));
+                                });
 }
 
 // Declarations of a level-building pass and the texel read that returns 0 outside the occlusion
@@ -82,20 +95,16 @@ constexpr void write_level_source(LineWriter& out, const Config& config) {
         return;
     }
     const std::string_view ivec2 = type_name(config, "ivec2");
-    out.comment("texel `local` of the previous level, 0 outside the texture (origin: always 0)");
-    out.line(signature(config, "vec4", "penumbra_source_texel", {{"ivec2", "origin"}, {"ivec2", "local"}}));
-    out.line("{");
-    out.line(value(config, "bool", "inside",
-                   cat("all(", compare(config, "greaterThanEqual", "local", cat(ivec2, "(0)")), ") && all(",
-                       compare(config, "lessThan", "local", cat(ivec2, "(", R, ")")), ")")));
-    out.line(value(config, "ivec2", "texel", cat("origin + clamp(local, ", ivec2, "(0), ", ivec2, "(", format_int(config.resolution - 1), "))")));
-    if (config.packing == Packing::array)
-        out.line(value(config, "vec4", "value", fetch_layer(config, "penumbra_source", "texel", "penumbra_sourceLayer", "0")));
-    else
-        out.line(value(config, "vec4", "value",
-                       fetch(config, "penumbra_source", cat(type_name(config, "ivec3"), "(texel, penumbra_sourceLayer)"), "0")));
-    out.line("return ", conditional(config, "inside", "value", "vec4(0.0)"), ";");
-    out.line("}");
+    write_source_texel_function(out, config, "texel `local` of the previous level, 0 outside the texture (origin: always 0)",
+                                R, [&] {
+        out.line(value(config, "ivec2", "texel",
+                       cat("origin + clamp(local, ", ivec2, "(0), ", ivec2, "(", format_int(config.resolution - 1), "))")));
+        if (config.packing == Packing::array)
+            out.line(value(config, "vec4", "value", fetch_layer(config, "penumbra_source", "texel", "penumbra_sourceLayer", "0")));
+        else
+            out.line(value(config, "vec4", "value",
+                           fetch(config, "penumbra_source", cat(type_name(config, "ivec3"), "(texel, penumbra_sourceLayer)"), "0")));
+    });
     out.blank();
 }
 

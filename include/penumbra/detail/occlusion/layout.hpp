@@ -34,6 +34,24 @@ inline std::vector<ParamGroup> occlusion_param_groups(const Config& config, std:
     return {{"PenumbraPass", std::move(params)}};
 }
 
+// A mip chain built by passes, where the API has no generateMipmap (WebGPU, Direct3D 12): one pass a
+// level (and layer: `layers` 0 for a 2D texture) running `program`, which reads level l - 1 alone.
+inline void describe_level_passes(LayoutBuilder& b, const std::string& program, const std::string& texture, int levels,
+                                  int layers, int width, int height) {
+    for (int l = 1; l <= levels; ++l)
+        for (int t = 0; t < std::max(layers, 1); ++t) {
+            std::vector<std::pair<std::string, int>> ints;
+            if (layers > 0) ints.push_back({"penumbra_sourceLayer", t});
+            b.pass({.name = program,
+                    .program = program,
+                    .inputs = {{.sampler = "penumbra_source", .texture = texture, .level = l - 1}},
+                    .outputs = {{texture, l, layers > 0 ? t : -1}},
+                    .int_uniforms = ints,
+                    .viewport_width = std::max(width >> l, 1),
+                    .viewport_height = std::max(height >> l, 1)});
+        }
+}
+
 // Adaptive slice placement (emit_slice_placement.hpp), phase shadow, before slicing: the depth
 // bins in draws of 16 bins (four layers each), their mip chain, then the S + 1 boundaries.
 inline void describe_slice_placement_passes(LayoutBuilder& b, const Config& config, const RenderState& max_blend) {
@@ -65,20 +83,10 @@ inline void describe_slice_placement_passes(LayoutBuilder& b, const Config& conf
                 .viewport_height = D,
                 .state = max_blend});
     }
-    if (binds_samplers_apart(config)) {
-        // WebGPU has no generateMipmap (nor Direct3D 12): a pass a level and layer, reading level l - 1 alone
-        for (int l = 1; l <= depth_bins_read_level; ++l)
-            for (int t = 0; t < layers; ++t)
-                b.pass({.name = "depth_bins_level",
-                        .program = "depth_bins_level",
-                        .inputs = {{.sampler = "penumbra_source", .texture = "penumbra_depthBins", .level = l - 1}},
-                        .outputs = {{"penumbra_depthBins", l, t}},
-                        .int_uniforms = {{"penumbra_sourceLayer", t}},
-                        .viewport_width = D >> l,
-                        .viewport_height = D >> l});
-    } else {
+    if (binds_samplers_apart(config))
+        describe_level_passes(b, "depth_bins_level", "penumbra_depthBins", depth_bins_read_level, layers, D, D);
+    else
         b.pass({.name = "depth_bins_mipmaps", .action = PassAction::generate_mipmap, .outputs = {{"penumbra_depthBins"}}});
-    }
     b.pass({.name = "slice_boundaries",
             .program = "slice_boundaries",
             .inputs = {{"penumbra_depthBins", "penumbra_depthBins"}},
@@ -273,22 +281,9 @@ inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
                 .viewport_height = R});
     }
     if (config.filter == Filter::mipmap && binds_samplers_apart(config)) {
-        // WebGPU has no generateMipmap (nor Direct3D 12): one pass a level (and layer), reading level l - 1
-        // alone
         const bool atlas = config.packing == Packing::atlas;
-        const std::string storage = atlas ? "penumbra_occlusionAtlas" : "penumbra_occlusion";
-        for (int l = 1; l <= L; ++l)
-            for (int t = 0; t < (atlas ? 1 : T); ++t) {
-                std::vector<std::pair<std::string, int>> ints;
-                if (!atlas) ints.push_back({"penumbra_sourceLayer", t});
-                b.pass({.name = "mip_level",
-                        .program = "mip_level",
-                        .inputs = {{.sampler = "penumbra_source", .texture = storage, .level = l - 1}},
-                        .outputs = {{storage, l, atlas ? -1 : t}},
-                        .int_uniforms = ints,
-                        .viewport_width = std::max((atlas ? T * R : R) >> l, 1),
-                        .viewport_height = std::max(R >> l, 1)});
-            }
+        describe_level_passes(b, "mip_level", atlas ? "penumbra_occlusionAtlas" : "penumbra_occlusion", L, atlas ? 0 : T,
+                              atlas ? T * R : R, R);
     } else if (config.filter == Filter::mipmap) {
         const std::string storage = config.packing == Packing::atlas ? "penumbra_occlusionAtlas" : "penumbra_occlusion";
         b.pass({.name = "mipmaps", .action = PassAction::generate_mipmap, .outputs = {{storage}}});

@@ -18,15 +18,15 @@ constexpr auto shadow_map_fields() {
         member<&Config::shadow_map, &S::resolution>(
             {.key = "shadow_map.resolution", .flag = "--shadow-resolution", .metavar = "R", .min = 32, .max = 8192,
              .power_of_two = true, .allowed = "a power of two from 32 to 8192", .help = "shadow map side in texels",
-             .section = "the depth map from the light", .techniques = "shadowmap, pcf, pcss, erosion, evsm, smrt"}),
+             .section = "the depth map from the light", .techniques = "shadowmap, pcf, pcss", .shared = true}),
         member<&Config::shadow_map, &S::constant_bias>(
             {.key = "shadow_map.constant_bias", .flag = "--shadow-bias", .metavar = "B", .min = 0, .max = 10,
              .allowed = "0 to 10 scene units", .help = "constant depth bias along the light axis",
-             .techniques = "shadowmap, pcf, pcss, erosion, evsm, smrt"}),
+             .techniques = "shadowmap, pcf, pcss", .shared = true}),
         member<&Config::shadow_map, &S::slope_bias>(
             {.key = "shadow_map.slope_bias", .flag = "--shadow-slope-bias", .metavar = "S", .min = 0, .max = 16,
              .help = "slope bias: S times the depth change across one texel",
-             .techniques = "shadowmap, pcf, pcss, erosion, evsm, smrt"}),
+             .techniques = "shadowmap, pcf, pcss", .shared = true}),
         member<&Config::shadow_map, &S::normal_offset>(
             {.key = "shadow_map.normal_offset", .flag = "--shadow-normal-offset", .metavar = "K", .min = 0, .max = 8,
              .allowed = "0 to 8 shadow-map texels",

@@ -257,16 +257,7 @@ constexpr void write_smrt_visibility(LineWriter& out, const Config& config, int&
 // The includable snippet penumbra_visibility.glsl: no #version, declarations from binding 0.
 constexpr Text smrt_visibility_snippet(const Config& config) {
     LineWriter out;
-    out.line("// Penumbra ", version_string, " - ", file_name(config, visibility_snippet_name), ": ",
-             signature(config, "float", "penumbraVisibility", {{"vec3", "worldPos"}}));
-    out.line("// ", describe(config));
-    if (is_wgsl(config))
-        out.comment("Add to a module of the shading stage. Bindings start at 0 in group 0; call penumbra_loadVisibility()"
-                    " first in the entry point.");
-    else if (is_hlsl(config))
-        out.comment("#include in a pixel shader. Registers start at 0 in space 0 (b#, t#, s# numbered together).");
-    else
-        out.comment("Include after the #version line of a stage for this target. Bindings start at 0.");
+    write_snippet_header(out, config, signature(config, "float", "penumbraVisibility", {{"vec3", "worldPos"}}));
     out.blank();
     write_hlsl_names(out, config);
     int binding = 0;

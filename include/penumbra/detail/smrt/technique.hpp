@@ -58,6 +58,7 @@ constexpr TechniqueDescriptor smrt_technique() {
         .texels_per_fragment = smrt_texels_per_fragment,
         .writes_wgsl = true,
         .writes_hlsl = true,
+        .reads_shared_section = "shadow_map",
     };
 }
 
