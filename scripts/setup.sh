@@ -16,6 +16,7 @@ packages=(
     libvulkan-dev libvulkan-volk-dev mesa-vulkan-drivers vulkan-validationlayers
     python3 python3-jsonschema python3-matplotlib
     chromium
+    clang-format clang-tidy
     clang-16 lld-16 libc++-16-dev-wasm32 libc++abi-16-dev-wasm32 libclang-rt-16-dev-wasm32 wasi-libc
 )
 # The browser test drives chromium from Node (puppeteer-core); Debian's node where none is installed.
