@@ -383,7 +383,8 @@ TEST_CASE("hostile: playground files are whole or absent, and 'wrote' only for w
                                  (dir / "keep.json").string()});
         REQUIRE(run_child(playground, args).exit_code == 0);
         const std::map<std::string, std::string> before = contents(dir);
-        CHECK(before.size() == 6); // keep.png, keep.reference{,.oriented,.irradiance}.pfm, keep.error.png, keep.json
+        CHECK(before.size() == 7); // keep.png, keep.reference{,.oriented,.irradiance}.pfm,
+                                   // keep.reference.png, keep.error.png, keep.json
         // The same run with the error image in the way (a directory): nothing changes.
         args.insert(args.end(), {"--slices", "4", "--error-out", (dir / "blocked").string()});
         fs::create_directories(dir / "blocked");

@@ -226,17 +226,24 @@ bool add_reference(RunOutputs& out, nlohmann::ordered_json& metrics, const Playg
     std::vector<float> signed_error(references.irradiance.size());
     for (std::size_t i = 0; i < signed_error.size(); ++i)
         signed_error[i] = result.geometry[i] ? result.visibility[i] - references.irradiance[i] : 0.0f;
-    // The whole-light truth at --reference-out, the fair ones beside it.
+    // The whole-light truth at --reference-out, the fair ones beside it; the shaded image the estimate's
+    // should match (the example shading of the irradiance truth) beside the output image.
     const std::string oriented_path = sibling_path(truth_path, ".oriented.pfm");
     const std::string irradiance_path = sibling_path(truth_path, ".irradiance.pfm");
+    const std::string shaded_truth_path = sibling_path(options.out_path, ".reference.png");
     if (!out.add(truth_path, encode_pfm({width, height, 1, references.visibility}, error)) ||
         !out.add(oriented_path, encode_pfm({width, height, 1, references.oriented}, error)) ||
         !out.add(irradiance_path, encode_pfm({width, height, 1, references.irradiance}, error)) ||
-        !out.add(error_path, encode_png_rgb(width, height, signed_error_colors(signed_error, error_image_range),
-                                            RowOrder::top_down, error)))
+        !out.add(error_path,
+                 encode_png_rgb(width, height, signed_error_colors(signed_error, error_image_range),
+                                RowOrder::top_down, error)) ||
+        !out.add(shaded_truth_path,
+                 encode_png_rgb(width, height, example_shading(result, references.irradiance),
+                                RowOrder::top_down, error)))
         return false;
-    out.wrote.push_back(truth_path + " (whole-light visibility), " + oriented_path + " (oriented), " + irradiance_path +
-                        " (irradiance) and " + error_path +
+    out.wrote.push_back(truth_path + " (whole-light visibility), " + oriented_path + " (oriented), " +
+                        irradiance_path + " (irradiance), " + shaded_truth_path +
+                        " (the shaded image with the irradiance truth) and " + error_path +
                         " (against irradiance; red: estimate too bright, blue: too dark, saturating at ±" +
                         std::to_string(error_image_range).substr(0, 4) + ", green: sees none of the light)");
     std::printf("ground truth %dx%d rays/pixel, %.0f ms; irradiance (the shaded image's reference: the light "

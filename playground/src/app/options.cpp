@@ -249,22 +249,25 @@ std::string usage() {
     out += "\nheadless output:\n";
     out += line("--out FILE.png", "the shaded image (required with --headless)");
     out += line("--visibility FILE.pfm", "the estimated visibility, one float per pixel (1 on background)");
-    out += line("--reference", "also ray-trace the ground truth (Embree) and report MAE, RMSE, p95 |error| and the\n"
-                               "                        mean signed error (+ too bright, - too dark) over all geometry "
-                               "pixels and over\n"
-                               "                        penumbra pixels (truth or estimate < 0.98), and the false "
-                               "light and false shadow.\n"
-                               "                        The headline (printed first, metrics.json reference.all and "
-                               ".penumbra, the error\n"
-                               "                        PNG) is irradiance, the shaded image's reference: the light "
-                               "weighed by the\n"
-                               "                        irradiance it sends, above each surface's tangent plane; "
-                               "oriented (its visibility\n"
-                               "                        unweighed) and the whole light's visibility follow. Writes "
-                               "the three truths as\n"
-                               "                        PFM and a false-colour error PNG (red: too bright, blue: too "
-                               "dark, green: sees\n"
-                               "                        none of the light)");
+    out += line("--reference",
+                "also ray-trace the ground truth (Embree) and report MAE, RMSE, p95 |error| and the\n"
+                "                        mean signed error (+ too bright, - too dark) over all geometry "
+                "pixels and over\n"
+                "                        penumbra pixels (truth or estimate < 0.98), and the false "
+                "light and false shadow.\n"
+                "                        The headline (printed first, metrics.json reference.all and "
+                ".penumbra, the error\n"
+                "                        PNG) is irradiance, the shaded image's reference: the light "
+                "weighed by the\n"
+                "                        irradiance it sends, above each surface's tangent plane; "
+                "oriented (its visibility\n"
+                "                        unweighed) and the whole light's visibility follow. Writes "
+                "the three truths as\n"
+                "                        PFM, a false-colour error PNG (red: too bright, blue: too "
+                "dark, green: sees\n"
+                "                        none of the light) and <out stem>.reference.png, the shaded "
+                "image with the\n"
+                "                        irradiance truth in place of the estimate");
     out += line("--samples N", "ground-truth rays per light axis, N×N per pixel: 1 to 1024 (default 32)");
     out += line("--reference-out FILE", "where the whole-light truth goes (default <out stem>.reference.pfm next to\n"
                                         "                        --out); the others beside it, "

@@ -99,29 +99,37 @@ bool render_headless(const Scene& scene, const Config& config, int width, int he
     out.normals.assign(n, glm::vec3(0.0f));
     out.tex_coords.assign(n, glm::vec2(0.0f));
     out.geometry.assign(n, 0);
-    out.rgb.assign(3 * n, 0.0f);
+    out.light_term.assign(n, 0.0f);
     const glm::vec3 eye = scene.camera.eye_position();
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
             const std::size_t src = static_cast<std::size_t>(y) * width + x;
             const std::size_t dst = static_cast<std::size_t>(height - 1 - y) * width + x;
-            if (pos[src].w < 0.5f) {
-                const float sky[3] = {0.55f, 0.65f, 0.8f};
-                for (int c = 0; c < 3; ++c) out.rgb[3 * dst + c] = sky[c];
-                continue;
-            }
+            if (pos[src].w < 0.5f) continue;
             out.geometry[dst] = 1;
             out.positions[dst] = glm::vec3(pos[src]);
             out.normals[dst] = glm::vec3(nrm[src]);
             out.tex_coords[dst] = glm::vec2(uv[src]);
             out.visibility[dst] = vis[src];
-            const float light_term = shading_light(config) == Light::sun
-                                         ? sun_light_term(glm::vec3(pos[src]), glm::vec3(nrm[src]), eye, scene.sun)
-                                         : rect_light_term(glm::vec3(pos[src]), glm::vec3(nrm[src]), eye, scene.light);
-            const float shade = 0.15f + 0.85f * light_term * vis[src];
-            for (int c = 0; c < 3; ++c) out.rgb[3 * dst + c] = shade * 0.9f;
+            out.light_term[dst] =
+                shading_light(config) == Light::sun
+                    ? sun_light_term(glm::vec3(pos[src]), glm::vec3(nrm[src]), eye, scene.sun)
+                    : rect_light_term(glm::vec3(pos[src]), glm::vec3(nrm[src]), eye, scene.light);
         }
+    out.rgb = example_shading(out, out.visibility);
     return true;
+}
+
+std::vector<float> example_shading(const HeadlessResult& result, const std::vector<float>& visibility) {
+    const float sky[3] = {0.55f, 0.65f, 0.8f};
+    std::vector<float> rgb(3 * result.geometry.size());
+    for (std::size_t i = 0; i < result.geometry.size(); ++i) {
+        // NaN visibility (a truth where the pixel sees none of the light) has a light term of 0 there
+        const float v = std::isnan(visibility[i]) ? 0.0f : visibility[i];
+        const float shade = 0.9f * (0.15f + 0.85f * result.light_term[i] * v);
+        for (int c = 0; c < 3; ++c) rgb[3 * i + c] = result.geometry[i] ? shade : sky[c];
+    }
+    return rgb;
 }
 
 std::vector<float> reference_visibility(const Scene& scene, const HeadlessResult& result, int samples_per_axis,

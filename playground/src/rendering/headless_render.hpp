@@ -25,7 +25,9 @@ struct HeadlessResult {
     std::vector<glm::vec3> normals;      // unit normals, zero on background
     std::vector<glm::vec2> tex_coords;   // the mesh's texture coordinates (0 without them or on background)
     std::vector<unsigned char> geometry; // 1 where a surface was rasterised
-    std::vector<float> rgb;              // the example shading (rendering/light_term.hpp), 3 floats per pixel, top row first
+    std::vector<float>
+        light_term; // the example shading's unoccluded light (rendering/light_term.hpp), 0 on background
+    std::vector<float> rgb;                        // the example shading: example_shading(*this, visibility)
     std::vector<penumbra::gl::PassTiming> timings; // GPU time of each pass (timer queries), shading last
     bool warm = false;                             // timings of a second run (RenderOptions::warm_up)
     long long texture_bytes = 0;                   // the layout's textures at this output size
@@ -43,6 +45,11 @@ struct RenderOptions {
     // drivers) compile a shader at its first draw, which the first run's GPU time would include.
     bool warm_up = false;
 };
+
+// The example shading of `result`'s pixels with `visibility` in place of the estimate (3 floats per
+// pixel, top row first): ambient plus the light term times the visibility on geometry, sky elsewhere.
+// With the ray-traced truth's visibility it is the image the estimate's shading should match.
+std::vector<float> example_shading(const HeadlessResult& result, const std::vector<float>& visibility);
 
 // The kind of light a configuration is lit by: occlusion interval maps follow the sun.
 Light shading_light(const Config& config);

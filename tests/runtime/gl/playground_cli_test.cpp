@@ -136,8 +136,9 @@ TEST_CASE("playground cli: --reference writes the image, the visibility, the tru
                                          "metrics.json"});
     REQUIRE_MESSAGE(run.exit_code == 0, run.err);
     CHECK(run.out.find("penumbra: MAE") != std::string::npos);
-    for (const char* file : {"planes.png", "vis.pfm", "planes.reference.pfm", "planes.reference.oriented.pfm",
-                             "planes.reference.irradiance.pfm", "planes.error.png", "metrics.json"}) {
+    for (const char* file :
+         {"planes.png", "vis.pfm", "planes.reference.pfm", "planes.reference.oriented.pfm",
+          "planes.reference.irradiance.pfm", "planes.reference.png", "planes.error.png", "metrics.json"}) {
         CAPTURE(file);
         CHECK(fs::exists(dir.file(file)));
     }
