@@ -58,7 +58,7 @@ if [ "$small" -eq 1 ]; then
     compare_args=(--quick --size 32 --samples 4 --runs 2 --flicker-frames 2)
     quality_args=(--scenes boxes --filters nbuffer --configs 16x512 --size 64x64 --samples 4 --repeat 2)
 else
-    compare_args=(--scenes boxes,tree --settings "OT nbuffer 16/512,OT nbuffer 16/512 compute,OT nbuffer 16/512 irradiance,PCSS 16/16"
+    compare_args=(--scenes boxes,tree --settings "OT nbuffer 16/512,OT nbuffer 16/512 compute,OT nbuffer 16/512 area,PCSS 16/16"
                   --light-scales 1,8,32 --size 1024 --samples 8 --runs 7 --flicker-frames 4)
     quality_args=(--filters mipmap,nbuffer,sat --configs 16x512,4x128 --size 256x256 --samples 16 --repeat 3)
 fi

@@ -233,20 +233,24 @@ TEST_CASE("--profile and the JSON key profile: the preset, with the fields given
     CHECK(c.at("profile") == "large");
     CHECK(c.at("slices") == 16);
     CHECK(c.at("fusion") == "clustered");
-    CHECK(c.at("irradiance_window") == true);
-    // a flag given beside it wins, before or after it; --light sun leaves the irradiance window off (rect only)
+    CHECK_FALSE(c.contains("irradiance_window")); // on, the default, so not written
+    // a flag given beside it wins, before or after it; under --light sun the window stays on, with no effect
     const fs::path mixed = scratch().fresh("profile-mixed");
     REQUIRE(run_gen(with_out({"--fusion", "chained", "--profile", "large", "--light", "sun"}, mixed)).exit_code == 0);
     const nlohmann::json m = config_of(mixed);
     CHECK(m.at("fusion") == "chained");
-    CHECK_FALSE(m.value("irradiance_window", false));
+    CHECK(m.value("irradiance_window", true));
     // the same from JSON, whatever the order of its keys; layout.json reads back to the same emission
     const fs::path from_json = scratch().fresh("profile-json");
     REQUIRE(run_gen(with_out({"--config", write_text("profile.json", R"({"fusion": "extent", "profile": "large"})").string()},
                              from_json))
                 .exit_code == 0);
     CHECK(config_of(from_json).at("fusion") == "extent");
-    CHECK(config_of(from_json).at("irradiance_window") == true);
+    CHECK(config_of(from_json).value("irradiance_window", true));
+    // --no-irradiance-window: weighed by area, written as false
+    const fs::path area = scratch().fresh("profile-area");
+    REQUIRE(run_gen(with_out({"--profile", "large", "--no-irradiance-window"}, area)).exit_code == 0);
+    CHECK(config_of(area).at("irradiance_window") == false);
     const fs::path again = scratch().fresh("profile-again");
     REQUIRE(run_gen(with_out({"--config", (large / "layout.json").string()}, again)).exit_code == 0);
     CHECK(read_text(again / "layout.json") == read_text(large / "layout.json"));

@@ -87,7 +87,8 @@ TEST_CASE("generic: real loops over uniform bounds, channels by index, nothing u
             CHECK(count(text, "for (int s = penumbra_sliceCount - 1; s >= 0; --s)") == 1);
             CHECK(count(text, "while (") == 0);
         }
-        CHECK(count(text, "for (") == 1);
+        // and the irradiance window's loop over its two windows, where it weighs the light
+        CHECK(count(text, "for (") == (weighs_irradiance(config) ? 2 : 1));
         // the channel is an index, not a rotated one-hot vector
         CHECK(std::regex_search(text, std::regex(R"(\)\[s % 4\];|texel\[s % 4\];)")));
         CHECK(text.find("yzwx") == std::string::npos);

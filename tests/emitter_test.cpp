@@ -144,9 +144,12 @@ TEST_CASE("tangent clip: the normal is an input, each kernel is restricted, the 
     for (const ProgramDesc& p : layout.programs)
         for (const ParamDesc& param : p.parameters) normals |= p.name == "shading_deferred" && param.name == "penumbra_worldNormals";
     CHECK(normals);
-    // and without a normal, the whole light through the same loops
+    // and without a normal, the whole light through the same loops (weighed by the irradiance it sends a
+    // receiver facing it, the default's irradiance window)
     CHECK(snippet.find("float penumbraVisibility(vec3 worldPos)\n") != std::string::npos);
-    CHECK(snippet.find("return penumbra_clippedVisibility(p, vec3(0.0, 0.0, 1.0));") != std::string::npos);
+    CHECK(snippet.find(
+              "return penumbra_windowedVisibility(p, vec3(0.0, 0.0, 1.0), penumbra_irradianceWindow(p, "
+              "vec3(0.0, 0.0, -1.0), vec3(0.0, 0.0, 1.0)));") != std::string::npos);
     CHECK(count(snippet, "// slice 0:") + count(snippet, "// level 0:") == 1); // the loops are written once
     // off: the paper's signature and no clip
     const std::string plain = emit_file(Config{.tangent_clip = false}, "penumbra_visibility.glsl").text;

@@ -49,10 +49,11 @@ std::vector<Config> wgsl_configs() {
     // the array and volume packings: levels built in a scratch texture and copied into a layer / depth
     out.push_back({.slices = 8, .resolution = 128, .filter = Filter::mipmap, .packing = Packing::array, .target = Target::wgsl});
     out.push_back({.slices = 8, .resolution = 128, .packing = Packing::array, .target = Target::wgsl});
-    // the irradiance window (rect light, tangent clip): two passes of the slice loop, mixed by the irradiance
-    Config window{.slices = 8, .resolution = 128, .target = Target::wgsl};
-    window.irradiance_window = true;
-    out.push_back(window);
+    // without the irradiance window (on by default: two passes of the slice loop, mixed by the irradiance),
+    // the light weighed by area
+    Config area{.slices = 8, .resolution = 128, .target = Target::wgsl};
+    area.irradiance_window = false;
+    out.push_back(area);
     // summed-area tables: RGBA32F rendered, read texel by texel and filtered by hand (WebGPU filters no 32-bit float)
     out.push_back({.slices = 8, .resolution = 128, .filter = Filter::sat, .target = Target::wgsl});
     out.push_back({.slices = 5, .resolution = 64, .filter = Filter::sat, .fusion = Fusion::extent, .packing = Packing::array,

@@ -114,7 +114,7 @@ export class ConfigPanel {
                                             target: current.target});
         if (!emission.ok || !emission.layout) return this.changed();
         const preset = emission.layout.config;
-        this.set({fusion: preset.fusion, irradiance_window: preset.irradiance_window ?? false});
+        this.set({fusion: preset.fusion, irradiance_window: preset.irradiance_window ?? true});
     }
 
     changed() {

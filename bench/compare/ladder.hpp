@@ -86,15 +86,14 @@ inline LadderEntry clustered_entry(int slices, int resolution) {
     return entry;
 }
 
-// The irradiance window (docs/model.md §1.7.5): the light weighed by the irradiance it sends the
-// receiver, a second pass of the slice loop. Rectangle light only (validation refuses the sun). It
-// estimates the shaded image rather than the area fraction the conclusions' `oriented` reference
-// measures, so its own family: the tables show it beside the default and never pick it.
-inline LadderEntry irradiance_window_entry(int slices, int resolution) {
+// The light weighed by area, without the irradiance window (docs/model.md §1.7.5) the default has: one
+// pass of the slice loop, the default before the window. Its own family, so that the tables show it beside
+// the default and never pick it.
+inline LadderEntry area_entry(int slices, int resolution) {
     LadderEntry entry = occlusion_entry(Filter::nbuffer, slices, resolution);
-    entry.config.irradiance_window = true;
-    entry.family = "irradiance-window";
-    entry.label += " irradiance";
+    entry.config.irradiance_window = false;
+    entry.family = "area-weighted";
+    entry.label += " area";
     return entry;
 }
 
@@ -231,7 +230,7 @@ inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
         solid_casters_entry(Filter::nbuffer, 16, 512),
         clustered_entry(8, 256),
         clustered_entry(16, 512),
-        irradiance_window_entry(16, 512),
+        area_entry(16, 512),
         every_level_entry(16, 512),
         full_levels_entry(16, 512),
         compute_prefilter_entry(16, 512),

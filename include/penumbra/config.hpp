@@ -289,11 +289,11 @@ struct Config {
                                             // (a volume, not its shell); the caller flags each draw closed or open
                                             // (penumbra_casterClosed) and draws the closed ones first. Desktop
                                             // OpenGL only (a logical XOR on the slicing targets)
-    bool irradiance_window = false;         // occlusion, rect light, tangent clip: the visibility weighs the light
-                                            // by the irradiance it sends the receiver, not by area: the clip's
-                                            // and its core's (half as wide, around the irradiance's peak)
+    bool irradiance_window = true;          // occlusion: the light weighed by the irradiance it sends, not by
+                                            // area: the clip's and its core's (half as wide, around the peak)
                                             // visibilities mixed by their share of the irradiance; two passes of
-                                            // the slice loop (docs/model.md §1.7.5)
+                                            // the slice loop (docs/model.md §1.7.5). Rect light and tangent clip;
+                                            // no effect elsewhere (weighs_irradiance)
 
     friend constexpr bool operator==(const Config&, const Config&) = default;
 };
@@ -375,6 +375,13 @@ constexpr bool tilts_taps_to_receiver_plane(const Config& config) {
 // then takes the normal, and the deferred pass reads the caller's penumbra_worldNormals.
 constexpr bool clips_to_tangent_plane(const Config& config) {
     return config.technique == Technique::occlusion && config.tangent_clip;
+}
+
+// Whether the visibility weighs the light by irradiance (Config::irradiance_window): a refinement of the
+// tangent clip's part of a rectangle. Under the sun every point of the light sends the same cosine, so
+// there is nothing to weigh; without the clip there is no part to weigh within.
+constexpr bool weighs_irradiance(const Config& config) {
+    return config.irradiance_window && clips_to_tangent_plane(config) && config.light == Light::rect;
 }
 
 // Number of comparison taps of the PCF kernel.

@@ -53,7 +53,8 @@ struct GenericShading {
 // True when `a` and `b` get the same generic program text (their values differ).
 constexpr bool shares_generic_program(const Config& a, const Config& b) {
     return a.filter == b.filter && a.packing == b.packing && a.light == b.light && a.target == b.target &&
-           clips_to_tangent_plane(a) == clips_to_tangent_plane(b);
+           clips_to_tangent_plane(a) == clips_to_tangent_plane(b) &&
+           weighs_irradiance(a) == weighs_irradiance(b);
 }
 
 // The uniform values of a valid configuration.
@@ -96,13 +97,10 @@ inline Result<GenericShading> emit_generic(const Config& config) {
     Result<GenericShading> result;
     result.errors = validate(config);
     if (config.slice_placement == SlicePlacement::adaptive)
-        result.errors.push_back({"slice_placement", "adaptive",
-                                 "slice_placement: adaptive is not implemented by the generic reference (its slices "
-                                 "are uniform, from penumbra_sliceDepths); allowed: uniform"});
-    if (config.irradiance_window)
-        result.errors.push_back({"irradiance_window", "true",
-                                 "irradiance_window: not implemented by the generic reference (its kernels cover the "
-                                 "tangent clip's part of the whole light); allowed: false"});
+        result.errors.push_back(
+            {"slice_placement", "adaptive",
+             "slice_placement: adaptive is not implemented by the generic reference (its slices "
+             "are uniform, from penumbra_sliceDepths); allowed: uniform"});
     if (config.target == Target::wgsl)
         result.errors.push_back({"target", "wgsl",
                                  "target: wgsl is not written by the generic reference (a GLSL program for the desktop "

@@ -30,13 +30,13 @@ inline constexpr std::array<std::string_view, 2> profile_fields{"fusion", "irrad
 constexpr std::string_view profile_summary(Profile profile) {
     switch (profile) {
     case Profile::balanced: return "the default: the lowest error within the default frame time at every light size";
-    case Profile::large: return "large lights (x4 and up): clustered fusion and the irradiance window";
+    case Profile::large: return "large lights (x4 and up): clustered fusion";
     }
     return "";
 }
 
-// `config` with `profile`'s preset, except the fields in `explicit_keys`. The irradiance window needs a
-// rectangle and the tangent clip, so on other lights a profile leaves it off.
+// `config` with `profile`'s preset, except the fields in `explicit_keys`. Both keep the irradiance window
+// on (it weighs a rectangle's light within the tangent clip, and has no effect elsewhere).
 constexpr Config apply_profile(Config config, Profile profile, std::span<const std::string_view> explicit_keys = {}) {
     auto given = [&](std::string_view key) {
         for (std::string_view k : explicit_keys)
@@ -45,14 +45,10 @@ constexpr Config apply_profile(Config config, Profile profile, std::span<const s
     };
     const Config defaults{};
     Config preset = defaults;
-    if (profile == Profile::large) {
-        preset.fusion = Fusion::clustered;
-        preset.irradiance_window = true;
-    }
+    if (profile == Profile::large) preset.fusion = Fusion::clustered;
     config.profile = profile;
     if (!given("fusion")) config.fusion = preset.fusion;
-    if (!given("irradiance_window"))
-        config.irradiance_window = preset.irradiance_window && config.light == Light::rect && config.tangent_clip;
+    if (!given("irradiance_window")) config.irradiance_window = preset.irradiance_window;
     return config;
 }
 

@@ -108,7 +108,7 @@ def main():
         print("below the baseline (run `tests/style/check_style.py " + mode + " --update` to shrink it):")
         print("\n".join(better))
     if worse:
-        fix = "git clang-format: formats the lines you changed" if mode == "format" else "clang-tidy FILE, then fix what it names"
+        fix = "git clang-format --extensions hpp,cpp: formats the C++ lines you changed" if mode == "format" else "clang-tidy FILE, then fix what it names"
         print(f"error: above the baseline ({fix}; the baseline only shrinks):")
         print("\n".join(worse))
         return 1

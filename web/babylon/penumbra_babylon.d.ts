@@ -20,7 +20,7 @@ export interface PenumbraShadowsOptions {
     emission?: Emission;
     /**
      * A shadow quality tier (penumbra-gen --profile): "balanced" (the default) or "large" (lights x4 and up:
-     * clustered fusion and the irradiance window; emitted by penumbra_emitter.wasm). With a configuration
+     * clustered fusion; emitted by penumbra_emitter.wasm). With a configuration
      * object as `emission`, its fields win over the profile's.
      */
     profile?: "balanced" | "large";

@@ -12,7 +12,7 @@ export interface PenumbraShadowsOptions {
     emission?: Emission;
     /**
      * A shadow quality tier (penumbra-gen --profile): "balanced" (the default) or "large" (lights x4 and up:
-     * clustered fusion and the irradiance window; emitted by penumbra_emitter.wasm). With a
+     * clustered fusion; emitted by penumbra_emitter.wasm). With a
      * configuration object as `emission`, its fields win over the profile's.
      */
     profile?: "balanced" | "large";

@@ -562,7 +562,7 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
     // irradiance window (penumbra_irradianceWindow), at the receiver before it moves: the core, half the clip's
     // side around the weight's peak, and the weight of the whole clip's visibility
     IrradianceWindow window; // the clip alone unless config.irradiance_window
-    if (config_.tangent_clip && config_.irradiance_window) window = irradiance_window(r.unmoved, r.normal, clip, light_size_);
+    if (weighs_irradiance(config_)) window = irradiance_window(r.unmoved, r.normal, clip, light_size_);
     // the fused visibility of the part `part` of the light's unit square (penumbra_clippedVisibility)
     auto fused = [&](glm::dvec3 part) -> OracleValue {
         double lit = 1.0, sum = 0.0, maximum = 0.0, bound = 0.0, chain = 1.0, previous = 0.0, correlated = 1.0, extent = 1.0;

@@ -93,7 +93,8 @@ constexpr std::vector<GenericSamplerDecl> generic_samplers_decl(const Config& co
 constexpr Text describe_generic(const Config& config) {
     return cat("filter ", to_string(config.filter), " | packing ", to_string(config.packing), " | light ",
                to_string(config.light), " | target ", to_string(config.target),
-               choose(clips_to_tangent_plane(config), " | tangent clip", ""));
+               choose(clips_to_tangent_plane(config), " | tangent clip", ""),
+               choose(weighs_irradiance(config), " + irradiance window", ""));
 }
 
 constexpr void write_generic_preamble(LineWriter& out, const Config& config, std::string_view title) {
@@ -374,21 +375,21 @@ constexpr Text generic_fragment(const Config& config) {
     write_wide_level_function(out, config, "penumbra_resolution", "float(penumbra_maxLevel)");
     write_cluster_functions(out, config, "penumbra_resolution", "float(penumbra_maxLevel)");
     write_generic_fusion(out);
-    out.chunk("visibility");
     const bool clip = clips_to_tangent_plane(config);
+    if (weighs_irradiance(config)) write_irradiance_window_function(out, config);
+    out.chunk("visibility");
     if (clip) {
-        out.comment("Fraction of the part of the light above the tangent plane at worldPos that is visible.");
-        out.line("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)");
+        // as the specialized program: the loop in a function of the part of the light, which the
+        // irradiance window runs twice
+        out.comment(
+            "The fused visibility at light-frame point p of the part of the light that penumbra_clip keeps.");
+        out.line("float penumbra_clippedVisibility(vec3 p, vec3 penumbra_clip)");
     } else {
         out.comment("Fraction of the light visible from worldPos: 1 lit, 0 in umbra.");
         out.line("float penumbraVisibility(vec3 worldPos)");
     }
     out.line("{");
-    write_light_frame_point(out);
-    if (clip) write_tangent_clip_setup(out, config,
-                                       {Text("penumbra_tangentClipOffset / penumbra_resolution"),
-                                        Text("penumbra_tangentClipOffset"), Text("penumbra_clipFootprint"),
-                                        cat(format_float(clip_footprint_cap_texels), " / penumbra_resolution")});
+    if (!clip) write_light_frame_point(out);
     out.line("float penumbra_lit = 1.0;");
     out.line("float penumbra_sum = 0.0;");
     out.line("float penumbra_max = 0.0;");
@@ -403,6 +404,23 @@ constexpr Text generic_fragment(const Config& config) {
     out.line("return penumbra_fused(penumbra_lit, penumbra_sum, penumbra_max, penumbra_chain, penumbra_correlated, penumbra_extent);");
     out.line("}");
     out.blank();
+    if (clip) {
+        if (weighs_irradiance(config)) write_windowed_visibility_function(out, config);
+        out.chunk("visibility");
+        out.comment("Fraction of the part of the light above the tangent plane at worldPos that is visible.");
+        out.line("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)");
+        out.line("{");
+        write_light_frame_point(out);
+        write_tangent_clip_setup(out, config,
+                                 {Text("penumbra_tangentClipOffset / penumbra_resolution"),
+                                  Text("penumbra_tangentClipOffset"), Text("penumbra_clipFootprint"),
+                                  cat(format_float(clip_footprint_cap_texels), " / penumbra_resolution")});
+        out.line(choose(weighs_irradiance(config),
+                        "return penumbra_windowedVisibility(p, penumbra_clip, penumbra_window);",
+                        "return penumbra_clippedVisibility(p, penumbra_clip);"));
+        out.line("}");
+        out.blank();
+    }
     write_deferred_main(out, config, clip);
     return out.take();
 }

@@ -167,7 +167,7 @@ constexpr void write_tangent_clip_setup(LineWriter& out, const Config& config, c
     out.comment("a receiver turned away from all of the light receives none of it: its lookups would read the");
     out.comment("occluders beside it, or none, and light it");
     out.line("if (penumbra_clip.z <= 0.0) { return 0.0; }");
-    if (config.irradiance_window) {
+    if (weighs_irradiance(config)) {
         out.comment("weighed by the irradiance at the receiver, before it moves (docs/model.md §1.7.5)");
         out.line(value(config, "vec4", "penumbra_window", "penumbra_irradianceWindow(p, n, penumbra_clip)"));
     }

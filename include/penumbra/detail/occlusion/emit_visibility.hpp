@@ -207,7 +207,7 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
     write_weight_function(out, config);
     if (!uses_level_loop(config)) write_lookup_function(out, config);
     if (config.tangent_clip) write_tangent_clip_function(out, config);
-    if (config.irradiance_window) write_irradiance_window_function(out, config);
+    if (weighs_irradiance(config)) write_irradiance_window_function(out, config);
     if (config.fusion == Fusion::correlated) write_correlated_step_function(out, config);
     if (reads_doubled_window(config.fusion)) {
         const VisibilityConstants k = constants(config);
@@ -234,7 +234,7 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
     out.line("}");
     if (!config.tangent_clip) return;
     out.blank();
-    if (config.irradiance_window) write_windowed_visibility_function(out, config);
+    if (weighs_irradiance(config)) write_windowed_visibility_function(out, config);
     out.chunk("visibility");
     out.comment("Fraction of the part of the light above the tangent plane at worldPos (worldNormal: the normal of");
     out.comment("the side being lit, any length but not zero) that is visible: 1 lit, 0 in umbra.");
@@ -242,18 +242,20 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
     out.line("{");
     write_light_frame_point(out, config);
     write_tangent_clip_setup(out, config);
-    out.line(choose(config.irradiance_window, "return penumbra_windowedVisibility(p, penumbra_clip, penumbra_window);",
+    out.line(choose(weighs_irradiance(config),
+                    "return penumbra_windowedVisibility(p, penumbra_clip, penumbra_window);",
                     "return penumbra_clippedVisibility(p, penumbra_clip);"));
     out.line("}");
     out.blank();
-    out.comment(choose(config.irradiance_window,
-                       "Without a normal: the visible fraction of the whole light's irradiance (no clip),",
-                       "Without a normal: the fraction of the whole light that is visible (the paper's kernels, no clip),"));
+    out.comment(choose(
+        weighs_irradiance(config),
+        "Without a normal: the visible fraction of the whole light's irradiance (no clip),",
+        "Without a normal: the fraction of the whole light that is visible (the paper's kernels, no clip),"));
     out.comment("for shaders written against penumbraVisibility(vec3 worldPos) of every technique.");
     out.line(signature(config, "float", "penumbraVisibility", {{"vec3", "worldPos"}}));
     out.line("{");
     write_light_frame_point(out, config);
-    if (config.irradiance_window)
+    if (weighs_irradiance(config))
         out.line("return penumbra_windowedVisibility(p, vec3(0.0, 0.0, 1.0), penumbra_irradianceWindow(p, vec3(0.0, 0.0, -1.0), vec3(0.0, 0.0, 1.0)));");
     else
         out.line("return penumbra_clippedVisibility(p, vec3(0.0, 0.0, 1.0));");

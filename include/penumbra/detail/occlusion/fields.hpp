@@ -118,18 +118,20 @@ constexpr auto occlusion_fields() {
                        "operation on colour targets only (glsl450, glsl330)",
              .techniques = "occlusion", .omit_default = true}),
         member<&Config::irradiance_window>(
-            {.key = "irradiance_window", .flag = "--irradiance-window",
+            {.key = "irradiance_window",
+             .flag = "--[no-]irradiance-window",
              .help = "weigh the light by the irradiance it sends the receiver, not by its area: the visibility "
                      "of the clip and of its core around the irradiance's peak, mixed (two passes of the slice "
-                     "loop; rect light, tangent clip)",
+                     "loop; rect light with the tangent clip, no effect elsewhere)",
              .detail = "the visibility weighs each light point by the irradiance it sends the receiver (the "
                        "cosines at both ends over the squared distance, with the receiver's normal), as the "
-                       "shading's unoccluded irradiance does, instead of by area (absent means false): the slice "
+                       "shading's unoccluded irradiance does, instead of by area (absent means true): the slice "
                        "loop runs for the tangent clip's part and for its core, a square half as wide around the "
                        "point of the light that sends the most, and the two visibilities are mixed so that the core "
                        "and the ring around it carry their share of the irradiance (the rectangle's form factor, in "
-                       "closed form). Costs a second pass of the slice loop per receiver. Rect light with the "
-                       "tangent clip only",
+                       "closed form). Costs a second pass of the slice loop per receiver. A refinement of the "
+                       "tangent clip's part of a rectangle: no effect without the clip, nor under the sun, whose "
+                       "points all send the same cosine",
              .techniques = "occlusion", .omit_default = true}),
     };
 }

@@ -87,15 +87,10 @@ constexpr std::vector<Problem> occlusion_problems(const Config& config) {
     if (config.solid_casters && (!limit.logic_op || config.target == Target::vulkan))
         add("solid_casters", Text("true"),
             cat("needs a logical XOR on the slicing targets, switched per draw, which ",
-                choose(config.target == Target::vulkan, Text("the Vulkan runner (targets/vulkan) does not do yet"),
+                choose(config.target == Target::vulkan,
+                       Text("the Vulkan runner (targets/vulkan) does not do yet"),
                        cat("target '", target, "' does not have")),
                 "; allowed for ", target, ": false; solid_casters with target glsl450 or glsl330"));
-    if (config.irradiance_window && (config.light != Light::rect || !config.tangent_clip))
-        add("irradiance_window", Text("true"),
-            cat("weighs the points of a rectangular light as a receiver's irradiance does and works on the tangent "
-                "clip's part of it, so it needs light 'rect' and the tangent clip (this configuration: light '",
-                to_string(config.light), "', tangent clip ", choose(config.tangent_clip, "on", "off"),
-                "); allowed here: false"));
     if (config.slices > max_channel_slices && config.packing == Packing::volume)
         add("packing", Text("volume"),
             cat("needs ", format_int(texture_count(config)), " 3D textures for ", format_int(config.slices),
