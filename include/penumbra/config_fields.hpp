@@ -38,8 +38,8 @@ namespace detail {
 constexpr ConfigField profile_field() {
     ConfigField row = member<&Config::profile>(
         {.key = "profile", .flag = "--profile", .metavar = "P",
-         .help = "shadow quality tier: balanced (the default) or large (lights x4 and up: clustered fusion and "
-                 "the irradiance window); the fields given beside it win",
+         .help = "shadow quality tier: balanced (the default) or large (lights x4 and up: clustered fusion); "
+                 "the fields given beside it win",
          .detail = "a named preset of the occlusion fields fusion and irradiance_window (absent means "
                    "balanced, the defaults): large is for lights several times the scene's own rectangle and costs "
                    "more; a key given beside it overrides the preset's value",
