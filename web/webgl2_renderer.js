@@ -32,7 +32,15 @@ export function renderWebGL2(app) {
             side.failed = true;
         }
     });
-    if (sides.length > 1) { // the split line
+    finishFrame(app, sides.length, started, messages);
+    if (app.timer) setTimeout(() => showStatus(app), 100); // timer queries arrive later
+}
+
+// The end of a frame of either renderer: the split line between two sides, the frame's time, the
+// sides' messages in the status line.
+export function finishFrame(app, sideCount, started, messages) {
+    const gl = app.gl, w = app.canvas.width, h = app.canvas.height;
+    if (sideCount > 1) { // the split line
         gl.enable(gl.SCISSOR_TEST);
         gl.scissor((w >> 1) - 1, 0, 2, h);
         gl.clearColor(0.9, 0.75, 0.2, 1);
@@ -44,7 +52,6 @@ export function renderWebGL2(app) {
     ++app.state.renders;
     app.messages = messages;
     showStatus(app);
-    if (app.timer) setTimeout(() => showStatus(app), 100); // timer queries arrive later
 }
 
 // One side: shadow phase, G-buffer, screen phase; then its part of the canvas.

@@ -5,7 +5,7 @@
 import {WebGPULayoutRunner} from "./three/penumbra_webgpu_runner.js";
 import {lightUniforms} from "./three/light_frame.js";
 import {imageTexture} from "./bundle.js";
-import {showStatus} from "./status.js";
+import {finishFrame} from "./webgl2_renderer.js";
 
 const STALE = Symbol("stale WebGPU frame");
 
@@ -80,18 +80,7 @@ async function renderWebGPU(app) {
             side.failed = true;
         }
     }
-    if (sides.length > 1) {
-        gl.enable(gl.SCISSOR_TEST);
-        gl.scissor((w >> 1) - 1, 0, 2, h);
-        gl.clearColor(0.9, 0.75, 0.2, 1);
-        gl.clear(gl.COLOR_BUFFER_BIT);
-        gl.disable(gl.SCISSOR_TEST);
-    }
-    gl.finish();
-    app.state.frameMs = performance.now() - started;
-    ++app.state.renders;
-    app.messages = messages;
-    showStatus(app);
+    finishFrame(app, sides.length, started, messages);
 }
 
 // One side on WebGPU: shadow phase, the G-buffer (the page's WebGL2 pass, read back, or the
