@@ -115,30 +115,40 @@ TEST_CASE("truth worker: progress rises monotonically to 1 and the result equals
                 last.seconds, worker.threads());
 }
 
-TEST_CASE("truth worker: the oriented job (the window's error view) equals one GroundTruth::oriented call") {
+TEST_CASE("truth worker: the irradiance and oriented jobs (the window's views) equal one "
+          "GroundTruth::oriented call") {
     Fixture f;
     Pixels pixels = ground_grid(16);
-    // A tilted receiver normal so that part of the light lies below the tangent plane: the two
-    // references differ there.
+    // A tilted receiver normal so that part of the light lies below the tangent plane: the
+    // references differ from the whole light's there, and from each other (the cosine weighs the light).
     for (glm::vec3& n : pixels.normals)
         if (n != glm::vec3(0.0f)) n = glm::normalize(glm::vec3(1.0f, 0.3f, 0.0f));
-    TruthWorker worker;
-    TruthJob job = job_for(f, pixels, f.scene.light, 8);
-    job.oriented = true;
-    REQUIRE(worker.start(std::move(job)).empty());
-    const std::vector<TruthSnapshot> seen = follow(worker, 60s);
-    REQUIRE(!seen.empty());
-    REQUIRE(seen.back().state == TruthState::finished);
     const GroundTruth truth(f.scene.mesh);
-    const std::vector<float> oriented = truth.oriented(pixels.positions, pixels.normals, f.scene.light, 8).oriented;
+    const GroundTruth::Oriented fair = truth.oriented(pixels.positions, pixels.normals, f.scene.light, 8);
     const std::vector<float> whole = truth.visibility(pixels.positions, pixels.normals, f.scene.light, 8);
-    int differ = 0;
-    for (std::size_t i = 0; i < oriented.size(); ++i) {
-        const float got = seen.back().visibility[i];
-        CHECK((got == oriented[i] || (std::isnan(got) && std::isnan(oriented[i]))));
-        differ += std::abs(oriented[i] - whole[i]) > 0.05f;
+    int weighed = 0;
+    for (const TruthReference reference : {TruthReference::irradiance, TruthReference::oriented}) {
+        CAPTURE(to_string(reference));
+        TruthWorker worker;
+        TruthJob job = job_for(f, pixels, f.scene.light, 8);
+        job.reference = reference;
+        REQUIRE(worker.start(std::move(job)).empty());
+        const std::vector<TruthSnapshot> seen = follow(worker, 60s);
+        REQUIRE(!seen.empty());
+        REQUIRE(seen.back().state == TruthState::finished);
+        const std::vector<float>& expected =
+            reference == TruthReference::irradiance ? fair.irradiance : fair.oriented;
+        int differ = 0;
+        for (std::size_t i = 0; i < expected.size(); ++i) {
+            const float got = seen.back().visibility[i];
+            CHECK((got == expected[i] || (std::isnan(got) && std::isnan(expected[i]))));
+            differ += std::abs(expected[i] - whole[i]) > 0.05f;
+            weighed += reference == TruthReference::irradiance &&
+                       std::abs(fair.irradiance[i] - fair.oriented[i]) > 0.01f;
+        }
+        CHECK(differ > 20);
     }
-    CHECK(differ > 20);
+    CHECK(weighed > 20);
 }
 
 TEST_CASE("truth worker: an intermediate pass is a coarser estimate of the same image") {

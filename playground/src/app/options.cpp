@@ -280,11 +280,12 @@ std::string usage() {
                                "playground-shaders)");
     out += line("--frames N", "quit after N frames (default 0: run until closed)");
     out += line("--screenshot FILE", "write the last frame as PNG");
-    out += line("--script FILE", "run the actions in FILE, one a line (set, light, light_size, camera, wait,\n"
-                                 "                        screenshot, ...: playground/src/window/script.hpp); a "
-                                 "regular file of at most 1 MiB;\n"
-                                 "                        wait N: 0 to 1000000 frames, wait_reload S: 0 to 600 "
-                                 "seconds");
+    out += line("--script FILE",
+                "run the actions in FILE, one a line (set, light, light_size, camera, wait,\n"
+                "                        screenshot, readback, ...: docs/playground.md); a "
+                "regular file of at most 1 MiB;\n"
+                "                        wait N: 0 to 1000000 frames, wait_reload S and wait_truth S: "
+                "0 to 600 seconds");
     out += line("--help, -h", "print this help and exit");
     out += "\nA value may also be given as --flag=value. A headless run's files (image, PFMs, error image,\n"
            "metrics) are one transaction: all are written or none, and an existing file keeps its old contents\n"

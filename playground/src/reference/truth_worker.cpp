@@ -23,16 +23,28 @@ std::vector<int> pass_sizes(int first, int max) {
 
 std::vector<float> trace(const GroundTruth& truth, std::span<const glm::vec3> positions,
                          std::span<const glm::vec3> normals, const TruthLight& light, int samples_per_axis,
-                         bool oriented) {
+                         TruthReference reference) {
     return std::visit(
         [&](const auto& l) {
-            return oriented ? truth.oriented(positions, normals, l, samples_per_axis).oriented
-                            : truth.visibility(positions, normals, l, samples_per_axis);
+            if (reference == TruthReference::whole_light)
+                return truth.visibility(positions, normals, l, samples_per_axis);
+            GroundTruth::Oriented fair = truth.oriented(positions, normals, l, samples_per_axis);
+            return reference == TruthReference::irradiance ? std::move(fair.irradiance)
+                                                           : std::move(fair.oriented);
         },
         light);
 }
 
 } // namespace
+
+const char* to_string(TruthReference reference) {
+    switch (reference) {
+    case TruthReference::irradiance: return "irradiance";
+    case TruthReference::oriented: return "oriented";
+    case TruthReference::whole_light: return "whole light";
+    }
+    return "?";
+}
 
 const char* to_string(TruthState state) {
     switch (state) {
@@ -212,7 +224,7 @@ void TruthWorker::compute(const TruthJob& job, std::uint64_t job_id) {
             std::vector<float> result;
             try {
                 result = trace(*truth_, std::span(masked.data(), end), std::span(job.normals.data(), end),
-                               job.light, n, job.oriented);
+                               job.light, n, job.reference);
             } catch (const std::exception& e) {
                 fail(e.what());
                 return;

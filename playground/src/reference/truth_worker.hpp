@@ -38,6 +38,16 @@ namespace penumbra::playground {
 
 using TruthLight = std::variant<penumbra::RectLight, penumbra::SunLight>;
 
+// Which visibility the truth traces (GroundTruth): what the shaded image needs first.
+enum class TruthReference {
+    irradiance,  // the irradiance-weighted visibility of the light's part above the tangent plane: the
+                 // shaded image's own relative error (the light term times it); NaN where no light is above
+    oriented,    // the fraction of the light's samples above the tangent plane that reach it; NaN likewise
+    whole_light, // the fraction of all of the light's samples that reach the point, its orientation aside
+};
+inline constexpr int truth_reference_count = 3;
+const char* to_string(TruthReference reference);
+
 struct TruthJob {
     // Shared so that a new job for the same mesh (the light or the camera moved) reuses the
     // acceleration structure: it is rebuilt only when this pointer changes.
@@ -48,10 +58,10 @@ struct TruthJob {
     std::vector<glm::vec3> normals; // as many as positions; zero = no ray offset
     int first_samples_per_axis = 2; // rays per axis of the first pass; 1 to max_samples_per_axis
     int max_samples_per_axis = 32;  // rays per axis of the last pass; 1 to 4096
-    // The fair reference (GroundTruth::oriented: the part of the light above each point's tangent
-    // plane, `normals` pointing to the side seen) instead of the whole light's visibility; NaN
-    // where a point sees none of the light.
-    bool oriented = false;
+    // irradiance and oriented (GroundTruth::oriented) weigh the part of the light above each point's
+    // tangent plane, `normals` pointing to the side seen; whole_light ignores the normals but for the
+    // rays' offset.
+    TruthReference reference = TruthReference::whole_light;
 };
 
 enum class TruthState { idle, running, finished, cancelled, failed };

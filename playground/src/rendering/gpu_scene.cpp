@@ -43,8 +43,13 @@ void main() {
     // cut-out pixels are not surfaces (the same test as the casters' alpha test)
     if (texture(alphaTexture, materialTexCoord).a < alphaCutoff) discard;
     outPosition = vec4(worldPos, 1.0);
-    // the normal of the side the camera sees (two-sided surfaces, back faces of sheets)
-    outNormal = vec4(normalize(gl_FrontFacing ? worldNormal : -worldNormal), 0.0);
+    // The normal of the side the camera sees (two-sided surfaces, back faces of sheets). Which side that is
+    // comes from the surface's own plane, whose screen-space cross product faces the camera, and not
+    // from gl_FrontFacing: a mesh wound clockwise with outward normals (OBJ files often are) would get
+    // its lit faces' normals turned inwards, and no light.
+    vec3 seen = cross(dFdx(worldPos), dFdy(worldPos));
+    vec3 n = normalize(worldNormal);
+    outNormal = vec4(dot(n, seen) < 0.0 ? -n : n, 0.0);
     outTexCoord = vec4(texCoord, 0.0, 1.0);
 }
 )";

@@ -170,7 +170,7 @@ void view_section(WindowApp& app) {
     int view = static_cast<int>(c.view);
     static const char* views[view_count] = {"shaded",
                                             "visibility only",
-                                            "ground truth (Embree, oriented)",
+                                            "ground truth (Embree)",
                                             "error heatmap",
                                             "slice occlusion texture",
                                             "slice per pixel",
@@ -217,10 +217,16 @@ void view_section(WindowApp& app) {
     if (c.view == View::truth || c.view == View::error) {
         const TruthSnapshot& t = app.truth();
         ImGui::ProgressBar(static_cast<float>(t.progress), ImVec2(-1, 0));
-        ImGui::Text("truth (oriented: the light above each surface's tangent plane): %s, %dx%d rays/pixel done, "
-                    "%.1f s",
-                    to_string(t.state), t.samples_per_axis,
-                    t.samples_per_axis, t.seconds);
+        // irradiance first: the light term times the visibility is the shaded image, so its error is the
+        // image's
+        int reference = static_cast<int>(c.truth_reference);
+        static const char* references[truth_reference_count] = {
+            "irradiance (the shaded image's reference)", "oriented (the light above the tangent plane)",
+            "whole light (orientation aside)"};
+        if (ImGui::Combo("reference", &reference, references, truth_reference_count))
+            c.truth_reference = static_cast<TruthReference>(reference);
+        ImGui::Text("truth (%s): %s, %dx%d rays/pixel done, %.1f s", to_string(c.truth_reference),
+                    to_string(t.state), t.samples_per_axis, t.samples_per_axis, t.seconds);
         for (int side = 0; side < (c.split ? 2 : 1); ++side)
             ImGui::Text("%sMAE %.4f  p95 %.4f  over %zu px", c.split ? (side ? "right: " : "left: ") : "",
                         app.error_numbers(side).mae, app.error_numbers(side).p95,

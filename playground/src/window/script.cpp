@@ -16,14 +16,15 @@ using penumbra_gen::printable;
 
 // How many numbers each numeric verb takes: {minimum, maximum}.
 const std::map<std::string, std::pair<int, int>>& numeric_verbs() {
-    static const std::map<std::string, std::pair<int, int>> verbs{{"light", {3, 3}}, {"light_size", {1, 2}},
-                                                                  {"sun", {2, 2}},   {"camera", {2, 3}},
-                                                                  {"wait", {1, 1}},  {"wait_reload", {0, 1}}};
+    static const std::map<std::string, std::pair<int, int>> verbs{
+        {"light", {3, 3}}, {"light_size", {1, 2}},  {"sun", {2, 2}},       {"camera", {2, 3}},
+        {"wait", {1, 1}},  {"wait_reload", {0, 1}}, {"wait_truth", {0, 1}}};
     return verbs;
 }
 
-constexpr const char* allowed_verbs =
-    "set, light, light_size, sun, camera, edit, restore, reset, answer, wait, wait_reload, screenshot";
+constexpr const char* allowed_verbs = "set, light, light_size, sun, camera, edit, restore, reset, answer, "
+                                      "wait, wait_reload, wait_truth, screenshot, "
+                                      "readback";
 
 // The `index`th whitespace-separated word of `row`.
 std::string word_of(const std::string& row, int index) {
@@ -83,10 +84,11 @@ ScriptParse parse_script(const std::string& text, const std::string& name) {
                  action.numbers[0] != std::floor(action.numbers[0])))
                 return fail("wait: " + printable(word_of(row, 1)) + " is out of range; allowed: a whole number of frames from 0 to " +
                             std::to_string(max_wait_frames));
-            if (action.verb == "wait_reload" && count == 1 &&
+            if ((action.verb == "wait_reload" || action.verb == "wait_truth") && count == 1 &&
                 (action.numbers[0] < 0 || action.numbers[0] > max_wait_reload_seconds))
-                return fail("wait_reload: " + printable(word_of(row, 1)) + " is out of range; allowed: 0 to " +
-                            std::to_string(max_wait_reload_seconds) + " seconds");
+                return fail(action.verb + ": " + printable(word_of(row, 1)) +
+                            " is out of range; allowed: 0 to " + std::to_string(max_wait_reload_seconds) +
+                            " seconds");
         } else if (action.verb == "set") {
             std::string key, value;
             if (!(words >> key >> value)) return fail("set takes KEY VALUE, e.g. 'set slices 8'");
@@ -113,7 +115,8 @@ ScriptParse parse_script(const std::string& text, const std::string& name) {
             } else {
                 return fail("edit: unknown mode '" + printable(mode) + "'; allowed: append, replace");
             }
-        } else if (action.verb == "restore" || action.verb == "screenshot" || action.verb == "answer") {
+        } else if (action.verb == "restore" || action.verb == "screenshot" || action.verb == "readback" ||
+                   action.verb == "answer") {
             std::string word;
             if (!(words >> word)) return fail(action.verb + " needs an argument");
             if (action.verb == "answer" && word != "overwrite" && word != "cancel")

@@ -77,6 +77,16 @@ std::string set_value(WindowApp& app, std::string key, const std::string& value)
             }
             return "view: '" + printable(value) + "' is not allowed; allowed: " + allowed;
         }
+        if (key == "reference") {
+            for (const TruthReference r :
+                 {TruthReference::irradiance, TruthReference::oriented, TruthReference::whole_light})
+                if (value == (r == TruthReference::whole_light ? "whole_light" : to_string(r))) {
+                    c.truth_reference = r;
+                    return {};
+                }
+            return "reference: '" + printable(value) +
+                   "' is not allowed; allowed: irradiance, oriented, whole_light";
+        }
         if (key == "view_slice") return set_int(c.view_slice, key, value);
         if (key == "view_level") return set_int(c.view_level, key, value);
         if (key == "view_texture") {
@@ -95,9 +105,11 @@ std::string set_value(WindowApp& app, std::string key, const std::string& value)
             return {};
         }
         return "set: unknown key '" + printable(key) +
-               "'; allowed: leak_fix, fade and the configuration flags of penumbra-gen without dashes (slices, "
+               "'; allowed: leak_fix, fade and the configuration flags of penumbra-gen without dashes "
+               "(slices, "
                "technique, pcss_blockers, …) (also as right.KEY), "
-               "view, view_slice, view_level, view_texture, view_texture_level, view_texture_layer, "
+               "view, reference, view_slice, view_level, view_texture, view_texture_level, "
+               "view_texture_layer, "
                "view_texture_channel, view_texture_max, split, animate_light, animate_object, scene";
     } else {
         return "set: unknown key 'right." + printable(key) + "'";
@@ -125,6 +137,25 @@ std::string ScriptRunner::step(WindowApp& app) {
         --frames_to_wait_;
         if (frames_to_wait_ > 0) return {};
     }
+    if (waiting_for_truth_) {
+        const TruthSnapshot& truth = app.truth();
+        const View view = app.controls().view;
+        auto stop = [&](const std::string& why) {
+            waiting_for_truth_ = false;
+            const int line = actions_[next_ - 1].line;
+            next_ = actions_.size();
+            return "script line " + std::to_string(line) + ": wait_truth: " + why;
+        };
+        if (view != View::truth && view != View::error)
+            return stop("the truth is traced only in the truth and error views (set view error)");
+        if (truth.state == TruthState::failed) return stop("the truth failed: " + truth.error);
+        if (!app.truth_finished()) {
+            if (std::chrono::steady_clock::now() <= truth_deadline_) return {};
+            return stop("the truth was not finished in time (" + std::to_string(truth.samples_per_axis) +
+                        "x" + std::to_string(truth.samples_per_axis) + " rays done)");
+        }
+        waiting_for_truth_ = false;
+    }
     while (next_ < actions_.size()) {
         const ScriptAction& action = actions_[next_++];
         if (std::string e = run(action, app); !e.empty()) {
@@ -132,7 +163,9 @@ std::string ScriptRunner::step(WindowApp& app) {
             return "script line " + std::to_string(action.line) + ": " + e;
         }
         // A screenshot shows the state up to here: later actions wait for the next frame.
-        if (frames_to_wait_ > 0 || waiting_for_reload_ || action.verb == "screenshot") return {};
+        if (frames_to_wait_ > 0 || waiting_for_reload_ || waiting_for_truth_ || action.verb == "screenshot" ||
+            action.verb == "readback")
+            return {};
     }
     return {};
 }
@@ -188,8 +221,22 @@ std::string ScriptRunner::run(const ScriptAction& a, WindowApp& app) {
                                std::chrono::duration<double>(seconds));
         return {};
     }
+    if (a.verb == "wait_truth") {
+        // The truth restarts when the frame after a change is drawn: wait from that frame on.
+        waiting_for_truth_ = true;
+        frames_to_wait_ = 2;
+        const double seconds = a.numbers.empty() ? 300.0 : a.numbers[0];
+        truth_deadline_ = std::chrono::steady_clock::now() +
+                          std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                              std::chrono::duration<double>(seconds));
+        return {};
+    }
     if (a.verb == "screenshot") {
         app.request_screenshot(a.args[0]);
+        return {};
+    }
+    if (a.verb == "readback") {
+        app.request_readback(a.args[0]);
         return {};
     }
     return "unknown action " + a.verb; // parse_script lets none through

@@ -17,7 +17,10 @@ public:
 
     // Runs actions until one waits. Empty string, or "script line N: problem" (the script stops).
     std::string step(WindowApp& app);
-    bool done() const { return next_ >= actions_.size() && frames_to_wait_ == 0 && !waiting_for_reload_; }
+    bool done() const {
+        return next_ >= actions_.size() && frames_to_wait_ == 0 && !waiting_for_reload_ &&
+               !waiting_for_truth_;
+    }
 
 private:
     std::string run(const ScriptAction& action, WindowApp& app);
@@ -26,6 +29,8 @@ private:
     std::size_t next_ = 0;
     int frames_to_wait_ = 0;
     bool waiting_for_reload_ = false;
+    bool waiting_for_truth_ = false;
+    std::chrono::steady_clock::time_point truth_deadline_{};
     std::size_t reloads_before_edit_ = 0;
     std::chrono::steady_clock::time_point reload_deadline_{};
 };

@@ -313,7 +313,7 @@ void WindowApp::update_truth(int width, int height, const FrameSettings& s) {
         << s.rect.center.x << ' ' << s.rect.center.y << ' ' << s.rect.center.z << ' ' << s.rect.width << ' '
         << s.rect.height << ' ' << s.rect.u_axis.x << ' ' << s.rect.u_axis.y << ' ' << s.rect.v_axis.x << ' '
         << s.rect.v_axis.z << ' ' << s.sun.direction.x << ' ' << s.sun.direction.z << ' '
-        << s.sun.angular_diameter << ' '
+        << s.sun.angular_diameter << ' ' << int(controls_.truth_reference) << ' '
         << (s.moving_object ? (*s.moving_object)[3][0] + 7.0f * (*s.moving_object)[3][2] : 0.0f);
     if (key.str() != truth_key_ && renderer_->gbuffer()) {
         truth_key_ = key.str();
@@ -350,8 +350,12 @@ void WindowApp::update_truth(int width, int height, const FrameSettings& s) {
         }
         job.first_samples_per_axis = 2;
         job.max_samples_per_axis = 16;
-        job.oriented = true; // the fair reference, as the headless run's headline (G-buffer normals: the side seen)
-        if (std::string e = truth_worker_->start(std::move(job)); !e.empty()) problem("truth: " + e);
+        job.reference =
+            controls_.truth_reference; // irradiance unless the panel says otherwise (the side seen)
+        if (std::string e = truth_worker_->start(std::move(job)); !e.empty())
+            problem("truth: " + e);
+        else
+            ++truth_jobs_started_;
         if (!truth_texture_ || truth_width_ != width || truth_height_ != height) {
             if (truth_texture_) glDeleteTextures(1, &truth_texture_);
             glCreateTextures(GL_TEXTURE_2D, 1, &truth_texture_);
@@ -365,7 +369,10 @@ void WindowApp::update_truth(int width, int height, const FrameSettings& s) {
     }
     if (truth_worker_->version() != truth_snapshot_.version) {
         const TruthState previous_state = truth_snapshot_.state;
-        truth_snapshot_ = truth_worker_->snapshot();
+        TruthSnapshot latest = truth_worker_->snapshot();
+        // a job that a change cancelled may publish once more: its numbers are not this view's
+        if (latest.job != truth_jobs_started_) return;
+        truth_snapshot_ = std::move(latest);
         if (truth_snapshot_.state == TruthState::failed && previous_state != TruthState::failed)
             problem("truth: " + truth_snapshot_.error);
         if (truth_snapshot_.visibility.size() == static_cast<std::size_t>(width) * height) {
@@ -390,10 +397,10 @@ void WindowApp::update_truth(int width, int height, const FrameSettings& s) {
             if (truth_snapshot_.state == TruthState::finished && previous_state != TruthState::finished) {
                 char line[200];
                 std::snprintf(line, sizeof line,
-                              "truth (oriented): %dx%d rays per pixel in %.1f s; MAE %.4f, p95 %.4f over %zu px",
-                              truth_snapshot_.samples_per_axis, truth_snapshot_.samples_per_axis,
-                              truth_snapshot_.seconds, error_numbers_[0].mae, error_numbers_[0].p95,
-                              error_numbers_[0].count);
+                              "truth (%s): %dx%d rays per pixel in %.1f s; MAE %.4f, p95 %.4f over %zu px",
+                              to_string(controls_.truth_reference), truth_snapshot_.samples_per_axis,
+                              truth_snapshot_.samples_per_axis, truth_snapshot_.seconds,
+                              error_numbers_[0].mae, error_numbers_[0].p95, error_numbers_[0].count);
                 info(line);
             }
         }
@@ -424,6 +431,12 @@ bool WindowApp::render_frame(int width, int height, double dt) {
             screenshot_failed_ = true;
         }
     screenshots_.clear();
+    for (const std::string& path : readbacks_)
+        if (std::string e = read_back(path, width, height); !e.empty()) {
+            problem("error: readback: " + e);
+            screenshot_failed_ = true;
+        }
+    readbacks_.clear();
     ++frame_index_;
     return true;
 }
@@ -452,6 +465,36 @@ std::string WindowApp::capture(const std::string& path, int width, int height) {
     std::string error;
     if (!write_png_rgb(path, width, height, rgb, RowOrder::bottom_up, &error)) return error;
     info("screenshot: wrote " + path + " (frame " + std::to_string(frame_index_) + ", " +
+         std::to_string(width) + "x" + std::to_string(height) + ")");
+    return {};
+}
+
+std::string WindowApp::read_back(const std::string& path, int width, int height) {
+    // Both come bottom row first (GL's order, the G-buffer's for the truth); the files top row first.
+    auto top_down = [&](const std::vector<float>& bottom_up) {
+        FloatImage image{.width = width, .height = height, .channels = 1, .pixels = {}};
+        image.pixels.reserve(bottom_up.size());
+        for (int y = height - 1; y >= 0; --y)
+            image.pixels.insert(image.pixels.end(),
+                                bottom_up.begin() + static_cast<std::ptrdiff_t>(y) * width,
+                                bottom_up.begin() + static_cast<std::ptrdiff_t>(y + 1) * width);
+        return image;
+    };
+    const std::vector<float> visibility = session_.runtime().read_visibility();
+    if (visibility.size() != static_cast<std::size_t>(width) * height)
+        return path + ": the visibility is " + std::to_string(visibility.size()) +
+               " values, not the window's " + std::to_string(width) + "x" + std::to_string(height);
+    std::string error;
+    if (!write_pfm(path, top_down(visibility), &error)) return error;
+    std::string wrote = path;
+    if (truth_snapshot_.visibility.size() == visibility.size()) {
+        const std::string stem = path.ends_with(".pfm") ? path.substr(0, path.size() - 4) : path;
+        if (!write_pfm(stem + ".truth.pfm", top_down(truth_snapshot_.visibility), &error)) return error;
+        wrote += " and " + stem + ".truth.pfm (" + std::string(to_string(controls_.truth_reference)) + ", " +
+                 std::to_string(truth_snapshot_.samples_per_axis) + "x" +
+                 std::to_string(truth_snapshot_.samples_per_axis) + " rays)";
+    }
+    info("readback: wrote " + wrote + " (frame " + std::to_string(frame_index_) + ", " +
          std::to_string(width) + "x" + std::to_string(height) + ")");
     return {};
 }

@@ -33,6 +33,8 @@ struct Controls {
     bool animate_light = false;  // the light circles its position (the sun turns)
     bool animate_object = false; // a box circles over the scene
     View view = View::shaded;
+    // What the truth and error views trace and compare with: irradiance, the shaded image's reference
+    TruthReference truth_reference = TruthReference::irradiance;
     int view_slice = 0; // slice_texture / level_map views: which slice (level_map: −1 nearest above)
     int view_level = 0; // slice_texture view: which filter level
     LayoutTextureView view_texture; // texture view: texture (empty: the layout's first), level, layer, …
@@ -85,9 +87,14 @@ public:
     // Call after the frame has been presented: logs the reloads that reached the screen.
     void frame_presented();
     void request_screenshot(const std::string& path) { screenshots_.push_back(path); }
-    // A screenshot could not be written (nothing was left at its path): the run fails (exit 1).
+    // After this frame: the visibility as floats into `path` (PFM), and in the truth and error views the
+    // truth traced so far into `<path less .pfm>.truth.pfm` (NaN where not traced yet or no light is
+    // above the surface): the numbers behind the views, for a script and the tests.
+    void request_readback(const std::string& path) { readbacks_.push_back(path); }
+    // A screenshot or read-back could not be written (nothing was left at its path): the run fails (exit 1).
     bool screenshot_failed() const { return screenshot_failed_; }
     std::string capture(const std::string& path, int width, int height); // reads framebuffer 0
+    std::string read_back(const std::string& path, int width, int height);
     std::size_t frame_index() const { return frame_index_; }
     FrameStats& stats() { return stats_; }
     const std::vector<double>& reload_latencies() const { return reload_latencies_; }
@@ -95,6 +102,11 @@ public:
 
     // --- ground truth
     const TruthSnapshot& truth() const { return truth_snapshot_; }
+    // The truth of what is shown now (the latest job, not one that a change cancelled) is traced to its last
+    // pass.
+    bool truth_finished() const {
+        return truth_snapshot_.state == TruthState::finished && truth_snapshot_.job == truth_jobs_started_;
+    }
     // MAE and p95 of |visibility − truth| over the pixels traced so far; side 1: the split
     // screen's right half (side 0 is then the left half).
     const ErrorStats& error_numbers(int side = 0) const { return error_numbers_[side]; }
@@ -135,12 +147,14 @@ private:
     std::size_t frame_index_ = 0;
     std::string frame_error_;
     std::vector<std::string> screenshots_;
+    std::vector<std::string> readbacks_;
     bool screenshot_failed_ = false;
     std::size_t reloads_done_ = 0;
     std::vector<ReloadEvent> shown_reloads_; // applied this frame, logged once presented
     std::vector<double> reload_latencies_;
 
     std::unique_ptr<TruthWorker> truth_worker_;
+    std::uint64_t truth_jobs_started_ = 0; // start() calls that the worker accepted (its job ids)
     TruthSnapshot truth_snapshot_;
     std::string truth_key_;
     GLuint truth_texture_ = 0;
