@@ -23,6 +23,10 @@ function holeTexture() {
 
 async function main() {
     const webgpu = !!THREE.WebGPURenderer && /webgpu/.test(location.pathname);
+    if (webgpu) { // (the RectAreaLight's tables, which three's node lighting needs once it builds a lit material)
+        const {RectAreaLightTexturesLib} = await import("three/addons/lights/RectAreaLightTexturesLib.js");
+        THREE.RectAreaLightNode.setLTC(RectAreaLightTexturesLib.init());
+    }
     const scene = new THREE.Scene();
     const light = new THREE.RectAreaLight(0xffffff, 1, 1, 1);
     light.position.set(0, 2, 0);
@@ -61,6 +65,7 @@ async function main() {
     };
     window.penumbraCut = {
         renderer: webgpu ? "webgpu" : "webgl2",
+        plane, // (for checks by hand: its material, map and geometry)
         run: async (options = {}) => {
             const warnings = [];
             const warn = console.warn;
