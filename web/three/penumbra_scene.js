@@ -133,7 +133,8 @@ export function casterDraws(object, first, count) {
 // A cut's texture coordinates, as three's vertex stage gives its map: the uv attribute of the
 // map's channel through the map's transform (offset, repeat, rotation, center: map.matrix), done
 // here once per geometry and transform, so the emission's slicing pass reads them as they are.
-// {key, uvs: Float32Array (2 a vertex)}, or null where the geometry has no such attribute (drawn solid).
+// {key (channel, the attribute's version, the transform), compute(): Float32Array (2 a vertex)}, or
+// null where the geometry has no such attribute (that draw is solid).
 export function cutCoordinates(geometry, map) {
     const channel = map.channel ?? 0;
     const attribute = geometry.attributes[channel === 0 ? "uv" : `uv${channel}`];
@@ -142,7 +143,7 @@ export function cutCoordinates(geometry, map) {
     const e = map.matrix.elements;
     const version = attribute.isInterleavedBufferAttribute ? attribute.data.version : attribute.version;
     const key = `${channel} ${version} ${e.join(" ")}`;
-    return {key, attribute, compute() {
+    return {key, compute() {
         const n = attribute.count, uvs = new Float32Array(2 * n);
         for (let i = 0; i < n; ++i) {
             const u = attribute.getX(i), v = attribute.getY(i);
