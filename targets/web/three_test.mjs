@@ -23,8 +23,14 @@
 //   6. With --wasm: the bundle's configuration emitted in the page by the WebAssembly emitter
 //      (a configuration object as `emission`) gives the same visibility as the bundle's emission
 //      folder (within 1e-6).
+//   7. Once, cut-out casters (web/three/test/cutout.html; the shipped emissions, which the build
+//      writes): a plane whose map has a transparent hole, with alphaTest, under a RectAreaLight.
+//      With the default options the add-on follows the cut (info.alphaTest, the shipped "-cut"
+//      emission) and the ground under the hole is lit (> 0.8), clearly more than with
+//      alphaTest: false (< 0.2, no warning); a shipped emission without a cut twin draws solid
+//      with one console.warn.
 // Exit 0 pass, 1 fail, 77 skip (no chromium), 2 bad arguments.
-// The checks 1-4 are exported for three_webgpu_test.mjs (the add-on on WebGPURenderer).
+// The checks 1-4 and 7 are exported for three_webgpu_test.mjs (the add-on on WebGPURenderer).
 import path from "node:path";
 import fs from "node:fs";
 import {fileURLToPath} from "node:url";
@@ -146,6 +152,39 @@ export function compareVariants(variants) {
     return out;
 }
 
+// 7. Cut-out casters on the page `url` (cutout.html or cutout_webgpu.html): failures, and a line.
+export async function checkCutout(browser, url) {
+    const started = Date.now();
+    const {page, problems} = await openPage(browser, url, "penumbraCut");
+    const failures = [];
+    const run = (options) => page.evaluate((o) => window.penumbraCut.run(o), options);
+    const followed = await run({});
+    const solid = await run({alphaTest: false});
+    const untwinned = await run({emission: "rect-nbuffer-8x256"}); // shipped, no "-cut" twin
+    const renderer = await page.evaluate(() => window.penumbraCut.renderer);
+    await page.close();
+    for (const [name, r] of Object.entries({followed, solid, untwinned}))
+        if (r.error) failures.push(`${name}: the shadow phase failed: ${r.error}`);
+    if (!followed.alphaTest || !followed.emissionCuts || followed.cutDraws !== 1)
+        failures.push(`default options: info.alphaTest ${followed.alphaTest}, the emission's alpha_test ${followed.emissionCuts}, ` +
+                      `${followed.cutDraws} cut draws (expected on, on, 1): the cut-out caster was not followed`);
+    if (!(followed.hole > 0.8)) failures.push(`default options: the ground under the hole has visibility ${followed.hole.toFixed(3)} (expected > 0.8: lit through the hole)`);
+    if (solid.alphaTest || solid.emissionCuts || solid.cutDraws !== 0) failures.push("alphaTest: false: the add-on still cuts (info.alphaTest or the emission's alpha_test)");
+    if (!(solid.hole < 0.2)) failures.push(`alphaTest: false: the ground under the hole has visibility ${solid.hole.toFixed(3)} (expected < 0.2: the plane drawn solid)`);
+    if (!(followed.hole - solid.hole > 0.6)) failures.push(`under the hole, cut ${followed.hole.toFixed(3)} vs solid ${solid.hole.toFixed(3)}: not clearly brighter`);
+    if (solid.warnings.length) failures.push(`alphaTest: false warned: ${solid.warnings.join("; ")}`);
+    if (followed.warnings.length) failures.push(`default options warned: ${followed.warnings.join("; ")}`);
+    const cutWarnings = untwinned.warnings.filter((w) => /alpha test/.test(w));
+    if (untwinned.alphaTest || !(untwinned.hole < 0.2) || cutWarnings.length !== 1)
+        failures.push(`a shipped emission without a cut twin: info.alphaTest ${untwinned.alphaTest}, under the hole ${untwinned.hole.toFixed(3)}, ` +
+                      `${cutWarnings.length} warnings about the alpha test (expected off, < 0.2, one)`);
+    failures.push(...problems);
+    const line = `${failures.length ? "FAIL" : "ok  "} cut-out caster on ${renderer} (${((Date.now() - started) / 1000).toFixed(1)} s): ` +
+                 `under the hole ${followed.hole.toFixed(3)} followed (alpha test on) vs ${solid.hole.toFixed(3)} with alphaTest: false; ` +
+                 `without a cut twin ${untwinned.hole.toFixed(3)} and ${cutWarnings.length} warning`;
+    return {failures, line};
+}
+
 async function checkBundle(browser, port, index, dir, wasm) {
     const bundle = JSON.parse(fs.readFileSync(path.join(dir, "uniforms.json"), "utf8"));
     const c = bundle.config;
@@ -242,6 +281,10 @@ async function main() {
             if (i === 0) console.log(`WebGL2 renderer: ${result.renderer}`);
             failures += result.failures;
         }
+        const cut = await checkCutout(browser, `http://127.0.0.1:${server.address().port}/web/three/test/cutout.html`);
+        console.log(cut.line);
+        for (const f of cut.failures) console.log(`     ${f}`);
+        failures += cut.failures.length;
     } catch (e) {
         console.log(`FAIL ${e.message}`);
         failures += 1;

@@ -18,7 +18,10 @@
 //      lit-with / lit-without equals it within 2q + 1e-3 on all but 1% of the lit pixels;
 //   4. the mesh moved as a Mesh, InstancedMesh, SkinnedMesh and morph target: the same visibility;
 //   5. moving the light re-runs the shadow phase once, update() without a change does not, no
-//      WebGPU validation error, dispose() restores the material.
+//      WebGPU validation error, dispose() restores the material;
+//   7. once, three_test.mjs's cut-out caster check (web/three/test/cutout_webgpu.html): a plane with
+//      a hole in its map's alpha, the shipped "-cut-wgsl" emission picked by default, the ground
+//      under the hole lit, and dark with alphaTest: false.
 // ":physical-node" after a bundle: its receivers get a MeshPhysicalNodeMaterial (else the bundle
 // scene's plain MeshStandardMaterial, which WebGPURenderer converts).
 // --two-lights: a RectAreaLight and a sun, each with its add-on (the two wgsl emission folders, small
@@ -33,7 +36,7 @@ import fs from "node:fs";
 import os from "node:os";
 import path from "node:path";
 import {openPage, writeGreyPng} from "./harness.mjs";
-import {PIXELS_ALLOWED, R8_STEP, UNIFORM_TOLERANCE, VARIANT_PIXELS_ALLOWED, compareRatio, compareVariants, compareWithDesktop,
+import {PIXELS_ALLOWED, R8_STEP, UNIFORM_TOLERANCE, VARIANT_PIXELS_ALLOWED, checkCutout, compareRatio, compareVariants, compareWithDesktop,
         frameError} from "./three_test.mjs";
 import {adapterLine, startWebGPU} from "./wgsl_compile.mjs";
 
@@ -180,6 +183,10 @@ async function main() {
     try {
         for (let i = 0; i < args.bundles.length; ++i) failures += (await checkBundle(browser, port, i, args.bundles[i], args.images)).failures.length;
         if (args.twoLights) failures += (await checkTwoLights(browser, port)).length;
+        const cut = await checkCutout(browser, `http://127.0.0.1:${port}/web/three/test/cutout_webgpu.html`);
+        console.log(cut.line);
+        for (const f of cut.failures) console.log(`     ${f}`);
+        failures += cut.failures.length;
         if (args.three) failures += (await checkBundle(browser, port, 0, args.bundles[0], null, "webgpu-alt.html")).failures.length;
     } catch (e) {
         console.log(`FAIL ${e.message}`);

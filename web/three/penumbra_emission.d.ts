@@ -8,7 +8,9 @@
  */
 export type EmissionName =
     | "rect-nbuffer-16x512" | "rect-mipmap-16x512" | "rect-nbuffer-16x256" | "rect-nbuffer-8x256"
-    | "sun-nbuffer-16x512" | "sun-mipmap-16x512";
+    | "sun-nbuffer-16x512" | "sun-mipmap-16x512"
+    /** with the alpha test (penumbra-gen --alpha-test): cut-out casters; load() picks them when casters cut */
+    | "rect-nbuffer-16x512-cut" | "sun-nbuffer-16x512-cut";
 
 /** Shipped emission → its files (name → URL, each a literal `new URL(…, import.meta.url)` bundlers copy). */
 export const EMISSIONS: Readonly<Record<EmissionName | `${EmissionName}-wgsl`, Readonly<Record<string, URL>>>>;
@@ -27,6 +29,8 @@ export interface EmissionConfig {
     fusion?: "probabilistic" | "additive" | "maximum" | "average" | "chained" | "correlated" | "extent" | "clustered";
     packing?: "atlas" | "array" | "volume";
     tangent_clip?: boolean;
+    /** cut-out casters (penumbra-gen --alpha-test); the three add-on sets it when its casters cut */
+    alpha_test?: boolean;
     [key: string]: unknown;
 }
 

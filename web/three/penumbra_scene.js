@@ -2,7 +2,8 @@
 // WebGPURenderer (penumbra_shadows_webgpu.js): the options, the light's kind, the emission's
 // files (shipped, a folder, in memory, or emitted by the WebAssembly emitter), the casters and
 // receivers of the scene, when the shadow phase must run again, the light frame from the three.js
-// light and the scene's bounds (light_frame.js), and the casters' vertices. Each renderer's module
+// light and the scene's bounds (light_frame.js), the casters' vertices and their materials' cut-outs
+// (the alpha test: cutOf, emissionWithCut). Each renderer's module
 // subclasses ShadowsBase with its own GPU work: the runner, the caster draws, the material hooks.
 import {Box3, Color, Matrix4, Vector3} from "three";
 import {rectFrame, sunFrame} from "./light_frame.js";
@@ -19,6 +20,7 @@ export const DEFAULTS = {
     autoUpdate: true,         // re-run the shadow phase by itself when something moved (like shadowMap.autoUpdate)
     intensity: 1,             // 0: no shadow, 1: Penumbra's visibility (like LightShadow.intensity)
     wasm: null,               // for a configuration object: the URL of penumbra_emitter.wasm (default: the one beside penumbra_emitter.js)
+    alphaTest: undefined,     // cut-out casters (cutOf): undefined follows the scene (on when a caster cuts at load()), true / false forces
 };
 
 export function kindOf(light) {
@@ -62,6 +64,96 @@ export function casterVertices(object) {
     return {positions, index, first: range.start, count, deformed};
 }
 
+// The meshes update() draws as casters (BatchedMesh: not drawn, README).
+export function isCaster(object) {
+    return object.isMesh && object.castShadow && !object.isBatchedMesh && !!object.geometry.attributes.position;
+}
+
+// ---- cut-out casters (the alpha test) ----------------------------------------------------------
+
+// Whether a caster's material cuts, and where: the desktop playground's rule for glTF's alpha modes
+// (playground/src/scenes/gltf_loader.cpp), as three's GLTFLoader maps them. MASK is alphaTest > 0
+// (cutoff alphaTest), BLEND is transparent (cast as a cut-out at 0.5: a shadow has no partial
+// coverage); either cuts through the map's alpha, which three multiplies by opacity, so the cutoff
+// the slicing pass compares the map's alpha with is cutoff / opacity (a · opacity < c ⇔ a < c / opacity;
+// above 1 nothing of it casts). {map, cutoff}, or null: solid (no map, or neither mode). alphaMap
+// (three's green channel, another texture) and a map-less material's opacity are not followed: the
+// slicing pass reads one texture's alpha (README).
+export function cutOf(material) {
+    if (!material || !material.map) return null;
+    const cutoff = material.alphaTest > 0 ? material.alphaTest : material.transparent ? 0.5 : 0;
+    if (!(cutoff > 0)) return null;
+    const opacity = material.opacity ?? 1;
+    return {map: material.map, cutoff: opacity > 0 ? Math.min(cutoff / opacity, 2) : 2};
+}
+
+export function materialsOf(object) {
+    return Array.isArray(object.material) ? object.material : [object.material];
+}
+
+// Whether a caster of the scene (visible, castShadow) cuts now: what alphaTest undefined follows.
+export function sceneCuts(scene) {
+    let cuts = false;
+    scene.traverseVisible((object) => {
+        if (!cuts && isCaster(object)) cuts = materialsOf(object).some((m) => cutOf(m) !== null);
+    });
+    return cuts;
+}
+
+// The emission for `requested` (requestedEmission's) with the alpha test where `alphaTest` says
+// (undefined: when the scene's casters cut): a shipped name's "<name>-cut" twin (penumbra-gen
+// --alpha-test; emissions/regenerate.sh), a configuration with alpha_test: true (a forced true wins
+// over the configuration's own alpha_test, a followed one does not). A shipped name without a twin,
+// a folder or an emission in memory is taken as it is: if it has no alpha test, update() warns and
+// the casters are drawn solid.
+export function emissionWithCut(requested, alphaTest, scene) {
+    if (!(alphaTest ?? sceneCuts(scene))) return requested;
+    if (typeof requested === "string" && Object.hasOwn(EMISSIONS, requested))
+        return Object.hasOwn(EMISSIONS, `${requested}-cut`) ? `${requested}-cut` : requested;
+    if (requested && typeof requested === "object" && !requested.layout)
+        return alphaTest === true ? {...requested, alpha_test: true} : {alpha_test: true, ...requested};
+    return requested;
+}
+
+// A caster's draws, each with its material: the whole draw range with its one material, or, for
+// an array of materials, each geometry group within the draw range with its own (as three draws
+// them; a mesh with an array of materials but no groups: the first). [{first, count, material}]
+export function casterDraws(object, first, count) {
+    const material = object.material, groups = object.geometry.groups;
+    if (!Array.isArray(material)) return [{first, count, material}];
+    if (!groups || groups.length === 0) return [{first, count, material: material[0]}];
+    const out = [];
+    for (const group of groups) {
+        const start = Math.max(group.start, first), end = Math.min(group.start + group.count, first + count);
+        if (end > start) out.push({first: start, count: end - start, material: material[group.materialIndex]});
+    }
+    return out;
+}
+
+// A cut's texture coordinates, as three's vertex stage gives its map: the uv attribute of the
+// map's channel through the map's transform (offset, repeat, rotation, center: map.matrix), done
+// here once per geometry and transform, so the emission's slicing pass reads them as they are.
+// {key (channel, the attribute's version, the transform), compute(): Float32Array (2 a vertex)}, or
+// null where the geometry has no such attribute (that draw is solid).
+export function cutCoordinates(geometry, map) {
+    const channel = map.channel ?? 0;
+    const attribute = geometry.attributes[channel === 0 ? "uv" : `uv${channel}`];
+    if (!attribute) return null;
+    if (map.matrixAutoUpdate) map.updateMatrix();
+    const e = map.matrix.elements;
+    const version = attribute.isInterleavedBufferAttribute ? attribute.data.version : attribute.version;
+    const key = `${channel} ${version} ${e.join(" ")}`;
+    return {key, compute() {
+        const n = attribute.count, uvs = new Float32Array(2 * n);
+        for (let i = 0; i < n; ++i) {
+            const u = attribute.getX(i), v = attribute.getY(i);
+            uvs[2 * i] = e[0] * u + e[3] * v + e[6];
+            uvs[2 * i + 1] = e[1] * u + e[4] * v + e[7];
+        }
+        return uvs;
+    }};
+}
+
 export function isDeformed(object) {
     return object.isSkinnedMesh || !!(object.morphTargetInfluences && object.morphTargetInfluences.some((w) => w !== 0));
 }
@@ -94,7 +186,8 @@ export class ShadowsBase {
         this.enabled = true;
         this.wasm = o.wasm;
         this.intensity = o.intensity;
-        this.info = {shadowUpdates: 0, lastShadowMs: 0, casters: 0, receivers: 0, contained: true};
+        this.alphaTest = o.alphaTest; // as given: load() and setEmission() pick the emission by it
+        this.info = {shadowUpdates: 0, lastShadowMs: 0, casters: 0, receivers: 0, contained: true, alphaTest: false, cutDraws: 0};
         this.disposed = false;
         this._serial = nextSerial();
         this._rename = renamer(`penumbra${this._serial}`);
@@ -104,11 +197,41 @@ export class ShadowsBase {
         this._frame = null;
     }
 
-    // The emission's light must be the add-on's.
+    // The emission's light must be the add-on's. Its alpha test decides whether the casters' cuts
+    // are drawn (info.alphaTest): an emission with it, unless alphaTest is false.
     _checkLight(layout) {
         const wanted = this.kind === "sun" ? "sun" : "rect";
         if (layout.config.light !== wanted)
             fail(`the emission is for a '${layout.config.light}' light but the light is a ${this.light.type} (needs '${wanted}')`);
+        this.info.alphaTest = layout.config.alpha_test === true && this.alphaTest !== false;
+    }
+
+    // The casters' draws (casterDraws over drawn[i], the caster's GPU geometry with its first and
+    // count), each with its cut (cutOf) where the emission cuts, else null (solid, one draw a caster
+    // as before). Warns once where casters cut but the emission cannot (alphaTest not false).
+    _casterCuts(casters, drawn) {
+        const cutting = this.info.alphaTest;
+        let cuts = 0, uncut = false;
+        const out = casters.map((object, i) => {
+            const g = drawn[i];
+            if (!cutting) {
+                if (this.alphaTest !== false && !uncut) uncut = materialsOf(object).some((m) => cutOf(m) !== null);
+                return [{first: g.first, count: g.count, cut: null}];
+            }
+            return casterDraws(object, g.first, g.count).map(({first, count, material}) => {
+                const cut = cutOf(material);
+                if (cut) ++cuts;
+                return {first, count, cut};
+            });
+        });
+        this.info.cutDraws = cuts;
+        if (uncut && !this._warnedCut) {
+            this._warnedCut = true;
+            console.warn("PenumbraShadows: casters' materials cut (a map with alphaTest or transparent) but the emission has no alpha test, " +
+                         "so they cast solid: load with a shipped emission or a configuration (the add-on picks the cut one), " +
+                         "or emit with penumbra-gen --alpha-test; alphaTest: false keeps them solid without this warning");
+        }
+        return out;
     }
 
     _alive(what) {
@@ -126,7 +249,7 @@ export class ShadowsBase {
         const casters = [], receivers = [];
         scene.traverseVisible((object) => {
             if (!object.isMesh) return;
-            if (object.castShadow && !object.isBatchedMesh && object.geometry.attributes.position) casters.push(object); // BatchedMesh: not drawn (README)
+            if (isCaster(object)) casters.push(object);
             if (object.receiveShadow) {
                 receivers.push(object);
                 for (const material of Array.isArray(object.material) ? object.material : [object.material]) this._patch(material);
@@ -221,6 +344,16 @@ export class ShadowsBase {
                 if (object.morphTargetInfluences) out.push(...object.morphTargetInfluences);
             }
         }
+        // what the casters' cuts read: the map (its pixels' version, transform, channel) and cutoff
+        if (this.info.alphaTest)
+            for (const object of casters)
+                for (const material of materialsOf(object)) {
+                    const cut = cutOf(material);
+                    if (!cut) { out.push(-1); continue; }
+                    const map = cut.map;
+                    if (map.matrixAutoUpdate) map.updateMatrix();
+                    out.push(map.id, map.version, cut.cutoff, map.channel ?? 0, ...map.matrix.elements);
+                }
         return out;
     }
 

@@ -24,6 +24,14 @@ export interface PenumbraShadowsOptions {
     intensity?: number;
     /** For a configuration object: the URL of penumbra_emitter.wasm (default: the package's). */
     wasm?: string | URL | null;
+    /**
+     * Cut-out casters (the alpha test): a caster material cuts when it has a `map` and `alphaTest > 0`
+     * (cutoff alphaTest) or `transparent` (cutoff 0.5), the cutoff divided by `opacity`. undefined (the
+     * default) follows the scene: on when a caster cuts at load(); true / false force it. On, load()
+     * and setEmission() take an emission with the alpha test ("<name>-cut" of a shipped name, or a
+     * configuration with alpha_test: true).
+     */
+    alphaTest?: boolean;
 }
 
 export interface PenumbraShadowsInfo {
@@ -33,6 +41,10 @@ export interface PenumbraShadowsInfo {
     receivers: number;
     /** false when the scene's bounds reach the light's plane (shadows above it are wrong). */
     contained: boolean;
+    /** true when the casters' cut-outs are drawn: the emission has the alpha test and the alphaTest option is not false. */
+    alphaTest: boolean;
+    /** How many caster draws the last shadow phase cut (draws of a cutting material with the alpha test on). */
+    cutDraws: number;
 }
 
 export class PenumbraShadows {
@@ -57,6 +69,8 @@ export class PenumbraShadows {
     angularDiameter: number;
     autoUpdate: boolean;
     needsUpdate: boolean;
+    /** The alphaTest option as given (undefined: the scene's casters decided at load()). */
+    readonly alphaTest: boolean | undefined;
     /** true after dispose(). */
     readonly disposed: boolean;
     /** The emission's configuration (layout.json's "config"). */
@@ -65,7 +79,7 @@ export class PenumbraShadows {
 
     /** Once per frame before renderer.render(); throws a PenumbraError after dispose(). */
     update(): void;
-    /** Another emission; the materials recompile. */
+    /** Another emission (with the alpha test as load() picks it); the materials recompile. */
     setEmission(emission: Emission): Promise<void>;
     setSize(width: number, height: number): void;
     /** The visibility the receivers get (0 shadowed … 1 lit), width × height, bottom row first. */

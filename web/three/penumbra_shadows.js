@@ -14,7 +14,9 @@
 //     in web/ uses the same one), which follows layout.json;
 //   - its "shadow" phase (slicing + prefilter) draws the casters (meshes with castShadow, their
 //     BufferGeometry positions placed by matrixWorld, InstancedMesh instances, skinned and morphed
-//     meshes skinned on the CPU) whenever the light, a caster or a receiver moved;
+//     meshes skinned on the CPU) whenever the light, a caster or a receiver moved; with an emission
+//     that has the alpha test (load() picks one when the casters' materials cut: penumbra_scene.js's
+//     cutOf), each draw binds its material's map, cutoff and texture coordinates, so cut-outs cut;
 //   - every MeshStandardMaterial / MeshPhysicalMaterial of a mesh with receiveShadow gets, through
 //     onBeforeCompile, the emitted visibility function (penumbra_visibility.glsl) and multiplies
 //     the light's contribution by it (RE_Direct_RectArea for the rectangle, directLight.color for
@@ -31,8 +33,8 @@ import {DoubleSide, ExternalTexture, FloatType, GLSL3, Matrix4, NoBlending, RGBA
 // no ShaderChunk, and this module must still load there to hand over to penumbra_shadows_webgpu.js)
 import * as three from "three";
 import {LayoutRunner} from "./penumbra_runner.js";
-import {EMISSIONS, PenumbraError, ShadowsBase, casterVertices, fail, forEachPlacement, isDeformed, kindOf, loadEmissionFiles, requestedEmission,
-        loadEmitter, positionVersion, snippetParameters} from "./penumbra_scene.js";
+import {EMISSIONS, PenumbraError, ShadowsBase, casterVertices, cutCoordinates, emissionWithCut, fail, forEachPlacement, isDeformed, kindOf,
+        loadEmissionFiles, requestedEmission, loadEmitter, positionVersion, snippetParameters} from "./penumbra_scene.js";
 
 // The emissions shipped in emissions/ (penumbra-gen output, emissions/regenerate.sh): key → {file name: URL};
 // "<key>" is essl300 (WebGLRenderer), "<key>-wgsl" the same configuration in WGSL (WebGPURenderer).
@@ -142,7 +144,8 @@ export class PenumbraShadows extends ShadowsBase {
     // Loads the emission (options.emission: a key of EMISSIONS, a folder URL, {layout, files} or a
     // configuration) and returns the add-on attached to `renderer`, `scene` and `light`: this class
     // on a WebGLRenderer, PenumbraShadowsWebGPU (penumbra_shadows_webgpu.js, loaded only then, so
-    // that a WebGL2 page needs no three/webgpu) on a WebGPURenderer.
+    // that a WebGL2 page needs no three/webgpu) on a WebGPURenderer. options.alphaTest (undefined:
+    // the scene's casters cut now) picks the emission with the alpha test (emissionWithCut).
     static async load(renderer, scene, light, options = {}) {
         if (renderer && renderer.isWebGPURenderer) {
             const {PenumbraShadowsWebGPU} = await import("./penumbra_shadows_webgpu.js");
@@ -151,7 +154,8 @@ export class PenumbraShadows extends ShadowsBase {
         if (!renderer || !renderer.isWebGLRenderer) fail("the first argument must be a THREE.WebGLRenderer or a WebGPURenderer (three/webgpu)");
         const gl = renderer.getContext();
         const kind = kindOf(light);
-        const runner = await loadRunner(gl, requestedEmission(options, kind), kind, options.wasm ?? null);
+        const emission = emissionWithCut(requestedEmission(options, kind), options.alphaTest, scene);
+        const runner = await loadRunner(gl, emission, kind, options.wasm ?? null);
         return new PenumbraShadows(renderer, scene, light, {...options, runner});
     }
 
@@ -164,6 +168,7 @@ export class PenumbraShadows extends ShadowsBase {
                        shadow: `penumbra${this._serial}Shadow`, visibility: this._rename("penumbraVisibility")};
         this._visibilityTarget = null;
         this._visibilityMaterial = null;
+        this._white = null; // the 1×1 opaque texture a solid draw binds (alpha test)
         this._setRunner(options.runner);
     }
 
@@ -210,11 +215,11 @@ export class PenumbraShadows extends ShadowsBase {
         this.renderer.properties.get(texture).__webglTexture = id;
     }
 
-    // Replaces the emission (a key of EMISSIONS, a folder URL, {layout, files} or a configuration); the old GPU
-    // resources are freed once the new ones work.
+    // Replaces the emission (a key of EMISSIONS, a folder URL, {layout, files} or a configuration),
+    // with the alpha test as load() picks it; the old GPU resources are freed once the new ones work.
     async setEmission(emission) {
         this._alive("setEmission()");
-        const runner = await loadRunner(this.renderer.getContext(), emission, this.kind, this.wasm);
+        const runner = await loadRunner(this.renderer.getContext(), emissionWithCut(emission, this.alphaTest, this.scene), this.kind, this.wasm);
         const old = this.runner;
         this._setRunner(runner);
         old.dispose();
@@ -255,34 +260,127 @@ export class PenumbraShadows extends ShadowsBase {
         for (let e = gl.getError(), n = 0; e !== gl.NO_ERROR && n < 8; e = gl.getError(), ++n)
             console.warn(`PenumbraShadows: a WebGL error 0x${e.toString(16)} was pending before the shadow phase (not the add-on's)`);
         runner.setUniforms(frame.uniforms);
-        const drawn = casters.map((object) => this._geometryOf(object)).filter((g) => g !== null);
-        runner.runPhase("shadow", (programId) => this._drawCasters(programId, casters, drawn), null);
+        const drawn = casters.map((object) => this._geometryOf(object));
+        const draws = this._casterCuts(casters, drawn);
+        if (this.info.alphaTest) {
+            // the maps' GL textures, which three uploads now if it has not yet (with its state cache
+            // right again after our raw GL), and each cut draw's texture coordinates (cutCoordinates)
+            renderer.resetState();
+            for (const [i, list] of draws.entries())
+                for (const d of list) {
+                    if (!d.cut) continue;
+                    d.texture = this._mapTexture(d.cut.map);
+                    d.uv = this._uvBuffer(drawn[i], casters[i].geometry, d.cut.map);
+                }
+        }
+        runner.runPhase("shadow", (programId) => this._drawCasters(programId, casters, drawn, draws), null);
+        for (const g of drawn) this._dropUnusedUVs(g);
         gl.bindVertexArray(null);
         renderer.resetState();
     }
 
     // Draws every caster with each "...FromWorld" matrix of the program times its model matrix
-    // (and instance matrix), so that attribute 0 can stay in object space.
-    _drawCasters(programId, casters, drawn) {
+    // (and instance matrix), so that attribute 0 can stay in object space. A program with the
+    // alpha test (parameters whose source is "draw": the alpha texture and cutoff; vertex input
+    // penumbra_uv) gets each draw's map, cutoff and coordinates, or the white texture and cutoff 0.
+    _drawCasters(programId, casters, drawn, draws) {
         const gl = this.renderer.getContext();
         const program = Object.values(this.runner.programs).find((p) => p.id === programId);
         const matrices = program.desc.parameters.filter((p) => p.type === "mat4" && /FromWorld$/.test(p.name));
         const locations = matrices.map((p) => program.locations[p.name] || gl.getUniformLocation(programId, p.name));
         const base = matrices.map((p) => new Matrix4().fromArray(this.runner.uniformValues[p.name]));
+        const alphaTexture = program.desc.parameters.find((p) => p.source === "draw" && p.type.startsWith("sampler"));
+        const cutoff = program.desc.parameters.find((p) => p.source === "draw" && p.type === "float");
+        const cutoffLocation = cutoff ? program.locations[cutoff.name] : null;
+        const uvLocation = (program.desc.vertex_inputs || []).find((v) => v.name === "penumbra_uv")?.location ?? -1;
         const m = new Matrix4();
-        const draw = (g, objectMatrix) => {
+        const draw = (g, d, objectMatrix) => {
             matrices.forEach((p, k) => {
                 if (!locations[k]) return;
                 m.multiplyMatrices(base[k], objectMatrix);
                 gl.uniformMatrix4fv(locations[k], false, m.elements);
             });
             gl.bindVertexArray(g.vao);
-            if (g.indexType) gl.drawElements(gl.TRIANGLES, g.count, g.indexType, g.first * g.indexBytes);
-            else gl.drawArrays(gl.TRIANGLES, g.first, g.count);
+            if (alphaTexture) {
+                const cut = d.cut && d.texture && d.uv ? d : null; // (no texture or coordinates yet: solid)
+                gl.activeTexture(gl.TEXTURE0 + alphaTexture.binding);
+                gl.bindTexture(gl.TEXTURE_2D, cut ? cut.texture : this._whiteTexture());
+                gl.bindSampler(alphaTexture.binding, null); // the map's own filtering and wrapping
+                if (cutoffLocation) gl.uniform1f(cutoffLocation, cut ? cut.cut.cutoff : 0);
+                if (uvLocation >= 0) {
+                    if (cut) {
+                        gl.bindBuffer(gl.ARRAY_BUFFER, cut.uv);
+                        gl.enableVertexAttribArray(uvLocation);
+                        gl.vertexAttribPointer(uvLocation, 2, gl.FLOAT, false, 0, 0);
+                    } else {
+                        gl.disableVertexAttribArray(uvLocation);
+                    }
+                }
+            }
+            if (g.indexType) gl.drawElements(gl.TRIANGLES, d.count, g.indexType, d.first * g.indexBytes);
+            else gl.drawArrays(gl.TRIANGLES, d.first, d.count);
         };
         // (skinned and morphed positions come in the mesh's own space: casterVertices)
-        casters.forEach((object, i) => forEachPlacement(object, (matrix) => draw(drawn[i], matrix)));
+        casters.forEach((object, i) => forEachPlacement(object, (matrix) => { for (const d of draws[i]) draw(drawn[i], d, matrix); }));
         gl.bindVertexArray(null);
+        if (alphaTexture) {
+            gl.activeTexture(gl.TEXTURE0 + alphaTexture.binding);
+            gl.bindTexture(gl.TEXTURE_2D, null);
+            gl.activeTexture(gl.TEXTURE0);
+        }
+    }
+
+    // A map's GL texture, uploaded by three (initTexture) if it was not yet; null while its image
+    // is not there (version 0), or for a texture that is no 2D texture: that draw is solid until
+    // the map's version changes (which re-runs the shadow phase: _signatureOf).
+    _mapTexture(map) {
+        if (!map.isTexture || map.isCubeTexture || map.isData3DTexture || map.isDataArrayTexture || map.isRenderTargetTexture) return null;
+        if (map.version === 0 && !map.isExternalTexture) return null;
+        this.renderer.initTexture(map);
+        return this.renderer.properties.get(map).__webglTexture ?? null;
+    }
+
+    _whiteTexture() {
+        if (!this._white) {
+            const gl = this.renderer.getContext();
+            this._white = gl.createTexture();
+            gl.bindTexture(gl.TEXTURE_2D, this._white);
+            gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+            gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA8, 1, 1, 0, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array([255, 255, 255, 255]));
+            gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+            gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+        }
+        return this._white;
+    }
+
+    // The buffer of a cut's texture coordinates on GPU geometry g (one per channel and map
+    // transform: casters sharing a geometry may cut through differently placed maps); null where the
+    // geometry has none.
+    _uvBuffer(g, geometry, map) {
+        const c = cutCoordinates(geometry, map);
+        if (!c) return null;
+        g.uvs ||= new Map();
+        let entry = g.uvs.get(c.key);
+        if (!entry) {
+            const gl = this.renderer.getContext();
+            entry = {buffer: gl.createBuffer()};
+            gl.bindBuffer(gl.ARRAY_BUFFER, entry.buffer);
+            gl.bufferData(gl.ARRAY_BUFFER, c.compute(), gl.STATIC_DRAW);
+            gl.bindBuffer(gl.ARRAY_BUFFER, null);
+            g.uvs.set(c.key, entry);
+        }
+        entry.used = true;
+        return entry.buffer;
+    }
+
+    // After a shadow phase: the coordinates no draw used (an old transform or uv version) go.
+    _dropUnusedUVs(g) {
+        if (!g.uvs) return;
+        const gl = this.renderer.getContext();
+        for (const [key, entry] of g.uvs) {
+            if (!entry.used) { gl.deleteBuffer(entry.buffer); g.uvs.delete(key); }
+            else entry.used = false;
+        }
     }
 
     // Our vertex array for a caster: its geometry's positions (attribute 0) and index, uploaded
@@ -330,6 +428,7 @@ export class PenumbraShadows extends ShadowsBase {
         gl.deleteVertexArray(g.vao);
         gl.deleteBuffer(g.position);
         if (g.index) gl.deleteBuffer(g.index);
+        for (const entry of (g.uvs || new Map()).values()) gl.deleteBuffer(entry.buffer);
         this._geometries.delete(key);
     }
 
@@ -430,8 +529,10 @@ void main() {
         return material;
     }
 
-    // dispose(): the external textures' GL names (the runner deleted them), three's state
+    // dispose(): the external textures' GL names (the runner deleted them), our white texture, three's state
     _disposeResources() {
+        if (this._white) this.renderer.getContext().deleteTexture(this._white);
+        this._white = null;
         for (const t of this._samplers) {
             this.renderer.properties.get(t).__webglTexture = undefined;
             if (t.isExternalTexture) t.sourceTexture = null;

@@ -31,13 +31,17 @@
 //     scale a light's colour; every other light, and the light on other materials, is untouched.
 //     (three's light.shadow.shadowNode hook needs shadowMap.enabled and a LightShadow, which
 //     RectAreaLight has not; a light's colorNode would shadow every material, receivers or not.)
+//   - cut-out casters (an emission with the alpha test, which load() picks when the casters'
+//     materials cut: penumbra_scene.js's cutOf): each draw's bind group gets its map's GPUTexture
+//     (three's own, uploaded by renderer.initTexture; a texture read, not written, so three's
+//     internal data is only looked up), its cutoff and its texture coordinates (a vertex buffer).
 import {ClampToEdgeWrapping, DoubleSide, ExternalTexture, FloatType, LinearFilter, LinearMipmapLinearFilter, LinearMipmapNearestFilter,
         Matrix4, MeshBasicNodeMaterial, MirroredRepeatWrapping, NearestFilter, NearestMipmapLinearFilter, NearestMipmapNearestFilter,
         NoBlending, RepeatWrapping, RenderTarget, Vector2, Vector3, Vector4} from "three/webgpu";
 import {cameraPosition, float, normalWorld, positionWorld, renderGroup, sampler, texture, uniform, vec4, wgsl, wgslFn} from "three/tsl";
 import {WebGPULayoutRunner} from "./penumbra_webgpu_runner.js";
-import {ShadowsBase, casterVertices, fail, forEachPlacement, isDeformed, kindOf, loadEmissionFiles, requestedEmission, positionVersion,
-        snippetParameters} from "./penumbra_scene.js";
+import {ShadowsBase, casterVertices, cutCoordinates, emissionWithCut, fail, forEachPlacement, isDeformed, kindOf, loadEmissionFiles,
+        requestedEmission, positionVersion, snippetParameters} from "./penumbra_scene.js";
 
 // Materials shadowed by add-ons: material → {previous: its own hooks, addons}; one wrapper per
 // material applies every add-on's light (several add-ons, one per light, share a material).
@@ -53,7 +57,8 @@ export class PenumbraShadowsWebGPU extends ShadowsBase {
             fail("this WebGPURenderer runs its WebGL2 fallback backend (no WebGPU in this browser, or forceWebGL), " +
                  "where the add-on has no GPUDevice to run the wgsl emission on; use a THREE.WebGLRenderer there");
         const kind = kindOf(light);
-        const runner = await loadRunner(renderer.backend.device, requestedEmission(options, kind), kind, options.wasm ?? null);
+        const emission = emissionWithCut(requestedEmission(options, kind), options.alphaTest, scene);
+        const runner = await loadRunner(renderer.backend.device, emission, kind, options.wasm ?? null);
         return new PenumbraShadowsWebGPU(renderer, scene, light, {...options, runner});
     }
 
@@ -154,7 +159,7 @@ export class PenumbraShadowsWebGPU extends ShadowsBase {
 
     async setEmission(emission) {
         this._alive("setEmission()");
-        const runner = await loadRunner(this.device, emission, this.kind, this.wasm);
+        const runner = await loadRunner(this.device, emissionWithCut(emission, this.alphaTest, this.scene), this.kind, this.wasm);
         const old = this.runner, textures = this._textures;
         this._setRunner(runner);
         for (const t of textures) t.dispose();
@@ -179,11 +184,21 @@ export class PenumbraShadowsWebGPU extends ShadowsBase {
         const runner = this.runner;
         runner.setUniforms(frame.uniforms);
         const drawn = casters.map((object) => this._geometryOf(object));
+        const draws = this._casterCuts(casters, drawn);
+        // each cut draw's map (three's GPUTexture) and texture coordinates (cutCoordinates)
+        if (this.info.alphaTest)
+            for (const [i, list] of draws.entries())
+                for (const d of list) {
+                    if (!d.cut) continue;
+                    d.texture = this._mapTexture(d.cut.map);
+                    d.uv = this._uvBuffer(drawn[i], casters[i].geometry, d.cut.map);
+                }
         // zeros for vertex inputs other than the position (made before encoding: a draw must not see it replaced)
         const zeros = runner.layout.programs.some((p) => (p.vertex_inputs || []).some((v) => v.name !== "penumbra_position"))
             ? this._zeroBuffer(drawn.reduce((n, g) => Math.max(n, g.vertices), 0)) : null;
         const {done} = runner.submitPhase("shadow", (render, program, setDrawUniforms) =>
-            this._drawCasters(render, program, setDrawUniforms, casters, drawn, zeros));
+            this._drawCasters(render, program, setDrawUniforms, casters, drawn, draws, zeros));
+        for (const g of drawn) this._dropUnusedUVs(g);
         done.then(() => (this.info.error = null), (e) => {
             this.info.error = e.message;
             console.error(`PenumbraShadows: the shadow phase failed: ${e.message}`);
@@ -192,9 +207,14 @@ export class PenumbraShadowsWebGPU extends ShadowsBase {
 
     // Each placement of each caster, with each "...FromWorld" matrix of the program times its model
     // (and instance) matrix in a uniform buffer of its own, so that the vertices stay in object space.
-    _drawCasters(render, program, setDrawUniforms, casters, drawn, zeros) {
+    // A program with the alpha test (parameters whose source is "draw": the alpha texture and
+    // cutoff; vertex input penumbra_uv) gets each draw's map, cutoff and coordinates, or the
+    // runner's white texture, cutoff 0 and zeros.
+    _drawCasters(render, program, setDrawUniforms, casters, drawn, draws, zeros) {
         const matrices = program.parameters.filter((p) => p.type === "mat4" && /FromWorld$/.test(p.name));
         const base = matrices.map((p) => new Matrix4().fromArray(this.runner.uniformValues[p.name]));
+        const alphaTexture = program.parameters.find((p) => p.source === "draw" && p.texture_type !== undefined);
+        const cutoff = program.parameters.find((p) => p.source === "draw" && p.block !== undefined);
         const m = new Matrix4();
         let slot = 0;
         casters.forEach((object, i) => {
@@ -202,17 +222,60 @@ export class PenumbraShadowsWebGPU extends ShadowsBase {
             forEachPlacement(object, (matrix) => {
                 const values = {};
                 matrices.forEach((p, k) => (values[p.name] = m.multiplyMatrices(base[k], matrix).toArray()));
-                setDrawUniforms(values, slot++);
-                (program.vertex_inputs || []).forEach((v, location) =>
-                    render.setVertexBuffer(location, v.name === "penumbra_position" ? g.position : zeros));
-                if (g.index) {
-                    render.setIndexBuffer(g.index, g.indexFormat);
-                    render.drawIndexed(g.count, 1, g.first);
-                } else {
-                    render.draw(g.count, 1, g.first);
+                for (const d of draws[i]) {
+                    const cut = alphaTexture && d.cut && d.texture && d.uv ? d : null; // (no texture or coordinates yet: solid)
+                    if (cutoff) values[cutoff.name] = cut ? cut.cut.cutoff : 0;
+                    setDrawUniforms(values, slot++, cut ? {[alphaTexture.name]: cut.texture} : null);
+                    (program.vertex_inputs || []).forEach((v, location) =>
+                        render.setVertexBuffer(location, v.name === "penumbra_position" ? g.position : v.name === "penumbra_uv" && cut ? cut.uv : zeros));
+                    if (g.index) {
+                        render.setIndexBuffer(g.index, g.indexFormat);
+                        render.drawIndexed(d.count, 1, d.first);
+                    } else {
+                        render.draw(d.count, 1, d.first);
+                    }
                 }
             });
         });
+    }
+
+    // A map's GPUTexture: three's own, uploaded by initTexture if it was not yet; null while its
+    // image is not there (version 0) or for a texture that is no 2D one: that draw is solid until
+    // the map's version changes (which re-runs the shadow phase: _signatureOf).
+    _mapTexture(map) {
+        if (!map.isTexture || map.isCubeTexture || map.isData3DTexture || map.isDataArrayTexture || map.isRenderTargetTexture) return null;
+        if (map.version === 0) return null;
+        this.renderer.initTexture(map);
+        const texture = this.renderer.backend.get(map).texture;
+        return texture && texture.dimension === "2d" && texture.depthOrArrayLayers === 1 ? texture : null;
+    }
+
+    // The vertex buffer of a cut's texture coordinates on GPU geometry g (one per channel and map
+    // transform, as on WebGL2); null where the geometry has none.
+    _uvBuffer(g, geometry, map) {
+        const c = cutCoordinates(geometry, map);
+        if (!c) return null;
+        g.uvs ||= new Map();
+        let entry = g.uvs.get(c.key);
+        if (!entry) {
+            const uvs = c.compute();
+            entry = {buffer: this.device.createBuffer({label: "penumbra caster uv", size: Math.max(uvs.byteLength, 4),
+                                                       usage: GPUBufferUsage.VERTEX | GPUBufferUsage.COPY_DST})};
+            this.device.queue.writeBuffer(entry.buffer, 0, uvs);
+            g.uvs.set(c.key, entry);
+        }
+        entry.used = true;
+        return entry.buffer;
+    }
+
+    // After a shadow phase is submitted: the coordinates no draw used go (WebGPU keeps a destroyed
+    // buffer's memory until the work submitted with it is done).
+    _dropUnusedUVs(g) {
+        if (!g.uvs) return;
+        for (const [key, entry] of g.uvs) {
+            if (!entry.used) { entry.buffer.destroy(); g.uvs.delete(key); }
+            else entry.used = false;
+        }
     }
 
     _zeroBuffer(vertices) {
@@ -268,6 +331,7 @@ export class PenumbraShadowsWebGPU extends ShadowsBase {
         if (!g) return;
         g.position.destroy();
         if (g.index) g.index.destroy();
+        for (const entry of (g.uvs || new Map()).values()) entry.buffer.destroy();
         this._geometries.delete(key);
     }
 

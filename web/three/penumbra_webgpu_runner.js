@@ -299,8 +299,9 @@ export class WebGPULayoutRunner {
                                        {bytesPerRow: f.bytes * width, rowsPerImage: height}, [width, height, 1]);
     }
 
-    // A texture for a parameter whose source is "draw" (alpha test: the caster's material texture);
-    // without one, the parameter reads a 1×1 opaque white texture.
+    // A texture for a parameter whose source is "draw" (alpha test: the caster's material texture)
+    // for every draw that gives none of its own (setDrawUniforms' `textures`); without either, the
+    // parameter reads a 1×1 opaque white texture.
     setDrawTexture(name, texture) {
         this.drawTextures[name] = texture;
     }
@@ -442,7 +443,7 @@ export class WebGPULayoutRunner {
             const input = pass.inputs.find((i) => i.sampler === param.name);
             let view;
             if (param.source === "draw") {
-                view = (this.drawTextures[param.name] || this.whiteTexture()).createView();
+                view = (draw?.textures?.[param.name] || this.drawTextures[param.name] || this.whiteTexture()).createView();
             } else {
                 const name = input?.texture ?? param.texture;
                 if (!name) fail(`pass ${pass.name}: parameter ${param.name} has no input and no texture`);
@@ -468,9 +469,10 @@ export class WebGPULayoutRunner {
 
     // Encodes one pass. `drawScene(renderPass, program, setDrawUniforms)` draws the caller's triangles
     // with the vertex buffers in the order of the program's vertex_inputs (sceneDrawer makes one);
-    // setDrawUniforms(values, slot) before a draw gives it uniform values of its own (e.g. a
+    // setDrawUniforms(values, slot, textures) before a draw gives it uniform values of its own (e.g. a
     // caster's model matrix in penumbra_lightFromWorld), in a buffer kept per pass and slot (queue
-    // writes land before the submission, so draws of one pass cannot share a buffer).
+    // writes land before the submission, so draws of one pass cannot share a buffer), and textures
+    // {name: GPUTexture} of its own for parameters whose source is "draw" (the alpha test's).
     encodePass(encoder, pass, index, drawScene, size) {
         if (pass.action === "copy") return this.encodeCopy(encoder, pass);
         const {pipeline, program} = this.pipeline(pass, index);
@@ -502,7 +504,8 @@ export class WebGPULayoutRunner {
         else if (size) render.setViewport(0, 0, size.width, size.height, 0, 1);
         if (pass.action === "draw_scene") {
             if (!drawScene) fail(`pass ${pass.name} draws the scene: runPhase needs a drawScene callback`);
-            drawScene(render, program.desc, (values, slot) => render.setBindGroup(0, this.bindGroup(index, pass, program, {values, slot})));
+            drawScene(render, program.desc, (values, slot, textures = null) =>
+                render.setBindGroup(0, this.bindGroup(index, pass, program, {values, slot, textures})));
         } else {
             render.draw(3);
         }

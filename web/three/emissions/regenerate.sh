@@ -3,6 +3,8 @@
 # for WebGLRenderer, and "<name>-wgsl" (the same configuration in WGSL) for WebGPURenderer:
 #   web/three/emissions/regenerate.sh [PATH/TO/penumbra-gen]     (default build/generator/penumbra-gen)
 # With --check DIR it writes them into DIR instead, for the test that compares them with these.
+# "<name>-cut" (and "<name>-cut-wgsl"): the same configuration with --alpha-test, which load() takes
+# instead of "<name>" when the scene's casters cut (materials with a map and alphaTest or transparent).
 set -eu
 here="$(cd "$(dirname "$0")" && pwd)"
 out="$here"
@@ -16,9 +18,13 @@ emit rect-nbuffer-16x256 --light rect --filter nbuffer --slices 16 --resolution 
 emit rect-nbuffer-8x256   --light rect --filter nbuffer --slices 8 --resolution 256
 emit sun-nbuffer-16x512  --light sun  --filter nbuffer --slices 16 --resolution 512
 emit sun-mipmap-16x512   --light sun  --filter mipmap  --slices 16 --resolution 512
+emit rect-nbuffer-16x512-cut --light rect --filter nbuffer --slices 16 --resolution 512 --alpha-test
+emit sun-nbuffer-16x512-cut  --light sun  --filter nbuffer --slices 16 --resolution 512 --alpha-test
 emit_wgsl rect-nbuffer-16x512 --light rect --filter nbuffer --slices 16 --resolution 512
 emit_wgsl rect-mipmap-16x512  --light rect --filter mipmap  --slices 16 --resolution 512
 emit_wgsl rect-nbuffer-16x256 --light rect --filter nbuffer --slices 16 --resolution 256
 emit_wgsl rect-nbuffer-8x256  --light rect --filter nbuffer --slices 8 --resolution 256
 emit_wgsl sun-nbuffer-16x512  --light sun  --filter nbuffer --slices 16 --resolution 512
 emit_wgsl sun-mipmap-16x512   --light sun  --filter mipmap  --slices 16 --resolution 512
+emit_wgsl rect-nbuffer-16x512-cut --light rect --filter nbuffer --slices 16 --resolution 512 --alpha-test
+emit_wgsl sun-nbuffer-16x512-cut  --light sun  --filter nbuffer --slices 16 --resolution 512 --alpha-test
