@@ -15,7 +15,9 @@
 //     runner shared with penumbra-three (shared/penumbra_webgpu_runner.js; penumbra_babylon_webgpu.js);
 //     its "shadow" phase (slicing + prefilter) draws the casters (their vertex data placed by their
 //     world matrices, instances and thin instances, skinned and morphed ones from the CPU) whenever
-//     the light, a caster or a receiver moved;
+//     the light, a caster or a receiver moved; with an emission that has the alpha test (load() picks
+//     one when a mesh's material cuts: cutOf), each draw binds its material's diffuse / albedo
+//     texture (Babylon's own GL texture or GPUTexture), cutoff and texture coordinates, so cut-outs cut;
 //   - every StandardMaterial / PBRMaterial of a mesh with receiveShadows gets a material plugin
 //     (MaterialPluginBase, Babylon's documented way to add shader code) that puts the emitted
 //     visibility function in and multiplies that light's `shadow` factor by it, in the light loop
@@ -581,15 +583,21 @@ float ${n.shadow}(vec3 normalWorld, vec3 positionWorld, vec3 eye) {
     _renderShadowWebGPU(casters, frame) {
         const runner = this.runner;
         runner.setUniforms(frame.uniforms);
-        const drawn = [];
+        const drawn = [], sources = new Map();
         for (const mesh of casters) for (const [source, world] of placements(mesh)) {
             const deformed = isDeformed(source);
             const key = deformed ? source : source.geometry;
             const g = key && this._gpuCasters.geometry(key, () => (deformed ? source.getPositionData(true, true) : source.getVerticesData("position")),
                                                        () => source.getIndices(), !deformed);
-            if (g) drawn.push([g, world]);
+            if (!g) continue;
+            drawn.push([g, world, source]);
+            sources.set(source, g);
         }
-        const {done} = runner.submitPhase("shadow", this._gpuCasters.drawer(runner, drawn, multiply));
+        // each cut draw's texture (Babylon's GPUTexture) and coordinates (cutCoordinates)
+        const draws = this._casterCuts(sources, (texture) => cutInternal(texture)?._hardwareTexture.underlyingResource ?? null,
+                                       (g, source, texture) => this._gpuCasters.uvBuffer(g, cutCoordinates(source, texture)));
+        const {done} = runner.submitPhase("shadow", this._gpuCasters.drawer(runner, drawn, multiply, draws));
+        for (const g of sources.values()) this._gpuCasters.dropUnusedUVs(g);
         done.then(() => (this.info.error = null), (e) => {
             this.info.error = e.message;
             console.error(`PenumbraShadows: the shadow phase failed: ${e.message}`);
