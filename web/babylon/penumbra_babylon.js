@@ -43,6 +43,7 @@ import {EMISSIONS, PenumbraError, fail, loadEmissionFiles, loadEmitter, nextSeri
         snippetParameters} from "./shared/penumbra_emission.js";
 
 export {EMISSIONS, PenumbraError, loadEmitter};
+// (cutOf, below, is exported too: whether a material cuts, as the add-on decides it)
 
 const DEFAULTS = {
     emission: null,           // a key of EMISSIONS, a folder URL (ending in "/"), {layout, files}, or a configuration
@@ -135,7 +136,7 @@ function materialsOf(mesh) {
 
 // Whether an enabled mesh of the scene has a material that cuts: what alphaTest undefined follows
 // at load(), before the casters are added (addShadowCaster comes after load()).
-export function sceneCuts(scene) {
+function sceneCuts(scene) {
     return scene.meshes.some((mesh) => mesh.isEnabled() && materialsOf(mesh).some((m) => cutOf(m) !== null));
 }
 
@@ -144,7 +145,7 @@ export function sceneCuts(scene) {
 // a configuration with alpha_test: true (a forced true wins over the configuration's own alpha_test,
 // a followed one does not). A shipped name without a twin, a folder or an emission in memory is
 // taken as it is: if it has no alpha test, update() warns and the casters are drawn solid.
-export function emissionWithCut(requested, alphaTest, cuts) {
+function emissionWithCut(requested, alphaTest, cuts) {
     if (!(alphaTest ?? cuts())) return requested;
     if (typeof requested === "string" && Object.hasOwn(EMISSIONS, requested))
         return Object.hasOwn(EMISSIONS, `${requested}-cut`) ? `${requested}-cut` : requested;
