@@ -4,6 +4,8 @@
 # the add-on's light frame and visibility against the desktop runtime, with three_test.mjs's
 # functions and tolerances (2·bound + q on the interior pixels). Its packaging, materials and
 # several lights: bundlers.cmake (bundler-*, babylon-package). The material's light term and dispose(): here too.
+# Both also run, once, the cut-out caster page (web/babylon/test/cutout.html, a few seconds), which
+# reads the shipped emissions (web/three/emissions, written by the build: the "-cut" ones among them).
 add_test(NAME babylon
          COMMAND ${PENUMBRA_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/babylon_test.mjs --web ${PROJECT_SOURCE_DIR}/web
                  --chromium ${PENUMBRA_CHROMIUM} ${bundles})

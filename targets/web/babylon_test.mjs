@@ -7,6 +7,13 @@
 // morph target) agree within three_test.mjs's tolerance; the StandardMaterial's light term is
 // scaled by that visibility (lit-with / lit-without, three_test.mjs's compareRatio); update() after
 // dispose() throws. (Several lights, PBR materials: the bundler-* tests and babylon-package.)
+// Once, cut-out casters (web/babylon/test/cutout.html; the shipped emissions, which the build
+// writes), as three_test.mjs's check 7: a plane whose StandardMaterial's diffuseTexture has a
+// transparent hole, alpha-tested, under a RectAreaLight. With the default options the add-on follows
+// the cut (info.alphaTest, the shipped "-cut" emission) and the ground under the hole is lit (> 0.8),
+// clearly more than with alphaTest: false (< 0.2, no warning); a shipped emission without a cut twin
+// draws solid with one console.warn; the texture's offset (0.5: the hole at the edges) is followed; the detection rule (cutOf) on PBR and Standard materials as
+// Babylon's glTF loader makes them (MASK, BLEND, OPAQUE).
 // --engine webgl2 (the default: Engine, essl300 bundles) or webgpu (WebGPUEngine, WebGPU through
 // SwiftShader as three-webgpu; wgsl bundles). Needs web/babylon's npm ci (its @babylonjs/core);
 // the page's shared/ modules are served from web/three, where they live.
@@ -101,6 +108,48 @@ async function checkBundle(browser, port, index, dir, ltc, engine) {
     return failures.length;
 }
 
+// Cut-out casters on cutout.html (?engine=webgpu on WebGPUEngine): failures, and a line.
+async function checkCutout(browser, port, ltc, engine) {
+    const started = Date.now();
+    const {page, problems} = await openPage(browser, `http://127.0.0.1:${port}/web/babylon/test/cutout.html?engine=${engine}`, "penumbraCut",
+                                            undefined, async (p) => {
+        await serveLtc(p, ltc);
+        if (engine === "webgpu") await p.evaluateOnNewDocument(installOffscreenCanvas);
+    });
+    const failures = [];
+    const run = (options) => page.evaluate((o) => window.penumbraCut.run(o), options);
+    const followed = await run({});
+    const solid = await run({alphaTest: false});
+    const untwinned = await run({emission: "rect-nbuffer-8x256"}); // shipped, no "-cut" twin (the engine picks the essl300 or wgsl one)
+    const forced = await run({alphaTest: true});
+    const shifted = await page.evaluate(() => window.penumbraCut.run({}, 0.5)); // the texture's offset moves the hole off the middle
+    const rule = await page.evaluate(() => window.penumbraCut.rule());
+    const renderer = await page.evaluate(() => window.penumbraCut.renderer);
+    await page.close();
+    for (const [name, r] of Object.entries({followed, solid, untwinned, forced, shifted}))
+        if (r.error) failures.push(`${name}: the shadow phase failed: ${r.error}`);
+    if (!followed.alphaTest || !followed.emissionCuts || followed.cutDraws !== 1)
+        failures.push(`default options: info.alphaTest ${followed.alphaTest}, the emission's alpha_test ${followed.emissionCuts}, ` +
+                      `${followed.cutDraws} cut draws (expected on, on, 1): the cut-out caster was not followed`);
+    if (!(followed.hole > 0.8)) failures.push(`default options: the ground under the hole has visibility ${followed.hole.toFixed(3)} (expected > 0.8: lit through the hole)`);
+    if (!forced.alphaTest || !(forced.hole > 0.8)) failures.push(`alphaTest: true: info.alphaTest ${forced.alphaTest}, under the hole ${forced.hole.toFixed(3)} (expected on, > 0.8)`);
+    if (!(shifted.hole < 0.2)) failures.push(`the texture's uOffset, vOffset 0.5: the ground under the plane's middle has visibility ${shifted.hole.toFixed(3)} (expected < 0.2: the hole moved to the edges)`);
+    if (solid.alphaTest || solid.emissionCuts || solid.cutDraws !== 0) failures.push("alphaTest: false: the add-on still cuts (info.alphaTest or the emission's alpha_test)");
+    if (!(solid.hole < 0.2)) failures.push(`alphaTest: false: the ground under the hole has visibility ${solid.hole.toFixed(3)} (expected < 0.2: the plane drawn solid)`);
+    if (!(followed.hole - solid.hole > 0.6)) failures.push(`under the hole, cut ${followed.hole.toFixed(3)} vs solid ${solid.hole.toFixed(3)}: not clearly brighter`);
+    for (const [name, r] of Object.entries({solid, followed, forced}))
+        if (r.warnings.length) failures.push(`${name} warned: ${r.warnings.join("; ")}`);
+    const cutWarnings = untwinned.warnings.filter((w) => /alpha test/.test(w));
+    if (untwinned.alphaTest || !(untwinned.hole < 0.2) || cutWarnings.length !== 1)
+        failures.push(`a shipped emission without a cut twin: info.alphaTest ${untwinned.alphaTest}, under the hole ${untwinned.hole.toFixed(3)}, ` +
+                      `${cutWarnings.length} warnings about the alpha test (expected off, < 0.2, one)`);
+    failures.push(...rule, ...problems);
+    const line = `${failures.length ? "FAIL" : "ok  "} babylon cut-out caster on ${renderer} (${((Date.now() - started) / 1000).toFixed(1)} s): ` +
+                 `under the hole ${followed.hole.toFixed(3)} followed (alpha test on) vs ${solid.hole.toFixed(3)} with alphaTest: false; ` +
+                 `the texture offset by 0.5 ${shifted.hole.toFixed(3)}; without a cut twin ${untwinned.hole.toFixed(3)} and ${cutWarnings.length} warning; the detection rule: ${rule.length ? `${rule.length} failures` : "as Babylon draws"}`;
+    return {failures, line};
+}
+
 async function main() {
     const args = parseArguments(process.argv.slice(2));
     const web = path.resolve(args.web);
@@ -131,6 +180,10 @@ async function main() {
     try {
         const ltc = await ltcTables(); // (Babylon's RectAreaLight fetches them from its CDN: ltc_tables.mjs)
         for (let i = 0; i < args.bundles.length; ++i) failures += await checkBundle(browser, port, i, args.bundles[i], ltc, args.engine);
+        const cut = await checkCutout(browser, port, ltc, args.engine);
+        console.log(cut.line);
+        for (const f of cut.failures) console.log(`FAIL ${f}`);
+        failures += cut.failures.length;
     } catch (e) {
         console.log(`FAIL ${e.message}`);
         failures += 1;

@@ -6,6 +6,8 @@ import type {Camera} from "@babylonjs/core/Cameras/camera.js";
 import type {RectAreaLight} from "@babylonjs/core/Lights/rectAreaLight.js";
 import type {DirectionalLight} from "@babylonjs/core/Lights/directionalLight.js";
 import type {AbstractMesh} from "@babylonjs/core/Meshes/abstractMesh.js";
+import type {Material} from "@babylonjs/core/Materials/material.js";
+import type {BaseTexture} from "@babylonjs/core/Materials/Textures/baseTexture.js";
 import type {Emitter} from "./shared/penumbra_emitter.js";
 
 export {EMISSIONS, PenumbraError, type Emission, type EmissionConfig, type EmissionFiles, type EmissionName} from "./shared/penumbra_emission.js";
@@ -32,6 +34,13 @@ export interface PenumbraShadowsOptions {
     intensity?: number;
     /** For a configuration object: the URL of penumbra_emitter.wasm (default: the package's). */
     wasm?: string | URL | null;
+    /**
+     * Cut-out casters (the alpha test; which materials cut: cutOf). undefined (the default) follows the
+     * scene: on when an enabled mesh of the scene has a material that cuts at load(); true / false force
+     * it. On, load() takes an emission with the alpha test ("<name>-cut" of a shipped name, or a
+     * configuration with alpha_test: true).
+     */
+    alphaTest?: boolean;
 }
 
 export interface PenumbraShadowsInfo {
@@ -43,7 +52,21 @@ export interface PenumbraShadowsInfo {
     receivers: number;
     /** false when the scene's bounds reach the light's plane (shadows above it are wrong). */
     contained: boolean;
+    /** true when the casters' cut-outs are drawn: the emission has the alpha test and the alphaTest option is not false. */
+    alphaTest: boolean;
+    /** How many caster draws (sub-meshes of the casters' vertex data) the last shadow phase cut. */
+    cutDraws: number;
 }
+
+/**
+ * Whether a caster's material cuts, as Babylon draws it, and where: its alpha-test texture
+ * (StandardMaterial's diffuseTexture, PBRMaterial's albedoTexture) with hasAlpha, and transparencyMode
+ * ALPHATEST / ALPHATESTANDBLEND (cutoff alphaCutOff; StandardMaterial also needs
+ * useAlphaFromDiffuseTexture), ALPHABLEND with useAlphaFrom…Texture (cast as a cut-out at 0.5), or
+ * none (Babylon's choice: blended at 0.5 with useAlphaFrom…Texture, else tested at alphaCutOff); the
+ * cutoff divided by the material's alpha. null: solid.
+ */
+export function cutOf(material: Material | null | undefined): {texture: BaseTexture, cutoff: number} | null;
 
 export class PenumbraShadows {
     /**
@@ -71,6 +94,8 @@ export class PenumbraShadows {
     autoUpdate: boolean;
     /** Set to re-run the shadow phase at the next update() (with autoUpdate false). */
     needsUpdate: boolean;
+    /** The alphaTest option as given (undefined: the scene's materials decided at load()). */
+    readonly alphaTest: boolean | undefined;
 
     /** Casters, as ShadowGenerator's: the mesh and (by default) its descendants. */
     addShadowCaster(mesh: AbstractMesh, includeDescendants?: boolean): this;

@@ -15,7 +15,9 @@
 //     runner shared with penumbra-three (shared/penumbra_webgpu_runner.js; penumbra_babylon_webgpu.js);
 //     its "shadow" phase (slicing + prefilter) draws the casters (their vertex data placed by their
 //     world matrices, instances and thin instances, skinned and morphed ones from the CPU) whenever
-//     the light, a caster or a receiver moved;
+//     the light, a caster or a receiver moved; with an emission that has the alpha test (load() picks
+//     one when a mesh's material cuts: cutOf), each draw binds its material's diffuse / albedo
+//     texture (Babylon's own GL texture or GPUTexture), cutoff and texture coordinates, so cut-outs cut;
 //   - every StandardMaterial / PBRMaterial of a mesh with receiveShadows gets a material plugin
 //     (MaterialPluginBase, Babylon's documented way to add shader code) that puts the emitted
 //     visibility function in and multiplies that light's `shadow` factor by it, in the light loop
@@ -41,6 +43,7 @@ import {EMISSIONS, PenumbraError, fail, loadEmissionFiles, loadEmitter, nextSeri
         snippetParameters} from "./shared/penumbra_emission.js";
 
 export {EMISSIONS, PenumbraError, loadEmitter};
+// (cutOf, below, is exported too: whether a material cuts, as the add-on decides it)
 
 const DEFAULTS = {
     emission: null,           // a key of EMISSIONS, a folder URL (ending in "/"), {layout, files}, or a configuration
@@ -49,6 +52,7 @@ const DEFAULTS = {
     autoUpdate: true,         // re-run the shadow phase by itself when something moved
     intensity: 1,             // 0: no shadow, 1: Penumbra's visibility (like ShadowGenerator.darkness, inverted)
     wasm: null,               // for a configuration object: the URL of penumbra_emitter.wasm (default: the one beside penumbra_emitter.js)
+    alphaTest: undefined,     // cut-out casters (cutOf): undefined follows the scene (on when a mesh's material cuts at load()), true / false forces
 };
 
 function kindOf(light) {
@@ -91,6 +95,102 @@ function placements(mesh) {
     const out = [[mesh, world.m]];
     for (const instance of mesh.instances || []) if (instance.isEnabled()) out.push([mesh, instance.getWorldMatrix().m]);
     return out;
+}
+
+// ---- cut-out casters (the alpha test) ----------------------------------------------------------
+
+// Babylon's transparency modes (Material.MATERIAL_OPAQUE … MATERIAL_ALPHATESTANDBLEND)
+const OPAQUE = 0, ALPHATEST = 1, ALPHABLEND = 2, ALPHATESTANDBLEND = 3;
+
+// Whether a caster's material cuts, and where: as Babylon draws it, through its alpha-test texture
+// (getAlphaTestTexture: StandardMaterial's diffuseTexture, PBRMaterial's albedoTexture), whose alpha
+// Babylon's glTF loader turns on for MASK (transparencyMode ALPHATEST, alphaCutOff; texture hasAlpha)
+// and BLEND (ALPHABLEND; hasAlpha and useAlphaFromAlbedoTexture). ALPHATEST / ALPHATESTANDBLEND cut
+// at alphaCutOff where the texture's alpha reaches Babylon's test (PBRMaterial: hasAlpha;
+// StandardMaterial: hasAlpha and useAlphaFromDiffuseTexture); ALPHABLEND, where the texture's alpha
+// blends (hasAlpha and useAlphaFrom…Texture), is cast as a cut-out at 0.5 (a shadow has no partial
+// coverage); no transparencyMode: Babylon's own choice (hasAlpha: blended when useAlphaFrom…Texture,
+// else tested at alphaCutOff); OPAQUE: solid. The material's alpha multiplies the texture's (but in
+// StandardMaterial's test without a transparencyMode), so the cutoff the slicing pass compares the
+// texture's alpha with is cutoff / alpha (above 1 nothing of it casts). {texture, cutoff}, or null:
+// solid. opacityTexture, vertex alpha and a texture-less material's alpha are not followed (README).
+export function cutOf(material) {
+    const texture = material && typeof material.getAlphaTestTexture === "function" ? material.getAlphaTestTexture() : null;
+    if (!texture || !texture.hasAlpha) return null;
+    const standard = "useAlphaFromDiffuseTexture" in material;
+    const blends = !!(standard ? material.useAlphaFromDiffuseTexture : material.useAlphaFromAlbedoTexture);
+    const mode = material.transparencyMode ?? null;
+    let cutoff = 0;
+    if (mode === ALPHATEST || mode === ALPHATESTANDBLEND) cutoff = !standard || blends ? material.alphaCutOff ?? 0.4 : 0;
+    else if (mode === ALPHABLEND) cutoff = blends ? 0.5 : 0;
+    else if (mode === null) cutoff = blends ? 0.5 : material.alphaCutOff ?? 0.4;
+    if (!(cutoff > 0)) return null;
+    const alpha = standard && mode === null && !blends ? 1 : material.alpha ?? 1;
+    return {texture, cutoff: alpha > 0 ? Math.min(cutoff / alpha, 2) : 2};
+}
+
+function materialsOf(mesh) {
+    const material = mesh.sourceMesh ? mesh.sourceMesh.material : mesh.material;
+    return material && material.subMaterials ? material.subMaterials : [material];
+}
+
+// Whether an enabled mesh of the scene has a material that cuts: what alphaTest undefined follows
+// at load(), before the casters are added (addShadowCaster comes after load()).
+function sceneCuts(scene) {
+    return scene.meshes.some((mesh) => mesh.isEnabled() && materialsOf(mesh).some((m) => cutOf(m) !== null));
+}
+
+// The emission for `requested` with the alpha test where `alphaTest` says (undefined: cuts()), as
+// penumbra-three's emissionWithCut: a shipped name's "<name>-cut" twin (penumbra-gen --alpha-test),
+// a configuration with alpha_test: true (a forced true wins over the configuration's own alpha_test,
+// a followed one does not). A shipped name without a twin, a folder or an emission in memory is
+// taken as it is: if it has no alpha test, update() warns and the casters are drawn solid.
+function emissionWithCut(requested, alphaTest, cuts) {
+    if (!(alphaTest ?? cuts())) return requested;
+    if (typeof requested === "string" && Object.hasOwn(EMISSIONS, requested))
+        return Object.hasOwn(EMISSIONS, `${requested}-cut`) ? `${requested}-cut` : requested;
+    if (requested && typeof requested === "object" && !requested.layout)
+        return alphaTest === true ? {...requested, alpha_test: true} : {alpha_test: true, ...requested};
+    return requested;
+}
+
+// The draws of a caster's vertex data (`source`, the mesh whose data a placement draws; g its GPU
+// geometry): one whole draw, or with `cutting` each sub-mesh's index range with its material
+// (MultiMaterial), each {first, count, cut} (cut: cutOf, or null).
+function casterDraws(source, g, cutting) {
+    if (!cutting) return [{first: 0, count: g.count, cut: null}];
+    const subMeshes = source.subMeshes || [];
+    if (!g.indexed || subMeshes.length === 0) return [{first: 0, count: g.count, cut: cutOf(materialsOf(source)[0])}];
+    return subMeshes.filter((s) => s.indexCount > 0).map((s) => ({first: s.indexStart, count: s.indexCount, cut: cutOf(s.getMaterial())}));
+}
+
+// A cut's texture coordinates, as Babylon's vertex stage gives the texture: the uv set of its
+// coordinatesIndex (uv, uv2, …) through its texture matrix (uOffset, vOffset, uScale, vScale, the
+// angles: getTextureMatrix), done here once per vertex data and transform, so the emission's slicing
+// pass reads them as they are. {key, data, compute()} or null where the mesh has no such uv set.
+function cutCoordinates(source, texture) {
+    const index = texture.coordinatesIndex ?? 0;
+    const buffer = source.getVertexBuffer(index === 0 ? "uv" : `uv${index + 1}`);
+    if (!buffer) return null;
+    const m = typeof texture.getTextureMatrix === "function" ? texture.getTextureMatrix().m : [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1];
+    const key = `${index} ${m[0]} ${m[1]} ${m[4]} ${m[5]} ${m[8]} ${m[9]}`;
+    return {key, data: buffer, compute() {
+        const uv = source.getVerticesData(index === 0 ? "uv" : `uv${index + 1}`), n = uv.length / 2, out = new Float32Array(2 * n);
+        for (let i = 0; i < n; ++i) {
+            const u = uv[2 * i], v = uv[2 * i + 1];
+            out[2 * i] = m[0] * u + m[4] * v + m[8];
+            out[2 * i + 1] = m[1] * u + m[5] * v + m[9];
+        }
+        return out;
+    }};
+}
+
+// A cut texture's Babylon InternalTexture when it can be read now (a ready 2D texture), else null:
+// that draw is solid until it is ready (its readiness is in the signature: the shadow phase runs again).
+function cutInternal(texture) {
+    const internal = texture.getInternalTexture ? texture.getInternalTexture() : null;
+    if (!internal || !internal.isReady || internal.isCube || internal.is3D || internal.is2DArray || !internal._hardwareTexture) return null;
+    return internal;
 }
 
 // ---- the material plugin ------------------------------------------------------------------------
@@ -165,20 +265,23 @@ class PenumbraShadowsPlugin extends MaterialPluginBase {
 
 export class PenumbraShadows {
     // Loads the emission (options.emission: a key of EMISSIONS, a folder URL, {layout, files} or a
-    // configuration) and returns the add-on attached to `engine`, `scene` and `light`.
+    // configuration) and returns the add-on attached to `engine`, `scene` and `light`. options.alphaTest
+    // (undefined: a mesh of the scene has a material that cuts now) picks the emission with the alpha
+    // test (emissionWithCut).
     static async load(engine, scene, light, options = {}) {
         if (!engine || typeof engine.getClassName !== "function") fail("the first argument must be a Babylon.js Engine");
         if (!scene || typeof scene.getClassName !== "function" || scene.getClassName() !== "Scene") fail("the second argument must be a Babylon.js Scene");
         const kind = kindOf(light);
+        const emission = emissionWithCut(requestedEmission(options, kind), options.alphaTest, () => sceneCuts(scene));
         if (engine.isWebGPU) {
             if (!engine._device) fail("the WebGPUEngine has no GPUDevice yet: await engine.initAsync() first");
             // (imported here: bundlers split it off, and WebGL2 pages never load it)
             const gpu = await import("./penumbra_babylon_webgpu.js");
-            const runner = await gpu.loadRunner(engine, requestedEmission(options, kind), kind, options.wasm ?? null);
+            const runner = await gpu.loadRunner(engine, emission, kind, options.wasm ?? null);
             return new PenumbraShadows(engine, scene, light, {...options, runner, gpu});
         }
         if (!engine._gl || engine.webGLVersion < 2) fail("needs a WebGL2 Engine or a WebGPUEngine");
-        const files = await loadEmissionFiles(requestedEmission(options, kind), kind, options.wasm ?? null, "essl300");
+        const files = await loadEmissionFiles(emission, kind, options.wasm ?? null, "essl300");
         const runner = LayoutRunner.fromEmission(engine._gl, files);
         runner.sources = files.files;
         engine.wipeCaches(true);
@@ -201,7 +304,8 @@ export class PenumbraShadows {
         this.enabled = true;
         this.needsUpdate = true;
         this.disposed = false;
-        this.info = {shadowUpdates: 0, lastShadowMs: 0, casters: 0, receivers: 0, contained: true};
+        this.alphaTest = o.alphaTest; // as given: load() picked the emission by it
+        this.info = {shadowUpdates: 0, lastShadowMs: 0, casters: 0, receivers: 0, contained: true, alphaTest: false, cutDraws: 0};
         this._serial = nextSerial();
         this._rename = renamer(`penumbra${this._serial}`);
         this._define = `PENUMBRA${this._serial}`;
@@ -211,6 +315,7 @@ export class PenumbraShadows {
         this._casters = new Set();
         this._plugins = new Map(); // material → its plugin
         this._geometries = new Map(); // Geometry (or deformed mesh) → its GPU buffers (WebGL2)
+        this._white = null; // the 1×1 opaque texture a solid draw binds (alpha test, WebGL2)
         this._gpuCasters = this.webgpu ? new this._gpu.WebGPUCasters(engine._device) : null; // (WebGPU)
         this._signature = null;
         this._setRunner(options.runner);
@@ -221,6 +326,8 @@ export class PenumbraShadows {
         const wanted = this.kind === "sun" ? "sun" : "rect";
         if (layout.config.light !== wanted)
             fail(`the emission is for a '${layout.config.light}' light but the light is a ${this.light.getClassName()} (needs '${wanted}')`);
+        // its alpha test decides whether the casters' cuts are drawn: an emission with it, unless alphaTest is false
+        this.info.alphaTest = layout.config.alpha_test === true && this.alphaTest !== false;
         this.runner = runner;
         this.config = layout.config;
         const file = this.webgpu ? "penumbra_visibility.wgsl" : "penumbra_visibility.glsl";
@@ -403,6 +510,15 @@ float ${n.shadow}(vec3 normalWorld, vec3 positionWorld, vec3 eye) {
                 if (mesh.morphTargetManager) for (let i = 0; i < mesh.morphTargetManager.numTargets; ++i) out.push(mesh.morphTargetManager.getTarget(i).influence);
             }
         }
+        // what the casters' cuts read: the texture (its readiness, transform, uv set) and cutoff
+        if (this.info.alphaTest)
+            for (const mesh of casters)
+                for (const material of materialsOf(mesh)) {
+                    const cut = cutOf(material);
+                    if (!cut) { out.push(-1); continue; }
+                    const t = cut.texture, m = typeof t.getTextureMatrix === "function" ? t.getTextureMatrix().m : [];
+                    out.push(t.uniqueId, cutInternal(t) ? 1 : 0, cut.cutoff, t.coordinatesIndex ?? 0, ...m);
+                }
         return out;
     }
 
@@ -449,12 +565,17 @@ float ${n.shadow}(vec3 normalWorld, vec3 positionWorld, vec3 eye) {
         for (const cap of [gl.SCISSOR_TEST, gl.STENCIL_TEST, gl.POLYGON_OFFSET_FILL, gl.SAMPLE_ALPHA_TO_COVERAGE, gl.RASTERIZER_DISCARD]) gl.disable(cap);
         gl.frontFace(gl.CCW);
         runner.setUniforms(frame.uniforms);
-        const drawn = [];
+        const drawn = [], sources = new Map();
         for (const mesh of casters) for (const [source, world] of placements(mesh)) {
             const g = this._geometryOf(source);
-            if (g) drawn.push([g, world]);
+            if (!g) continue;
+            drawn.push([g, world, source]);
+            sources.set(source, g);
         }
-        runner.runPhase("shadow", (programId) => this._drawCasters(programId, drawn), null);
+        const draws = this._casterCuts(sources, (texture) => cutInternal(texture)?._hardwareTexture.underlyingResource ?? null,
+                                       (g, source, texture) => this._uvBuffer(g, source, texture));
+        runner.runPhase("shadow", (programId) => this._drawCasters(programId, drawn, draws), null);
+        for (const g of sources.values()) this._dropUnusedUVs(g);
         gl.bindVertexArray(null);
         gl.pixelStorei(gl.UNPACK_ALIGNMENT, 4);
         this.engine.wipeCaches(true);
@@ -463,36 +584,144 @@ float ${n.shadow}(vec3 normalWorld, vec3 positionWorld, vec3 eye) {
     _renderShadowWebGPU(casters, frame) {
         const runner = this.runner;
         runner.setUniforms(frame.uniforms);
-        const drawn = [];
+        const drawn = [], sources = new Map();
         for (const mesh of casters) for (const [source, world] of placements(mesh)) {
             const deformed = isDeformed(source);
             const key = deformed ? source : source.geometry;
             const g = key && this._gpuCasters.geometry(key, () => (deformed ? source.getPositionData(true, true) : source.getVerticesData("position")),
                                                        () => source.getIndices(), !deformed);
-            if (g) drawn.push([g, world]);
+            if (!g) continue;
+            drawn.push([g, world, source]);
+            sources.set(source, g);
         }
-        const {done} = runner.submitPhase("shadow", this._gpuCasters.drawer(runner, drawn, multiply));
+        // each cut draw's texture (Babylon's GPUTexture) and coordinates (cutCoordinates)
+        const draws = this._casterCuts(sources, (texture) => cutInternal(texture)?._hardwareTexture.underlyingResource ?? null,
+                                       (g, source, texture) => this._gpuCasters.uvBuffer(g, cutCoordinates(source, texture)));
+        const {done} = runner.submitPhase("shadow", this._gpuCasters.drawer(runner, drawn, multiply, draws));
+        for (const g of sources.values()) this._gpuCasters.dropUnusedUVs(g);
         done.then(() => (this.info.error = null), (e) => {
             this.info.error = e.message;
             console.error(`PenumbraShadows: the shadow phase failed: ${e.message}`);
         });
     }
 
-    // Every placement with each "...FromWorld" matrix of the program times its world matrix.
-    _drawCasters(programId, drawn) {
+    // Each caster's draws (casterDraws), by the mesh whose vertex data they draw (`sources`: mesh →
+    // its GPU geometry), with each cut's texture(cut texture) and coordinates uv(g, mesh, texture)
+    // where the emission cuts (info.alphaTest). Warns once where casters cut but the emission cannot
+    // (alphaTest not false).
+    _casterCuts(sources, texture, uv) {
+        const cutting = this.info.alphaTest;
+        let cuts = 0, uncut = false;
+        const out = new Map();
+        for (const [source, g] of sources) {
+            if (!cutting && this.alphaTest !== false && !uncut) uncut = materialsOf(source).some((m) => cutOf(m) !== null);
+            const list = casterDraws(source, g, cutting);
+            for (const d of list) {
+                if (!d.cut) continue;
+                ++cuts;
+                d.texture = texture(d.cut.texture);
+                d.uv = d.texture ? uv(g, source, d.cut.texture) : null;
+            }
+            out.set(source, list);
+        }
+        this.info.cutDraws = cuts;
+        if (uncut && !this._warnedCut) {
+            this._warnedCut = true;
+            console.warn("PenumbraShadows: casters' materials cut (a diffuse or albedo texture with alpha, alpha-tested or blended) but the emission " +
+                         "has no alpha test, so they cast solid: load with a shipped emission or a configuration (the add-on picks the cut one), " +
+                         "or emit with penumbra-gen --alpha-test; alphaTest: false keeps them solid without this warning");
+        }
+        return out;
+    }
+
+    // Every placement with each "...FromWorld" matrix of the program times its world matrix. A
+    // program with the alpha test (parameters whose source is "draw": the alpha texture and cutoff;
+    // vertex input penumbra_uv) gets each draw's texture, cutoff and coordinates, or the white
+    // texture and cutoff 0.
+    _drawCasters(programId, drawn, draws) {
         const gl = this.engine._gl;
         const program = Object.values(this.runner.programs).find((p) => p.id === programId);
         const matrices = program.desc.parameters.filter((p) => p.type === "mat4" && /FromWorld$/.test(p.name));
         const locations = matrices.map((p) => program.locations[p.name] || gl.getUniformLocation(programId, p.name));
-        for (const [g, world] of drawn) {
+        const alphaTexture = program.desc.parameters.find((p) => p.source === "draw" && p.type.startsWith("sampler"));
+        const cutoff = program.desc.parameters.find((p) => p.source === "draw" && p.type === "float");
+        const cutoffLocation = cutoff ? program.locations[cutoff.name] || gl.getUniformLocation(programId, cutoff.name) : null;
+        const uvLocation = (program.desc.vertex_inputs || []).find((v) => v.name === "penumbra_uv")?.location ?? -1;
+        for (const [g, world, source] of drawn) {
             matrices.forEach((p, k) => {
                 if (locations[k]) gl.uniformMatrix4fv(locations[k], false, multiply(this.runner.uniformValues[p.name], world));
             });
             gl.bindVertexArray(g.vao);
-            if (g.indexType) gl.drawElements(gl.TRIANGLES, g.count, g.indexType, 0);
-            else gl.drawArrays(gl.TRIANGLES, 0, g.count);
+            for (const d of draws.get(source)) {
+                if (alphaTexture) {
+                    const cut = d.cut && d.texture && d.uv ? d : null; // (no texture or coordinates yet: solid)
+                    gl.activeTexture(gl.TEXTURE0 + alphaTexture.binding);
+                    gl.bindTexture(gl.TEXTURE_2D, cut ? cut.texture : this._whiteTexture());
+                    gl.bindSampler(alphaTexture.binding, null); // the texture's own filtering and wrapping, as Babylon set them
+                    if (cutoffLocation) gl.uniform1f(cutoffLocation, cut ? cut.cut.cutoff : 0);
+                    if (uvLocation >= 0) {
+                        if (cut) {
+                            gl.bindBuffer(gl.ARRAY_BUFFER, cut.uv);
+                            gl.enableVertexAttribArray(uvLocation);
+                            gl.vertexAttribPointer(uvLocation, 2, gl.FLOAT, false, 0, 0);
+                        } else {
+                            gl.disableVertexAttribArray(uvLocation);
+                        }
+                    }
+                }
+                if (g.indexType) gl.drawElements(gl.TRIANGLES, d.count, g.indexType, d.first * g.indexBytes);
+                else gl.drawArrays(gl.TRIANGLES, d.first, d.count);
+            }
         }
         gl.bindVertexArray(null);
+        if (alphaTexture) {
+            gl.activeTexture(gl.TEXTURE0 + alphaTexture.binding);
+            gl.bindTexture(gl.TEXTURE_2D, null);
+            gl.activeTexture(gl.TEXTURE0);
+        }
+    }
+
+    _whiteTexture() {
+        if (!this._white) {
+            const gl = this.engine._gl;
+            this._white = gl.createTexture();
+            gl.bindTexture(gl.TEXTURE_2D, this._white);
+            gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+            gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA8, 1, 1, 0, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array([255, 255, 255, 255]));
+            gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+            gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+        }
+        return this._white;
+    }
+
+    // The buffer of a cut's texture coordinates on GPU geometry g (one per uv set and texture
+    // transform: meshes sharing a Geometry may cut through differently placed textures); null where
+    // the mesh has no such uv set.
+    _uvBuffer(g, source, texture) {
+        const c = cutCoordinates(source, texture);
+        if (!c) return null;
+        g.uvs ||= new Map();
+        let entry = g.uvs.get(c.key);
+        if (!entry || entry.data !== c.data) { // (new, or the uv set's VertexBuffer was replaced)
+            const gl = this.engine._gl;
+            if (!entry) g.uvs.set(c.key, (entry = {buffer: gl.createBuffer()}));
+            entry.data = c.data;
+            gl.bindBuffer(gl.ARRAY_BUFFER, entry.buffer);
+            gl.bufferData(gl.ARRAY_BUFFER, c.compute(), gl.STATIC_DRAW);
+            gl.bindBuffer(gl.ARRAY_BUFFER, null);
+        }
+        entry.used = true;
+        return entry.buffer;
+    }
+
+    // After a shadow phase: the coordinates no draw used (an old transform) go.
+    _dropUnusedUVs(g) {
+        if (!g.uvs) return;
+        const gl = this.engine._gl;
+        for (const [key, entry] of g.uvs) {
+            if (!entry.used) { gl.deleteBuffer(entry.buffer); g.uvs.delete(key); }
+            else entry.used = false;
+        }
     }
 
     // Our vertex array for a mesh's vertex data (positions as attribute 0, its indices), uploaded
@@ -517,6 +746,7 @@ float ${n.shadow}(vec3 normalWorld, vec3 positionWorld, vec3 eye) {
         gl.vertexAttribPointer(0, 3, gl.FLOAT, false, 0, 0);
         const indices = mesh.getIndices();
         g.indexType = 0;
+        g.indexed = false;
         g.count = positions.length / 3;
         if (indices && indices.length) {
             const big = positions.length / 3 > 65535;
@@ -524,6 +754,8 @@ float ${n.shadow}(vec3 normalWorld, vec3 positionWorld, vec3 eye) {
             gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, g.index);
             gl.bufferData(gl.ELEMENT_ARRAY_BUFFER, big ? Uint32Array.from(indices) : Uint16Array.from(indices), gl.STATIC_DRAW);
             g.indexType = big ? gl.UNSIGNED_INT : gl.UNSIGNED_SHORT;
+            g.indexBytes = big ? 4 : 2;
+            g.indexed = true;
             g.count = indices.length;
         }
         gl.bindVertexArray(null);
@@ -610,8 +842,11 @@ void main(void) {
             gl.deleteVertexArray(g.vao);
             gl.deleteBuffer(g.position);
             if (g.index) gl.deleteBuffer(g.index);
+            for (const entry of (g.uvs || new Map()).values()) gl.deleteBuffer(entry.buffer);
         }
         this._geometries.clear();
+        if (this._white) gl.deleteTexture(this._white);
+        this._white = null;
         if (this._gpuCasters) this._gpuCasters.dispose();
         for (const plugin of this._plugins.values()) plugin.markAllDefinesAsDirty();
         this._plugins.clear();

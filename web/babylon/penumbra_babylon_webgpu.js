@@ -12,7 +12,10 @@
 //   - penumbra_visibility.wgsl is rewritten for Babylon's WGSL shader processor (wgslForBabylon):
 //     its uniform block goes (its members come from the material's uniform buffer, `uniforms.`),
 //     its bindings go (Babylon numbers them), and each sampler is renamed <texture>Sampler, the
-//     name Babylon binds a texture's sampler by.
+//     name Babylon binds a texture's sampler by;
+//   - cut-out casters (an emission with the alpha test): each draw's bind group gets its material's
+//     texture (Babylon's GPUTexture, read as it is), its cutoff and its texture coordinates (a vertex
+//     buffer here), through the runner's per-draw textures (setDrawUniforms' third argument).
 import {InternalTexture} from "@babylonjs/core/Materials/Textures/internalTexture.js";
 import {BaseTexture} from "@babylonjs/core/Materials/Textures/baseTexture.js";
 import {WebGPUHardwareTexture} from "@babylonjs/core/Engines/WebGPU/webgpuHardwareTexture.js";
@@ -147,12 +150,43 @@ export class WebGPUCasters {
             g.index = null;
             g.count = g.vertices;
         }
+        g.indexed = !!g.index;
         return g;
     }
 
-    // A drawScene callback for the runner: each placement [g, world] with each "...FromWorld"
-    // matrix of the program times its world matrix, in a uniform buffer of its own.
-    drawer(runner, drawn, multiply) {
+    // The vertex buffer of a cut's texture coordinates (penumbra_babylon.js's cutCoordinates: c) on
+    // geometry g, one per uv set and texture transform; null without c (the mesh has no such uv set).
+    uvBuffer(g, c) {
+        if (!c) return null;
+        g.uvs ||= new Map();
+        let entry = g.uvs.get(c.key);
+        if (!entry || entry.data !== c.data) { // (new, or the uv set's VertexBuffer was replaced)
+            const uvs = c.compute();
+            if (entry) entry.buffer.destroy();
+            g.uvs.set(c.key, (entry = {data: c.data, buffer: this.device.createBuffer({label: "penumbra caster uv", size: Math.max(uvs.byteLength, 4),
+                                                                                       usage: GPUBufferUsage.VERTEX | GPUBufferUsage.COPY_DST})}));
+            this.device.queue.writeBuffer(entry.buffer, 0, uvs);
+        }
+        entry.used = true;
+        return entry.buffer;
+    }
+
+    // After a shadow phase is submitted: the coordinates no draw used go (WebGPU keeps a destroyed
+    // buffer's memory until the work submitted with it is done).
+    dropUnusedUVs(g) {
+        if (!g.uvs) return;
+        for (const [key, entry] of g.uvs) {
+            if (!entry.used) { entry.buffer.destroy(); g.uvs.delete(key); }
+            else entry.used = false;
+        }
+    }
+
+    // A drawScene callback for the runner: each placement [g, world, source] with each "...FromWorld"
+    // matrix of the program times its world matrix, in a uniform buffer of its own, each of its
+    // source's draws (draws.get(source): {first, count, cut, texture, uv}). A program with the alpha
+    // test (parameters whose source is "draw": the alpha texture and cutoff; vertex input penumbra_uv)
+    // gets each cut draw's texture, cutoff and coordinates, or the runner's white texture, cutoff 0 and zeros.
+    drawer(runner, drawn, multiply, draws) {
         const needsZeros = runner.layout.programs.some((p) => (p.vertex_inputs || []).some((v) => v.name !== "penumbra_position"));
         if (needsZeros) {
             const bytes = Math.max(16 * drawn.reduce((n, [g]) => Math.max(n, g.vertices), 0), 16);
@@ -163,18 +197,24 @@ export class WebGPUCasters {
         }
         return (render, program, setDrawUniforms) => {
             const matrices = program.parameters.filter((p) => p.type === "mat4" && /FromWorld$/.test(p.name));
+            const alphaTexture = program.parameters.find((p) => p.source === "draw" && p.texture_type !== undefined);
+            const cutoff = program.parameters.find((p) => p.source === "draw" && p.block !== undefined);
             let slot = 0;
-            for (const [g, world] of drawn) {
+            for (const [g, world, source] of drawn) {
                 const values = {};
                 for (const p of matrices) values[p.name] = multiply(runner.uniformValues[p.name], world);
-                setDrawUniforms(values, slot++);
-                (program.vertex_inputs || []).forEach((v, location) =>
-                    render.setVertexBuffer(location, v.name === "penumbra_position" ? g.position : this.zeros));
-                if (g.index) {
-                    render.setIndexBuffer(g.index, "uint32");
-                    render.drawIndexed(g.count);
-                } else {
-                    render.draw(g.count);
+                for (const d of draws.get(source)) {
+                    const cut = alphaTexture && d.cut && d.texture && d.uv ? d : null; // (no texture or coordinates yet: solid)
+                    if (cutoff) values[cutoff.name] = cut ? cut.cut.cutoff : 0;
+                    setDrawUniforms(values, slot++, cut ? {[alphaTexture.name]: cut.texture} : null);
+                    (program.vertex_inputs || []).forEach((v, location) =>
+                        render.setVertexBuffer(location, v.name === "penumbra_position" ? g.position : v.name === "penumbra_uv" && cut ? cut.uv : this.zeros));
+                    if (g.index) {
+                        render.setIndexBuffer(g.index, "uint32");
+                        render.drawIndexed(d.count, 1, d.first);
+                    } else {
+                        render.draw(d.count, 1, d.first);
+                    }
                 }
             }
         };
@@ -184,6 +224,7 @@ export class WebGPUCasters {
         for (const g of this.geometries.values()) {
             g.position.destroy();
             if (g.index) g.index.destroy();
+            for (const entry of (g.uvs || new Map()).values()) entry.buffer.destroy();
         }
         this.geometries.clear();
         if (this.zeros) this.zeros.destroy();

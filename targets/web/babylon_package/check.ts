@@ -10,14 +10,18 @@ import {DirectionalLight} from "@babylonjs/core/Lights/directionalLight.js";
 import {PointLight} from "@babylonjs/core/Lights/pointLight.js";
 import {Vector3} from "@babylonjs/core/Maths/math.vector.js";
 import type {Mesh} from "@babylonjs/core/Meshes/mesh.js";
-import {PenumbraShadows, PenumbraError, EMISSIONS, type PenumbraShadowsOptions} from "penumbra-babylon";
+import {StandardMaterial} from "@babylonjs/core/Materials/standardMaterial.js";
+import {PenumbraShadows, PenumbraError, EMISSIONS, cutOf, type PenumbraShadowsOptions} from "penumbra-babylon";
 import {loadEmitter, type EmitResult} from "penumbra-babylon/emitter";
 
 export async function attach(engine: Engine, scene: Scene, camera: Camera, box: Mesh, gpu: WebGPUEngine): Promise<number> {
     const rect = new RectAreaLight("rect", Vector3.Zero(), 3, 2, scene);
     const options: PenumbraShadowsOptions = {emission: "rect-mipmap-16x512", intensity: 0.8};
     const shadows: PenumbraShadows = await PenumbraShadows.load(engine, scene, rect, options);
-    const sun = await PenumbraShadows.load(engine, scene, new DirectionalLight("sun", new Vector3(0, -1, 0), scene), {angularDiameter: 0.0093});
+    const sun = await PenumbraShadows.load(engine, scene, new DirectionalLight("sun", new Vector3(0, -1, 0), scene), {angularDiameter: 0.0093, alphaTest: false});
+    const cut = cutOf(new StandardMaterial("leaf", scene));
+    const cutoff: number = cut ? cut.cutoff : 0;
+    const cutting: boolean = shadows.info.alphaTest && shadows.info.cutDraws > 0 && shadows.alphaTest !== false;
     const onWebGPU: PenumbraShadows = await PenumbraShadows.load(gpu, scene, rect, {emission: "rect-nbuffer-16x512"});
     const webgpu: boolean = onWebGPU.webgpu && !shadows.webgpu;
     shadows.addShadowCaster(box).addShadowCaster(box, false);
@@ -32,5 +36,5 @@ export async function attach(engine: Engine, scene: Scene, camera: Camera, box: 
     const emitted: EmitResult = (await loadEmitter()).emit({slices: 4, target: "essl300"});
     shadows.dispose();
     try { shadows.update(); } catch (e) { if (!(e instanceof PenumbraError)) throw e; }
-    return visibility.length + Object.keys(files).length + shadows.info.shadowUpdates + shadows.getShadowCasters().length + (emitted.ok ? 1 : 0) + (webgpu ? 1 : 0);
+    return visibility.length + Object.keys(files).length + shadows.info.shadowUpdates + shadows.getShadowCasters().length + (emitted.ok ? 1 : 0) + (webgpu ? 1 : 0) + cutoff + (cutting ? 1 : 0);
 }
