@@ -240,7 +240,7 @@ private:
         double scale = 1.0;
         std::string where, image_cell; // "boxes, rect x4"; "boxes/x4" (images/<scene>[/sun]/x<scale>)
         std::vector<QualityMetrics> quality;
-        std::vector<double> bias, bias_oriented;
+        std::vector<double> bias, bias_oriented, bias_irradiance;
         std::vector<std::vector<FrameTimes>> timed;
         std::vector<CostModel> costs;
     };
@@ -255,6 +255,7 @@ private:
         cell.quality.resize(active_.size());
         cell.bias.resize(active_.size());
         cell.bias_oriented.resize(active_.size());
+        cell.bias_irradiance.resize(active_.size());
         cell.timed.resize(active_.size());
         cell.costs.resize(active_.size());
         if (std::string e = warm_up(cell, truths_[s]); !e.empty()) return e;
@@ -290,6 +291,7 @@ private:
             cell.quality[e] = compare_quality(visibility, geometry, truth.visibility, truth.oriented, truth.irradiance);
             cell.bias[e] = penumbra_bias(visibility, geometry, truth.visibility);
             cell.bias_oriented[e] = penumbra_bias(visibility, geometry, truth.oriented);
+            cell.bias_irradiance[e] = penumbra_bias(visibility, geometry, truth.irradiance);
             if (entry.representative &&
                 !write_visibility_images(dirs_.images + "/" + cell.image_cell, slug(entry.label), *pixels_, visibility,
                                          &truth.visibility, &error))
@@ -347,7 +349,8 @@ private:
                              {"penumbra_bias", cell.bias[e]},
                              {"oriented", {{"all", stats_json(q.oriented.all)}, {"penumbra", stats_json(q.oriented.penumbra)},
                                            {"penumbra_bias", cell.bias_oriented[e]}}},
-                             {"irradiance", {{"all", stats_json(q.irradiance.all)}, {"penumbra", stats_json(q.irradiance.penumbra)}}}};
+                             {"irradiance", {{"all", stats_json(q.irradiance.all)}, {"penumbra", stats_json(q.irradiance.penumbra)},
+                                             {"penumbra_bias", cell.bias_irradiance[e]}}}};
         if (entry.representative) {
             const std::string dir = "images/" + cell.image_cell;
             record["images"] = {{"visibility", dir + "/" + slug(entry.label) + ".png"},
