@@ -39,8 +39,8 @@ import "@babylonjs/core/Shaders/ShadersInclude/instancesDeclaration.js";
 import "@babylonjs/core/Shaders/ShadersInclude/instancesVertex.js";
 import {LayoutRunner} from "./shared/penumbra_runner.js";
 import {rectFrame, sunFrame} from "./shared/light_frame.js";
-import {EMISSIONS, PenumbraError, fail, loadEmissionFiles, loadEmitter, nextSerial, renamer, requestedEmission,
-        snippetParameters} from "./shared/penumbra_emission.js";
+import {EMISSIONS, PenumbraError, emissionWithCut, fail, loadEmissionFiles, loadEmitter, nextSerial, renamer,
+        requestedEmission, snippetParameters} from "./shared/penumbra_emission.js";
 
 export {EMISSIONS, PenumbraError, loadEmitter};
 // (cutOf, below, is exported too: whether a material cuts, as the add-on decides it)
@@ -138,20 +138,6 @@ function materialsOf(mesh) {
 // at load(), before the casters are added (addShadowCaster comes after load()).
 function sceneCuts(scene) {
     return scene.meshes.some((mesh) => mesh.isEnabled() && materialsOf(mesh).some((m) => cutOf(m) !== null));
-}
-
-// The emission for `requested` with the alpha test where `alphaTest` says (undefined: cuts()), as
-// penumbra-three's emissionWithCut: a shipped name's "<name>-cut" twin (penumbra-gen --alpha-test),
-// a configuration with alpha_test: true (a forced true wins over the configuration's own alpha_test,
-// a followed one does not). A shipped name without a twin, a folder or an emission in memory is
-// taken as it is: if it has no alpha test, update() warns and the casters are drawn solid.
-function emissionWithCut(requested, alphaTest, cuts) {
-    if (!(alphaTest ?? cuts())) return requested;
-    if (typeof requested === "string" && Object.hasOwn(EMISSIONS, requested))
-        return Object.hasOwn(EMISSIONS, `${requested}-cut`) ? `${requested}-cut` : requested;
-    if (requested && typeof requested === "object" && !requested.layout)
-        return alphaTest === true ? {...requested, alpha_test: true} : {alpha_test: true, ...requested};
-    return requested;
 }
 
 // The draws of a caster's vertex data (`source`, the mesh whose data a placement draws; g its GPU
@@ -267,7 +253,7 @@ export class PenumbraShadows {
     // Loads the emission (options.emission: a key of EMISSIONS, a folder URL, {layout, files} or a
     // configuration) and returns the add-on attached to `engine`, `scene` and `light`. options.alphaTest
     // (undefined: a mesh of the scene has a material that cuts now) picks the emission with the alpha
-    // test (emissionWithCut).
+    // test (shared/penumbra_emission.js's emissionWithCut).
     static async load(engine, scene, light, options = {}) {
         if (!engine || typeof engine.getClassName !== "function") fail("the first argument must be a Babylon.js Engine");
         if (!scene || typeof scene.getClassName !== "function" || scene.getClassName() !== "Scene") fail("the second argument must be a Babylon.js Scene");

@@ -27,6 +27,21 @@ export function requestedEmission(options, kind) {
          "this emission is already emitted");
 }
 
+// The emission for `requested` (requestedEmission's) with the alpha test where `alphaTest` says
+// (undefined: where cuts(), the engine's own test of whether the scene's casters cut, is true): a shipped
+// name's "<name>-cut" twin (penumbra-gen --alpha-test; emissions/regenerate.sh), a configuration with
+// alpha_test: true (a forced true wins over the configuration's own alpha_test, a followed one does not).
+// A shipped name without a twin, a folder or an emission in memory is taken as it is: if it has no alpha
+// test, the add-on warns and draws the casters solid.
+export function emissionWithCut(requested, alphaTest, cuts) {
+    if (!(alphaTest ?? cuts())) return requested;
+    if (typeof requested === "string" && Object.hasOwn(EMISSIONS, requested))
+        return Object.hasOwn(EMISSIONS, `${requested}-cut`) ? `${requested}-cut` : requested;
+    if (requested && typeof requested === "object" && !requested.layout)
+        return alphaTest === true ? {...requested, alpha_test: true} : {alpha_test: true, ...requested};
+    return requested;
+}
+
 // Every add-on gets its own names: the emission's identifiers penumbra_x / penumbraX become
 // penumbra<N>_x / penumbra<N>X (N: the add-on's serial number), so that several add-ons (one per
 // light) can put their snippets into one material.

@@ -3,12 +3,12 @@
 // files (shipped, a folder, in memory, or emitted by the WebAssembly emitter), the casters and
 // receivers of the scene, when the shadow phase must run again, the light frame from the three.js
 // light and the scene's bounds (light_frame.js), the casters' vertices and their materials' cut-outs
-// (the alpha test: cutOf, emissionWithCut). Each renderer's module
+// (the alpha test: cutOf, emissionFollowingCuts). Each renderer's module
 // subclasses ShadowsBase with its own GPU work: the runner, the caster draws, the material hooks.
 import {Box3, Color, Matrix4, Vector3} from "three";
 import {rectFrame, sunFrame} from "./light_frame.js";
-import {EMISSIONS, PenumbraError, fail, loadEmissionFiles, loadEmitter, nextSerial, renamer, requestedEmission,
-        snippetParameters} from "./penumbra_emission.js";
+import {EMISSIONS, PenumbraError, emissionWithCut, fail, loadEmissionFiles, loadEmitter, nextSerial, renamer,
+        requestedEmission, snippetParameters} from "./penumbra_emission.js";
 
 // (the renderer-free part lives in penumbra_emission.js, which penumbra-babylon shares)
 export {EMISSIONS, PenumbraError, fail, loadEmissionFiles, loadEmitter, requestedEmission, snippetParameters};
@@ -100,19 +100,10 @@ export function sceneCuts(scene) {
     return cuts;
 }
 
-// The emission for `requested` (requestedEmission's) with the alpha test where `alphaTest` says
-// (undefined: when the scene's casters cut): a shipped name's "<name>-cut" twin (penumbra-gen
-// --alpha-test; emissions/regenerate.sh), a configuration with alpha_test: true (a forced true wins
-// over the configuration's own alpha_test, a followed one does not). A shipped name without a twin,
-// a folder or an emission in memory is taken as it is: if it has no alpha test, update() warns and
-// the casters are drawn solid.
-export function emissionWithCut(requested, alphaTest, scene) {
-    if (!(alphaTest ?? sceneCuts(scene))) return requested;
-    if (typeof requested === "string" && Object.hasOwn(EMISSIONS, requested))
-        return Object.hasOwn(EMISSIONS, `${requested}-cut`) ? `${requested}-cut` : requested;
-    if (requested && typeof requested === "object" && !requested.layout)
-        return alphaTest === true ? {...requested, alpha_test: true} : {alpha_test: true, ...requested};
-    return requested;
+// The emission for `requested` with the alpha test where `alphaTest` says (undefined: when the scene's
+// casters cut now): penumbra_emission.js's emissionWithCut with this scene's test.
+export function emissionFollowingCuts(requested, alphaTest, scene) {
+    return emissionWithCut(requested, alphaTest, () => sceneCuts(scene));
 }
 
 // A caster's draws, each with its material: the whole draw range with its one material, or, for

@@ -33,7 +33,7 @@ import {DoubleSide, ExternalTexture, FloatType, GLSL3, Matrix4, NoBlending, RGBA
 // no ShaderChunk, and this module must still load there to hand over to penumbra_shadows_webgpu.js)
 import * as three from "three";
 import {LayoutRunner} from "./penumbra_runner.js";
-import {EMISSIONS, PenumbraError, ShadowsBase, casterVertices, cutCoordinates, emissionWithCut, fail, forEachPlacement, isDeformed, kindOf,
+import {EMISSIONS, PenumbraError, ShadowsBase, casterVertices, cutCoordinates, emissionFollowingCuts, fail, forEachPlacement, isDeformed, kindOf,
         loadEmissionFiles, requestedEmission, loadEmitter, positionVersion, snippetParameters} from "./penumbra_scene.js";
 
 // The emissions shipped in emissions/ (penumbra-gen output, emissions/regenerate.sh): key → {file name: URL};
@@ -145,7 +145,7 @@ export class PenumbraShadows extends ShadowsBase {
     // configuration) and returns the add-on attached to `renderer`, `scene` and `light`: this class
     // on a WebGLRenderer, PenumbraShadowsWebGPU (penumbra_shadows_webgpu.js, loaded only then, so
     // that a WebGL2 page needs no three/webgpu) on a WebGPURenderer. options.alphaTest (undefined:
-    // the scene's casters cut now) picks the emission with the alpha test (emissionWithCut).
+    // the scene's casters cut now) picks the emission with the alpha test (emissionFollowingCuts).
     static async load(renderer, scene, light, options = {}) {
         if (renderer && renderer.isWebGPURenderer) {
             const {PenumbraShadowsWebGPU} = await import("./penumbra_shadows_webgpu.js");
@@ -154,7 +154,7 @@ export class PenumbraShadows extends ShadowsBase {
         if (!renderer || !renderer.isWebGLRenderer) fail("the first argument must be a THREE.WebGLRenderer or a WebGPURenderer (three/webgpu)");
         const gl = renderer.getContext();
         const kind = kindOf(light);
-        const emission = emissionWithCut(requestedEmission(options, kind), options.alphaTest, scene);
+        const emission = emissionFollowingCuts(requestedEmission(options, kind), options.alphaTest, scene);
         const runner = await loadRunner(gl, emission, kind, options.wasm ?? null);
         return new PenumbraShadows(renderer, scene, light, {...options, runner});
     }
@@ -219,7 +219,7 @@ export class PenumbraShadows extends ShadowsBase {
     // with the alpha test as load() picks it; the old GPU resources are freed once the new ones work.
     async setEmission(emission) {
         this._alive("setEmission()");
-        const runner = await loadRunner(this.renderer.getContext(), emissionWithCut(emission, this.alphaTest, this.scene), this.kind, this.wasm);
+        const runner = await loadRunner(this.renderer.getContext(), emissionFollowingCuts(emission, this.alphaTest, this.scene), this.kind, this.wasm);
         const old = this.runner;
         this._setRunner(runner);
         old.dispose();

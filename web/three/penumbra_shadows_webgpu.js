@@ -40,7 +40,7 @@ import {ClampToEdgeWrapping, DoubleSide, ExternalTexture, FloatType, LinearFilte
         NoBlending, RepeatWrapping, RenderTarget, Vector2, Vector3, Vector4} from "three/webgpu";
 import {cameraPosition, float, normalWorld, positionWorld, renderGroup, sampler, texture, uniform, vec4, wgsl, wgslFn} from "three/tsl";
 import {WebGPULayoutRunner} from "./penumbra_webgpu_runner.js";
-import {ShadowsBase, casterVertices, cutCoordinates, emissionWithCut, fail, forEachPlacement, isDeformed, kindOf, loadEmissionFiles,
+import {ShadowsBase, casterVertices, cutCoordinates, emissionFollowingCuts, fail, forEachPlacement, isDeformed, kindOf, loadEmissionFiles,
         requestedEmission, positionVersion, snippetParameters} from "./penumbra_scene.js";
 
 // Materials shadowed by add-ons: material → {previous: its own hooks, addons}; one wrapper per
@@ -57,7 +57,7 @@ export class PenumbraShadowsWebGPU extends ShadowsBase {
             fail("this WebGPURenderer runs its WebGL2 fallback backend (no WebGPU in this browser, or forceWebGL), " +
                  "where the add-on has no GPUDevice to run the wgsl emission on; use a THREE.WebGLRenderer there");
         const kind = kindOf(light);
-        const emission = emissionWithCut(requestedEmission(options, kind), options.alphaTest, scene);
+        const emission = emissionFollowingCuts(requestedEmission(options, kind), options.alphaTest, scene);
         const runner = await loadRunner(renderer.backend.device, emission, kind, options.wasm ?? null);
         return new PenumbraShadowsWebGPU(renderer, scene, light, {...options, runner});
     }
@@ -159,7 +159,7 @@ export class PenumbraShadowsWebGPU extends ShadowsBase {
 
     async setEmission(emission) {
         this._alive("setEmission()");
-        const runner = await loadRunner(this.device, emissionWithCut(emission, this.alphaTest, this.scene), this.kind, this.wasm);
+        const runner = await loadRunner(this.device, emissionFollowingCuts(emission, this.alphaTest, this.scene), this.kind, this.wasm);
         const old = this.runner, textures = this._textures;
         this._setRunner(runner);
         for (const t of textures) t.dispose();
