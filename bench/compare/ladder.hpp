@@ -97,6 +97,17 @@ inline LadderEntry area_entry(int slices, int resolution) {
     return entry;
 }
 
+// A budget occlusion-texture setting that weighs the light by area (--no-irradiance-window): one pass of the
+// slice loop instead of the window's two, for the frame budgets of the cheapest shadow maps (on llvmpipe the
+// window makes the shading pass about 1.5 times as long). In the occlusion family: a setting a user picks for
+// its cost, where area_entry stands for the default before the window.
+inline LadderEntry budget_area_entry(Filter filter, int slices, int resolution) {
+    LadderEntry entry = occlusion_entry(filter, slices, resolution);
+    entry.config.irradiance_window = false;
+    entry.label += " area";
+    return entry;
+}
+
 // The default before it built only the levels its kernels reach, in RGBA8, at reduced resolution:
 // every level, RGBA16F, at full resolution (85 MiB at 16/512). Its own family, so that the tables show it beside the default and never pick it.
 inline LadderEntry every_level_entry(int slices, int resolution) {
@@ -213,16 +224,22 @@ inline std::string refusal(const LadderEntry& entry, Light light) {
 // The entries of one set, cheapest settings first within each filter.
 inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
     if (set == LadderSet::quick) return {occlusion_entry(Filter::nbuffer, 8, 256, true), pcss_entry(16, 16, true)};
+    // one setting a line: a table read from the cheapest down
+    // clang-format off
     std::vector<LadderEntry> ladder{
         occlusion_entry(Filter::mipmap, 4, 128, true),
+        budget_area_entry(Filter::mipmap, 4, 128),
         occlusion_entry(Filter::mipmap, 8, 256),
         occlusion_entry(Filter::mipmap, 16, 512),
         occlusion_entry(Filter::mipmap, 8, 128),
         occlusion_entry(Filter::nbuffer, 4, 128),
+        budget_area_entry(Filter::nbuffer, 4, 128),
         occlusion_entry(Filter::nbuffer, 8, 128),
+        budget_area_entry(Filter::nbuffer, 8, 128),
         reduced_from_entry(Filter::nbuffer, 8, 128, 1),
         occlusion_entry(Filter::nbuffer, 8, 256),
         reduced_from_entry(Filter::nbuffer, 8, 256, 1),
+        budget_area_entry(Filter::nbuffer, 8, 256),
         occlusion_entry(Filter::nbuffer, 16, 256),
         occlusion_entry(Filter::nbuffer, 16, 512, true), // the default configuration
         chained_entry(16, 512),
@@ -258,6 +275,7 @@ inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
         smrt_temporal_entry(8, 16, 8),
         oim_entry(8, 128, true),   // the sun only (refusal); baked once per scene into --out's cache/oim
     };
+    // clang-format on
     if (set == LadderSet::full) {
         ladder.push_back(occlusion_entry(Filter::sat, 32, 512)); // about 4x the time of sat 16/512 on llvmpipe
         ladder.push_back(occlusion_entry(Filter::mipmap, 32, 1024));
