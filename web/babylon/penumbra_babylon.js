@@ -301,7 +301,6 @@ export class PenumbraShadows {
         this._casters = new Set();
         this._plugins = new Map(); // material → its plugin
         this._geometries = new Map(); // Geometry (or deformed mesh) → its GPU buffers (WebGL2)
-        this._white = null; // the 1×1 opaque texture a solid draw binds (alpha test, WebGL2)
         this._gpuCasters = this.webgpu ? new this._gpu.WebGPUCasters(engine._device) : null; // (WebGPU)
         this._signature = null;
         this._setRunner(options.runner);
@@ -622,62 +621,27 @@ float ${n.shadow}(vec3 normalWorld, vec3 positionWorld, vec3 eye) {
 
     // Every placement with each "...FromWorld" matrix of the program times its world matrix. A
     // program with the alpha test (parameters whose source is "draw": the alpha texture and cutoff;
-    // vertex input penumbra_uv) gets each draw's texture, cutoff and coordinates, or the white
-    // texture and cutoff 0.
+    // vertex input penumbra_uv) gets each draw's texture, cutoff and coordinates, or, solid, the
+    // runner's white texture and cutoff 0 (LayoutRunner.alphaTestInputs).
     _drawCasters(programId, drawn, draws) {
         const gl = this.engine._gl;
         const program = Object.values(this.runner.programs).find((p) => p.id === programId);
         const matrices = program.desc.parameters.filter((p) => p.type === "mat4" && /FromWorld$/.test(p.name));
         const locations = matrices.map((p) => program.locations[p.name] || gl.getUniformLocation(programId, p.name));
-        const alphaTexture = program.desc.parameters.find((p) => p.source === "draw" && p.type.startsWith("sampler"));
-        const cutoff = program.desc.parameters.find((p) => p.source === "draw" && p.type === "float");
-        const cutoffLocation = cutoff ? program.locations[cutoff.name] || gl.getUniformLocation(programId, cutoff.name) : null;
-        const uvLocation = (program.desc.vertex_inputs || []).find((v) => v.name === "penumbra_uv")?.location ?? -1;
+        const alphaTest = this.runner.alphaTestInputs(program);
         for (const [g, world, source] of drawn) {
             matrices.forEach((p, k) => {
                 if (locations[k]) gl.uniformMatrix4fv(locations[k], false, multiply(this.runner.uniformValues[p.name], world));
             });
             gl.bindVertexArray(g.vao);
             for (const d of draws.get(source)) {
-                if (alphaTexture) {
-                    const cut = d.cut && d.texture && d.uv ? d : null; // (no texture or coordinates yet: solid)
-                    gl.activeTexture(gl.TEXTURE0 + alphaTexture.binding);
-                    gl.bindTexture(gl.TEXTURE_2D, cut ? cut.texture : this._whiteTexture());
-                    gl.bindSampler(alphaTexture.binding, null); // the texture's own filtering and wrapping, as Babylon set them
-                    if (cutoffLocation) gl.uniform1f(cutoffLocation, cut ? cut.cut.cutoff : 0);
-                    if (uvLocation >= 0) {
-                        if (cut) {
-                            gl.bindBuffer(gl.ARRAY_BUFFER, cut.uv);
-                            gl.enableVertexAttribArray(uvLocation);
-                            gl.vertexAttribPointer(uvLocation, 2, gl.FLOAT, false, 0, 0);
-                        } else {
-                            gl.disableVertexAttribArray(uvLocation);
-                        }
-                    }
-                }
+                if (alphaTest) alphaTest.bind(d);
                 if (g.indexType) gl.drawElements(gl.TRIANGLES, d.count, g.indexType, d.first * g.indexBytes);
                 else gl.drawArrays(gl.TRIANGLES, d.first, d.count);
             }
         }
         gl.bindVertexArray(null);
-        if (alphaTexture) {
-            gl.activeTexture(gl.TEXTURE0 + alphaTexture.binding);
-            gl.bindTexture(gl.TEXTURE_2D, null);
-            gl.activeTexture(gl.TEXTURE0);
-        }
-    }
-
-    _whiteTexture() {
-        if (!this._white) {
-            const gl = this.engine._gl;
-            this._white = gl.createTexture();
-            gl.bindTexture(gl.TEXTURE_2D, this._white);
-            gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
-            gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA8, 1, 1, 0, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array([255, 255, 255, 255]));
-            gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-            gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
-        }
-        return this._white;
+        if (alphaTest) alphaTest.end();
     }
 
     // The buffer of a cut's texture coordinates on GPU geometry g (one per uv set and texture
@@ -831,8 +795,6 @@ void main(void) {
             for (const entry of (g.uvs || new Map()).values()) gl.deleteBuffer(entry.buffer);
         }
         this._geometries.clear();
-        if (this._white) gl.deleteTexture(this._white);
-        this._white = null;
         if (this._gpuCasters) this._gpuCasters.dispose();
         for (const plugin of this._plugins.values()) plugin.markAllDefinesAsDirty();
         this._plugins.clear();

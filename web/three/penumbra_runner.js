@@ -500,6 +500,57 @@ export class LayoutRunner {
         return this.times;
     }
 
+    // The alpha test's per-draw inputs of `program` (one of this.programs) for the caller's caster draws
+    // (penumbra-gen --alpha-test: parameters whose source is "draw", the material's alpha texture and
+    // cutoff, and the vertex input penumbra_uv); null for a program without them. bind(draw) before each
+    // draw: draw.cut ({cutoff}), draw.texture (a GL texture) and draw.uv (a buffer of the draw's texture
+    // coordinates), or a draw without all three, which is solid (a 1x1 opaque texture, cutoff 0);
+    // end() after the last draw.
+    alphaTestInputs(program) {
+        const gl = this.gl;
+        const texture = program.desc.parameters.find((p) => p.source === "draw" && p.type.startsWith("sampler"));
+        if (!texture) return null;
+        const cutoff = program.desc.parameters.find((p) => p.source === "draw" && p.type === "float");
+        const cutoffLocation = cutoff ? program.locations[cutoff.name] || gl.getUniformLocation(program.id, cutoff.name) : null;
+        const uvLocation = (program.desc.vertex_inputs || []).find((v) => v.name === "penumbra_uv")?.location ?? -1;
+        return {
+            bind: (draw) => {
+                const cut = draw.cut && draw.texture && draw.uv ? draw : null; // (no texture or coordinates yet: solid)
+                gl.activeTexture(gl.TEXTURE0 + texture.binding);
+                gl.bindTexture(gl.TEXTURE_2D, cut ? cut.texture : this.opaqueTexture());
+                gl.bindSampler(texture.binding, null); // the material texture's own filtering and wrapping
+                if (cutoffLocation) gl.uniform1f(cutoffLocation, cut ? cut.cut.cutoff : 0);
+                if (uvLocation < 0) return;
+                if (cut) {
+                    gl.bindBuffer(gl.ARRAY_BUFFER, cut.uv);
+                    gl.enableVertexAttribArray(uvLocation);
+                    gl.vertexAttribPointer(uvLocation, 2, gl.FLOAT, false, 0, 0);
+                } else {
+                    gl.disableVertexAttribArray(uvLocation);
+                }
+            },
+            end: () => {
+                gl.activeTexture(gl.TEXTURE0 + texture.binding);
+                gl.bindTexture(gl.TEXTURE_2D, null);
+                gl.activeTexture(gl.TEXTURE0);
+            },
+        };
+    }
+
+    // The 1x1 opaque white texture a solid caster draw binds for the alpha test (made once).
+    opaqueTexture() {
+        if (!this.opaque) {
+            const gl = this.gl;
+            this.opaque = gl.createTexture();
+            gl.bindTexture(gl.TEXTURE_2D, this.opaque);
+            gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
+            gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA8, 1, 1, 0, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array([255, 255, 255, 255]));
+            gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
+            gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+        }
+        return this.opaque;
+    }
+
     // A "caller" texture at the output size, for the caller to render into (a G-buffer pass):
     // {id, target}; null when the layout has no such texture.
     callerTarget(name, width, height) {
@@ -513,6 +564,8 @@ export class LayoutRunner {
     dispose() {
         const gl = this.gl;
         for (const t of Object.values(this.textures)) gl.deleteTexture(t.id);
+        if (this.opaque) gl.deleteTexture(this.opaque);
+        this.opaque = null;
         for (const id of Object.values(this.samplers || {})) gl.deleteSampler(id);
         this.samplers = {};
         for (const p of Object.values(this.programs)) gl.deleteProgram(p.id);

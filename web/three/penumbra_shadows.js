@@ -168,7 +168,6 @@ export class PenumbraShadows extends ShadowsBase {
                        shadow: `penumbra${this._serial}Shadow`, visibility: this._rename("penumbraVisibility")};
         this._visibilityTarget = null;
         this._visibilityMaterial = null;
-        this._white = null; // the 1×1 opaque texture a solid draw binds (alpha test)
         this._setRunner(options.runner);
     }
 
@@ -282,17 +281,15 @@ export class PenumbraShadows extends ShadowsBase {
     // Draws every caster with each "...FromWorld" matrix of the program times its model matrix
     // (and instance matrix), so that attribute 0 can stay in object space. A program with the
     // alpha test (parameters whose source is "draw": the alpha texture and cutoff; vertex input
-    // penumbra_uv) gets each draw's map, cutoff and coordinates, or the white texture and cutoff 0.
+    // penumbra_uv) gets each draw's map, cutoff and coordinates, or, solid, the runner's white texture
+    // and cutoff 0 (LayoutRunner.alphaTestInputs).
     _drawCasters(programId, casters, drawn, draws) {
         const gl = this.renderer.getContext();
         const program = Object.values(this.runner.programs).find((p) => p.id === programId);
         const matrices = program.desc.parameters.filter((p) => p.type === "mat4" && /FromWorld$/.test(p.name));
         const locations = matrices.map((p) => program.locations[p.name] || gl.getUniformLocation(programId, p.name));
         const base = matrices.map((p) => new Matrix4().fromArray(this.runner.uniformValues[p.name]));
-        const alphaTexture = program.desc.parameters.find((p) => p.source === "draw" && p.type.startsWith("sampler"));
-        const cutoff = program.desc.parameters.find((p) => p.source === "draw" && p.type === "float");
-        const cutoffLocation = cutoff ? program.locations[cutoff.name] : null;
-        const uvLocation = (program.desc.vertex_inputs || []).find((v) => v.name === "penumbra_uv")?.location ?? -1;
+        const alphaTest = this.runner.alphaTestInputs(program);
         const m = new Matrix4();
         const draw = (g, d, objectMatrix) => {
             matrices.forEach((p, k) => {
@@ -301,33 +298,14 @@ export class PenumbraShadows extends ShadowsBase {
                 gl.uniformMatrix4fv(locations[k], false, m.elements);
             });
             gl.bindVertexArray(g.vao);
-            if (alphaTexture) {
-                const cut = d.cut && d.texture && d.uv ? d : null; // (no texture or coordinates yet: solid)
-                gl.activeTexture(gl.TEXTURE0 + alphaTexture.binding);
-                gl.bindTexture(gl.TEXTURE_2D, cut ? cut.texture : this._whiteTexture());
-                gl.bindSampler(alphaTexture.binding, null); // the map's own filtering and wrapping
-                if (cutoffLocation) gl.uniform1f(cutoffLocation, cut ? cut.cut.cutoff : 0);
-                if (uvLocation >= 0) {
-                    if (cut) {
-                        gl.bindBuffer(gl.ARRAY_BUFFER, cut.uv);
-                        gl.enableVertexAttribArray(uvLocation);
-                        gl.vertexAttribPointer(uvLocation, 2, gl.FLOAT, false, 0, 0);
-                    } else {
-                        gl.disableVertexAttribArray(uvLocation);
-                    }
-                }
-            }
+            if (alphaTest) alphaTest.bind(d);
             if (g.indexType) gl.drawElements(gl.TRIANGLES, d.count, g.indexType, d.first * g.indexBytes);
             else gl.drawArrays(gl.TRIANGLES, d.first, d.count);
         };
         // (skinned and morphed positions come in the mesh's own space: casterVertices)
         casters.forEach((object, i) => forEachPlacement(object, (matrix) => { for (const d of draws[i]) draw(drawn[i], d, matrix); }));
         gl.bindVertexArray(null);
-        if (alphaTexture) {
-            gl.activeTexture(gl.TEXTURE0 + alphaTexture.binding);
-            gl.bindTexture(gl.TEXTURE_2D, null);
-            gl.activeTexture(gl.TEXTURE0);
-        }
+        if (alphaTest) alphaTest.end();
     }
 
     // A map's GL texture, uploaded by three (initTexture) if it was not yet; null while its image
@@ -338,19 +316,6 @@ export class PenumbraShadows extends ShadowsBase {
         if (map.version === 0 && !map.isExternalTexture) return null;
         this.renderer.initTexture(map);
         return this.renderer.properties.get(map).__webglTexture ?? null;
-    }
-
-    _whiteTexture() {
-        if (!this._white) {
-            const gl = this.renderer.getContext();
-            this._white = gl.createTexture();
-            gl.bindTexture(gl.TEXTURE_2D, this._white);
-            gl.pixelStorei(gl.UNPACK_ALIGNMENT, 1);
-            gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA8, 1, 1, 0, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array([255, 255, 255, 255]));
-            gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);
-            gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
-        }
-        return this._white;
     }
 
     // The buffer of a cut's texture coordinates on GPU geometry g (one per channel and map
@@ -529,10 +494,8 @@ void main() {
         return material;
     }
 
-    // dispose(): the external textures' GL names (the runner deleted them), our white texture, three's state
+    // dispose(): the external textures' GL names (the runner deleted them), three's state
     _disposeResources() {
-        if (this._white) this.renderer.getContext().deleteTexture(this._white);
-        this._white = null;
         for (const t of this._samplers) {
             this.renderer.properties.get(t).__webglTexture = undefined;
             if (t.isExternalTexture) t.sourceTexture = null;
