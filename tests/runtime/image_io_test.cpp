@@ -79,6 +79,17 @@ TEST_CASE("PFM: lossless round trip, bottom-up storage, errors") {
         std::memcpy(&first, bytes.data() + header.size(), 4);
         CHECK(first == image.pixels[2 * 4 * channels]);
 
+        // Rows given bottom first (a GL read-back) are written as they come: read back, they are flipped.
+        FloatImage gl_rows = image;
+        gl_rows.rows = RowOrder::bottom_up;
+        REQUIRE(write_pfm(dir.file("gl.pfm"), gl_rows));
+        const std::optional<FloatImage> flipped = read_pfm(dir.file("gl.pfm"), &error);
+        REQUIRE_MESSAGE(flipped.has_value(), error);
+        const std::size_t row = std::size_t(4) * channels;
+        for (int y = 0; y < 3; ++y)
+            CHECK(std::memcmp(flipped->pixels.data() + y * row, image.pixels.data() + (2 - y) * row,
+                              row * 4) == 0);
+
         // Truncated file.
         std::ofstream(dir.file("short.pfm"), std::ios::binary) << bytes.substr(0, bytes.size() - 3);
         CHECK_FALSE(read_pfm(dir.file("short.pfm"), &error).has_value());

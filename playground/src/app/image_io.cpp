@@ -88,9 +88,11 @@ std::optional<std::string> encode_pfm_named(const std::string& what, const Float
     out << (image.channels == 3 ? "PF" : "Pf") << '\n'
         << image.width << ' ' << image.height << '\n'
         << (little ? "-1.0" : "1.0") << '\n';
-    for (int y = image.height - 1; y >= 0; --y) // PFM stores the bottom row first
+    for (int i = 0; i < image.height; ++i) { // PFM stores the bottom row first
+        const int y = image.rows == RowOrder::bottom_up ? i : image.height - 1 - i;
         out.write(reinterpret_cast<const char*>(image.pixels.data() + static_cast<std::size_t>(y) * row),
                   static_cast<std::streamsize>(row * sizeof(float)));
+    }
     return std::move(out).str();
 }
 

@@ -28,7 +28,9 @@ struct FloatImage {
     int width = 0;
     int height = 0;
     int channels = 1;
-    std::vector<float> pixels; // width·height·channels floats, top row first
+    std::vector<float> pixels; // width·height·channels floats, top row first unless `rows` says
+    // bottom_up for GL read-backs, written as they come (read_pfm gives top_down)
+    RowOrder rows = RowOrder::top_down;
 };
 
 bool write_pfm(const std::string& path, const FloatImage& image, std::string* error = nullptr);

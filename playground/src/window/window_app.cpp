@@ -470,26 +470,21 @@ std::string WindowApp::capture(const std::string& path, int width, int height) {
 }
 
 std::string WindowApp::read_back(const std::string& path, int width, int height) {
-    // Both come bottom row first (GL's order, the G-buffer's for the truth); the files top row first.
-    auto top_down = [&](const std::vector<float>& bottom_up) {
-        FloatImage image{.width = width, .height = height, .channels = 1, .pixels = {}};
-        image.pixels.reserve(bottom_up.size());
-        for (int y = height - 1; y >= 0; --y)
-            image.pixels.insert(image.pixels.end(),
-                                bottom_up.begin() + static_cast<std::ptrdiff_t>(y) * width,
-                                bottom_up.begin() + static_cast<std::ptrdiff_t>(y + 1) * width);
-        return image;
+    // Both come bottom row first: GL's order, and the G-buffer's for the truth.
+    auto gl_rows = [&](const std::vector<float>& pixels) {
+        return FloatImage{
+            .width = width, .height = height, .channels = 1, .pixels = pixels, .rows = RowOrder::bottom_up};
     };
     const std::vector<float> visibility = session_.runtime().read_visibility();
     if (visibility.size() != static_cast<std::size_t>(width) * height)
         return path + ": the visibility is " + std::to_string(visibility.size()) +
                " values, not the window's " + std::to_string(width) + "x" + std::to_string(height);
     std::string error;
-    if (!write_pfm(path, top_down(visibility), &error)) return error;
+    if (!write_pfm(path, gl_rows(visibility), &error)) return error;
     std::string wrote = path;
     if (truth_snapshot_.visibility.size() == visibility.size()) {
         const std::string stem = path.ends_with(".pfm") ? path.substr(0, path.size() - 4) : path;
-        if (!write_pfm(stem + ".truth.pfm", top_down(truth_snapshot_.visibility), &error)) return error;
+        if (!write_pfm(stem + ".truth.pfm", gl_rows(truth_snapshot_.visibility), &error)) return error;
         wrote += " and " + stem + ".truth.pfm (" + std::string(to_string(controls_.truth_reference)) + ", " +
                  std::to_string(truth_snapshot_.samples_per_axis) + "x" +
                  std::to_string(truth_snapshot_.samples_per_axis) + " rays)";
