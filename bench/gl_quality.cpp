@@ -63,6 +63,7 @@ struct Variant {
     bool leak_fix = penumbra::Config{}.leak_fix;
     bool solid_casters = penumbra::Config{}.solid_casters;
     bool irradiance_window = penumbra::Config{}.irradiance_window;
+    bool irradiance_quadrants = penumbra::Config{}.irradiance_quadrants;
 };
 
 std::string variant_name(const Variant& v) {
@@ -73,12 +74,20 @@ std::string variant_name(const Variant& v) {
     };
     const penumbra::Config d{};
     return std::string(penumbra::to_string(v.fusion)) + (v.tangent_clip ? "+clip" : "") +
-           (v.tangent_clip && v.tangent_clip_offset != d.tangent_clip_offset ? "+offset" + number(v.tangent_clip_offset) : "") +
-           (v.tangent_clip && v.clip_footprint != d.clip_footprint ? (v.clip_footprint ? "+footprint" : "+nofootprint") : "") +
+           (v.tangent_clip && v.tangent_clip_offset != d.tangent_clip_offset
+                ? "+offset" + number(v.tangent_clip_offset)
+                : "") +
+           (v.tangent_clip && v.clip_footprint != d.clip_footprint
+                ? (v.clip_footprint ? "+footprint" : "+nofootprint")
+                : "") +
            (v.fade_ramp != d.fade_ramp ? "+ramp" + number(v.fade_ramp) : "") + (v.leak_fix ? "" : "+noleak") +
            (v.placement == penumbra::SlicePlacement::adaptive ? "+adaptive" : "") +
            (v.solid_casters != d.solid_casters ? (v.solid_casters ? "+solid" : "+nosolid") : "") +
-           (v.irradiance_window != d.irradiance_window ? (v.irradiance_window ? "+irradiance" : "+area") : "");
+           (v.irradiance_window != d.irradiance_window ? (v.irradiance_window ? "+irradiance" : "+area")
+                                                       : "") +
+           (v.irradiance_quadrants != d.irradiance_quadrants
+                ? (v.irradiance_quadrants ? "+quadrants" : "+noquadrants")
+                : "");
 }
 
 // A scene to measure: a built-in name or a mesh file, and the name its rows carry.
@@ -99,24 +108,34 @@ struct Options {
 };
 
 constexpr const char* usage_text =
-    "usage: penumbra-bench-quality [--scenes a,b,...] [FILE ...] [--corpus [DIR]] [--no-ground] [--filters f,g,...]\n"
-    "                              [--configs SxR,...] [--size WxH] [--samples N] [--repeat N] [--variants v,w,...]\n"
+    "usage: penumbra-bench-quality [--scenes a,b,...] [FILE ...] [--corpus [DIR]] [--no-ground] [--filters "
+    "f,g,...]\n"
+    "                              [--configs SxR,...] [--size WxH] [--samples N] [--repeat N] [--variants "
+    "v,w,...]\n"
     "                              [--level-reductions N,M,...] [--light-scales X,Y,...]\n"
-    "  --scenes    built-in scenes (default all: planes, boxes, tree, butterfly, terrain, crowd, box, cutout; '' for none)\n"
+    "  --scenes    built-in scenes (default all: planes, boxes, tree, butterfly, terrain, crowd, box, "
+    "cutout; '' for none)\n"
     "  FILE        mesh files (what penumbra-playground --scene loads), measured after the built-in scenes\n"
-    "  --corpus    every mesh of the corpus in DIR (default ~/.cache/penumbra/corpus; scripts/get_corpus.sh)\n"
+    "  --corpus    every mesh of the corpus in DIR (default ~/.cache/penumbra/corpus; "
+    "scripts/get_corpus.sh)\n"
     "  --no-ground no floor under the mesh files (default: each stands on one, as in penumbra-playground)\n"
     "  --filters   mipmap, nbuffer, sat (default all three; the light is each scene's rectangle)\n"
     "  --configs   slices x occlusion-texture resolution (default 16x512,4x128)\n"
     "  --size      image size (default 256x256)\n"
     "  --samples   ground-truth rays per light axis (default 16: 256 rays per pixel)\n"
     "  --repeat    render each configuration N times and keep each pass's fastest time (default 3)\n"
-    "  --variants  model variants: a fusion rule, optionally +clip for the tangent clip, +offsetT for its offset\n"
-    "              (slicing texels), +nofootprint / +footprint for its footprint move, +rampF for the fade's ramp\n"
-    "              (fraction of a slice), +noleak for the leak fix off, +adaptive for adaptive slice placement and +solid\n"
-    "              for solid casters (closed meshes fill the slices between their surfaces), +irradiance for the\n"
+    "  --variants  model variants: a fusion rule, optionally +clip for the tangent clip, +offsetT for its "
+    "offset\n"
+    "              (slicing texels), +nofootprint / +footprint for its footprint move, +rampF for the fade's "
+    "ramp\n"
+    "              (fraction of a slice), +noleak for the leak fix off, +adaptive for adaptive slice "
+    "placement and +solid\n"
+    "              for solid casters (closed meshes fill the slices between their surfaces), +irradiance for "
+    "the\n"
     "              irradiance window (the light weighed by the irradiance it sends; the default), +area for\n"
-    "              the light weighed by area (--no-irradiance-window), e.g.\n"
+    "              the light weighed by area (--no-irradiance-window), +quadrants for the window's "
+    "quadrants\n"
+    "              (--irradiance-quadrants: the large profile), e.g.\n"
     "              probabilistic,chained+clip,chained+clip+offset3+nofootprint+ramp1,chained+clip+adaptive\n"
     "              (default: Config{}'s)\n"
     "  --level-reductions  level_reduction values to measure, each a row (-1: every level at full\n"
@@ -215,13 +234,17 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                     else if (part == "noleak") v.leak_fix = false;
                     else if (part == "solid" || part == "nosolid") v.solid_casters = part == "solid";
                     else if (part == "irradiance" || part == "area") v.irradiance_window = part == "irradiance";
+                    else if (part == "quadrants" || part == "noquadrants")
+                        v.irradiance_quadrants = part == "quadrants";
                     else if (part.starts_with("offset") && parse_number(part.substr(6), number)) v.tangent_clip_offset = number;
                     else if (part.starts_with("ramp") && parse_number(part.substr(4), number)) v.fade_ramp = number;
                     else {
-                        error = "--variants: '" + std::string(part) + "' in '" + std::string(name) +
-                                "' is not allowed; allowed after the fusion rule: +clip, +adaptive, +[no]footprint, +noleak, +[no]solid, "
-                                "+irradiance / +area (the irradiance window on or off), +offsetT "
-                                "(tangent clip offset, texels), +rampF (fade ramp, fraction of a slice)";
+                        error =
+                            "--variants: '" + std::string(part) + "' in '" + std::string(name) +
+                            "' is not allowed; allowed after the fusion rule: +clip, +adaptive, "
+                            "+[no]footprint, +noleak, +[no]solid, "
+                            "+irradiance / +area (the irradiance window on or off), +[no]quadrants, +offsetT "
+                            "(tangent clip offset, texels), +rampF (fade ramp, fraction of a slice)";
                         return std::nullopt;
                     }
                 }
@@ -459,6 +482,7 @@ int main(int argc, char** argv) {
                 config.leak_fix = variant.leak_fix;
                 config.solid_casters = variant.solid_casters;
                 config.irradiance_window = variant.irradiance_window;
+                config.irradiance_quadrants = variant.irradiance_quadrants;
                 config.alpha_test = scene.mesh.cuts(); // cut-out casters cast as their materials cut, as the truth does
                 const std::string reduced =
                     reduction == penumbra::Config{}.level_reduction ? "" : " r" + std::to_string(reduction);

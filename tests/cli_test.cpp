@@ -232,7 +232,8 @@ TEST_CASE("--profile and the JSON key profile: the preset, with the fields given
     const nlohmann::json c = config_of(large);
     CHECK(c.at("profile") == "large");
     CHECK(c.at("slices") == 16);
-    CHECK(c.at("fusion") == "clustered");
+    CHECK(c.at("fusion") == "extent");
+    CHECK(c.at("irradiance_quadrants") == true);
     CHECK_FALSE(c.contains("irradiance_window")); // on, the default, so not written
     // a flag given beside it wins, before or after it; under --light sun the window stays on, with no effect
     const fs::path mixed = scratch().fresh("profile-mixed");

@@ -492,6 +492,9 @@ Row irradiance_window_row() {
                 with({.resolution = 256});
                 with({.slices = 5, .resolution = 64, .filter = Filter::mipmap, .fusion = Fusion::clustered,
                       .packing = Packing::array});
+                Config quadrants{.resolution = 256};
+                quadrants.irradiance_quadrants = true; // its quadrants too (no effect without the window)
+                with(quadrants);
             }
     return {
         .name = "irradiance window",
@@ -526,14 +529,24 @@ Row irradiance_window_row() {
                                       e.programs[i].name);
                 }
                 CHECK_MESSAGE(windowed >= 1, name_of(c));
+                // the quadrants' shares where they are asked for, and only there
+                for (const auto& program : e.programs) {
+                    const std::string& fragment = program.stages.back().text;
+                    if (fragment.find("penumbra_irradianceWindow(p, n, penumbra_clip)") == std::string::npos)
+                        continue;
+                    CHECK_MESSAGE(
+                        (fragment.find("penumbra_ringShares(p, n, penumbra_clip, penumbra_window.xyz)") !=
+                         std::string::npos) == c.irradiance_quadrants,
+                        name_of(c), " ", program.name);
+                }
             },
-        .check_row = [](const RowResult& r) { CHECK(r.valid == 4 * 2 * 2 * 2); }};
+        .check_row = [](const RowResult& r) { CHECK(r.valid == 4 * 2 * 2 * 3); }};
 }
 
 // The profiles (penumbra/profiles.hpp): every GLSL target × light, at 256² (OpenGL 3.3 guarantees a
 // 1024-texel atlas, too narrow for the default 512² with 16 slices). Each preset is valid everywhere;
-// `balanced` is the default configuration itself, `large` its own preset (clustered fusion, the irradiance
-// window kept on).
+// `balanced` is the default configuration itself, `large` its own preset (the irradiance window's quadrants,
+// the default fusion).
 Row profiles_row() {
     std::vector<Config> configs;
     for (Target target : glsl_targets())
@@ -551,8 +564,9 @@ Row profiles_row() {
                         return;
                     }
                     CHECK(c.slices == plain.slices);
-                    CHECK(c.fusion == Fusion::clustered);
+                    CHECK(c.fusion == plain.fusion);
                     CHECK(c.irradiance_window);
+                    CHECK(c.irradiance_quadrants);
                 },
             .check_row = [](const RowResult& r) { CHECK(r.valid == 4 * 2 * 2); }};
 }

@@ -141,7 +141,7 @@ async function main() {
     for (const kind of ["rect", "sun"]) {
         const large = emitter.emit(requestedEmission({profile: "large"}, kind));
         const c = large.ok ? large.layout.config : {};
-        if (c.profile !== "large" || c.fusion !== "clustered" || (c.irradiance_window ?? true) !== true)
+        if (c.profile !== "large" || c.fusion !== "extent" || c.irradiance_quadrants !== true || (c.irradiance_window ?? true) !== true)
             throw new Error(`profile large for ${kind}: ${large.ok ? JSON.stringify(c) : large.error}`);
     }
     if (requestedEmission({profile: "balanced"}, "rect") !== "rect-nbuffer-16x512")

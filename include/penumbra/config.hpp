@@ -294,6 +294,10 @@ struct Config {
                                             // visibilities mixed by their share of the irradiance; two passes of
                                             // the slice loop (docs/model.md §1.7.5). Rect light and tangent clip;
                                             // no effect elsewhere (weighs_irradiance)
+    bool irradiance_quadrants = false; // occlusion, with the irradiance window: the clip's four quadrants
+                                       // fused apart as well, each weighed by the irradiance it sends
+                                       // outside the core; five passes of the slice loop instead of two
+                                       // (docs/model.md §1.7.6)
 
     friend constexpr bool operator==(const Config&, const Config&) = default;
 };
@@ -382,6 +386,11 @@ constexpr bool clips_to_tangent_plane(const Config& config) {
 // there is nothing to weigh; without the clip there is no part to weigh within.
 constexpr bool weighs_irradiance(const Config& config) {
     return config.irradiance_window && clips_to_tangent_plane(config) && config.light == Light::rect;
+}
+
+// Whether the irradiance window also fuses the clip's four quadrants apart (Config::irradiance_quadrants).
+constexpr bool weighs_quadrants(const Config& config) {
+    return config.irradiance_quadrants && weighs_irradiance(config);
 }
 
 // Number of comparison taps of the PCF kernel.

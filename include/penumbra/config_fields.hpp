@@ -37,12 +37,17 @@ namespace detail {
 // the fields given beside it win (apply_profile's explicit keys).
 constexpr ConfigField profile_field() {
     ConfigField row = member<&Config::profile>(
-        {.key = "profile", .flag = "--profile", .metavar = "P",
-         .help = "shadow quality tier: balanced (the default) or large (lights x4 and up: clustered fusion); "
-                 "the fields given beside it win",
-         .detail = "a named preset of the occlusion fields fusion and irradiance_window (absent means "
-                   "balanced, the defaults): large is for lights several times the scene's own rectangle and costs "
-                   "more; a key given beside it overrides the preset's value",
+        {.key = "profile",
+         .flag = "--profile",
+         .metavar = "P",
+         .help =
+             "shadow quality tier: balanced (the default) or large (lights x4 and up, lower at every size: "
+             "the irradiance window's quadrants, 1.3 to 1.8 times the frame); the fields given beside it win",
+         .detail =
+             "a named preset of the occlusion fields fusion, irradiance_window and irradiance_quadrants "
+             "(absent means balanced, the defaults): large turns irradiance_quadrants on, for lights several "
+             "times the scene's own rectangle, lower at every light size, 1.3 to 1.8 times the frame; a "
+             "key given beside it overrides the preset's value",
          .techniques = "occlusion",
          .omit_default = true});
     row.set = [](Config& c, double v) { c = apply_profile(c, detail::from_field_value<Profile>(v)); };

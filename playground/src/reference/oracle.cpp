@@ -450,12 +450,50 @@ double form_factor_corner(glm::dvec2 a, glm::dvec3 n) {
     const glm::dvec2 s = 1.0 / glm::sqrt(1.0 + a * a);
     return -0.5 * (s.x * std::atan(a.y * s.x) * (n.x + n.z * a.x) + s.y * std::atan(a.x * s.y) * (n.y + n.z * a.y));
 }
-double irradiance_of(glm::dvec3 p, glm::dvec3 n, glm::dvec3 part, glm::dvec2 light_size) {
-    const glm::dvec2 lo = ((glm::dvec2(part) - 0.5 * part.z) * light_size - glm::dvec2(p)) / p.z;
-    const glm::dvec2 hi = ((glm::dvec2(part) + 0.5 * part.z) * light_size - glm::dvec2(p)) / p.z;
+// penumbra_irradianceBetween: the same from the rectangle between the corners `lower` and `upper`.
+double irradiance_between(glm::dvec3 p, glm::dvec3 n, glm::dvec2 lower, glm::dvec2 upper,
+                          glm::dvec2 light_size) {
+    const glm::dvec2 lo = (lower * light_size - glm::dvec2(p)) / p.z;
+    const glm::dvec2 hi = (upper * light_size - glm::dvec2(p)) / p.z;
     return std::max(form_factor_corner(hi, n) - form_factor_corner({lo.x, hi.y}, n) - form_factor_corner({hi.x, lo.y}, n) +
                         form_factor_corner(lo, n),
                     0.0);
+}
+double irradiance_of(glm::dvec3 p, glm::dvec3 n, glm::dvec3 part, glm::dvec2 light_size) {
+    return irradiance_between(p, n, glm::dvec2(part) - 0.5 * part.z, glm::dvec2(part) + 0.5 * part.z,
+                              light_size);
+}
+
+// irradiance_quadrants: quadrant i (0 lower left, 1 lower right, 2 upper left, 3 upper right) of the part
+// `clip` (clip_quadrant in detail/occlusion/emit_tangent_clip.hpp), and the fraction of a square `part`
+// inside the core.
+glm::dvec3 clip_quadrant(glm::dvec3 clip, int i) {
+    const glm::dvec2 corner(i == 1 || i == 3 ? 1.0 : -1.0, i >= 2 ? 1.0 : -1.0);
+    return {glm::dvec2(clip) + 0.25 * clip.z * corner, 0.5 * clip.z};
+}
+struct Overlap {
+    glm::dvec2 lo, hi; // the rectangle both squares cover (empty where hi <= lo on an axis)
+    double fraction;   // its area over the area of `part`
+};
+Overlap overlap_of(glm::dvec3 part, glm::dvec3 core) {
+    const glm::dvec2 lo = glm::max(glm::dvec2(part) - 0.5 * part.z, glm::dvec2(core) - 0.5 * core.z);
+    const glm::dvec2 hi = glm::min(glm::dvec2(part) + 0.5 * part.z, glm::dvec2(core) + 0.5 * core.z);
+    const glm::dvec2 extent = glm::max(hi - lo, glm::dvec2(0.0));
+    return {lo, hi, extent.x * extent.y / std::max(part.z * part.z, 1e-12)};
+}
+// penumbra_ringShares: each quadrant's share of the clip's irradiance outside the core.
+glm::dvec4 ring_shares(glm::dvec3 p, glm::dvec3 n, glm::dvec3 clip, glm::dvec3 core, glm::dvec2 light_size) {
+    const double whole = irradiance_of(p, n, clip, light_size);
+    if (whole <= 1e-12) return glm::dvec4(0.0);
+    glm::dvec4 shares(0.0);
+    for (int i = 0; i < 4; ++i) {
+        const glm::dvec3 quadrant = clip_quadrant(clip, i);
+        const Overlap o = overlap_of(quadrant, core);
+        const double in_core =
+            o.hi.x > o.lo.x && o.hi.y > o.lo.y ? irradiance_between(p, n, o.lo, o.hi, light_size) : 0.0;
+        shares[i] = std::max(irradiance_of(p, n, quadrant, light_size) - in_core, 0.0) / whole;
+    }
+    return shares;
 }
 
 // penumbra_irradianceWindow: the core, half the clip's side around the weight's peak inside the clip, and the
@@ -623,6 +661,27 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
         }
         return {v, clip_closing ? 1.0 : bound, beyond};
     };
+    if (weighs_quadrants(config_)) {
+        // penumbra_windowedVisibility with the quadrants: the core's visibility with the share the rings
+        // leave, each quadrant's ring (its visibility less the core's part of it) with its own share
+        const glm::dvec4 shares = ring_shares(r.unmoved, r.normal, clip, window.core, light_size_);
+        const OracleValue core = fused(window.core);
+        double v = (1.0 - (shares.x + shares.y + shares.z + shares.w)) * core.visibility;
+        // fp32 moves each share by about the window's weight error, each counted at most once
+        double bound = std::abs(1.0 - (shares.x + shares.y + shares.z + shares.w)) * core.bound +
+                       5.0 * window.weight_error;
+        bool beyond = core.beyond_level_bound;
+        for (int i = 0; i < 4; ++i) {
+            const glm::dvec3 quadrant = clip_quadrant(clip, i);
+            const OracleValue seen = fused(quadrant);
+            const double in_core = overlap_of(quadrant, window.core).fraction;
+            const double outside = std::max(1.0 - in_core, 1e-6);
+            v += shares[i] * std::clamp((seen.visibility - in_core * core.visibility) / outside, 0.0, 1.0);
+            bound += shares[i] * (seen.bound + in_core * core.bound) / outside;
+            beyond = beyond || seen.beyond_level_bound;
+        }
+        return {std::clamp(v, 0.0, 1.0), bound, beyond};
+    }
     if (window.clip_weight >= 1.0) return fused(clip);
     // penumbra_windowedVisibility: the clip's and the core's visibilities mixed
     const double w = window.clip_weight;

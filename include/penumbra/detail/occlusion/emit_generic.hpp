@@ -415,9 +415,7 @@ constexpr Text generic_fragment(const Config& config) {
                                  {Text("penumbra_tangentClipOffset / penumbra_resolution"),
                                   Text("penumbra_tangentClipOffset"), Text("penumbra_clipFootprint"),
                                   cat(format_float(clip_footprint_cap_texels), " / penumbra_resolution")});
-        out.line(choose(weighs_irradiance(config),
-                        "return penumbra_windowedVisibility(p, penumbra_clip, penumbra_window);",
-                        "return penumbra_clippedVisibility(p, penumbra_clip);"));
+        out.line(clipped_visibility_return(config));
         out.line("}");
         out.blank();
     }

@@ -51,6 +51,47 @@ constexpr void write_tangent_clip_function(LineWriter& out, const Config& config
     out.blank();
 }
 
+// Config::irradiance_quadrants (docs/model.md §1.7.6): the quadrant `i` (0 lower left, 1 lower right, 2 upper
+// left, 3 upper right) of the part `clip` of the light's unit square.
+constexpr Text clip_quadrant(std::string_view clip, std::string_view corner) {
+    return cat("vec3(", clip, ".xy + 0.25 * ", clip, ".z * ", corner, ", 0.5 * ", clip, ".z)");
+}
+
+// Config::irradiance_quadrants: each quadrant's share of the clip's irradiance outside the core, the weights
+// of the quadrants' visibilities (the core's is what they leave).
+constexpr void write_ring_shares_function(LineWriter& out, const Config& config) {
+    constexpr std::array<std::string_view, 4> corners{"vec2(-1.0, -1.0)", "vec2(1.0, -1.0)",
+                                                      "vec2(-1.0, 1.0)", "vec2(1.0, 1.0)"};
+    constexpr std::array<std::string_view, 4> names{"lower left", "lower right", "upper left", "upper right"};
+    out.chunk("tangent_clip");
+    out.comment("The share of the irradiance at p (unit normal n) within the part `clip` of the light's unit "
+                "square that");
+    out.comment("each of its quadrants sends outside the core `core` (x lower left, y lower right, z upper "
+                "left, w upper right)");
+    out.line(signature(config, "vec4", "penumbra_ringShares",
+                       {{"vec3", "p"}, {"vec3", "n"}, {"vec3", "clip"}, {"vec3", "core"}}));
+    out.line("{");
+    out.line(value(config, "float", "whole", "penumbra_irradianceOf(p, n, clip)"));
+    out.line(variable(config, "vec4", "shares", "vec4(0.0)"));
+    for (int i = 0; i < 4; ++i) {
+        out.line("{ // ", names[i]);
+        out.line(value(config, "vec3", "quadrant", clip_quadrant("clip", corners[i])));
+        out.line(value(config, "vec2", "lo",
+                       "max(quadrant.xy - vec2(0.5 * quadrant.z), core.xy - vec2(0.5 * core.z))"));
+        out.line(value(config, "vec2", "hi",
+                       "min(quadrant.xy + vec2(0.5 * quadrant.z), core.xy + vec2(0.5 * core.z))"));
+        out.line(value(config, "float", "inCore",
+                       conditional(config, "hi.x > lo.x && hi.y > lo.y",
+                                   "penumbra_irradianceBetween(p, n, lo, hi)", "0.0")));
+        out.line("shares.", channel_name(i), " = max(penumbra_irradianceOf(p, n, quadrant) - inCore, 0.0);");
+        out.line("}");
+    }
+    out.comment("an empty clip: the core alone");
+    out.line("return ", conditional(config, "whole > 1e-12", "shares / max(whole, 1e-12)", "vec4(0.0)"), ";");
+    out.line("}");
+    out.blank();
+}
+
 // Config::irradiance_window (docs/model.md §1.7.5): the visibility weighs the light by the irradiance each of
 // its points sends the receiver, as the shading's unoccluded irradiance does, not by its area. A light point at
 // offset d = l - p from a receiver of unit normal n at depth z sends it cos θ_receiver cos θ_light / r², that is
@@ -71,14 +112,27 @@ constexpr void write_irradiance_window_function(LineWriter& out, const Config& c
     out.line("}");
     out.blank();
     out.chunk("tangent_clip");
-    out.comment("The irradiance, over pi, at p (unit normal n) from the part `part` of the light's unit square (xy centre,");
-    out.comment("z side); the part of the light below the tangent plane, which the clip leaves where it cuts aslant, counts 0");
-    out.line(signature(config, "float", "penumbra_irradianceOf", {{"vec3", "p"}, {"vec3", "n"}, {"vec3", "part"}}));
+    out.comment("The irradiance, over pi, at p (unit normal n) from the rectangle between the corners "
+                "`lower` and `upper`");
+    out.comment("of the light's unit square; the part of the light below the tangent plane, which the clip "
+                "leaves where it");
+    out.comment("cuts aslant, counts 0");
+    out.line(signature(config, "float", "penumbra_irradianceBetween",
+                       {{"vec3", "p"}, {"vec3", "n"}, {"vec2", "lower"}, {"vec2", "upper"}}));
     out.line("{");
-    out.line(value(config, "vec2", "lo", "((part.xy - vec2(0.5 * part.z)) * penumbra_lightSize - p.xy) / p.z"));
-    out.line(value(config, "vec2", "hi", "((part.xy + vec2(0.5 * part.z)) * penumbra_lightSize - p.xy) / p.z"));
+    out.line(value(config, "vec2", "lo", "(lower * penumbra_lightSize - p.xy) / p.z"));
+    out.line(value(config, "vec2", "hi", "(upper * penumbra_lightSize - p.xy) / p.z"));
     out.line("return max(penumbra_formFactorCorner(hi, n) - penumbra_formFactorCorner(vec2(lo.x, hi.y), n)");
     out.line("    - penumbra_formFactorCorner(vec2(hi.x, lo.y), n) + penumbra_formFactorCorner(lo, n), 0.0);");
+    out.line("}");
+    out.blank();
+    out.chunk("tangent_clip");
+    out.comment("The same from the square `part` of the light's unit square (xy centre, z side)");
+    out.line(signature(config, "float", "penumbra_irradianceOf",
+                       {{"vec3", "p"}, {"vec3", "n"}, {"vec3", "part"}}));
+    out.line("{");
+    out.line("return penumbra_irradianceBetween(p, n, part.xy - vec2(0.5 * part.z), part.xy + vec2(0.5 * "
+             "part.z));");
     out.line("}");
     out.blank();
     out.chunk("tangent_clip");
@@ -100,11 +154,18 @@ constexpr void write_irradiance_window_function(LineWriter& out, const Config& c
     out.line("return vec4(centre, side, clamp(ring, 0.0, 1.0));");
     out.line("}");
     out.blank();
+    if (weighs_quadrants(config)) write_ring_shares_function(out, config);
 }
 
 // Config::irradiance_window: the visibility of the clip and of the irradiance window's core, mixed. A loop
 // whose bound the compiler cannot fold keeps one copy of the unrolled slice loop in the program.
+constexpr void write_quadrant_visibility_function(LineWriter& out, const Config& config);
+
 constexpr void write_windowed_visibility_function(LineWriter& out, const Config& config) {
+    if (weighs_quadrants(config)) {
+        write_quadrant_visibility_function(out, config);
+        return;
+    }
     out.chunk("visibility");
     out.comment("The visibility at light-frame point p weighed by the irradiance: the clip's with weight window.w, the");
     out.comment("core's (window.xyz) with 1 - window.w; a window whose core carries no weight needs the first only");
@@ -120,6 +181,64 @@ constexpr void write_windowed_visibility_function(LineWriter& out, const Config&
     out.line("return visibility;");
     out.line("}");
     out.blank();
+}
+
+// Config::irradiance_quadrants: the core's visibility first, then each quadrant's, whose part outside the
+// core (its visibility less the core's share of it) carries that part's share of the irradiance. One loop
+// whose bound the compiler cannot fold, as the two windows' (one copy of the unrolled slice loop).
+constexpr void write_quadrant_visibility_function(LineWriter& out, const Config& config) {
+    out.chunk("visibility");
+    out.comment("The visibility at light-frame point p weighed by the irradiance: the core's (window.xyz) "
+                "and the four");
+    out.comment("quadrants' of the clip, each quadrant's part outside the core with its share of the "
+                "irradiance (rings),");
+    out.comment("the core with what they leave (docs/model.md §1.7.6)");
+    out.line(signature(config, "float", "penumbra_windowedVisibility",
+                       {{"vec3", "p"}, {"vec3", "clip"}, {"vec4", "window"}, {"vec4", "rings"}}));
+    out.line("{");
+    out.line(variable(config, "float", "visibility", "0.0"));
+    out.line(variable(config, "float", "core", "1.0"), " // the core's visibility, from the first pass");
+    out.line(value(config, "int", "passes", conditional(config, "window.w < 2.0", "5", "1")), " // always 5");
+    out.line(counted_loop(config, "penumbra_pass", "passes"), " {");
+    out.line(value(config, "int", "quadrant", "penumbra_pass - 1"));
+    out.line(value(config, "vec2", "corner",
+                   cat("vec2(", conditional(config, "quadrant == 1 || quadrant == 3", "1.0", "-1.0"), ", ",
+                       conditional(config, "quadrant >= 2", "1.0", "-1.0"), ")")));
+    out.line(value(config, "vec3", "part",
+                   conditional(config, "penumbra_pass == 0", "window.xyz", clip_quadrant("clip", "corner"))));
+    out.line(value(config, "float", "seen", "penumbra_clippedVisibility(p, part)"));
+    out.line("if (penumbra_pass == 0) {");
+    out.line("core = seen;");
+    out.line("visibility += (1.0 - dot(rings, vec4(1.0))) * seen;");
+    out.line("} else {");
+    out.comment("the part of the quadrant inside the core, which the core's pass counts");
+    out.line(
+        value(config, "vec2", "lo", "max(part.xy - vec2(0.5 * part.z), window.xy - vec2(0.5 * window.z))"));
+    out.line(
+        value(config, "vec2", "hi", "min(part.xy + vec2(0.5 * part.z), window.xy + vec2(0.5 * window.z))"));
+    out.line(value(config, "vec2", "overlap", "max(hi - lo, vec2(0.0))"));
+    out.line(value(config, "float", "inCore", "overlap.x * overlap.y / max(part.z * part.z, 1e-12)"));
+    out.line(value(config, "float", "share",
+                   cat("dot(rings, vec4(", conditional(config, "quadrant == 0", "1.0", "0.0"), ", ",
+                       conditional(config, "quadrant == 1", "1.0", "0.0"), ", ",
+                       conditional(config, "quadrant == 2", "1.0", "0.0"), ", ",
+                       conditional(config, "quadrant == 3", "1.0", "0.0"), "))")));
+    out.line("visibility += share * ", saturate(config, "(seen - inCore * core) / max(1.0 - inCore, 1e-6)"),
+             ";");
+    out.line("}");
+    out.line("}");
+    out.line("return ", saturate(config, "visibility"), ";");
+    out.line("}");
+    out.blank();
+}
+
+// The tangent clip's return in penumbraVisibility: the windowed visibility, or the clip's alone.
+constexpr Text clipped_visibility_return(const Config& config) {
+    if (weighs_quadrants(config))
+        return "return penumbra_windowedVisibility(p, penumbra_clip, penumbra_window, penumbra_rings);";
+    if (weighs_irradiance(config))
+        return "return penumbra_windowedVisibility(p, penumbra_clip, penumbra_window);";
+    return "return penumbra_clippedVisibility(p, penumbra_clip);";
 }
 
 // The receiver in the light frame, p, at the start of every penumbraVisibility (and its generic twin).
@@ -170,6 +289,9 @@ constexpr void write_tangent_clip_setup(LineWriter& out, const Config& config, c
     if (weighs_irradiance(config)) {
         out.comment("weighed by the irradiance at the receiver, before it moves (docs/model.md §1.7.5)");
         out.line(value(config, "vec4", "penumbra_window", "penumbra_irradianceWindow(p, n, penumbra_clip)"));
+        if (weighs_quadrants(config))
+            out.line(value(config, "vec4", "penumbra_rings",
+                           "penumbra_ringShares(p, n, penumbra_clip, penumbra_window.xyz)"));
     }
     const bool rect = config.light == Light::rect;
     if (!k.footprint_reach.empty()) {

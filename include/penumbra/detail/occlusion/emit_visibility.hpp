@@ -242,9 +242,7 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
     out.line("{");
     write_light_frame_point(out, config);
     write_tangent_clip_setup(out, config);
-    out.line(choose(weighs_irradiance(config),
-                    "return penumbra_windowedVisibility(p, penumbra_clip, penumbra_window);",
-                    "return penumbra_clippedVisibility(p, penumbra_clip);"));
+    out.line(clipped_visibility_return(config));
     out.line("}");
     out.blank();
     out.comment(choose(
@@ -255,7 +253,13 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
     out.line(signature(config, "float", "penumbraVisibility", {{"vec3", "worldPos"}}));
     out.line("{");
     write_light_frame_point(out, config);
-    if (weighs_irradiance(config))
+    if (weighs_quadrants(config)) {
+        out.line(value(config, "vec4", "penumbra_window",
+                       "penumbra_irradianceWindow(p, vec3(0.0, 0.0, -1.0), vec3(0.0, 0.0, 1.0))"));
+        out.line("return penumbra_windowedVisibility(p, vec3(0.0, 0.0, 1.0), penumbra_window, "
+                 "penumbra_ringShares(p, vec3(0.0, 0.0, -1.0), "
+                 "vec3(0.0, 0.0, 1.0), penumbra_window.xyz));");
+    } else if (weighs_irradiance(config))
         out.line("return penumbra_windowedVisibility(p, vec3(0.0, 0.0, 1.0), penumbra_irradianceWindow(p, vec3(0.0, 0.0, -1.0), vec3(0.0, 0.0, 1.0)));");
     else
         out.line("return penumbra_clippedVisibility(p, vec3(0.0, 0.0, 1.0));");

@@ -133,6 +133,20 @@ constexpr auto occlusion_fields() {
                        "tangent clip's part of a rectangle: no effect without the clip, nor under the sun, whose "
                        "points all send the same cosine",
              .techniques = "occlusion", .omit_default = true}),
+        member<&Config::irradiance_quadrants>(
+            {.key = "irradiance_quadrants",
+             .flag = "--[no-]irradiance-quadrants",
+             .help = "with the irradiance window: the clip's four quadrants fused apart as well, each "
+                     "weighed by the irradiance it sends outside the core (five passes of the slice "
+                     "loop, not two)",
+             .detail = "with the irradiance window (absent means false): the slice loop also runs for "
+                       "each quadrant of the tangent clip's part, and each quadrant's part outside the "
+                       "core carries its share of the irradiance, so a weight that falls across the light "
+                       "(a receiver beside it, or tilted) is followed, and the slices are fused over a "
+                       "quarter of the light at a time. Costs three more passes of the slice loop per "
+                       "receiver; no effect without the window",
+             .techniques = "occlusion",
+             .omit_default = true}),
     };
 }
 
