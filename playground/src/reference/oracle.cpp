@@ -464,12 +464,16 @@ double irradiance_of(glm::dvec3 p, glm::dvec3 n, glm::dvec3 part, glm::dvec2 lig
                               light_size);
 }
 
+// The corner (-1 or 1 per axis) of quadrant i of a square: 0 lower left, 1 lower right, 2 upper left, 3 upper
+// right (quadrant_corners in detail/occlusion/emit_kernel.hpp), for clustered fusion and the clip's
+// quadrants.
+glm::dvec2 quadrant_corner(int i) { return {i == 1 || i == 3 ? 1.0 : -1.0, i >= 2 ? 1.0 : -1.0}; }
+
 // irradiance_quadrants: quadrant i (0 lower left, 1 lower right, 2 upper left, 3 upper right) of the part
 // `clip` (clip_quadrant in detail/occlusion/emit_tangent_clip.hpp), and the fraction of a square `part`
 // inside the core.
 glm::dvec3 clip_quadrant(glm::dvec3 clip, int i) {
-    const glm::dvec2 corner(i == 1 || i == 3 ? 1.0 : -1.0, i >= 2 ? 1.0 : -1.0);
-    return {glm::dvec2(clip) + 0.25 * clip.z * corner, 0.5 * clip.z};
+    return {glm::dvec2(clip) + 0.25 * clip.z * quadrant_corner(i), 0.5 * clip.z};
 }
 struct Overlap {
     glm::dvec2 lo, hi; // the rectangle both squares cover (empty where hi <= lo on an axis)
@@ -629,9 +633,9 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
             // clustered fusion: that area shared by the occluders counted from the kernel's four quadrants
             if (fusion == Fusion::clustered) {
                 glm::dvec4 quadrants(0.0);
-                const glm::dvec2 corners[4] = {{-1.0, -1.0}, {1.0, -1.0}, {-1.0, 1.0}, {1.0, 1.0}};
                 for (int i = 0; i < 4; ++i) {
-                    const Sample quadrant = filtered(s, centre + 0.25 * side * corners[i], 0.5 * side);
+                    const Sample quadrant =
+                        filtered(s, centre + 0.25 * side * quadrant_corner(i), 0.5 * side);
                     quadrants[i] = quadrant.value;
                     bound += weight * quadrant.bound;
                 }

@@ -123,10 +123,6 @@ constexpr void write_cluster_functions(LineWriter& out, const Config& config, st
 // What clustered fusion divides extent's covered area by: the occluders sharing it.
 inline constexpr std::string_view clustered_area_divisor = " / penumbra_clusterCount(penumbra_quadrants)";
 
-// The four quadrant corners, in the order penumbra_clusterCount's vector holds them.
-inline constexpr std::array<std::string_view, 4> quadrant_corners{"vec2(-1.0, -1.0)", "vec2(1.0, -1.0)", "vec2(-1.0, 1.0)",
-                                                                  "vec2(1.0, 1.0)"};
-
 // The covered area (uv²) extent fusion takes for a slice: `fade` times the larger of the kernel's coverage
 // and four times the doubled window's (`wide`, a channel of a vec4 expression), times the kernel's area.
 constexpr Text extent_area(std::string_view fade, std::string_view texel_channel, std::string_view wide_channel) {
@@ -229,12 +225,12 @@ constexpr void write_fusion_result(LineWriter& out, const Config& config) {
 // Clustered fusion: the slice's coverage in the kernel's four quadrants, into penumbra_quadrants.
 // `lookup(quadrant)` reads the four channels over the quadrant kernel named `quadrant`.
 template <class Lookup> constexpr void write_quadrants(LineWriter& out, const Config& config, Lookup lookup) {
-    constexpr std::array<std::string_view, 4> names{"lower left", "lower right", "upper left", "upper right"};
     out.line(variable(config, "vec4", "penumbra_quadrants", "vec4(0.0)"));
     for (int i = 0; i < 4; ++i) {
         out.line("{");
-        out.line(value(config, "vec4", "quadrant", cat("penumbra_quadrant(kernel, ", quadrant_corners[i], ")")), " // ",
-                 names[i]);
+        out.line(
+            value(config, "vec4", "quadrant", cat("penumbra_quadrant(kernel, ", quadrant_corners[i], ")")),
+            " // ", quadrant_names[i]);
         out.line("penumbra_quadrants.", channel_name(i), " = dot(", lookup("quadrant"), ", penumbra_i);");
         out.line("}");
     }

@@ -6,6 +6,14 @@
 
 namespace penumbra::detail {
 
+// The four quadrants of a square of the light's unit square (a kernel, the tangent clip's part), in the order
+// the vec4s of clustered fusion (penumbra_clusterCount) and of the irradiance window's quadrants
+// (penumbra_ringShares) hold them: each one's corner (-1 or 1 per axis) and name.
+inline constexpr std::array<std::string_view, 4> quadrant_corners{"vec2(-1.0, -1.0)", "vec2(1.0, -1.0)",
+                                                                  "vec2(-1.0, 1.0)", "vec2(1.0, 1.0)"};
+inline constexpr std::array<std::string_view, 4> quadrant_names{"lower left", "lower right", "upper left",
+                                                                "upper right"};
+
 // Gaussian levels are à-trous blurs whose standard deviation at level l is about 2^l / sqrt(6)
 // texels; a disk of diameter D has a standard deviation of D / 4 per axis, so a kernel of side
 // D texels reads level log2(D) + log2(sqrt(6) / 4) (see emit_prefilter.hpp).

@@ -3,7 +3,7 @@
 // window, the receiver in the light frame.
 #pragma once
 
-#include "parameters.hpp"
+#include "emit_kernel.hpp"
 
 namespace penumbra::detail {
 
@@ -60,9 +60,16 @@ constexpr Text clip_quadrant(std::string_view clip, std::string_view corner) {
 // Config::irradiance_quadrants: each quadrant's share of the clip's irradiance outside the core, the weights
 // of the quadrants' visibilities (the core's is what they leave).
 constexpr void write_ring_shares_function(LineWriter& out, const Config& config) {
-    constexpr std::array<std::string_view, 4> corners{"vec2(-1.0, -1.0)", "vec2(1.0, -1.0)",
-                                                      "vec2(-1.0, 1.0)", "vec2(1.0, 1.0)"};
-    constexpr std::array<std::string_view, 4> names{"lower left", "lower right", "upper left", "upper right"};
+    out.chunk("tangent_clip");
+    out.comment("The rectangle the squares `part` and `core` of the light's unit square share: xy its lower "
+                "corner, zw");
+    out.comment("its upper one (empty where an upper coordinate is not above the lower)");
+    out.line(signature(config, "vec4", "penumbra_sharedRectangle", {{"vec3", "part"}, {"vec3", "core"}}));
+    out.line("{");
+    out.line("return vec4(max(part.xy - vec2(0.5 * part.z), core.xy - vec2(0.5 * core.z)),");
+    out.line("    min(part.xy + vec2(0.5 * part.z), core.xy + vec2(0.5 * core.z)));");
+    out.line("}");
+    out.blank();
     out.chunk("tangent_clip");
     out.comment("The share of the irradiance at p (unit normal n) within the part `clip` of the light's unit "
                 "square that");
@@ -74,15 +81,13 @@ constexpr void write_ring_shares_function(LineWriter& out, const Config& config)
     out.line(value(config, "float", "whole", "penumbra_irradianceOf(p, n, clip)"));
     out.line(variable(config, "vec4", "shares", "vec4(0.0)"));
     for (int i = 0; i < 4; ++i) {
-        out.line("{ // ", names[i]);
-        out.line(value(config, "vec3", "quadrant", clip_quadrant("clip", corners[i])));
-        out.line(value(config, "vec2", "lo",
-                       "max(quadrant.xy - vec2(0.5 * quadrant.z), core.xy - vec2(0.5 * core.z))"));
-        out.line(value(config, "vec2", "hi",
-                       "min(quadrant.xy + vec2(0.5 * quadrant.z), core.xy + vec2(0.5 * core.z))"));
+        out.line("{");
+        out.line(value(config, "vec3", "quadrant", clip_quadrant("clip", quadrant_corners[i])), " // ",
+                 quadrant_names[i]);
+        out.line(value(config, "vec4", "both", "penumbra_sharedRectangle(quadrant, core)"));
         out.line(value(config, "float", "inCore",
-                       conditional(config, "hi.x > lo.x && hi.y > lo.y",
-                                   "penumbra_irradianceBetween(p, n, lo, hi)", "0.0")));
+                       conditional(config, "both.z > both.x && both.w > both.y",
+                                   "penumbra_irradianceBetween(p, n, both.xy, both.zw)", "0.0")));
         out.line("shares.", channel_name(i), " = max(penumbra_irradianceOf(p, n, quadrant) - inCore, 0.0);");
         out.line("}");
     }
@@ -212,11 +217,8 @@ constexpr void write_quadrant_visibility_function(LineWriter& out, const Config&
     out.line("visibility += (1.0 - dot(rings, vec4(1.0))) * seen;");
     out.line("} else {");
     out.comment("the part of the quadrant inside the core, which the core's pass counts");
-    out.line(
-        value(config, "vec2", "lo", "max(part.xy - vec2(0.5 * part.z), window.xy - vec2(0.5 * window.z))"));
-    out.line(
-        value(config, "vec2", "hi", "min(part.xy + vec2(0.5 * part.z), window.xy + vec2(0.5 * window.z))"));
-    out.line(value(config, "vec2", "overlap", "max(hi - lo, vec2(0.0))"));
+    out.line(value(config, "vec4", "both", "penumbra_sharedRectangle(part, window.xyz)"));
+    out.line(value(config, "vec2", "overlap", "max(both.zw - both.xy, vec2(0.0))"));
     out.line(value(config, "float", "inCore", "overlap.x * overlap.y / max(part.z * part.z, 1e-12)"));
     out.line(value(config, "float", "share",
                    cat("dot(rings, vec4(", conditional(config, "quadrant == 0", "1.0", "0.0"), ", ",
