@@ -7,6 +7,7 @@
 #pragma once
 
 #include <penumbra/config.hpp>
+#include <penumbra/profiles.hpp>
 #include <penumbra/validate.hpp>
 
 #include <string>
@@ -83,6 +84,16 @@ inline LadderEntry clustered_entry(int slices, int resolution) {
     entry.config.fusion = Fusion::clustered;
     entry.family = "clustered-fusion";
     entry.label += " clustered";
+    return entry;
+}
+
+// The `large` profile (penumbra/profiles.hpp, docs/model.md §1.7.6): the irradiance window's quadrants, five
+// passes of the slice loop instead of two. In the occlusion family: a tier a user picks for large lights, so
+// the equal-time tables may pick it where it fits the budget.
+inline LadderEntry large_profile_entry(int slices, int resolution) {
+    LadderEntry entry = occlusion_entry(Filter::nbuffer, slices, resolution);
+    entry.config = apply_profile(entry.config, Profile::large);
+    entry.label += " large";
     return entry;
 }
 
@@ -247,6 +258,7 @@ inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
         solid_casters_entry(Filter::nbuffer, 16, 512),
         clustered_entry(8, 256),
         clustered_entry(16, 512),
+        large_profile_entry(16, 512),
         area_entry(16, 512),
         every_level_entry(16, 512),
         full_levels_entry(16, 512),
