@@ -119,6 +119,16 @@ inline LadderEntry budget_area_entry(Filter filter, int slices, int resolution) 
     return entry;
 }
 
+// The cheapest budget: weighed by area and fused by `chained` (docs/model.md §1.7), one lookup a slice where
+// `extent` takes two (the doubled window); on llvmpipe its screen pass is about two thirds of the area-weighted
+// setting's. In the occlusion family, like budget_area_entry: a setting a user picks for its cost.
+inline LadderEntry budget_chained_entry(Filter filter, int slices, int resolution) {
+    LadderEntry entry = budget_area_entry(filter, slices, resolution);
+    entry.config.fusion = Fusion::chained;
+    entry.label += " chained";
+    return entry;
+}
+
 // The default before it built only the levels its kernels reach, in RGBA8, at reduced resolution:
 // every level, RGBA16F, at full resolution (85 MiB at 16/512). Its own family, so that the tables show it beside the default and never pick it.
 inline LadderEntry every_level_entry(int slices, int resolution) {
@@ -240,13 +250,16 @@ inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
     std::vector<LadderEntry> ladder{
         occlusion_entry(Filter::mipmap, 4, 128, true),
         budget_area_entry(Filter::mipmap, 4, 128),
+        budget_chained_entry(Filter::mipmap, 4, 128),
         occlusion_entry(Filter::mipmap, 8, 256),
         occlusion_entry(Filter::mipmap, 16, 512),
         occlusion_entry(Filter::mipmap, 8, 128),
         occlusion_entry(Filter::nbuffer, 4, 128),
         budget_area_entry(Filter::nbuffer, 4, 128),
+        budget_chained_entry(Filter::nbuffer, 4, 128),
         occlusion_entry(Filter::nbuffer, 8, 128),
         budget_area_entry(Filter::nbuffer, 8, 128),
+        budget_chained_entry(Filter::nbuffer, 8, 128),
         reduced_from_entry(Filter::nbuffer, 8, 128, 1),
         occlusion_entry(Filter::nbuffer, 8, 256),
         reduced_from_entry(Filter::nbuffer, 8, 256, 1),
