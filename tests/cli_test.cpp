@@ -261,7 +261,17 @@ TEST_CASE("--profile and the JSON key profile: the preset, with the fields given
     CHECK_FALSE(config_of(plain).contains("profile"));
     const Run wrong = run_gen(with_out({"--profile", "huge"}, scratch().fresh("profile-wrong")));
     CHECK(wrong.exit_code == 2);
-    CHECK(wrong.err.find("--profile: 'huge' is not allowed; allowed: balanced, large") != std::string::npos);
+    CHECK(wrong.err.find("--profile: 'huge' is not allowed; allowed: balanced, large, fast") !=
+          std::string::npos);
+    // fast: its slices, resolution, fusion and the light by area, and a --slices beside it wins
+    const fs::path fast = scratch().fresh("profile-fast");
+    REQUIRE(run_gen(with_out({"--slices", "4", "--profile", "fast"}, fast)).exit_code == 0);
+    const nlohmann::json f = config_of(fast);
+    CHECK(f.at("profile") == "fast");
+    CHECK(f.at("slices") == 4);
+    CHECK(f.at("resolution") == 128);
+    CHECK(f.at("fusion") == "chained");
+    CHECK(f.at("irradiance_window") == false);
 }
 
 TEST_CASE("--config reads a config object or a whole layout.json; flags override it") {

@@ -545,14 +545,19 @@ Row irradiance_window_row() {
 
 // The profiles (penumbra/profiles.hpp): every GLSL target × light, at 256² (OpenGL 3.3 guarantees a
 // 1024-texel atlas, too narrow for the default 512² with 16 slices). Each preset is valid everywhere;
-// `balanced` is the default configuration itself, `large` its own preset (the irradiance window's quadrants,
-// the default fusion).
+// `balanced` is the default configuration itself (there at 256², given explicitly), `large` its own preset
+// (the irradiance window's quadrants, the default fusion), `fast` its own (8 slices of 128², chained, by
+// area).
 Row profiles_row() {
+    static constexpr std::array<std::string_view, 1> resolution_given{"resolution"};
+    static constexpr std::span<const std::string_view> no_keys{};
     std::vector<Config> configs;
     for (Target target : glsl_targets())
         for (Light light : all_values<Light>())
             for (Profile profile : all_values<Profile>())
-                configs.push_back(apply_profile({.resolution = 256, .light = light, .target = target}, profile));
+                configs.push_back(apply_profile({.resolution = 256, .light = light, .target = target},
+                                                profile,
+                                                profile == Profile::fast ? no_keys : resolution_given));
     return {.name = "profiles",
             .configurations = configs,
             .expect = [](const Config&) { return Expect::valid; },
@@ -563,12 +568,20 @@ Row profiles_row() {
                         CHECK_MESSAGE(c == plain, name_of(c));
                         return;
                     }
+                    if (c.profile == Profile::fast) {
+                        CHECK(c.slices == 8);
+                        CHECK(c.resolution == 128);
+                        CHECK(c.fusion == Fusion::chained);
+                        CHECK_FALSE(c.irradiance_window);
+                        CHECK_FALSE(c.irradiance_quadrants);
+                        return;
+                    }
                     CHECK(c.slices == plain.slices);
                     CHECK(c.fusion == plain.fusion);
                     CHECK(c.irradiance_window);
                     CHECK(c.irradiance_quadrants);
                 },
-            .check_row = [](const RowResult& r) { CHECK(r.valid == 4 * 2 * 2); }};
+            .check_row = [](const RowResult& r) { CHECK(r.valid == 4 * 2 * 3); }};
 }
 
 // --- the one check -------------------------------------------------------------------------------

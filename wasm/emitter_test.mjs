@@ -135,7 +135,8 @@ async function main() {
     cases.push(sample.files["layout.json"]);
     // The profiles (penumbra/profiles.hpp), with keys beside them that win, in JSON's own order.
     cases.push('{"profile": "large"}', '{"profile": "large", "light": "sun", "fusion": "chained"}',
-               '{"fusion": "extent", "profile": "large", "target": "essl300"}', '{"profile": "huge"}');
+               '{"fusion": "extent", "profile": "large", "target": "essl300"}', '{"profile": "fast", "target": "wgsl"}',
+               '{"slices": 16, "profile": "fast"}', '{"profile": "huge"}');
     // The add-ons' profile option (penumbra_emission.js): the configuration it asks the module for.
     const {requestedEmission} = await import(pathToFileURL(path.join(here, "../web/three/penumbra_emission.js")));
     for (const kind of ["rect", "sun"]) {
@@ -143,6 +144,10 @@ async function main() {
         const c = large.ok ? large.layout.config : {};
         if (c.profile !== "large" || c.fusion !== "extent" || c.irradiance_quadrants !== true || (c.irradiance_window ?? true) !== true)
             throw new Error(`profile large for ${kind}: ${large.ok ? JSON.stringify(c) : large.error}`);
+        const fast = emitter.emit(requestedEmission({profile: "fast"}, kind));
+        const f = fast.ok ? fast.layout.config : {};
+        if (f.profile !== "fast" || f.slices !== 8 || f.resolution !== 128 || f.fusion !== "chained" || f.irradiance_window !== false)
+            throw new Error(`profile fast for ${kind}: ${fast.ok ? JSON.stringify(f) : fast.error}`);
     }
     if (requestedEmission({profile: "balanced"}, "rect") !== "rect-nbuffer-16x512")
         throw new Error("profile balanced alone should be the shipped default emission");

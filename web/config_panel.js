@@ -114,8 +114,8 @@ export class ConfigPanel {
                                             target: current.target});
         if (!emission.ok || !emission.layout) return this.changed();
         const preset = emission.layout.config;
-        this.set({fusion: preset.fusion, irradiance_window: preset.irradiance_window ?? true,
-                  irradiance_quadrants: preset.irradiance_quadrants ?? false});
+        this.set({slices: preset.slices, resolution: preset.resolution, fusion: preset.fusion,
+                  irradiance_window: preset.irradiance_window ?? true, irradiance_quadrants: preset.irradiance_quadrants ?? false});
     }
 
     changed() {

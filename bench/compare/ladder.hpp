@@ -87,13 +87,14 @@ inline LadderEntry clustered_entry(int slices, int resolution) {
     return entry;
 }
 
-// The `large` profile (penumbra/profiles.hpp, docs/model.md §1.7.6): the irradiance window's quadrants, five
-// passes of the slice loop instead of two. In the occlusion family: a tier a user picks for large lights, so
-// the equal-time tables may pick it where it fits the budget.
-inline LadderEntry large_profile_entry(int slices, int resolution) {
-    LadderEntry entry = occlusion_entry(Filter::nbuffer, slices, resolution);
-    entry.config = apply_profile(entry.config, Profile::large);
-    entry.label += " large";
+// A profile as it ships (penumbra/profiles.hpp, docs/model.md §1.11): `large` (the irradiance window's
+// quadrants, five passes of the slice loop instead of two) or `fast` (8 slices of 128², chained, by area). In
+// the occlusion family: a tier a user picks, so the equal-time tables may pick it where it fits the budget.
+inline LadderEntry profile_entry(Profile profile) {
+    LadderEntry entry = occlusion_entry(Filter::nbuffer, 16, 512);
+    entry.config = apply_profile(entry.config, profile);
+    entry.label = "OT nbuffer " + std::to_string(entry.config.slices) + "/" +
+                  std::to_string(entry.config.resolution) + " " + std::string(to_string(profile));
     return entry;
 }
 
@@ -120,8 +121,8 @@ inline LadderEntry budget_area_entry(Filter filter, int slices, int resolution) 
 }
 
 // The cheapest budget: weighed by area and fused by `chained` (docs/model.md §1.7), one lookup a slice where
-// `extent` takes two (the doubled window); on llvmpipe its screen pass is about two thirds of the area-weighted
-// setting's. In the occlusion family, like budget_area_entry: a setting a user picks for its cost.
+// `extent` takes two (the doubled window); on llvmpipe the frame is 0.62 times the area-weighted setting's.
+// In the occlusion family, like budget_area_entry: a setting a user picks for its cost.
 inline LadderEntry budget_chained_entry(Filter filter, int slices, int resolution) {
     LadderEntry entry = budget_area_entry(filter, slices, resolution);
     entry.config.fusion = Fusion::chained;
@@ -259,7 +260,7 @@ inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
         budget_chained_entry(Filter::nbuffer, 4, 128),
         occlusion_entry(Filter::nbuffer, 8, 128),
         budget_area_entry(Filter::nbuffer, 8, 128),
-        budget_chained_entry(Filter::nbuffer, 8, 128),
+        profile_entry(Profile::fast),
         reduced_from_entry(Filter::nbuffer, 8, 128, 1),
         occlusion_entry(Filter::nbuffer, 8, 256),
         reduced_from_entry(Filter::nbuffer, 8, 256, 1),
@@ -271,7 +272,7 @@ inline std::vector<LadderEntry> technique_ladder(LadderSet set) {
         solid_casters_entry(Filter::nbuffer, 16, 512),
         clustered_entry(8, 256),
         clustered_entry(16, 512),
-        large_profile_entry(16, 512),
+        profile_entry(Profile::large),
         area_entry(16, 512),
         every_level_entry(16, 512),
         full_levels_entry(16, 512),

@@ -7,14 +7,17 @@
 // rectangle (a window, a sky panel, an overcast sky), where the irradiance falls steeply across the light:
 // it fuses the tangent clip's four quadrants apart as well (irradiance_quadrants), five passes of the slice
 // loop instead of two, and trades frame time for error (lower at every light size, most from x1 to x8).
-// Both run on every target (so neither takes more
-// than 16 slices, which OpenGL 3.3, ES 3.0 and Vulkan's guaranteed render targets and atlas width allow,
-// nor solid casters, which need a logic op). The measurements
-// behind each preset (error by light size against the irradiance reference, frame cost) are in
-// docs/model.md §1.11.
+// `fast` is for a frame budget below PCSS's: 8 slices of 128², fused by `chained` (one lookup a slice, not
+// extent's two) and the light weighed by area (one pass of the slice loop, not the window's two); about a
+// sixth of `balanced`'s frame on llvmpipe, with a higher error, still below PCSS 16/16's in most cells.
+// All three run on every target (so none takes more than 16 slices, which OpenGL 3.3, ES 3.0 and Vulkan's
+// guaranteed render targets and atlas width allow, nor solid casters, which need a logic op). The
+// measurements behind each preset (error by light size against the irradiance reference, frame cost) are
+// in docs/model.md §1.11.
 //
-// A profile sets only the fields it names (profile_fields); the fields a caller gives explicitly win over
-// it whatever their order (apply_profile's `explicit_keys`: the command line's flags, a JSON file's keys).
+// A profile sets every field it names (profile_fields), to its preset's value or else the default's; the
+// fields a caller gives explicitly win over it whatever their order (apply_profile's `explicit_keys`: the
+// command line's flags, a JSON file's keys).
 #pragma once
 
 #include "config.hpp"
@@ -26,20 +29,23 @@
 namespace penumbra {
 
 // The keys of the table of fields (penumbra/config_fields.hpp) a profile sets.
-inline constexpr std::array<std::string_view, 3> profile_fields{"fusion", "irradiance_window",
-                                                                "irradiance_quadrants"};
+inline constexpr std::array<std::string_view, 5> profile_fields{"slices", "resolution", "fusion",
+                                                                "irradiance_window", "irradiance_quadrants"};
 
 // One line on what the profile is for (the tools' --help, the panels).
 constexpr std::string_view profile_summary(Profile profile) {
     switch (profile) {
     case Profile::balanced: return "the default: the lowest error within the default frame time at every light size";
     case Profile::large: return "large lights (x4 and up): the irradiance window's quadrants";
+    case Profile::fast:
+        return "a frame budget below PCSS's: 8 slices of 128, chained fusion, the light weighed by area";
     }
     return "";
 }
 
-// `config` with `profile`'s preset, except the fields in `explicit_keys`. Both keep the irradiance window
-// on (it weighs a rectangle's light within the tangent clip, and has no effect elsewhere).
+// `config` with `profile`'s preset, except the fields in `explicit_keys`. `balanced` and `large` keep the
+// irradiance window on (it weighs a rectangle's light within the tangent clip, and has no effect elsewhere);
+// `fast` weighs the light by area.
 constexpr Config apply_profile(Config config, Profile profile, std::span<const std::string_view> explicit_keys = {}) {
     auto given = [&](std::string_view key) {
         for (std::string_view k : explicit_keys)
@@ -49,7 +55,15 @@ constexpr Config apply_profile(Config config, Profile profile, std::span<const s
     const Config defaults{};
     Config preset = defaults;
     if (profile == Profile::large) preset.irradiance_quadrants = true;
+    if (profile == Profile::fast) {
+        preset.slices = 8;
+        preset.resolution = 128;
+        preset.fusion = Fusion::chained;
+        preset.irradiance_window = false;
+    }
     config.profile = profile;
+    if (!given("slices")) config.slices = preset.slices;
+    if (!given("resolution")) config.resolution = preset.resolution;
     if (!given("fusion")) config.fusion = preset.fusion;
     if (!given("irradiance_window")) config.irradiance_window = preset.irradiance_window;
     if (!given("irradiance_quadrants")) config.irradiance_quadrants = preset.irradiance_quadrants;

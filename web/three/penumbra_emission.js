@@ -13,13 +13,16 @@ export function fail(message) {
     throw new PenumbraError(`PenumbraShadows: ${message}`);
 }
 
+// The shadow quality tiers (penumbra/profiles.hpp's Profile, in its order).
+export const PROFILES = ["balanced", "large", "fast"];
+
 // What load() emits or fetches: options.emission, or the profile's (penumbra/profiles.hpp) configuration
 // for this light, through the WebAssembly emitter; "balanced" alone is the shipped default emission.
 export function requestedEmission(options, kind) {
     const shipped = kind === "sun" ? "sun-nbuffer-16x512" : "rect-nbuffer-16x512";
     const profile = options.profile;
     if (profile === undefined) return options.emission ?? shipped;
-    if (profile !== "balanced" && profile !== "large") fail(`profile '${profile}' is not allowed; allowed: balanced, large`);
+    if (!PROFILES.includes(profile)) fail(`profile '${profile}' is not allowed; allowed: ${PROFILES.join(", ")}`);
     const emission = options.emission;
     if (emission === undefined) return profile === "balanced" ? shipped : {profile, light: kind};
     if (emission && typeof emission === "object" && !emission.layout) return {...emission, profile};

@@ -11,11 +11,12 @@ export interface PenumbraShadowsOptions {
     /** Default "rect-nbuffer-16x512" (RectAreaLight) or "sun-nbuffer-16x512" (DirectionalLight). */
     emission?: Emission;
     /**
-     * A shadow quality tier (penumbra-gen --profile): "balanced" (the default) or "large" (lights x4 and up:
-     * clustered fusion; emitted by penumbra_emitter.wasm). With a
-     * configuration object as `emission`, its fields win over the profile's.
+     * A shadow quality tier (penumbra-gen --profile): "balanced" (the default), "large" (lights x4 and up:
+     * the irradiance window's quadrants, 1.3 to 1.8 times the frame) or "fast" (a frame budget below PCSS's:
+     * 8 slices of 128, chained fusion, the light weighed by area); all but "balanced" emitted by
+     * penumbra_emitter.wasm. With a configuration object as `emission`, its fields win over the profile's.
      */
-    profile?: "balanced" | "large";
+    profile?: "balanced" | "large" | "fast";
     /** Sun only: the angular diameter in radians (default 0.0093, 0.53°). */
     angularDiameter?: number;
     /** Re-run the shadow phase when the light, a caster or a receiver changed (default true). */
