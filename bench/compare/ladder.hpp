@@ -91,10 +91,10 @@ inline LadderEntry clustered_entry(int slices, int resolution) {
 // quadrants, five passes of the slice loop instead of two) or `fast` (8 slices of 128², chained, by area). In
 // the occlusion family: a tier a user picks, so the equal-time tables may pick it where it fits the budget.
 inline LadderEntry profile_entry(Profile profile) {
-    LadderEntry entry = occlusion_entry(Filter::nbuffer, 16, 512);
-    entry.config = apply_profile(entry.config, profile);
-    entry.label = "OT nbuffer " + std::to_string(entry.config.slices) + "/" +
-                  std::to_string(entry.config.resolution) + " " + std::string(to_string(profile));
+    const Config preset = apply_profile({}, profile);
+    LadderEntry entry = occlusion_entry(preset.filter, preset.slices, preset.resolution);
+    entry.config = preset;
+    entry.label += " " + std::string(to_string(profile));
     return entry;
 }
 
