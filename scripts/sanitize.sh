@@ -76,8 +76,15 @@ if command -v xvfb-run >/dev/null; then
     printf '%s\n' 'set filter sat' 'wait 2' 'edit penumbra_deferred.frag append this is not glsl' \
         'wait_reload 20' 'restore penumbra_deferred.frag' 'wait_reload 20' 'set split on' 'wait 2' \
         'screenshot window.png' > "$session/session.txt"
-    (cd "$session" && xvfb-run -a env LD_PRELOAD="$preload" ../playground/penumbra-playground --scene boxes \
-        --size 160x120 --slices 4 --resolution 64 --script session.txt --watch shaders)
+    # The playground's own exit status, not xvfb-run's: xvfb-run has exited 5 after a command that
+    # succeeded ("problem while cleaning up temporary directory"), so the session writes its status.
+    (cd "$session" && xvfb-run -a sh -c 'env LD_PRELOAD="$1" ../playground/penumbra-playground --scene boxes \
+        --size 160x120 --slices 4 --resolution 64 --script session.txt --watch shaders; echo $? > status.txt' \
+        sh "$preload") || true
+    if [ "$(cat "$session/status.txt" 2>/dev/null)" != 0 ]; then
+        echo "sanitize: the window session failed (exit status: $(cat "$session/status.txt" 2>/dev/null || echo none))" >&2
+        exit 1
+    fi
 else
     echo "sanitize: skipped the window: no xvfb-run"
 fi

@@ -4,6 +4,7 @@
 #include "child_process.hpp"
 
 #include "../runtime/gltf_compression_files.hpp"
+#include "../window/virtual_display.hpp"
 
 #include <penumbra_tools/printable.hpp>
 #include "shader_diagnostics.hpp"
@@ -407,21 +408,20 @@ TEST_CASE("hostile: playground files are whole or absent, and 'wrote' only for w
 }
 
 TEST_CASE("hostile: a window screenshot that cannot be written is not 'wrote', and fails the run") {
-    if (std::system("command -v xvfb-run >/dev/null 2>&1") != 0) {
+    if (!penumbra::test::has_virtual_display()) {
         MESSAGE("skipped: no xvfb-run");
         return;
     }
     const fs::path dir = scratch().fresh("window");
     fs::create_directories(dir / "shot.png"); // a directory where the screenshot goes
-    // Without the sanitizer runtimes scripts/sanitize.sh preloads into its test drivers: Xvfb and
-    // this (unsanitized) playground must not inherit them.
-    const std::string command = "cd '" + dir.string() + "' && env -u LD_PRELOAD xvfb-run -a '" + playground +
-                                "' --scene planes --size 64x48 --slices 2 --resolution 32 --frames 2"
-                                " --screenshot shot.png --watch shaders > out.txt 2> err.txt";
-    const int status = std::system(command.c_str());
+    const penumbra::test::VirtualDisplayRun run = penumbra::test::run_under_virtual_display(
+        dir, "'" + playground +
+                 "' --scene planes --size 64x48 --slices 2 --resolution 32 --frames 2"
+                 " --screenshot shot.png --watch shaders > out.txt 2> err.txt");
     const std::string out = hostile::read_capped(dir / "out.txt"), err = hostile::read_capped(dir / "err.txt");
     CAPTURE(err);
-    CHECK(WEXITSTATUS(status) == 1);
+    CAPTURE(run.display_log);
+    CHECK(run.exit_code == 1);
     CHECK(err.find("error: screenshot: cannot write 'shot.png': it is a directory") != std::string::npos);
     CHECK(out.find("screenshot: wrote") == std::string::npos);
     CHECK(fs::is_directory(dir / "shot.png"));

@@ -3,6 +3,7 @@
 // `file:line: message` while frames keep coming with the last good program, and after the fix
 // the image matches the one before the error.
 #include "app/image_io.hpp"
+#include "virtual_display.hpp"
 
 #include <doctest/doctest.h>
 
@@ -72,10 +73,6 @@ std::string read(const fs::path& path) {
     std::ostringstream text;
     text << file.rdbuf();
     return text.str();
-}
-
-bool has_program(const char* name) {
-    return std::system((std::string("command -v ") + name + " >/dev/null 2>&1").c_str()) == 0;
 }
 
 // The frame number a screenshot line reports.
@@ -181,7 +178,7 @@ void write_sphere(const fs::path& path, int rings, int segments) {
 
 TEST_SUITE("session") {
     TEST_CASE("window: scripted session under xvfb-run") {
-        if (!has_program("xvfb-run")) {
+        if (!penumbra::test::has_virtual_display()) {
             std::cout << "skipped: xvfb-run not found (Debian: apt-get install xvfb xauth); the window test "
                          "needs a "
                          "virtual display\n";
@@ -192,14 +189,14 @@ TEST_SUITE("session") {
         fs::create_directories(dir);
         std::ofstream(dir / "session.txt") << session_script;
         // Small image and configuration: the whole session runs on llvmpipe in CI.
-        const std::string command = "cd '" + dir.string() + "' && xvfb-run -a '" + PENUMBRA_PLAYGROUND_PATH +
-                                    "' --scene boxes --size 192x144 --slices 8 --resolution 128 --frames 30"
-                                    " --script session.txt --screenshot last.png --watch shaders"
-                                    " > stdout.txt 2> stderr.txt";
-        const int status = std::system(command.c_str());
+        const penumbra::test::VirtualDisplayRun run = penumbra::test::run_under_virtual_display(
+            dir, std::string("'") + PENUMBRA_PLAYGROUND_PATH +
+                     "' --scene boxes --size 192x144 --slices 8 --resolution 128 --frames 30"
+                     " --script session.txt --screenshot last.png --watch shaders"
+                     " > stdout.txt 2> stderr.txt");
         const std::string out = read(dir / "stdout.txt"), err = read(dir / "stderr.txt");
-        INFO("stdout:\n" << out << "\nstderr:\n" << err);
-        REQUIRE(status == 0);
+        INFO("stdout:\n" << out << "\nstderr:\n" << err << "\nvirtual display:\n" << run.display_log);
+        REQUIRE(run.exit_code == 0);
 
         // The configuration changes were applied; the invalid one was refused with the validator's words.
         CHECK(out.find("config: slices=2 ") != std::string::npos);
@@ -273,7 +270,7 @@ TEST_SUITE("session") {
     // the panel says otherwise, and the estimate's error against it, near the terminator of a smooth sphere
     // too, is a number this test holds (measured: see the bounds' comments).
     TEST_CASE("window: the error view read back as floats, against the irradiance truth") {
-        if (!has_program("xvfb-run")) {
+        if (!penumbra::test::has_virtual_display()) {
             std::cout << "skipped: xvfb-run not found (Debian: apt-get install xvfb xauth)\n";
             std::exit(77);
         }
@@ -288,14 +285,13 @@ TEST_SUITE("session") {
                                                "wait_truth 300\n"
                                                "readback oriented.pfm\n"
                                                "set reference sideways\n";
-        const std::string command = "cd '" + dir.string() + "' && xvfb-run -a '" + PENUMBRA_PLAYGROUND_PATH +
-                                    "' --scene sphere.obj --size 160x120 --script readback.txt"
-                                    " > stdout.txt 2> stderr.txt";
-        const int status = std::system(command.c_str());
+        const penumbra::test::VirtualDisplayRun run = penumbra::test::run_under_virtual_display(
+            dir, std::string("'") + PENUMBRA_PLAYGROUND_PATH +
+                     "' --scene sphere.obj --size 160x120 --script readback.txt > stdout.txt 2> stderr.txt");
         const std::string out = read(dir / "stdout.txt"), err = read(dir / "stderr.txt");
-        INFO("stdout:\n" << out << "\nstderr:\n" << err);
+        INFO("stdout:\n" << out << "\nstderr:\n" << err << "\nvirtual display:\n" << run.display_log);
         // The last line names a reference that does not exist: the run fails with the allowed ones.
-        CHECK(status != 0);
+        CHECK(run.exit_code > 0);
         CHECK(err.find("reference: 'sideways' is not allowed; allowed: irradiance, oriented, whole_light") !=
               std::string::npos);
         CHECK(out.find("truth (irradiance): 16x16 rays per pixel") != std::string::npos);
