@@ -448,10 +448,11 @@ int main(int argc, char** argv) {
                 "atlas, leak fix and fade on; penumbra pixels: truth or estimate < 0.98; times: GPU ms per pass\n\n",
                 context->renderer().c_str(), options->width, options->height, options->samples, options->samples,
                 options->repeat);
-    std::printf("| scene | filter | S/R | MAE | RMSE | p95 | penumbra MAE | penumbra RMSE | penumbra p95 | penumbra px "
+    std::printf("| scene | filter | S/R | MAE | RMSE | p95 | penumbra MAE | penumbra RMSE | penumbra p95 | "
+                "penumbra px "
                 "| oriented penumbra MAE | oriented p95 | irradiance penumbra MAE | irradiance p95 "
                 "| slicing ms | prefilter ms | shading ms | terminator p95 | terminator TV | terminator px "
-                "| false light % | false shadow % |\n");
+                "| false light % (px) | false shadow % (px) |\n");
     std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     std::vector<std::string> pass_lines;
     for (std::size_t scene_index = 0; scene_index < scenes.size(); ++scene_index)
@@ -555,13 +556,16 @@ int main(int argc, char** argv) {
                     line += part;
                 }
                 pass_lines.push_back(line);
-                std::printf("| %s | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %zu | %.4f | %.4f | %.4f | %.4f | %.1f | %.1f "
-                            "| %.1f | %.4f | %.4f | %zu | %.1f | %.1f |\n",
+                std::printf("| %s | %.4f | %.4f | %.4f | %.4f | %.4f | %.4f | %zu | %.4f | %.4f | %.4f | "
+                            "%.4f | %.1f | %.1f "
+                            "| %.1f | %.4f | %.4f | %zu | %.1f (%zu of %zu) | %.1f (%zu of %zu) |\n",
                             label.c_str(), m.all.mae, m.all.rmse, m.all.p95, m.penumbra.mae, m.penumbra.rmse,
-                            m.penumbra.p95, m.penumbra.count, q.oriented.penumbra.mae, q.oriented.penumbra.p95,
-                            q.irradiance.penumbra.mae, q.irradiance.penumbra.p95, slicing, prefilter, shading,
-                            terminator.p95, terminator.total_variation, terminator.count, 100.0 * q.false_light.fraction(),
-                            100.0 * q.false_shadow.fraction());
+                            m.penumbra.p95, m.penumbra.count, q.oriented.penumbra.mae,
+                            q.oriented.penumbra.p95, q.irradiance.penumbra.mae, q.irradiance.penumbra.p95,
+                            slicing, prefilter, shading, terminator.p95, terminator.total_variation,
+                            terminator.count, 100.0 * q.false_light.fraction(), q.false_light.wrong,
+                            q.false_light.pixels, 100.0 * q.false_shadow.fraction(), q.false_shadow.wrong,
+                            q.false_shadow.pixels);
                 std::fflush(stdout);
             }
         std::printf("|   (%s ground truth: %.0f ms CPU, Embree) |\n", scene_name.c_str(), truth_ms);

@@ -14,7 +14,8 @@ const NOTES = {target: "the page runs essl300 on WebGL2, wgsl on WebGPU (the ren
 // The panel's fields: the table of configuration fields (penumbra/config_fields.hpp) as the
 // WebAssembly module gives it (emitter.fields()): key (the JSON path), flag, kind ("integer", "real",
 // "boolean", "choice" with its names), help (word for word what penumbra-gen --help says),
-// techniques (where the field is read; absent: every technique), plus the page's `note`.
+// techniques (where the field is read; absent: every technique), profile_sets (whether a profile sets
+// it), plus the page's `note`.
 export function panelFields(emitter) {
     return emitter.fields().map((f) => ({...f, note: NOTES[f.key], techniques: f.techniques.length ? f.techniques : undefined}));
 }
@@ -113,9 +114,12 @@ export class ConfigPanel {
         const emission = this.emitter.emit({profile: current.profile, light: current.light, tangent_clip: current.tangent_clip,
                                             target: current.target});
         if (!emission.ok || !emission.layout) return this.changed();
-        const preset = emission.layout.config;
-        this.set({slices: preset.slices, resolution: preset.resolution, fusion: preset.fusion,
-                  irradiance_window: preset.irradiance_window ?? true, irradiance_quadrants: preset.irradiance_quadrants ?? false});
+        // the fields a profile sets (the table's profile_sets); layout.json leaves out one added later
+        // while it has its default, so that default is the preset's
+        const preset = {};
+        for (const field of this.fields)
+            if (field.profile_sets) set(preset, field.key, get(emission.layout.config, field.key) ?? field.default);
+        this.set(preset);
     }
 
     changed() {

@@ -446,7 +446,8 @@ inline std::string config_schema_json(std::string_view indent = "") {
 
 // The table as JSON, for programs that cannot include this header (the web page's panel, through the
 // WebAssembly module): [{"key", "flag", "metavar", "kind", "min", "max", "min_exclusive", "allowed",
-// "help", "techniques": [...], "names": [...], "default", "optional"}, …], in table order.
+// "help", "techniques": [...], "names": [...], "default", "optional", "profile_sets"}, …], in table order;
+// "profile_sets": whether a profile sets the field (penumbra/profiles.hpp's profile_fields).
 inline std::string config_fields_json() {
     const Config d{};
     std::string out = "[";
@@ -457,12 +458,16 @@ inline std::string config_fields_json() {
         for (std::string_view n : f.names) names += (names.empty() ? "" : ", ") + detail::json_quoted(n);
         auto number = [](double v) { return std::isfinite(v) ? detail::number_text(v) : std::string("null"); };
         out += std::string(out.size() > 1 ? ",\n " : "\n ") + "{\"key\": " + detail::json_quoted(f.key) +
-               ", \"flag\": " + detail::json_quoted(f.flag) + ", \"metavar\": " + detail::json_quoted(f.metavar) +
-               ", \"kind\": " + detail::json_quoted(kinds[static_cast<int>(f.kind)]) + ", \"min\": " + number(f.min) +
-               ", \"max\": " + number(f.max) + ", \"min_exclusive\": " + (f.min_exclusive ? "true" : "false") +
-               ", \"allowed\": " + detail::json_quoted(allowed_text(f)) + ", \"help\": " + detail::json_quoted(f.help) +
-               ", \"techniques\": [" + techniques + "], \"names\": [" + names + "], \"default\": " + field_json(f, d) +
-               ", \"optional\": " + (f.omit_default ? "true" : "false") + "}";
+               ", \"flag\": " + detail::json_quoted(f.flag) +
+               ", \"metavar\": " + detail::json_quoted(f.metavar) +
+               ", \"kind\": " + detail::json_quoted(kinds[static_cast<int>(f.kind)]) +
+               ", \"min\": " + number(f.min) + ", \"max\": " + number(f.max) +
+               ", \"min_exclusive\": " + (f.min_exclusive ? "true" : "false") +
+               ", \"allowed\": " + detail::json_quoted(allowed_text(f)) +
+               ", \"help\": " + detail::json_quoted(f.help) + ", \"techniques\": [" + techniques +
+               "], \"names\": [" + names + "], \"default\": " + field_json(f, d) +
+               ", \"optional\": " + (f.omit_default ? "true" : "false") +
+               ", \"profile_sets\": " + (profile_sets(f.key) ? "true" : "false") + "}";
     }
     return out + "\n]";
 }

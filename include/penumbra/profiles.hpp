@@ -28,9 +28,27 @@
 
 namespace penumbra {
 
-// The keys of the table of fields (penumbra/config_fields.hpp) a profile sets.
-inline constexpr std::array<std::string_view, 5> profile_fields{"slices", "resolution", "fusion",
-                                                                "irradiance_window", "irradiance_quadrants"};
+// The fields a profile sets: each one's key in the table of fields (penumbra/config_fields.hpp), and how it
+// takes the preset's value.
+struct ProfileField {
+    std::string_view key;
+    void (*take)(Config& config, const Config& preset);
+};
+inline constexpr std::array<ProfileField, 5> profile_fields{{
+    {"slices", [](Config& c, const Config& p) { c.slices = p.slices; }},
+    {"resolution", [](Config& c, const Config& p) { c.resolution = p.resolution; }},
+    {"fusion", [](Config& c, const Config& p) { c.fusion = p.fusion; }},
+    {"irradiance_window", [](Config& c, const Config& p) { c.irradiance_window = p.irradiance_window; }},
+    {"irradiance_quadrants",
+     [](Config& c, const Config& p) { c.irradiance_quadrants = p.irradiance_quadrants; }},
+}};
+
+// Whether a profile sets the field `key`.
+constexpr bool profile_sets(std::string_view key) {
+    for (const ProfileField& field : profile_fields)
+        if (field.key == key) return true;
+    return false;
+}
 
 // One line on what the profile is for (the tools' --help, the panels).
 constexpr std::string_view profile_summary(Profile profile) {
@@ -62,11 +80,8 @@ constexpr Config apply_profile(Config config, Profile profile, std::span<const s
         preset.irradiance_window = false;
     }
     config.profile = profile;
-    if (!given("slices")) config.slices = preset.slices;
-    if (!given("resolution")) config.resolution = preset.resolution;
-    if (!given("fusion")) config.fusion = preset.fusion;
-    if (!given("irradiance_window")) config.irradiance_window = preset.irradiance_window;
-    if (!given("irradiance_quadrants")) config.irradiance_quadrants = preset.irradiance_quadrants;
+    for (const ProfileField& field : profile_fields)
+        if (!given(field.key)) field.take(config, preset);
     return config;
 }
 

@@ -97,6 +97,23 @@ async function checkPanel(page, label) {
     if (!refused.shown.startsWith("error: slices: 40 ") || refused.shown !== expected)
         failures.push(`slices 40: the page shows '${refused.shown}', the emitter says '${expected}'`);
     await setField(page, "left", "slices", slices);
+    // A profile picked in the panel shows the fields it sets as its preset has them (the table's
+    // profile_sets, through the WebAssembly module); picking the default's gives the defaults back.
+    const profileFields = ["slices", "resolution", "fusion", "irradiance_window", "irradiance_quadrants"];
+    const before = {};
+    for (const key of [...profileFields, "profile"]) before[key] = await panelValue(page, "left", key);
+    for (const [profile, expected] of [
+        ["fast", {slices: 8, resolution: 128, fusion: "chained", irradiance_window: false, irradiance_quadrants: false}],
+        ["large", {slices: 16, resolution: 512, fusion: "extent", irradiance_window: true, irradiance_quadrants: true}],
+        ["balanced", {slices: 16, resolution: 512, fusion: "extent", irradiance_window: true, irradiance_quadrants: false}]]) {
+        await setField(page, "left", "profile", profile);
+        for (const key of profileFields) {
+            const shown = await panelValue(page, "left", key);
+            if (shown !== expected[key]) failures.push(`profile ${profile}: the panel shows ${key} ${shown}, the preset has ${expected[key]}`);
+        }
+    }
+    for (const key of ["profile", ...profileFields])
+        if ((await panelValue(page, "left", key)) !== before[key]) await setField(page, "left", key, before[key]);
     // Every filter × packing × light (and adaptive placement) through the panel: what the emitter
     // accepts for essl300 runs and shadows; what it refuses shows its message.
     let ran = 0, refusedCount = 0;
