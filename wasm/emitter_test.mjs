@@ -138,7 +138,12 @@ async function main() {
                '{"fusion": "extent", "profile": "large", "target": "essl300"}', '{"profile": "fast", "target": "wgsl"}',
                '{"slices": 16, "profile": "fast"}', '{"profile": "huge"}');
     // The add-ons' profile option (penumbra_emission.js): the configuration it asks the module for.
-    const {requestedEmission} = await import(pathToFileURL(path.join(here, "../web/three/penumbra_emission.js")));
+    const {requestedEmission, PROFILES} = await import(pathToFileURL(path.join(here, "../web/three/penumbra_emission.js")));
+    // The add-ons check the option before any module is loaded, against their own list: it must be the
+    // table's (penumbra/profiles.hpp), in its order.
+    const profileNames = emitter.fields().find((f) => f.key === "profile")?.names ?? [];
+    if (JSON.stringify(PROFILES) !== JSON.stringify(profileNames))
+        throw new Error(`the add-ons' PROFILES ${JSON.stringify(PROFILES)} are not the emitter's profiles ${JSON.stringify(profileNames)}`);
     for (const kind of ["rect", "sun"]) {
         const large = emitter.emit(requestedEmission({profile: "large"}, kind));
         const c = large.ok ? large.layout.config : {};
