@@ -21,8 +21,10 @@
 // (scripts/get_corpus.sh), whose names, sources and licences results.json carries.
 //
 //   penumbra-bench-compare [--quick | --full] [--scenes a,b] [FILE ...] [--corpus [DIR]] [--settings a,b]
-//                          [--size N] [--samples N] [--runs N] [--lights rect,sun] [--light-scales 1,2,4] [--flicker-frames N]
-//                          [--out DIR]
+//                          [--size N] [--samples N] [--runs N] [--lights rect,sun] [--light-scales 1,2,4]
+//                          [--flicker-frames N]
+//                          [--out DIR] [--light-size W[,H]] [--light-center X,Y,Z] [--light-normal X,Y,Z]
+//                          [--light-up X,Y,Z] [--camera-position X,Y,Z] [--camera-target X,Y,Z]
 //
 // The parts: compare/options.hpp (the command line), compare/light_run.hpp (the measuring: one scene
 // under one light), compare/report.hpp (results.json's records and the images), compare/lights.hpp
@@ -83,6 +85,12 @@ std::optional<LoadedScenes> load_scenes(const Options& options, std::string* err
             return std::nullopt;
         }
         out.load_ms.push_back(milliseconds_since(load_start));
+        // --light-*, --camera-*: before every truth and measurement (--light-scales scale the result)
+        if (std::string e = apply_scene_overrides(options.overrides, *loaded.scene, Light::rect);
+            !e.empty()) {
+            *error = e;
+            return std::nullopt;
+        }
         if (input.corpus) loaded.scene->name = input.corpus->name;
         else if (input.kind == "file") loaded.scene->name = std::filesystem::path(input.name_or_path).stem().string();
         out.scenes.push_back(std::move(*loaded.scene));

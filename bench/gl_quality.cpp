@@ -5,9 +5,12 @@
 // time of each pass (timer queries; on llvmpipe the CPU
 // time of the software rasteriser, so compare ratios, not absolute values).
 //
-//   penumbra-bench-quality [--scenes planes,boxes] [FILE ...] [--corpus [DIR]] [--no-ground] [--filters sat,nbuffer]
+//   penumbra-bench-quality [--scenes planes,boxes] [FILE ...] [--corpus [DIR]] [--no-ground] [--filters
+//   sat,nbuffer]
 //                          [--configs 16x512,4x128] [--size 256x256] [--samples 16] [--repeat 1]
-//                          [--light-scales 1,2,4,8,16,32]
+//                          [--light-scales 1,2,4,8,16,32] [--light-size W[,H]] [--light-center X,Y,Z]
+//                          [--light-normal X,Y,Z] [--light-up X,Y,Z] [--camera-position X,Y,Z]
+//                          [--camera-target X,Y,Z]
 // After the rows, a summary: per variant, setting and light scale, the mean penumbra MAE and mean signed
 // error (estimate − truth) against the irradiance reference first (the shaded image's relative error),
 // then against the oriented one (the two disagree under large lights, docs/model.md §1.7.4), the mean
@@ -105,6 +108,8 @@ struct Options {
     std::vector<double> light_scales{1.0}; // --light-scales: multiples of each scene's rectangle
     int width = 256, height = 256, samples = 16, repeat = 3;
     bool ground = true; // --no-ground: no floor under the mesh files
+    SceneOverrides
+        overrides; // --light-*, --camera-*: every scene's light and camera (app/scene_overrides.hpp)
 };
 
 constexpr const char* usage_text =
@@ -112,9 +117,13 @@ constexpr const char* usage_text =
     "f,g,...]\n"
     "                              [--configs SxR,...] [--size WxH] [--samples N] [--repeat N] [--variants "
     "v,w,...]\n"
-    "                              [--level-reductions N,M,...] [--light-scales X,Y,...]\n"
+    "                              [--level-reductions N,M,...] [--light-scales X,Y,...] [--light-size "
+    "W[,H]]\n"
+    "                              [--light-center X,Y,Z] [--light-normal X,Y,Z] [--light-up X,Y,Z]\n"
+    "                              [--camera-position X,Y,Z] [--camera-target X,Y,Z]\n"
     "  --scenes    built-in scenes (default all: planes, boxes, tree, butterfly, terrain, crowd, box, "
-    "cutout; '' for none)\n"
+    "cutout; '' for none;\n"
+    "              the rooms room, window, cornell only when named)\n"
     "  FILE        mesh files (what penumbra-playground --scene loads), measured after the built-in scenes\n"
     "  --corpus    every mesh of the corpus in DIR (default ~/.cache/penumbra/corpus; "
     "scripts/get_corpus.sh)\n"
@@ -147,7 +156,17 @@ constexpr const char* usage_text =
     "              one, mean false light and false shadow, then near the terminator (within 3 pixels of\n"
     "              where a surface turns away from the light's centre): p95 of |error| and the error's\n"
     "              total variation (sawtooth, seams); with more than one scale, a table per scene and\n"
-    "              setting: MAE / signed error by scale, irradiance then oriented\n";
+    "              setting: MAE / signed error by scale, irradiance then oriented\n"
+    "  --light-size W[,H]  every scene's rectangle: W its longer side (aspect kept), W,H its width (along "
+    "u)\n"
+    "              and height (along v), in scene units; --light-scales multiply it\n"
+    "  --light-center X,Y,Z  the rectangle's centre; --light-normal X,Y,Z: the direction it faces and emits\n"
+    "              towards; --light-up X,Y,Z: its height side (v), projected onto its plane, not parallel "
+    "to\n"
+    "              the normal (default: the scene light's v, else +y, else +z); as penumbra-playground\n"
+    "  --camera-position X,Y,Z, --camera-target X,Y,Z  every scene's camera (either alone keeps the\n"
+    "              scene's other; not the same point)\n"
+    "  (light and camera flags are set on every scene once it is made, and hold for the ground truth)\n";
 
 bool parse_pair(std::string_view text, int& a, int& b) {
     const std::size_t x = text.find('x');
@@ -185,7 +204,8 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
             o.scenes.clear();
             for (std::string_view name : split(value)) {
                 if (!make_scene(name)) {
-                    error = "--scenes: unknown scene '" + std::string(name) + "'";
+                    error = "--scenes: unknown scene '" + std::string(name) +
+                            "'; allowed: " + allowed_scene_names();
                     return std::nullopt;
                 }
                 o.scenes.push_back({std::string(name), std::string(name)});
@@ -276,6 +296,9 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                 error = "--light-scales: empty; allowed: numbers above 0, at most 64";
                 return std::nullopt;
             }
+        } else if (penumbra::playground::is_scene_override_flag(flag)) {
+            error = penumbra::playground::parse_scene_override(flag, value, o.overrides);
+            if (!error.empty()) return std::nullopt;
         } else if (flag == "--size") {
             if (!parse_pair(value, o.width, o.height) || o.width < 1 || o.height < 1 || o.width > 4096 || o.height > 4096) {
                 error = "--size: expected WxH, 1 to 4096 each";
@@ -292,12 +315,15 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                 return std::nullopt;
             }
         } else {
-            error = "unknown flag '" + std::string(flag) + "'; allowed: --scenes, --corpus, --no-ground, --filters, --configs, --size, "
-                    "--samples, --repeat, --variants, --level-reductions, --light-scales, --help, FILE";
+            error = "unknown flag '" + std::string(flag) +
+                    "'; allowed: --scenes, --corpus, --no-ground, --filters, --configs, --size, "
+                    "--samples, --repeat, --variants, --level-reductions, --light-scales, " +
+                    std::string(penumbra::playground::scene_override_flag_list) + ", --help, FILE";
             return std::nullopt;
         }
     }
     o.scenes.insert(o.scenes.end(), files.begin(), files.end());
+    if (error = penumbra::playground::check_scene_overrides(o.overrides); !error.empty()) return std::nullopt;
     if (o.scenes.empty()) {
         error = "no scene: give --scenes, a mesh file or --corpus";
         return std::nullopt;
@@ -416,6 +442,12 @@ int main(int argc, char** argv) {
             std::cerr << "error: " << loaded.error << "\n";
             return 2;
         }
+        // --light-*, --camera-*: before the truth and every render (--light-scales scale the result)
+        if (std::string e = apply_scene_overrides(options->overrides, *loaded.scene, penumbra::Light::rect);
+            !e.empty()) {
+            std::cerr << "error: " << e << "\n";
+            return 2;
+        }
         scenes.push_back(std::move(*loaded.scene));
         scenes.back().name = input.name;
     }
@@ -442,12 +474,15 @@ int main(int argc, char** argv) {
         std::cerr << "error: no OpenGL 4.5 context: " << error << "\n";
         return 1;
     }
-    std::printf("penumbra-bench-quality: %s; image %dx%d; ground truth %dx%d rays per pixel; fastest of %d\n"
-                "light: each scene's default (2x2 rectangle for the built-in scenes); filter column: filter and\n"
-                "variant (fusion, +clip: tangent clip, +adaptive: adaptive slice placement, whose passes count as slicing);\n"
-                "atlas, leak fix and fade on; penumbra pixels: truth or estimate < 0.98; times: GPU ms per pass\n\n",
-                context->renderer().c_str(), options->width, options->height, options->samples, options->samples,
-                options->repeat);
+    std::printf(
+        "penumbra-bench-quality: %s; image %dx%d; ground truth %dx%d rays per pixel; fastest of %d\n"
+        "light: each scene's default (2x2 rectangle for the built-in scenes) unless --light-* says; filter "
+        "column: filter and\n"
+        "variant (fusion, +clip: tangent clip, +adaptive: adaptive slice placement, whose passes count as "
+        "slicing);\n"
+        "atlas, leak fix and fade on; penumbra pixels: truth or estimate < 0.98; times: GPU ms per pass\n\n",
+        context->renderer().c_str(), options->width, options->height, options->samples, options->samples,
+        options->repeat);
     std::printf("| scene | filter | S/R | MAE | RMSE | p95 | penumbra MAE | penumbra RMSE | penumbra p95 | "
                 "penumbra px "
                 "| oriented penumbra MAE | oriented p95 | irradiance penumbra MAE | irradiance p95 "

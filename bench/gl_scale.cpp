@@ -20,8 +20,12 @@
 // (log(t2/t1) / log(n2/n1): 1 is linear), flagged where it exceeds 1.15.
 // On llvmpipe the milliseconds are CPU time on a shared machine: read ratios and exponents.
 //
-//   penumbra-bench-scale [--scenes a,b | ''] [FILE ...] [--corpus [DIR]] [--no-ground] [--size N] [--samples N]
-//                        [--runs N] [--warmup N] [--no-truth] [--json FILE]
+//   penumbra-bench-scale [--scenes a,b | ''] [FILE ...] [--corpus [DIR]] [--no-ground] [--size N] [--samples
+//   N]
+//                        [--runs N] [--warmup N] [--no-truth] [--json FILE] [--light-size W[,H]]
+//                        [--light-center X,Y,Z]
+//                        [--light-normal X,Y,Z] [--light-up X,Y,Z] [--camera-position X,Y,Z] [--camera-target
+//                        X,Y,Z]
 #include "arguments.hpp"
 #include "compare/frame.hpp"
 #include "compare/ladder.hpp"
@@ -74,21 +78,36 @@ struct Options {
     bool truth = true;
     bool ground = true; // --no-ground: no floor under the mesh files
     std::string json_path;
+    SceneOverrides overrides; // --light-*, --camera-*: every scene's rectangle and camera
 };
 
 constexpr const char* usage_text =
-    "usage: penumbra-bench-scale [--scenes a,b,...] [FILE ...] [--corpus [DIR]] [--no-ground] [--size N] [--samples N]\n"
-    "                            [--runs N] [--warmup N] [--no-truth] [--json FILE]\n"
-    "  --scenes    built-in scenes, comma-separated (default all; '' for none)\n"
+    "usage: penumbra-bench-scale [--scenes a,b,...] [FILE ...] [--corpus [DIR]] [--no-ground] [--size N] "
+    "[--samples N]\n"
+    "                            [--runs N] [--warmup N] [--no-truth] [--json FILE] [--light-size W[,H]]\n"
+    "                            [--light-center X,Y,Z] [--light-normal X,Y,Z] [--light-up X,Y,Z]\n"
+    "                            [--camera-position X,Y,Z] [--camera-target X,Y,Z]\n"
+    "  --scenes    built-in scenes, comma-separated (default all but the rooms room, window, cornell, which\n"
+    "              run only when named; '' for none)\n"
     "  FILE        mesh files (what penumbra-playground --scene loads), named after their stem\n"
-    "  --corpus    every mesh of the corpus in DIR (default ~/.cache/penumbra/corpus; scripts/get_corpus.sh)\n"
+    "  --corpus    every mesh of the corpus in DIR (default ~/.cache/penumbra/corpus; "
+    "scripts/get_corpus.sh)\n"
     "  --no-ground no floor under the mesh files (default: each stands on one, +2 triangles)\n"
     "  --size      image side in pixels, 16 to 1024 (default 256): the screen pass and the truth's pixels\n"
     "  --samples   ground-truth rays per light axis, 1 to 128 (default 32: 32x32 rays per pixel)\n"
     "  --runs      rounds of every measure, 1 to 100 (default 5; medians reported)\n"
     "  --warmup    untimed frames first, 1 to 10 (default 2: llvmpipe compiles at the first draw)\n"
     "  --no-truth  skip the Embree build and trace\n"
-    "  --json      also write every number to FILE\n"
+    "  --json      also write every number to FILE (each scene's record with the light and camera used)\n"
+    "  --light-size W[,H]  every scene's rectangle: W its longer side (aspect kept), W,H its width (along "
+    "u)\n"
+    "              and height (along v), in scene units\n"
+    "  --light-center X,Y,Z  the rectangle's centre; --light-normal X,Y,Z: the direction it faces and emits\n"
+    "              towards; --light-up X,Y,Z: its height side (v), projected onto its plane, not parallel "
+    "to\n"
+    "              the normal (default: the scene light's v, else +y, else +z); as penumbra-playground\n"
+    "  --camera-position X,Y,Z, --camera-target X,Y,Z  every scene's camera (either alone keeps the\n"
+    "              scene's other; not the same point)\n"
     "prints a row per scene, sorted by triangles, and the growth exponents within each series of one\n"
     "model at several triangle counts (scenes named NAME-SUFFIX, e.g. dragon-48k, dragon-200k).\n";
 
@@ -122,22 +141,27 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
             continue;
         }
         constexpr std::string_view valued[] = {"--scenes", "--size", "--samples", "--runs", "--warmup", "--json"};
-        if (std::find(std::begin(valued), std::end(valued), flag) == std::end(valued))
-            return fail("unknown flag '" + std::string(flag) + "'; allowed: --scenes, --corpus, --no-ground, --size, "
-                        "--samples, --runs, --warmup, --no-truth, --json, --help, FILE");
+        if (std::find(std::begin(valued), std::end(valued), flag) == std::end(valued) &&
+            !is_scene_override_flag(flag))
+            return fail("unknown flag '" + std::string(flag) +
+                        "'; allowed: --scenes, --corpus, --no-ground, --size, "
+                        "--samples, --runs, --warmup, --no-truth, --json, " +
+                        std::string(scene_override_flag_list) + ", --help, FILE");
         if (i + 1 >= argc) return fail(std::string(flag) + ": missing value (see --help)");
         const std::string_view value = argv[++i];
+        if (is_scene_override_flag(flag)) {
+            if (std::string e = parse_scene_override(flag, value, o.overrides); !e.empty()) return fail(e);
+            continue;
+        }
         auto number = [&](int& out, int lo, int hi) {
             return parse_number(value, out) && out >= lo && out <= hi;
         };
         if (flag == "--scenes") {
             built_in.clear();
             for (std::string_view name : split(value)) {
-                if (!make_scene(name)) {
-                    std::string allowed;
-                    for (std::string_view n : scene_names()) allowed += (allowed.empty() ? "" : ", ") + std::string(n);
-                    return fail("--scenes: unknown scene '" + std::string(name) + "'; allowed: " + allowed);
-                }
+                if (!make_scene(name))
+                    return fail("--scenes: unknown scene '" + std::string(name) +
+                                "'; allowed: " + allowed_scene_names());
                 built_in.push_back({std::string(name), std::string(name)});
             }
         } else if (flag == "--size") {
@@ -155,6 +179,7 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
     }
     o.scenes = built_in;
     o.scenes.insert(o.scenes.end(), files.begin(), files.end());
+    if (std::string e = check_scene_overrides(o.overrides); !e.empty()) return fail(e);
     if (o.scenes.empty()) return fail("no scene: give --scenes, a mesh file or --corpus");
     return o;
 }
@@ -261,6 +286,9 @@ int main(int argc, char** argv) {
         item.input = input;
         item.scene = std::move(*loaded.scene);
         item.scene.name = input.name;
+        // --light-*, --camera-*: before every frame and the truth
+        if (std::string e = apply_scene_overrides(options->overrides, item.scene, Light::rect); !e.empty())
+            return fail(e, 2);
         item.file = !make_scene(input.name_or_path).has_value();
         items.push_back(std::move(item));
     }
@@ -336,6 +364,8 @@ int main(int argc, char** argv) {
         json record = {{"name", item.scene.name},
                        {"file", item.file},
                        {"ground", item.scene.ground},
+                       {"light", light_json(item.scene, Light::rect)},
+                       {"camera", camera_json(item.scene.camera)},
                        {"triangles", m.triangle_count()},
                        {"vertices", m.positions.size()},
                        {"load_ms", bench::median(item.load_ms)},

@@ -3,12 +3,18 @@
 // the same G-buffer and the same textures.
 //
 //   penumbra-bench-shading [--size N] [--resolution R] [--runs K] [--scene NAME] [--scene-camera]
+//                          [--light-size W[,H]] [--light-center X,Y,Z] [--light-normal X,Y,Z] [--light-up
+//                          X,Y,Z]
+//                          [--camera-position X,Y,Z] [--camera-target X,Y,Z]
+// (the light and camera flags as penumbra-playground's, set on the scene once made; a camera flag
+// implies --scene-camera)
 //
 // Defaults: 512x512 G-buffer of the "boxes" scene seen from straight above (every pixel a
 // surface; --scene-camera uses the scene's camera instead), occlusion textures 512x512, 7 timed
 // runs of each pass after one warm-up run. Medians of GL_TIME_ELAPSED and of wall-clock time to
 // glFinish. On llvmpipe the absolute times mean little; the ratios are what to read. The last
 // column checks that both passes gave the same image.
+#include "app/scene_overrides.hpp"
 #include "rendering/egl_context.hpp"
 #include "rendering/gpu_scene.hpp"
 #include "scenes/scenes.hpp"
@@ -37,6 +43,7 @@ struct Options {
     int runs = 7;
     std::string scene = "boxes";
     bool scene_camera = false; // false: top-down view, every pixel a surface
+    SceneOverrides overrides;  // --light-*, --camera-*
 };
 
 bool parse(int argc, char** argv, Options& o) {
@@ -52,14 +59,29 @@ bool parse(int argc, char** argv, Options& o) {
             return false;
         }
         const std::string value = argv[++i];
+        if (is_scene_override_flag(flag)) {
+            if (const std::string e = parse_scene_override(flag, value, o.overrides); !e.empty()) {
+                std::fprintf(stderr, "error: %s\n", e.c_str());
+                return false;
+            }
+            o.scene_camera |= o.overrides.moves_camera();
+            continue;
+        }
         if (flag == "--size") o.size = std::atoi(value.c_str());
         else if (flag == "--resolution") o.resolution = std::atoi(value.c_str());
         else if (flag == "--runs") o.runs = std::atoi(value.c_str());
         else if (flag == "--scene") o.scene = value;
         else {
-            std::fprintf(stderr, "error: unknown flag %s; allowed: --size, --resolution, --runs, --scene, --scene-camera\n", flag.c_str());
+            std::fprintf(stderr,
+                         "error: unknown flag %s; allowed: --size, --resolution, --runs, --scene, "
+                         "--scene-camera, %s\n",
+                         flag.c_str(), scene_override_flag_list);
             return false;
         }
+    }
+    if (const std::string e = check_scene_overrides(o.overrides); !e.empty()) {
+        std::fprintf(stderr, "error: %s\n", e.c_str());
+        return false;
     }
     if (o.size < 1 || o.size > 4096 || o.runs < 1) {
         std::fprintf(stderr, "error: --size must be 1 to 4096 and --runs at least 1\n");
@@ -107,7 +129,15 @@ Timing median_times(int runs, const std::function<void()>& pass) {
 int main(int argc, char** argv) {
     Options options;
     if (!parse(argc, argv, options)) {
-        std::fprintf(stderr, "usage: penumbra-bench-shading [--size N] [--resolution R] [--runs K] [--scene NAME] [--scene-camera]\n");
+        std::fprintf(
+            stderr,
+            "usage: penumbra-bench-shading [--size N] [--resolution R] [--runs K] [--scene NAME] "
+            "[--scene-camera]\n"
+            "           [--light-size W[,H]] [--light-center X,Y,Z] [--light-normal X,Y,Z] [--light-up "
+            "X,Y,Z]\n"
+            "           [--camera-position X,Y,Z] [--camera-target X,Y,Z]  (as penumbra-playground's; a\n"
+            "           camera flag implies --scene-camera)\n");
+        std::fprintf(stderr, "  NAME: %s (default boxes)\n", allowed_scene_names().c_str());
         return 2;
     }
     std::string error;
@@ -116,9 +146,14 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "error: no OpenGL context: %s\n", error.c_str());
         return 1;
     }
-    const std::optional<Scene> scene = make_scene(options.scene);
+    std::optional<Scene> scene = make_scene(options.scene);
     if (!scene) {
-        std::fprintf(stderr, "error: unknown scene '%s'\n", options.scene.c_str());
+        std::fprintf(stderr, "error: --scene: unknown scene '%s'; allowed: %s\n", options.scene.c_str(),
+                     allowed_scene_names().c_str());
+        return 2;
+    }
+    if (const std::string e = apply_scene_overrides(options.overrides, *scene, Light::rect); !e.empty()) {
+        std::fprintf(stderr, "error: %s\n", e.c_str());
         return 2;
     }
     MeshBuffers mesh(scene->mesh);

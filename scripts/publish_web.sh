@@ -50,10 +50,12 @@ if [ ! -f "$three/build/three.module.js" ]; then
     exit 1
 fi
 mkdir -p "$out/three/node_modules/three/build" "$out/three/node_modules/three/examples/jsm"/{controls,helpers,lights,libs,loaders,utils}
-cp -r "$root"/web/three/{penumbra_shadows.js,penumbra_shadows_webgpu.js,penumbra_scene.js,penumbra_runner.js,penumbra_webgpu_runner.js,light_frame.js,penumbra_emitter.js,emissions.js} \
-      "$root"/web/three/{penumbra_shadows.d.ts,penumbra_emitter.d.ts,package.json,README.md} \
+cp -r "$root"/web/three/{penumbra_shadows.js,penumbra_shadows_webgpu.js,penumbra_scene.js,penumbra_runner.js,penumbra_webgpu_runner.js,light_frame.js,gltf_lights_area.js,penumbra_emitter.js,emissions.js} \
+      "$root"/web/three/{penumbra_shadows.d.ts,gltf_lights_area.d.ts,penumbra_emitter.d.ts,package.json,README.md} \
       "$root"/web/three/emissions "$root"/web/three/example "$out/three/"
 rm -f "$out/three/emissions/regenerate.sh"
+# the example's "room (glTF)" scene loads ../../rooms/room.gltf
+if [ -f "$root/web/rooms/room.gltf" ]; then mkdir -p "$out/rooms" && cp "$root/web/rooms/room.gltf" "$out/rooms/"; fi
 cp "$wasm" "$out/three/penumbra_emitter.wasm"
 cp "$three"/LICENSE "$three"/package.json "$out/three/node_modules/three/"
 # (three.webgpu.js and three.tsl.js: the example's renderer switch to WebGPURenderer)

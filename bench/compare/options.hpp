@@ -6,6 +6,7 @@
 #include "../corpus/manifest.hpp"
 #include "ladder.hpp"
 
+#include "app/scene_overrides.hpp"
 #include "scenes/scenes.hpp"
 
 #include <penumbra/config.hpp>
@@ -41,20 +42,27 @@ struct Options {
     double flicker_step = 0.005;     // light motion per frame, as a fraction of the scene's ground span
     std::string out_dir = "out/compare";
     bool ground = true;              // --no-ground: no floor under the mesh files
+    SceneOverrides overrides;        // --light-*, --camera-*: every scene's rectangle and camera
 };
 
 constexpr const char* usage_text =
-    "usage: penumbra-bench-compare [--quick | --full] [--scenes a,b,...] [FILE ...] [--corpus [DIR]] [--no-ground]\n"
+    "usage: penumbra-bench-compare [--quick | --full] [--scenes a,b,...] [FILE ...] [--corpus [DIR]] "
+    "[--no-ground]\n"
     "                              [--settings a,b,...] [--size N|WxH] [--samples N] [--runs N]\n"
-    "                              [--lights rect,sun] [--light-scales 1,2,...] [--flicker-frames N] [--out DIR]\n"
+    "                              [--lights rect,sun] [--light-scales 1,2,...] [--flicker-frames N] [--out "
+    "DIR]\n"
+    "                              [--light-size W[,H]] [--light-center X,Y,Z] [--light-normal X,Y,Z]\n"
+    "                              [--light-up X,Y,Z] [--camera-position X,Y,Z] [--camera-target X,Y,Z]\n"
     "  (default)         every built-in scene, the standard ladder under each scene's rectangle light,\n"
     "                    light x1 x2 x4 x8 x16 x32, 128x128,\n"
     "                    32x32 rays, 7 runs, 8 flicker frames (about 30 minutes on 2 llvmpipe cores)\n"
     "  --quick           boxes only, two settings, light x1 and x4, 64x64, 8x8 rays, 4 flicker frames\n"
     "                    (a smoke test: the report states the ray count)\n"
-    "  --full            the full ladder (adds 1024-texel settings and OIM 8/256), 256x256, 16 flicker frames\n"
+    "  --full            the full ladder (adds 1024-texel settings and OIM 8/256), 256x256, 16 flicker "
+    "frames\n"
     "  --scenes          built-in scenes, comma-separated (default all: see penumbra-playground --help;\n"
-    "                    --scenes '' for none, e.g. to run only files or the corpus)\n"
+    "                    --scenes '' for none, e.g. to run only files or the corpus); the rooms (room,\n"
+    "                    window, cornell) only when named\n"
     "  FILE              mesh files (what penumbra-playground --scene loads), added to the scenes: light\n"
     "                    and camera from their bounds\n"
     "  --no-ground       no floor under the mesh files and the corpus (default: each stands on one, as in\n"
@@ -77,6 +85,20 @@ constexpr const char* usage_text =
     "  --flicker-frames  frames of the slowly moving light for the flicker measurement, 2 to 64\n"
     "  --out             output folder (default out/compare): results.json, images/, cache/ (the truth;\n"
     "                    cache/oim: the bakes of occlusion interval maps)\n"
+    "  --light-size W[,H]  every scene's rectangle: W its longer side (aspect kept), W,H its width (along "
+    "u)\n"
+    "                    and height (along v), in scene units; --light-scales multiply it (the sun keeps its "
+    "size)\n"
+    "  --light-center X,Y,Z  the rectangle's centre; --light-normal X,Y,Z: the direction it faces and emits\n"
+    "                    towards; --light-up X,Y,Z: its height side (v), projected onto its plane, not "
+    "parallel\n"
+    "                    to the normal (default: the scene light's v, else +y, else +z); as "
+    "penumbra-playground\n"
+    "  --camera-position X,Y,Z, --camera-target X,Y,Z  every scene's camera (either alone keeps the scene's\n"
+    "                    other; not the same point). Light and camera flags are set on every scene once it "
+    "is\n"
+    "                    made, hold for the truth, and results.json's scene records say the light and camera "
+    "used\n"
     "flags after --quick or --full override what they set.\n";
 
 // Options from argv, or an error message (one line).
@@ -124,21 +146,24 @@ inline std::optional<Options> parse(int argc, char** argv, std::string& error) {
         }
         constexpr std::string_view valued[] = {"--scenes", "--size", "--samples", "--runs", "--flicker-frames",
                                                "--light-scales", "--lights", "--out", "--settings"};
-        if (std::find(std::begin(valued), std::end(valued), flag) == std::end(valued))
+        if (std::find(std::begin(valued), std::end(valued), flag) == std::end(valued) &&
+            !is_scene_override_flag(flag))
             return fail("unknown flag '" + std::string(flag) +
-                        "'; allowed: --quick, --full, --scenes, --corpus, --no-ground, --settings, --size, --samples, --runs, "
-                        "--light-scales, --lights, --flicker-frames, --out, --help, FILE");
+                        "'; allowed: --quick, --full, --scenes, --corpus, --no-ground, --settings, --size, "
+                        "--samples, --runs, "
+                        "--light-scales, --lights, --flicker-frames, --out, " +
+                        std::string(scene_override_flag_list) + ", --help, FILE");
         if (i + 1 >= argc) return fail(std::string(flag) + ": missing value (see --help)");
         const std::string_view value = argv[++i];
-        if (flag == "--scenes") {
+        if (is_scene_override_flag(flag)) {
+            if (std::string e = parse_scene_override(flag, value, o.overrides); !e.empty()) return fail(e);
+        } else if (flag == "--scenes") {
             built_in.clear();
             scenes_given = true;
             for (std::string_view name : split(value)) {
-                if (!make_scene(name)) {
-                    std::string allowed;
-                    for (std::string_view n : scene_names()) allowed += (allowed.empty() ? "" : ", ") + std::string(n);
-                    return fail("--scenes: unknown scene '" + std::string(name) + "'; allowed: " + allowed);
-                }
+                if (!make_scene(name))
+                    return fail("--scenes: unknown scene '" + std::string(name) +
+                                "'; allowed: " + allowed_scene_names());
                 built_in.emplace_back(name);
             }
         } else if (flag == "--settings") {
@@ -193,6 +218,7 @@ inline std::optional<Options> parse(int argc, char** argv, std::string& error) {
     for (const std::string& name : built_in) o.scenes.push_back({name, "built-in", std::nullopt});
     o.scenes.insert(o.scenes.end(), files.begin(), files.end());
     o.scenes.insert(o.scenes.end(), corpus.begin(), corpus.end());
+    if (std::string e = check_scene_overrides(o.overrides); !e.empty()) return fail(e);
     if (o.scenes.empty()) return fail("no scene: give --scenes, a mesh file or --corpus");
     // The ladder's labels are known only with the set, after every flag.
     const std::vector<bench::LadderEntry> ladder = bench::technique_ladder(o.set);

@@ -193,6 +193,9 @@ inline json scene_json(const SceneInput& input, const Scene& scene, double load_
                    {"triangles", scene.mesh.triangle_count()},
                    {"load_ms", load_ms},
                    {"default_light", {{"width", scene.light.width}, {"height", scene.light.height}}},
+                   // the rectangle and camera used (after --light-*, --camera-*), x1 of --light-scales
+                   {"light", light_json(scene, Light::rect)},
+                   {"camera", camera_json(scene.camera)},
                    {"truth", json::array()}};
     if (input.kind != "built-in") record["file"] = input.name_or_path;
     if (input.corpus)

@@ -27,8 +27,11 @@ struct SliceFrame {
     glm::vec2 slice_depths{0.0f};          // penumbra_sliceDepths: z0, thickness Δ
     float window_half_size = 0.0f;         // penumbra_windowHalfSize (sun)
     float tan_angular_radius = 0.0f;       // penumbra_tanAngularRadius (sun)
-    bool contained = true;                 // false: a bounds corner lies on or above the light plane,
-                                           // or d hit its cap (the scene cannot be seen at a sane field of view)
+    // true: every corner of the bounds lies in front of the light and inside the slicing pyramid. false
+    // in a room (a corner on or behind the light's plane, or beside the light where the pyramid's angle is
+    // capped): nothing is wrong then; what is behind the plane casts nothing, and a receiver outside the
+    // pyramid is shadowed only by what lies inside it (docs/model.md §1.2b).
+    bool contained = true;
 };
 
 // The shadow-map camera. Conventions: the light frame is right-handed, x along the light's u axis,
@@ -50,8 +53,16 @@ struct ShadowFrame {
     // w / (2 tan_half_fov near) (Fernando 2005's LIGHT_SIZE_UV); sun: the cone's footprint growth per
     // unit of depth in uv, 2 tan(angular radius) / (2 window_half_size).
     glm::vec2 light_size_uv{0.0f};
-    bool contained = true; // false: a bounds corner lies on or behind the light plane (rect)
+    bool contained = true; // false (rect): a bounds corner lies on or behind the light plane, or outside the
+                           // frustum, whose half angle is capped at max_frustum_half_angle (docs/model.md §1.2b)
 };
+
+// The widest half angle of the slicing pyramid and of the shadow-map frustum of a rectangular light
+// (docs/model.md §1.2b). In a room the bounds reach the light's plane beside the light, and a pyramid
+// holding every corner would open to 180°, its texels spread over an unbounded plane. Capped, the
+// pyramid holds what the light faces; a receiver beside it, outside, is shadowed by what lies inside it
+// only. Light above a scene (every built-in and corpus scene at ×1 to ×32) stays well inside the cap.
+inline constexpr double max_frustum_half_angle = 1.2217304763960306; // 70°
 
 namespace detail {
 
@@ -82,27 +93,39 @@ inline glm::vec2 depth_range_slices(double zmin, double zmax, int slices) {
 
 } // namespace detail
 
-// Rectangular light: perspective slicing from E = C − d·N, near plane = the light rectangle.
+// Rectangular light: perspective slicing from E = C − d·N, near plane = the light rectangle; d the
+// largest that holds every corner of the bounds in front of the light, at most 1000·max(w, h), and at
+// least what keeps the pyramid's half angle within max_frustum_half_angle (docs/model.md §1.2, §1.2b).
 inline SliceFrame slice_frame(const RectLight& light, glm::dvec3 bounds_min, glm::dvec3 bounds_max, int slices) {
     SliceFrame f;
     const glm::dvec3 u = glm::normalize(light.u_axis), v = glm::normalize(light.v_axis), n = light.normal();
     const glm::dmat4 lfw = detail::frame_matrix(u, v, n, light.center);
     const double w = light.width, h = light.height;
     const double cap = 1000.0 * std::max(w, h);
+    // the pyramid's half angle is atan(max(w, h) / (2 d)): d below this would open it past the cap
+    const double floor_d = 0.5 * std::max(w, h) / std::tan(max_frustum_half_angle);
     double d = cap;
+    bool room = false; // the bounds reach the light's plane: receivers beside the light, up to its plane
     double zmin = std::numeric_limits<double>::max(), zmax = std::numeric_limits<double>::lowest();
     for (const glm::dvec3& corner : detail::box_corners(bounds_min, bounds_max)) {
         const glm::dvec3 p = glm::dvec3(lfw * glm::dvec4(corner, 1.0));
         zmin = std::min(zmin, p.z);
         zmax = std::max(zmax, p.z);
-        if (p.z <= 0.0) {
-            f.contained = false;
+        if (p.z <= 0.0) { // on or behind the light's plane: clipped by the light passes, nothing to hold
+            room = true;
             continue;
         }
         if (std::abs(p.x) > w / 2) d = std::min(d, (w / 2) * p.z / (std::abs(p.x) - w / 2));
         if (std::abs(p.y) > h / 2) d = std::min(d, (h / 2) * p.z / (std::abs(p.y) - h / 2));
     }
-    if (d >= cap) f.contained = d > 0.0 && f.contained; // cap reached: fine, the scene is inside anyway
+    // A room (the bounds reach the light's plane): its walls rise beside the light up to the plane, so the
+    // pyramid opens as wide as the cap allows, to hold as much of them as it can (docs/model.md §1.2b
+    // measures this against the pyramid that only holds the bounds' corners in front of the light). A
+    // corner beside the light just in front of its plane is capped the same way.
+    if (room || d < floor_d) {
+        d = floor_d;
+        f.contained = false;
+    }
     // clip = (2·a·d/w, 2·b·d/h, 0, d + z) in light-frame coordinates (a, b, z)
     glm::dmat4 clip_from_light(0.0);
     clip_from_light[0][0] = 2.0 * d / w;
@@ -150,8 +173,8 @@ inline SliceFrame slice_frame(const SunLight& sun, glm::dvec3 bounds_min, glm::d
 }
 
 // Rectangular light: perspective from the light centre along its normal; the square frustum's
-// half angle is the smallest that holds every corner of the bounds; near and far are the bounds'
-// nearest and farthest depths.
+// half angle is the smallest that holds every corner of the bounds in front of the light, capped at
+// max_frustum_half_angle; near and far are the bounds' nearest and farthest depths.
 inline ShadowFrame shadow_frame(const RectLight& light, glm::dvec3 bounds_min, glm::dvec3 bounds_max) {
     ShadowFrame f;
     const glm::dvec3 u = glm::normalize(light.u_axis), v = glm::normalize(light.v_axis), n = light.normal();
@@ -170,9 +193,16 @@ inline ShadowFrame shadow_frame(const RectLight& light, glm::dvec3 bounds_min, g
     double tan_half = 1e-6; // x / z is quasi-linear: its largest |value| over the box is at a corner
     for (const glm::dvec3& corner : corners) {
         const glm::dvec3 p = glm::dvec3(lfw * glm::dvec4(corner, 1.0));
-        tan_half = std::max({tan_half, std::abs(p.x) / std::max(p.z, near), std::abs(p.y) / std::max(p.z, near)});
+        if (p.z <= 0.0) continue; // behind the light's plane: the depth pass clips it
+        tan_half =
+            std::max({tan_half, std::abs(p.x) / std::max(p.z, near), std::abs(p.y) / std::max(p.z, near)});
     }
     tan_half *= 1.001;
+    // a room (the bounds reach the light's plane) opens the frustum to the cap, as the slicing pyramid
+    if (zmin <= 0.0 || tan_half > std::tan(max_frustum_half_angle)) {
+        tan_half = std::tan(max_frustum_half_angle);
+        f.contained = false;
+    }
     // clip = (x / t, y / t, 0, z) in light-frame coordinates
     glm::dmat4 clip_from_light(0.0);
     clip_from_light[0][0] = 1.0 / tan_half;

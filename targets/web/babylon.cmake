@@ -2,21 +2,22 @@
 # over the essl300 bundles. "babylon" (babylon_test.mjs) rebuilds each bundle's scene in Babylon.js
 # (web/babylon/test/, a right-handed scene with the bundle's triangles, light and camera) and checks
 # the add-on's light frame and visibility against the desktop runtime, with three_test.mjs's
-# functions and tolerances (2·bound + q on the interior pixels). Its packaging, materials and
+# functions and tolerances (2·bound + q on the interior pixels); and three.cmake's room bundle (a light
+# inside a closed room, the camera inside). Its packaging, materials and
 # several lights: bundlers.cmake (bundler-*, babylon-package). The material's light term and dispose(): here too.
 # Both also run, once, the cut-out caster page (web/babylon/test/cutout.html, a few seconds), which
 # reads the shipped emissions (web/three/emissions, written by the build: the "-cut" ones among them).
 add_test(NAME babylon
          COMMAND ${PENUMBRA_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/babylon_test.mjs --web ${PROJECT_SOURCE_DIR}/web
-                 --chromium ${PENUMBRA_CHROMIUM} ${bundles})
+                 --chromium ${PENUMBRA_CHROMIUM} ${bundles} ${three_room_bundle})
 set_tests_properties(babylon PROPERTIES LABELS browser SKIP_RETURN_CODE 77 TIMEOUT 120
-                     FIXTURES_REQUIRED penumbra_essl300_bundles)
+                     FIXTURES_REQUIRED "penumbra_essl300_bundles;penumbra_room_bundle")
 # "babylon-webgpu": the same checks on Babylon's WebGPUEngine (--engine webgpu: WebGPU through
 # SwiftShader as three-webgpu, the canvas rendered offscreen: offscreen_canvas.mjs) over
-# three-webgpu's wgsl bundles of the same scenes (rect N-buffer, sun Gaussian, rect mipmap, the tree).
+# three-webgpu's wgsl bundles of the same scenes (rect N-buffer, sun Gaussian, rect mipmap, the tree, the room).
 if(TARGET penumbra-export-bundle)
     set(babylon_webgpu_bundles "")
-    foreach(name IN ITEMS boxes-rect boxes-sun boxes-mipmap tree-rect)
+    foreach(name IN ITEMS boxes-rect boxes-sun boxes-mipmap tree-rect room-rect)
         list(APPEND babylon_webgpu_bundles ${PROJECT_BINARY_DIR}/target_bundles/three-webgpu-${name})
     endforeach()
     add_test(NAME babylon-webgpu

@@ -16,11 +16,19 @@ endif()
 # truth of a small bundle (--quick: two settings of each); "three-emissions" checks that the
 # emissions in web/three/emissions (written by the build, penumbra-web-emissions; not tracked) are
 # what today's penumbra-gen writes.
+# Beside the boxes bundles of ../gles, a room (issue 61): the built-in `room` scene, a closed room whose
+# ceiling panel lies inside the scene's bounds (the ceiling behind the light's plane, the walls beside
+# it outside the slicing pyramid: docs/model.md §1.2b), the camera inside; "babylon" runs it too.
+set(three_room_bundle ${PROJECT_BINARY_DIR}/target_bundles/essl300-room)
+add_test(NAME penumbra-bundle-essl300-room
+         COMMAND $<TARGET_FILE:penumbra-export-bundle> --scene room --target essl300 --resolution 128 --size 64x64
+                 --out ${three_room_bundle})
+set_tests_properties(penumbra-bundle-essl300-room PROPERTIES FIXTURES_SETUP penumbra_room_bundle LABELS browser TIMEOUT 120)
 add_test(NAME three
          COMMAND ${PENUMBRA_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/three_test.mjs --web ${PROJECT_SOURCE_DIR}/web
-                 ${three_wasm} --chromium ${PENUMBRA_CHROMIUM} ${bundles})
+                 ${three_wasm} --chromium ${PENUMBRA_CHROMIUM} ${bundles} ${three_room_bundle})
 set_tests_properties(three PROPERTIES LABELS browser SKIP_RETURN_CODE 77 TIMEOUT 180
-                     FIXTURES_REQUIRED penumbra_essl300_bundles)
+                     FIXTURES_REQUIRED "penumbra_essl300_bundles;penumbra_room_bundle")
 if(TARGET penumbra-export-bundle)
     set(peers_bundle ${PROJECT_BINARY_DIR}/target_bundles/three-peers-boxes)
     add_test(NAME penumbra-bundle-three-peers
@@ -61,7 +69,7 @@ endif()
 # SwiftShader as webgpu.cmake's tests; exits 77 without chromium, and without a WebGPU adapter only
 # with PENUMBRA_WEBGPU_OPTIONAL=1) over wgsl bundles of boxes (rect, N-buffer; sun, Gaussian levels,
 # with a MeshPhysicalNodeMaterial; rect, mipmap)
-# and the tree (rect), and the corpus's teapot where scripts/get_corpus.sh fetched it (the corpus
+# and the tree (rect), the room (rect, N-buffer: a closed room lit by its ceiling panel), and the corpus's teapot where scripts/get_corpus.sh fetched it (the corpus
 # is not in the repository): the visibility against the desktop run within the oracle's bound, the
 # node materials' light term, instanced/skinned/morphed casters, updates and dispose; and two add-ons
 # (a RectAreaLight and a sun) on one node material, each scaling its own light's term only; the
@@ -71,7 +79,9 @@ if(TARGET penumbra-export-bundle)
         "boxes-sun|--scene boxes --light sun --filter gaussian --light-size 20|:physical-node"
         "tree-rect|--scene tree --light rect --filter nbuffer|"
         # the mip chain (a pass a level on WebGPU): one sampled texture for all levels
-        "boxes-mipmap|--scene boxes --light rect --filter mipmap|")
+        "boxes-mipmap|--scene boxes --light rect --filter mipmap|"
+        # a light inside the scene (docs/model.md §1.2b): the camera inside a closed room
+        "room-rect|--scene room --light rect --filter nbuffer|")
     if(DEFINED ENV{XDG_CACHE_HOME})
         set(three_webgpu_teapot $ENV{XDG_CACHE_HOME}/penumbra/corpus/meshes/teapot.obj)
     else()
@@ -123,3 +133,14 @@ if(TARGET penumbra-export-bundle)
     set_tests_properties(three-webgpu PROPERTIES LABELS browser SKIP_RETURN_CODE 77 TIMEOUT 120
                          FIXTURES_REQUIRED penumbra_three_webgpu_bundles)
 endif()
+# "three-gltf": penumbra-three's GLTFLoader plugin for EXT_lights_area (web/three/gltf_lights_area.js;
+# three_gltf_test.mjs, in node, well under a second): web/three/test/lights_area.gltf through three's
+# GLTFLoader with r187 and r180, each rect light a RectAreaLight at its node's world position, facing
+# its world -Z, of the extension's width and height; the disk light skipped with one warning.
+set(three_gltf_r180 "")
+if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/node_modules/three-r180/examples/jsm/loaders/GLTFLoader.js)
+    set(three_gltf_r180 --three-r180 ${CMAKE_CURRENT_SOURCE_DIR}/node_modules/three-r180)
+endif()
+add_test(NAME three-gltf
+         COMMAND ${PENUMBRA_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/three_gltf_test.mjs --three ${PROJECT_SOURCE_DIR}/web/three ${three_gltf_r180})
+set_tests_properties(three-gltf PROPERTIES LABELS web TIMEOUT 60)

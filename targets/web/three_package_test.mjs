@@ -20,7 +20,9 @@
 //      add-on's wgsl path as Vite bundles it (the dynamically imported penumbra_shadows_webgpu.js,
 //      three/webgpu, the wgsl emitted in the page).
 //   5. The example (web/three/example/, served from the repository) switches from the
-//      RectAreaLight to the sun and back, its shadows there after each switch.
+//      RectAreaLight to the sun and back, its shadows there after each switch; then to its
+//      "room (glTF)" scene (web/rooms/room.gltf through the package's EXT_lights_area plugin), shadowed
+//      by the add-on on the file's RectAreaLight.
 //
 //   node targets/web/three_package_test.mjs --three web/three --work DIR [--wasm FILE] [--chromium PATH] [--images DIR]
 //
@@ -89,6 +91,7 @@ function pack(three, work, wasm) {
                         "penumbra_emitter.js", "penumbra_emitter.d.ts", "penumbra_emitter.wasm", "emissions.js", "LICENSE",
                         "emissions/rect-nbuffer-16x512/layout.json", "emissions/sun-mipmap-16x512/penumbra_visibility.glsl",
                         "penumbra_scene.js", "penumbra_emission.js", "penumbra_emitter_node.js", "penumbra_shadows_webgpu.js", "penumbra_webgpu_runner.js",
+                        "gltf_lights_area.js", "gltf_lights_area.d.ts",
                         "emissions/rect-nbuffer-16x512-wgsl/penumbra_visibility.wgsl"])
         if (!files.includes(need)) failures.push(`the tarball lacks ${need}`);
     for (const f of files) if (/^(example|test|node_modules)\/|\.tgz$|prepack\.mjs$|regenerate\.sh$/.test(f)) failures.push(`the tarball holds ${f}`);
@@ -274,9 +277,20 @@ async function checkExample(browser, port) {
         steps.push(`${light}: ${differing} pixels shadowed, ${info.shadows.receivers} receivers`);
         if (differing < 0.01 * on.length / 4) failures.push(`after switching to the ${light} light, Penumbra's mode differs from "no shadows" at ${differing} pixels only`);
     }
+    // the "room (glTF)" scene: web/rooms/room.gltf through GLTFLoader and the package's EXT_lights_area
+    // plugin, the add-on on the RectAreaLight the file brings
+    await page.evaluate(() => window.example.set({scene: "gltf", light: "rect"}));
+    await new Promise((resolve) => setTimeout(resolve, 300));
+    const on = await shot("penumbra"), off = await shot("none");
+    let differing = 0;
+    for (let i = 0; i < on.length; i += 4) if (Math.abs(on[i] - off[i]) + Math.abs(on[i + 1] - off[i + 1]) + Math.abs(on[i + 2] - off[i + 2]) > 12) ++differing;
+    const info = await page.evaluate(() => window.example.info());
+    steps.push(`room (glTF): ${differing} pixels shadowed, ${info.shadows.receivers} receivers, the add-on on ${info.light}`);
+    if (differing < 0.01 * on.length / 4 || !/^RectAreaLight ceiling_panel/.test(info.light))
+        failures.push(`the example's room (glTF): ${differing} pixels shadowed, the add-on on ${info.light} (the glTF's RectAreaLight "ceiling panel" expected)`);
     failures.push(...problems);
     await page.close();
-    console.log(`${failures.length ? "FAIL" : "ok  "} the example's light switch (rect → sun → rect): ${steps.join("; ")}`);
+    console.log(`${failures.length ? "FAIL" : "ok  "} the example's light switch (rect → sun → rect) and its glTF room: ${steps.join("; ")}`);
     return failures;
 }
 

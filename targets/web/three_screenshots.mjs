@@ -5,7 +5,8 @@
 //                                          [--wasm build/wasm/penumbra_emitter.wasm] [--renderer webgl|webgpu]
 //
 // Writes DIR/example_*.png: the RectAreaLight at the example's settings and enlarged, the same
-// scene with three's PCFSoftShadowMap and VSMShadowMap from a SpotLight, and the sun; with --wasm
+// scene with three's PCFSoftShadowMap and VSMShadowMap from a SpotLight, the sun, and the room (a
+// closed room lit by a ceiling panel, the camera inside); with --wasm
 // also example_emitted.png: a configuration emitted in the page (8 slices, 256², mip-mapped texture array).
 import fs from "node:fs";
 import path from "node:path";
@@ -17,6 +18,7 @@ const SHOTS = [
     ["example_three_pcf", {mode: "pcf", width: 3, height: 2}],
     ["example_three_vsm", {mode: "vsm"}],
     ["example_sun", {mode: "penumbra", light: "sun"}],
+    ["example_room", {light: "rect", scene: "room"}],
 ];
 
 function parseArguments(argv) {
@@ -64,7 +66,7 @@ try {
         console.log(`wrote ${file}`);
     }
     if (args.wasm) {
-        await page.evaluate(() => window.example.set({mode: "penumbra", light: "rect", width: 3, height: 2}));
+        await page.evaluate(() => window.example.set({mode: "penumbra", light: "rect", scene: "shapes", width: 3, height: 2}));
         const config = await page.evaluate((webgpu) => window.example.emit({slices: 8, resolution: 256, filter: webgpu ? "nbuffer" : "mipmap",
                                                                              packing: webgpu ? "atlas" : "array"}), args.renderer === "webgpu");
         const file = path.join(args.out, `example_emitted${suffix}.png`);

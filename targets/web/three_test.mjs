@@ -61,9 +61,11 @@ function usage(message) {
     process.exit(2);
 }
 
-// Pixels whose 8 neighbours are geometry within 8 pixel footprints of its world position and
-// with its normal (the desktop G-buffers): at the others (silhouettes and creases), three's
-// rasterization may see another surface than llvmpipe's.
+// Pixels whose 8 neighbours are geometry within 8 pixel footprints of its world position, with its
+// normal and on its plane within one footprint (the desktop G-buffers): at the others (silhouettes
+// and creases), three's rasterization may see another surface than llvmpipe's. (The plane: in a room,
+// a shelf's front edge before its back panel and the wall behind are parallel faces a few footprints
+// apart in depth, a silhouette that the normals alone miss.)
 export function interiorPixels(positions, normals, bundle) {
     const W = bundle.width, H = bundle.height, eye = bundle.camera.eye;
     const scale = 2 * Math.tan(bundle.camera.fov_y_degrees * Math.PI / 360) / H;
@@ -78,8 +80,10 @@ export function interiorPixels(positions, normals, bundle) {
             for (let dy = -1; dy <= 1 && ok; ++dy)
                 for (let dx = -1; dx <= 1 && ok; ++dx) {
                     const j = i + dy * W + dx;
-                    ok = p(j, 3) !== 0 && Math.hypot(p(j, 0) - p(i, 0), p(j, 1) - p(i, 1), p(j, 2) - p(i, 2)) < 8 * footprint &&
-                         normals[4 * j] * normals[4 * i] + normals[4 * j + 1] * normals[4 * i + 1] + normals[4 * j + 2] * normals[4 * i + 2] > 0.99;
+                    const d = [p(j, 0) - p(i, 0), p(j, 1) - p(i, 1), p(j, 2) - p(i, 2)];
+                    ok = p(j, 3) !== 0 && Math.hypot(...d) < 8 * footprint &&
+                         normals[4 * j] * normals[4 * i] + normals[4 * j + 1] * normals[4 * i + 1] + normals[4 * j + 2] * normals[4 * i + 2] > 0.99 &&
+                         Math.abs(d[0] * normals[4 * i] + d[1] * normals[4 * i + 1] + d[2] * normals[4 * i + 2]) < footprint;
                 }
             out[i] = ok ? 1 : 0;
         }

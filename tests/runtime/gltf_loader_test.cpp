@@ -5,7 +5,9 @@
 
 #include "gltf_test_file.hpp"
 #include "scenes/gltf_loader.hpp"
+#include "scenes/ground_plane.hpp"
 #include "scenes/mesh_builder.hpp"
+#include "scenes/scene_defaults.hpp"
 #include "temp_dir.hpp"
 
 #include <algorithm>
@@ -14,6 +16,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <vector>
 
 using namespace penumbra::playground;
 using penumbra::playground::testing::TempDir;
@@ -291,4 +294,198 @@ TEST_CASE("glTF: every file of assimp-testmodels loads or is one error line") {
     CHECK(seen_pinned == pinned.size());
     MESSAGE(files.size() << " glTF files of assimp-testmodels: " << loaded << " load, " << files.size() - loaded
                          << " are one error line");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lights from the file: EXT_lights_area (a rectangle, as Babylon.js's loader places it) and
+// KHR_lights_punctual's directional light (the sun).
+
+namespace {
+
+// The test asset with `extensions` and extra nodes 4… (roots `roots`), as .gltf + .bin.
+std::string write_lit(const TempDir& dir, const std::string& name, const std::string& extensions,
+                      const std::string& nodes, const std::string& roots) {
+    dir.write(name + ".bin", testing::gltf_test_buffer());
+    return dir.write(name + ".gltf", testing::gltf_test_json_with(name + ".bin", extensions, nodes, roots));
+}
+
+void check_dvec(glm::dvec3 got, glm::dvec3 want, double eps = 1e-9) {
+    CAPTURE(got.x);
+    CAPTURE(got.y);
+    CAPTURE(got.z);
+    CAPTURE(want.x);
+    CAPTURE(want.y);
+    CAPTURE(want.z);
+    CHECK(glm::length(got - want) < eps);
+}
+
+bool any_warning_has(const LoadResult& r, const std::string& needle) {
+    for (const std::string& w : r.warnings)
+        if (w.find(needle) != std::string::npos) return true;
+    return false;
+}
+
+} // namespace
+
+TEST_CASE("glTF lights: an EXT_lights_area rect on a translated, rotated, scaled node is the scene's light") {
+    TempDir dir;
+    // Node 4 moves by (1, 2, 3); its child node 5 turns 90° about +x (y → +z, −z → +y: it faces up) and
+    // scales x by 2, y by 3. The light: height 0.5, width 0.5 × 3 = 1.5.
+    const std::string path = write_lit(
+        dir, "rect",
+        R"("EXT_lights_area": {"lights": [{"name": "panel", "type": "rect", "size": 0.5, "rect": {"aspect": 3},
+             "color": [1, 0.9, 0.8], "intensity": 20}]})",
+        R"({"translation": [1, 2, 3], "children": [5]},
+           {"rotation": [0.70710678118654752, 0, 0, 0.70710678118654752], "scale": [2, 3, 1],
+            "extensions": {"EXT_lights_area": {"light": 0}}})",
+        "4");
+    LoadResult r = load_gltf_scene(path);
+    REQUIRE_MESSAGE(r.scene.has_value(), r.error);
+    CHECK(r.warnings.empty());
+    REQUIRE(r.scene->file_light.has_value());
+    const penumbra::RectLight& l = r.scene->light;
+    check_dvec(l.center, {1, 2, 3});
+    check_dvec(l.normal(), {0, 1, 0}); // the node's −z
+    check_dvec(l.u_axis, {-1, 0, 0});  // the node's −x (width), as Babylon.js turns its light
+    check_dvec(l.v_axis, {0, 0, 1});   // the node's +y (height)
+    check_dvec(glm::cross(l.u_axis, l.v_axis), l.normal());
+    CHECK(l.width == doctest::Approx(1.5 * 2).epsilon(1e-12));  // size × aspect × the x scale
+    CHECK(l.height == doctest::Approx(0.5 * 3).epsilon(1e-12)); // size × the y scale
+    CHECK(std::abs(glm::dot(l.u_axis, l.v_axis)) < 1e-12);
+    // The floor under a loaded mesh recomputes the defaults; the file's light stays.
+    add_ground_plane(*r.scene);
+    check_dvec(r.scene->light.center, {1, 2, 3});
+    check_dvec(r.scene->light.normal(), {0, 1, 0});
+    CHECK(r.scene->light.width == doctest::Approx(3.0));
+
+    // No light in the file: the default one, above the bounds facing down.
+    const std::string plain = write_lit(dir, "plain", "", "", "");
+    const LoadResult d = load_gltf_scene(plain);
+    REQUIRE_MESSAGE(d.scene.has_value(), d.error);
+    CHECK_FALSE(d.scene->file_light.has_value());
+    check_dvec(d.scene->light.normal(), {0, -1, 0});
+}
+
+TEST_CASE("glTF lights: a KHR_lights_punctual directional light is the sun; point lights are a warning") {
+    TempDir dir;
+    // Node 4 turns 90° about +y (−z → −x) and stretches z: the direction stays −x. Node 5 has a point light.
+    const std::string path =
+        write_lit(dir, "sun",
+                  R"("KHR_lights_punctual": {"lights": [{"type": "point", "name": "bulb"},
+             {"type": "directional", "name": "sun", "intensity": 3}]})",
+                  R"({"rotation": [0, 0.70710678118654752, 0, 0.70710678118654752], "scale": [1, 1, 5],
+            "extensions": {"KHR_lights_punctual": {"light": 1}}},
+           {"translation": [0, 4, 0], "extensions": {"KHR_lights_punctual": {"light": 0}}})",
+                  "4, 5");
+    const LoadResult r = load_gltf_scene(path);
+    REQUIRE_MESSAGE(r.scene.has_value(), r.error);
+    check_dvec(r.scene->sun.direction, {-1, 0, 0});
+    CHECK(r.scene->sun.angular_diameter == default_sun_light().angular_diameter);
+    CHECK_FALSE(r.scene->file_light.has_value()); // no area light: the rectangle is the default one
+    CAPTURE(r.warnings.size());
+    CHECK(r.warnings.size() == 1);
+    CHECK(any_warning_has(r, "1 KHR_lights_punctual point or spot light ignored"));
+}
+
+TEST_CASE("glTF lights: two area lights give the first met in the scene, with a warning naming it") {
+    TempDir dir;
+    const std::string path =
+        write_lit(dir, "two",
+                  R"("EXT_lights_area": {"lights": [{"name": "second", "type": "rect", "size": 2},
+                                          {"name": "first", "type": "rect", "size": 1}]})",
+                  R"({"translation": [0, 9, 0], "rotation": [-0.70710678118654752, 0, 0, 0.70710678118654752],
+            "extensions": {"EXT_lights_area": {"light": 1}}},
+           {"translation": [5, 9, 0], "extensions": {"EXT_lights_area": {"light": 0}}})",
+                  "4, 5");
+    const LoadResult r = load_gltf_scene(path);
+    REQUIRE_MESSAGE(r.scene.has_value(), r.error);
+    check_dvec(r.scene->light.center, {0, 9, 0});
+    check_dvec(r.scene->light.normal(), {0, -1, 0}); // −90° about x: −z → −y
+    CHECK(r.scene->light.width == doctest::Approx(1.0));
+    REQUIRE(r.warnings.size() == 1);
+    CHECK_MESSAGE(
+        r.warnings[0].find("2 area lights (EXT_lights_area); the first, EXT_lights_area light 1 'first' "
+                           "on node 4, is used") != std::string::npos,
+        r.warnings[0]);
+    CHECK(r.warnings[0].find(path) == 0); // like every warning: the file first
+}
+
+TEST_CASE(
+    "glTF lights: a disk is lit as the square of its area, with a warning naming it and what is allowed") {
+    TempDir dir;
+    const std::string path = write_lit(
+        dir, "disk", R"("EXT_lights_area": {"lights": [{"name": "lamp", "type": "disk", "size": 2}]})",
+        R"({"translation": [0, 6, 0], "extensions": {"EXT_lights_area": {"light": 0}}})", "4");
+    const LoadResult r = load_gltf_scene(path);
+    REQUIRE_MESSAGE(r.scene.has_value(), r.error);
+    const double side = 2.0 * std::sqrt(std::acos(-1.0)) / 2.0; // area π (2/2)² = side²
+    CHECK(r.scene->light.width == doctest::Approx(side).epsilon(1e-12));
+    CHECK(r.scene->light.height == doctest::Approx(side).epsilon(1e-12));
+    check_dvec(r.scene->light.center, {0, 6, 0});
+    check_dvec(r.scene->light.normal(), {0, 0, -1});
+    REQUIRE(r.warnings.size() == 1);
+    CHECK_MESSAGE(
+        r.warnings[0].find("EXT_lights_area light 0 'lamp' on node 4 is a disk, which penumbra's shadows "
+                           "cannot serve (allowed: rect); it is lit as the square of the same area") !=
+            std::string::npos,
+        r.warnings[0]);
+}
+
+TEST_CASE(
+    "glTF lights: a bad size, aspect, type or light index is one error line naming the light and field") {
+    TempDir dir;
+    const std::string node = R"({"extensions": {"EXT_lights_area": {"light": 0}}})";
+    struct Case {
+        std::string light, node, needle;
+    };
+    const std::vector<Case> cases{
+        {R"({"name": "p", "type": "rect", "size": 0})", node,
+         "EXT_lights_area light 0 'p': size is 0; allowed: a finite number greater than 0 (the rectangle's "
+         "height"},
+        {R"({"type": "rect", "size": -1.5})", node,
+         "EXT_lights_area light 0: size is -1.5; allowed: a finite number greater than 0"},
+        {R"({"type": "rect", "size": "big"})", node,
+         "EXT_lights_area light 0: size is not a number; allowed"},
+        {R"({"type": "disk", "size": -2})", node,
+         "size is -2; allowed: a finite number greater than 0 (the disk's diameter"},
+        {R"({"name": "p", "type": "rect", "rect": {"aspect": 0}})", node,
+         "EXT_lights_area light 0 'p': rect.aspect is 0; allowed: a finite number greater than 0 (the "
+         "rectangle's width over its height)"},
+        {R"({"type": "rect", "rect": {"aspect": -1}})", node, "rect.aspect is -1; allowed"},
+        {R"({"type": "sphere"})", node, "EXT_lights_area light 0: type is 'sphere'; allowed: rect, disk"},
+        {R"({"size": 1})", node, "EXT_lights_area light 0: no type; allowed: rect, disk"},
+        {R"({"type": "rect"})", R"({"extensions": {"EXT_lights_area": {"light": 3}}})",
+         "node 4's EXT_lights_area light is 3 but the file has 1 in extensions.EXT_lights_area.lights"},
+        {R"({"type": "rect"})", R"({"scale": [0, 1, 1], "extensions": {"EXT_lights_area": {"light": 0}}})",
+         "EXT_lights_area light 0 on node 4: its node's transform flattens the light"},
+    };
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        CAPTURE(cases[i].light);
+        CAPTURE(cases[i].node);
+        const std::string path =
+            write_lit(dir, "bad" + std::to_string(i),
+                      R"("EXT_lights_area": {"lights": [)" + cases[i].light + "]}", cases[i].node, "4");
+        check_error(load_gltf_scene(path), path, cases[i].needle);
+    }
+}
+
+// web/rooms/room.gltf (made by web/rooms/make_room.py): a closed 6 × 3 × 5 room lit by its 1.2 × 0.6
+// ceiling panel, 2 cm under the ceiling, facing down.
+TEST_CASE("glTF lights: the repository's web/rooms/room.gltf brings its ceiling panel") {
+    const fs::path room =
+        fs::path(__FILE__).parent_path().parent_path().parent_path() / "web/rooms/room.gltf";
+    REQUIRE_MESSAGE(fs::exists(room), room.string());
+    const LoadResult r = load_gltf_scene(room.string());
+    REQUIRE_MESSAGE(r.scene.has_value(), r.error);
+    CHECK(r.warnings.empty());
+    CHECK(r.scene->name == "room");
+    check_vec(r.scene->bounds_min, {-3, 0, -2.5});
+    check_vec(r.scene->bounds_max, {3, 3, 2.5});
+    const penumbra::RectLight& l = r.scene->light;
+    check_dvec(l.center, {0, 2.98, -0.6}, 1e-6);
+    check_dvec(l.normal(), {0, -1, 0}, 1e-6);
+    check_dvec(glm::cross(l.u_axis, l.v_axis), l.normal(), 1e-12);
+    CHECK(l.width == doctest::Approx(1.2).epsilon(1e-6));
+    CHECK(l.height == doctest::Approx(0.6).epsilon(1e-6));
+    check_dvec(glm::abs(l.u_axis), {1, 0, 0}, 1e-6); // the 1.2 side along x, as in the built-in "room"
 }

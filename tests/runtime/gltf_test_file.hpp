@@ -69,6 +69,25 @@ inline std::string gltf_test_json(const std::string& buffer_uri) {
 })";
 }
 
+// The asset above with top-level `extensions` (a JSON object's members, e.g. the lights of
+// EXT_lights_area and KHR_lights_punctual) and `extra_nodes` (JSON objects) appended as nodes 4, 5, …
+// whose indices `extra_roots` (e.g. "4, 6") adds to scene 0's roots.
+inline std::string gltf_test_json_with(const std::string& buffer_uri, const std::string& extensions,
+                                       const std::string& extra_nodes, const std::string& extra_roots) {
+    std::string json = gltf_test_json(buffer_uri);
+    auto replace = [&](const std::string& from, const std::string& to) {
+        const std::size_t at = json.find(from);
+        if (at != std::string::npos) json.replace(at, from.size(), to);
+    };
+    replace(R"("scene": 0,)", R"("scene": 0, "extensions": {)" + extensions + "},");
+    if (!extra_roots.empty())
+        replace(R"("nodes": [0, 1, 3]})", R"("nodes": [0, 1, 3, )" + extra_roots + "]}");
+    if (!extra_nodes.empty())
+        replace(R"({"children": [2], "translation": [0, 0, 7]})",
+                R"({"children": [2], "translation": [0, 0, 7]}, )" + extra_nodes);
+    return json;
+}
+
 // A .glb container: 12-byte header, the JSON chunk padded with spaces, the BIN chunk with zeros.
 inline std::string make_glb(std::string json, std::string bin) {
     while (json.size() % 4) json += ' ';

@@ -1,9 +1,13 @@
 // penumbra/light_frame.hpp: the slicing camera sees the bounds, the uv formula of docs/model.md §1.
 #include <penumbra/light_frame.hpp>
 
+#include "scenes/scenes.hpp"
+
 #include <doctest/doctest.h>
 
+#include <optional>
 #include <random>
+#include <string_view>
 
 namespace {
 
@@ -146,4 +150,69 @@ TEST_CASE("shadow_frame: sun, orthographic window over the bounds, depth range o
     }
     CHECK(f.tan_angular_radius == doctest::Approx(std::tan(0.05)));
     CHECK(f.light_size_uv.x == doctest::Approx(std::tan(0.05) / f.window_half_size).epsilon(1e-4));
+}
+
+// A ceiling panel in a closed room (docs/model.md §1.2b): the bounds reach the light's plane beside the
+// light and lie behind it above. The pyramid opens no wider than max_frustum_half_angle, and still holds
+// the floor's corners (they are deep enough); walls right under the ceiling lie outside it.
+TEST_CASE("light_frame: a ceiling panel in a room, the pyramid's angle is capped, the floor held") {
+    penumbra::RectLight panel; // 1.2 x 0.6, facing down, 2 cm under a 3 m ceiling
+    panel.center = {0.0, 2.98, 0.0};
+    panel.width = 1.2;
+    panel.height = 0.6;
+    const glm::dvec3 lo(-3.0, 0.0, -2.5), hi(3.0, 3.0, 2.5);
+    const penumbra::SliceFrame f = penumbra::slice_frame(panel, lo, hi, 16);
+    CHECK_FALSE(f.contained);
+    const double d = f.cop_distance;
+    const double half_angle = std::atan(0.5 * std::max(panel.width, panel.height) / d);
+    CHECK(half_angle <= penumbra::max_frustum_half_angle + 1e-6);
+    CHECK(d > 0.05); // not collapsed by the corners on the ceiling
+    // the slices start at the light's plane: nothing behind it is sliced
+    CHECK(f.slice_depths.x == doctest::Approx(0.0).epsilon(1e-3));
+    CHECK(f.slice_depths.x + 16 * f.slice_depths.y == doctest::Approx(2.98).epsilon(1e-3));
+    for (const glm::dvec3& corner : penumbra::detail::box_corners(lo, glm::dvec3(hi.x, 0.0, hi.z))) {
+        const glm::dvec2 uv = uv_of(f.slice_clip_from_world, corner); // the floor's corners
+        CHECK(uv.x >= -1e-4);
+        CHECK(uv.x <= 1.0 + 1e-4);
+        CHECK(uv.y >= -1e-4);
+        CHECK(uv.y <= 1.0 + 1e-4);
+    }
+    const glm::dvec2 wall_top = uv_of(f.slice_clip_from_world, {3.0, 2.9, 0.0}); // beside the light, outside
+    CHECK(wall_top.x > 1.0);
+}
+
+TEST_CASE("light_frame: bounds whose top meets the light's plane do not collapse the pyramid") {
+    penumbra::RectLight panel; // at the very top of the bounds: corners at depth +1e-9 beside the light
+    panel.center = {0.0, 3.0 + 1e-9, 0.0};
+    const glm::dvec3 lo(-3.0, 0.0, -3.0), hi(3.0, 3.0, 3.0);
+    const penumbra::SliceFrame f = penumbra::slice_frame(panel, lo, hi, 16);
+    CHECK_FALSE(f.contained);
+    CHECK(f.cop_distance == doctest::Approx(1.0 / std::tan(penumbra::max_frustum_half_angle)).epsilon(1e-6));
+    const penumbra::ShadowFrame s = penumbra::shadow_frame(panel, lo, hi);
+    CHECK_FALSE(s.contained);
+    CHECK(s.tan_half_fov == doctest::Approx(std::tan(penumbra::max_frustum_half_angle)).epsilon(1e-6));
+    // a light above the scene is not affected by the cap: the default light over the built-in frame
+    const penumbra::SliceFrame above = penumbra::slice_frame(penumbra::RectLight{}, {-5, 0, -5}, {5, 3, 5}, 16);
+    CHECK(above.contained);
+    CHECK(std::atan(1.0 / above.cop_distance) < penumbra::max_frustum_half_angle - 0.2);
+}
+
+// Light above a scene never reaches the pyramid's cap, so rooms leave every built-in scene's slicing as it was.
+TEST_CASE("light_frame: every built-in scene, its light x1 to x32, stays inside the capped angle") {
+    for (std::string_view name : penumbra::playground::scene_names()) {
+        const std::optional<penumbra::playground::Scene> scene = penumbra::playground::make_scene(name);
+        REQUIRE(scene);
+        for (double scale : {1.0, 2.0, 4.0, 8.0, 16.0, 32.0}) {
+            penumbra::RectLight light = scene->light;
+            light.width *= scale;
+            light.height *= scale;
+            const penumbra::SliceFrame f = penumbra::slice_frame(light, scene->bounds_min, scene->bounds_max, 16);
+            CAPTURE(name);
+            CAPTURE(scale);
+            CHECK(f.contained);
+            CHECK(std::atan(0.5 * std::max(light.width, light.height) / f.cop_distance) <
+                  penumbra::max_frustum_half_angle - 0.1);
+            CHECK(penumbra::shadow_frame(light, scene->bounds_min, scene->bounds_max).contained);
+        }
+    }
 }

@@ -51,7 +51,7 @@ export interface PenumbraShadowsInfo {
     lastShadowMs: number;
     casters: number;
     receivers: number;
-    /** false when the scene's bounds reach the light's plane (shadows above it are wrong). */
+    /** true when every corner of the scene's bounds lies in front of the light and inside its slicing pyramid; false in a room (geometry behind the light's plane, which casts nothing, or receivers beside the light, shadowed only by what lies inside the pyramid). Informational: nothing to fix. */
     contained: boolean;
     /** true when the casters' cut-outs are drawn: the emission has the alpha test and the alphaTest option is not false. */
     alphaTest: boolean;

@@ -452,7 +452,6 @@ float ${n.shadow}(vec3 normalWorld, vec3 positionWorld, vec3 eye) {
         this.needsUpdate = false;
         const t0 = performance.now();
         const frame = this._lightFrame(this._bounds(casters, receivers));
-        if (!frame.contained && this.info.contained) console.warn("PenumbraShadows: the scene's bounds reach the light's plane; shadows above it are wrong (move the light up)");
         this.info.contained = frame.contained;
         this._frame = frame;
         for (const [name, value] of Object.entries(frame.uniforms)) {

@@ -46,27 +46,38 @@ function depthRangeSlices(zmin, zmax, slices) {
     return [z0, (zs - z0) / Math.max(slices, 1)];
 }
 
+// The widest half angle of the slicing pyramid and of the shadow-map frustum (penumbra::max_frustum_half_angle,
+// 70°): in a room the bounds reach the light's plane beside the light, and a pyramid holding them would open
+// to 180°. What lies behind the light's plane casts nothing (the emitted light passes clip it).
+export const MAX_FRUSTUM_HALF_ANGLE = 70 * Math.PI / 180;
+
 // Rectangular light: perspective slicing from E = C − d·N, near plane = the light rectangle.
-// Returns the uniforms by GLSL name, and `contained` (false: the bounds reach the light plane).
+// Returns the uniforms by GLSL name, and `contained`: true when every corner of the bounds lies in front
+// of the light and inside the pyramid. False in a room, which is fine: a receiver outside the pyramid is
+// shadowed by what lies inside it only (docs/model.md §1.2b).
 export function rectFrame(light, boundsMin, boundsMax, slices) {
     const u = normalize(light.u), v = normalize(light.v), n = normalize(cross(u, v));
     const lfw = frameMatrix(u, v, n, light.center);
     const w = light.width, h = light.height;
     const cap = 1000 * Math.max(w, h);
-    let d = cap, contained = true;
+    const floorD = 0.5 * Math.max(w, h) / Math.tan(MAX_FRUSTUM_HALF_ANGLE);
+    let d = cap, contained = true, room = false; // room: the bounds reach the light's plane
     let zmin = Infinity, zmax = -Infinity;
     for (const corner of boxCorners(boundsMin, boundsMax)) {
         const p = transformPoint(lfw, corner);
         zmin = Math.min(zmin, p[2]);
         zmax = Math.max(zmax, p[2]);
-        if (p[2] <= 0) {
-            contained = false;
+        if (p[2] <= 0) { // on or behind the light's plane: clipped by the light passes
+            room = true;
             continue;
         }
         if (Math.abs(p[0]) > w / 2) d = Math.min(d, (w / 2) * p[2] / (Math.abs(p[0]) - w / 2));
         if (Math.abs(p[1]) > h / 2) d = Math.min(d, (h / 2) * p[2] / (Math.abs(p[1]) - h / 2));
     }
-    if (d >= cap) contained = d > 0 && contained;
+    if (room || d < floorD) { // a room opens the pyramid to the cap, to hold as much of its walls as it can
+        d = floorD;
+        contained = false;
+    }
     // clip = (2·a·d/w, 2·b·d/h, 0, d + z) in light-frame coordinates (a, b, z)
     const clipFromLight = new Array(16).fill(0);
     clipFromLight[0] = 2 * d / w;
@@ -141,8 +152,16 @@ export function rectShadowFrame(light, boundsMin, boundsMax) {
     const extent = Math.max(Math.sqrt(dot(diagonal, diagonal)), 1e-6);
     const near = Math.max(zmin, 1e-3 * extent), far = Math.max(zmax, near + 1e-3 * extent) + 0.01 * (zmax - zmin);
     let tanHalf = 1e-6;
-    for (const p of corners) tanHalf = Math.max(tanHalf, Math.abs(p[0]) / Math.max(p[2], near), Math.abs(p[1]) / Math.max(p[2], near));
+    for (const p of corners) {
+        if (p[2] <= 0) continue; // behind the light's plane: the depth pass clips it
+        tanHalf = Math.max(tanHalf, Math.abs(p[0]) / Math.max(p[2], near), Math.abs(p[1]) / Math.max(p[2], near));
+    }
     tanHalf *= 1.001;
+    let contained = zmin > 0;
+    if (zmin <= 0 || tanHalf > Math.tan(MAX_FRUSTUM_HALF_ANGLE)) { // a room opens the frustum to the cap
+        tanHalf = Math.tan(MAX_FRUSTUM_HALF_ANGLE);
+        contained = false;
+    }
     const clipFromLight = new Array(16).fill(0);
     clipFromLight[0] = 1 / tanHalf;
     clipFromLight[5] = 1 / tanHalf;
@@ -156,7 +175,7 @@ export function rectShadowFrame(light, boundsMin, boundsMax) {
             penumbra_lightSize: [light.width, light.height],
             penumbra_lightSizeUV: [light.width / (2 * tanHalf * near), light.height / (2 * tanHalf * near)],
         },
-        contained: zmin > 0,
+        contained,
     };
 }
 

@@ -258,7 +258,6 @@ export class ShadowsBase {
             const box = this._bounds(casters, receivers);
             if (box.isEmpty()) box.set(new Vector3(-1, -1, -1), new Vector3(1, 1, 1));
             const frame = this._lightFrame(box);
-            if (!frame.contained && this.info.contained) console.warn("PenumbraShadows: the scene's bounds reach the light's plane; shadows above it are wrong (move the light up)");
             this.info.contained = frame.contained;
             this._frame = frame;
             this._renderShadow(casters, receivers, frame);

@@ -6,6 +6,7 @@ import type {Emitter} from "./penumbra_emitter.js";
 
 export {EMISSIONS, PenumbraError, type Emission, type EmissionConfig, type EmissionFiles, type EmissionName} from "./penumbra_emission.js";
 import type {Emission} from "./penumbra_emission.js";
+export {EXT_LIGHTS_AREA, GLTFLightsAreaExtension} from "./gltf_lights_area.js";
 
 export interface PenumbraShadowsOptions {
     /** Default "rect-nbuffer-16x512" (RectAreaLight) or "sun-nbuffer-16x512" (DirectionalLight). */
@@ -40,7 +41,7 @@ export interface PenumbraShadowsInfo {
     lastShadowMs: number;
     casters: number;
     receivers: number;
-    /** false when the scene's bounds reach the light's plane (shadows above it are wrong). */
+    /** true when every corner of the scene's bounds lies in front of the light and inside its slicing pyramid; false in a room (geometry behind the light's plane, which casts nothing, or receivers beside the light, shadowed only by what lies inside the pyramid). Informational: nothing to fix. */
     contained: boolean;
     /** true when the casters' cut-outs are drawn: the emission has the alpha test and the alphaTest option is not false. */
     alphaTest: boolean;

@@ -39,6 +39,7 @@ import {EMISSIONS, PenumbraError, ShadowsBase, casterVertices, cutCoordinates, e
 // The emissions shipped in emissions/ (penumbra-gen output, emissions/regenerate.sh): key → {file name: URL};
 // "<key>" is essl300 (WebGLRenderer), "<key>-wgsl" the same configuration in WGSL (WebGPURenderer).
 export {EMISSIONS, PenumbraError, loadEmitter};
+export {EXT_LIGHTS_AREA, GLTFLightsAreaExtension} from "./gltf_lights_area.js"; // glTF area lights (EXT_lights_area) for GLTFLoader
 
 
 // ---- shader patches -------------------------------------------------------------------------

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "glsl_common.hpp"
+#include "light_plane_clip.hpp"
 #include "uniform_params.hpp"
 
 namespace penumbra::detail {

@@ -68,10 +68,24 @@ nlohmann::ordered_json light_json(const Scene& scene, Light light) {
         return {{"kind", "sun"},
                 {"angular_diameter_degrees", scene.sun.angular_diameter * 180.0 / 3.14159265358979323846},
                 {"direction", {scene.sun.direction.x, scene.sun.direction.y, scene.sun.direction.z}}};
+    const RectLight& l = scene.light;
+    const glm::dvec3 n = l.normal();
     return {{"kind", "rect"},
-            {"width", scene.light.width},
-            {"height", scene.light.height},
-            {"center", {scene.light.center.x, scene.light.center.y, scene.light.center.z}}};
+            {"width", l.width},
+            {"height", l.height},
+            {"center", {l.center.x, l.center.y, l.center.z}},
+            {"normal", {n.x, n.y, n.z}},
+            {"up", {l.v_axis.x, l.v_axis.y, l.v_axis.z}},
+            {"u_axis", {l.u_axis.x, l.u_axis.y, l.u_axis.z}}};
+}
+
+nlohmann::ordered_json camera_json(const OrbitCamera& camera) {
+    const glm::vec3 eye = camera.eye_position();
+    return {{"position", {eye.x, eye.y, eye.z}},
+            {"target", {camera.target.x, camera.target.y, camera.target.z}},
+            {"fov_y_degrees", camera.fov_y_radians * 180.0 / 3.14159265358979323846},
+            {"z_near", camera.z_near},
+            {"z_far", camera.z_far}};
 }
 
 bool is_scene_file(const std::string& name_or_path) {
@@ -88,22 +102,13 @@ SceneLoad load_scene(const std::string& name_or_path, bool ground) {
         return {std::move(loaded.scene), std::move(loaded.error), std::move(loaded.warnings)};
     }
     if (std::optional<Scene> scene = make_scene(name_or_path)) return {std::move(scene), {}, {}};
-    std::string allowed;
-    for (std::string_view name : scene_names()) allowed += std::string(name) + ", ";
+    const std::string allowed = allowed_scene_names() + ", ";
     return {std::nullopt, "--scene: unknown scene '" + penumbra_gen::printable(name_or_path) + "'; allowed: " + allowed +
                               "or a mesh file ending in .obj (Wavefront), .gltf or .glb (glTF 2.0)",
             {}};
 }
 
-void apply_light_size(Scene& scene, Light light, double size) {
-    if (light == Light::sun) {
-        scene.sun.angular_diameter = size * 3.14159265358979323846 / 180.0;
-        return;
-    }
-    const double scale = size / std::max(scene.light.width, scene.light.height);
-    scene.light.width *= scale;
-    scene.light.height *= scale;
-}
+void apply_light_size(Scene& scene, Light light, double size) { scale_light_to(scene, light, size); }
 
 double shadowed_fraction(const HeadlessResult& result) {
     std::size_t geometry = 0, shadowed = 0;
@@ -185,6 +190,7 @@ nlohmann::ordered_json run_metrics(const PlaygroundOptions& options, const Scene
         {"technique", to_string(options.config.technique)},
         {"config", config_json(options.config)},
         {"light", light_json(scene, shading_light(options.config))},
+        {"camera", camera_json(scene.camera)},
         {"shadowed_fraction", shadowed_fraction(result)},
         {"render_ms", render_ms},
     };
@@ -312,7 +318,11 @@ int run_headless(const PlaygroundOptions& given) {
     std::string cut_note;
     const PlaygroundOptions options = follow_asset_cuts(given, scene, &cut_note);
     if (!cut_note.empty()) std::printf("%s\n", cut_note.c_str());
-    if (options.light_size) apply_light_size(scene, shading_light(options.config), *options.light_size);
+    // --light-*, --camera-*: on the made scene, before the render, the bake and the truth (all read
+    // scene.light)
+    if (std::string e = apply_scene_overrides(options.overrides, scene, shading_light(options.config));
+        !e.empty())
+        return fail(e, 2);
     const int width = options.width > 0 ? options.width : 512;
     const int height = options.height > 0 ? options.height : 512;
 

@@ -4,6 +4,7 @@
 
 #include "rendering/headless_render.hpp"
 #include "app/options.hpp"
+#include "app/scene_overrides.hpp"
 #include "scenes/scene.hpp"
 
 #include <nlohmann/json.hpp>
@@ -24,9 +25,12 @@ struct SceneLoad {
 // reproduces the run (metrics.json, a target bundle's uniforms.json).
 nlohmann::ordered_json config_json(const Config& c);
 
-// The scene's light of that kind: the rectangle's size and centre, or the sun's direction and
-// angular diameter in degrees.
+// The scene's light of that kind: the rectangle's size, centre, normal (where it emits towards), up
+// (its v axis, the height side) and u axis, or the sun's direction and angular diameter in degrees.
 nlohmann::ordered_json light_json(const Scene& scene, Light light);
+
+// The camera as used: its eye position, target, vertical field of view in degrees, near and far planes.
+nlohmann::ordered_json camera_json(const OrbitCamera& camera);
 
 // True for a path this loads as a file: it ends in ".obj", ".gltf" or ".glb" (any case).
 bool is_scene_file(const std::string& name_or_path);

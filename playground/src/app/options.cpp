@@ -24,8 +24,11 @@ using penumbra_gen::printable;
 
 // The playground's own flags; the configuration fields' flags are penumbra-gen's (technique_flags.hpp).
 std::string flag_list() {
-    return "--headless, --scene, --no-ground, --size, --light-size, --out, --visibility, --reference, --samples, "
-           "--metrics, --reference-out, --error-out, --config, --watch, --frames, --screenshot, --script, --sun-time, "
+    return "--headless, --scene, --no-ground, --size, --light-size, --light-center, --light-normal, "
+           "--light-up, "
+           "--camera-position, --camera-target, --out, --visibility, --reference, --samples, "
+           "--metrics, --reference-out, --error-out, --config, --watch, --frames, --screenshot, --script, "
+           "--sun-time, "
            "--sun-path, --bake-cache, --help, " +
            penumbra::config_flag_list();
 }
@@ -35,10 +38,10 @@ bool is_switch(std::string_view flag) {
 }
 
 bool takes_value(std::string_view flag) {
-    if (penumbra_gen::is_config_flag(flag)) return true;
-    for (std::string_view f : {"--scene", "--size", "--light-size", "--out", "--visibility", "--samples", "--metrics",
-                               "--reference-out", "--error-out", "--config", "--watch", "--frames", "--screenshot",
-                               "--sun-time", "--sun-path", "--bake-cache", "--script"})
+    if (penumbra_gen::is_config_flag(flag) || is_scene_override_flag(flag)) return true;
+    for (std::string_view f : {"--scene", "--size", "--out", "--visibility", "--samples", "--metrics",
+                               "--reference-out", "--error-out", "--config", "--watch", "--frames",
+                               "--screenshot", "--sun-time", "--sun-path", "--bake-cache", "--script"})
         if (flag == f) return true;
     return false;
 }
@@ -70,16 +73,6 @@ std::string parse_size(std::string_view text, int& width, int& height) {
     return {};
 }
 
-// A finite positive number (the light's size); its upper limit depends on the light and is
-// checked once the light is known.
-std::string parse_light_size(std::string_view text, double& value) {
-    if (!cli::parse_number(text, value) || !std::isfinite(value) || value <= 0.0)
-        return "--light-size: '" + printable(text) +
-               "' is not a positive number; allowed: the rectangle's longer side in scene units (rect) or the "
-               "sun's angular diameter in degrees, below 90 (sun)";
-    return {};
-}
-
 // Checks that need every flag: the configuration as a whole, the light size for the chosen
 // light, what the headless mode requires.
 std::string check(const PlaygroundOptions& o) {
@@ -90,12 +83,25 @@ std::string check(const PlaygroundOptions& o) {
         return "--target: '" + std::string(penumbra::to_string(o.config.target)) +
                "' cannot run here, the playground renders with OpenGL; allowed: glsl330, glsl450, essl300";
     const bool sun = o.config.light == penumbra::Light::sun || o.config.technique == penumbra::Technique::oim;
-    if (o.light_size && sun && *o.light_size >= 90.0) {
+    const SceneOverrides& s = o.overrides;
+    if (s.light_size && sun && *s.light_size >= 90.0) {
         char shown[32];
-        std::snprintf(shown, sizeof shown, "%g", *o.light_size);
+        std::snprintf(shown, sizeof shown, "%g", *s.light_size);
         return "--light-size: " + std::string(shown) +
                " degrees is too wide for the sun; allowed: an angular diameter above 0 and below 90";
     }
+    if (s.light_sides && sun)
+        return "--light-size: W,H sizes the rectangle light, but the light is the sun (--light sun or "
+               "--technique "
+               "oim); allowed: one number, the sun's angular diameter in degrees, below 90";
+    if (std::string error = check_scene_overrides(s); !error.empty()) return error;
+    if (o.headless && sun && (s.light_center || s.light_normal || s.light_up))
+        return std::string(s.light_center   ? "--light-center"
+                           : s.light_normal ? "--light-normal"
+                                            : "--light-up") +
+               ": places the rectangle light, but this run's light is the sun (--light sun or --technique "
+               "oim); "
+               "allowed: with --light rect (the default)";
     if (!o.sun_path.empty()) {
         std::string error;
         if (!parse_sun_path(o.sun_path, &error)) return error;
@@ -155,10 +161,8 @@ ParsedOptions parse_options(const std::vector<std::string>& args) {
             options.sun_path = std::string(value);
         } else if (flag == "--bake-cache") {
             options.bake_cache = std::string(value);
-        } else if (flag == "--light-size") {
-            double size = 0.0;
-            error = parse_light_size(value, size);
-            if (error.empty()) options.light_size = size;
+        } else if (is_scene_override_flag(flag)) {
+            error = parse_scene_override(flag, value, options.overrides);
         } else if (value.empty())
             error = std::string(flag) + ": empty; allowed: a " + (flag == "--scene" ? "scene name or .obj, .gltf or .glb path" : "path");
         else if (flag == "--scene") options.scene = std::string(value);
@@ -194,39 +198,45 @@ std::string usage() {
         return out + std::string(text) + "\n";
     };
     std::string out =
-        "usage: penumbra-playground --headless --scene NAME|FILE [--no-ground] [configuration flags] [--size WxH]\n"
-        "           [--light-size X] --out image.png [--visibility vis.pfm] [--reference] [--samples N]\n"
+        "usage: penumbra-playground --headless --scene NAME|FILE [--no-ground] [configuration flags] [--size "
+        "WxH]\n"
+        "           [light and camera flags] --out image.png [--visibility vis.pfm] [--reference] [--samples "
+        "N]\n"
         "           [--metrics metrics.json] [--reference-out truth.pfm] [--error-out error.png]\n"
         "           [--sun-time T] [--sun-path AZ:EL,...] [--bake-cache DIR]  (--technique oim)\n"
-        "       penumbra-playground [--scene NAME|FILE] [--no-ground] [configuration flags] [--size WxH] [--light-size X]\n"
+        "       penumbra-playground [--scene NAME|FILE] [--no-ground] [configuration flags] [--size WxH]\n"
+        "           [light and camera flags]\n"
         "           [--watch DIR] [--frames N] [--screenshot FILE] [--script FILE]\n"
         "\n"
-        "With --headless: renders the scene without a display (EGL; Mesa llvmpipe or a GPU) with the shaders\n"
+        "With --headless: renders the scene without a display (EGL; Mesa llvmpipe or a GPU) with the "
+        "shaders\n"
         "Penumbra emits for the configuration, writes the shaded image and, with --reference, compares the\n"
         "visibility with an Embree ray-traced ground truth. Without --headless: the interactive window.\n"
         "\n"
-        "scene and light:\n";
-    out += line("--scene NAME|FILE", "planes, boxes, tree, butterfly, terrain, crowd, box, cutout (default boxes), or\n"
-                                     "                        a mesh file: Wavefront OBJ (.obj) or glTF 2.0 (.gltf with "
-                                     "its buffers, .glb); a regular\n"
-                                     "                        file of at most 256 MiB, coordinates finite and within "
-                                     "±1e9. glTF: every triangle\n"
-                                     "                        primitive of the default scene, node transforms applied; "
-                                     "points, lines, sparse\n"
-                                     "                        accessors and primitives whose .bin is missing are "
-                                     "skipped with a warning;\n"
-                                     "                        Draco (KHR_draco_mesh_compression) and meshopt "
-                                     "(EXT_meshopt_compression,\n"
-                                     "                        KHR_mesh_quantization) compressed geometry is decoded");
+        "light and camera flags: [--light-size W[,H]] [--light-center X,Y,Z] [--light-normal X,Y,Z]\n"
+        "           [--light-up X,Y,Z] [--camera-position X,Y,Z] [--camera-target X,Y,Z]\n"
+        "\n"
+        "scene, light and camera:\n";
+    out += line("--scene NAME|FILE",
+                "planes, boxes, tree, butterfly, terrain, crowd, box, cutout (default boxes);\n"
+                "                        rooms: room, window, cornell; or\n"
+                "                        a mesh file: Wavefront OBJ (.obj) or glTF 2.0 (.gltf with "
+                "its buffers, .glb); a regular\n"
+                "                        file of at most 256 MiB, coordinates finite and within "
+                "±1e9. glTF: every triangle\n"
+                "                        primitive of the default scene, node transforms applied; "
+                "points, lines, sparse\n"
+                "                        accessors and primitives whose .bin is missing are "
+                "skipped with a warning;\n"
+                "                        Draco (KHR_draco_mesh_compression) and meshopt "
+                "(EXT_meshopt_compression,\n"
+                "                        KHR_mesh_quantization) compressed geometry is decoded");
     out += line("--no-ground", "no floor under a mesh file (default: a square receiver twice the footprint,\n"
                                "                        just below the lowest point; the light and camera are "
                                "framed from the bounds\n"
                                "                        with it; metrics.json says \"ground\")");
     out += line("--size WxH", "image size, 1 to 8192 per side (default 512x512 headless, 1280x720 window)");
-    out += line("--light-size X", "rect: the rectangle's longer side in scene units, aspect kept (default: the\n"
-                                  "                        scene's, 2 for the procedural scenes); sun: angular "
-                                  "diameter in degrees, below 90\n"
-                                  "                        (default 2.66, five times the real sun)");
+    out += scene_override_usage(24);
     out += "\nconfiguration (as penumbra-gen; flags override the --config file; --target vulkan, wgsl and "
            "hlsl cannot\n"
            "run here, the playground renders with OpenGL):\n\n";

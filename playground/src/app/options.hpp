@@ -2,6 +2,8 @@
 // and shared by the headless renderer and the window.
 #pragma once
 
+#include "app/scene_overrides.hpp"
+
 #include <penumbra/config.hpp>
 
 #include <optional>
@@ -18,7 +20,10 @@ struct PlaygroundOptions {
     bool alpha_test_given = false;  // --[no-]alpha-test, or a --config file that turns it on; else the scene's
                                     // materials decide (follow_asset_cuts)
     int width = 0, height = 0;      // 0: mode default (headless 512x512, window 1280x720)
-    std::optional<double> light_size; // --light-size: rectangle side / sun angular diameter (degrees)
+    // --light-size, --light-center, --light-normal, --light-up, --camera-position, --camera-target: set on
+    // the scene once it is made (app/scene_overrides.hpp). overrides.light_size: rectangle side / sun
+    // angular diameter (degrees)
+    SceneOverrides overrides;
     // technique oim: the sun on its path (penumbra/sun_path.hpp) and where bakes are cached
     double sun_time = 0.5;          // --sun-time T: path time, 0 to 1
     std::string sun_path;           // --sun-path AZ:EL,…: degrees (empty: the default day)

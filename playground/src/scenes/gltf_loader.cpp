@@ -24,7 +24,9 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
+#include <tuple>
 
 namespace penumbra::playground {
 
@@ -371,6 +373,166 @@ glm::dmat4 local_transform(const tinygltf::Node& node, int index) {
     return m;
 }
 
+// Lights. EXT_lights_area (a vendor extension; Babylon.js's glTF loader reads it): top-level
+// extensions.EXT_lights_area.lights[] with "type" ("rect" or "disk"), "size" (a rectangle's height, a
+// disk's diameter; 1 when absent), "rect": {"aspect"} (width over height; 1 when absent), colour and
+// intensity (not read); a node names one with extensions.EXT_lights_area.light. KHR_lights_punctual:
+// extensions.KHR_lights_punctual.lights[] with "type", a node's extensions.KHR_lights_punctual.light;
+// only a directional light is read (as the sun). Read from the JSON itself, whatever tinygltf keeps.
+struct AreaLightDefinition {
+    std::string label; // "EXT_lights_area light 0 'panel'"
+    bool disk = false;
+    double size = 1.0;   // the rectangle's height, the disk's diameter
+    double aspect = 1.0; // width over height (a rectangle)
+};
+
+struct FileLights {
+    std::vector<AreaLightDefinition> area;
+    std::vector<std::string> punctual_types, punctual_labels;
+    std::map<int, int> area_of_node, punctual_of_node; // node → the light it carries
+};
+
+std::string number_text(double v) {
+    std::ostringstream text;
+    text << v;
+    return text.str();
+}
+
+std::string light_label(const char* extension, std::size_t index, const nlohmann::json& light) {
+    std::string label = std::string(extension) + " light " + std::to_string(index);
+    if (light.is_object() && light.contains("name") && light["name"].is_string())
+        label += " '" + penumbra_gen::printable(light["name"].get<std::string>(), 60) + "'";
+    return label;
+}
+
+// A size or an aspect: absent → `fallback`; a number that is not finite or not above 0 is an error.
+double positive_field(const nlohmann::json& object, const char* key, const std::string& label,
+                      const std::string& field, const std::string& meaning, double fallback) {
+    if (!object.contains(key)) return fallback;
+    const nlohmann::json& value = object[key];
+    const std::string allowed = "; allowed: a finite number greater than 0 (" + meaning + ")";
+    if (!value.is_number()) throw Problem{label + ": " + field + " is not a number" + allowed};
+    const double v = value.get<double>();
+    if (!std::isfinite(v) || !(v > 0.0))
+        throw Problem{label + ": " + field + " is " + number_text(v) + allowed};
+    return v;
+}
+
+// The lights of the file's JSON and which node carries which; Problem for a light or a reference that
+// is not valid (checked for every light in the lists, used or not).
+FileLights read_file_lights(const nlohmann::json& j) {
+    FileLights out;
+    if (!j.is_object()) return out;
+    auto list = [&](const char* extension) -> const nlohmann::json* {
+        if (!j.contains("extensions") || !j["extensions"].is_object() || !j["extensions"].contains(extension))
+            return nullptr;
+        const nlohmann::json& e = j["extensions"][extension];
+        if (!e.is_object() || (e.contains("lights") && !e["lights"].is_array()))
+            throw Problem{std::string("extensions.") + extension +
+                          " is not an object with a \"lights\" array"};
+        return e.contains("lights") ? &e["lights"] : nullptr;
+    };
+    if (const nlohmann::json* lights = list("EXT_lights_area"))
+        for (std::size_t i = 0; i < lights->size(); ++i) {
+            const nlohmann::json& l = (*lights)[i];
+            AreaLightDefinition d;
+            d.label = light_label("EXT_lights_area", i, l);
+            if (!l.is_object()) throw Problem{d.label + " is not an object"};
+            const std::string type =
+                l.contains("type") && l["type"].is_string() ? l["type"].get<std::string>() : "";
+            if (type != "rect" && type != "disk")
+                throw Problem{d.label +
+                              (l.contains("type") ? ": type is '" + penumbra_gen::printable(type, 30) + "'"
+                                                  : ": no type") +
+                              "; allowed: rect, disk"};
+            d.disk = type == "disk";
+            d.size = positive_field(
+                l, "size", d.label, "size",
+                d.disk ? "the disk's diameter in scene units" : "the rectangle's height in scene units", 1.0);
+            if (!d.disk && l.contains("rect")) {
+                if (!l["rect"].is_object())
+                    throw Problem{d.label +
+                                  ": rect is not an object; allowed: {\"aspect\": width over height}"};
+                d.aspect = positive_field(l["rect"], "aspect", d.label, "rect.aspect",
+                                          "the rectangle's width over its height", 1.0);
+            }
+            out.area.push_back(std::move(d));
+        }
+    if (const nlohmann::json* lights = list("KHR_lights_punctual"))
+        for (std::size_t i = 0; i < lights->size(); ++i) {
+            const nlohmann::json& l = (*lights)[i];
+            out.punctual_labels.push_back(light_label("KHR_lights_punctual", i, l));
+            out.punctual_types.push_back(l.is_object() && l.contains("type") && l["type"].is_string()
+                                             ? penumbra_gen::printable(l["type"].get<std::string>(), 30)
+                                             : "");
+        }
+    if (!j.contains("nodes") || !j["nodes"].is_array()) return out;
+    for (std::size_t n = 0; n < j["nodes"].size(); ++n) {
+        const nlohmann::json& node = j["nodes"][n];
+        if (!node.is_object() || !node.contains("extensions") || !node["extensions"].is_object()) continue;
+        for (const auto& [extension, count, of_node] :
+             {std::tuple{"EXT_lights_area", out.area.size(), &out.area_of_node},
+              std::tuple{"KHR_lights_punctual", out.punctual_types.size(), &out.punctual_of_node}}) {
+            if (!node["extensions"].contains(extension)) continue;
+            const nlohmann::json& ref = node["extensions"][extension];
+            const std::string name = "node " + std::to_string(n) + "'s " + extension + " light";
+            if (!ref.is_object() || !ref.contains("light") || !ref["light"].is_number_integer())
+                throw Problem{name + " is not an index; allowed: {\"light\": an index into extensions." +
+                              extension + ".lights}"};
+            const std::int64_t index = ref["light"].get<std::int64_t>();
+            if (index < 0 || static_cast<std::uint64_t>(index) >= count)
+                throw Problem{name + " is " + std::to_string(index) + " but the file has " +
+                              std::to_string(count) + " in extensions." + extension + ".lights"};
+            (*of_node)[static_cast<int>(n)] = static_cast<int>(index);
+        }
+    }
+    return out;
+}
+
+// A light carried by a node the scene reaches, with the node's world transform.
+struct LightUse {
+    int node = -1;
+    int light = -1;
+    glm::dmat4 world{1.0};
+};
+
+// The rectangle of area light `d` on `node` placed by `world`, as glTF places lights (and Babylon.js
+// builds its RectAreaLight): it faces the node's local −z; its width (size × aspect) lies along the
+// node's x axis, its height (size) along its y axis, both scaled by the node's transform (Babylon.js
+// transforms its width and height vectors by the node's world matrix). u = the node's −x, v = its +y,
+// so that u × v is the node's −z (Babylon.js too turns its light half a turn about y). A transform
+// that shears x against y keeps the height along y and gives the rectangle the parallelogram's area.
+// A disk becomes the square of the same area (side √π/2 × the diameter), as Babylon.js does.
+penumbra::RectLight place_area_light(const AreaLightDefinition& d, const glm::dmat4& world, int node) {
+    const std::string name = d.label + " on node " + std::to_string(node);
+    const double side = d.disk ? d.size * std::sqrt(std::acos(-1.0)) / 2.0 : d.size;
+    const double width = d.disk ? side : d.size * d.aspect, height = side;
+    const glm::dmat3 linear(world);
+    const glm::dvec3 x = linear[0], y = linear[1], xy = glm::cross(x, y);
+    const double y_length = glm::length(y), xy_length = glm::length(xy);
+    if (!(y_length > 1e-12) || !(xy_length > 1e-12 * std::max(1.0, y_length * glm::length(x))))
+        throw Problem{name +
+                      ": its node's transform flattens the light (a zero scale along x or y); allowed: a "
+                      "transform that keeps the light's x and y axes apart"};
+    penumbra::RectLight light;
+    light.center = glm::dvec3(world[3]);
+    // The node's −z seen through the transform: −(x × y), turned over by a mirroring transform.
+    const glm::dvec3 normal = (glm::determinant(linear) < 0.0 ? 1.0 : -1.0) * xy / xy_length;
+    light.v_axis = y / y_length;
+    light.u_axis = glm::normalize(glm::cross(light.v_axis, normal)); // the node's −x when not sheared
+    light.width = width * xy_length / y_length;
+    light.height = height * y_length;
+    for (int axis = 0; axis < 3; ++axis)
+        if (!std::isfinite(light.center[axis]) || std::abs(light.center[axis]) > coordinate_limit)
+            throw Problem{name + ": its centre is out of range after its node's transform; allowed: finite "
+                                 "coordinates within ±1e9"};
+    for (const auto& [value, what] : {std::pair{light.width, "width"}, std::pair{light.height, "height"}})
+        if (!std::isfinite(value) || value > coordinate_limit)
+            throw Problem{name + ": its " + what + " after its node's transform is " + number_text(value) +
+                          "; allowed: a finite number up to 1e9"};
+    return light;
+}
+
 struct Loader {
     const tinygltf::Model& model;
     std::map<int, std::string> missing; // buffers whose file does not exist: their uri
@@ -380,6 +542,11 @@ struct Loader {
     std::size_t triangles_skipped_primitives = 0;
     const EncodedImages* images = nullptr;
     std::map<int, int> material_slots; // glTF material → its index in mesh.cut_materials, -1: it does not cut
+    const FileLights* lights = nullptr;
+    // The first area light (EXT_lights_area) and directional light (KHR_lights_punctual) met walking
+    // the scene's nodes (depth first, in order), and how many of each and of other punctual lights.
+    std::optional<LightUse> first_area{}, first_directional{};
+    std::size_t area_uses = 0, directional_uses = 0, other_punctual_uses = 0;
 
     // The slot in mesh.cut_materials of glTF material `index` when it cuts (alpha test), else -1:
     // alphaMode MASK (baseColorFactor.a × baseColorTexture.a below alphaCutoff), or BLEND, cast as a
@@ -601,6 +768,59 @@ struct Loader {
             add_primitive(m.primitives[p], "mesh " + std::to_string(index) + " primitive " + std::to_string(p), world);
     }
 
+    void note_lights(int node, const glm::dmat4& world) {
+        if (const auto it = lights->area_of_node.find(node); it != lights->area_of_node.end())
+            if (area_uses++ == 0) first_area = LightUse{node, it->second, world};
+        if (const auto it = lights->punctual_of_node.find(node); it != lights->punctual_of_node.end()) {
+            if (lights->punctual_types[static_cast<std::size_t>(it->second)] != "directional")
+                ++other_punctual_uses;
+            else if (directional_uses++ == 0)
+                first_directional = LightUse{node, it->second, world};
+        }
+    }
+
+    // The scene's lights from what note_lights met: the first area light as the rectangle, the first
+    // directional light's direction as the sun's; a line in `warnings` for what else there was.
+    void place_lights(Scene& scene) {
+        if (first_area) {
+            const AreaLightDefinition& d = lights->area[static_cast<std::size_t>(first_area->light)];
+            scene.file_light = place_area_light(d, first_area->world, first_area->node);
+            if (d.disk)
+                warnings.push_back(
+                    d.label + " on node " + std::to_string(first_area->node) +
+                    " is a disk, which penumbra's shadows cannot serve (allowed: rect); it is lit as "
+                    "the square of the same area, " +
+                    number_text(scene.file_light->width) + " x " + number_text(scene.file_light->height) +
+                    ", in its place, as Babylon.js does (--light-size W,H sets another size)");
+            if (area_uses > 1)
+                warnings.push_back("the scene has " + std::to_string(area_uses) +
+                                   " area lights (EXT_lights_area); the first, " + d.label + " on node " +
+                                   std::to_string(first_area->node) +
+                                   ", is used (penumbra shades one rectangle)");
+        }
+        if (first_directional) {
+            const std::string& label =
+                lights->punctual_labels[static_cast<std::size_t>(first_directional->light)];
+            const glm::dvec3 d = glm::dvec3(first_directional->world * glm::dvec4(0.0, 0.0, -1.0, 0.0));
+            const double length = glm::length(d);
+            if (!std::isfinite(length) || !(length > 1e-12))
+                throw Problem{
+                    label + " on node " + std::to_string(first_directional->node) +
+                    ": its node's transform has no direction for it (a zero scale along z); allowed: a "
+                    "transform that keeps the node's z axis"};
+            scene.file_sun_direction = d / length;
+            if (directional_uses > 1)
+                warnings.push_back("the scene has " + std::to_string(directional_uses) +
+                                   " directional lights (KHR_lights_punctual); the first, " + label +
+                                   " on node " + std::to_string(first_directional->node) + ", is the sun");
+        }
+        if (other_punctual_uses > 0)
+            warnings.push_back(
+                std::to_string(other_punctual_uses) + " KHR_lights_punctual point or spot light" +
+                (other_punctual_uses == 1 ? "" : "s") +
+                " ignored: penumbra shades a rectangle (EXT_lights_area) or the sun (a directional light)");
+    }
+
     // Depth first from the roots; a node met again on its own path is a cycle (invalid glTF).
     void add_nodes(const std::vector<int>& roots, const std::string& roots_name) {
         struct Entry {
@@ -631,6 +851,7 @@ struct Loader {
             const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(e.node)];
             const glm::dmat4 world = e.parent * local_transform(node, e.node);
             if (node.mesh >= 0) add_mesh(node.mesh, e.node, world);
+            if (lights) note_lights(e.node, world);
             for (auto c = node.children.rbegin(); c != node.children.rend(); ++c)
                 stack.push_back({*c, world, e.depth + 1});
         }
@@ -699,7 +920,11 @@ LoadResult load_gltf_scene(const std::string& path) {
         missing[buffer.buffer] = penumbra_gen::printable(file, 200);
     Loader loader{model, missing, {}, {}};
     loader.images = &images;
+    FileLights lights;
+    Scene result;
     try {
+        lights = read_file_lights(nlohmann::json::parse(json, nullptr, /*allow_exceptions=*/false));
+        loader.lights = &lights;
         if (const std::string problem = gltf_compression::decode(model, compressed, missing); !problem.empty())
             return failure(problem);
         if (model.defaultScene >= 0 && static_cast<std::size_t>(model.defaultScene) >= model.scenes.size())
@@ -708,6 +933,7 @@ LoadResult load_gltf_scene(const std::string& path) {
         if (model.scenes.empty()) return failure("no scenes (nothing to show)");
         const std::size_t scene = model.defaultScene >= 0 ? static_cast<std::size_t>(model.defaultScene) : 0;
         loader.add_nodes(model.scenes[scene].nodes, "scene " + std::to_string(scene));
+        loader.place_lights(result); // before finish_scene, which puts them in place of the defaults
     } catch (const Problem& p) {
         return failure(p.text);
     } catch (const std::exception& e) { // std::bad_alloc
@@ -720,7 +946,6 @@ LoadResult load_gltf_scene(const std::string& path) {
                    (loader.triangles_skipped_primitives == 1 ? "" : "s") + " skipped, e.g. " + loader.warnings.front() + ")";
         return failure(why);
     }
-    Scene result;
     result.name = fs_path.stem().string();
     result.mesh = std::move(loader.mesh);
     finish_scene(result);

@@ -27,6 +27,14 @@ namespace penumbra::playground {
 // is an error.
 // Primitives that are points or lines, use sparse accessors, have no buffer data or whose buffer's
 // file is missing are skipped, each with a line in `warnings`; a file with nothing left is an error.
+// Lights: the first EXT_lights_area light met walking the scene's nodes becomes scene.file_light (a
+// "rect" of height `size` and width `size` × `rect.aspect`, at its node's origin, facing the node's −z,
+// u along its −x, v along its +y, sized by its scale, as Babylon.js's loader places it; a "disk" the
+// square of its area, with a warning: the shadows serve rectangles only), the first KHR_lights_punctual
+// directional light's −z scene.file_sun_direction; finish_scene puts them in place of the defaults, so
+// the --light-* flags, applied to the loaded scene, still win. More lights of a kind, and point or
+// spot lights, are a warning each. A light whose type is not rect or disk, whose size or rect.aspect
+// is not a finite number above 0, or a node naming a light the file does not have, is an error.
 // Never throws on bad input; every failure is one line in `error` naming the file and the problem.
 LoadResult load_gltf_scene(const std::string& path);
 

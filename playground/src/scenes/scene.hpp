@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -118,6 +119,11 @@ struct Scene {
     bool generated_charts = false;
     // True when a floor was added under a loaded mesh (scenes/ground_plane.hpp).
     bool ground = false;
+    // The lights a loaded file brings (a glTF file's EXT_lights_area rectangle, its KHR_lights_punctual
+    // directional light's direction; scenes/gltf_loader.hpp): finish_scene puts them in place of the
+    // defaults it computes, so they survive the floor (add_ground_plane). Unset: the defaults.
+    std::optional<penumbra::RectLight> file_light;
+    std::optional<glm::dvec3> file_sun_direction; // unit; the sun keeps the default angular diameter
 };
 
 } // namespace penumbra::playground

@@ -53,6 +53,8 @@ void finish_scene(Scene& scene) {
     std::tie(scene.bounds_min, scene.bounds_max) = compute_bounds(scene.mesh);
     scene.light = default_rect_light(scene.bounds_min, scene.bounds_max);
     scene.sun = default_sun_light();
+    if (scene.file_light) scene.light = *scene.file_light; // a loaded file's own light wins over the defaults
+    if (scene.file_sun_direction) scene.sun.direction = *scene.file_sun_direction;
     scene.camera = default_camera(scene.bounds_min, scene.bounds_max);
 }
 

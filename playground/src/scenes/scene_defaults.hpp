@@ -19,7 +19,8 @@ penumbra::SunLight default_sun_light();
 // An oblique view of the whole bounding box.
 OrbitCamera default_camera(glm::vec3 bounds_min, glm::vec3 bounds_max);
 
-// Sets bounds_min/max from the mesh, then the default light, sun and camera.
+// Sets bounds_min/max from the mesh, then the default light, sun and camera; a light the loaded file
+// brought (scene.file_light, scene.file_sun_direction) replaces the default one.
 void finish_scene(Scene& scene);
 
 } // namespace penumbra::playground

@@ -348,6 +348,210 @@ Mesh build_cutout() {
     return mesh;
 }
 
+// ---------------------------------------------------------------------------------------------
+// Rooms: the light inside a closed room (room_scene_names). The shell's faces are single flat quads
+// with their own vertices, wound so that their normals face into the room (they receive from
+// inside); furniture is boxes (outward normals). Each builder also places its light and camera.
+
+// The camera at `eye` looking at `target` (OrbitCamera's yaw and pitch from the direction).
+OrbitCamera camera_looking(glm::vec3 eye, glm::vec3 target, float fov_y_degrees, float z_near, float z_far) {
+    OrbitCamera camera;
+    // OrbitCamera: eye = target + distance · (cos p sin y, sin p, cos p cos y).
+    const glm::vec3 back = eye - target;
+    camera.target = target;
+    camera.distance = glm::length(back);
+    camera.yaw_radians = std::atan2(back.x, back.z);
+    camera.pitch_radians = std::asin(back.y / camera.distance);
+    camera.fov_y_radians = glm::radians(fov_y_degrees);
+    camera.z_near = z_near;
+    camera.z_far = z_far;
+    return camera;
+}
+
+// The inside of the axis-aligned box [lo, hi]: floor, ceiling and four walls, each one quad whose
+// normal faces into the box. Corners counter-clockwise seen from inside.
+void add_room_shell(Mesh& mesh, glm::vec3 lo, glm::vec3 hi) {
+    // Floor (+y), ceiling (−y).
+    add_quad(mesh, {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, lo.y, lo.z}, {lo.x, lo.y, lo.z});
+    add_quad(mesh, {lo.x, hi.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z});
+    // Back wall at lo.z (+z), front wall at hi.z (−z).
+    add_quad(mesh, {lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z});
+    add_quad(mesh, {hi.x, lo.y, hi.z}, {lo.x, lo.y, hi.z}, {lo.x, hi.y, hi.z}, {hi.x, hi.y, hi.z});
+    // Left wall at lo.x (+x), right wall at hi.x (−x).
+    add_quad(mesh, {lo.x, lo.y, hi.z}, {lo.x, lo.y, lo.z}, {lo.x, hi.y, lo.z}, {lo.x, hi.y, hi.z});
+    add_quad(mesh, {hi.x, lo.y, lo.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {hi.x, hi.y, lo.z});
+}
+
+// An axis-aligned box from its lower corner `lo` and its size.
+void add_block(Mesh& mesh, glm::vec3 lo, glm::vec3 size) {
+    add_box(mesh, box_transform(lo + 0.5f * size, size));
+}
+
+// A table: a top of `size` (x, thickness, z) whose upper face is at `height`, four square legs.
+void add_table(Mesh& mesh, glm::vec3 centre_on_floor, glm::vec3 size, float height) {
+    const float leg = 0.06f, inset = 0.05f;
+    add_block(mesh, {centre_on_floor.x - 0.5f * size.x, height - size.y, centre_on_floor.z - 0.5f * size.z},
+              size);
+    for (float sx : {-1.0f, 1.0f})
+        for (float sz : {-1.0f, 1.0f}) {
+            const glm::vec3 c(centre_on_floor.x + sx * (0.5f * size.x - inset - 0.5f * leg), 0.0f,
+                              centre_on_floor.z + sz * (0.5f * size.z - inset - 0.5f * leg));
+            add_block(mesh, {c.x - 0.5f * leg, 0.0f, c.z - 0.5f * leg}, {leg, height - size.y, leg});
+        }
+}
+
+// A chair: a 0.44 × 0.44 seat at 0.45, four legs, a backrest up to 0.9 on the side `back` (a unit
+// vector along x or z, away from where one sits facing).
+void add_chair(Mesh& mesh, glm::vec3 centre_on_floor, glm::vec3 back) {
+    const float seat = 0.44f, seat_height = 0.45f, seat_thickness = 0.04f, rest = 0.03f, rest_width = 0.36f;
+    add_table(mesh, centre_on_floor, {seat, seat_thickness, seat}, seat_height);
+    const glm::vec3 c = centre_on_floor + (0.5f * seat - 0.5f * rest) * back;
+    const glm::vec3 size =
+        std::abs(back.x) > 0.5f ? glm::vec3(rest, 0.45f, rest_width) : glm::vec3(rest_width, 0.45f, rest);
+    add_block(mesh, {c.x - 0.5f * size.x, seat_height, c.z - 0.5f * size.z}, size);
+}
+
+// An open bookshelf `size` (width along x, height, depth along z) with `shelves` boards between its
+// plinth and top: two sides, a top, a plinth and a back panel; its back at z = 0, open towards +z,
+// centred on x = 0, standing on y = 0.
+Mesh make_shelf(glm::vec3 size, int shelves) {
+    Mesh shelf;
+    const float t = 0.025f, plinth = 0.08f, x0 = -0.5f * size.x;
+    add_block(shelf, {x0, 0.0f, 0.0f}, {t, size.y, size.z}); // sides
+    add_block(shelf, {-x0 - t, 0.0f, 0.0f}, {t, size.y, size.z});
+    add_block(shelf, {x0 + t, size.y - t, 0.0f}, {size.x - 2 * t, t, size.z});          // top
+    add_block(shelf, {x0 + t, 0.0f, 0.0f}, {size.x - 2 * t, plinth, size.z});           // plinth
+    add_block(shelf, {x0 + t, plinth, 0.0f}, {size.x - 2 * t, size.y - plinth - t, t}); // back panel
+    for (int i = 1; i <= shelves; ++i) {
+        const float y =
+            plinth + (size.y - plinth - t) * static_cast<float>(i) / static_cast<float>(shelves + 1);
+        add_block(shelf, {x0 + t, y - 0.5f * t, t}, {size.x - 2 * t, t, size.z - t});
+    }
+    return shelf;
+}
+
+// `room`: a 6 × 3 × 5 room (x −3…3, y 0…3, z −2.5…2.5) lit by a 1.2 × 0.6 ceiling panel 2 cm under
+// the ceiling, facing down; a table with a chair, a bookshelf and a crate against the back wall
+// (z = −2.5), a box on the table; the camera inside, by the front wall, looking at them.
+void build_room(Scene& scene) {
+    Mesh& mesh = scene.mesh;
+    const glm::vec3 lo(-3.0f, 0.0f, -2.5f), hi(3.0f, 3.0f, 2.5f);
+    add_room_shell(mesh, lo, hi);
+    const float wall_gap = 0.01f; // furniture stands 1 cm off the walls: no coplanar faces
+    add_table(mesh, {-0.7f, 0.0f, lo.z + wall_gap + 0.4f}, {1.6f, 0.05f, 0.8f}, 0.75f);
+    add_block(mesh, {-1.2f, 0.75f, -2.3f}, {0.35f, 0.25f, 0.25f}); // a box on the table
+    add_chair(mesh, {-0.5f, 0.0f, -1.45f}, {0.0f, 0.0f, 1.0f});
+    append_mesh(mesh, make_shelf({1.1f, 2.0f, 0.35f}, 3),
+                glm::translate(glm::mat4(1.0f), {1.6f, 0.0f, lo.z + wall_gap}));
+    add_block(mesh, {2.3f, 0.0f, lo.z + wall_gap}, {0.55f, 0.45f, 0.6f}); // a crate
+    finish_scene(scene);
+
+    penumbra::RectLight& light = scene.light;
+    light.center = glm::dvec3(0.0, 3.0 - 0.02, -0.6);
+    light.u_axis = glm::dvec3(1.0, 0.0, 0.0);
+    light.v_axis = glm::dvec3(0.0, 0.0, 1.0); // normal() = cross(+x, +z) = −y: down
+    light.width = 1.2;
+    light.height = 0.6;
+    scene.sun = default_sun_light(); // outside: the ceiling hides it
+    scene.camera = camera_looking({0.9f, 1.7f, 2.3f}, {0.4f, 0.7f, -2.0f}, 60.0f, 0.02f, 15.0f);
+}
+
+// `window`: a 5 × 2.8 × 6 room (x −2.5…2.5, y 0…2.8, z −3…3) lit by a 1.5 × 1.2 window in the −x
+// wall: the light lies 1 cm inside the wall's plane, its lower edge 0.9 above the floor, facing +x
+// into the room; a table with two chairs in the light's path, a bookshelf against the back wall;
+// the camera inside, in the far corner, looking at the window, the table and the floor.
+void build_window(Scene& scene) {
+    Mesh& mesh = scene.mesh;
+    const glm::vec3 lo(-2.5f, 0.0f, -3.0f), hi(2.5f, 2.8f, 3.0f);
+    add_room_shell(mesh, lo, hi);
+    add_table(mesh, {-0.6f, 0.0f, -0.4f}, {0.9f, 0.05f, 1.4f}, 0.74f);
+    add_chair(mesh, {0.15f, 0.0f, -0.7f}, {1.0f, 0.0f, 0.0f});
+    add_chair(mesh, {-1.35f, 0.0f, 0.0f}, {-1.0f, 0.0f, 0.0f});
+    // A bookshelf against the back wall (−z), across the room from the window.
+    append_mesh(mesh, make_shelf({1.0f, 1.8f, 0.35f}, 2),
+                glm::translate(glm::mat4(1.0f), {0.4f, 0.0f, lo.z + 0.01f}));
+    finish_scene(scene);
+
+    penumbra::RectLight& light = scene.light;
+    light.center = glm::dvec3(-2.5 + 0.01, 0.9 + 0.6, -0.4);
+    light.u_axis = glm::dvec3(0.0, 0.0, -1.0);
+    light.v_axis = glm::dvec3(0.0, 1.0, 0.0); // normal() = cross(−z, +y) = +x: into the room
+    light.width = 1.5;
+    light.height = 1.2;
+    scene.sun = default_sun_light();
+    scene.sun.direction =
+        glm::normalize(glm::dvec3(1.0, -0.8, 0.25)); // through the window's side (the wall hides it)
+    scene.camera = camera_looking({2.2f, 1.65f, 2.7f}, {-0.9f, 0.55f, -0.6f}, 60.0f, 0.02f, 15.0f);
+}
+
+// `cornell`: the Cornell box as measured, from Cornell University Program of Computer Graphics,
+// "Cornell Box Data" (https://www.graphics.cornell.edu/online/box/data.html). Coordinates in
+// millimetres as published (each quad's corners in the published order, which winds its normal into
+// the box, or out of a block), converted to metres; the front (z = 0) stays open, as published.
+// Not in the data: the blocks' bottoms, added on the floor (unseen) so that each block is a closed
+// solid (solid_casters, docs/model.md §1.3b).
+void build_cornell(Scene& scene) {
+    using Quad = std::array<glm::dvec3, 4>; // millimetres
+    // Floor, ceiling, back wall, right wall (green, x = 0), left wall (red, x ≈ 556).
+    const std::array<Quad, 5> shell{{
+        {{{552.8, 0.0, 0.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 559.2}, {549.6, 0.0, 559.2}}},
+        {{{556.0, 548.8, 0.0}, {556.0, 548.8, 559.2}, {0.0, 548.8, 559.2}, {0.0, 548.8, 0.0}}},
+        {{{549.6, 0.0, 559.2}, {0.0, 0.0, 559.2}, {0.0, 548.8, 559.2}, {556.0, 548.8, 559.2}}},
+        {{{0.0, 0.0, 559.2}, {0.0, 0.0, 0.0}, {0.0, 548.8, 0.0}, {0.0, 548.8, 559.2}}},
+        {{{552.8, 0.0, 0.0}, {549.6, 0.0, 559.2}, {556.0, 548.8, 559.2}, {556.0, 548.8, 0.0}}},
+    }};
+    // The short block (165 mm) and the tall block (330 mm): top, then four sides.
+    const std::array<Quad, 5> short_block{{
+        {{{130.0, 165.0, 65.0}, {82.0, 165.0, 225.0}, {240.0, 165.0, 272.0}, {290.0, 165.0, 114.0}}},
+        {{{290.0, 0.0, 114.0}, {290.0, 165.0, 114.0}, {240.0, 165.0, 272.0}, {240.0, 0.0, 272.0}}},
+        {{{130.0, 0.0, 65.0}, {130.0, 165.0, 65.0}, {290.0, 165.0, 114.0}, {290.0, 0.0, 114.0}}},
+        {{{82.0, 0.0, 225.0}, {82.0, 165.0, 225.0}, {130.0, 165.0, 65.0}, {130.0, 0.0, 65.0}}},
+        {{{240.0, 0.0, 272.0}, {240.0, 165.0, 272.0}, {82.0, 165.0, 225.0}, {82.0, 0.0, 225.0}}},
+    }};
+    const std::array<Quad, 5> tall_block{{
+        {{{423.0, 330.0, 247.0}, {265.0, 330.0, 296.0}, {314.0, 330.0, 456.0}, {472.0, 330.0, 406.0}}},
+        {{{423.0, 0.0, 247.0}, {423.0, 330.0, 247.0}, {472.0, 330.0, 406.0}, {472.0, 0.0, 406.0}}},
+        {{{472.0, 0.0, 406.0}, {472.0, 330.0, 406.0}, {314.0, 330.0, 456.0}, {314.0, 0.0, 456.0}}},
+        {{{314.0, 0.0, 456.0}, {314.0, 330.0, 456.0}, {265.0, 330.0, 296.0}, {265.0, 0.0, 296.0}}},
+        {{{265.0, 0.0, 296.0}, {265.0, 330.0, 296.0}, {423.0, 330.0, 247.0}, {423.0, 0.0, 247.0}}},
+    }};
+    // The light: 130 × 105 mm, x 213…343, z 227…332, published at the ceiling's height (548.8).
+    const double light_x0 = 213.0, light_x1 = 343.0, light_z0 = 227.0, light_z1 = 332.0;
+    const double light_y = 548.7; // 0.1 mm under the ceiling, as renderers of the box usually put it
+    // The camera: at (278, 273, −800) looking along +z, up +y; a 35 mm lens over a 25 × 25 mm film:
+    // a vertical field of view of 2 · atan(12.5 / 35) = 39.3°.
+    const glm::dvec3 camera_position(278.0, 273.0, -800.0);
+    const double focal_length = 35.0, film_size = 25.0;
+
+    const double mm = 0.001; // to metres
+    Mesh& mesh = scene.mesh;
+    auto metres = [&](const glm::dvec3& p) { return glm::vec3(mm * p); };
+    auto add = [&](const Quad& q) { add_quad(mesh, metres(q[0]), metres(q[1]), metres(q[2]), metres(q[3])); };
+    for (const Quad& q : shell) add(q);
+    for (const std::array<Quad, 5>* block : {&short_block, &tall_block}) {
+        for (const Quad& q : *block) add(q);
+        // The bottom: the top's corners on the floor, wound the other way (facing −y).
+        const Quad& top = (*block)[0];
+        add({glm::dvec3(top[3].x, 0.0, top[3].z), glm::dvec3(top[2].x, 0.0, top[2].z),
+             glm::dvec3(top[1].x, 0.0, top[1].z), glm::dvec3(top[0].x, 0.0, top[0].z)});
+    }
+    finish_scene(scene);
+
+    penumbra::RectLight& light = scene.light;
+    light.center = mm * glm::dvec3(0.5 * (light_x0 + light_x1), light_y, 0.5 * (light_z0 + light_z1));
+    light.u_axis = glm::dvec3(1.0, 0.0, 0.0);
+    light.v_axis = glm::dvec3(0.0, 0.0, 1.0);  // normal() = cross(+x, +z) = −y: down
+    light.width = mm * (light_x1 - light_x0);  // 0.130
+    light.height = mm * (light_z1 - light_z0); // 0.105
+    scene.sun = default_sun_light();           // outside: the ceiling hides it
+    // Looking along +z at the middle of the box's depth (the eye is what is published).
+    const glm::vec3 eye = metres(camera_position);
+    const float fov_y_degrees =
+        static_cast<float>(glm::degrees(2.0 * std::atan(0.5 * film_size / focal_length)));
+    scene.camera =
+        camera_looking(eye, {eye.x, eye.y, metres({0.0, 0.0, 0.5 * 559.2}).z}, fov_y_degrees, 0.01f, 5.0f);
+}
+
 struct SceneEntry {
     std::string_view name;
     Mesh (*build)();
@@ -364,12 +568,36 @@ constexpr std::array<SceneEntry, 8> scene_table{{
     {"cutout", build_cutout},
 }};
 
+struct RoomEntry {
+    std::string_view name;
+    void (*build)(Scene&); // the mesh, finish_scene, then the light, sun and camera
+};
+
+constexpr std::array<RoomEntry, 3> room_table{{
+    {"room", build_room},
+    {"window", build_window},
+    {"cornell", build_cornell},
+}};
+
 } // namespace
 
 std::vector<std::string_view> scene_names() {
     std::vector<std::string_view> names;
     for (const SceneEntry& e : scene_table) names.push_back(e.name);
     return names;
+}
+
+std::vector<std::string_view> room_scene_names() {
+    std::vector<std::string_view> names;
+    for (const RoomEntry& e : room_table) names.push_back(e.name);
+    return names;
+}
+
+std::string allowed_scene_names() {
+    std::string allowed;
+    for (std::string_view name : scene_names()) allowed += (allowed.empty() ? "" : ", ") + std::string(name);
+    for (std::string_view name : room_scene_names()) allowed += ", " + std::string(name);
+    return allowed;
 }
 
 std::optional<Scene> make_scene(std::string_view name) {
@@ -380,6 +608,14 @@ std::optional<Scene> make_scene(std::string_view name) {
         scene.mesh = e.build();
         scene.generated_charts = true;
         finish_scene(scene);
+        return scene;
+    }
+    for (const RoomEntry& e : room_table) {
+        if (e.name != name) continue;
+        Scene scene;
+        scene.name = std::string(name);
+        scene.generated_charts = true;
+        e.build(scene);
         return scene;
     }
     return std::nullopt;

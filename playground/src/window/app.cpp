@@ -104,6 +104,20 @@ int run_window(const PlaygroundOptions& given) {
         std::cerr << "error: " << loaded.error << "\n";
         return 2;
     }
+    {
+        // What only the scene can tell of --light-up and --camera-* (bad input too): on a copy of its light
+        // and camera, before the window opens.
+        Scene probe;
+        probe.light = loaded.scene->light;
+        probe.camera = loaded.scene->camera;
+        probe.bounds_min = loaded.scene->bounds_min;
+        probe.bounds_max = loaded.scene->bounds_max;
+        if (std::string e = apply_scene_overrides(options.overrides, probe, options.config.light);
+            !e.empty()) {
+            std::cerr << "error: " << e << "\n";
+            return 2;
+        }
+    }
     std::string cut_note;
     options = follow_asset_cuts(options, *loaded.scene, &cut_note);
     if (!cut_note.empty()) std::cout << cut_note << "\n";

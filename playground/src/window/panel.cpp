@@ -132,9 +132,10 @@ bool config_editor(const char* id, Config& config) {
 
 void scene_section(WindowApp& app) {
     if (ImGui::BeginCombo("scene", app.scene_name().c_str())) {
-        for (std::string_view name : scene_names())
-            if (ImGui::Selectable(std::string(name).c_str(), name == app.scene_name()))
-                app.load_scene(std::string(name));
+        for (const auto& names : {scene_names(), room_scene_names()})
+            for (std::string_view name : names)
+                if (ImGui::Selectable(std::string(name).c_str(), name == app.scene_name()))
+                    app.load_scene(std::string(name));
         ImGui::EndCombo();
     }
     static char obj_path[512] = "";

@@ -129,7 +129,11 @@ void WindowApp::load_scene(const std::string& name_or_path) {
 
 bool WindowApp::show_scene(Scene scene, const std::string& name_or_path) {
     std::string error;
-    if (options_.light_size) apply_light_size(scene, options_.config.light, *options_.light_size);
+    // --light-*, --camera-*: every scene shown (the first and each one loaded later) gets them
+    if (std::string e = apply_scene_overrides(options_.overrides, scene, options_.config.light); !e.empty()) {
+        problem("error: " + e);
+        return false;
+    }
     // The renderer keeps a pointer to the scene: build the new one before replacing the old.
     Scene previous = std::move(scene_);
     scene_ = std::move(scene);

@@ -4,6 +4,8 @@ import * as THREE from "three";
 import type {WebGPURenderer} from "three/webgpu";
 import {PenumbraShadows, PenumbraError, EMISSIONS, type PenumbraShadowsOptions, type PenumbraShadowsWebGPU} from "penumbra-three";
 import {loadEmitter, type EmitResult} from "penumbra-three/emitter";
+import {GLTFLoader} from "three/addons/loaders/GLTFLoader.js";
+import {GLTFLightsAreaExtension, EXT_LIGHTS_AREA} from "penumbra-three";
 
 export async function attach(renderer: THREE.WebGLRenderer, scene: THREE.Scene, camera: THREE.Camera): Promise<number> {
     const rect = new THREE.RectAreaLight(0xffffff, 5, 3, 2);
@@ -32,4 +34,16 @@ export async function attachWebGPU(renderer: WebGPURenderer, scene: THREE.Scene,
     const visibility: Float32Array = await shadows.renderVisibility(camera, 64, 64);
     shadows.dispose();
     return visibility.length + (shadows.info.error === null ? 0 : 1);
+}
+
+// glTF area lights (EXT_lights_area) through the package's GLTFLoader plugin, each shadowed.
+export async function attachGLTF(renderer: THREE.WebGLRenderer, scene: THREE.Scene, url: string): Promise<number> {
+    const loader = new GLTFLoader().register((parser) => new GLTFLightsAreaExtension(parser));
+    const gltf = await loader.loadAsync(url);
+    scene.add(gltf.scene);
+    const lights: THREE.RectAreaLight[] = [];
+    gltf.scene.traverse((o) => { if (o instanceof THREE.RectAreaLight) lights.push(o); });
+    const all: PenumbraShadows[] = await Promise.all(lights.map((light) => PenumbraShadows.load(renderer, scene, light)));
+    const name: "EXT_lights_area" = EXT_LIGHTS_AREA;
+    return all.length + name.length;
 }

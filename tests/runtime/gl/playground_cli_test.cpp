@@ -9,12 +9,14 @@
 #include "app/image_io.hpp"
 
 #include <doctest/doctest.h>
+#include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
 #include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -82,11 +84,34 @@ TEST_CASE("playground cli: --help documents both modes and every configuration f
     TempDir dir;
     const Run run = run_playground(dir, {"--help"});
     CHECK(run.exit_code == 0);
-    for (const char* text : {"--headless", "window", "--slices", "--resolution", "--filter", "--fusion", "--packing",
-                             "--light", "--target", "--no-leak-fix", "--no-fade", "--slice-placement", "--config",
+    for (const char* text : {"--headless",
+                             "window",
+                             "--slices",
+                             "--resolution",
+                             "--filter",
+                             "--fusion",
+                             "--packing",
+                             "--light",
+                             "--target",
+                             "--no-leak-fix",
+                             "--no-fade",
+                             "--slice-placement",
+                             "--config",
                              "--light-size",
-                             "--reference", "--samples", "--metrics", "--visibility", "--watch", "--frames",
-                             "--screenshot", "--script"}) {
+                             "--light-size W[,H]",
+                             "--light-center X,Y,Z",
+                             "--light-normal X,Y,Z",
+                             "--light-up X,Y,Z",
+                             "--camera-position X,Y,Z",
+                             "--camera-target X,Y,Z",
+                             "--reference",
+                             "--samples",
+                             "--metrics",
+                             "--visibility",
+                             "--watch",
+                             "--frames",
+                             "--screenshot",
+                             "--script"}) {
         CAPTURE(text);
         CHECK(run.out.find(text) != std::string::npos);
     }
@@ -102,18 +127,52 @@ TEST_CASE("playground cli: bad arguments exit 2 with a message naming what is al
         {{"--headless", "--out", "a.png", "--filter", "box"},
          "error: --filter: 'box' is not allowed; allowed: mipmap, nbuffer, sat, gaussian"},
         {{"--headless", "--out", "a.png", "--scene", "nope"},
-         "error: --scene: unknown scene 'nope'; allowed: planes, boxes, tree, butterfly, terrain, crowd, box, cutout, or a"},
+         "error: --scene: unknown scene 'nope'; allowed: planes, boxes, tree, butterfly, terrain, crowd, "
+         "box, cutout, "
+         "room, window, cornell, or a"},
         {{"--headless", "--scene", "planes"}, "error: --out: missing"},
-        {{"--headless", "--out", "a.png", "--slices", "40"}, "error: slices: 40 is out of range; allowed: 1 to 32, 64 or 128"},
+        {{"--headless", "--out", "a.png", "--slices", "40"},
+         "error: slices: 40 is out of range; allowed: 1 to 32, 64 or 128"},
         {{"--headless", "--out", "a.png", "--slices", "many"}, "error: --slices: 'many' is not an integer"},
         {{"--headless", "--out", "a.png", "--size", "64"}, "error: --size: '64' is not WxH"},
-        {{"--headless", "--out", "a.png", "--samples", "0"}, "error: --samples: 0 is out of range; allowed: 1 to 1024"},
+        {{"--headless", "--out", "a.png", "--samples", "0"},
+         "error: --samples: 0 is out of range; allowed: 1 to 1024"},
         {{"--headless", "--out", "a.png", "--target", "vulkan"}, "error: --target: 'vulkan' cannot run here"},
-        {{"--headless", "--out", "a.png", "--technique", "pcf", "--target", "wgsl"}, "error: --target: 'wgsl' cannot run here"},
-        {{"--headless", "--out", "a.png", "--light-size", "-1"}, "error: --light-size: '-1' is not a positive number"},
+        {{"--headless", "--out", "a.png", "--technique", "pcf", "--target", "wgsl"},
+         "error: --target: 'wgsl' cannot run here"},
+        {{"--headless", "--out", "a.png", "--light-size", "-1"},
+         "error: --light-size: '-1' is not a positive number"},
         {{"--headless", "--out", "a.png", "--light", "sun", "--light-size", "120"}, "below 90"},
+        {{"--headless", "--out", "a.png", "--light-normal", "0,0,0"},
+         "error: --light-normal: '0,0,0' has zero length; allowed: a direction X,Y,Z"},
+        {{"--headless", "--out", "a.png", "--light-up", "0,-0,0"},
+         "error: --light-up: '0,-0,0' has zero length"},
+        {{"--headless", "--out", "a.png", "--light-normal", "1,1,0", "--light-up", "-2,-2,0"},
+         "error: --light-up: -0.707107,-0.707107,0 is parallel to --light-normal 0.707107,0.707107,0; "
+         "allowed:"},
+        {{"--headless", "--out", "a.png", "--light-size", "2,0"},
+         "error: --light-size: '2,0' is not a positive number pair"},
+        {{"--headless", "--out", "a.png", "--light-size=1,2,3"},
+         "error: --light-size: '1,2,3' has 3 numbers; allowed: W,"},
+        {{"--headless", "--out", "a.png", "--light", "sun", "--light-size", "1,2"},
+         "error: --light-size: W,H sizes the rectangle light, but the light is the sun"},
+        {{"--headless", "--out", "a.png", "--light", "sun", "--light-center", "0,5,0"},
+         "error: --light-center: places the rectangle light, but this run's light is the sun"},
+        {{"--headless", "--out", "a.png", "--light-center", "0,nan,0"},
+         "error: --light-center: '0,nan,0': 'nan' is not a finite number; allowed: a point X,Y,Z"},
+        {{"--headless", "--out", "a.png", "--light-normal", "0,-1"},
+         "error: --light-normal: '0,-1' has 2 numbers"},
+        {{"--headless", "--out", "a.png", "--camera-position", "1,inf,2"},
+         "error: --camera-position: '1,inf,2': 'inf'"},
+        {{"--headless", "--out", "a.png", "--camera-position", "1,2,3", "--camera-target", "1,2,3"},
+         "error: --camera-target: 1,2,3 is the camera's position (--camera-position); allowed: a point "
+         "other"},
+        // what only the scene tells: the built-in scenes' light faces straight down
+        {{"--headless", "--out", "a.png", "--scene", "planes", "--light-up", "0,1,0"},
+         "error: --light-up: 0,1,0 is parallel to the scene light's normal 0,-1,0; allowed:"},
         {{"--headless", "--out", "a.png", "--error-out", "e.png"}, "error: --error-out: needs --reference"},
-        {{"--headless", "--out", "a.png", "--config", "missing.json"}, "error: --config: cannot open 'missing.json'"},
+        {{"--headless", "--out", "a.png", "--config", "missing.json"},
+         "error: --config: cannot open 'missing.json'"},
         {{"--headless", "--out", "a.png", "--filter", "gaussian"}, "error: filter: gaussian"},
         {{"--headless", "--out"}, "error: --out: missing value"},
     };
@@ -219,6 +278,51 @@ TEST_CASE("playground cli: --config is read first, flags override it; --light-si
     CHECK(s["config"]["slices"] == 4);
     CHECK(s["config"]["light"] == "sun");
     CHECK(s["light"]["angular_diameter_degrees"] == doctest::Approx(3.0));
+}
+
+TEST_CASE(
+    "playground cli: --light-* and --camera-* set the scene's light and camera; metrics.json records them") {
+    TempDir dir;
+    const Run run = run_playground(
+        dir,
+        {"--headless", "--scene",         "planes",    "--size",         "32x32",     "--slices",
+         "4",          "--resolution",    "64",        "--light-center", "1,6,-0.5",  "--light-normal",
+         "0,-3,-1",    "--light-up",      "0,0,-1",    "--light-size",   "3,1.5",     "--camera-position",
+         "2,7,9",      "--camera-target", "0,0.5,0",   "--reference",    "--samples", "2",
+         "--out",      "a.png",           "--metrics", "m.json"});
+    REQUIRE_MESSAGE(run.exit_code == 0, run.err);
+    const nlohmann::json m = read_json(dir.file("m.json"));
+    auto vec = [](const nlohmann::json& j) {
+        return glm::dvec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
+    };
+    auto near = [](glm::dvec3 a, glm::dvec3 b, double eps) { return glm::length(a - b) < eps; };
+    const nlohmann::json& l = m["light"];
+    CHECK(l["kind"] == "rect");
+    CHECK(near(vec(l["center"]), {1, 6, -0.5}, 1e-12));
+    CHECK(near(vec(l["normal"]), glm::normalize(glm::dvec3(0, -3, -1)), 1e-12));
+    // up: (0,0,-1) projected onto the light's plane; cross(u, v) is the normal
+    const glm::dvec3 n = glm::normalize(glm::dvec3(0, -3, -1));
+    const glm::dvec3 up = glm::normalize(glm::dvec3(0, 0, -1) - n * glm::dot(n, glm::dvec3(0, 0, -1)));
+    CHECK(near(vec(l["up"]), up, 1e-12));
+    CHECK(near(glm::cross(vec(l["u_axis"]), vec(l["up"])), n, 1e-12));
+    CHECK(l["width"].get<double>() == 3.0);
+    CHECK(l["height"].get<double>() == 1.5);
+    const nlohmann::json& c = m["camera"];
+    CHECK(near(vec(c["position"]), {2, 7, 9}, 1e-4));
+    CHECK(near(vec(c["target"]), {0, 0.5, 0}, 1e-6));
+    CHECK(c["fov_y_degrees"].get<double>() == doctest::Approx(45.0).epsilon(1e-4));
+    CHECK(m["reference"]["all"]["pixels"].get<int>() > 0); // the truth ran under that light and camera
+
+    // One flag alone keeps the rest of the scene's: --light-size W its meaning of before (the longer side).
+    const Run alone = run_playground(dir, {"--headless", "--scene", "planes", "--size", "16x16", "--slices",
+                                           "4", "--resolution", "64", "--light-size", "5", "--camera-target",
+                                           "0,1,0", "--out", "b.png", "--metrics", "b.json"});
+    REQUIRE_MESSAGE(alone.exit_code == 0, alone.err);
+    const nlohmann::json b = read_json(dir.file("b.json"));
+    CHECK(near(vec(b["light"]["normal"]), {0, -1, 0}, 1e-12));
+    CHECK(std::max(b["light"]["width"].get<double>(), b["light"]["height"].get<double>()) ==
+          doctest::Approx(5.0));
+    CHECK(near(vec(b["camera"]["target"]), {0, 1, 0}, 1e-6));
 }
 
 TEST_CASE("playground cli: an OBJ file written by the test loads and casts a shadow; a truncated one is an error") {
@@ -377,6 +481,63 @@ TEST_CASE("playground cli: --technique renders any technique; metrics.json has o
                                          "0", "--out", "x.png"});
     CHECK(bad.exit_code == 2);
     CHECK(bad.err.find("pcss.blocker_samples: 0 is out of range") != std::string::npos);
+}
+
+// web/rooms/room.gltf (web/rooms/make_room.py) brings its EXT_lights_area ceiling panel: metrics.json
+// records it; --light-* flags still win over it; a light with a bad size is exit 2 naming it, nothing
+// written.
+TEST_CASE("playground cli: a glTF room brings its light (EXT_lights_area); --light-* flags override it") {
+    TempDir dir;
+    const std::string room =
+        (fs::path(__FILE__).parent_path().parent_path().parent_path().parent_path() / "web/rooms/room.gltf")
+            .string();
+    REQUIRE_MESSAGE(fs::exists(room), room);
+    auto vec = [](const nlohmann::json& j) {
+        return glm::dvec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
+    };
+    auto near = [](glm::dvec3 a, glm::dvec3 b) { return glm::length(a - b) < 1e-6; };
+    const std::vector<std::string> common{"--headless", "--scene", room,           "--size", "24x24",
+                                          "--slices",   "4",       "--resolution", "64"};
+    std::vector<std::string> args = common;
+    args.insert(args.end(), {"--out", "room.png", "--metrics", "room.json"});
+    const Run run = run_playground(dir, args);
+    REQUIRE_MESSAGE(run.exit_code == 0, run.err);
+    CHECK_MESSAGE(run.err.find("warning") == std::string::npos, run.err);
+    const nlohmann::json m = read_json(dir.file("room.json"));
+    CHECK(m["scene"] == "room");
+    const nlohmann::json& l = m["light"];
+    CHECK(l["kind"] == "rect");
+    CHECK(near(vec(l["center"]), {0, 2.98, -0.6}));
+    CHECK(near(vec(l["normal"]), {0, -1, 0}));
+    CHECK(l["width"].get<double>() == doctest::Approx(1.2).epsilon(1e-9));
+    CHECK(l["height"].get<double>() == doctest::Approx(0.6).epsilon(1e-9));
+
+    // The flags are applied to the loaded scene, its light already the file's: they win.
+    args = common;
+    args.insert(args.end(), {"--light-center", "0.5,2.5,0", "--light-size", "1,0.8", "--out", "flags.png",
+                             "--metrics", "flags.json"});
+    const Run flags = run_playground(dir, args);
+    REQUIRE_MESSAGE(flags.exit_code == 0, flags.err);
+    const nlohmann::json f = read_json(dir.file("flags.json"))["light"];
+    CHECK(near(vec(f["center"]), {0.5, 2.5, 0}));
+    CHECK(near(vec(f["normal"]), {0, -1, 0})); // not given: the file's
+    CHECK(f["width"].get<double>() == 1.0);
+    CHECK(f["height"].get<double>() == 0.8);
+
+    // A size of 0: one error line naming the file, the light and the field; no image.
+    std::string text = read_text(room);
+    const std::string size = "\"size\": 0.6";
+    REQUIRE(text.find(size) != std::string::npos);
+    dir.write("flat.gltf", text.replace(text.find(size), size.size(), "\"size\": 0"));
+    const Run flat = run_playground(dir, {"--headless", "--scene", "flat.gltf", "--out", "flat.png"});
+    CHECK(flat.signal == 0);
+    CHECK(flat.exit_code == 2);
+    CHECK_MESSAGE(flat.err.find("flat.gltf") != std::string::npos, flat.err);
+    CHECK_MESSAGE(
+        flat.err.find("EXT_lights_area light 0 'ceiling panel': size is 0; allowed: a finite number "
+                      "greater than 0") != std::string::npos,
+        flat.err);
+    CHECK(!fs::exists(dir.file("flat.png")));
 }
 
 #endif // PENUMBRA_PLAYGROUND_PATH

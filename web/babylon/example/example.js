@@ -1,9 +1,10 @@
 // example.js — the add-on's example: a Babylon.js scene (a ground, a few shapes, instances and thin
-// instances of posts) lit by a RectAreaLight or a sun (DirectionalLight) with Penumbra's soft
-// shadows, an ArcRotateCamera, and buttons to switch the light, the shadows off and on, and the
-// engine (Engine, WebGL2, or WebGPUEngine: the page reloads with ?engine=webgl2|webgpu).
-// URL parameter ?size=WxH: a fixed canvas size (screenshots).
-// window.example (automation): ready, set({light, mode}), render(), info(), scene.
+// instances of posts; or a closed room lit by a ceiling panel) lit by a RectAreaLight or a sun
+// (DirectionalLight) with Penumbra's soft shadows, an ArcRotateCamera, and buttons to switch the
+// scene, the light, the shadows off and on, and the engine (Engine, WebGL2, or WebGPUEngine: the page
+// reloads with ?engine=webgl2|webgpu).
+// URL parameters ?size=WxH: a fixed canvas size (screenshots); ?scene=shapes|room.
+// window.example (automation): ready, set({scene, light, mode}), render(), info(), scene.
 import {Engine} from "@babylonjs/core/Engines/engine.js";
 import {WebGPUEngine} from "@babylonjs/core/Engines/webgpuEngine.js";
 import {Scene} from "@babylonjs/core/scene.js";
@@ -18,6 +19,7 @@ import {CreateBox} from "@babylonjs/core/Meshes/Builders/boxBuilder.js";
 import {CreateSphere} from "@babylonjs/core/Meshes/Builders/sphereBuilder.js";
 import {CreateTorusKnot} from "@babylonjs/core/Meshes/Builders/torusKnotBuilder.js";
 import {CreateCylinder} from "@babylonjs/core/Meshes/Builders/cylinderBuilder.js";
+import {Mesh} from "@babylonjs/core/Meshes/mesh.js";
 import "@babylonjs/core/Meshes/thinInstanceMesh.js";
 import "@babylonjs/core/Meshes/instancedMesh.js";
 import {StandardMaterial} from "@babylonjs/core/Materials/standardMaterial.js";
@@ -92,6 +94,37 @@ thin.material = post.material;
 thin.thinInstanceAdd([0, 1, 2, 3, 4].map((i) => Matrix.Translation(-4 + 2 * i, 0.6, 3.5)));
 shapes.push(post, thin);
 for (const m of shapes) m.receiveShadows = true;
+const outdoor = [ground, ...shapes, ...post.instances];
+
+// The room: a closed 6 × 3 × 5 box seen from inside (floor, walls, ceiling), a table with a box on it,
+// a chair, a bookshelf and a crate, lit by a 1.2 × 0.6 panel 2 cm under the ceiling. The ceiling, behind
+// the light's plane, casts nothing; the walls beside the panel lie outside the slicing pyramid
+// (info.contained is false: docs/model.md §1.2b). Everything casts and receives.
+const room = [];
+const shell = CreateBox("room", {width: 6, height: 3, depth: 5, sideOrientation: Mesh.BACKSIDE}, scene);
+shell.position.y = 1.5;
+shell.material = standard("walls", new Color3(0.85, 0.83, 0.8));
+shell.material.specularColor = Color3.Black();
+room.push(shell);
+const block = ([w, h, d], [x, y, z], material) => { // a box standing on (x, y, z)
+    const mesh = CreateBox("block", {width: w, height: h, depth: d}, scene);
+    mesh.position.set(x, y + h / 2, z);
+    mesh.material = material;
+    room.push(mesh);
+};
+const legs = (w, d, h, [x, z], material) => { // four legs under a w × d top
+    for (const [dx, dz] of [[-1, -1], [1, -1], [-1, 1], [1, 1]]) block([0.05, h, 0.05], [x + dx * (w / 2 - 0.05), 0, z + dz * (d / 2 - 0.05)], material);
+};
+const wood = standard("wood", new Color3(0.6, 0.42, 0.26)), red = standard("red", new Color3(0.8, 0.38, 0.23));
+block([1.6, 0.05, 0.8], [-0.7, 0.72, -1.9], wood); // the table
+legs(1.6, 0.8, 0.72, [-0.7, -1.9], wood);
+block([0.35, 0.25, 0.25], [-1.1, 0.77, -2.0], standard("blue", new Color3(0.23, 0.47, 0.8))); // a box on it
+block([0.45, 0.05, 0.45], [-0.5, 0.43, -1.2], red); // a chair: seat, back, legs
+block([0.45, 0.5, 0.05], [-0.5, 0.48, -0.99], red);
+legs(0.45, 0.45, 0.43, [-0.5, -1.2], red);
+block([1.1, 2.0, 0.35], [1.6, 0, -2.3], standard("shelf", new Color3(0.44, 0.5, 0.38))); // a bookshelf, a crate
+block([0.5, 0.45, 0.6], [2.4, 0, -1.3], standard("crate", new Color3(0.69, 0.56, 0.38)));
+for (const m of room) m.receiveShadows = true;
 
 // The lights: the rectangle faces its local -z, turned down by its parent
 const holder = new TransformNode("rectHolder", scene);
@@ -103,8 +136,23 @@ rect.intensity = 40;
 const sun = new DirectionalLight("sun", new Vector3(0.5, -1, 0.35), scene);
 sun.intensity = 1.6;
 
-const state = {light: params.get("light") === "sun" ? "sun" : "rect", mode: "penumbra"};
+const state = {scene: params.get("scene") === "room" ? "room" : "shapes", light: params.get("light") === "sun" ? "sun" : "rect", mode: "penumbra"};
 let shadows = null;
+
+// The chosen scene enabled (the add-on shadows enabled meshes only), its light and camera placed.
+function showScene() {
+    const inRoom = state.scene === "room";
+    for (const m of outdoor) m.setEnabled(!inRoom);
+    for (const m of room) m.setEnabled(inRoom);
+    holder.position = inRoom ? new Vector3(0, 2.98, -0.6) : new Vector3(-1, 6, 1);
+    rect.width = inRoom ? 1.2 : 3;
+    rect.height = inRoom ? 0.6 : 2;
+    rect.intensity = inRoom ? 25 : 40;
+    // (in the room: the camera by the front wall, the near plane close, for things come close there)
+    Object.assign(camera, inRoom ? {alpha: 0.91, beta: 1.38, radius: 4.65, minZ: 0.05} : {alpha: -Math.PI / 3, beta: 1.0, radius: 16, minZ: 1});
+    camera.setTarget(inRoom ? new Vector3(-0.4, 0.8, -1.3) : new Vector3(0, 1, 0), false, false, true); // (keeping those angles)
+}
+showScene();
 
 let attaching = 0;
 async function attach() {
@@ -119,14 +167,16 @@ async function attach() {
     sun.setEnabled(light === sun);
     const loaded = await PenumbraShadows.load(engine, scene, light, light === sun ? {angularDiameter: 0.04} : {});
     if (mine !== attaching) return loaded.dispose();
-    for (const m of [...shapes, ...post.instances]) loaded.addShadowCaster(m);
+    for (const m of [...shapes, ...post.instances, ...room]) loaded.addShadowCaster(m); // (the disabled ones cast nothing)
     loaded.enabled = state.mode === "penumbra";
     shadows = loaded;
 }
 
 async function set(changes) {
     const light = changes.light && changes.light !== state.light;
+    const place = changes.scene && changes.scene !== state.scene;
     Object.assign(state, changes);
+    if (place) showScene();
     if (light) await attach();
     if (shadows) shadows.enabled = state.mode === "penumbra";
 }
@@ -135,9 +185,11 @@ function render() {
     if (!shadows) return scene.render();
     shadows.update();
     scene.render();
-    status.textContent = `${engine.isWebGPU ? "WebGPU" : "WebGL2"}, ${state.light}: ${shadows.info.casters} casters, ${shadows.info.receivers} receivers, last shadow update ${shadows.info.lastShadowMs.toFixed(1)} ms`;
+    status.textContent = `${engine.isWebGPU ? "WebGPU" : "WebGL2"}, ${state.light}: ${shadows.info.casters} casters, ${shadows.info.receivers} receivers, last shadow update ${shadows.info.lastShadowMs.toFixed(1)} ms` +
+        (shadows.info.contained ? "" : " (info.contained false: part of the scene lies behind the light or beyond its 70° pyramid)");
 }
 
+for (const button of document.querySelectorAll("[data-scene]")) button.onclick = () => set({scene: button.dataset.scene});
 for (const button of document.querySelectorAll("[data-light]")) button.onclick = () => set({light: button.dataset.light});
 for (const button of document.querySelectorAll("[data-mode]")) button.onclick = () => set({mode: button.dataset.mode});
 window.addEventListener("resize", () => engine.resize());
@@ -146,4 +198,4 @@ const ready = attach().then(async () => {
     await scene.whenReadyAsync();
     engine.runRenderLoop(render);
 });
-window.example = {ready, set, render, scene, info: () => ({engine: engine.isWebGPU ? "webgpu" : "webgl2", light: state.light, mode: state.mode, shadows: shadows.info})};
+window.example = {ready, set, render, scene, info: () => ({engine: engine.isWebGPU ? "webgpu" : "webgl2", scene: state.scene, light: state.light, mode: state.mode, shadows: shadows.info})};

@@ -1,9 +1,12 @@
 // example.js — the add-on's example: a three.js scene lit by a RectAreaLight (or a sun), with
-// Penumbra's soft shadows, OrbitControls, and a lil-gui panel to move and resize the light, pick
-// the emission and compare with three's own PCFSoftShadowMap / VSMShadowMap from a SpotLight
-// placed where the rectangle is.
+// Penumbra's soft shadows, OrbitControls, and a lil-gui panel to switch the scene (shapes on a ground,
+// or a closed room lit by a ceiling panel), move and resize the light, pick the emission and compare
+// with three's own PCFSoftShadowMap / VSMShadowMap from a SpotLight placed where the rectangle is.
 //
-// URL parameters: ?light=rect|sun, ?renderer=webgl|webgpu (three's WebGLRenderer, the default, or
+// The third scene, "room (glTF)" (?scene=gltf), is web/rooms/room.gltf loaded by three's GLTFLoader with
+// penumbra-three's EXT_lights_area plugin: the add-on shadows the RectAreaLight the file brings.
+//
+// URL parameters: ?scene=shapes|room|gltf, ?light=rect|sun, ?renderer=webgl|webgpu (three's WebGLRenderer, the default, or
 // WebGPURenderer from three/webgpu: the same scene, materials and PenumbraShadows.load(); the panel's
 // "renderer" switch reloads the page with the other), ?size=WxH (a fixed canvas size, for screenshots
 // and benchmarks), ?wasm=URL (penumbra_emitter.wasm, for the configuration panel, e.g. /build/wasm/penumbra_emitter.wasm),
@@ -15,7 +18,8 @@ import {OrbitControls} from "three/addons/controls/OrbitControls.js";
 import {RectAreaLightHelper} from "three/addons/helpers/RectAreaLightHelper.js";
 import {RectAreaLightUniformsLib} from "three/addons/lights/RectAreaLightUniformsLib.js";
 import GUI from "three/addons/libs/lil-gui.module.min.js";
-import {PenumbraShadows, EMISSIONS, loadEmitter} from "../penumbra_shadows.js"; // "penumbra-three" from npm
+import {GLTFLoader} from "three/addons/loaders/GLTFLoader.js";
+import {PenumbraShadows, EMISSIONS, loadEmitter, GLTFLightsAreaExtension} from "../penumbra_shadows.js"; // "penumbra-three" from npm
 
 const params = new URLSearchParams(location.search);
 const fixedSize = params.get("size") ? params.get("size").split("x").map(Number) : null;
@@ -53,11 +57,13 @@ const controls = new OrbitControls(camera, renderer.domElement);
 controls.target.set(0, 1, 0);
 controls.update();
 
-// The scene: a ground, a few shapes and an InstancedMesh of posts; all cast and receive.
+// The first scene: a ground, a few shapes and an InstancedMesh of posts; all cast and receive.
+const outdoor = new THREE.Group();
+scene.add(outdoor);
 const ground = new THREE.Mesh(new THREE.PlaneGeometry(24, 24), new THREE.MeshStandardMaterial({color: 0xb8b8b8, roughness: 0.9}));
 ground.rotation.x = -Math.PI / 2;
 ground.receiveShadow = true;
-scene.add(ground);
+outdoor.add(ground);
 const shapes = [
     [new THREE.TorusKnotGeometry(0.8, 0.28, 160, 24), new THREE.MeshPhysicalMaterial({color: 0xd0603a, roughness: 0.35, clearcoat: 0.6}), [0, 2.2, 0]],
     [new THREE.BoxGeometry(1.6, 1.6, 1.6), new THREE.MeshStandardMaterial({color: 0x3a78d0, roughness: 0.6}), [-3, 0.8, 1.5]],
@@ -68,7 +74,7 @@ for (const [geometry, material, position] of shapes) {
     const mesh = new THREE.Mesh(geometry, material);
     mesh.position.fromArray(position);
     mesh.castShadow = mesh.receiveShadow = true;
-    scene.add(mesh);
+    outdoor.add(mesh);
 }
 const posts = new THREE.InstancedMesh(new THREE.BoxGeometry(0.2, 1.2, 0.2), new THREE.MeshStandardMaterial({color: 0x8a8a9a}), 12);
 for (let i = 0; i < posts.count; ++i) {
@@ -76,12 +82,80 @@ for (let i = 0; i < posts.count; ++i) {
     posts.setMatrixAt(i, new THREE.Matrix4().makeTranslation(5 * Math.cos(a), 0.6, 5 * Math.sin(a)));
 }
 posts.castShadow = posts.receiveShadow = true;
-scene.add(posts);
+outdoor.add(posts);
 scene.add(new THREE.HemisphereLight(0x8090a0, 0x202020, 0.35));
+
+// The second scene: a closed 6 × 3 × 5 room (floor, walls and ceiling: a box seen from inside), a table
+// with a box on it, a chair, a bookshelf and a crate, lit by a 1.2 × 0.6 panel 2 cm under the ceiling.
+// The ceiling, behind the light's plane, casts nothing; the walls beside the panel lie outside the
+// slicing pyramid (info.contained is false: docs/model.md §1.2b). Everything casts and receives.
+const room = new THREE.Group();
+scene.add(room);
+const shell = new THREE.Mesh(new THREE.BoxGeometry(6, 3, 5), new THREE.MeshStandardMaterial({color: 0xd8d4cc, roughness: 0.9, side: THREE.BackSide}));
+shell.position.y = 1.5;
+room.add(shell);
+const block = ([w, h, d], [x, y, z], color) => { // a box standing on (x, y, z)
+    const mesh = new THREE.Mesh(new THREE.BoxGeometry(w, h, d), new THREE.MeshStandardMaterial({color, roughness: 0.7}));
+    mesh.position.set(x, y + h / 2, z);
+    room.add(mesh);
+};
+const legs = (w, d, h, [x, z], color) => { // four legs under a w × d top
+    for (const [dx, dz] of [[-1, -1], [1, -1], [-1, 1], [1, 1]]) block([0.05, h, 0.05], [x + dx * (w / 2 - 0.05), 0, z + dz * (d / 2 - 0.05)], color);
+};
+block([1.6, 0.05, 0.8], [-0.7, 0.72, -1.9], 0x9a6b43); // the table
+legs(1.6, 0.8, 0.72, [-0.7, -1.9], 0x9a6b43);
+block([0.35, 0.25, 0.25], [-1.1, 0.77, -2.0], 0x3a78d0); // a box on it
+block([0.45, 0.05, 0.45], [-0.5, 0.43, -1.2], 0xd0603a); // a chair: seat, back, legs
+block([0.45, 0.5, 0.05], [-0.5, 0.48, -0.99], 0xd0603a);
+legs(0.45, 0.45, 0.43, [-0.5, -1.2], 0xd0603a);
+block([1.1, 2.0, 0.35], [1.6, 0, -2.3], 0x6f7f60); // a bookshelf, a crate
+block([0.5, 0.45, 0.6], [2.4, 0, -1.3], 0xb09060);
+room.traverse((o) => { if (o.isMesh) o.castShadow = o.receiveShadow = true; });
+
+// The third scene: a room from a glTF file (web/rooms/room.gltf), its ceiling panel an EXT_lights_area
+// light that the plugin makes a RectAreaLight; loaded when first chosen. Its light is the one the add-on
+// shadows there (and the sliders move); the file's camera, if any, gives the view.
+const gltfRoom = new THREE.Group();
+scene.add(gltfRoom);
+let gltfLight = null, gltfLoading = null;
+const GLTF_ROOM = new URL("../../rooms/room.gltf", import.meta.url);
+function loadGltfRoom() {
+    gltfLoading ??= new GLTFLoader().register((parser) => new GLTFLightsAreaExtension(parser)).loadAsync(GLTF_ROOM.href).then((gltf) => {
+        gltf.scene.traverse((o) => { if (o.isMesh) o.castShadow = o.receiveShadow = true; });
+        gltf.scene.traverse((o) => { if (o.isRectAreaLight && !gltfLight) gltfLight = o; });
+        if (!gltfLight) throw new Error(`${GLTF_ROOM}: no EXT_lights_area rect light`);
+        gltfRoom.add(gltf.scene);
+        gltfRoom.updateMatrixWorld(true);
+        gltfLight.add(new RectAreaLightHelper(gltfLight));
+        const base = gltfLight.quaternion.clone();
+        const eye = gltf.cameras[0] ? gltf.cameras[0].getWorldPosition(new THREE.Vector3()) : new THREE.Vector3(2.5, 1.9, 2.3);
+        const look = gltf.cameras[0] ? gltf.cameras[0].getWorldDirection(new THREE.Vector3()) : new THREE.Vector3(-0.5, -0.3, -1).normalize();
+        const box = new THREE.Box3().setFromObject(gltf.scene);
+        // the file's units: intensity in nits (1000 for an office panel), shown at the exposure that makes
+        // the built-in room's 30 look alike
+        SCENES.gltf = {light: {x: gltfLight.position.x, y: gltfLight.position.y, z: gltfLight.position.z, width: gltfLight.width,
+                               height: gltfLight.height, intensity: gltfLight.intensity}, base,
+                       y: [box.min.y + 0.5, gltfLight.position.y], xz: Math.max(-box.min.x, box.max.x, -box.min.z, box.max.z) - 0.2,
+                       size: 2.5, intensityMax: 2 * gltfLight.intensity, exposure: 30 / gltfLight.intensity,
+                       eye: eye.toArray(), target: eye.clone().addScaledVector(look, 3).toArray()};
+    });
+    return gltfLoading;
+}
+// The rectangle the add-on shadows: the glTF's light in the glTF room, the example's own elsewhere.
+const rectLight = () => (state.scene === "gltf" && gltfLight ? gltfLight : rect);
+const RECT_BASE = new THREE.Quaternion().setFromEuler(new THREE.Euler(-Math.PI / 2, 0, 0)); // facing down
+
+// Each scene's light, camera and slider ranges.
+const SCENES = {
+    shapes: {light: {x: 0, y: 6.5, z: 0, width: 3, height: 2, intensity: 6}, y: [3.5, 12], xz: 6, size: 8, eye: [9, 8, 11], target: [0, 1, 0]},
+    room: {light: {x: 0, y: 2.98, z: -0.6, width: 1.2, height: 0.6, intensity: 30}, y: [1.5, 2.98], xz: 2.8, size: 2.5,
+           eye: [2.5, 1.9, 2.3], target: [0.6, 0.9, -1.6]},
+};
 
 // The lights: the rectangle (Penumbra's), the sun (Penumbra's, ?light=sun), and three's SpotLight
 // / DirectionalLight for the comparison modes.
 const state = {
+    scene: ["room", "gltf"].includes(params.get("scene")) ? params.get("scene") : "shapes",
     light: params.get("light") === "sun" ? "sun" : "rect",
     mode: "penumbra", // penumbra | pcf | vsm | none
     x: 0, y: 6.5, z: 0, tiltX: 0, tiltZ: 0, width: 3, height: 2, intensity: 6,
@@ -104,9 +178,36 @@ scene.add(sunShadow, sunShadow.target);
 let shadows = null;
 const status = document.getElementById("status");
 
+// The chosen scene shown (the add-on shadows what is visible), its light and camera placed.
+function showScene() {
+    const preset = SCENES[state.scene];
+    outdoor.visible = state.scene === "shapes";
+    room.visible = state.scene === "room";
+    gltfRoom.visible = state.scene === "gltf";
+    renderer.toneMappingExposure = preset.exposure ?? 1;
+    Object.assign(state, preset.light, {tiltX: 0, tiltZ: 0});
+    camera.position.fromArray(preset.eye);
+    controls.target.fromArray(preset.target);
+    controls.update();
+    sliderRanges();
+}
+
+// The light's sliders: outdoors above the ground, in the room under its ceiling.
+function sliderRanges() {
+    if (!folders) return;
+    const preset = SCENES[state.scene];
+    const [x, y, z, width, height, intensity] = ["x", "y", "z", "width", "height", "intensity"].map((name) => folders.rect.controllers.find((c) => c.property === name));
+    y.min(preset.y[0]).max(preset.y[1]);
+    for (const c of [x, z]) c.min(-preset.xz).max(preset.xz);
+    for (const c of [width, height]) c.max(preset.size);
+    intensity.max(preset.intensityMax ?? 40);
+}
+
 function placeLights() {
+    // (the built-in rectangle faces down; the glTF's keeps the file's orientation; the tilts turn either)
+    const rect = rectLight(), base = rect === gltfLight ? SCENES.gltf.base : RECT_BASE;
     rect.position.set(state.x, state.y, state.z);
-    rect.rotation.set(-Math.PI / 2 + state.tiltX * Math.PI / 180, 0, state.tiltZ * Math.PI / 180);
+    rect.quaternion.copy(base).multiply(new THREE.Quaternion().setFromEuler(new THREE.Euler(state.tiltX * Math.PI / 180, 0, state.tiltZ * Math.PI / 180)));
     rect.width = state.width;
     rect.height = state.height;
     rect.intensity = state.intensity;
@@ -120,9 +221,9 @@ function placeLights() {
     }
     // three's peers: where the rectangle is, looking along its normal; the sun's direction.
     rect.updateMatrixWorld();
-    const normal = new THREE.Vector3(0, 0, -1).applyQuaternion(rect.quaternion);
-    spot.position.copy(rect.position);
-    spot.target.position.copy(rect.position).add(normal);
+    const normal = new THREE.Vector3(0, 0, -1).transformDirection(rect.matrixWorld);
+    rect.getWorldPosition(spot.position);
+    spot.target.position.copy(spot.position).add(normal);
     spot.angle = 80 * Math.PI / 180; // penumbra 1: a smooth fall-off towards the cone's edge
     spot.shadow.radius = state.pcfRadius;
     sunShadow.position.copy(sun.position);
@@ -133,9 +234,12 @@ function placeLights() {
 // Which light lights the scene, and whose shadows: Penumbra's add-on, or three's own shadow maps.
 function applyMode() {
     const isRect = state.light === "rect";
-    if (isRect ? !rect.parent : rect.parent) isRect ? scene.add(rect) : scene.remove(rect);
+    const own = isRect && rectLight() === rect; // the example's rectangle in the scene (not in the glTF room)
+    if (own ? !rect.parent : rect.parent) own ? scene.add(rect) : scene.remove(rect);
+    if (gltfLight) gltfLight.visible = isRect && rectLight() === gltfLight;
     if (!isRect ? !sun.parent : sun.parent) !isRect ? scene.add(sun) : scene.remove(sun);
     helper.visible = state.helper;
+    if (gltfLight) gltfLight.children.forEach((c) => { c.visible = state.helper; });
     const three = state.mode === "pcf" || state.mode === "vsm";
     renderer.shadowMap.enabled = three;
     const type = state.mode === "vsm" ? THREE.VSMShadowMap : THREE.PCFShadowMap; // PCFSoftShadowMap is PCFShadowMap in r187
@@ -154,6 +258,7 @@ function applyMode() {
     // three's shadow maps darken only the light they belong to: in those modes the SpotLight
     // carries the rectangle's light (intensity in candela = radiance × area, decay 2)
     if (isRect) {
+        const rect = rectLight();
         spot.visible = three;
         spot.intensity = three ? state.intensity * rect.width * rect.height : 0;
         rect.intensity = three ? 0 : state.intensity;
@@ -175,13 +280,13 @@ async function attach() {
         shadows = null;
         old.dispose();
     }
-    const light = state.light === "rect" ? rect : sun;
+    const light = state.light === "rect" ? rectLight() : sun;
     // the shipped emissions of this light that this renderer runs (WebGPU: those with a "-wgsl" twin)
     const keys = Object.keys(EMISSIONS).filter((k) => k.startsWith(state.light) && !k.endsWith("-wgsl") &&
                                                       (rendererKind === "webgl" || Object.hasOwn(EMISSIONS, `${k}-wgsl`)));
     if (!keys.includes(state.emission)) state.emission = `${state.light}-nbuffer-16x512`;
     const loaded = await PenumbraShadows.load(renderer, scene, light, {emission: state.emission, angularDiameter: state.diameter * Math.PI / 180, wasm});
-    if (light !== (state.light === "rect" ? rect : sun)) { // switched again while loading
+    if (light !== (state.light === "rect" ? rectLight() : sun)) { // switched again while loading
         loaded.dispose();
         return keys;
     }
@@ -205,7 +310,7 @@ function render() {
     if (!shadows) return;
     const c = shadows.config;
     status.textContent = `${rendererKind === "webgpu" ? "WebGPURenderer" : "WebGLRenderer"}: ${state.mode === "penumbra" ? `Penumbra ${c.slices} slices ${c.resolution}² ${c.filter} (${state.emitted ? "emitted in the page" : state.emission})` : state.mode === "none" ? "no shadows" : `three ${state.mode.toUpperCase()} shadow map, radius ${state.mode === "vsm" ? state.vsmRadius : state.pcfRadius}`}` +
-        ` — shadow phase runs: ${shadows.info.shadowUpdates}` + (shadows.info.contained ? "" : " — the scene reaches the light's plane: move it up");
+        ` — shadow phase runs: ${shadows.info.shadowUpdates}` + (shadows.info.contained ? "" : " — info.contained false: part of the scene lies behind the light or beyond its 70° pyramid");
 }
 
 function onResize() {
@@ -217,6 +322,26 @@ function onResize() {
 }
 
 let gui = null, emissionFolder = null, emissionController = null, folders = null;
+if (state.scene === "gltf") await loadGltfRoom().catch((e) => { console.error(e); state.scene = "room"; });
+showScene();
+
+// Another scene: the glTF room loaded first (the built-in room if it cannot be), and the add-on moved
+// to the scene's rectangle when that changed (the glTF room has its own light).
+async function switchScene() {
+    if (state.scene === "gltf") {
+        try {
+            await loadGltfRoom();
+        } catch (e) {
+            console.error(e);
+            status.textContent = `room (glTF): ${e.message}`;
+            state.scene = "room";
+        }
+    }
+    showScene();
+    if (state.light === "rect" && shadows && shadows.light !== rectLight()) await attach();
+    placeLights();
+    applyMode();
+}
 const onEmission = async (v) => { if (shadows) { await shadows.setEmission(v); state.emitted = false; } };
 
 // The emissions of the light's kind in the GUI, and the light's own folder.
@@ -230,6 +355,10 @@ function showLight(keys) {
 function buildGui(keys) {
     gui = new GUI({title: "Penumbra soft shadows"});
     const changed = () => { placeLights(); applyMode(); };
+    gui.add(state, "scene", {"shapes on a ground": "shapes", "room (ceiling panel)": "room", "room (glTF)": "gltf"}).onChange(async () => {
+        await switchScene();
+        for (const c of gui.controllersRecursive()) c.updateDisplay();
+    });
     gui.add(state, "mode", {"Penumbra (occlusion textures)": "penumbra", "three PCFSoftShadowMap (SpotLight)": "pcf", "three VSMShadowMap (SpotLight)": "vsm", "no shadows": "none"}).onChange(changed);
     gui.add(state, "light", {"RectAreaLight": "rect", "DirectionalLight (sun)": "sun"}).onChange(async () => showLight(await attach()));
     gui.add(state, "renderer", {"WebGLRenderer": "webgl", "WebGPURenderer (three/webgpu)": "webgpu"}).onChange((v) => {
@@ -248,7 +377,7 @@ function buildGui(keys) {
     folders.rect.add(state, "tiltZ", -45, 45, 1).name("tilt z (°)").onChange(changed);
     folders.rect.add(state, "width", 0.2, 8, 0.05).onChange(changed);
     folders.rect.add(state, "height", 0.2, 8, 0.05).onChange(changed);
-    folders.rect.add(state, "intensity", 0, 20, 0.1).onChange(changed);
+    folders.rect.add(state, "intensity", 0, 40, 0.1).onChange(changed);
     folders.rect.add(state, "helper").name("show the rectangle").onChange(changed);
     folders.rect.add(state, "animate").name("move the light");
     folders.sun.add(state, "azimuth", -180, 180, 1).name("azimuth (°)").onChange(changed);
@@ -286,6 +415,7 @@ function buildGui(keys) {
     peers.close();
     folders.rect.show(state.light === "rect");
     folders.sun.show(state.light === "sun");
+    sliderRanges();
     return gui;
 }
 
@@ -336,6 +466,11 @@ window.example = {
     set: async (changes) => {
         await ready;
         const light = state.light;
+        if (changes.scene && changes.scene !== state.scene) {
+            state.scene = changes.scene;
+            await switchScene(); // (its light and camera; the changes below may move them)
+            changes = {...changes, scene: state.scene}; // (the built-in room where the glTF could not load)
+        }
         Object.assign(state, changes);
         if (state.light !== light) { showLight(await attach()); state.emitted = false; }
         if (changes.emission) await shadows.setEmission(state.emission);
@@ -364,7 +499,7 @@ window.example = {
     },
     emit: async (config) => { await ready; await shadows.setEmission(config); state.emitted = true; render(); return shadows.config; },
     bench,
-    info: () => ({shadows: {...shadows.info}, config: shadows.config, memory: {...renderer.info.memory}, three: THREE.REVISION,
+    info: () => ({shadows: {...shadows.info}, light: `${shadows.light.type} ${shadows.light.name}`, config: shadows.config, memory: {...renderer.info.memory}, three: THREE.REVISION,
                   renderer: rendererKind, backend: renderer.isWebGPURenderer ? (renderer.backend.isWebGPUBackend ? "webgpu" : "webgl2") : "webgl2"}),
 };
 ready.catch((e) => { window.example = {error: `${e.message}\n${e.stack}`}; console.error(e); });

@@ -389,7 +389,7 @@ constexpr Text generic_fragment(const Config& config) {
         out.line("float penumbraVisibility(vec3 worldPos)");
     }
     out.line("{");
-    if (!clip) write_light_frame_point(out);
+    if (!clip) write_light_frame_point(out, config.light);
     out.line("float penumbra_lit = 1.0;");
     out.line("float penumbra_sum = 0.0;");
     out.line("float penumbra_max = 0.0;");
@@ -410,7 +410,7 @@ constexpr Text generic_fragment(const Config& config) {
         out.comment("Fraction of the part of the light above the tangent plane at worldPos that is visible.");
         out.line("float penumbraVisibility(vec3 worldPos, vec3 worldNormal)");
         out.line("{");
-        write_light_frame_point(out);
+        write_light_frame_point(out, config.light);
         write_tangent_clip_setup(out, config,
                                  {Text("penumbra_tangentClipOffset / penumbra_resolution"),
                                   Text("penumbra_tangentClipOffset"), Text("penumbra_clipFootprint"),

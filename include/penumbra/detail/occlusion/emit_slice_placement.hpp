@@ -45,6 +45,7 @@ constexpr Text depth_bins_fragment(const Config& config) {
     out.line(main_signature(config));
     out.line("{");
     write_alpha_test_discard(out, config);
+    write_light_plane_clip(out, config);
     out.comment(cat("paper §5, slice placement: the uniform slices' depth range in ", format_int(depth_bins),
                     " bins; bin b holds (z0 + b * w, z0 + (b + 1) * w]"));
     out.line(value(config, "float", "width", cat("penumbra_sliceDepths.y * ", format_float(double(config.slices) / depth_bins))));

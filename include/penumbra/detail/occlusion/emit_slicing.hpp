@@ -127,6 +127,7 @@ constexpr Text slicing_fragment(const Config& config) {
     out.line(main_signature(config));
     out.line("{");
     write_alpha_test_discard(out, config);
+    write_light_plane_clip(out, config);
     if (places_slices_adaptively(config)) {
         out.comment("slice k holds the depths in (boundary k, boundary k + 1]: k counts the inner boundaries above");
         write_boundary_search(out, config, "inner", "penumbra_depth", config.slices - 1);

@@ -243,15 +243,31 @@ constexpr Text clipped_visibility_return(const Config& config) {
     return "return penumbra_clippedVisibility(p, penumbra_clip);";
 }
 
+// How far outside the slicing pyramid, relative to its half width, a receiver still reads the textures:
+// the bounds' own corners lie on the pyramid, within rounding.
+inline constexpr double pyramid_margin = 1.001;
+
 // The receiver in the light frame, p, at the start of every penumbraVisibility (and its generic twin).
 constexpr void write_light_frame_point(LineWriter& out, const Config& config) {
     out.line(
         variable(config, "vec3", "p",
                  cat("(", transform(config, "penumbra_lightFromWorld", "vec4(worldPos, 1.0)"), ").xyz")));
     out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
+    if (config.light != Light::rect) return;
+    out.comment("a receiver beside the light, outside the slicing pyramid (a room's wall just under the ceiling,");
+    out.comment("docs/model.md §1.2b): its kernels would read beyond the textures (the atlas's next tile); what");
+    out.comment("could shadow it lies mostly outside the pyramid too, where nothing is sliced: it is left unshadowed");
+    out.line(if_then(config,
+                     cat("max(abs(p.x) / penumbra_lightSize.x, abs(p.y) / penumbra_lightSize.y) * penumbra_copDistance > ",
+                         format_float(0.5 * pyramid_margin), " * (penumbra_copDistance + p.z)"),
+                     "return 1.0;"));
 }
 // The generic reference program's (GLSL only).
-constexpr void write_light_frame_point(LineWriter& out) { write_light_frame_point(out, Config{}); }
+constexpr void write_light_frame_point(LineWriter& out, Light light) {
+    Config glsl;
+    glsl.light = light;
+    write_light_frame_point(out, glsl);
+}
 
 // GLSL float expressions of the tangent clip's offsets: baked literals in the specialized code,
 // uniform expressions in the generic reference (emit_generic.hpp).

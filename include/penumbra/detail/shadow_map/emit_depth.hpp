@@ -41,6 +41,7 @@ constexpr Text shadow_depth_fragment(const Config& config) {
     out.line(main_signature(config));
     out.line("{");
     write_alpha_test_discard(out, config);
+    write_light_plane_clip(out, config);
     out.comment("slope-scaled bias in scene units: constant + factor * depth change across one shadow-map texel");
     out.comment("(the pass is drawn at the shadow map's resolution, so the derivatives are per texel)");
     out.line(value(config, "float", "slope",
