@@ -75,7 +75,8 @@ TEST_CASE("the shading function is specialized: unrolled, swizzled, constants ba
         // slices are selected by rotating a one-hot vec4 and a dot product, never by a branch on the index
         CHECK(count(body, "dot(") == (level_loop ? L + 1 : S) * lookups);
         CHECK(count(body, "penumbra_i = penumbra_i.yzwx;") == (level_loop ? L + 1 : S - 1));
-        // and one branch before them: a receiver outside the rectangle's slicing pyramid (docs/model.md §1.2b)
+        // and one branch before them: a receiver outside the rectangle's slicing pyramid (docs/model.md
+        // §1.2b)
         const int outside_pyramid = config.light == Light::rect && !config.tangent_clip ? 1 : 0;
         CHECK(count(body, "if (") == (level_loop ? L : 0) + outside_pyramid);
         // no sampler array, let alone a dynamically indexed one

@@ -136,11 +136,11 @@ inline constexpr UniformDef uniform_defs[] = {
      UniformInput::slice_frame,
      {"distance d of the slicing centre of projection behind the light", ""},
      {"scene units", ""},
-     {"SliceFrame::cop_distance d: for each bounds corner p in the light frame with p.z > 0 (corners on or behind "
-      "the light's plane are skipped: the light passes discard what lies there), d <= (w/2)*p.z/(|p.x| - w/2) "
-      "when |p.x| > w/2 and d <= (h/2)*p.z/(|p.y| - h/2) when |p.y| > h/2; d = the smallest such bound, "
-      "at most 1000*max(w, h) and at least d_cap = max(w, h)/(2*tan(70 degrees)) (the pyramid's half angle "
-      "capped); when a corner lies on or behind the light's plane (a room), d = d_cap",
+     {"SliceFrame::cop_distance d: for each bounds corner p in the light frame with p.z > 0 (corners on or "
+      "behind the light's plane are skipped: the light passes discard what lies there), d <= "
+      "(w/2)*p.z/(|p.x| - w/2) when |p.x| > w/2 and d <= (h/2)*p.z/(|p.y| - h/2) when |p.y| > h/2; d = the "
+      "smallest such bound, at most 1000*max(w, h) and at least d_cap = max(w, h)/(2*tan(70 degrees)) (the "
+      "pyramid's half angle capped); when a corner lies on or behind the light's plane (a room), d = d_cap",
       ""}},
     {Uniform::window_half_size, "penumbra_windowHalfSize", GlslType::float_, UniformSource::light,
      UniformInput::either_frame,
@@ -188,9 +188,9 @@ inline constexpr UniformDef uniform_defs[] = {
      {"tangent of the half field of view of the square shadow-map frustum (apex at the light centre)", ""},
      {"", ""},
      {"ShadowFrame::tan_half_fov t = 1.001 * max over the bounds corners p (light frame) with p.z > 0 of "
-      "max(|p.x|, |p.y|) / max(p.z, near), at most tan(70 degrees): the square frustum from C that holds the "
-      "bounds in front of the light, its half angle capped; tan(70 degrees) when a corner lies on or behind "
-      "the light's plane (a room)",
+      "max(|p.x|, |p.y|) / max(p.z, near), at most tan(70 degrees): the square frustum from C that holds "
+      "the bounds in front of the light, its half angle capped; tan(70 degrees) when a corner lies on or "
+      "behind the light's plane (a room)",
       ""}},
     {Uniform::light_size_uv, "penumbra_lightSizeUV", GlslType::vec2, UniformSource::light,
      UniformInput::shadow_frame,

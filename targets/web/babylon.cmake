@@ -14,10 +14,10 @@ set_tests_properties(babylon PROPERTIES LABELS browser SKIP_RETURN_CODE 77 TIMEO
                      FIXTURES_REQUIRED "penumbra_essl300_bundles;penumbra_room_bundle")
 # "babylon-webgpu": the same checks on Babylon's WebGPUEngine (--engine webgpu: WebGPU through
 # SwiftShader as three-webgpu, the canvas rendered offscreen: offscreen_canvas.mjs) over
-# three-webgpu's wgsl bundles of the same scenes (rect N-buffer, sun Gaussian, rect mipmap, the tree, the room).
+# three-webgpu's wgsl bundles of the same scenes (rect N-buffer, sun Gaussian, rect mipmap, the tree; not yet the room: three.cmake says why).
 if(TARGET penumbra-export-bundle)
     set(babylon_webgpu_bundles "")
-    foreach(name IN ITEMS boxes-rect boxes-sun boxes-mipmap tree-rect room-rect)
+    foreach(name IN ITEMS boxes-rect boxes-sun boxes-mipmap tree-rect)
         list(APPEND babylon_webgpu_bundles ${PROJECT_BINARY_DIR}/target_bundles/three-webgpu-${name})
     endforeach()
     add_test(NAME babylon-webgpu

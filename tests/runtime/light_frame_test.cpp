@@ -192,12 +192,14 @@ TEST_CASE("light_frame: bounds whose top meets the light's plane do not collapse
     CHECK_FALSE(s.contained);
     CHECK(s.tan_half_fov == doctest::Approx(std::tan(penumbra::max_frustum_half_angle)).epsilon(1e-6));
     // a light above the scene is not affected by the cap: the default light over the built-in frame
-    const penumbra::SliceFrame above = penumbra::slice_frame(penumbra::RectLight{}, {-5, 0, -5}, {5, 3, 5}, 16);
+    const penumbra::SliceFrame above =
+        penumbra::slice_frame(penumbra::RectLight{}, {-5, 0, -5}, {5, 3, 5}, 16);
     CHECK(above.contained);
     CHECK(std::atan(1.0 / above.cop_distance) < penumbra::max_frustum_half_angle - 0.2);
 }
 
-// Light above a scene never reaches the pyramid's cap, so rooms leave every built-in scene's slicing as it was.
+// Light above a scene never reaches the pyramid's cap, so rooms leave every built-in scene's slicing as it
+// was.
 TEST_CASE("light_frame: every built-in scene, its light x1 to x32, stays inside the capped angle") {
     for (std::string_view name : penumbra::playground::scene_names()) {
         const std::optional<penumbra::playground::Scene> scene = penumbra::playground::make_scene(name);
@@ -206,7 +208,8 @@ TEST_CASE("light_frame: every built-in scene, its light x1 to x32, stays inside 
             penumbra::RectLight light = scene->light;
             light.width *= scale;
             light.height *= scale;
-            const penumbra::SliceFrame f = penumbra::slice_frame(light, scene->bounds_min, scene->bounds_max, 16);
+            const penumbra::SliceFrame f =
+                penumbra::slice_frame(light, scene->bounds_min, scene->bounds_max, 16);
             CAPTURE(name);
             CAPTURE(scale);
             CHECK(f.contained);

@@ -598,7 +598,8 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
         // a receiver beside the light, outside the slicing pyramid (docs/model.md §1.2b): left unshadowed;
         // within rounding of the pyramid's side the GPU may go either way
         const glm::dvec3 p = light_point(world);
-        const double reach = std::max(std::abs(p.x) / light_size_.x, std::abs(p.y) / light_size_.y) * cop_distance_;
+        const double reach =
+            std::max(std::abs(p.x) / light_size_.x, std::abs(p.y) / light_size_.y) * cop_distance_;
         const double side = 0.5 * detail::pyramid_margin * (cop_distance_ + p.z);
         if (std::abs(reach - side) < 1e-5 * side) return {1.0, 1.0, false};
         if (reach > side) return {1.0, 0.0, false};

@@ -6,10 +6,10 @@
 //     the ceiling landed in the first slice (in the shadow map, at its near plane) and darkened everything.
 //   - A wall crossing the light's plane beside the light: the GPU's slices hold its part in front of the
 //     plane only, as the CPU's slicing clips it (reference/slice_coverage.hpp).
-#include "rendering/egl_context.hpp"
-#include "rendering/headless_render.hpp"
 #include "reference/oracle.hpp"
 #include "reference/slice_coverage.hpp"
+#include "rendering/egl_context.hpp"
+#include "rendering/headless_render.hpp"
 #include "scenes/mesh_builder.hpp"
 #include "scenes/scenes.hpp"
 
@@ -67,7 +67,8 @@ TEST_CASE("lights inside the scene: nothing behind the light's plane casts a sha
     REQUIRE_MESSAGE(context, error);
     const Scene scene = lowered_light_scene();
     const Scene kept = without_what_is_behind(scene);
-    REQUIRE(kept.mesh.triangle_count() + 4 == scene.mesh.triangle_count()); // the ceiling and the top occluder
+    REQUIRE(kept.mesh.triangle_count() + 4 ==
+            scene.mesh.triangle_count()); // the ceiling and the top occluder
     const Config configs[] = {
         {},
         {.slices = 8, .resolution = 128, .filter = Filter::mipmap, .packing = Packing::array},
@@ -79,8 +80,9 @@ TEST_CASE("lights inside the scene: nothing behind the light's plane casts a sha
         {.technique = Technique::smrt},
     };
     for (const Config& config : configs) {
-        const std::string label = std::string(to_string(config.technique)) + " " + std::string(to_string(config.filter)) +
-                                  " " + std::string(to_string(config.slice_placement));
+        const std::string label = std::string(to_string(config.technique)) + " " +
+                                  std::string(to_string(config.filter)) + " " +
+                                  std::string(to_string(config.slice_placement));
         CAPTURE(label);
         HeadlessResult with, without;
         REQUIRE_MESSAGE(render_headless(scene, config, 96, 96, with, &error), error);
@@ -95,11 +97,12 @@ TEST_CASE("lights inside the scene: nothing behind the light's plane casts a sha
             lit += with.visibility[i];
             differ += std::abs(with.visibility[i] - without.visibility[i]) > 0.02f;
         }
-        std::printf("light plane %-32s compared %zu pixels, %zu differ, mean visibility %.3f\n", label.c_str(), compared,
-                    differ, compared ? lit / static_cast<double>(compared) : 0.0);
+        std::printf("light plane %-32s compared %zu pixels, %zu differ, mean visibility %.3f\n",
+                    label.c_str(), compared, differ, compared ? lit / static_cast<double>(compared) : 0.0);
         REQUIRE(compared > 2000);
         CHECK(differ <= compared / 500); // a few pixels where rounding moves an edge
-        CHECK(lit / static_cast<double>(compared) > 0.3); // lit, not darkened by the ceiling (faces turned away: 0)
+        CHECK(lit / static_cast<double>(compared) >
+              0.3); // lit, not darkened by the ceiling (faces turned away: 0)
     }
 }
 
@@ -122,7 +125,8 @@ TEST_CASE("lights inside the scene: a wall crossing the light's plane is sliced 
     REQUIRE_MESSAGE(render_headless(scene, config, 32, 32, result, &error, options), error);
     REQUIRE_MESSAGE(read, error);
     CHECK_FALSE(frame.contained);
-    const SliceCoverage expected = cpu_slice_coverage(scene.mesh, config, frame, leak_fix_reach(config), false);
+    const SliceCoverage expected =
+        cpu_slice_coverage(scene.mesh, config, frame, leak_fix_reach(config), false);
     const int R = config.resolution;
     std::size_t wrong = 0, covered_first = 0;
     for (int s = 0; s < config.slices; ++s)
@@ -133,8 +137,10 @@ TEST_CASE("lights inside the scene: a wall crossing the light's plane is sliced 
                 wrong += (e == Coverage::covered && g != 1.0f) || (e == Coverage::empty && g != 0.0f);
                 covered_first += s == 0 && g == 1.0f;
             }
-    std::printf("light plane: crossing wall, %zu texels differ from the CPU's clipped slicing, slice 0 covers %zu of %d\n",
+    std::printf("light plane: crossing wall, %zu texels differ from the CPU's clipped slicing, slice 0 "
+                "covers %zu of %d\n",
                 wrong, covered_first, R * R);
     CHECK(wrong == 0);
-    CHECK(covered_first < static_cast<std::size_t>(R * R / 10)); // neither the ceiling nor the wall's top fill it
+    CHECK(covered_first <
+          static_cast<std::size_t>(R * R / 10)); // neither the ceiling nor the wall's top fill it
 }

@@ -254,13 +254,17 @@ constexpr void write_light_frame_point(LineWriter& out, const Config& config) {
                  cat("(", transform(config, "penumbra_lightFromWorld", "vec4(worldPos, 1.0)"), ").xyz")));
     out.line("p.z = max(p.z, 1e-6); // points on or behind the light plane");
     if (config.light != Light::rect) return;
-    out.comment("a receiver beside the light, outside the slicing pyramid (a room's wall just under the ceiling,");
-    out.comment("docs/model.md §1.2b): its kernels would read beyond the textures (the atlas's next tile); what");
-    out.comment("could shadow it lies mostly outside the pyramid too, where nothing is sliced: it is left unshadowed");
-    out.line(if_then(config,
-                     cat("max(abs(p.x) / penumbra_lightSize.x, abs(p.y) / penumbra_lightSize.y) * penumbra_copDistance > ",
-                         format_float(0.5 * pyramid_margin), " * (penumbra_copDistance + p.z)"),
-                     "return 1.0;"));
+    out.comment(
+        "a receiver beside the light, outside the slicing pyramid (a room's wall just under the ceiling,");
+    out.comment(
+        "docs/model.md §1.2b): its kernels would read beyond the textures (the atlas's next tile); what");
+    out.comment("could shadow it lies mostly outside the pyramid too, where nothing is sliced: it is left "
+                "unshadowed");
+    out.line(if_then(
+        config,
+        cat("max(abs(p.x) / penumbra_lightSize.x, abs(p.y) / penumbra_lightSize.y) * penumbra_copDistance > ",
+            format_float(0.5 * pyramid_margin), " * (penumbra_copDistance + p.z)"),
+        "return 1.0;"));
 }
 // The generic reference program's (GLSL only).
 constexpr void write_light_frame_point(LineWriter& out, Light light) {
