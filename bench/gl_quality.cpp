@@ -151,12 +151,14 @@ constexpr const char* usage_text =
     "              resolution; default: Config{}'s); rows of another value than the default say 'rN'\n"
     "  --light-scales  multiples of each scene's default rectangle (both sides), each a row 'xK'\n"
     "              (default 1; e.g. 1,2,4,8,16,32); a summary per scale follows the rows, built-in scenes\n"
-    "              and files apart: mean penumbra MAE and mean signed error (estimate - truth) against the\n"
-    "              irradiance reference (the shaded image's relative error), the same against the oriented\n"
-    "              one, mean false light and false shadow, then near the terminator (within 3 pixels of\n"
+    "              and files apart: mean penumbra MAE and mean signed error (estimate - truth) of the "
+    "shaded\n"
+    "              image (the irradiance error weighed by the light each pixel receives), the same against\n"
+    "              the irradiance reference (every pixel alike) and the oriented one, mean false light and "
+    "false shadow, then near the terminator (within 3 pixels of\n"
     "              where a surface turns away from the light's centre): p95 of |error| and the error's\n"
     "              total variation (sawtooth, seams); with more than one scale, a table per scene and\n"
-    "              setting: MAE / signed error by scale, irradiance then oriented\n"
+    "              setting: MAE / signed error by scale, shaded image, irradiance, then oriented\n"
     "  --light-size W[,H]  every scene's rectangle: W its longer side (aspect kept), W,H its width (along "
     "u)\n"
     "              and height (along v), in scene units; --light-scales multiply it\n"
@@ -456,6 +458,8 @@ int main(int argc, char** argv) {
     struct Summary {
         double mae = 0, bias = 0, worst = 0, terminator_p95 = 0, terminator_variation = 0;
         double irradiance_mae = 0, irradiance_bias = 0, irradiance_worst = 0;
+        double shaded_mae = 0,
+               shaded_bias = 0;              // the irradiance error weighed by the light each pixel receives
         ErrorRate false_light, false_shadow; // pooled over the scenes: a scene with few dark pixels weighs little
         int count = 0;
         std::string worst_scene, irradiance_worst_scene;
@@ -465,7 +469,7 @@ int main(int argc, char** argv) {
     // Each scene's penumbra MAE and signed error by light scale against irradiance, then oriented, for the
     // per-scene table after the summary (scenes in the order measured).
     struct SceneCell {
-        double irradiance_mae, irradiance_bias, oriented_mae, oriented_bias;
+        double shaded_mae, shaded_bias, irradiance_mae, irradiance_bias, oriented_mae, oriented_bias;
     };
     std::map<std::pair<std::string, std::string>, std::map<double, SceneCell>> per_scene;
     std::vector<std::string> scene_order;
@@ -554,8 +558,11 @@ int main(int argc, char** argv) {
                 Summary& sum = summaries[file ? 1 : 0][{setting_label, light_scale}];
                 if (std::find(scene_order.begin(), scene_order.end(), scene.name) == scene_order.end())
                     scene_order.push_back(scene.name);
-                per_scene[{scene.name, setting_label}][light_scale] = {q.irradiance.penumbra.mae, q.irradiance.penumbra.bias,
-                                                                       q.oriented.penumbra.mae, q.oriented.penumbra.bias};
+                per_scene[{scene.name, setting_label}][light_scale] = {
+                    q.shaded.penumbra.mae,      q.shaded.penumbra.bias,  q.irradiance.penumbra.mae,
+                    q.irradiance.penumbra.bias, q.oriented.penumbra.mae, q.oriented.penumbra.bias};
+                sum.shaded_mae += q.shaded.penumbra.mae;
+                sum.shaded_bias += q.shaded.penumbra.bias;
                 sum.mae += q.oriented.penumbra.mae;
                 sum.bias += q.oriented.penumbra.bias;
                 sum.irradiance_mae += q.irradiance.penumbra.mae;
@@ -606,9 +613,13 @@ int main(int argc, char** argv) {
         std::printf("|   (%s ground truth: %.0f ms CPU, Embree) |\n", scene_name.c_str(), truth_ms);
         scene.light = default_light;
     }
-    std::printf("\npenumbra error by light scale, over the scenes measured: against the irradiance reference first (the "
-                "shaded image's relative error), then the oriented one (the visibility of the part of the light above "
-                "the surface)\n");
+    std::printf(
+        "\npenumbra error by light scale, over the scenes measured: the shaded image's first (the irradiance "
+        "error weighed by the light each pixel receives), then against the irradiance reference (the "
+        "shading's "
+        "relative error, every pixel alike), then the oriented one (the visibility of the part of the light "
+        "above "
+        "the surface)\n");
     // The rest of a table's header after its first columns: a column per light scale.
     const auto print_scale_columns = [&](std::size_t first_columns) {
         for (double scale : options->light_scales) std::printf(" x%g |", scale);
@@ -634,6 +645,12 @@ int main(int argc, char** argv) {
     for (int group = 0; group < 2; ++group) {
         if (summaries[group].empty()) continue;
         const char* group_name = group == 0 ? "built-in scenes" : "mesh files";
+        std::printf("\n%s, shaded image (the irradiance error weighed by the light each pixel receives, "
+                    "reference/metrics.hpp): mean penumbra MAE / mean signed error\n\n| filter | S/R |",
+                    group_name);
+        print_by_scale(group, [](const Summary& sum) {
+            std::printf(" %.4f / %+.4f |", sum.shaded_mae / sum.count, sum.shaded_bias / sum.count);
+        });
         std::printf("\n%s, irradiance (the shaded image's reference): mean penumbra MAE / mean signed error (estimate - "
                     "truth) / worst scene's MAE (scenes)\n\n| filter | S/R |",
                     group_name);
@@ -660,7 +677,8 @@ int main(int argc, char** argv) {
         });
     }
     if (options->light_scales.size() > 1) {
-        std::printf("\nper scene, penumbra MAE / signed error by light scale: irradiance, then oriented\n\n"
+        std::printf("\nper scene, penumbra MAE / signed error by light scale: shaded image, irradiance, then "
+                    "oriented\n\n"
                     "| scene | filter | S/R |");
         print_scale_columns(3);
         for (const std::string& scene_name : scene_order)
@@ -673,8 +691,10 @@ int main(int argc, char** argv) {
                     if (it == row->second.end())
                         std::printf(" - |");
                     else
-                        std::printf(" %.4f / %+.4f; %.4f / %+.4f |", it->second.irradiance_mae, it->second.irradiance_bias,
-                                    it->second.oriented_mae, it->second.oriented_bias);
+                        std::printf(" %.4f / %+.4f; %.4f / %+.4f; %.4f / %+.4f |", it->second.shaded_mae,
+                                    it->second.shaded_bias, it->second.irradiance_mae,
+                                    it->second.irradiance_bias, it->second.oriented_mae,
+                                    it->second.oriented_bias);
                 }
                 std::printf("\n");
             }

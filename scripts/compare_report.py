@@ -7,10 +7,12 @@ targets/web/three_peers.mjs wrote DIR/three_peers.md, appends its three.js table
 
 Every conclusion in the report is computed here from the raw numbers: the Pareto fronts, the
 equal-time table, the light-size tables, the per-scene and per-mesh tables and the excess flicker.
-The conclusions use the shaded image's reference (`irradiance`: an engine multiplies the visibility
-into its own unoccluded area-light shading, so what it needs is the light weighed by the irradiance it
-sends) unless --metric says otherwise; the other references follow, named for what they are (`oriented`,
-the visibility of the part of the light above the receiver's tangent plane, first). Figures use Debian's matplotlib (python3-matplotlib), without a display (Agg backend).
+The conclusions use the shaded image's error (`shaded`: the `irradiance` reference's error, each pixel
+weighed by the unoccluded irradiance it receives, so a face that gets almost no light counts for almost
+nothing, as in the image a user sees) unless --metric says otherwise; the other references follow, named
+for what they are (`irradiance`: an engine multiplies the visibility into its own unoccluded area-light
+shading, so what it needs is the light weighed by the irradiance it sends; `oriented`, the visibility of
+the part of the light above the receiver's tangent plane). Figures use Debian's matplotlib (python3-matplotlib), without a display (Agg backend).
 """
 import argparse
 import json
@@ -41,18 +43,21 @@ def fmt_scale(scale):
     return f"x{scale:g}"
 
 
-# The reference the conclusions use (--metric, default `irradiance`, the shaded image's); the others are
+# The reference the conclusions use (--metric, default `shaded`: the shaded image's error); the others are
 # shown beside it, in this order, each under the name that says what it measures.
 METRICS = {
+    "shaded": "the error against irradiance weighed by the unoccluded irradiance each pixel receives: the "
+              "error of the shaded image in linear light, relative to its mean over the same pixels (a face that "
+              "gets almost no light weighs almost nothing)",
     "irradiance": "irradiance relative to the unoccluded irradiance from the part of the light above the receiver's "
                   "tangent plane (the shaded image's reference)",
     "oriented": "visibility of the part of the light above the receiver's tangent plane (fair)",
     "visibility": "visibility of the whole light (rays behind the receiver's tangent plane count as blocked: "
                   "unfair to a model that clips to the tangent plane, which the default does)",
 }
-METRIC_NAMES = {"irradiance": "irradiance (the shaded image's)", "oriented": "oriented (fair)",
+METRIC_NAMES = {"shaded": "shaded image", "irradiance": "irradiance", "oriented": "oriented (fair)",
                 "visibility": "whole-light visibility"}
-METRIC = "irradiance"
+METRIC = "shaded"
 
 
 def metric_name(metric=None):
@@ -787,9 +792,10 @@ def main():
     parser.add_argument("directory", help="the folder holding results.json (penumbra-bench-compare --out)")
     parser.add_argument("--mae-thresholds", default="0.1,0.15,0.2",
                         help="penumbra MAEs the light-size table keeps each technique under (default 0.1,0.15,0.2)")
-    parser.add_argument("--metric", choices=list(METRICS), default="irradiance",
-                        help="the reference the conclusions use (default irradiance, the shaded image's; the others "
-                             "are shown beside it: oriented, and visibility of the whole light)")
+    parser.add_argument("--metric", choices=list(METRICS), default="shaded",
+                        help="the reference the conclusions use (default shaded, the shaded image's error: the "
+                             "irradiance error weighed by the light each pixel receives; the others are shown beside "
+                             "it: irradiance, oriented, and visibility of the whole light)")
     parser.add_argument("--check", action="store_true", help="check an existing report instead of writing one")
     args = parser.parse_args()
     global METRIC
@@ -801,6 +807,10 @@ def main():
     if args.check:
         return check(args.directory)
     results = load(args.directory)
+    if METRIC == "shaded" and not all("shaded" in m["quality"] for m in results["measurements"]):
+        print("note: these results predate the shaded reference; the conclusions use irradiance", file=sys.stderr)
+        METRIC = "irradiance"
+        del METRICS["shaded"]
     try:
         figures = {light: make_figures(for_light(results, light), args.directory, suffix_of(light))
                    for light in lights_of(results)}

@@ -288,7 +288,8 @@ private:
                 for (float& v : visibility) v /= static_cast<float>(a.later_frames.size() + 1);
             }
             const std::vector<unsigned char>& geometry = pixels_->frame.geometry;
-            cell.quality[e] = compare_quality(visibility, geometry, truth.visibility, truth.oriented, truth.irradiance);
+            cell.quality[e] = compare_quality(visibility, geometry, truth.visibility, truth.oriented,
+                                              truth.irradiance, truth.unoccluded);
             cell.bias[e] = penumbra_bias(visibility, geometry, truth.visibility);
             cell.bias_oriented[e] = penumbra_bias(visibility, geometry, truth.oriented);
             cell.bias_irradiance[e] = penumbra_bias(visibility, geometry, truth.irradiance);
@@ -347,10 +348,19 @@ private:
         record["quality"] = {{"all", stats_json(q.visibility.all)},
                              {"penumbra", stats_json(q.visibility.penumbra)},
                              {"penumbra_bias", cell.bias[e]},
-                             {"oriented", {{"all", stats_json(q.oriented.all)}, {"penumbra", stats_json(q.oriented.penumbra)},
-                                           {"penumbra_bias", cell.bias_oriented[e]}}},
-                             {"irradiance", {{"all", stats_json(q.irradiance.all)}, {"penumbra", stats_json(q.irradiance.penumbra)},
-                                             {"penumbra_bias", cell.bias_irradiance[e]}}}};
+                             {"oriented",
+                              {{"all", stats_json(q.oriented.all)},
+                               {"penumbra", stats_json(q.oriented.penumbra)},
+                               {"penumbra_bias", cell.bias_oriented[e]}}},
+                             {"irradiance",
+                              {{"all", stats_json(q.irradiance.all)},
+                               {"penumbra", stats_json(q.irradiance.penumbra)},
+                               {"penumbra_bias", cell.bias_irradiance[e]}}},
+                             // the irradiance error weighed by the light each pixel receives (metrics.hpp)
+                             {"shaded",
+                              {{"all", stats_json(q.shaded.all)},
+                               {"penumbra", stats_json(q.shaded.penumbra)},
+                               {"penumbra_bias", q.shaded.penumbra.bias}}}};
         if (entry.representative) {
             const std::string dir = "images/" + cell.image_cell;
             record["images"] = {{"visibility", dir + "/" + slug(entry.label) + ".png"},

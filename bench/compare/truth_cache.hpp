@@ -42,16 +42,23 @@ private:
 };
 
 struct CachedTruth {
-    playground::References references; // visibility, oriented, irradiance; one per pixel, top row first
-    std::string file;                  // the cache file it was read from or written to
+    // visibility, oriented, irradiance, unoccluded; one per pixel, top row first
+    playground::References references;
+    std::string file; // the cache file it was read from or written to (and unoccluded_file(file))
     bool from_cache = false;
     double milliseconds = 0;           // time to compute (0 when read from the cache)
 };
 
-// The three references (playground::reference_all) for `scene` with its light as it is (the
+// Where the unoccluded irradiance of the cache file `file` lies: a 1-channel float map beside it.
+inline std::string unoccluded_file(const std::string& file) {
+    return file.substr(0, file.size() - 4) + ".unoccluded.pfm";
+}
+
+// The references (playground::reference_all) for `scene` with its light as it is (the
 // rectangle scene.light, or with Light::sun scene.sun), at the pixels of `frame`: from `directory`
-// when a file with the inputs' hash is there, else ray-traced and written there (a 3-channel float
-// map). nullopt and *error when the file cannot be written.
+// when files with the inputs' hash are there, else ray-traced and written there (a 3-channel float
+// map of the three truths, and a 1-channel one of the unoccluded irradiance). nullopt and *error
+// when a file cannot be written.
 inline std::optional<CachedTruth> cached_truth(const std::string& directory, const playground::Scene& scene,
                                                const playground::HeadlessResult& frame, int samples_per_axis,
                                                std::string* error, Light light_kind = Light::rect) {
@@ -90,15 +97,20 @@ inline std::optional<CachedTruth> cached_truth(const std::string& directory, con
     out.file = (std::filesystem::path(directory) / (scene.name + (light_kind == Light::sun ? "-sun-" : "-") + hash.hex() + ".pfm")).string();
     const std::size_t n = frame.positions.size();
     std::string read_error;
-    if (std::optional<playground::FloatImage> image = playground::read_pfm(out.file, &read_error);
-        image && image->width == frame.width && image->height == frame.height && image->channels == 3) {
+    std::optional<playground::FloatImage> cached = playground::read_pfm(out.file, &read_error);
+    std::optional<playground::FloatImage> unoccluded =
+        playground::read_pfm(unoccluded_file(out.file), &read_error);
+    if (cached && cached->width == frame.width && cached->height == frame.height && cached->channels == 3 &&
+        unoccluded && unoccluded->width == frame.width && unoccluded->height == frame.height &&
+        unoccluded->channels == 1) {
         for (std::vector<float>* channel : {&out.references.visibility, &out.references.oriented, &out.references.irradiance})
             channel->resize(n);
         for (std::size_t i = 0; i < n; ++i) {
-            out.references.visibility[i] = image->pixels[3 * i];
-            out.references.oriented[i] = image->pixels[3 * i + 1];
-            out.references.irradiance[i] = image->pixels[3 * i + 2];
+            out.references.visibility[i] = cached->pixels[3 * i];
+            out.references.oriented[i] = cached->pixels[3 * i + 1];
+            out.references.irradiance[i] = cached->pixels[3 * i + 2];
         }
+        out.references.unoccluded = std::move(unoccluded->pixels);
         out.from_cache = true;
         return out;
     }
@@ -113,7 +125,10 @@ inline std::optional<CachedTruth> cached_truth(const std::string& directory, con
     }
     std::error_code ec;
     std::filesystem::create_directories(directory, ec);
-    if (!playground::write_pfm(out.file, image, error)) return std::nullopt;
+    if (!playground::write_pfm(out.file, image, error) ||
+        !playground::write_pfm(unoccluded_file(out.file),
+                               {frame.width, frame.height, 1, out.references.unoccluded}, error))
+        return std::nullopt;
     return out;
 }
 

@@ -108,8 +108,44 @@ TEST_CASE("fair reference: metrics leave out pixels that see none of the light")
     CHECK(m.all.bias == doctest::Approx(0.05)); // signed: estimate − truth, 0 and +0.1
     CHECK(compare(std::vector<float>{0.2f, 1.0f}, std::vector<unsigned char>{1, 1}, std::vector<float>{0.6f, 1.0f})
               .penumbra.bias == doctest::Approx(-0.4)); // too dark; the lit pixel is no penumbra pixel
-    const QualityMetrics q = compare_quality(estimate, geometry, estimate, truth, truth);
+    const std::vector<float> unoccluded{1.0f, 0.0f, 1.0f, 1.0f};
+    const QualityMetrics q = compare_quality(estimate, geometry, estimate, truth, truth, unoccluded);
     CHECK(q.visibility.all.mae == 0.0);
     CHECK(q.visibility.all.count == 3);
     CHECK(q.oriented.all.count == 2);
+    CHECK(q.shaded.all.count == 2);
+    CHECK(q.shaded.all.mae == doctest::Approx(0.05)); // equal weights: the irradiance reference's error
+}
+
+TEST_CASE("fair reference: the shaded reference weighs each pixel by the light it receives") {
+    // Two penumbra pixels equally wrong in visibility (0.2), one receiving nine times the light of the
+    // other, and one pixel that is right: the shaded image's error is where the light is.
+    const std::vector<float> estimate{0.6f, 0.3f, 0.5f};
+    const std::vector<unsigned char> geometry{1, 1, 1};
+    const std::vector<float> truth{0.4f, 0.5f, 0.5f};
+    const std::vector<float> unoccluded{0.9f, 0.1f, 1.0f};
+    const QualityMetrics q = compare_quality(estimate, geometry, truth, truth, truth, unoccluded);
+    CHECK(q.irradiance.penumbra.mae == doctest::Approx(0.4 / 3));
+    CHECK(q.irradiance.penumbra.bias == doctest::Approx(0.0).epsilon(1e-6));
+    CHECK(q.shaded.penumbra.mae == doctest::Approx((0.9 * 0.2 + 0.1 * 0.2) / 2.0));
+    CHECK(q.shaded.penumbra.bias ==
+          doctest::Approx((0.9 * 0.2 - 0.1 * 0.2) / 2.0)); // the bright pixel too bright
+    CHECK(q.shaded.penumbra.p95 == doctest::Approx(0.2));
+}
+
+TEST_CASE("fair reference: the unoccluded irradiance of a small rectangle is its form factor") {
+    // A 0.2 × 0.2 light (test_light() scaled down) 2 above a point facing it: E ≈ A cos θ cos θ' / (π r²).
+    Mesh nothing;
+    add_horizontal_rect(nothing, 50.0f, -5.0f, 50.0f, 1.0f, 1.0f); // far away, below: blocks no ray
+    const GroundTruth gt(nothing);
+    penumbra::RectLight light = test_light();
+    light.width = light.height = 0.2;
+    const glm::vec3 below(light.center + 2.0 * light.normal()); // the light faces its normal: down
+    const glm::vec3 up(-light.normal());
+    const std::vector<glm::vec3> points{below, below + glm::vec3(2.0f, 0.0f, 0.0f)};
+    const std::vector<glm::vec3> normals{up, up};
+    const GroundTruth::Oriented fair = gt.oriented(points, normals, light, 8);
+    CHECK(fair.unoccluded[0] == doctest::Approx(0.04 / (glm::pi<double>() * 4.0)).epsilon(0.01));
+    // 45° off the axis: both cosines 1/√2, the distance √8
+    CHECK(fair.unoccluded[1] == doctest::Approx(0.04 * 0.5 / (glm::pi<double>() * 8.0)).epsilon(0.02));
 }

@@ -260,11 +260,13 @@ bool add_reference(RunOutputs& out, nlohmann::ordered_json& metrics, const Playg
                 headline.all.bias, headline.all.count, headline.penumbra.mae, headline.penumbra.rmse,
                 headline.penumbra.p95, headline.penumbra.bias, headline.penumbra.count);
     auto print_other = [](const char* name, const Metrics& f) {
-        std::printf("  %-24s all MAE %.4f  p95 %.4f  (%zu px); penumbra MAE %.4f  RMSE %.4f  p95 %.4f  signed %+.4f  "
-                    "(%zu px)\n",
-                    name, f.all.mae, f.all.p95, f.all.count, f.penumbra.mae, f.penumbra.rmse, f.penumbra.p95,
-                    f.penumbra.bias, f.penumbra.count);
+        std::printf(
+            "  %-28s all MAE %.4f  p95 %.4f  (%zu px); penumbra MAE %.4f  RMSE %.4f  p95 %.4f  signed %+.4f  "
+            "(%zu px)\n",
+            name, f.all.mae, f.all.p95, f.all.count, f.penumbra.mae, f.penumbra.rmse, f.penumbra.p95,
+            f.penumbra.bias, f.penumbra.count);
     };
+    print_other("shaded (irradiance-weighed):", q.shaded);
     print_other("oriented:", q.oriented);
     print_other("whole-light visibility:", q.visibility);
     std::printf("  false light %.1f %% (%zu of %zu px the shading lights that get no light, estimate >= %.2f); "
@@ -283,6 +285,9 @@ bool add_reference(RunOutputs& out, nlohmann::ordered_json& metrics, const Playg
                             {"all", stats_json(headline.all)},
                             {"penumbra", stats_json(headline.penumbra)},
                             {"irradiance", metrics_json(q.irradiance)},
+                            // the irradiance error weighed by the light each pixel receives: the shaded
+                            // image's error relative to its mean (reference/metrics.hpp)
+                            {"shaded", metrics_json(q.shaded)},
                             {"oriented", metrics_json(q.oriented)},
                             {"whole_light_visibility", metrics_json(q.visibility)},
                             {"false_light", rate_json(q.false_light)},

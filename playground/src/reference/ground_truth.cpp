@@ -339,16 +339,20 @@ struct OrientedSums {
         ++visible;
         visible_weight += w;
     }
-    // NaN where no sample was above the tangent plane (or all weights vanish).
-    void store(GroundTruth::Oriented& out, std::size_t index) const {
+    // NaN where no sample was above the tangent plane (or all weights vanish). `sample_measure`: the
+    // light's area (rectangle) or solid angle (sun) over π, over the number of samples, so that the
+    // mean weight becomes the unoccluded irradiance of a light of radiance 1.
+    void store(GroundTruth::Oriented& out, std::size_t index, double sample_measure) const {
         const float nan = std::numeric_limits<float>::quiet_NaN();
         out.oriented[index] = above ? static_cast<float>(visible) / static_cast<float>(above) : nan;
         out.irradiance[index] = weight > 0.0 ? static_cast<float>(visible_weight / weight) : nan;
+        out.unoccluded[index] = static_cast<float>(weight * sample_measure);
     }
 };
 
 GroundTruth::Oriented background_ones(std::size_t count) {
-    return {std::vector<float>(count, 1.0f), std::vector<float>(count, 1.0f)};
+    return {std::vector<float>(count, 1.0f), std::vector<float>(count, 1.0f),
+            std::vector<float>(count, 1.0f)};
 }
 
 // Unit normal or zero (unusable), without turning it.
@@ -367,6 +371,7 @@ GroundTruth::Oriented GroundTruth::oriented(std::span<const glm::vec3> positions
     const glm::dvec3 u = glm::normalize(light.u_axis) * light.width;
     const glm::dvec3 v = glm::normalize(light.v_axis) * light.height;
     const auto sample_count = static_cast<std::uint32_t>(samples_per_axis * samples_per_axis);
+    const double sample_measure = light.width * light.height / glm::pi<double>() / sample_count;
     Oriented result = background_ones(positions.size());
     impl_->parallel_for(positions.size(), [&](std::size_t index) {
         const glm::vec3 p = positions[index];
@@ -393,7 +398,7 @@ GroundTruth::Oriented GroundTruth::oriented(std::span<const glm::vec3> positions
                          cos_receiver * cos_light / (distance * distance));
             }
         }
-        sums.store(result, index);
+        sums.store(result, index, sample_measure);
     });
     impl_->throw_if_error("tracing rays to the area light");
     return result;
@@ -404,6 +409,8 @@ GroundTruth::Oriented GroundTruth::oriented(std::span<const glm::vec3> positions
     check_inputs(positions, normals, samples_per_axis);
     const SunFrame frame(sun);
     const auto sample_count = static_cast<std::uint32_t>(samples_per_axis * samples_per_axis);
+    // the disk's solid angle 2π(1 − cos α), which SunFrame samples uniformly
+    const double sample_measure = 2.0 * frame.one_minus_cos / sample_count;
     Oriented result = background_ones(positions.size());
     impl_->parallel_for(positions.size(), [&](std::size_t index) {
         const glm::vec3 p = positions[index];
@@ -419,7 +426,7 @@ GroundTruth::Oriented GroundTruth::oriented(std::span<const glm::vec3> positions
                 sums.add(impl_->unoccluded(origin, glm::vec3(dir), std::numeric_limits<float>::infinity()), cos_receiver);
             }
         }
-        sums.store(result, index);
+        sums.store(result, index, sample_measure);
     });
     impl_->throw_if_error("tracing rays to the sun");
     return result;

@@ -64,11 +64,17 @@ public:
     //               light, both cosine-weighted at the receiver and, for the rectangle, at the
     //               light (cos θ_P · cos θ_L / r²); an estimated visibility V times the unoccluded
     //               irradiance is then off by |V − irradiance| relative to the unoccluded value.
-    // Both are NaN where the point sees none of the light (every sample below its tangent plane,
-    // behind the light's plane, or a zero normal), and 1 on background points (NaN position).
+    //   unoccluded: the irradiance that clipped light sends the point with nothing in between, for a
+    //               light of radiance 1 (the rectangle: ∫ cos θ_P · cos θ_L / r² dA / π; the sun:
+    //               ∫ cos θ_P dω / π over its disk): how bright the shaded image is there, so how
+    //               much a visibility error there shows (metrics.hpp's shaded reference).
+    // oriented and irradiance are NaN where the point sees none of the light (every sample below its
+    // tangent plane, behind the light's plane, or a zero normal), unoccluded 0 there; all three are 1
+    // on background points (NaN position).
     struct Oriented {
         std::vector<float> oriented;
         std::vector<float> irradiance;
+        std::vector<float> unoccluded;
     };
     Oriented oriented(std::span<const glm::vec3> positions, std::span<const glm::vec3> normals,
                       const penumbra::RectLight& light, int samples_per_axis = 32) const;

@@ -44,13 +44,19 @@ struct ErrorRate {
 inline constexpr float false_light_truth = 0.01f, false_light_estimate = 0.05f;
 inline constexpr float false_shadow_truth = 0.99f, false_shadow_estimate = 0.95f;
 
+// shaded: the irradiance reference's error, each pixel weighed by the unoccluded irradiance it receives
+// (GroundTruth::Oriented::unoccluded): the error of the shaded image (albedo × radiance × unoccluded
+// irradiance × visibility) in linear light, relative to that image's mean over the same pixels. A face
+// that gets almost no light weighs almost nothing, the floor under the light the most; where every
+// pixel gets the same irradiance it equals the irradiance reference's error. Same pixels as irradiance
+// (penumbra: the truth or the estimate < 0.98).
 struct QualityMetrics {
-    Metrics visibility, oriented, irradiance;
+    Metrics visibility, oriented, irradiance, shaded;
     ErrorRate false_light, false_shadow;
 };
 
 QualityMetrics compare_quality(std::span<const float> estimate, std::span<const unsigned char> geometry,
                                std::span<const float> visibility, std::span<const float> oriented,
-                               std::span<const float> irradiance);
+                               std::span<const float> irradiance, std::span<const float> unoccluded);
 
 } // namespace penumbra::playground

@@ -161,12 +161,13 @@ References reference_all(const Scene& scene, const HeadlessResult& result, int s
     }
     out.oriented = std::move(fair.oriented);
     out.irradiance = std::move(fair.irradiance);
+    out.unoccluded = std::move(fair.unoccluded);
     return out;
 }
 
 QualityMetrics compare_quality(const HeadlessResult& result, const References& references) {
     return compare_quality(result.visibility, result.geometry, references.visibility, references.oriented,
-                           references.irradiance);
+                           references.irradiance, references.unoccluded);
 }
 
 } // namespace penumbra::playground

@@ -66,9 +66,10 @@ Metrics compare(const HeadlessResult& result, const std::vector<float>& referenc
 
 // The three ground truths of reference/metrics.hpp at the read-back positions: today's
 // visibility, and the fair ones (oriented, irradiance) for the side of each surface that faces
-// the scene's camera (the side a viewer sees); background pixels get 1.
+// the scene's camera (the side a viewer sees), with the unoccluded irradiance that weighs the
+// shaded reference; background pixels get 1.
 struct References {
-    std::vector<float> visibility, oriented, irradiance;
+    std::vector<float> visibility, oriented, irradiance, unoccluded;
 };
 References reference_all(const Scene& scene, const HeadlessResult& result, int samples_per_axis,
                          Light light = Light::rect);
