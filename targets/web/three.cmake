@@ -73,16 +73,20 @@ endif()
 # is not in the repository): the visibility against the desktop run within the oracle's bound, the
 # node materials' light term, instanced/skinned/morphed casters, updates and dispose; and two add-ons
 # (a RectAreaLight and a sun) on one node material, each scaling its own light's term only; the
-# first bundle also on three r180.
+# first bundle also on three r180. The room (issue 61) with the same checks but its visibility
+# against the add-on's own WebGL2 visibility of the room (--against-webgl2, below).
 if(TARGET penumbra-export-bundle)
     set(three_webgpu_cases "boxes-rect|--scene boxes --light rect --filter nbuffer|"
         "boxes-sun|--scene boxes --light sun --filter gaussian --light-size 20|:physical-node"
         "tree-rect|--scene tree --light rect --filter nbuffer|"
         # the mip chain (a pass a level on WebGPU): one sampled texture for all levels
-        "boxes-mipmap|--scene boxes --light rect --filter mipmap|")
-    # Not yet the room (issue 61): with the pyramid opened to 70° in a room, 14 of 3047 interior pixels of
-    # WebGPU's visibility (three and Babylon alike) differ from the desktop's beyond the oracle's bound, up
-    # to 0.55, most near the pyramid's side; the WebGL2 tests (three, babylon) hold the room.
+        "boxes-mipmap|--scene boxes --light rect --filter mipmap|"
+        # The room (issue 61; fourth field: its essl300 bundle): SwiftShader's 4 sub-pixel bits (llvmpipe's 8)
+        # move a slice texel on the bookshelf's edge and the receivers by 1-2 mm, which in the self-shadow fade
+        # puts 14 of 3047 interior pixels (up to 0.55) beyond 2·bound + q of the desktop's on WebGL2 and WebGPU
+        # alike. So `three` (its 1%) holds the desktop comparison, and here the WebGPU visibility must equal
+        # the add-on's WebGL2 visibility of that bundle in the same chromium within 2q at every pixel.
+        "room-rect|--scene room --light rect --filter nbuffer||${three_room_bundle}")
     if(DEFINED ENV{XDG_CACHE_HOME})
         set(three_webgpu_teapot $ENV{XDG_CACHE_HOME}/penumbra/corpus/meshes/teapot.obj)
     else()
@@ -94,11 +98,17 @@ if(TARGET penumbra-export-bundle)
         message(STATUS "penumbra: no corpus (scripts/get_corpus.sh), so three-webgpu runs without the teapot")
     endif()
     set(three_webgpu_bundles "")
+    set(three_webgpu_against "")
     foreach(case IN LISTS three_webgpu_cases)
         string(REPLACE "|" ";" parts "${case}")
         list(GET parts 0 name)
         list(GET parts 1 flags)
         list(GET parts 2 material)
+        list(LENGTH parts fields)
+        set(webgl2 "")
+        if(fields GREATER 3)
+            list(GET parts 3 webgl2)
+        endif()
         separate_arguments(flags UNIX_COMMAND "${flags}")
         set(dir ${PROJECT_BINARY_DIR}/target_bundles/three-webgpu-${name})
         add_test(NAME penumbra-bundle-three-webgpu-${name}
@@ -106,7 +116,11 @@ if(TARGET penumbra-export-bundle)
                          --size 64x64 --out ${dir})
         set_tests_properties(penumbra-bundle-three-webgpu-${name} PROPERTIES FIXTURES_SETUP penumbra_three_webgpu_bundles
                              LABELS browser TIMEOUT 120)
-        list(APPEND three_webgpu_bundles ${dir}${material})
+        if(webgl2)
+            list(APPEND three_webgpu_against --against-webgl2 ${dir}${material} ${webgl2})
+        else()
+            list(APPEND three_webgpu_bundles ${dir}${material})
+        endif()
     endforeach()
     # two add-ons on one node material (a RectAreaLight and a sun): emissions at 32² (six textures
     # each), so that both fit WebGPU's 16 sampled textures a stage beside three's own
@@ -130,9 +144,9 @@ if(TARGET penumbra-export-bundle)
     add_test(NAME three-webgpu
              COMMAND ${PENUMBRA_NODE} ${CMAKE_CURRENT_SOURCE_DIR}/three_webgpu_test.mjs --web ${PROJECT_SOURCE_DIR}/web
                      --chromium ${PENUMBRA_CHROMIUM} --images ${CMAKE_CURRENT_BINARY_DIR}/three-webgpu/images ${three_webgpu_two}
-                     ${three_webgpu_r180} ${three_webgpu_bundles})
+                     ${three_webgpu_r180} ${three_webgpu_bundles} ${three_webgpu_against})
     set_tests_properties(three-webgpu PROPERTIES LABELS browser SKIP_RETURN_CODE 77 TIMEOUT 120
-                         FIXTURES_REQUIRED penumbra_three_webgpu_bundles)
+                         FIXTURES_REQUIRED "penumbra_three_webgpu_bundles;penumbra_room_bundle")
 endif()
 # "three-gltf": penumbra-three's GLTFLoader plugin for EXT_lights_area (web/three/gltf_lights_area.js;
 # three_gltf_test.mjs, in node, well under a second): web/three/test/lights_area.gltf through three's

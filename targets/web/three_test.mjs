@@ -30,7 +30,8 @@
 //      alphaTest: false (< 0.2, no warning); a shipped emission without a cut twin draws solid
 //      with one console.warn.
 // Exit 0 pass, 1 fail, 77 skip (no chromium), 2 bad arguments.
-// The checks 1-4 and 7 are exported for three_webgpu_test.mjs (the add-on on WebGPURenderer).
+// The checks 1-4 and 7 are exported for three_webgpu_test.mjs (the add-on on WebGPURenderer), and 2b
+// (a WebGPU visibility against the same add-on's WebGL2 one, for the room) for it and babylon_test.mjs.
 import path from "node:path";
 import fs from "node:fs";
 import {fileURLToPath} from "node:url";
@@ -131,6 +132,36 @@ export function compareWithDesktop(visibility, dir, bundle) {
         if (beyond) ++out.outside;
     }
     out.mean /= Math.max(out.geometry, 1);
+    return out;
+}
+
+// 2b. (the WebGPU tests, where the desktop comparison is the WebGL2 test's: the room) a wgsl bundle
+// against an essl300 bundle of the same scene: what differs but the target (the scene, its
+// triangles, light, camera, size, light-frame uniforms and configuration); none, the two add-ons'
+// images are of the same room.
+export function bundleMismatch(wgslDir, esslDir) {
+    const a = JSON.parse(fs.readFileSync(path.join(wgslDir, "uniforms.json"), "utf8"));
+    const b = JSON.parse(fs.readFileSync(path.join(esslDir, "uniforms.json"), "utf8"));
+    const out = [];
+    if (a.config.target !== "wgsl" || b.config.target !== "essl300") out.push(`targets ${a.config.target} and ${b.config.target} (expected wgsl and essl300)`);
+    for (const key of ["scene", "width", "height", "camera", "light", "uniforms"])
+        if (JSON.stringify(a[key]) !== JSON.stringify(b[key])) out.push(key);
+    if (JSON.stringify({...a.config, target: ""}) !== JSON.stringify({...b.config, target: ""})) out.push("config");
+    if (!fs.readFileSync(path.join(wgslDir, "mesh.f32")).equals(fs.readFileSync(path.join(esslDir, "mesh.f32")))) out.push("mesh.f32");
+    return out.length ? [`${wgslDir} and ${esslDir} are not bundles of the same room: ${out.join(", ")} differ`] : [];
+}
+
+// 2b. The add-on's WebGPU visibility against its WebGL2 visibility of the same bundle (both from
+// the same Chromium's SwiftShader, so rasterized alike): pixels beyond 2q (every pixel counts),
+// the largest |Δ|, and the pixels below 0.98 in either (the comparison proves nothing without).
+export function compareBackends(webgpu, webgl2) {
+    const out = {outside: 0, worst: 0, shadowed: 0, pixels: webgl2.length, length: webgpu.length};
+    for (let i = 0; i < webgl2.length; ++i) {
+        const d = Math.abs(webgpu[i] - webgl2[i]);
+        if (!(d <= 2 * R8_STEP)) ++out.outside; // (NaN counts)
+        out.worst = Math.max(out.worst, Number.isNaN(d) ? Infinity : d);
+        if (webgl2[i] < 0.98 || webgpu[i] < 0.98) ++out.shadowed;
+    }
     return out;
 }
 
