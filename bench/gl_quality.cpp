@@ -67,6 +67,7 @@ struct Variant {
     bool solid_casters = penumbra::Config{}.solid_casters;
     bool irradiance_window = penumbra::Config{}.irradiance_window;
     bool irradiance_quadrants = penumbra::Config{}.irradiance_quadrants;
+    bool near_field = penumbra::Config{}.near_field;
 };
 
 std::string variant_name(const Variant& v) {
@@ -90,7 +91,8 @@ std::string variant_name(const Variant& v) {
                                                        : "") +
            (v.irradiance_quadrants != d.irradiance_quadrants
                 ? (v.irradiance_quadrants ? "+quadrants" : "+noquadrants")
-                : "");
+                : "") +
+           (v.near_field != d.near_field ? (v.near_field ? "+near" : "+nonear") : "");
 }
 
 // A scene to measure: a built-in name or a mesh file, and the name its rows carry.
@@ -144,7 +146,8 @@ constexpr const char* usage_text =
     "              irradiance window (the light weighed by the irradiance it sends; the default), +area for\n"
     "              the light weighed by area (--no-irradiance-window), +quadrants for the window's "
     "quadrants\n"
-    "              (--irradiance-quadrants: the large profile), e.g.\n"
+    "              (--irradiance-quadrants: the large profile), +near for the near field (--near-field), "
+    "e.g.\n"
     "              probabilistic,chained+clip,chained+clip+offset3+nofootprint+ramp1,chained+clip+adaptive\n"
     "              (default: Config{}'s)\n"
     "  --level-reductions  level_reduction values to measure, each a row (-1: every level at full\n"
@@ -258,15 +261,18 @@ std::optional<Options> parse(int argc, char** argv, std::string& error) {
                     else if (part == "irradiance" || part == "area") v.irradiance_window = part == "irradiance";
                     else if (part == "quadrants" || part == "noquadrants")
                         v.irradiance_quadrants = part == "quadrants";
+                    else if (part == "near" || part == "nonear")
+                        v.near_field = part == "near";
                     else if (part.starts_with("offset") && parse_number(part.substr(6), number)) v.tangent_clip_offset = number;
                     else if (part.starts_with("ramp") && parse_number(part.substr(4), number)) v.fade_ramp = number;
                     else {
-                        error =
-                            "--variants: '" + std::string(part) + "' in '" + std::string(name) +
-                            "' is not allowed; allowed after the fusion rule: +clip, +adaptive, "
-                            "+[no]footprint, +noleak, +[no]solid, "
-                            "+irradiance / +area (the irradiance window on or off), +[no]quadrants, +offsetT "
-                            "(tangent clip offset, texels), +rampF (fade ramp, fraction of a slice)";
+                        error = "--variants: '" + std::string(part) + "' in '" + std::string(name) +
+                                "' is not allowed; allowed after the fusion rule: +clip, +adaptive, "
+                                "+[no]footprint, +noleak, +[no]solid, "
+                                "+irradiance / +area (the irradiance window on or off), +[no]quadrants, "
+                                "+[no]near "
+                                "(the near field), +offsetT "
+                                "(tangent clip offset, texels), +rampF (fade ramp, fraction of a slice)";
                         return std::nullopt;
                     }
                 }
@@ -523,6 +529,7 @@ int main(int argc, char** argv) {
                 config.solid_casters = variant.solid_casters;
                 config.irradiance_window = variant.irradiance_window;
                 config.irradiance_quadrants = variant.irradiance_quadrants;
+                config.near_field = variant.near_field;
                 config.alpha_test = scene.mesh.cuts(); // cut-out casters cast as their materials cut, as the truth does
                 const std::string reduced =
                     reduction == penumbra::Config{}.level_reduction ? "" : " r" + std::to_string(reduction);

@@ -50,7 +50,8 @@ function(penumbra_generate_flags value_var switch_var)
     set(${switch_var}
         --alpha-test --no-alpha-test --no-leak-fix --no-fade --tangent-clip --no-tangent-clip
         --no-clip-footprint --solid-casters --irradiance-window --no-irradiance-window --irradiance-quadrants
-        --no-irradiance-quadrants --no-receiver-plane-bias --no-rotation --validate
+        --no-irradiance-quadrants --near-field --no-near-field --no-receiver-plane-bias --no-rotation
+        --validate
         PARENT_SCOPE)
     # end of the generated flags
 endfunction()

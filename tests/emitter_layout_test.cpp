@@ -1001,3 +1001,72 @@ TEST_CASE("layout builder: designated initializers, bindings from the program, s
     CHECK(to_json(layout).find("\"copy\": {\"source_level\": 0, \"source_layer\": -1, \"target_level\": 0, "
                                "\"target_layer\": -1, \"width\": 64, \"height\": 64}") != std::string::npos);
 }
+
+// near_field: the slicing pass writes the slices' nearest depths into the T colour targets after the slices',
+// penumbraVisibility reads them (nearest filtering) and caps the fused visibility with the unrolled rays;
+// refused beyond 16 slices, with adaptive placement or solid casters, and on the targets without an emission
+// of it.
+TEST_CASE(
+    "near field: the nearest depths after the slices, the rays in the visibility, and what refuses it") {
+    Config config{.slices = 16, .resolution = 256};
+    const Emission plain = *emit(config).value;
+    config.near_field = true;
+    REQUIRE(is_valid(config));
+    const Emission near = *emit(config).value;
+    const PassDesc* slicing = nullptr;
+    for (const PassDesc& p : near.layout.passes)
+        if (p.name == "slicing") slicing = &p;
+    REQUIRE(slicing);
+    REQUIRE(slicing->outputs.size() == 8);
+    for (std::size_t t = 0; t < 4; ++t) {
+        CHECK(slicing->outputs[t].texture == "penumbra_slices");
+        CHECK(slicing->outputs[4 + t].texture == "penumbra_nearDepth");
+        CHECK(slicing->outputs[4 + t].layer == static_cast<int>(t));
+    }
+    CHECK(slicing->state.blend_equation == BlendEquation::max); // the nearest surface of a slice wins
+    const std::string frag = emit_file(config, "penumbra_slicing.frag").text;
+    CHECK(frag.find("layout(location = 7) out vec4 penumbra_nearDepth3;") != std::string::npos);
+    CHECK(frag.find("penumbra_nearDepth0 = vec4(equal(vec4(k), vec4(0.0, 1.0, 2.0, 3.0))) * near;") !=
+          std::string::npos);
+    const std::string visibility = emit_file(config, "penumbra_visibility.glsl").text;
+    CHECK(visibility.find("uniform sampler2DArray penumbra_nearDepth;") != std::string::npos);
+    CHECK(visibility.find("float penumbra_nearField(vec3 p, vec3 clip)") != std::string::npos);
+    std::size_t rays = 0, steps = 0;
+    for (std::size_t at = 0; (at = visibility.find("// ray ", at)) != std::string::npos; ++at) ++rays;
+    for (std::size_t at = 0;
+         (at = visibility.find("blocked = max(blocked, penumbra_nearBlocked(", at)) != std::string::npos;
+         ++at)
+        ++steps;
+    CHECK(rays == 9);
+    CHECK(steps == 36);
+    // the clip's part and the irradiance window's core: each fused visibility is capped by its own rays
+    CHECK(visibility.find(", penumbra_nearField(p, penumbra_clip));") != std::string::npos);
+    CHECK(emit_file(Config{.slices = 16, .resolution = 256}, "penumbra_visibility.glsl")
+              .text.find("nearField") == std::string::npos);
+    CHECK(to_json(near.layout).find("\"near_field\": true") != std::string::npos);
+    CHECK(to_json(plain.layout).find("near_field") == std::string::npos); // absent means false
+    auto refused = [&](Config c, std::string_view says) {
+        const std::vector<ConfigError> errors = validate(c);
+        REQUIRE(errors.size() == 1);
+        CHECK(errors[0].field == "near_field");
+        CHECK(errors[0].message.find(says) != std::string::npos);
+    };
+    Config c = config;
+    c.slices = 32;
+    refused(c, "at most 16 slices");
+    c = config;
+    c.slice_placement = SlicePlacement::adaptive;
+    refused(c, "uniform slice placement");
+    c = config;
+    c.solid_casters = true;
+    refused(c, "solid_casters");
+    for (Target target : {Target::essl300, Target::wgsl, Target::vulkan, Target::hlsl}) {
+        c = config;
+        c.target = target;
+        c.resolution = 128;
+        refused(c, "desktop OpenGL only");
+    }
+    c = config;
+    c.target = Target::glsl330;
+    CHECK(is_valid(c));
+}

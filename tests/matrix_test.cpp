@@ -473,6 +473,65 @@ Row solid_casters_row() {
             }};
 }
 
+// The near field (near_field): every GLSL target × light, with and without the tangent clip, the irradiance
+// window and its quadrants, 4 to 16 slices, the rectangle's filters and every packing. Valid on glsl450
+// and glsl330, refused elsewhere (no emission of it yet); only the slicing program and the programs that
+// compute the visibility change.
+Row near_field_row() {
+    std::vector<Config> configs;
+    for (Target target : glsl_targets())
+        for (Light light : all_values<Light>()) {
+            auto with = [&](Config c) {
+                c.light = light;
+                c.target = target;
+                c.near_field = true;
+                configs.push_back(c);
+            };
+            with({.resolution = 256});
+            with({.resolution = 128, .irradiance_quadrants = true});
+            with({.slices = 4, .resolution = 64, .tangent_clip = false});
+            with({.slices = 7, .resolution = 64, .filter = Filter::mipmap, .packing = Packing::array});
+            with({.slices = 8, .resolution = 64, .filter = Filter::sat, .fusion = Fusion::chained});
+            with({.slices = 12, .resolution = 64, .packing = Packing::volume});
+        }
+    return {.name = "near field",
+            .configurations = configs,
+            .expect =
+                [](const Config& c) {
+                    return c.target == Target::glsl450 || c.target == Target::glsl330 ? Expect::valid
+                                                                                      : Expect::refused;
+                },
+            .check_emission =
+                [](const Config& c, const Emitted& e) {
+                    Config without = c;
+                    without.near_field = false;
+                    const Emitted plain = emit_all(without);
+                    REQUIRE(plain.programs.size() == e.programs.size());
+                    for (std::size_t i = 0; i < e.programs.size(); ++i) {
+                        const std::string fragment = e.programs[i].stages.back().text;
+                        const bool marches = fragment.find("penumbra_nearField(") != std::string::npos;
+                        const bool writes = fragment.find("penumbra_nearDepth0 = ") != std::string::npos;
+                        CHECK_MESSAGE(writes == (e.programs[i].name == "slicing"), name_of(c), " ",
+                                      e.programs[i].name);
+                        if (!marches && !writes)
+                            CHECK_MESSAGE(fragment == plain.programs[i].stages.back().text, name_of(c), " ",
+                                          e.programs[i].name);
+                    }
+                },
+            .check_refusal =
+                [](const Config& c, const Emitted& e) {
+                    CHECK_MESSAGE(
+                        std::any_of(e.errors.begin(), e.errors.end(),
+                                    [](const ConfigError& error) { return error.field == "near_field"; }),
+                        name_of(c));
+                },
+            .check_row =
+                [](const RowResult& r) {
+                    CHECK(r.valid == 2 * 2 * 6);
+                    CHECK(r.refused == 2 * 2 * 6);
+                }};
+}
+
 // The irradiance window (irradiance_window): every GLSL target × light, with and without the tangent clip.
 // Valid everywhere: under the rectangle with the clip only the programs that compute the visibility
 // change, and they weigh it by the irradiance window; under the sun or without the clip it has no effect
@@ -625,9 +684,22 @@ RowResult run_row(const Row& row) {
 } // namespace
 
 TEST_CASE("the glslang matrix: every program of every valid configuration of each technique compiles and links") {
-    const Row rows[] = {occlusion_row(), tangent_clip_row(), many_slices_row(), adaptive_row(), compute_prefilter_row(),
-                        generic_row(), shadow_map_row(), erosion_row(), evsm_row(), smrt_row(), oim_row(), alpha_test_row(),
-                        solid_casters_row(), irradiance_window_row(), profiles_row()};
+    const Row rows[] = {occlusion_row(),
+                        tangent_clip_row(),
+                        many_slices_row(),
+                        adaptive_row(),
+                        compute_prefilter_row(),
+                        generic_row(),
+                        shadow_map_row(),
+                        erosion_row(),
+                        evsm_row(),
+                        smrt_row(),
+                        oim_row(),
+                        alpha_test_row(),
+                        solid_casters_row(),
+                        irradiance_window_row(),
+                        near_field_row(),
+                        profiles_row()};
     int configurations = 0, programs = 0, compiled = 0;
     for (const Row& row : rows) {
         CAPTURE(row.name);

@@ -299,6 +299,11 @@ struct Config {
                                        // fused apart as well, each weighed by the irradiance it sends
                                        // outside the core; five passes of the slice loop instead of two
                                        // (docs/model.md §1.7.6)
+    bool near_field = false; // occlusion: the slicing pass also keeps, per slice and texel, the depth of
+                             // the surface nearest the light in that slice, and the receiver marches
+                             // rays towards the light through the slices around it, so occluders
+                             // within a slice or two of it (a contact) shadow it (docs/model.md
+                             // §1.7.7). Uniform placement, at most 16 slices, no solid casters
 
     friend constexpr bool operator==(const Config&, const Config&) = default;
 };
@@ -387,6 +392,11 @@ constexpr bool clips_to_tangent_plane(const Config& config) {
 // there is nothing to weigh; without the clip there is no part to weigh within.
 constexpr bool weighs_irradiance(const Config& config) {
     return config.irradiance_window && clips_to_tangent_plane(config) && config.light == Light::rect;
+}
+
+// Whether penumbraVisibility marches the near field through the slices' nearest depths (Config::near_field).
+constexpr bool marches_near_field(const Config& config) {
+    return config.technique == Technique::occlusion && config.near_field;
 }
 
 // Whether the irradiance window also fuses the clip's four quadrants apart (Config::irradiance_quadrants).

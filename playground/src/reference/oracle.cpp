@@ -24,6 +24,7 @@
 // slice covers fp32 arithmetic in the fade weight and the fusion.
 #include "reference/oracle.hpp"
 
+#include <penumbra/detail/occlusion/emit_near_field.hpp>
 #include <penumbra/gl/runtime.hpp>
 #include <penumbra/layout.hpp>
 
@@ -68,16 +69,22 @@ bool read_slice_textures(const penumbra::gl::Runtime& runtime, SliceTextures& ou
                     out.coverage[static_cast<std::size_t>(slice) * R * R + texel] =
                         static_cast<float>((bits[4 * texel + slice / 32] >> (slice % 32)) & 1u);
         }
-        // Colour attachment t holds slices 4t .. 4t+3 in its channels.
+        // Colour attachment t holds slices 4t .. 4t+3 in its channels; with the near field, the T attachments
+        // after them the slices' nearest depths in the same order.
+        const std::size_t T = static_cast<std::size_t>(texture_count(config));
+        if (marches_near_field(config)) out.near_depth.assign(out.coverage.size(), 0.0f);
         for (std::size_t t = 0; !slices_as_bits(config) && t < pass.outputs.size(); ++t) {
             const AttachmentDesc& target = pass.outputs[t];
+            const bool near = t >= T;
+            std::vector<float>& plane = near ? out.near_depth : out.coverage;
+            if (near && target.texture != detail::near_depth_texture) continue;
             glGetTextureSubImage(runtime.texture(target.texture), target.level, 0, 0, std::max(target.layer, 0), R, R, 1,
                                  GL_RGBA, GL_FLOAT, static_cast<GLsizei>(rgba.size() * sizeof(float)), rgba.data());
             for (int c = 0; c < 4; ++c) {
-                const int slice = static_cast<int>(4 * t) + c;
+                const int slice = static_cast<int>(4 * (near ? t - T : t)) + c;
                 if (slice >= config.slices) break;
                 for (int texel = 0; texel < R * R; ++texel)
-                    out.coverage[static_cast<std::size_t>(slice) * R * R + texel] = rgba[4 * texel + c];
+                    plane[static_cast<std::size_t>(slice) * R * R + texel] = rgba[4 * texel + c];
             }
         }
         if (const GLenum e = glGetError(); e != GL_NO_ERROR) {
@@ -114,6 +121,11 @@ Oracle::Oracle(const Config& config, const SliceFrame& frame, SliceTextures slic
         throw std::invalid_argument("oracle: slice textures of " + std::to_string(slices.slices) + " slices at " +
                                     std::to_string(slices.resolution) + "², the configuration has " +
                                     std::to_string(config.slices) + " at " + std::to_string(config.resolution) + "²");
+    if (marches_near_field(config) && slices.near_depth.size() != slices.coverage.size())
+        throw std::invalid_argument(
+            "oracle: the configuration marches the near field but the slice textures have no "
+            "nearest depths (read_slice_textures reads them from penumbra_nearDepth)");
+    near_depth_ = std::move(slices.near_depth);
     light_from_world_ = glm::dmat4(frame.light_from_world);
     cop_distance_ = frame.cop_distance;
     light_size_ = glm::dvec2(frame.light_size);
@@ -372,6 +384,47 @@ Oracle::Kernel Oracle::kernel(glm::dvec3 p, double zeta) const {
     // journal §3.5: orthographic slicing, the cone towards the sun grows linearly
     return {0.5 + glm::dvec2(p) / (2.0 * window_half_size_),
             std::max(p.z - zeta, 0.0) * tan_angular_radius_ / window_half_size_};
+}
+
+OracleValue Oracle::near_field(glm::dvec3 p, glm::dvec3 part) const {
+    using namespace penumbra::detail;
+    const int R = config_.resolution, S = config_.slices, n = near_field_rays_per_axis;
+    const double z0 = planes_[0], thickness = thickness_;
+    const double texel_edge = 1e-3, relative = 1e-5; // how near an edge fp32 may land on either side
+    int open = 0, ambiguous = 0;
+    for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) {
+            const glm::dvec2 offset((a + 0.5) / n - 0.5, (b + 0.5) / n - 0.5);
+            bool blocked = false, unsure = false;
+            for (int j = 0; j < near_field_steps; ++j) {
+                const double height = (j + 0.5) / near_field_steps * near_field_reach;
+                const double zeta = p.z - height * thickness;
+                Kernel k = kernel(p, zeta);
+                k.centre += glm::dvec2(part) * k.side; // tangent clip (identity when off)
+                k.side *= part.z;
+                const glm::dvec2 texel = (k.centre + offset * k.side) * static_cast<double>(R);
+                const double position = (zeta - z0) / thickness;
+                const int slice = std::clamp(static_cast<int>(std::ceil(position)) - 1, 0, S - 1);
+                const glm::dvec2 fraction = texel - glm::floor(texel);
+                unsure =
+                    unsure ||
+                    std::min({fraction.x, 1.0 - fraction.x, fraction.y, 1.0 - fraction.y}) < texel_edge ||
+                    std::abs(position - std::round(position)) < relative * std::max(1.0, std::abs(position));
+                const int x = static_cast<int>(std::floor(texel.x)),
+                          y = static_cast<int>(std::floor(texel.y));
+                if (x < 0 || y < 0 || x >= R || y >= R) continue; // the border: empty
+                const double stored = near_depth_[(static_cast<std::size_t>(slice) * R + y) * R + x];
+                if (stored <= 0.5 / 255.0) continue;
+                const double surface = z0 + (slice + (1.0 - stored) * 255.0 / 254.0) * thickness;
+                const double limit = zeta - near_field_bias * thickness;
+                unsure = unsure || std::abs(surface - limit) < relative * std::max(thickness, std::abs(zeta));
+                blocked = blocked || surface < limit;
+            }
+            open += blocked ? 0 : 1;
+            ambiguous += unsure ? 1 : 0;
+        }
+    const double rays = static_cast<double>(n * n);
+    return {open / rays, ambiguous / rays + arithmetic_error, false};
 }
 
 std::string Oracle::describe_lookups(glm::vec3 world, glm::vec3 normal) const {
@@ -672,6 +725,12 @@ OracleValue Oracle::visibility(glm::vec3 world, glm::vec3 normal, Fusion fusion)
         case Fusion::correlated: v = std::clamp(correlated, 0.0, 1.0); break;
         case Fusion::extent:
         case Fusion::clustered: v = std::clamp(extent, 0.0, 1.0); break;
+        }
+        if (marches_near_field(config_)) {
+            // capped by the near field's rays: min is 1-Lipschitz in both, so the larger bound holds
+            const OracleValue near = near_field(p, part);
+            v = std::min(v, near.visibility);
+            bound = std::max(bound, near.bound);
         }
         return {v, clip_closing ? 1.0 : bound, beyond};
     };

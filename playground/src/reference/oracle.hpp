@@ -39,6 +39,9 @@ struct SliceTextures {
     int resolution = 0;
     int slices = 0;
     std::vector<float> coverage; // slice-major; rows from v = 0 (GL's first row) up; texel (x, y)
+    // near_field: per slice the nearest depth the slicing pass kept (penumbra_nearDepth: 1 − f·254/255 from
+    // the slice's top, 0 where empty), laid out as `coverage`; empty without the near field
+    std::vector<float> near_depth;
 
     float at(int slice, int x, int y) const {
         return coverage[(static_cast<std::size_t>(slice) * resolution + y) * resolution + x];
@@ -46,9 +49,9 @@ struct SliceTextures {
 };
 
 // Reads the level-0 render targets of the slicing pass of a runtime that has run build() (call
-// it from RenderOptions::inspect); beyond 32 slices, decodes the bits of its RGBA32UI target (the
-// unpack pass that follows is then checked through the filtered visibility). Returns false with *error set when the layout has no slicing
-// pass or a read fails.
+// it from RenderOptions::inspect), with the near field's depths where it has them; beyond 32 slices, decodes
+// the bits of its RGBA32UI target (the unpack pass that follows is then checked through the filtered
+// visibility). Returns false with *error set when the layout has no slicing pass or a read fails.
 bool read_slice_textures(const penumbra::gl::Runtime& runtime, SliceTextures& out, std::string* error);
 
 // Adaptive slice placement: reads the S + 1 slice boundaries (penumbra_sliceBoundaries, scene units)
@@ -146,6 +149,11 @@ private:
     };
     Receiver receiver(glm::vec3 world, glm::vec3 normal) const;
     Kernel kernel(glm::dvec3 p, double zeta) const;
+    // near_field (penumbra_nearField, detail/occlusion/emit_near_field.hpp): the fraction of the rays from p
+    // towards the part `part` of the light that no stored surface within the reach blocks; the bound counts
+    // the rays whose verdict fp32 may turn (a point on a texel's edge, a slice's plane, or a surface's
+    // depth).
+    OracleValue near_field(glm::dvec3 p, glm::dvec3 part) const;
     // The filter level a window of `side` (uv) reads, clamped to the levels built, and the unclamped one.
     struct Level {
         double level = 0, wanted = 0;
@@ -175,6 +183,7 @@ private:
     int levels_top_ = 0;                      // L: log2(R), or config.level_bound when set
     std::vector<std::vector<Plane>> levels_;  // [slice][level]: mip chain, N-buffer or Gaussian levels
     std::vector<Plane> prefix_;               // [slice]: (R+1)² table, texel (X, Y) = sum over x < X, y < Y
+    std::vector<float> near_depth_;           // near_field: SliceTextures::near_depth
 };
 
 } // namespace penumbra::playground

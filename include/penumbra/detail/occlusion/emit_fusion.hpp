@@ -205,21 +205,30 @@ constexpr void write_accumulate(LineWriter& out, const Config& config) {
     }
 }
 
-constexpr void write_fusion_result(LineWriter& out, const Config& config) {
+// The fused visibility; with near_field, capped by the near field's rays (`near`: the call that marches
+// them).
+constexpr void write_fusion_result(LineWriter& out, const Config& config, std::string_view near = {}) {
     out.chunk("fusion_result");
+    Text fused;
     switch (config.fusion) {
-    case Fusion::probabilistic: out.line("return penumbra_lit;"); break;
-    case Fusion::additive: out.line("return max(0.0, 1.0 - penumbra_sum);"); break;
-    case Fusion::maximum: out.line("return 1.0 - penumbra_max;"); break;
+    case Fusion::probabilistic: fused = "penumbra_lit"; break;
+    case Fusion::additive: fused = "max(0.0, 1.0 - penumbra_sum)"; break;
+    case Fusion::maximum: fused = "1.0 - penumbra_max"; break;
     case Fusion::average:
         out.comment("Soler & Sillion: halfway between the additive and the maximum estimate");
-        out.line("return 1.0 - 0.5 * (min(1.0, penumbra_sum) + penumbra_max);");
+        fused = "1.0 - 0.5 * (min(1.0, penumbra_sum) + penumbra_max)";
         break;
     case Fusion::chained:
     case Fusion::correlated:
     case Fusion::extent:
-    case Fusion::clustered: out.line("return clamp(penumbra_lit, 0.0, 1.0);"); break;
+    case Fusion::clustered: fused = "clamp(penumbra_lit, 0.0, 1.0)"; break;
     }
+    if (near.empty()) {
+        out.line("return ", fused, ";");
+        return;
+    }
+    out.comment("near field: the slices cannot see an occluder in the receiver's own slice; the rays can");
+    out.line("return min(", fused, ", ", near, ");");
 }
 
 // Clustered fusion: the slice's coverage in the kernel's four quadrants, into penumbra_quadrants.

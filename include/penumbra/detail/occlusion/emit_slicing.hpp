@@ -72,6 +72,24 @@ constexpr void write_closed_caster(LineWriter& out, const Config& config, bool b
     out.line("}");
 }
 
+// near_field (docs/model.md §1.7.7): the fragment's depth within its own slice, f in [0, 1] from the slice's
+// top, stored as 1 - f * 254/255 in the slice's channel of penumbra_nearDepth (0 elsewhere), so the pass's
+// MAX keeps the surface nearest the light in each slice and 0 still means empty. No leak fix: the depth is
+// the fragment's.
+constexpr void write_near_depth(LineWriter& out, const Config& config) {
+    out.comment("near field: where in its slice the fragment lies (0 at the slice's top, towards the light); "
+                "MAX keeps");
+    out.comment("the nearest surface of each slice, 1/255 the deepest, 0 none");
+    out.line(
+        value(config, "float", "within",
+              "clamp((penumbra_depth - penumbra_sliceDepths.x) / penumbra_sliceDepths.y - k, 0.0, 1.0)"));
+    out.line(value(config, "float", "near", cat("1.0 - within * ", format_float(254.0 / 255.0))));
+    for (int t = 0; t < texture_count(config); ++t)
+        out.line("penumbra_nearDepth", format_int(t), " = ",
+                 construct(config, "vec4", compare(config, "equal", "vec4(k)", target_slices(t))),
+                 " * near;");
+}
+
 constexpr Text slicing_fragment(const Config& config) {
     LineWriter out;
     const bool bits = slices_as_bits(config);
@@ -97,6 +115,12 @@ constexpr Text slicing_fragment(const Config& config) {
         const int last = t * 4 + 3 < config.slices - 1 ? t * 4 + 3 : config.slices - 1;
         out.line(stage_variable(out, config, "out", t, "vec4", cat("penumbra_occlusion", format_int(t)), true), " // slices ",
                  format_int(t * 4), " to ", format_int(last));
+    }
+    for (int t = 0; marches_near_field(config) && t < texture_count(config); ++t) {
+        const int last = t * 4 + 3 < config.slices - 1 ? t * 4 + 3 : config.slices - 1;
+        out.line(stage_variable(out, config, "out", texture_count(config) + t, "vec4",
+                                cat("penumbra_nearDepth", format_int(t)), true),
+                 " // near field: nearest depth in slices ", format_int(t * 4), " to ", format_int(last));
     }
     out.blank();
     int binding = 0;
@@ -173,6 +197,7 @@ constexpr Text slicing_fragment(const Config& config) {
             out.line("penumbra_occlusion", format_int(t), " = ", construct(config, "vec4", compare(config, "equal", "vec4(k)", first)),
                      ";");
     }
+    if (marches_near_field(config)) write_near_depth(out, config);
     out.line("}");
     write_entry_point(out, config, Stage::fragment);
     return out.take();

@@ -13,6 +13,7 @@
 
 #include "emit_fusion.hpp"
 #include "emit_lookup.hpp"
+#include "emit_near_field.hpp"
 #include "emit_tangent_clip.hpp"
 
 namespace penumbra::detail {
@@ -215,6 +216,7 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
         write_wide_level_function(out, config, k.R, k.L);
         if (config.fusion == Fusion::clustered) write_cluster_functions(out, config, k.R, k.L);
     }
+    if (marches_near_field(config)) write_near_field_functions(out, config);
     out.chunk("visibility");
     if (config.tangent_clip) {
         out.comment("The fused visibility at light-frame point p of the part of the light that penumbra_clip keeps.");
@@ -230,7 +232,7 @@ constexpr void write_visibility(LineWriter& out, const Config& config, int& next
         write_level_loop(out, config);
     else
         write_slice_loop(out, config);
-    write_fusion_result(out, config);
+    write_fusion_result(out, config, near_field_call(config));
     out.line("}");
     if (!config.tangent_clip) return;
     out.blank();

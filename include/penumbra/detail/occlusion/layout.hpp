@@ -254,6 +254,24 @@ inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
                     .state = max_blend});
         }
     } else {
+        // near_field: the slices' nearest depths, the colour targets after the slices' (emit_slicing.hpp)
+        std::vector<AttachmentDesc> outputs = slicing_outputs;
+        if (marches_near_field(config)) {
+            b.texture(
+                {.name = std::string(near_depth_texture),
+                 .target = TextureTarget::texture_2d_array,
+                 .width = R,
+                 .height = R,
+                 .depth = T,
+                 .min_filter = TextureFilter::nearest,
+                 .mag_filter = TextureFilter::nearest,
+                 .wrap = wrap,
+                 .purpose =
+                     "near field: per slice (channel k % 4 of layer k / 4) the depth of the surface nearest "
+                     "the light within slice k, 1 - f * 254/255 with f in [0, 1] from the slice's top; 0 "
+                     "where the slice is empty"});
+            for (int t = 0; t < T; ++t) outputs.push_back({std::string(near_depth_texture), 0, t});
+        }
         // solid_casters: the targets' texels are 0 or 1, so a logical OR marks them as MAX does, and the
         // closed casters' draws switch it to XOR (emit_slicing.hpp)
         const RenderState logic_or{.clear_color = max_blend.clear_color, .logic_op = LogicOp::bitwise_or};
@@ -261,7 +279,7 @@ inline void describe_occlusion_passes(LayoutBuilder& b, const Config& config) {
                 .action = PassAction::draw_scene,
                 .program = "slicing",
                 .inputs = slicing_inputs,
-                .outputs = slicing_outputs,
+                .outputs = outputs,
                 .viewport_width = R,
                 .viewport_height = R,
                 .state = config.solid_casters ? logic_or : max_blend});

@@ -70,6 +70,9 @@ constexpr Param slice_boundaries_sampler() {
 }
 
 // Parameters of penumbraVisibility(): the light frame and the slices, then the storage.
+// near_field: the texture of the slices' nearest depths (slicing writes it, penumbraVisibility reads it).
+inline constexpr std::string_view near_depth_texture = "penumbra_nearDepth";
+
 constexpr std::vector<Param> visibility_params(const Config& config) {
     std::vector<Param> params;
     params.push_back(uniform_param(Uniform::light_from_world, config.light));
@@ -83,6 +86,12 @@ constexpr std::vector<Param> visibility_params(const Config& config) {
     params.push_back(uniform_param(Uniform::slice_depths, config.light));
     if (places_slices_adaptively(config)) params.push_back(slice_boundaries_sampler());
     for (Param& sampler : storage_samplers(config)) params.push_back(std::move(sampler));
+    if (marches_near_field(config))
+        params.push_back(
+            {Text(near_depth_texture), "sampler2DArray",
+             "near field: per slice the depth of its surface nearest the light, 1 - f * 254/255 from the "
+             "slice's top (channel k % 4 of layer k / 4; 0: empty), nearest filtering",
+             "", Text(near_depth_texture)});
     return params;
 }
 

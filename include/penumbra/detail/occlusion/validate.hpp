@@ -91,6 +91,30 @@ constexpr std::vector<Problem> occlusion_problems(const Config& config) {
                        Text("the Vulkan runner (targets/vulkan) does not do yet"),
                        cat("target '", target, "' does not have")),
                 "; allowed for ", target, ": false; solid_casters with target glsl450 or glsl330"));
+    if (config.near_field) {
+        const bool desktop = config.target == Target::glsl450 || config.target == Target::glsl330;
+        if (!desktop)
+            add("near_field", Text("true"),
+                cat("is built for desktop OpenGL only so far (target '", target,
+                    "' has no emission of it yet); allowed for ", target,
+                    ": false; near_field with target glsl450 or "
+                    "glsl330"));
+        else if (2 * texture_count(config) > limit.max_draw_buffers)
+            add("near_field", Text("true"),
+                cat("needs ", format_int(2 * texture_count(config)), " render targets for ",
+                    format_int(config.slices), " slices (the slices and their nearest depths) but target '",
+                    target, "' guarantees ", format_int(limit.max_draw_buffers),
+                    "; allowed: near_field with at most ", format_int(2 * limit.max_draw_buffers),
+                    " slices"));
+        if (config.slice_placement != SlicePlacement::uniform)
+            add("near_field", Text("true"),
+                Text("needs uniform slice placement; allowed: near_field with slice_placement uniform"));
+        if (config.solid_casters)
+            add("near_field", Text("true"),
+                Text("cannot be combined with solid_casters (their logical operation would combine the "
+                     "depths too); "
+                     "allowed: one of near_field and solid_casters"));
+    }
     if (config.slices > max_channel_slices && config.packing == Packing::volume)
         add("packing", Text("volume"),
             cat("needs ", format_int(texture_count(config)), " 3D textures for ", format_int(config.slices),
