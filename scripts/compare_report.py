@@ -47,7 +47,8 @@ def fmt_scale(scale):
 # shown beside it, in this order, each under the name that says what it measures.
 METRICS = {
     "shaded": "the error against irradiance weighed by the unoccluded irradiance each pixel receives: the "
-              "error of the shaded image in linear light, relative to its mean over the same pixels (a face that "
+              "error of the shaded image in linear light, relative to the mean unoccluded irradiance over the same "
+              "pixels (a face that "
               "gets almost no light weighs almost nothing)",
     "irradiance": "irradiance relative to the unoccluded irradiance from the part of the light above the receiver's "
                   "tangent plane (the shaded image's reference)",

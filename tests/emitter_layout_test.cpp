@@ -1030,7 +1030,7 @@ TEST_CASE(
           std::string::npos);
     const std::string visibility = emit_file(config, "penumbra_visibility.glsl").text;
     CHECK(visibility.find("uniform sampler2DArray penumbra_nearDepth;") != std::string::npos);
-    CHECK(visibility.find("float penumbra_nearField(vec3 p, vec3 clip)") != std::string::npos);
+    CHECK(visibility.find("float penumbra_nearField(vec3 p, vec3 penumbra_clip)") != std::string::npos);
     std::size_t rays = 0, steps = 0;
     for (std::size_t at = 0; (at = visibility.find("// ray ", at)) != std::string::npos; ++at) ++rays;
     for (std::size_t at = 0;

@@ -101,6 +101,11 @@ inline Result<GenericShading> emit_generic(const Config& config) {
             {"slice_placement", "adaptive",
              "slice_placement: adaptive is not implemented by the generic reference (its slices "
              "are uniform, from penumbra_sliceDepths); allowed: uniform"});
+    if (config.near_field)
+        result.errors.push_back(
+            {"near_field", "true",
+             "near_field is not implemented by the generic reference (it has no rays through the "
+             "slices' nearest depths); allowed: false"});
     if (config.target == Target::wgsl)
         result.errors.push_back({"target", "wgsl",
                                  "target: wgsl is not written by the generic reference (a GLSL program for the desktop "

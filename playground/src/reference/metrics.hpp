@@ -46,7 +46,8 @@ inline constexpr float false_shadow_truth = 0.99f, false_shadow_estimate = 0.95f
 
 // shaded: the irradiance reference's error, each pixel weighed by the unoccluded irradiance it receives
 // (GroundTruth::Oriented::unoccluded): the error of the shaded image (albedo × radiance × unoccluded
-// irradiance × visibility) in linear light, relative to that image's mean over the same pixels. A face
+// irradiance × visibility) in linear light, albedo aside, relative to the mean unoccluded irradiance over the
+// same pixels (the unshadowed image's mean). A face
 // that gets almost no light weighs almost nothing, the floor under the light the most; where every
 // pixel gets the same irradiance it equals the irradiance reference's error. Same pixels as irradiance
 // (penumbra: the truth or the estimate < 0.98).

@@ -390,20 +390,26 @@ OracleValue Oracle::near_field(glm::dvec3 p, glm::dvec3 part) const {
     using namespace penumbra::detail;
     const int R = config_.resolution, S = config_.slices, n = near_field_rays_per_axis;
     const double z0 = planes_[0], thickness = thickness_;
-    const double texel_edge = 1e-3, relative = 1e-5; // how near an edge fp32 may land on either side
+    // how near a texel's edge the GPU may land on either side: fp32 coordinates (η = R·2^-19 texels) or the
+    // texture unit's sub-texel rounding, whichever is coarser; and fp32 depths, relative
+    const double texel_edge = std::max(R * std::ldexp(1.0, -19), precision_.sub_texel), relative = 1e-5;
     int open = 0, ambiguous = 0;
     for (int a = 0; a < n; ++a)
         for (int b = 0; b < n; ++b) {
-            const glm::dvec2 offset((a + 0.5) / n - 0.5, (b + 0.5) / n - 0.5);
+            const glm::dvec2 offset(near_field_offset(a), near_field_offset(b));
             bool blocked = false, unsure = false;
             for (int j = 0; j < near_field_steps; ++j) {
-                const double height = (j + 0.5) / near_field_steps * near_field_reach;
-                const double zeta = p.z - height * thickness;
+                const double zeta = p.z - near_field_height(j) * thickness;
+                const double position = (zeta - z0) / thickness;
+                // past the last slice: open, as the GPU says (within rounding of it, either way); above the
+                // first: no stored surface lies nearer the light than the point
+                const bool past = position > S;
+                unsure = unsure || std::abs(position - S) < relative * std::max(1.0, std::abs(position));
+                if (past || position < 0.0) continue;
                 Kernel k = kernel(p, zeta);
                 k.centre += glm::dvec2(part) * k.side; // tangent clip (identity when off)
                 k.side *= part.z;
                 const glm::dvec2 texel = (k.centre + offset * k.side) * static_cast<double>(R);
-                const double position = (zeta - z0) / thickness;
                 const int slice = std::clamp(static_cast<int>(std::ceil(position)) - 1, 0, S - 1);
                 const glm::dvec2 fraction = texel - glm::floor(texel);
                 unsure =

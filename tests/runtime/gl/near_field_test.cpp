@@ -1,9 +1,10 @@
 // The near field (Config::near_field, docs/model.md §1.7.7) on `room`, whose bookshelf's boards, sides and
 // back panel are occluders within a slice or two of their receivers: the GPU's visibility equals the oracle's
 // within its bound (the oracle marches the same rays over the nearest depths the GPU's slicing pass kept),
-// the near field darkens the contacts and nothing else (a receiver never gets lighter), and against the
-// Embree irradiance truth the estimate is closer with it than without; on `box`, where nothing lies within
-// two slices of a receiver, it changes nothing. Label "gl".
+// the near field darkens the contacts and nothing else (a receiver never gets lighter; not so with the
+// window's quadrants, docs/model.md §1.7.7), and against the Embree irradiance truth the estimate is closer
+// with it than without; on `box`, where nothing lies within two slices of a receiver, it changes nothing.
+// Label "gl".
 #include "oracle_agreement.hpp"
 #include "reference/oracle.hpp"
 #include "rendering/egl_context.hpp"

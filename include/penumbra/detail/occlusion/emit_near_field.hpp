@@ -13,7 +13,13 @@ namespace penumbra::detail {
 inline constexpr int near_field_rays_per_axis = 3;
 // The steps along each ray: at (j + 0.5) / steps of the reach above the receiver, in slice thicknesses.
 inline constexpr int near_field_steps = 4;
-inline constexpr double near_field_reach = 2.0; // slice thicknesses: the receiver's slice and the one above
+inline constexpr double near_field_reach = 2.0; // slice thicknesses: up to two slices above the receiver's
+
+// Ray a (of near_field_rays_per_axis) along one axis: its offset from the kernel's centre, in the kernel's
+// side.
+constexpr double near_field_offset(int a) { return (a + 0.5) / near_field_rays_per_axis - 0.5; }
+// Step j: its height above the receiver, in slice thicknesses.
+constexpr double near_field_height(int j) { return (j + 0.5) / near_field_steps * near_field_reach; }
 // A stored surface blocks a ray point only when it lies this many slice thicknesses nearer the light than the
 // point: above the 1/254 the 8-bit depth is rounded to, below any step.
 inline constexpr double near_field_bias = 1.0 / 64.0;
@@ -24,7 +30,6 @@ constexpr Text near_field_call(const Config& config) {
 }
 
 constexpr void write_near_field_functions(LineWriter& out, const Config& config) {
-    const Text S_minus_1 = format_float(config.slices - 1);
     out.chunk("near_field");
     out.comment("Near field: 1 where the ray from light-frame point p towards the light point `offset` (in "
                 "the kernel's");
@@ -32,21 +37,24 @@ constexpr void write_near_field_functions(LineWriter& out, const Config& config)
                 "slicing pass kept");
     out.comment("nearest the light in the slice it is in, 0 otherwise.");
     if (config.tangent_clip)
-        out.line(signature(config, "float", "penumbra_nearBlocked",
-                           {{"vec3", "p"}, {"vec3", "clip"}, {"vec2", "offset"}, {"float", "height"}}));
+        out.line(
+            signature(config, "float", "penumbra_nearBlocked",
+                      {{"vec3", "p"}, {"vec3", "penumbra_clip"}, {"vec2", "offset"}, {"float", "height"}}));
     else
         out.line(signature(config, "float", "penumbra_nearBlocked",
                            {{"vec3", "p"}, {"vec2", "offset"}, {"float", "height"}}));
     out.line("{");
     out.line(value(config, "float", "zeta", "p.z - height * penumbra_sliceDepths.y"));
+    out.comment(
+        "past the last slice nothing was sliced: open (the slicing pass clamps such fragments to it)");
+    out.line(if_then(
+        config,
+        cat("zeta > penumbra_sliceDepths.x + ", format_float(config.slices), " * penumbra_sliceDepths.y"),
+        "return 0.0;"));
     out.comment("the ray meets the plane at depth zeta where the light point meets the kernel of that plane");
-    out.line(
-        value(config, "vec4", "kernel",
-              choose(config.tangent_clip, "penumbra_kernel(p, zeta, clip)", "penumbra_kernel(p, zeta)")));
+    out.line(value(config, "vec4", "kernel", kernel_call(config)));
     out.line(value(config, "vec2", "uv", "kernel.xy + offset * kernel.z"));
-    out.line(value(config, "float", "slice",
-                   cat("clamp(ceil((zeta - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 1.0, 0.0, ",
-                       S_minus_1, ")")));
+    out.line(value(config, "float", "slice", uniform_slice_of(config, "zeta")));
     out.line(value(config, "vec4", "texel",
                    sample_layer_level(config, "penumbra_nearDepth", "uv", "floor(slice / 4.0)", "0.0")));
     out.line(value(config, "float", "stored",
@@ -75,7 +83,8 @@ constexpr void write_near_field_functions(LineWriter& out, const Config& config)
                     " slice thicknesses above p blocks"));
     out.comment(cat("(", format_int(near_field_steps), " steps each; a blocked step blocks the ray)."));
     if (config.tangent_clip)
-        out.line(signature(config, "float", "penumbra_nearField", {{"vec3", "p"}, {"vec3", "clip"}}));
+        out.line(
+            signature(config, "float", "penumbra_nearField", {{"vec3", "p"}, {"vec3", "penumbra_clip"}}));
     else
         out.line(signature(config, "float", "penumbra_nearField", {{"vec3", "p"}}));
     out.line("{");
@@ -83,17 +92,17 @@ constexpr void write_near_field_functions(LineWriter& out, const Config& config)
     const int n = near_field_rays_per_axis;
     for (int a = 0; a < n; ++a)
         for (int b = 0; b < n; ++b) {
-            const double u = (a + 0.5) / n - 0.5, v = (b + 0.5) / n - 0.5;
-            const Text offset = cat("vec2(", format_float(u), ", ", format_float(v), ")");
+            const Text offset = cat("vec2(", format_float(near_field_offset(a)), ", ",
+                                    format_float(near_field_offset(b)), ")");
             out.line("// ray ", format_int(a * n + b), ": towards the light point ", offset,
                      " of the kernel's side");
             out.line("{");
             out.line(variable(config, "float", "blocked", "0.0"));
             for (int j = 0; j < near_field_steps; ++j) {
-                const Text height = format_float((j + 0.5) / near_field_steps * near_field_reach);
+                const Text height = format_float(near_field_height(j));
                 out.line("blocked = max(blocked, penumbra_nearBlocked(p, ",
-                         choose(config.tangent_clip, "clip, ", ""), offset, ", ", height, ")); // step ",
-                         format_int(j), ": ", height, " slices above p");
+                         choose(config.tangent_clip, "penumbra_clip, ", ""), offset, ", ", height,
+                         ")); // step ", format_int(j), ": ", height, " slices above p");
             }
             out.line("penumbra_open += 1.0 - blocked;");
             out.line("}");

@@ -158,9 +158,7 @@ constexpr Text slicing_fragment(const Config& config) {
         out.line(value(config, "float", "k", construct(config, "float", "inner")));
     } else {
         out.comment("slice k holds the depths in (z0 + k * thickness, z0 + (k + 1) * thickness]");
-        out.line(value(config, "float", "k",
-                       cat("clamp(ceil((penumbra_depth - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 1.0, 0.0, ",
-                           format_float(config.slices - 1), ")")));
+        out.line(value(config, "float", "k", uniform_slice_of(config, "penumbra_depth")));
     }
     if (config.solid_casters) write_closed_caster(out, config, bits);
     const int reach = leak_fix_reach(config);

@@ -70,6 +70,13 @@ constexpr Param slice_boundaries_sampler() {
 }
 
 // Parameters of penumbraVisibility(): the light frame and the slices, then the storage.
+// Uniform placement: the slice that holds light-frame depth `depth`, slice k holding (z0 + k·Δ, z0 + (k +
+// 1)·Δ], clamped to the slices (the slicing pass files a fragment by it; the near field's rays read by it).
+constexpr Text uniform_slice_of(const Config& config, std::string_view depth) {
+    return cat("clamp(ceil((", depth, " - penumbra_sliceDepths.x) / penumbra_sliceDepths.y) - 1.0, 0.0, ",
+               format_float(config.slices - 1), ")");
+}
+
 // near_field: the texture of the slices' nearest depths (slicing writes it, penumbraVisibility reads it).
 inline constexpr std::string_view near_depth_texture = "penumbra_nearDepth";
 
