@@ -117,10 +117,10 @@ constexpr Text slicing_fragment(const Config& config) {
                  format_int(t * 4), " to ", format_int(last));
     }
     for (int t = 0; marches_near_field(config) && t < texture_count(config); ++t) {
-        const int last = t * 4 + 3 < config.slices - 1 ? t * 4 + 3 : config.slices - 1;
+        const int first = 4 * t, last = first + 3 < config.slices - 1 ? first + 3 : config.slices - 1;
         out.line(stage_variable(out, config, "out", texture_count(config) + t, "vec4",
                                 cat("penumbra_nearDepth", format_int(t)), true),
-                 " // near field: nearest depth in slices ", format_int(t * 4), " to ", format_int(last));
+                 " // near field: nearest depth in slices ", format_int(first), " to ", format_int(last));
     }
     out.blank();
     int binding = 0;

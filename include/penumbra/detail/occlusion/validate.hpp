@@ -93,19 +93,20 @@ constexpr std::vector<Problem> occlusion_problems(const Config& config) {
                 "; allowed for ", target, ": false; solid_casters with target glsl450 or glsl330"));
     if (config.near_field) {
         const bool desktop = config.target == Target::glsl450 || config.target == Target::glsl330;
+        // the slices' targets and as many for their nearest depths; four slices a target
+        const int near_targets = 2 * texture_count(config), most_slices = 2 * limit.max_draw_buffers;
         if (!desktop)
             add("near_field", Text("true"),
                 cat("is built for desktop OpenGL only so far (target '", target,
                     "' has no emission of it yet); allowed for ", target,
                     ": false; near_field with target glsl450 or "
                     "glsl330"));
-        else if (2 * texture_count(config) > limit.max_draw_buffers)
+        else if (near_targets > limit.max_draw_buffers)
             add("near_field", Text("true"),
-                cat("needs ", format_int(2 * texture_count(config)), " render targets for ",
-                    format_int(config.slices), " slices (the slices and their nearest depths) but target '",
-                    target, "' guarantees ", format_int(limit.max_draw_buffers),
-                    "; allowed: near_field with at most ", format_int(2 * limit.max_draw_buffers),
-                    " slices"));
+                cat("needs ", format_int(near_targets), " render targets for ", format_int(config.slices),
+                    " slices (the slices and their nearest depths) but target '", target, "' guarantees ",
+                    format_int(limit.max_draw_buffers), "; allowed: near_field with at most ",
+                    format_int(most_slices), " slices"));
         if (config.slice_placement != SlicePlacement::uniform)
             add("near_field", Text("true"),
                 Text("needs uniform slice placement; allowed: near_field with slice_placement uniform"));
