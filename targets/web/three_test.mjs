@@ -165,6 +165,15 @@ export function compareBackends(webgpu, webgl2) {
     return out;
 }
 
+// What compareBackends found wrong, for `expected` pixels: none may lie outside 2q, and one must be shadowed.
+export function backendFailures(b, expected) {
+    const failures = [];
+    if (b.length !== b.pixels || b.pixels !== expected) failures.push(`${b.length} WebGPU and ${b.pixels} WebGL2 pixels read, expected ${expected}`);
+    if (b.outside > 0) failures.push(`${b.outside} of ${b.pixels} pixels differ from the add-on's WebGL2 visibility of the same room by more than 2q (allowed: none)`);
+    if (b.shadowed === 0) failures.push("neither visibility has a shadowed pixel: the comparison with WebGL2 would prove nothing");
+    return failures;
+}
+
 // 3. (rect) lit-with / lit-without against the visibility, where the light reaches.
 export function compareRatio({ratio, unshadowed}, visibility) {
     const out = {outside: 0, lit: 0, worst: 0};
